@@ -1,0 +1,133 @@
+//! `subdiv-lab matrix`: print a local subdivision matrix.
+
+use super::scheme_args::SchemeArgs;
+use super::{CliError, CliResult};
+use clap::{Args, ValueEnum};
+use nalgebra::DMatrix;
+use subdiv_lab::scalar::Scalar;
+use subdiv_lab::schemes::{LocalMatrix, LocalScheme, PointLabel};
+
+#[derive(Args, Debug)]
+pub(crate) struct MatrixArgs {
+    #[command(flatten)]
+    scheme: SchemeArgs,
+    /// Which block: the full 4n x 4n matrix or the n x n face block.
+    #[arg(long, value_enum, default_value_t = Block::Full)]
+    block: Block,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+    /// Exact rational entries (a/b) computed from the exact value of the input.
+    #[arg(long)]
+    exact: bool,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum Block {
+    Full,
+    Face,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum Format {
+    Csv,
+    Json,
+    Text,
+}
+
+pub(crate) fn run(args: MatrixArgs) -> CliResult {
+    let resolved = args.scheme.resolve(args.exact)?;
+    let out = match &resolved.exact {
+        Some(exact) => render(exact, &args)?,
+        None => render(&resolved.f64, &args)?,
+    };
+    print!("{out}");
+    Ok(())
+}
+
+fn render<T: Scalar>(scheme: &LocalScheme<T>, args: &MatrixArgs) -> CliResult<String> {
+    let full: LocalMatrix<T> = scheme.matrix().map_err(CliError::failure)?;
+    let n = scheme.valence();
+    let (labels, m): (Vec<PointLabel>, DMatrix<T>) = match args.block {
+        Block::Full => (full.rows().to_vec(), full.matrix().clone()),
+        Block::Face => (
+            full.rows()[..n].to_vec(),
+            full.matrix().view((0, 0), (n, n)).into_owned(),
+        ),
+    };
+    let weights = scheme.face_weights();
+    Ok(match args.format {
+        Format::Csv => m
+            .row_iter()
+            .map(|row| {
+                row.iter()
+                    .map(Scalar::to_text)
+                    .collect::<Vec<_>>()
+                    .join(",")
+                    + "\n"
+            })
+            .collect(),
+        Format::Json => {
+            let value = |x: &T| {
+                if T::EXACT {
+                    serde_json::Value::String(x.to_text())
+                } else {
+                    serde_json::json!(x.to_f64())
+                }
+            };
+            let doc = serde_json::json!({
+                "scheme": scheme.kind().name(),
+                "valence": n,
+                "exact": T::EXACT,
+                "rows": labels.iter().map(ToString::to_string).collect::<Vec<_>>(),
+                "matrix": m.row_iter().map(|row| row.iter().map(value).collect::<Vec<_>>()).collect::<Vec<_>>(),
+                "face_weights": weights.iter().map(value).collect::<Vec<_>>(),
+            });
+            serde_json::to_string_pretty(&doc).map_err(CliError::failure)? + "\n"
+        }
+        Format::Text => {
+            let cells: Vec<Vec<String>> = m
+                .row_iter()
+                .map(|row| row.iter().map(Scalar::to_text).collect())
+                .collect();
+            let names: Vec<String> = labels.iter().map(ToString::to_string).collect();
+            let width = cells
+                .iter()
+                .flatten()
+                .chain(&names)
+                .map(String::len)
+                .max()
+                .unwrap_or(1);
+            let mut s = format!(
+                "{} S_{} ({} block, {}x{}){}\n",
+                scheme.kind().name(),
+                n,
+                match args.block {
+                    Block::Full => "full",
+                    Block::Face => "face",
+                },
+                m.nrows(),
+                m.ncols(),
+                if T::EXACT { ", exact" } else { "" }
+            );
+            s += &format!("{:>w$} ", "", w = width);
+            for name in &names {
+                s += &format!(" {name:>width$}");
+            }
+            s.push('\n');
+            for (name, row) in names.iter().zip(&cells) {
+                s += &format!("{name:>width$} ");
+                for c in row {
+                    s += &format!(" {c:>width$}");
+                }
+                s.push('\n');
+            }
+            s += "face weights c:";
+            for c in &weights {
+                s += &format!(" {}", c.to_text());
+            }
+            s.push('\n');
+            s
+        }
+    })
+}

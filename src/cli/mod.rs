@@ -1,0 +1,87 @@
+//! Command-line front end. Each subcommand lives in its own module: it parses,
+//! validates through [`scheme_args`] (shared scheme/knot flags), calls the
+//! library, and formats the result. No numerics here.
+
+mod matrix;
+mod scheme_args;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Exit code for invalid input (bad flags, bad values, bad files).
+const EXIT_USAGE: u8 = 2;
+/// Exit code for failures while running valid input (numerical failure, I/O).
+const EXIT_FAILURE: u8 = 1;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "subdiv-lab",
+    version,
+    about = "Numerical analysis and verification of subdivision surfaces"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Print a local subdivision matrix (S_n or its face block).
+    Matrix(matrix::MatrixArgs),
+}
+
+/// An error with the exit code it maps to.
+#[derive(Debug)]
+pub(crate) enum CliError {
+    /// The input is invalid: exit code 2.
+    Usage(anyhow::Error),
+    /// Valid input, failure while running: exit code 1.
+    Failure(anyhow::Error),
+}
+
+impl CliError {
+    pub(crate) fn usage(e: impl Into<anyhow::Error>) -> Self {
+        CliError::Usage(e.into())
+    }
+    pub(crate) fn failure(e: impl Into<anyhow::Error>) -> Self {
+        CliError::Failure(e.into())
+    }
+}
+
+pub(crate) type CliResult<T = ()> = Result<T, CliError>;
+
+/// Parses the command line, runs the command, maps errors to exit codes.
+pub fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+                print!("{e}");
+                return ExitCode::SUCCESS;
+            }
+            // One line: clap's first line names the problem.
+            let text = e.render().to_string();
+            let first = text
+                .lines()
+                .find(|l| !l.trim().is_empty())
+                .unwrap_or("invalid arguments");
+            eprintln!("{} (see --help)", first.trim_end());
+            return ExitCode::from(EXIT_USAGE);
+        }
+    };
+    let result = match cli.command {
+        Command::Matrix(args) => matrix::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(CliError::Usage(e)) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(EXIT_USAGE)
+        }
+        Err(CliError::Failure(e)) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(EXIT_FAILURE)
+        }
+    }
+}

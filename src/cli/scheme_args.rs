@@ -1,0 +1,163 @@
+//! The scheme and knot flags shared by `matrix`, `analyze` and friends, and
+//! their validation into library types.
+
+use super::{CliError, CliResult};
+use anyhow::anyhow;
+use clap::Args;
+use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
+use subdiv_lab::scalar::{parse_exact, Rational, Scalar};
+use subdiv_lab::schemes::{LocalScheme, SchemeKind};
+
+/// Scheme selection flags.
+#[derive(Args, Debug, Clone)]
+pub(crate) struct SchemeArgs {
+    /// Scheme: nurds, doo-sabin or cc-variant.
+    #[arg(long, default_value = "nurds")]
+    pub scheme: String,
+    /// Valence n >= 3 of the extraordinary face (inferred from --knots/--ratios if omitted).
+    #[arg(long)]
+    pub valence: Option<usize>,
+    /// Corner knot intervals "p0:q0,p1:q1,..." (n pairs; p_i = d(P_i->P_i+1), q_i = d(P_i->P_i-1)).
+    #[arg(long, allow_hyphen_values = true)]
+    pub knots: Option<String>,
+    /// Edge ratios "r0,r1,..." (n values in (0,1)).
+    #[arg(long, allow_hyphen_values = true)]
+    pub ratios: Option<String>,
+    /// Uniform knot intervals (all ratios 1/2).
+    #[arg(long)]
+    pub uniform: bool,
+}
+
+/// The validated configuration, in f64 and (when requested and possible) exactly.
+pub(crate) struct Resolved {
+    pub f64: LocalScheme<f64>,
+    pub exact: Option<LocalScheme<Rational>>,
+}
+
+/// One number from the command line, exactly and as the nearest f64.
+fn parse_number(what: &str, text: &str) -> CliResult<(Rational, f64)> {
+    let t = text.trim();
+    match parse_exact(t) {
+        Some(q) => {
+            let x = t.parse::<f64>().unwrap_or_else(|_| q.to_f64());
+            Ok((q, x))
+        }
+        None => match t.parse::<f64>() {
+            Ok(x) => Err(CliError::usage(anyhow!(
+                "{what} must be finite and > 0, got {x}"
+            ))),
+            Err(_) => Err(CliError::usage(anyhow!("{what}: {t:?} is not a number"))),
+        },
+    }
+}
+
+fn split_list(flag: &str, text: &str) -> CliResult<Vec<String>> {
+    let items: Vec<String> = text.split(',').map(|s| s.trim().to_owned()).collect();
+    if items.iter().any(|s| s.is_empty()) {
+        return Err(CliError::usage(anyhow!("{flag}: empty entry in {text:?}")));
+    }
+    Ok(items)
+}
+
+fn lib_err(e: subdiv_lab::Error) -> CliError {
+    CliError::usage(e)
+}
+
+impl SchemeArgs {
+    /// Validates the flags; `exact` also builds the exact-rational configuration.
+    pub fn resolve(&self, exact: bool) -> CliResult<Resolved> {
+        let kind: SchemeKind = self.scheme.parse().map_err(CliError::usage)?;
+        let given = [self.knots.is_some(), self.ratios.is_some(), self.uniform]
+            .iter()
+            .filter(|b| **b)
+            .count();
+        if given > 1 {
+            return Err(CliError::usage(anyhow!(
+                "--knots, --ratios and --uniform are mutually exclusive; give one"
+            )));
+        }
+        if !kind.takes_knots() && (self.knots.is_some() || self.ratios.is_some()) {
+            return Err(CliError::usage(anyhow!(
+                "--scheme {kind} takes no knot intervals (only --uniform); use --scheme nurds for --knots/--ratios"
+            )));
+        }
+        // Parse ratios in both arithmetics.
+        let (rq, rf): (Option<EdgeRatios<Rational>>, Option<EdgeRatios<f64>>) = if let Some(text) =
+            &self.knots
+        {
+            let mut pq = Vec::new();
+            let mut pf = Vec::new();
+            let mut qq = Vec::new();
+            let mut qf = Vec::new();
+            for (i, item) in split_list("--knots", text)?.iter().enumerate() {
+                let (p, q) = item.split_once(':').ok_or_else(|| {
+                    CliError::usage(anyhow!("--knots entry {i} is {item:?}; expected p{i}:q{i}"))
+                })?;
+                let (a, b) = parse_number(&format!("knot interval p_{i}"), p)?;
+                let (c, d) = parse_number(&format!("knot interval q_{i}"), q)?;
+                pq.push(a);
+                pf.push(b);
+                qq.push(c);
+                qf.push(d);
+            }
+            self.check_count("--knots", pf.len())?;
+            let kf = CornerIntervals::new(pf, qf).map_err(lib_err)?;
+            let kq = CornerIntervals::new(pq, qq).map_err(lib_err)?;
+            (
+                Some(kq.ratios().map_err(lib_err)?),
+                Some(kf.ratios().map_err(lib_err)?),
+            )
+        } else if let Some(text) = &self.ratios {
+            let mut vq = Vec::new();
+            let mut vf = Vec::new();
+            for (i, item) in split_list("--ratios", text)?.iter().enumerate() {
+                let (a, b) = match parse_number(&format!("edge ratio r_{i}"), item) {
+                    Ok(v) => v,
+                    Err(_) => {
+                        return Err(CliError::usage(anyhow!(
+                            "edge ratio r_{i}: {item:?} is not a number in (0, 1)"
+                        )))
+                    }
+                };
+                vq.push(a);
+                vf.push(b);
+            }
+            self.check_count("--ratios", vf.len())?;
+            let rf = EdgeRatios::new(vf).map_err(lib_err)?;
+            let rq = EdgeRatios::new(vq).map_err(lib_err)?;
+            (Some(rq), Some(rf))
+        } else {
+            if kind.takes_knots() && !self.uniform {
+                return Err(CliError::usage(anyhow!(
+                    "--scheme {kind} needs one of --knots, --ratios or --uniform"
+                )));
+            }
+            (None, None)
+        };
+        let valence = match (&rf, self.valence) {
+            (Some(r), _) => r.valence(),
+            (None, Some(n)) => n,
+            (None, None) => {
+                return Err(CliError::usage(anyhow!(
+                    "--valence is required with --scheme {kind}"
+                )))
+            }
+        };
+        let f = LocalScheme::from_kind(kind, valence, rf).map_err(lib_err)?;
+        let exact = if exact {
+            Some(LocalScheme::from_kind(kind, valence, rq).map_err(lib_err)?)
+        } else {
+            None
+        };
+        Ok(Resolved { f64: f, exact })
+    }
+
+    fn check_count(&self, flag: &str, got: usize) -> CliResult {
+        match self.valence {
+            Some(n) if n != got => Err(CliError::usage(anyhow!(
+                "{flag} has {got} entries but --valence is {n}"
+            ))),
+            _ => Ok(()),
+        }
+    }
+}

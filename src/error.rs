@@ -1,0 +1,71 @@
+//! Typed errors of the library core.
+//!
+//! Every error names the offending value (and its index where there is one),
+//! so the binary can print a one-line message without extra context. The core
+//! never panics on user input: invalid input is one of these variants.
+//!
+//! Modules with many failure modes of their own (meshes, sweep specs, reports)
+//! define their own error enums and convert into [`Error`] with `#[from]`.
+
+use thiserror::Error as ThisError;
+
+/// Errors of the library core.
+#[derive(Debug, Clone, PartialEq, ThisError)]
+#[non_exhaustive]
+pub enum Error {
+    /// A face or vertex valence below 3.
+    #[error("valence must be at least 3, got {valence}")]
+    ValenceTooSmall {
+        /// The rejected valence.
+        valence: usize,
+    },
+    /// A knot interval that is not finite and strictly positive.
+    #[error("knot interval {name}_{index} must be finite and > 0, got {value}")]
+    InvalidInterval {
+        /// Which interval family (`p`, `q`, `a`, `forward`, `backward`).
+        name: &'static str,
+        /// Corner or edge index.
+        index: usize,
+        /// The rejected value, as text.
+        value: String,
+    },
+    /// An edge ratio outside the open interval (0, 1).
+    #[error("edge ratio r_{index} must lie strictly between 0 and 1, got {value}")]
+    InvalidRatio {
+        /// Edge index.
+        index: usize,
+        /// The rejected value, as text.
+        value: String,
+    },
+    /// Two lists that must have the same length (or a given length) do not.
+    #[error("{what}: expected {expected} values, got {got}")]
+    CountMismatch {
+        /// What was counted.
+        what: &'static str,
+        /// Expected count.
+        expected: usize,
+        /// Actual count.
+        got: usize,
+    },
+    /// A scheme parameter that is out of range or not representable.
+    #[error("invalid parameter {name} = {value}: {reason}")]
+    InvalidParameter {
+        /// Parameter name.
+        name: &'static str,
+        /// The rejected value, as text.
+        value: String,
+        /// Why it is rejected.
+        reason: &'static str,
+    },
+    /// A numerical routine that did not converge or met a singular system.
+    #[error("numerical failure in {routine}: {reason}")]
+    Numerical {
+        /// Which routine failed.
+        routine: &'static str,
+        /// What went wrong.
+        reason: String,
+    },
+}
+
+/// Shorthand for results of the library core.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,313 @@
+//! Face-point weights `c_j`: the face point is `F = sum_j c_j P_j`.
+//!
+//! Math doc section 3 (seed 000). The paper's closed form is
+//!
+//! ```text
+//! alpha_j = 1/2 ( prod_{k=0}^{n-1} p_{j+k} + prod_{k=0}^{n-1} q_{j-k} )
+//!         + sum_{m=1}^{n-1} ( prod_{k=1}^{m} q_{j+k} ) ( prod_{k=m}^{n-1} p_{j+k} ),
+//! c_j = alpha_j / sum_k alpha_k.
+//! ```
+//!
+//! Writing `p_i = s_i (p_i + q_{i+1})`, `q_{i+1} = r_i (p_i + q_{i+1})` with
+//! `s_i = 1 - r_i`, every product above contains each edge sum `p_i + q_{i+1}`
+//! exactly once, so that common factor cancels and **[derived]**
+//!
+//! ```text
+//! alpha_j  ∝  sum_{m=0}^{n} w_m T_m(j),   w_0 = w_n = 1/2, w_m = 1 otherwise,
+//! T_m(j)   =  prod_{i=j}^{j+m-1} r_i  *  prod_{i=j+m}^{j+n-1} s_i .
+//! ```
+//!
+//! These products over- and underflow `f64` for large `n` or extreme ratios
+//! (`(1e-6)^256`), so the `f64` kernel keeps every product as a mantissa and a
+//! separate `i64` binary exponent ([`ExtFloat`]): all terms are positive, so
+//! no cancellation occurs and the relative error is `O(n eps)` for any `n` and
+//! any ratios. The rational kernel evaluates the same formula exactly.
+//!
+//! Independent check (math doc fact 3, **[derived]**): `c` is the stationary
+//! distribution of the cyclic Markov chain `P = R/2`, computed here by the
+//! subtraction-free GTH elimination ([`stationary_distribution`]).
+
+use super::EdgeRatios;
+use crate::scalar::Scalar;
+
+/// Face-point weights `c_0..c_{n-1}` (they sum to 1) by the closed form.
+///
+/// Exact for rationals; for `f64` accurate to a few ulps times `n` for any
+/// valence and any ratios (no overflow or underflow).
+///
+/// ```
+/// use subdiv_lab::knots::{face_weights, EdgeRatios};
+/// let c = face_weights(&EdgeRatios::<f64>::uniform(5).unwrap());
+/// assert!(c.iter().all(|&x| (x - 0.2).abs() < 1e-15));
+/// ```
+pub fn face_weights<T: Scalar>(ratios: &EdgeRatios<T>) -> Vec<T> {
+    T::face_weights_kernel(ratios.as_slice(), ratios.complement())
+}
+
+/// Closed form in exact (or plain floating) arithmetic; used for rationals.
+pub(crate) fn generic_kernel<T: Scalar>(r: &[T], s: &[T]) -> Vec<T> {
+    let n = r.len();
+    let half = T::frac(1, 2);
+    let mut alpha = Vec::with_capacity(n);
+    for j in 0..n {
+        // suffix[m] = prod_{i=j+m}^{j+n-1} s_i
+        let mut suffix = vec![T::one(); n + 1];
+        for m in (0..n).rev() {
+            suffix[m] = suffix[m + 1].clone() * s[(j + m) % n].clone();
+        }
+        let mut prefix = T::one();
+        let mut total = half.clone() * suffix[0].clone();
+        for m in 1..=n {
+            prefix = prefix * r[(j + m - 1) % n].clone();
+            let term = prefix.clone() * suffix[m].clone();
+            total = total + if m == n { half.clone() * term } else { term };
+        }
+        alpha.push(total);
+    }
+    let sum = alpha.iter().cloned().fold(T::zero(), |a, b| a + b);
+    alpha.into_iter().map(|a| a / sum.clone()).collect()
+}
+
+/// A positive number `m * 2^e` with `m in [0.5, 1)` and an unbounded exponent.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ExtFloat {
+    m: f64,
+    e: i64,
+}
+
+impl ExtFloat {
+    const ONE: ExtFloat = ExtFloat { m: 0.5, e: 1 };
+
+    /// `x > 0`, finite (subnormals are handled).
+    fn new(x: f64) -> Self {
+        debug_assert!(x > 0.0 && x.is_finite());
+        let (m, e) = frexp(x);
+        ExtFloat { m, e }
+    }
+
+    fn mul(self, o: ExtFloat) -> Self {
+        let (m, e) = frexp(self.m * o.m);
+        ExtFloat {
+            m,
+            e: e + self.e + o.e,
+        }
+    }
+
+    fn add(self, o: ExtFloat) -> Self {
+        let (big, small) = if self.e >= o.e { (self, o) } else { (o, self) };
+        let shift = big.e - small.e;
+        if shift > 1100 {
+            return big;
+        }
+        let (m, e) = frexp(big.m + small.m * exp2i(-shift));
+        ExtFloat { m, e: e + big.e }
+    }
+
+    fn half(self) -> Self {
+        ExtFloat {
+            m: self.m,
+            e: self.e - 1,
+        }
+    }
+
+    /// `self / o` as an ordinary f64 (finite when the quotient is representable).
+    fn ratio(self, o: ExtFloat) -> f64 {
+        (self.m / o.m) * exp2i(self.e - o.e)
+    }
+}
+
+/// `2^k` for any integer `k`, saturating to 0 or infinity.
+fn exp2i(k: i64) -> f64 {
+    if k < -1074 {
+        0.0
+    } else if k > 1023 {
+        f64::INFINITY
+    } else if k < -1022 {
+        f64::from_bits(1u64 << (k + 1074))
+    } else {
+        f64::from_bits(((k + 1023) as u64) << 52)
+    }
+}
+
+/// `x = m * 2^e` with `m in [0.5, 1)` for finite `x > 0`.
+fn frexp(x: f64) -> (f64, i64) {
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i64;
+    if biased == 0 {
+        // Subnormal: scale into the normal range first.
+        let (m, e) = frexp(x * exp2i(64));
+        return (m, e - 64);
+    }
+    let m = f64::from_bits((bits & !(0x7ffu64 << 52)) | (1022u64 << 52));
+    (m, biased - 1022)
+}
+
+/// Closed form with extended exponents; `O(n^2)` operations.
+pub(crate) fn f64_kernel(r: &[f64], s: &[f64]) -> Vec<f64> {
+    let n = r.len();
+    let re: Vec<ExtFloat> = r.iter().map(|&x| ExtFloat::new(x)).collect();
+    let se: Vec<ExtFloat> = s.iter().map(|&x| ExtFloat::new(x)).collect();
+    let mut suffix = vec![ExtFloat::ONE; n + 1];
+    let mut alpha = Vec::with_capacity(n);
+    for j in 0..n {
+        suffix[n] = ExtFloat::ONE;
+        for m in (0..n).rev() {
+            suffix[m] = suffix[m + 1].mul(se[(j + m) % n]);
+        }
+        let mut prefix = ExtFloat::ONE;
+        let mut total = suffix[0].half();
+        for m in 1..=n {
+            prefix = prefix.mul(re[(j + m - 1) % n]);
+            let term = prefix.mul(suffix[m]);
+            total = total.add(if m == n { term.half() } else { term });
+        }
+        alpha.push(total);
+    }
+    let sum = alpha.iter().skip(1).fold(alpha[0], |a, &b| a.add(b));
+    alpha.into_iter().map(|a| a.ratio(sum)).collect()
+}
+
+/// Stationary distribution of the cyclic chain `P = R/2` (math doc fact 3),
+/// with `R[i,i-1] = r_{i-1}`, `R[i,i] = 1 - r_{i-1} + r_i`, `R[i,i+1] = 1 - r_i`.
+///
+/// Computed by Grassmann-Taksar-Heyman elimination, which uses no subtraction
+/// and is accurate to a small multiple of `n eps` componentwise; `O(n^3)`.
+/// Exact for rationals. It is an independent route to [`face_weights`].
+///
+/// ```
+/// use subdiv_lab::knots::{face_weights, stationary_distribution, EdgeRatios};
+/// let r = EdgeRatios::new(vec![0.1, 0.8, 0.3, 0.6, 0.45]).unwrap();
+/// let (a, b) = (face_weights(&r), stationary_distribution(&r));
+/// assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-14));
+/// ```
+pub fn stationary_distribution<T: Scalar>(ratios: &EdgeRatios<T>) -> Vec<T> {
+    let n = ratios.valence();
+    let r = ratios.as_slice();
+    let s = ratios.complement();
+    let half = T::frac(1, 2);
+    // Dense transition matrix (diagonal never used by GTH).
+    let mut p = vec![vec![T::zero(); n]; n];
+    for i in 0..n {
+        let prev = (i + n - 1) % n;
+        let next = (i + 1) % n;
+        p[i][prev] = p[i][prev].clone() + half.clone() * r[prev].clone();
+        p[i][next] = p[i][next].clone() + half.clone() * s[i].clone();
+    }
+    for k in (1..n).rev() {
+        let total = (0..k).fold(T::zero(), |a, j| a + p[k][j].clone());
+        for row in p.iter_mut().take(k) {
+            row[k] = row[k].clone() / total.clone();
+        }
+        for i in 0..k {
+            let pik = p[i][k].clone();
+            if pik.is_zero() {
+                continue;
+            }
+            for j in 0..k {
+                let add = pik.clone() * p[k][j].clone();
+                p[i][j] = p[i][j].clone() + add;
+            }
+        }
+    }
+    let mut x = vec![T::zero(); n];
+    x[0] = T::one();
+    for k in 1..n {
+        x[k] = (0..k).fold(T::zero(), |a, i| a + x[i].clone() * p[i][k].clone());
+    }
+    let sum = x.iter().cloned().fold(T::zero(), |a, b| a + b);
+    x.into_iter().map(|v| v / sum.clone()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::knots::CornerIntervals;
+    use crate::scalar::{f64_to_rational, Rational};
+
+    #[test]
+    fn ext_float_basics() {
+        for x in [1.0, 0.75, 3.0e-300, 5e-320, 1.7e308] {
+            let (m, e) = frexp(x);
+            assert!((0.5..1.0).contains(&m));
+            assert_eq!(m * exp2i(e.min(1023)) * exp2i((e - 1023).max(0)), x);
+        }
+        let a = ExtFloat::new(3.0).mul(ExtFloat::new(0.25));
+        assert_eq!(a.ratio(ExtFloat::ONE), 0.75);
+        assert_eq!(
+            ExtFloat::new(1.5)
+                .add(ExtFloat::new(0.25))
+                .ratio(ExtFloat::ONE),
+            1.75
+        );
+    }
+
+    /// Math doc fact 2: tensor-product quad knots.
+    #[test]
+    fn tensor_quad_fact_2() {
+        let (d0, d1, e0, e1) = (1.3, 0.4, 2.2, 0.7);
+        let k = CornerIntervals::new(vec![d0, e0, d1, e1], vec![e0, d1, e1, d0]).unwrap();
+        let c = face_weights(&k.ratios().unwrap());
+        let expected = [0.056795, 0.184584, 0.580122, 0.178499];
+        for (a, b) in c.iter().zip(expected) {
+            assert!((a - b).abs() < 5e-7, "{c:?}");
+        }
+        // and exactly the tensor face point weights of math doc section 2
+        let den = (d0 + d1) * (e0 + e1);
+        let tensor = [e1 * d1 / den, e1 * d0 / den, e0 * d0 / den, e0 * d1 / den];
+        for (a, b) in c.iter().zip(tensor) {
+            assert!((a - b).abs() < 1e-15, "{c:?} vs {tensor:?}");
+        }
+    }
+
+    /// Extreme ratios and large n: compare with the exact rational closed form
+    /// evaluated on the same (exactly representable) f64 inputs.
+    #[test]
+    fn extreme_ratios_match_exact() {
+        let n = 256;
+        let mut p = Vec::new();
+        let mut q = Vec::new();
+        for i in 0..n {
+            // interval ratios up to 1e6, alternating and drifting
+            p.push(if i % 2 == 0 {
+                1e6
+            } else {
+                1.0 + (i as f64) / 7.0
+            });
+            q.push(if i % 3 == 0 { 1.0 } else { 1e3 });
+        }
+        let k = CornerIntervals::new(p.clone(), q.clone()).unwrap();
+        let c = face_weights(&k.ratios().unwrap());
+        assert!(c.iter().all(|x| x.is_finite() && *x > 0.0));
+        let kq = CornerIntervals::new(
+            p.iter().map(|&x| f64_to_rational(x).unwrap()).collect(),
+            q.iter().map(|&x| f64_to_rational(x).unwrap()).collect(),
+        )
+        .unwrap();
+        // exact reference, on a shorter face to keep the big-integer test fast
+        let _ = kq;
+        let m = 48;
+        let k_small = CornerIntervals::new(p[..m].to_vec(), q[..m].to_vec()).unwrap();
+        let kq_small = CornerIntervals::<Rational>::new(
+            p[..m]
+                .iter()
+                .map(|&x| f64_to_rational(x).unwrap())
+                .collect(),
+            q[..m]
+                .iter()
+                .map(|&x| f64_to_rational(x).unwrap())
+                .collect(),
+        )
+        .unwrap();
+        let c64 = face_weights(&k_small.ratios().unwrap());
+        let cq = face_weights(&kq_small.ratios().unwrap());
+        for (a, b) in c64.iter().zip(&cq) {
+            let b = b.to_f64();
+            assert!(((a - b) / b).abs() < 1e-13, "{a} vs {b}");
+        }
+        // the large case against GTH
+        let g = stationary_distribution(&k.ratios().unwrap());
+        for (a, b) in c.iter().zip(&g) {
+            assert!(((a - b) / b).abs() < 1e-11, "{a} vs {b}");
+        }
+    }
+}

@@ -1,0 +1,358 @@
+//! Knot intervals on a face and the edge ratios derived from them.
+//!
+//! Math doc (`shared/docs/math.md`) sections 2 and 3. On a counter-clockwise
+//! face `P_0..P_{n-1}` the corner `P_i` carries two knot intervals
+//!
+//! ```text
+//! p_i = d(P_i -> P_{i+1})      q_i = d(P_i -> P_{i-1})
+//! ```
+//!
+//! and the edge `P_i P_{i+1}` has the ratio
+//!
+//! ```text
+//! r_i = q_{i+1} / (p_i + q_{i+1})  in (0, 1),   E_i = r_i P_i + (1 - r_i) P_{i+1}.
+//! ```
+//!
+//! Only ratios matter: scaling every interval of a face leaves every weight
+//! unchanged, so the local matrices are functions of [`EdgeRatios`] alone.
+//! [`CornerIntervals`] is the user-facing form; [`EdgeRatios::to_corner_intervals`]
+//! gives a canonical corner form back (`p_i = 1 - r_i`, `q_i = r_{i-1}`).
+//!
+//! The two extraordinary-point presets of math doc section 3 **[derived]** are
+//! [`EdgeRatios::face_ep`] (an initial n-gon) and [`EdgeRatios::vertex_ep`] (the
+//! V-face of an initial valence-n vertex).
+
+pub mod face_weights;
+
+pub use face_weights::{face_weights, stationary_distribution};
+
+use crate::error::{Error, Result};
+use crate::scalar::Scalar;
+
+/// Smallest valence of a face or vertex.
+pub const MIN_VALENCE: usize = 3;
+
+fn check_valence(n: usize) -> Result<()> {
+    if n < MIN_VALENCE {
+        Err(Error::ValenceTooSmall { valence: n })
+    } else {
+        Ok(())
+    }
+}
+
+fn check_interval<T: Scalar>(name: &'static str, index: usize, v: &T) -> Result<()> {
+    if v.is_finite_value() && *v > T::zero() {
+        Ok(())
+    } else {
+        Err(Error::InvalidInterval {
+            name,
+            index,
+            value: v.to_text(),
+        })
+    }
+}
+
+/// The knot intervals `(p_i, q_i)` at the corners of one n-sided face.
+///
+/// ```
+/// use subdiv_lab::knots::CornerIntervals;
+/// let k = CornerIntervals::new(vec![1.0, 2.0, 1.0], vec![1.0, 1.0, 3.0]).unwrap();
+/// let r = k.ratios().unwrap();
+/// // r_0 = q_1 / (p_0 + q_1) = 1 / 2
+/// assert_eq!(r.as_slice()[0], 0.5);
+/// assert!(CornerIntervals::new(vec![1.0, -2.0, 1.0], vec![1.0; 3]).is_err());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct CornerIntervals<T = f64> {
+    p: Vec<T>,
+    q: Vec<T>,
+}
+
+impl<T: Scalar> CornerIntervals<T> {
+    /// Validates `p` and `q`: equal length `n >= 3`, every value finite and `> 0`.
+    pub fn new(p: Vec<T>, q: Vec<T>) -> Result<Self> {
+        check_valence(p.len())?;
+        if q.len() != p.len() {
+            return Err(Error::CountMismatch {
+                what: "q intervals (one per corner)",
+                expected: p.len(),
+                got: q.len(),
+            });
+        }
+        for (i, v) in p.iter().enumerate() {
+            check_interval("p", i, v)?;
+        }
+        for (i, v) in q.iter().enumerate() {
+            check_interval("q", i, v)?;
+        }
+        Ok(Self { p, q })
+    }
+
+    /// All intervals equal to 1.
+    pub fn uniform(n: usize) -> Result<Self> {
+        check_valence(n)?;
+        Ok(Self {
+            p: vec![T::one(); n],
+            q: vec![T::one(); n],
+        })
+    }
+
+    /// The valence `n` of the face.
+    pub fn valence(&self) -> usize {
+        self.p.len()
+    }
+
+    /// `p_i = d(P_i -> P_{i+1})`.
+    pub fn p(&self) -> &[T] {
+        &self.p
+    }
+
+    /// `q_i = d(P_i -> P_{i-1})`.
+    pub fn q(&self) -> &[T] {
+        &self.q
+    }
+
+    /// Multiplies every interval by `s > 0` (ratios are invariant).
+    pub fn scaled(&self, s: &T) -> Result<Self> {
+        Self::new(
+            self.p.iter().map(|x| x.clone() * s.clone()).collect(),
+            self.q.iter().map(|x| x.clone() * s.clone()).collect(),
+        )
+    }
+
+    /// Edge ratios `r_i = q_{i+1} / (p_i + q_{i+1})`.
+    ///
+    /// Fails only if an interval quotient is so extreme (beyond ~1e300) that a
+    /// ratio rounds to 0 in `f64`.
+    pub fn ratios(&self) -> Result<EdgeRatios<T>> {
+        let n = self.valence();
+        let q_next: Vec<T> = (0..n).map(|i| self.q[(i + 1) % n].clone()).collect();
+        EdgeRatios::from_edge_pairs(&self.p, &q_next)
+    }
+
+    /// Rotates the corner labels: corner `i` of the result is corner `i + k` of `self`.
+    pub fn rotated(&self, k: usize) -> Self {
+        let n = self.valence();
+        let rot = |v: &[T]| (0..n).map(|i| v[(i + k) % n].clone()).collect();
+        Self {
+            p: rot(&self.p),
+            q: rot(&self.q),
+        }
+    }
+}
+
+/// Edge ratios `r_i in (0, 1)` of an n-sided face (`n >= 3`).
+///
+/// ```
+/// use subdiv_lab::knots::EdgeRatios;
+/// let r = EdgeRatios::new(vec![0.5, 0.25, 0.75]).unwrap();
+/// assert_eq!(r.valence(), 3);
+/// assert!(EdgeRatios::new(vec![0.5, 1.0, 0.5]).is_err()); // r_1 = 1 is not inside (0, 1)
+/// assert!(EdgeRatios::new(vec![0.5, 0.5]).is_err());      // valence 2
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct EdgeRatios<T = f64> {
+    /// `r_i`.
+    r: Vec<T>,
+    /// `s_i = 1 - r_i`, kept separately so that a ratio computed from intervals
+    /// (`s_i = p_i / (p_i + q_{i+1})`) keeps full relative accuracy near `r_i = 1`.
+    s: Vec<T>,
+}
+
+impl<T: Scalar> EdgeRatios<T> {
+    /// Validates `n >= 3` and `0 < r_i < 1` (finite).
+    pub fn new(r: Vec<T>) -> Result<Self> {
+        check_valence(r.len())?;
+        for (i, v) in r.iter().enumerate() {
+            if !(v.is_finite_value() && *v > T::zero() && *v < T::one()) {
+                return Err(Error::InvalidRatio {
+                    index: i,
+                    value: v.to_text(),
+                });
+            }
+        }
+        let s = r.iter().map(|x| T::one() - x.clone()).collect();
+        Ok(Self { r, s })
+    }
+
+    /// Ratios from the two intervals of each edge: `r_i = b_i / (a_i + b_i)`,
+    /// `s_i = a_i / (a_i + b_i)`; both computed directly, so each keeps full
+    /// relative accuracy even when `a_i / b_i` is extreme.
+    fn from_edge_pairs(a: &[T], b: &[T]) -> Result<Self> {
+        let mut r = Vec::with_capacity(a.len());
+        let mut s = Vec::with_capacity(a.len());
+        for (i, (x, y)) in a.iter().zip(b).enumerate() {
+            let sum = x.clone() + y.clone();
+            let ri = y.clone() / sum.clone();
+            let si = x.clone() / sum;
+            if !(ri > T::zero() && si > T::zero()) {
+                return Err(Error::InvalidRatio {
+                    index: i,
+                    value: ri.to_text(),
+                });
+            }
+            r.push(ri);
+            s.push(si);
+        }
+        Ok(Self { r, s })
+    }
+
+    /// All ratios 1/2 (uniform knots).
+    pub fn uniform(n: usize) -> Result<Self> {
+        check_valence(n)?;
+        Ok(Self {
+            r: vec![T::frac(1, 2); n],
+            s: vec![T::frac(1, 2); n],
+        })
+    }
+
+    /// The valence `n`.
+    pub fn valence(&self) -> usize {
+        self.r.len()
+    }
+
+    /// The complements `s_i = 1 - r_i`.
+    pub fn complement(&self) -> &[T] {
+        &self.s
+    }
+
+    /// The ratios `r_0..r_{n-1}`.
+    pub fn as_slice(&self) -> &[T] {
+        &self.r
+    }
+
+    /// `r_i` with the index taken modulo `n`.
+    pub fn get(&self, i: isize) -> &T {
+        let n = self.r.len() as isize;
+        &self.r[i.rem_euclid(n) as usize]
+    }
+
+    /// Whether every ratio equals 1/2.
+    pub fn is_uniform(&self) -> bool {
+        let half = T::frac(1, 2);
+        self.r.iter().all(|x| *x == half)
+    }
+
+    /// Canonical corner intervals with these ratios: `p_i = 1 - r_i`, `q_i = r_{i-1}`
+    /// (so `p_i + q_{i+1} = 1` on every edge).
+    pub fn to_corner_intervals(&self) -> CornerIntervals<T> {
+        let n = self.valence();
+        CornerIntervals {
+            p: self.s.clone(),
+            q: (0..n).map(|i| self.r[(i + n - 1) % n].clone()).collect(),
+        }
+    }
+
+    /// Face EP preset: an initial n-gon with directed-edge intervals
+    /// `forward_i = d(P_i -> P_{i+1})`, `backward_i = d(P_{i+1} -> P_i)`:
+    /// `r_i = backward_i / (forward_i + backward_i)` (math doc section 3).
+    pub fn face_ep(forward: &[T], backward: &[T]) -> Result<Self> {
+        check_valence(forward.len())?;
+        if backward.len() != forward.len() {
+            return Err(Error::CountMismatch {
+                what: "backward edge intervals",
+                expected: forward.len(),
+                got: backward.len(),
+            });
+        }
+        for (i, v) in forward.iter().enumerate() {
+            check_interval("forward", i, v)?;
+        }
+        for (i, v) in backward.iter().enumerate() {
+            check_interval("backward", i, v)?;
+        }
+        Self::from_edge_pairs(forward, backward)
+    }
+
+    /// Vertex EP preset **[derived]** (math doc section 3): a valence-n vertex `v`
+    /// with faces `f_0..f_{n-1}` numbered counter-clockwise, `w_k = next_{f_k}(v)`
+    /// and `a_k = d(v -> w_k)`. Corner `k` of its V-face lies in `f_k` and
+    /// `r_k = a_{k+2} / (a_k + a_{k+2})`.
+    pub fn vertex_ep(a: &[T]) -> Result<Self> {
+        let n = a.len();
+        check_valence(n)?;
+        for (i, v) in a.iter().enumerate() {
+            check_interval("a", i, v)?;
+        }
+        let a2: Vec<T> = (0..n).map(|k| a[(k + 2) % n].clone()).collect();
+        Self::from_edge_pairs(a, &a2)
+    }
+
+    /// Rotates the labels: ratio `i` of the result is ratio `i + k` of `self`.
+    pub fn rotated(&self, k: usize) -> Self {
+        let n = self.valence();
+        let rot = |v: &[T]| (0..n).map(|i| v[(i + k) % n].clone()).collect();
+        Self {
+            r: rot(&self.r),
+            s: rot(&self.s),
+        }
+    }
+
+    /// The ratios converted to `f64`.
+    pub fn to_f64(&self) -> EdgeRatios<f64> {
+        EdgeRatios {
+            r: self.r.iter().map(Scalar::to_f64).collect(),
+            s: self.s.iter().map(Scalar::to_f64).collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::Rational;
+
+    #[test]
+    fn canonical_corner_form_round_trips() {
+        let r = EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9]).unwrap();
+        let back = r.to_corner_intervals().ratios().unwrap();
+        for (a, b) in r.as_slice().iter().zip(back.as_slice()) {
+            assert!((a - b).abs() < 1e-15);
+        }
+        let rq = EdgeRatios::<Rational>::new(vec![
+            Rational::frac(1, 3),
+            Rational::frac(2, 7),
+            Rational::frac(5, 6),
+        ])
+        .unwrap();
+        assert_eq!(rq.to_corner_intervals().ratios().unwrap(), rq);
+    }
+
+    #[test]
+    fn errors_name_the_value() {
+        let e = CornerIntervals::new(vec![1.0, 1.0, 1.0], vec![1.0, f64::NAN, 1.0]).unwrap_err();
+        assert_eq!(
+            e,
+            Error::InvalidInterval {
+                name: "q",
+                index: 1,
+                value: "NaN".into()
+            }
+        );
+        let e = EdgeRatios::new(vec![0.5, 0.5, 0.0, 0.5]).unwrap_err();
+        assert!(e.to_string().contains("r_2") && e.to_string().contains('0'));
+        assert_eq!(
+            EdgeRatios::<f64>::uniform(2).unwrap_err(),
+            Error::ValenceTooSmall { valence: 2 }
+        );
+        let e = EdgeRatios::vertex_ep(&[1.0, 0.0, 2.0]).unwrap_err();
+        assert!(e.to_string().contains("a_1"));
+        let e = EdgeRatios::face_ep(&[1.0, 1.0, 1.0], &[1.0, 1.0]).unwrap_err();
+        assert!(matches!(
+            e,
+            Error::CountMismatch {
+                expected: 3,
+                got: 2,
+                ..
+            }
+        ));
+    }
+
+    #[test]
+    fn presets() {
+        let r = EdgeRatios::face_ep(&[1.0, 3.0, 1.0], &[1.0, 1.0, 4.0]).unwrap();
+        assert_eq!(r.as_slice(), &[0.5, 0.25, 0.8]);
+        let r = EdgeRatios::vertex_ep(&[1.0, 2.0, 3.0, 4.0]).unwrap();
+        assert_eq!(r.as_slice(), &[0.75, 4.0 / 6.0, 0.25, 2.0 / 6.0]);
+    }
+}

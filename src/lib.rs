@@ -1,0 +1,33 @@
+//! # subdiv-lab
+//!
+//! Numerical analysis and verification of subdivision surfaces: local
+//! subdivision matrices of NURDS (Non-Uniform Recursive Doo-Sabin), Doo-Sabin
+//! and its Catmull-Clark variant, their spectra, and the convergence facts
+//! about them.
+//!
+//! The mathematics is restated in the project's math document
+//! (`shared/docs/math.md`, cited below as "math doc section N"); items it marks
+//! **[derived]** or **[reconstructed]** are marked the same way here.
+//!
+//! Modules, one concept each:
+//!
+//! * [`scalar`]: `f64` and exact rationals behind one trait;
+//! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
+//! * [`schemes`]: local subdivision matrices through one assembly path.
+//!
+//! ```
+//! use subdiv_lab::knots::CornerIntervals;
+//! use subdiv_lab::schemes::LocalScheme;
+//! let knots = CornerIntervals::new(vec![1.0, 2.0, 1.0, 0.5, 3.0], vec![2.0, 1.0, 1.0, 1.0, 0.25]).unwrap();
+//! let s5 = LocalScheme::nurds(knots.ratios().unwrap()).matrix().unwrap();
+//! assert_eq!(s5.matrix().nrows(), 20);
+//! ```
+
+#![warn(missing_docs)]
+
+pub mod error;
+pub mod knots;
+pub mod scalar;
+pub mod schemes;
+
+pub use error::{Error, Result};
