@@ -57,6 +57,15 @@ pub enum Error {
         /// Why it is rejected.
         reason: &'static str,
     },
+    /// An operation that the scheme does not have (e.g. the face block of a
+    /// vertex-centred scheme).
+    #[error("{operation} is not defined for scheme {scheme}")]
+    NotApplicable {
+        /// The scheme's name.
+        scheme: &'static str,
+        /// The operation asked for.
+        operation: &'static str,
+    },
     /// A numerical routine that did not converge or met a singular system.
     #[error("numerical failure in {routine}: {reason}")]
     Numerical {

@@ -48,6 +48,10 @@ pub(crate) fn run(args: MatrixArgs) -> CliResult {
 fn render<T: Scalar>(scheme: &LocalScheme<T>, args: &MatrixArgs) -> CliResult<String> {
     let full: LocalMatrix<T> = scheme.matrix().map_err(CliError::failure)?;
     let n = scheme.valence();
+    if matches!(args.block, Block::Face) {
+        // Typed error for schemes without a face block (the Catmull-Clark family).
+        scheme.face_block().map_err(CliError::usage)?;
+    }
     let (labels, m): (Vec<PointLabel>, DMatrix<T>) = match args.block {
         Block::Full => (full.rows().to_vec(), full.matrix().clone()),
         Block::Face => (
@@ -122,11 +126,13 @@ fn render<T: Scalar>(scheme: &LocalScheme<T>, args: &MatrixArgs) -> CliResult<St
                 }
                 s.push('\n');
             }
-            s += "face weights c:";
-            for c in &weights {
-                s += &format!(" {}", c.to_text());
+            if !weights.is_empty() {
+                s += "face weights c:";
+                for c in &weights {
+                    s += &format!(" {}", c.to_text());
+                }
+                s.push('\n');
             }
-            s.push('\n');
             s
         }
     })

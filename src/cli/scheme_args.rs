@@ -11,7 +11,7 @@ use subdiv_lab::schemes::{LocalScheme, SchemeKind};
 /// Scheme selection flags.
 #[derive(Args, Debug, Clone)]
 pub(crate) struct SchemeArgs {
-    /// Scheme: nurds, doo-sabin or cc-variant.
+    /// Scheme: nurds, doo-sabin, cc-variant, catmull-clark or adjustable-cc.
     #[arg(long, default_value = "nurds")]
     pub scheme: String,
     /// Valence n >= 3 of the extraordinary face (inferred from --knots/--ratios if omitted).
@@ -26,6 +26,9 @@ pub(crate) struct SchemeArgs {
     /// Uniform knot intervals (all ratios 1/2).
     #[arg(long)]
     pub uniform: bool,
+    /// Shape parameter c in [0, 1] of --scheme adjustable-cc (read exactly: 0.3, 1/3, 25e-2).
+    #[arg(long, allow_hyphen_values = true)]
+    pub c: Option<String>,
 }
 
 /// The validated configuration, in f64 and (when requested and possible) exactly.
@@ -49,6 +52,15 @@ fn parse_number(what: &str, text: &str) -> CliResult<(Rational, f64)> {
             Err(_) => Err(CliError::usage(anyhow!("{what}: {t:?} is not a number"))),
         },
     }
+}
+
+/// The shape parameter `c`, exactly and as the nearest f64 (range checked by the library).
+fn parse_c(text: &str) -> CliResult<(Rational, f64)> {
+    let t = text.trim();
+    let q = parse_exact(t)
+        .ok_or_else(|| CliError::usage(anyhow!("--c: {t:?} is not a finite number in [0, 1]")))?;
+    let x = t.parse::<f64>().unwrap_or_else(|_| q.to_f64());
+    Ok((q, x))
 }
 
 fn split_list(flag: &str, text: &str) -> CliResult<Vec<String>> {
@@ -143,9 +155,16 @@ impl SchemeArgs {
                 )))
             }
         };
-        let f = LocalScheme::from_kind(kind, valence, rf).map_err(lib_err)?;
+        let (cq, cf) = match &self.c {
+            Some(text) => {
+                let (q, x) = parse_c(text)?;
+                (Some(q), Some(x))
+            }
+            None => (None, None),
+        };
+        let f = LocalScheme::from_kind_with_c(kind, valence, rf, cf).map_err(lib_err)?;
         let exact = if exact {
-            Some(LocalScheme::from_kind(kind, valence, rq).map_err(lib_err)?)
+            Some(LocalScheme::from_kind_with_c(kind, valence, rq, cq).map_err(lib_err)?)
         } else {
             None
         };

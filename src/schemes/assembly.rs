@@ -27,6 +27,14 @@ pub enum Role {
     Corner,
     /// A point of an extended (next-level) configuration, indexed by position.
     Extended,
+    /// `v`: the extraordinary vertex (Catmull-Clark family).
+    Vertex,
+    /// `e_i`: an edge neighbour of the extraordinary vertex (Catmull-Clark family).
+    EdgeNeighbour,
+    /// `f_i`: a face neighbour (far quad corner) of the extraordinary vertex (Catmull-Clark family).
+    FaceNeighbour,
+    /// `o_k`: one of the 7 outer control points of a Catmull-Clark patch.
+    PatchOuter,
 }
 
 /// Role and index of one point of a local configuration.
@@ -54,6 +62,10 @@ impl fmt::Display for PointLabel {
             Role::EdgeSecond => write!(f, "E{i},2"),
             Role::Corner => write!(f, "C{i}"),
             Role::Extended => write!(f, "X{i}"),
+            Role::Vertex => write!(f, "v"),
+            Role::EdgeNeighbour => write!(f, "e{i}"),
+            Role::FaceNeighbour => write!(f, "f{i}"),
+            Role::PatchOuter => write!(f, "o{i}"),
         }
     }
 }

@@ -5,6 +5,9 @@
 //!
 //! * [`doo_sabin`]: NURDS `S_n` (4n x 4n) and its face block, original
 //!   Doo-Sabin, and the Catmull-Clark variant (math doc sections 1-4).
+//! * [`catmull_clark`]: Catmull-Clark and the shape-adjustable scheme with
+//!   parameter `c` (one-ring, patch and extended matrices, Fourier blocks,
+//!   limit stencils; math doc sections 6 and 8).
 //!
 //! [`LocalScheme`] names one configuration (scheme + valence + parameters) and
 //! is what the spectral analysis, sweeps and reports take.
@@ -19,6 +22,7 @@
 //! ```
 
 pub mod assembly;
+pub mod catmull_clark;
 pub mod doo_sabin;
 
 pub use assembly::{Assembler, LocalMatrix, PointLabel, Role};
@@ -41,6 +45,10 @@ pub enum SchemeKind {
     DooSabin,
     /// The Catmull-Clark variant of Doo-Sabin (= uniform NURDS).
     CcVariant,
+    /// Catmull-Clark (vertex-centred; one-ring matrix 2n+1).
+    CatmullClark,
+    /// The shape-adjustable Catmull-Clark scheme with parameter c in [0, 1] (**[reconstructed]**).
+    AdjustableCc,
 }
 
 impl SchemeKind {
@@ -49,6 +57,8 @@ impl SchemeKind {
         SchemeKind::Nurds,
         SchemeKind::DooSabin,
         SchemeKind::CcVariant,
+        SchemeKind::CatmullClark,
+        SchemeKind::AdjustableCc,
     ];
 
     /// The scheme's command-line name.
@@ -57,12 +67,24 @@ impl SchemeKind {
             SchemeKind::Nurds => "nurds",
             SchemeKind::DooSabin => "doo-sabin",
             SchemeKind::CcVariant => "cc-variant",
+            SchemeKind::CatmullClark => "catmull-clark",
+            SchemeKind::AdjustableCc => "adjustable-cc",
         }
     }
 
     /// Whether the scheme takes knot intervals.
     pub fn takes_knots(self) -> bool {
         matches!(self, SchemeKind::Nurds)
+    }
+
+    /// Whether the scheme takes the shape parameter `c` (`--c`).
+    pub fn takes_c(self) -> bool {
+        matches!(self, SchemeKind::AdjustableCc)
+    }
+
+    /// Whether the scheme belongs to the Catmull-Clark family ((2n+1) one-ring matrix).
+    pub fn is_catmull_clark_family(self) -> bool {
+        matches!(self, SchemeKind::CatmullClark | SchemeKind::AdjustableCc)
     }
 
     /// Whether the scheme belongs to the Doo-Sabin family (4n x 4n `S_n` with face block).
@@ -82,7 +104,7 @@ impl fmt::Display for SchemeKind {
 
 /// Error for an unknown scheme name.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown scheme {0:?} (known: nurds, doo-sabin, cc-variant)")]
+#[error("unknown scheme {0:?} (known: nurds, doo-sabin, cc-variant, catmull-clark, adjustable-cc)")]
 pub struct UnknownScheme(pub String);
 
 impl FromStr for SchemeKind {
@@ -112,6 +134,18 @@ pub enum LocalScheme<T = f64> {
         /// Valence.
         valence: usize,
     },
+    /// Catmull-Clark around a vertex of valence n.
+    CatmullClark {
+        /// Valence.
+        valence: usize,
+    },
+    /// The shape-adjustable Catmull-Clark scheme around a vertex of valence n.
+    AdjustableCc {
+        /// Valence.
+        valence: usize,
+        /// Shape parameter in [0, 1] (1/2 is Catmull-Clark).
+        c: T,
+    },
 }
 
 impl<T: Scalar> LocalScheme<T> {
@@ -130,6 +164,51 @@ impl<T: Scalar> LocalScheme<T> {
     pub fn cc_variant(n: usize) -> Result<Self> {
         EdgeRatios::<T>::uniform(n)?;
         Ok(LocalScheme::CcVariant { valence: n })
+    }
+
+    /// Catmull-Clark of valence `n >= 3`.
+    pub fn catmull_clark(n: usize) -> Result<Self> {
+        catmull_clark::validate(n, &T::frac(1, 2))?;
+        Ok(LocalScheme::CatmullClark { valence: n })
+    }
+
+    /// The shape-adjustable Catmull-Clark scheme of valence `n >= 3`, `c` in `[0, 1]`.
+    pub fn adjustable_cc(n: usize, c: T) -> Result<Self> {
+        catmull_clark::validate(n, &c)?;
+        Ok(LocalScheme::AdjustableCc { valence: n, c })
+    }
+
+    /// Like [`LocalScheme::from_kind`], with the shape parameter `c` (required
+    /// iff [`SchemeKind::takes_c`]).
+    pub fn from_kind_with_c(
+        kind: SchemeKind,
+        valence: usize,
+        ratios: Option<EdgeRatios<T>>,
+        c: Option<T>,
+    ) -> Result<Self> {
+        match (kind.takes_c(), c) {
+            (true, Some(c)) => {
+                if ratios.as_ref().is_some_and(|r| !r.is_uniform()) {
+                    return Err(Error::InvalidParameter {
+                        name: "knots",
+                        value: kind.name().to_owned(),
+                        reason: "this scheme has no knot intervals",
+                    });
+                }
+                Self::adjustable_cc(valence, c)
+            }
+            (true, None) => Err(Error::InvalidParameter {
+                name: "c",
+                value: "(missing)".to_owned(),
+                reason: "adjustable-cc needs the shape parameter c in [0, 1]",
+            }),
+            (false, Some(c)) => Err(Error::InvalidParameter {
+                name: "c",
+                value: c.to_text(),
+                reason: "only adjustable-cc takes the shape parameter c",
+            }),
+            (false, None) => Self::from_kind(kind, valence, ratios),
+        }
     }
 
     /// A configuration of `kind` with optional ratios (required iff the scheme takes knots;
@@ -153,7 +232,7 @@ impl<T: Scalar> LocalScheme<T> {
                 Some(r) => r,
                 None => EdgeRatios::uniform(valence)?,
             })),
-            SchemeKind::DooSabin | SchemeKind::CcVariant if ratios.as_ref().is_some_and(|r| !r.is_uniform()) => {
+            SchemeKind::DooSabin | SchemeKind::CcVariant | SchemeKind::CatmullClark if ratios.as_ref().is_some_and(|r| !r.is_uniform()) => {
                 Err(Error::InvalidParameter {
                     name: "knots",
                     value: kind.name().to_owned(),
@@ -162,6 +241,8 @@ impl<T: Scalar> LocalScheme<T> {
             }
             SchemeKind::DooSabin => Self::doo_sabin(valence),
             SchemeKind::CcVariant => Self::cc_variant(valence),
+            SchemeKind::CatmullClark => Self::catmull_clark(valence),
+            SchemeKind::AdjustableCc => Self::from_kind_with_c(kind, valence, ratios, None),
         }
     }
 
@@ -171,6 +252,8 @@ impl<T: Scalar> LocalScheme<T> {
             LocalScheme::Nurds(_) => SchemeKind::Nurds,
             LocalScheme::DooSabin { .. } => SchemeKind::DooSabin,
             LocalScheme::CcVariant { .. } => SchemeKind::CcVariant,
+            LocalScheme::CatmullClark { .. } => SchemeKind::CatmullClark,
+            LocalScheme::AdjustableCc { .. } => SchemeKind::AdjustableCc,
         }
     }
 
@@ -179,24 +262,33 @@ impl<T: Scalar> LocalScheme<T> {
         match self {
             LocalScheme::Nurds(r) => r.valence(),
             LocalScheme::DooSabin { valence } | LocalScheme::CcVariant { valence } => *valence,
+            LocalScheme::CatmullClark { valence } | LocalScheme::AdjustableCc { valence, .. } => {
+                *valence
+            }
         }
     }
 
-    /// The edge ratios used by the E/C rows (1/2 for the uniform schemes).
+    /// The edge ratios used by the E/C rows (1/2 for the uniform schemes and
+    /// for the Catmull-Clark family, which has no knot intervals).
     pub fn ratios(&self) -> EdgeRatios<T> {
         match self {
             LocalScheme::Nurds(r) => r.clone(),
-            LocalScheme::DooSabin { valence } | LocalScheme::CcVariant { valence } => {
+            LocalScheme::DooSabin { valence }
+            | LocalScheme::CcVariant { valence }
+            | LocalScheme::CatmullClark { valence }
+            | LocalScheme::AdjustableCc { valence, .. } => {
                 EdgeRatios::uniform(*valence).expect("valence validated at construction")
             }
         }
     }
 
     /// Face weights `c` (the left eigenvector of the face block for 1; `1/n` for
-    /// the uniform schemes).
+    /// the uniform schemes). Empty for the Catmull-Clark family (vertex-centred:
+    /// there is no central face; see [`catmull_clark::limit::limit_stencil`]).
     pub fn face_weights(&self) -> Vec<T> {
         match self {
             LocalScheme::Nurds(r) => face_weights(r),
+            LocalScheme::CatmullClark { .. } | LocalScheme::AdjustableCc { .. } => Vec::new(),
             LocalScheme::DooSabin { valence } | LocalScheme::CcVariant { valence } => {
                 vec![T::frac(1, *valence as i64); *valence]
             }
@@ -212,11 +304,36 @@ impl<T: Scalar> LocalScheme<T> {
                 &self.ratios(),
                 &self.face_weights(),
             )),
+            LocalScheme::CatmullClark { .. } | LocalScheme::AdjustableCc { .. } => {
+                Err(Error::NotApplicable {
+                    scheme: self.kind().name(),
+                    operation: "the face block (a Doo-Sabin-family notion)",
+                })
+            }
         }
     }
 
-    /// The full local subdivision matrix (`S_n`, 4n x 4n, for the Doo-Sabin family).
+    /// The shape parameter `c` of the Catmull-Clark family (`1/2` for
+    /// Catmull-Clark); `None` for the Doo-Sabin family.
+    pub fn shape_parameter(&self) -> Option<T> {
+        match self {
+            LocalScheme::CatmullClark { .. } => Some(T::frac(1, 2)),
+            LocalScheme::AdjustableCc { c, .. } => Some(c.clone()),
+            _ => None,
+        }
+    }
+
+    /// The full local subdivision matrix (`S_n`, 4n x 4n, for the Doo-Sabin
+    /// family; the (2n+1) one-ring matrix for the Catmull-Clark family).
     pub fn matrix(&self) -> Result<LocalMatrix<T>> {
-        doo_sabin::assemble(self.kind().name(), &self.face_block()?, &self.ratios())
+        match self {
+            LocalScheme::CatmullClark { valence } => {
+                catmull_clark::one_ring_named(self.kind().name(), *valence, &T::frac(1, 2))
+            }
+            LocalScheme::AdjustableCc { valence, c } => {
+                catmull_clark::one_ring_named(self.kind().name(), *valence, c)
+            }
+            _ => doo_sabin::assemble(self.kind().name(), &self.face_block()?, &self.ratios()),
+        }
     }
 }

@@ -1,0 +1,128 @@
+//! Limit-point stencils of the Catmull-Clark family.
+//!
+//! The limit position of the extraordinary vertex is `l^T M` over the one-ring
+//! `M = [v, e_0..e_{n-1}, f_0..f_{n-1}]`, where `l` is the left eigenvector of
+//! the one-ring matrix for the eigenvalue 1, normalised to sum 1.
+//!
+//! * Catmull-Clark (`c = 1/2`): `(n^2 v + 4 sum e_i + sum f_i) / (n (n + 5))`
+//!   (Halstead, Kass and DeRose, "Efficient, fair interpolation using
+//!   Catmull-Clark surfaces", SIGGRAPH 1993, appendix).
+//! * Shape-adjustable scheme **[derived]** (from the rules of math doc
+//!   section 8; the Fourier `l = 0` block gives three scalar equations):
+//!   `(n^2 v + 8c sum e_i + 4c^2 sum f_i) / (n (n + 8c + 4c^2))`. At `n = 4`
+//!   this is the tensor square of the univariate limit mask
+//!   `(c/2, 1, c/2) / (1 + c)`.
+//!
+//! Both are checked against [`left_fixed_vector`], a linear solve on the
+//! assembled matrix (exact for rationals), in the tests.
+
+use crate::error::{Error, Result};
+use crate::scalar::Scalar;
+use nalgebra::{DMatrix, DVector};
+
+/// Closed-form limit-point stencil over the one-ring (length `2n + 1`).
+///
+/// ```
+/// use subdiv_lab::scalar::{Rational, Scalar};
+/// use subdiv_lab::schemes::catmull_clark::limit::limit_stencil;
+/// let l = limit_stencil::<Rational>(3, &Rational::frac(1, 2)).unwrap();
+/// assert_eq!(l[0], Rational::frac(9, 24));   // n^2 / (n (n + 5))
+/// assert_eq!(l[1], Rational::frac(4, 24));
+/// assert_eq!(l[4], Rational::frac(1, 24));
+/// ```
+pub fn limit_stencil<T: Scalar>(n: usize, c: &T) -> Result<Vec<T>> {
+    super::validate(n, c)?;
+    let nn = T::frac(n as i64, 1);
+    let we = T::frac(8, 1) * c.clone();
+    let wf = T::frac(4, 1) * c.clone() * c.clone();
+    let den = nn.clone() * (nn.clone() + we.clone() + wf.clone());
+    let mut l = Vec::with_capacity(2 * n + 1);
+    l.push(nn.clone() * nn / den.clone());
+    l.extend((0..n).map(|_| we.clone() / den.clone()));
+    l.extend((0..n).map(|_| wf.clone() / den.clone()));
+    Ok(l)
+}
+
+/// Relative pivot threshold of [`solve_linear`] in `f64`: a pivot smaller
+/// than this times the largest entry of the matrix is treated as singular.
+/// The systems solved here (one-ring and patch matrices minus the identity,
+/// one row replaced by ones) have entries in `[-1, 1]` and condition numbers
+/// below `1e4` for `n <= 256`, so genuine pivots are many orders larger.
+pub const SINGULAR_PIVOT_TOL: f64 = 1e-13;
+
+/// Solves `a x = b` by Gaussian elimination with partial pivoting, over any
+/// [`Scalar`] (exact for rationals).
+pub fn solve_linear<T: Scalar>(mut a: DMatrix<T>, mut b: DVector<T>) -> Result<DVector<T>> {
+    let n = a.nrows();
+    if a.ncols() != n || b.len() != n {
+        return Err(Error::CountMismatch {
+            what: "linear system (square matrix, matching right-hand side)",
+            expected: n,
+            got: a.ncols().min(b.len()),
+        });
+    }
+    let scale = a.iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max);
+    for k in 0..n {
+        let p = (k..n)
+            .max_by(|&i, &j| {
+                a[(i, k)]
+                    .abs()
+                    .partial_cmp(&a[(j, k)].abs())
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            })
+            .unwrap_or(k);
+        let piv = a[(p, k)].clone();
+        let singular = if T::EXACT {
+            piv.is_zero()
+        } else {
+            piv.to_f64().abs().is_nan() || piv.to_f64().abs() <= SINGULAR_PIVOT_TOL * scale
+        };
+        if singular {
+            return Err(Error::Numerical {
+                routine: "linear solve",
+                reason: format!("singular system (pivot {} in column {k})", piv.to_text()),
+            });
+        }
+        a.swap_rows(k, p);
+        b.swap_rows(k, p);
+        for i in k + 1..n {
+            let f = a[(i, k)].clone() / a[(k, k)].clone();
+            if f.is_zero() {
+                continue;
+            }
+            for j in k..n {
+                let t = f.clone() * a[(k, j)].clone();
+                a[(i, j)] = a[(i, j)].clone() - t;
+            }
+            let t = f * b[k].clone();
+            b[i] = b[i].clone() - t;
+        }
+    }
+    let mut x = DVector::from_element(n, T::zero());
+    for k in (0..n).rev() {
+        let mut s = b[k].clone();
+        for j in k + 1..n {
+            s = s - a[(k, j)].clone() * x[j].clone();
+        }
+        x[k] = s / a[(k, k)].clone();
+    }
+    Ok(x)
+}
+
+/// The left eigenvector `l` of a square matrix `s` for the eigenvalue 1,
+/// normalised to `sum l = 1`, by one linear solve (`(s^T - I) l = 0` with the
+/// last equation replaced by `sum l = 1`). Fails if 1 is not a simple
+/// eigenvalue with a left eigenvector of non-zero sum.
+pub fn left_fixed_vector<T: Scalar>(s: &DMatrix<T>) -> Result<Vec<T>> {
+    let n = s.nrows();
+    let mut a = s.transpose();
+    for i in 0..n {
+        a[(i, i)] = a[(i, i)].clone() - T::one();
+    }
+    for j in 0..n {
+        a[(n - 1, j)] = T::one();
+    }
+    let mut b = DVector::from_element(n, T::zero());
+    b[n - 1] = T::one();
+    Ok(solve_linear(a, b)?.iter().cloned().collect())
+}

@@ -1,0 +1,282 @@
+//! The Catmull-Clark family: Catmull-Clark and the shape-adjustable scheme with
+//! parameter `c` in `[0, 1]` (math doc section 8, seed 003).
+//!
+//! # The rules
+//!
+//! On a quad mesh (every face is a quad after one step), with parameter `c`:
+//!
+//! ```text
+//! f' = mean of the face's vertices
+//! e' = (1 - c)(v + e)/2 + c (f'_1 + f'_2)/2            (edge v-e, adjacent new face points f'_1, f'_2)
+//! v' = ( 4 c^2 Q + 8 c (1 - c) R + (n - 4 c (2 - c)) v ) / n
+//! ```
+//!
+//! where `Q` is the mean of the `n` new face points around `v` and `R` the mean
+//! of the `n` edge midpoints `(v + e_i)/2`. At `c = 1/2` these are exactly the
+//! Catmull-Clark rules (`e' = (v + e + f'_1 + f'_2)/4`,
+//! `v' = (Q + 2R + (n - 3) v)/n`).
+//!
+//! # The shape-adjustable scheme is **[reconstructed]**
+//!
+//! The OCR of seed 003 prints a vertex rule whose weights do not sum to 1 and
+//! an edge rule with `c` and `1 - c` swapped. The reading above (math doc
+//! section 8) is the unique one that
+//!
+//! 1. keeps the printed coefficients of `R` (`8c(1-c)/n`) and of `v`
+//!    (`(n - 4c(2-c))/n`);
+//! 2. sums to 1 (affine invariance; checked exactly by [`Assembler::finish`]
+//!    for rational `c`);
+//! 3. gives Catmull-Clark at `c = 1/2` (test `adjustable_half_is_catmull_clark`,
+//!    exact rationals);
+//! 4. is, on a regular grid, the tensor product of one univariate rule
+//!    (vertex mask `c/4, 1 - c/2, c/4`; new edge point = midpoint)
+//!    (test `regular_grid_is_tensor_product`, random `c`, exact rationals).
+//!
+//! The printed edge rule (with `c` and `1 - c` swapped) is not tensor
+//! consistent for `c != 1/2`.
+//!
+//! For `c != 1/2` the regular part of the limit surface is the tensor product
+//! of the univariate scheme with mask `(c/4, 1/2, 1 - c/2, 1/2, c/4)`, which is
+//! the cubic B-spline scheme only at `c = 1/2`: the "ring patches" of the
+//! extended matrix are then control nets of that tensor-product scheme, not
+//! bicubic B-spline patches.
+//!
+//! # Numbering
+//!
+//! See [`PatchLayout`]: the one-ring is `[v, e_0..e_{n-1}, f_0..f_{n-1}]`
+//! (`2n + 1` points, `e_i` counter-clockwise, `f_i` the far corner of the quad
+//! `v, e_i, f_i, e_{i+1}`); the patch adds 7 outer points (`2n + 8`, Stam's
+//! count and geometry) and the extended configuration 9 more (`2n + 17`).
+//!
+//! ```
+//! use subdiv_lab::scalar::{Rational, Scalar};
+//! use subdiv_lab::schemes::catmull_clark::one_ring_matrix;
+//! let s = one_ring_matrix::<Rational>(5, &Rational::frac(1, 2)).unwrap();
+//! assert_eq!(s.matrix().shape(), (11, 11));
+//! // Catmull-Clark vertex rule: v weight 1 - 7/(4n), e_j 3/(2n^2), f_j 1/(4n^2).
+//! assert_eq!(s.matrix()[(0, 0)], Rational::frac(13, 20));
+//! assert_eq!(s.matrix()[(0, 1)], Rational::frac(3, 50));
+//! assert_eq!(s.matrix()[(0, 6)], Rational::frac(1, 100));
+//! ```
+
+pub mod fourier;
+mod layout;
+pub mod limit;
+
+pub use layout::{PatchLayout, SubPatch};
+
+use super::assembly::{Assembler, LocalMatrix, PointLabel};
+use crate::error::{Error, Result};
+use crate::scalar::Scalar;
+
+/// Scheme name used in matrix labels for `c = 1/2`.
+pub const CATMULL_CLARK: &str = "catmull-clark";
+/// Scheme name used in matrix labels for `c != 1/2`.
+pub const ADJUSTABLE_CC: &str = "adjustable-cc";
+
+/// Checks `3 <= n` and `0 <= c <= 1` (finite).
+pub fn validate<T: Scalar>(n: usize, c: &T) -> Result<()> {
+    if n < 3 {
+        return Err(Error::ValenceTooSmall { valence: n });
+    }
+    if !c.is_finite_value() || *c < T::zero() || *c > T::one() {
+        return Err(Error::InvalidParameter {
+            name: "c",
+            value: c.to_text(),
+            reason: "the shape parameter must lie in [0, 1]",
+        });
+    }
+    Ok(())
+}
+
+fn scheme_name<T: Scalar>(c: &T) -> &'static str {
+    if *c == T::frac(1, 2) {
+        CATMULL_CLARK
+    } else {
+        ADJUSTABLE_CC
+    }
+}
+
+/// A stencil: `(column, weight)` pairs.
+type Stencil<T> = Vec<(usize, T)>;
+
+fn scaled<T: Scalar>(s: &[(usize, T)], w: &T) -> Stencil<T> {
+    s.iter().map(|(j, x)| (*j, x.clone() * w.clone())).collect()
+}
+
+/// The three rules of math doc section 8 as stencils over the one-ring
+/// columns of `lay` (the rules are written once and reused by all matrices).
+struct OneRingRules<'a, T> {
+    lay: &'a PatchLayout,
+    c: T,
+}
+
+impl<T: Scalar> OneRingRules<'_, T> {
+    /// `f'_i = (v + e_i + f_i + e_{i+1}) / 4`.
+    fn face(&self, i: usize) -> Stencil<T> {
+        let l = self.lay;
+        let q = T::frac(1, 4);
+        vec![
+            (l.v(), q.clone()),
+            (l.e(i), q.clone()),
+            (l.f(i), q.clone()),
+            (l.e(i + 1), q),
+        ]
+    }
+    /// `e'_i = (1 - c)(v + e_i)/2 + c (f'_{i-1} + f'_i)/2`.
+    fn edge(&self, i: usize) -> Stencil<T> {
+        let l = self.lay;
+        let n = l.valence();
+        let half = T::frac(1, 2);
+        let a = (T::one() - self.c.clone()) * half.clone();
+        let b = self.c.clone() * half;
+        let mut s = vec![(l.v(), a.clone()), (l.e(i), a)];
+        s.extend(scaled(&self.face(i + n - 1), &b));
+        s.extend(scaled(&self.face(i), &b));
+        s
+    }
+    /// `v' = (4 c^2 Q + 8 c (1 - c) R + (n - 4 c (2 - c)) v) / n`.
+    fn vertex(&self) -> Stencil<T> {
+        let l = self.lay;
+        let n = l.valence();
+        let nn = T::frac(n as i64, 1);
+        let c = self.c.clone();
+        let one = T::one();
+        let two = T::frac(2, 1);
+        let wq = T::frac(4, 1) * c.clone() * c.clone() / nn.clone();
+        let wr = T::frac(8, 1) * c.clone() * (one.clone() - c.clone()) / nn.clone();
+        let wv = (nn.clone() - T::frac(4, 1) * c.clone() * (two - c)) / nn.clone();
+        let mut s = vec![(l.v(), wv)];
+        // Q = (1/n) sum_i f'_i;  R = (1/n) sum_i (v + e_i)/2.
+        let q_w = wq / nn.clone();
+        let r_w = wr / (nn * T::frac(2, 1));
+        for i in 0..n {
+            s.extend(scaled(&self.face(i), &q_w));
+            s.push((l.v(), r_w.clone()));
+            s.push((l.e(i), r_w.clone()));
+        }
+        s
+    }
+}
+
+/// The `(2n+1) x (2n+1)` one-ring matrix (order `[v, e_0..e_{n-1}, f_0..f_{n-1}]`).
+///
+/// Exact for rational `c`. Scheme name `catmull-clark` at `c = 1/2`,
+/// `adjustable-cc` otherwise.
+pub fn one_ring_matrix<T: Scalar>(n: usize, c: &T) -> Result<LocalMatrix<T>> {
+    one_ring_named(scheme_name(c), n, c)
+}
+
+pub(crate) fn one_ring_named<T: Scalar>(name: &str, n: usize, c: &T) -> Result<LocalMatrix<T>> {
+    validate(n, c)?;
+    let lay = PatchLayout::new(n)?;
+    let labels: Vec<PointLabel> = lay.labels()[..lay.one_ring_len()].to_vec();
+    let mut asm = Assembler::square(name, n, labels);
+    add_one_ring_rows(&mut asm, &lay, c);
+    asm.finish()
+}
+
+fn add_one_ring_rows<T: Scalar>(asm: &mut Assembler<T>, lay: &PatchLayout, c: &T) {
+    let rules = OneRingRules { lay, c: c.clone() };
+    asm.stencil(lay.v(), rules.vertex());
+    for i in 0..lay.valence() {
+        asm.stencil(lay.e(i), rules.edge(i));
+        asm.stencil(lay.f(i), rules.face(i));
+    }
+}
+
+/// Univariate rule at half-grid coordinate `h` (new point at old coordinate
+/// `h/2`): vertex mask `c/4, 1 - c/2, c/4` for even `h`, midpoint for odd `h`.
+/// Returns `(old grid coordinate, weight)`.
+pub(crate) fn univariate_rule<T: Scalar>(h: usize, c: &T) -> Vec<(usize, T)> {
+    if h % 2 == 0 {
+        let k = h / 2;
+        let q = c.clone() * T::frac(1, 4);
+        vec![
+            (k - 1, q.clone()),
+            (k, T::one() - c.clone() * T::frac(1, 2)),
+            (k + 1, q),
+        ]
+    } else {
+        let k = (h - 1) / 2;
+        vec![(k, T::frac(1, 2)), (k + 1, T::frac(1, 2))]
+    }
+}
+
+/// Adds the tensor-product rule for the new point at new-grid position
+/// `(a, b)` (old half-grid coordinates `(a + 1, b + 1)`) to `row`.
+fn add_regular_row<T: Scalar>(
+    asm: &mut Assembler<T>,
+    row: usize,
+    lay: &PatchLayout,
+    (a, b): (usize, usize),
+    c: &T,
+) -> Result<()> {
+    for (i, wi) in univariate_rule(a + 1, c) {
+        for (j, wj) in univariate_rule(b + 1, c) {
+            let col = lay.grid(i, j).ok_or_else(|| Error::Numerical {
+                routine: "catmull-clark patch assembly",
+                reason: format!("regular rule at ({a}, {b}) reaches the extraordinary corner"),
+            })?;
+            asm.add(row, col, wi.clone() * wj);
+        }
+    }
+    Ok(())
+}
+
+/// The `(2n+8) x (2n+8)` patch matrix (Stam's `A`): the one-ring block and the
+/// 7 outer points of the next level's patch at the extraordinary corner,
+/// in the order of [`PatchLayout`]. Block lower-triangular: the one-ring rows
+/// use only one-ring columns.
+pub fn patch_matrix<T: Scalar>(n: usize, c: &T) -> Result<LocalMatrix<T>> {
+    validate(n, c)?;
+    let lay = PatchLayout::new(n)?;
+    let labels = lay.labels()[..lay.patch_len()].to_vec();
+    let mut asm = Assembler::square(scheme_name(c), n, labels);
+    add_one_ring_rows(&mut asm, &lay, c);
+    for k in 0..7 {
+        add_regular_row(
+            &mut asm,
+            lay.outer(k),
+            &lay,
+            PatchLayout::outer_position(k),
+            c,
+        )?;
+    }
+    asm.finish()
+}
+
+/// The `(2n+17) x (2n+8)` extended matrix (Stam's `A-bar`): rows are the
+/// next level's `2n+8` patch points followed by the 9 extra points that
+/// complete the control nets of the three regular sub-patches
+/// ([`PatchLayout::sub_patch`]); columns are the current `2n+8` patch points.
+pub fn extended_matrix<T: Scalar>(n: usize, c: &T) -> Result<LocalMatrix<T>> {
+    validate(n, c)?;
+    let lay = PatchLayout::new(n)?;
+    let rows = lay.labels();
+    let cols = rows[..lay.patch_len()].to_vec();
+    let mut asm = Assembler::new(scheme_name(c), n, rows, cols);
+    add_one_ring_rows(&mut asm, &lay, c);
+    for k in 0..7 {
+        add_regular_row(
+            &mut asm,
+            lay.outer(k),
+            &lay,
+            PatchLayout::outer_position(k),
+            c,
+        )?;
+    }
+    for k in 0..9 {
+        add_regular_row(
+            &mut asm,
+            lay.extra(k),
+            &lay,
+            PatchLayout::extra_position(k),
+            c,
+        )?;
+    }
+    asm.finish()
+}
+
+#[cfg(test)]
+mod tests;
