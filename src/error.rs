@@ -66,6 +66,9 @@ pub enum Error {
         /// The operation asked for.
         operation: &'static str,
     },
+    /// Failures of the patch-to-limit-face distance bound (`ccss_bound`).
+    #[error(transparent)]
+    CcssBound(#[from] crate::ccss_bound::CcssBoundError),
     /// A numerical routine that did not converge or met a singular system.
     #[error("numerical failure in {routine}: {reason}")]
     Numerical {

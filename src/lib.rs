@@ -13,7 +13,8 @@
 //!
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
-//! * [`schemes`]: local subdivision matrices through one assembly path.
+//! * [`schemes`]: local subdivision matrices through one assembly path;
+//! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face.
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -25,6 +26,7 @@
 
 #![warn(missing_docs)]
 
+pub mod ccss_bound;
 pub mod error;
 pub mod knots;
 pub mod scalar;

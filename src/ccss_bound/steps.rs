@@ -1,0 +1,152 @@
+//! How many subdivision steps bring the limit mesh within `epsilon` of the surface.
+//!
+//! After `k` steps, the part of the patch near the extraordinary vertex is the
+//! level-`k` extraordinary patch, and the rest is made of regular sub-patches
+//! `Omega^j_m` (`j <= k`) refined `k - j` more times. On regular parts one step
+//! divides every row/column second difference by at least 4 (cubic
+//! B-spline refinement: refined second differences are averages of old ones
+//! divided by 4), and the regular bound is `beta(4) = 1/4`.
+//!
+//! **At the extraordinary vertex [derived]:** the differences through `v`
+//! (`e_{i-1} - 2v + e_{i+1}`) do not annihilate the subdominant eigenvectors
+//! of the patch matrix for `n != 4`, so on such data `M` shrinks by exactly
+//! `lambda_1(n)` per step (`lambda_1 > 1/4`, e.g. `0.41` for `n = 3`,
+//! `0.55` for `n = 5`): the factor 4 does **not** hold there. We compute the
+//! guaranteed per-step factor by LP: `r_ev(n) = max_l min ||y||_1` s.t.
+//! `alpha_l^T A = sum_k y_k alpha_k^T` (each new difference of the level-`k+1`
+//! patch as a combination of the level-`k` family), so `M_{k+1} <= r_ev M_k`,
+//! and `r_ev(n) >= lambda_1(n)`; likewise `r_sub(n)` for the 16 row and column
+//! differences of each new regular sub-patch net. With `rho = max(r_ev, 1/4)`:
+//!
+//! ```text
+//! max |S - limit mesh| after k steps <= C rho^k M_0,   C = max(beta_full(n), r_sub / (4 rho))
+//! ```
+//!
+//! (EV piece: `beta r_ev^k M_0`; a regular piece born at level `j`:
+//! `1/4 (1/4)^{k-j} r_sub r_ev^{j-1} M_0 <= r_sub/(4 rho) rho^k M_0`).
+
+use super::bound::bound;
+use super::differences::{default_family, DifferenceFamily};
+use super::lp::l1_representation;
+use super::patch::ExtraordinaryPatch;
+use super::CcssBoundError;
+use crate::error::Result;
+use crate::schemes::catmull_clark::SubPatch;
+use nalgebra::DMatrix;
+
+/// The per-step contraction factors of the default family.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Contraction {
+    /// Valence.
+    pub valence: usize,
+    /// `r_ev(n)`: factor for the extraordinary patch's family.
+    pub r_ev: f64,
+    /// `r_sub(n)`: factor from the level-`k` family to the 16 row/column
+    /// differences of the new regular sub-patch nets.
+    pub r_sub: f64,
+    /// `rho = max(r_ev, 1/4)`.
+    pub rho: f64,
+    /// The constant `C` of the module docs.
+    pub constant: f64,
+    /// `beta_full(n)` used in `C`.
+    pub beta: f64,
+}
+
+/// Row/column second differences of a 4 x 4 net given by point indices, as
+/// forms over the rows of `forms`.
+#[allow(clippy::needless_range_loop)] // `a` indexes both net[s][a] and net[a][s]
+fn net_differences(forms: &DMatrix<f64>, net: &[[usize; 4]; 4]) -> Vec<Vec<f64>> {
+    let mut out = Vec::with_capacity(16);
+    let row = |k: usize| forms.row(k).iter().copied().collect::<Vec<f64>>();
+    for a in 0..4 {
+        for s in 0..2 {
+            for (p, q, r) in [
+                (net[s][a], net[s + 1][a], net[s + 2][a]),
+                (net[a][s], net[a][s + 1], net[a][s + 2]),
+            ] {
+                let (x, y, z) = (row(p), row(q), row(r));
+                out.push((0..x.len()).map(|k| x[k] - 2.0 * y[k] + z[k]).collect());
+            }
+        }
+    }
+    out
+}
+
+/// Computes the contraction factors (LPs; `levels` as in [`bound`]).
+pub fn contraction(n: usize, levels: u32) -> Result<Contraction> {
+    let patch = ExtraordinaryPatch::new(n)?;
+    let family = default_family(n)?;
+    contraction_with(&patch, &family, bound(n, levels)?.full_max)
+}
+
+fn max_l1(alphas: &DMatrix<f64>, targets: &[Vec<f64>], what: &str) -> Result<f64> {
+    let mut worst = 0.0f64;
+    for (k, t) in targets.iter().enumerate() {
+        let s = l1_representation(alphas, t, &format!("{what} #{k}"))?;
+        worst = worst.max(s.objective);
+    }
+    Ok(worst)
+}
+
+/// Contraction factors for a given patch, family and `beta`.
+pub fn contraction_with(
+    patch: &ExtraordinaryPatch,
+    family: &DifferenceFamily,
+    beta: f64,
+) -> Result<Contraction> {
+    let alphas = family.matrix();
+    let a = patch.patch_matrix();
+    // New family differences as forms over the old points: alpha^T A.
+    let new_ev: Vec<Vec<f64>> = family
+        .differences()
+        .iter()
+        .map(|d| {
+            let v = nalgebra::DVector::from_vec(d.to_vector(patch.len()));
+            (a.transpose() * v).iter().copied().collect()
+        })
+        .collect();
+    let r_ev = max_l1(&alphas, &new_ev, "next-level extraordinary difference")?;
+    let ext =
+        crate::schemes::catmull_clark::extended_matrix::<f64>(patch.valence(), &0.5)?.into_matrix();
+    let mut subs = Vec::new();
+    for m in SubPatch::ALL {
+        subs.extend(net_differences(&ext, &patch.layout().sub_patch(m)));
+    }
+    let r_sub = max_l1(&alphas, &subs, "next-level regular difference")?;
+    let rho = r_ev.max(0.25);
+    Ok(Contraction {
+        valence: patch.valence(),
+        r_ev,
+        r_sub,
+        rho,
+        constant: beta.max(r_sub / (4.0 * rho)),
+        beta,
+    })
+}
+
+/// The number of steps `k` after which `C rho^k M_0 <= epsilon` for the
+/// control net `net` (`2n + 8` points, any dimension), and `M_0`.
+pub fn steps_needed(c: &Contraction, net: &[Vec<f64>], epsilon: f64) -> Result<(u32, f64)> {
+    if !(epsilon.is_finite() && epsilon > 0.0) {
+        return Err(CcssBoundError::InvalidTolerance(epsilon).into());
+    }
+    if let Some(index) = net.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
+        return Err(CcssBoundError::NonFinitePoint { index }.into());
+    }
+    let family = default_family(c.valence)?;
+    let m0 = family.max_norm(net)?;
+    if c.rho.is_nan() || c.rho >= 1.0 {
+        return Err(CcssBoundError::Lp {
+            what: "contraction factor".to_owned(),
+            status: format!("rho = {} is not below 1", c.rho),
+        }
+        .into());
+    }
+    let mut k = 0u32;
+    let mut bound = c.constant * m0;
+    while bound > epsilon {
+        bound *= c.rho;
+        k += 1;
+    }
+    Ok((k, m0))
+}
