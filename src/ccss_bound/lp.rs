@@ -114,12 +114,26 @@ fn polish(alphas: &DMatrix<f64>, target: &[f64], x: &[f64]) -> Option<Vec<f64>> 
     (residual(alphas, target, &out) <= residual(alphas, target, x)).then_some(out)
 }
 
-/// The dual optimum `max target . y` s.t. `-1 <= alpha_l . y <= 1`, `y_0 = 0`.
-/// Equal to the primal optimum by LP duality: an independent optimality check.
+/// Box `|y_p| <= DUAL_BOX` on the dual variables. For `n` divisible by 4 the
+/// default family has a 3-dimensional left kernel besides the constants
+/// (period-4 "fake linear" data around the extraordinary vertex), i.e. a
+/// lineality space of the dual feasible set along which the objective is
+/// constant (the targets are orthogonal to it, to `1e-16`); microlp can then
+/// mistake rounding for an unbounded ray. The box removes the lineality; an
+/// optimal `y` of moderate size exists (the family's non-zero singular values
+/// are `>= 0.03` for `n <= 50`, so optimal `y` have norm `<~ 100`), so the
+/// boxed optimum equals the dual optimum.
+pub const DUAL_BOX: f64 = 1e4;
+
+/// The dual optimum `max target . y` s.t. `-1 <= alpha_l . y <= 1`, `y_0 = 0`,
+/// `|y_p| <= DUAL_BOX`. Equal to the primal optimum by LP duality: an
+/// independent optimality check.
 pub fn dual_objective(alphas: &DMatrix<f64>, target: &[f64], what: &str) -> Result<f64> {
     let (m, l) = alphas.shape();
     let mut vars = ProblemVariables::new();
-    let y: Vec<_> = (0..m).map(|_| vars.add(variable())).collect();
+    let y: Vec<_> = (0..m)
+        .map(|_| vars.add(variable().min(-DUAL_BOX).max(DUAL_BOX)))
+        .collect();
     let objective: Expression = (1..m).map(|p| target[p] * y[p]).sum();
     let mut problem = vars.maximise(objective.clone()).using(microlp);
     problem = problem.with(constraint!(y[0] == 0.0));

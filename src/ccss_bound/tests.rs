@@ -95,7 +95,8 @@ fn n4_reproduces_d_equals_one_minus_t_squared_over_four() {
 
 #[test]
 fn lp_residual_and_duality() {
-    for n in [3usize, 5, 7] {
+    // n = 8: the family has a 3-dimensional extra left kernel (n divisible by 4).
+    for n in [3usize, 5, 8] {
         let patch = ExtraordinaryPatch::new(n).unwrap();
         let family = default_family(n).unwrap();
         let alphas = family.matrix();
@@ -124,6 +125,28 @@ fn lp_residual_and_duality() {
             }
         }
     }
+}
+
+/// beta(n) strictly decreasing on 3..=10 (the full 3..=48 check takes ~25 s:
+/// `subdiv-lab ccss-bound --table-to 50`, see the report).
+#[test]
+fn beta_decreasing_small_valences() {
+    let rows = super::bound::beta_table(3..=10, 2).unwrap();
+    for w in rows.windows(2) {
+        assert!(
+            w[1].beta < w[0].beta,
+            "beta({}) = {} >= beta({}) = {}",
+            w[1].n,
+            w[1].beta,
+            w[0].n,
+            w[0].beta
+        );
+    }
+    let mut csv = Vec::new();
+    super::bound::write_beta_csv(&rows, &mut csv).unwrap();
+    let text = String::from_utf8(csv).unwrap();
+    assert!(text.starts_with("n,beta,t_max,level,full_max\n3,0.258"));
+    assert_eq!(text.lines().count(), 9);
 }
 
 #[test]

@@ -5,6 +5,8 @@ use super::{CliError, CliResult};
 use anyhow::anyhow;
 use clap::Args;
 use subdiv_lab::ccss_bound::bound::{beta_table, bound, write_beta_csv, DEFAULT_LEVELS};
+use subdiv_lab::ccss_bound::patch::ExtraordinaryPatch;
+use subdiv_lab::ccss_bound::{differences::default_family, steps::contraction_with};
 
 #[derive(Args, Debug)]
 pub(crate) struct CcssBoundArgs {
@@ -54,6 +56,9 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
         .omega_1_2()
         .map(|s| s.c)
         .ok_or_else(|| CliError::failure(anyhow!("no Omega^1_2 bound computed")))?;
+    let patch = ExtraordinaryPatch::new(n).map_err(CliError::failure)?;
+    let family = default_family(n).map_err(CliError::failure)?;
+    let rate = contraction_with(&patch, &family, r.full_max).map_err(CliError::failure)?;
     if args.json {
         let doc = serde_json::json!({
             "valence": n,
@@ -69,6 +74,7 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
             "max_lp_residual": r.max_residual,
             "max_asymmetry": r.max_asymmetry,
             "mirror_defect": r.mirror_defect,
+            "contraction": rate,
         });
         println!(
             "{}",
@@ -113,6 +119,10 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
             r.max_residual,
             r.max_asymmetry,
             r.mirror_defect
+        );
+        println!(
+            "per-step factor of M: extraordinary family r_ev = {:.6}, new regular nets r_sub = {:.6}, rho = {:.6}; distance after k steps <= {:.6} rho^k M_0",
+            rate.r_ev, rate.r_sub, rate.rho, rate.constant
         );
     }
     Ok(())
