@@ -124,9 +124,118 @@ pub fn contraction_with(
     })
 }
 
-/// The number of steps `k` after which `C rho^k M_0 <= epsilon` for the
-/// control net `net` (`2n + 8` points, any dimension), and `M_0`.
-pub fn steps_needed(c: &Contraction, net: &[Vec<f64>], epsilon: f64) -> Result<(u32, f64)> {
+/// Largest number of steps [`steps_needed`] examines before giving up.
+pub const MAX_STEPS: u32 = 200;
+
+/// What [`steps_needed`] found.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct StepsReport {
+    /// The number of steps `k`.
+    pub steps: u32,
+    /// The guaranteed distance bound after `k` steps (`<= epsilon`).
+    pub bound: f64,
+    /// `M^{ev}_j` of the level-`j` extraordinary patch, `j = 0..=k`.
+    pub m_ev: Vec<f64>,
+    /// Largest row/column second difference of the three new regular
+    /// sub-patch nets born at level `j`, `j = 1..=k`.
+    pub m_sub: Vec<f64>,
+}
+
+/// Data-driven step count for an actual control net (`2n + 8` points, any
+/// dimension): subdivides the net and returns the least `k` with
+///
+/// ```text
+/// max( beta M^{ev}_k ,  max_{j=1..k} 1/4 (1/4)^{k-j} M^{sub}_j )  <=  epsilon
+/// ```
+///
+/// (the level-`k` extraordinary patch is within `beta M^{ev}_k` of its limit
+/// face; a regular sub-patch born at level `j` has its second differences
+/// divided by at least 4 per further step and the regular bound `1/4`).
+/// `beta` is `beta_full(n)` of [`crate::ccss_bound::bound::bound`].
+/// Near the extraordinary vertex `M^{ev}_k` shrinks like `lambda_1(n)^k`,
+/// not `4^{-k}` (module docs), which is what makes `k` grow for `n != 4`.
+pub fn steps_needed(
+    patch: &ExtraordinaryPatch,
+    family: &DifferenceFamily,
+    beta: f64,
+    net: &[Vec<f64>],
+    epsilon: f64,
+) -> Result<StepsReport> {
+    if !(epsilon.is_finite() && epsilon > 0.0) {
+        return Err(CcssBoundError::InvalidTolerance(epsilon).into());
+    }
+    if let Some(index) = net.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
+        return Err(CcssBoundError::NonFinitePoint { index }.into());
+    }
+    let len = patch.len();
+    let mut cur: Vec<Vec<f64>> = net.to_vec();
+    let mut m_ev = vec![family.max_norm(&cur)?];
+    let mut m_sub = Vec::new();
+    let ext =
+        crate::schemes::catmull_clark::extended_matrix::<f64>(patch.valence(), &0.5)?.into_matrix();
+    let apply = |m: &DMatrix<f64>, pts: &[Vec<f64>]| -> Vec<Vec<f64>> {
+        let dim = pts.first().map_or(0, Vec::len);
+        (0..m.nrows())
+            .map(|i| {
+                (0..dim)
+                    .map(|d| (0..len).map(|j| m[(i, j)] * pts[j][d]).sum())
+                    .collect()
+            })
+            .collect()
+    };
+    let mut k = 0u32;
+    loop {
+        let regular = m_sub
+            .iter()
+            .enumerate()
+            .map(|(j, m)| 0.25 * 0.25f64.powi((k as usize - 1 - j) as i32) * m)
+            .fold(0.0, f64::max);
+        let bound = (beta * m_ev[k as usize]).max(regular);
+        if bound <= epsilon {
+            return Ok(StepsReport {
+                steps: k,
+                bound,
+                m_ev,
+                m_sub,
+            });
+        }
+        if k == MAX_STEPS {
+            return Err(CcssBoundError::Lp {
+                what: "steps needed".to_owned(),
+                status: format!("bound {bound:e} still above epsilon after {MAX_STEPS} steps"),
+            }
+            .into());
+        }
+        // One step: the new regular sub-patch nets and the new extraordinary patch.
+        let refined = apply(&ext, &cur);
+        let mut worst = 0.0f64;
+        for m in SubPatch::ALL {
+            let net16 = patch.layout().sub_patch(m);
+            for a in 0..4 {
+                for s in 0..2 {
+                    for (p, q, r) in [
+                        (net16[s][a], net16[s + 1][a], net16[s + 2][a]),
+                        (net16[a][s], net16[a][s + 1], net16[a][s + 2]),
+                    ] {
+                        let d2: f64 = (0..refined[p].len())
+                            .map(|d| (refined[p][d] - 2.0 * refined[q][d] + refined[r][d]).powi(2))
+                            .sum::<f64>()
+                            .sqrt();
+                        worst = worst.max(d2);
+                    }
+                }
+            }
+        }
+        m_sub.push(worst);
+        cur = refined[..len].to_vec();
+        m_ev.push(family.max_norm(&cur)?);
+        k += 1;
+    }
+}
+
+/// A-priori step count from the contraction factors alone: the least `k`
+/// with `C rho^k M_0 <= epsilon` (an upper bound for [`steps_needed`]), and `M_0`.
+pub fn steps_a_priori(c: &Contraction, net: &[Vec<f64>], epsilon: f64) -> Result<(u32, f64)> {
     if !(epsilon.is_finite() && epsilon > 0.0) {
         return Err(CcssBoundError::InvalidTolerance(epsilon).into());
     }

@@ -2,7 +2,7 @@ use super::bound::bound;
 use super::differences::{default_family, Difference, DifferenceFamily};
 use super::lp::{dual_objective, l1_representation, residual};
 use super::patch::{bspline_basis, ExtraordinaryPatch, SubDomain};
-use super::steps::{contraction, steps_needed};
+use super::steps::{contraction, steps_a_priori, steps_needed};
 use crate::schemes::catmull_clark::SubPatch;
 use proptest::prelude::*;
 
@@ -266,7 +266,7 @@ fn steps_needed_bounds_the_refined_distance() {
         })
         .collect();
     let eps = 1e-3;
-    let (k, m0) = steps_needed(&c, &net, eps).unwrap();
+    let (k, m0) = steps_a_priori(&c, &net, eps).unwrap();
     assert!(k > 0 && m0 > 0.0);
     // M_k of the level-k extraordinary patch obeys M_k <= r_ev^k M_0.
     let mut cur = net.clone();
@@ -285,6 +285,57 @@ fn steps_needed_bounds_the_refined_distance() {
     // One step fewer is not enough according to the bound.
     assert!(c.constant * c.rho.powi(k as i32 - 1) * m0 > eps);
     assert!(c.constant * c.rho.powi(k as i32) * m0 <= eps);
-    assert!(steps_needed(&c, &net, 0.0).is_err());
-    assert!(steps_needed(&c, &net[1..], 1e-3).is_err());
+    assert!(steps_a_priori(&c, &net, 0.0).is_err());
+    assert!(steps_a_priori(&c, &net[1..], 1e-3).is_err());
+    // The data-driven count never exceeds the a-priori one and meets epsilon.
+    let data = steps_needed(&patch, &family, c.beta, &net, eps).unwrap();
+    assert!(data.steps <= k && data.bound <= eps);
+    assert_eq!(data.m_ev.len(), data.steps as usize + 1);
+    assert!(steps_needed(&patch, &family, c.beta, &net, f64::NAN).is_err());
+}
+
+/// Derived: at the extraordinary vertex M shrinks by lambda_1 per step on
+/// subdominant eigenvector data (not by 4); at n = 4 by exactly 4 on generic data.
+#[test]
+fn m_at_the_extraordinary_vertex_decays_like_lambda() {
+    use nalgebra::{DMatrix, DVector};
+    for n in [3usize, 5, 7] {
+        let patch = ExtraordinaryPatch::new(n).unwrap();
+        let family = default_family(n).unwrap();
+        let lam = crate::schemes::catmull_clark::fourier::subdominant(n, 0.5).unwrap();
+        // Eigenvector of A for lambda_1 (real cosine mode of Fourier block l = 1):
+        // v = 0, e_i = cos(i theta), f_i = (cos(i theta) + cos((i+1) theta)) / (4 lambda - 1);
+        // the 7 outer entries solve (A_oo - lambda I) x_o = -A_or x_r.
+        let lay = patch.layout();
+        let len = patch.len();
+        let theta = 2.0 * std::f64::consts::PI / n as f64;
+        let mut x = DVector::zeros(len);
+        for i in 0..n {
+            let ci = (i as f64 * theta).cos();
+            x[lay.e(i)] = ci;
+            x[lay.f(i)] = (ci + ((i + 1) as f64 * theta).cos()) / (4.0 * lam - 1.0);
+        }
+        let a = patch.patch_matrix();
+        let r = 2 * n + 1;
+        let a_oo = a.view((r, r), (7, 7)).into_owned() - DMatrix::identity(7, 7) * lam;
+        let rhs = -(a.view((r, 0), (7, r)) * x.rows(0, r));
+        let xo = crate::schemes::catmull_clark::limit::solve_linear(a_oo, rhs).unwrap();
+        x.rows_mut(r, 7).copy_from(&xo);
+        let ax = patch.patch_matrix() * &x;
+        let defect = (&ax - &x * lam).amax();
+        assert!(defect < 1e-10, "n = {n}: not an eigenvector ({defect:e})");
+        let net0: Vec<Vec<f64>> = x.iter().map(|v| vec![*v]).collect();
+        let net1: Vec<Vec<f64>> = ax.iter().map(|v| vec![*v]).collect();
+        let (m0, m1) = (
+            family.max_norm(&net0).unwrap(),
+            family.max_norm(&net1).unwrap(),
+        );
+        assert!(m0 > 1e-3);
+        assert!(
+            (m1 / m0 - lam).abs() < 1e-10,
+            "n = {n}: ratio {} vs lambda {lam}",
+            m1 / m0
+        );
+        assert!(m1 / m0 > 0.25 + 0.1);
+    }
 }
