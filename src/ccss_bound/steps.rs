@@ -52,24 +52,31 @@ pub struct Contraction {
     pub beta: f64,
 }
 
-/// Row/column second differences of a 4 x 4 net given by point indices, as
-/// forms over the rows of `forms`.
+/// The 16 row and column second differences of a 4 x 4 net as index triples `(p, q, r)`
+/// (difference `P_p - 2 P_q + P_r`).
 #[allow(clippy::needless_range_loop)] // `a` indexes both net[s][a] and net[a][s]
-fn net_differences(forms: &DMatrix<f64>, net: &[[usize; 4]; 4]) -> Vec<Vec<f64>> {
+fn net_triples(net: &[[usize; 4]; 4]) -> Vec<(usize, usize, usize)> {
     let mut out = Vec::with_capacity(16);
-    let row = |k: usize| forms.row(k).iter().copied().collect::<Vec<f64>>();
     for a in 0..4 {
         for s in 0..2 {
-            for (p, q, r) in [
-                (net[s][a], net[s + 1][a], net[s + 2][a]),
-                (net[a][s], net[a][s + 1], net[a][s + 2]),
-            ] {
-                let (x, y, z) = (row(p), row(q), row(r));
-                out.push((0..x.len()).map(|k| x[k] - 2.0 * y[k] + z[k]).collect());
-            }
+            out.push((net[s][a], net[s + 1][a], net[s + 2][a]));
+            out.push((net[a][s], net[a][s + 1], net[a][s + 2]));
         }
     }
     out
+}
+
+/// Row/column second differences of a 4 x 4 net given by point indices, as
+/// forms over the rows of `forms`.
+fn net_differences(forms: &DMatrix<f64>, net: &[[usize; 4]; 4]) -> Vec<Vec<f64>> {
+    net_triples(net)
+        .into_iter()
+        .map(|(p, q, r)| {
+            (0..forms.ncols())
+                .map(|k| forms[(p, k)] - 2.0 * forms[(q, k)] + forms[(r, k)])
+                .collect()
+        })
+        .collect()
 }
 
 /// Computes the contraction factors (LPs; `levels` as in [`bound`]).
@@ -210,20 +217,12 @@ pub fn steps_needed(
         let refined = apply(&ext, &cur);
         let mut worst = 0.0f64;
         for m in SubPatch::ALL {
-            let net16 = patch.layout().sub_patch(m);
-            for a in 0..4 {
-                for s in 0..2 {
-                    for (p, q, r) in [
-                        (net16[s][a], net16[s + 1][a], net16[s + 2][a]),
-                        (net16[a][s], net16[a][s + 1], net16[a][s + 2]),
-                    ] {
-                        let d2: f64 = (0..refined[p].len())
-                            .map(|d| (refined[p][d] - 2.0 * refined[q][d] + refined[r][d]).powi(2))
-                            .sum::<f64>()
-                            .sqrt();
-                        worst = worst.max(d2);
-                    }
-                }
+            for (p, q, r) in net_triples(&patch.layout().sub_patch(m)) {
+                let d2: f64 = (0..refined[p].len())
+                    .map(|d| (refined[p][d] - 2.0 * refined[q][d] + refined[r][d]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                worst = worst.max(d2);
             }
         }
         m_sub.push(worst);
