@@ -1,0 +1,103 @@
+//! CLI tests for the Catmull-Clark family (`matrix --scheme catmull-clark|adjustable-cc`)
+//! and `ccss-bound`.
+
+use std::process::Command;
+
+fn run(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_subdiv-lab"))
+        .args(args)
+        .output()
+        .expect("binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn adjustable_matrix_exact_json() {
+    let (code, out, err) = run(&[
+        "matrix",
+        "--scheme",
+        "adjustable-cc",
+        "--valence",
+        "3",
+        "--c",
+        "1/3",
+        "--exact",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["scheme"], "adjustable-cc");
+    // v' weight on v: (n + c^2 - 4c)/n = (3 + 1/9 - 4/3)/3 = 16/27.
+    assert_eq!(v["matrix"][0][0], "16/27");
+    assert_eq!(v["rows"][4], "f0");
+}
+
+#[test]
+fn catmull_clark_matrix_and_errors() {
+    let (code, out, _) = run(&[
+        "matrix",
+        "--scheme",
+        "catmull-clark",
+        "--valence",
+        "4",
+        "--exact",
+    ]);
+    assert_eq!(code, 0);
+    assert!(out.contains("9x9"));
+    let (code, _, err) = run(&[
+        "matrix",
+        "--scheme",
+        "catmull-clark",
+        "--valence",
+        "4",
+        "--block",
+        "face",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("face block"), "{err}");
+    let (code, _, err) = run(&[
+        "matrix",
+        "--scheme",
+        "adjustable-cc",
+        "--valence",
+        "4",
+        "--c",
+        "1.5",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("c = 1.5"), "{err}");
+    let (code, _, err) = run(&[
+        "matrix",
+        "--scheme",
+        "adjustable-cc",
+        "--valence",
+        "4",
+        "--c",
+        "abc",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--c"), "{err}");
+    let (code, _, _) = run(&["matrix", "--scheme", "adjustable-cc", "--valence", "4"]);
+    assert_eq!(code, 2);
+}
+
+#[test]
+fn ccss_bound_cli() {
+    let (code, out, err) = run(&["ccss-bound", "--valence", "4", "--json", "--levels", "2"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!((v["beta"].as_f64().unwrap() - 0.25).abs() < 1e-12);
+    assert_eq!(v["lp_status"], "optimal");
+    assert_eq!(v["family_size"], 18);
+    let (code, out, _) = run(&["ccss-bound", "--table-to", "5", "--levels", "2"]);
+    assert_eq!(code, 0);
+    assert_eq!(out.lines().count(), 4);
+    let (code, _, err) = run(&["ccss-bound", "--valence", "2"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("valence"), "{err}");
+}
