@@ -126,3 +126,35 @@ pub fn left_fixed_vector<T: Scalar>(s: &DMatrix<T>) -> Result<Vec<T>> {
     b[n - 1] = T::one();
     Ok(solve_linear(a, b)?.iter().cloned().collect())
 }
+
+/// Tangent stencils **[derived]**: the two real left eigenvectors of the
+/// one-ring matrix for the `+` root `lambda` of Fourier block `l = 1` (the
+/// subdominant eigenvalue for Catmull-Clark; for the adjustable scheme compare
+/// with [`super::fourier::subdominant`]). With `theta = 2 pi / n`:
+///
+/// ```text
+/// t_1: v -> 0,  e_i -> cos(i theta),  f_i -> c (cos(i theta) + cos((i+1) theta)) / (8 lambda - 2)
+/// t_2: the same with sin
+/// ```
+///
+/// At `c = 1/2` this is, up to the factor `A_n = 16 lambda - 4 =
+/// 1 + cos(2 pi/n) + cos(pi/n) sqrt(2 (9 + cos(2 pi/n)))`, the classical
+/// Catmull-Clark tangent mask `e_i: A_n cos(2 pi i/n)`,
+/// `f_i: cos(2 pi i/n) + cos(2 pi (i+1)/n)` (Halstead, Kass and DeRose 1993).
+/// Returns `(lambda, [t_1, t_2])`, each over `[v, e_0.., f_0..]`.
+pub fn tangent_stencils(n: usize, c: f64) -> Result<(f64, [Vec<f64>; 2])> {
+    let ev = super::fourier::block_eigenvalues(n, 1, c)?;
+    let lambda = ev[0].re.max(ev[1].re);
+    let theta = 2.0 * std::f64::consts::PI / n as f64;
+    let scale = c / (8.0 * lambda - 2.0);
+    let mk = |f: fn(f64) -> f64| {
+        let mut t = vec![0.0; 2 * n + 1];
+        for i in 0..n {
+            let (a, b) = (f(i as f64 * theta), f((i + 1) as f64 * theta));
+            t[1 + i] = a;
+            t[1 + n + i] = scale * (a + b);
+        }
+        t
+    };
+    Ok((lambda, [mk(f64::cos), mk(f64::sin)]))
+}

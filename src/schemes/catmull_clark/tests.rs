@@ -428,3 +428,32 @@ fn sub_patch_nets_are_on_the_extended_grid() {
         }
     }
 }
+
+/// Tangent stencils are left eigenvectors of the assembled matrix, and at
+/// c = 1/2 the Halstead-Kass-DeRose mask.
+#[test]
+fn tangent_stencils_are_left_eigenvectors() {
+    use super::limit::tangent_stencils;
+    for n in 3..=32 {
+        for c in [0.2, 0.5, 0.9] {
+            let s = one_ring_matrix::<f64>(n, &c).unwrap();
+            let (lambda, ts) = tangent_stencils(n, c).unwrap();
+            for t in &ts {
+                let row = nalgebra::RowDVector::from_row_slice(t);
+                let defect = (&row * s.matrix() - &row * lambda).amax();
+                assert!(defect < 1e-14, "n = {n}, c = {c}: {defect:e}");
+            }
+            if c == 0.5 {
+                assert!((lambda - stam_subdominant(n)).abs() < 1e-15);
+                let th = 2.0 * std::f64::consts::PI / n as f64;
+                let an = 1.0 + th.cos() + (th / 2.0).cos() * (2.0 * (9.0 + th.cos())).sqrt();
+                for i in 0..n {
+                    let e = an * (i as f64 * th).cos();
+                    let f = (i as f64 * th).cos() + ((i + 1) as f64 * th).cos();
+                    assert!((ts[0][1 + i] * an - e * 1.0).abs() < 1e-13 * an);
+                    assert!((ts[0][1 + n + i] * an - f).abs() < 1e-13 * an);
+                }
+            }
+        }
+    }
+}
