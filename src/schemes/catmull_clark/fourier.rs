@@ -231,3 +231,39 @@ pub fn stam_subdominant(n: usize) -> f64 {
     let c2 = (2.0 * PI / nf).cos();
     (5.0 + c2 + (PI / nf).cos() * (2.0 * (9.0 + c2)).sqrt()) / 16.0
 }
+
+/// The real right eigenvectors of the `(2n+8)` patch matrix for the `+` root
+/// `lambda` of Fourier block `l = 1` (the subdominant pair for
+/// Catmull-Clark): the characteristic map's control net is `(x_1, x_2)`, and
+/// the extended matrix maps it to the control nets of the first ring's three
+/// regular sub-patches of sector 0 (sector `j` is the same net rotated by
+/// `2 pi j / n`). **[derived]**: on the one-ring, `v -> 0`,
+/// `e_i -> cos(i theta)`, `f_i -> (cos(i theta) + cos((i+1) theta)) / (4 lambda - 1)`
+/// (and the same with sin), from the second row of the `l = 1` block; the 7
+/// outer entries solve `(A_oo - lambda I) x_o = -A_or x_r`.
+/// Returns `(lambda, [x_cos, x_sin])`.
+pub fn subdominant_patch_eigenvectors(
+    n: usize,
+    c: f64,
+) -> Result<(f64, [nalgebra::DVector<f64>; 2])> {
+    let ev = block_eigenvalues(n, 1, c)?;
+    let lambda = ev[0].re.max(ev[1].re);
+    let a = super::patch_matrix::<f64>(n, &c)?.into_matrix();
+    let lay = super::PatchLayout::new(n)?;
+    let r = lay.one_ring_len();
+    let theta = 2.0 * PI / n as f64;
+    let make = |f: fn(f64) -> f64| -> Result<nalgebra::DVector<f64>> {
+        let mut x = nalgebra::DVector::zeros(lay.patch_len());
+        for i in 0..n {
+            let (p, q) = (f(i as f64 * theta), f((i + 1) as f64 * theta));
+            x[lay.e(i)] = p;
+            x[lay.f(i)] = (p + q) / (4.0 * lambda - 1.0);
+        }
+        let a_oo = a.view((r, r), (7, 7)).into_owned() - DMatrix::identity(7, 7) * lambda;
+        let rhs = -(a.view((r, 0), (7, r)) * x.rows(0, r));
+        let xo = super::limit::solve_linear(a_oo, rhs)?;
+        x.rows_mut(r, 7).copy_from(&xo);
+        Ok(x)
+    };
+    Ok((lambda, [make(f64::cos)?, make(f64::sin)?]))
+}

@@ -457,3 +457,19 @@ fn tangent_stencils_are_left_eigenvectors() {
         }
     }
 }
+
+#[test]
+fn subdominant_patch_eigenvectors_are_eigenvectors() {
+    use super::fourier::subdominant_patch_eigenvectors;
+    for n in 3..=16 {
+        for c in [0.3, 0.5, 0.8] {
+            let (lambda, xs) = subdominant_patch_eigenvectors(n, c).unwrap();
+            let a = patch_matrix::<f64>(n, &c).unwrap().into_matrix();
+            for x in &xs {
+                let defect = (&a * x - x * lambda).amax();
+                assert!(defect < 1e-13, "n = {n}, c = {c}: {defect:e}");
+                assert!(x.amax() > 0.5);
+            }
+        }
+    }
+}
