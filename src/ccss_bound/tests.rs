@@ -339,3 +339,54 @@ fn m_at_the_extraordinary_vertex_decays_like_lambda() {
         assert!(m1 / m0 > 0.25 + 0.1);
     }
 }
+
+/// The sub-patch nets fit together (continuity across sub-patch and level
+/// boundaries) and converge to the limit point at the extraordinary corner:
+/// an independent check of the level structure `Pick_m A-bar A^{k-1}` for n != 4.
+#[test]
+fn sub_patches_join_continuously_and_converge_to_the_limit_point() {
+    for n in [3usize, 5, 7] {
+        let patch = ExtraordinaryPatch::new(n).unwrap();
+        let net: Vec<Vec<f64>> = (0..patch.len())
+            .map(|k| vec![((k * 37) % 11) as f64 / 11.0 - 0.5])
+            .collect();
+        let at = |d: SubDomain, s: f64, t: f64| -> f64 {
+            let forms = patch.bspline_net(d);
+            let (bu, bv) = (bspline_basis(s), bspline_basis(t));
+            let mut acc = 0.0;
+            for i in 0..4 {
+                for j in 0..4 {
+                    for (p, x) in net.iter().enumerate() {
+                        acc += bu[i] * bv[j] * forms[(4 * i + j, p)] * x[0];
+                    }
+                }
+            }
+            acc
+        };
+        let sd = |level, part| SubDomain { level, part };
+        for k in 1..=3 {
+            for s in [0.0, 0.3, 0.7, 1.0] {
+                let a = at(sd(k, SubPatch::One), s, 1.0);
+                let b = at(sd(k, SubPatch::Two), s, 0.0);
+                assert!((a - b).abs() < 1e-13, "n = {n}, k = {k}: 1|2 {a} vs {b}");
+                let a = at(sd(k, SubPatch::Three), 1.0, s);
+                let b = at(sd(k, SubPatch::Two), 0.0, s);
+                assert!((a - b).abs() < 1e-13, "n = {n}, k = {k}: 3|2 {a} vs {b}");
+                // Level k+1's Omega_2 top edge lies on level k's Omega_3 bottom edge.
+                let a = at(sd(k + 1, SubPatch::Two), s, 1.0);
+                let b = at(sd(k, SubPatch::Three), 0.5 + 0.5 * s, 0.0);
+                assert!((a - b).abs() < 1e-13, "n = {n}, k = {k}: levels {a} vs {b}");
+            }
+        }
+        let limit: f64 = patch.corner_limits().unwrap()[0]
+            .iter()
+            .zip(&net)
+            .map(|(w, p)| w * p[0])
+            .sum();
+        let near = at(sd(30, SubPatch::Two), 0.0, 0.0);
+        assert!(
+            (near - limit).abs() < 1e-6,
+            "n = {n}: {near} vs limit {limit}"
+        );
+    }
+}
