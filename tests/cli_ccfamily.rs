@@ -101,3 +101,56 @@ fn ccss_bound_cli() {
     assert_eq!(code, 2);
     assert!(err.contains("valence"), "{err}");
 }
+
+#[test]
+fn ccss_bound_steps_for_a_net() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("net.txt");
+    let n = 5;
+    let text: String = (0..2 * n + 8)
+        .map(|k| {
+            let k = k as f64;
+            format!("{} {}, {}\n", (0.7 * k).sin(), (1.3 * k).cos(), 0.1 * k)
+        })
+        .collect();
+    std::fs::write(&path, format!("# a net\n{text}")).unwrap();
+    let p = path.to_str().unwrap();
+    let (code, out, err) = run(&[
+        "ccss-bound",
+        "--valence",
+        "5",
+        "--levels",
+        "2",
+        "--json",
+        "--net",
+        p,
+        "--epsilon",
+        "1e-4",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let steps = v["steps"]["steps"].as_u64().unwrap();
+    assert!(steps > 0 && v["steps"]["bound"].as_f64().unwrap() <= 1e-4);
+    let (code, _, err) = run(&[
+        "ccss-bound",
+        "--valence",
+        "5",
+        "--net",
+        p,
+        "--epsilon",
+        "-1",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("epsilon"), "{err}");
+    let (code, _, err) = run(&[
+        "ccss-bound",
+        "--valence",
+        "6",
+        "--net",
+        p,
+        "--epsilon",
+        "1e-3",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("expected 20"), "{err}");
+}

@@ -6,7 +6,10 @@ use anyhow::anyhow;
 use clap::Args;
 use subdiv_lab::ccss_bound::bound::{beta_table, bound, write_beta_csv, DEFAULT_LEVELS};
 use subdiv_lab::ccss_bound::patch::ExtraordinaryPatch;
-use subdiv_lab::ccss_bound::{differences::default_family, steps::contraction_with};
+use subdiv_lab::ccss_bound::{
+    differences::default_family,
+    steps::{contraction_with, steps_needed},
+};
 
 #[derive(Args, Debug)]
 pub(crate) struct CcssBoundArgs {
@@ -22,6 +25,55 @@ pub(crate) struct CcssBoundArgs {
     /// Print the CSV table of beta(n) for n = 3..N instead (N >= 3).
     #[arg(long, value_name = "N", conflicts_with = "valence")]
     table_to: Option<usize>,
+    /// A control net (2n+8 points, one per line, coordinates separated by
+    /// spaces or commas, '#' comments; numbering as in the docs of
+    /// `schemes::catmull_clark::PatchLayout`): also print the number of
+    /// subdivision steps needed for --epsilon.
+    #[arg(long, value_name = "PATH", requires = "epsilon")]
+    net: Option<std::path::PathBuf>,
+    /// Tolerance for --net.
+    #[arg(long, requires = "net", allow_hyphen_values = true)]
+    epsilon: Option<f64>,
+}
+
+/// Reads a control net: one point per line.
+fn read_net(path: &std::path::Path) -> CliResult<Vec<Vec<f64>>> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::usage(anyhow!("cannot read {}: {e}", path.display())))?;
+    let mut net = Vec::new();
+    for (lineno, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        let point = line
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|s| !s.is_empty())
+            .map(|s| {
+                s.parse::<f64>().map_err(|_| {
+                    CliError::usage(anyhow!(
+                        "{}:{}: {s:?} is not a number",
+                        path.display(),
+                        lineno + 1
+                    ))
+                })
+            })
+            .collect::<CliResult<Vec<f64>>>()?;
+        if let Some(first) = net.first() {
+            let first: &Vec<f64> = first;
+            if first.len() != point.len() {
+                return Err(CliError::usage(anyhow!(
+                    "{}:{}: {} coordinates, expected {}",
+                    path.display(),
+                    lineno + 1,
+                    point.len(),
+                    first.len()
+                )));
+            }
+        }
+        net.push(point);
+    }
+    Ok(net)
 }
 
 pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
@@ -59,6 +111,13 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
     let patch = ExtraordinaryPatch::new(n).map_err(CliError::failure)?;
     let family = default_family(n).map_err(CliError::failure)?;
     let rate = contraction_with(&patch, &family, r.full_max).map_err(CliError::failure)?;
+    let steps = match (&args.net, args.epsilon) {
+        (Some(path), Some(eps)) => {
+            let net = read_net(path)?;
+            Some(steps_needed(&patch, &family, r.full_max, &net, eps).map_err(CliError::usage)?)
+        }
+        _ => None,
+    };
     if args.json {
         let doc = serde_json::json!({
             "valence": n,
@@ -75,6 +134,7 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
             "max_asymmetry": r.max_asymmetry,
             "mirror_defect": r.mirror_defect,
             "contraction": rate,
+            "steps": steps,
         });
         println!(
             "{}",
@@ -124,6 +184,15 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
             "per-step factor of M: extraordinary family r_ev = {:.6}, new regular nets r_sub = {:.6}, rho = {:.6}; distance after k steps <= {:.6} rho^k M_0",
             rate.r_ev, rate.r_sub, rate.rho, rate.constant
         );
+        if let Some(st) = &steps {
+            println!(
+                "control net: M_0 = {:.6e}; {} subdivision step(s) bring the limit mesh within {:.3e} (bound {:.6e})",
+                st.m_ev[0],
+                st.steps,
+                args.epsilon.unwrap_or(f64::NAN),
+                st.bound
+            );
+        }
     }
     Ok(())
 }
