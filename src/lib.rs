@@ -13,7 +13,8 @@
 //!
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
-//! * [`schemes`]: local subdivision matrices through one assembly path.
+//! * [`schemes`]: local subdivision matrices through one assembly path;
+//! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -29,5 +30,7 @@ pub mod error;
 pub mod knots;
 pub mod scalar;
 pub mod schemes;
+#[cfg(feature = "testing")]
+pub mod testing;
 
 pub use error::{Error, Result};
