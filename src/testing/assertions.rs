@@ -58,7 +58,10 @@ pub fn check_affine_invariance<T: Scalar>(
         let bad = if T::EXACT {
             !defect.is_zero()
         } else {
-            !(defect.to_f64().abs() <= tol)
+            {
+                let d = defect.to_f64().abs();
+                d.is_nan() || d > tol
+            }
         };
         if bad {
             return Err(Violation::new(
@@ -156,7 +159,7 @@ pub fn check_face_contraction(
             if prev > DISTANCE_FLOOR {
                 let ratio: f64 = d / prev;
                 ratios.push(ratio);
-                if !(ratio <= factor * (1.0 + CONTRACTION_SLACK)) {
+                if ratio.is_nan() || ratio > factor * (1.0 + CONTRACTION_SLACK) {
                     return Err(Violation::new(
                         check,
                         configuration,
