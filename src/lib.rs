@@ -14,7 +14,8 @@
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
 //! * [`schemes`]: local subdivision matrices through one assembly path;
-//! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face.
+//! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face;
+//! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -31,5 +32,7 @@ pub mod error;
 pub mod knots;
 pub mod scalar;
 pub mod schemes;
+#[cfg(feature = "testing")]
+pub mod testing;
 
 pub use error::{Error, Result};
