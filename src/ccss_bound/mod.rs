@@ -13,6 +13,23 @@
 //!
 //! The bound: for `(u, v)` in `Omega^k_m`, `|S(u, v) - F(u, v)| <= B^k_m M`,
 //! `M = max_l |alpha_l|`, `B^k_m = sum c_ij B^3_i B^3_j`.
+//!
+//! # The published facts, with the default family (tests and `ccss-bound --table-to 50`)
+//!
+//! * `beta(4) = 1/4` with `D(t) = (1 - t^2)/4` on `Omega^1_2` (local `t`), exactly;
+//! * `beta(3) = 0.258146 > 1/4`, attained at `t = 0.4937` in `[1/4, 1/2]` (on `Omega^2_2`);
+//! * `beta(n) < 1/4` for `n > 4`, attained in `[1/2, 1]` (on `Omega^1_2`),
+//!   e.g. `beta(5) = 0.243129`, `beta(8) = 0.228848`, `beta(50) = 0.197303`;
+//! * `beta(n)` strictly decreasing for `3 <= n <= 48`, and `beta(49) > beta(48)`:
+//!   the sequence first rises exactly after the published range. Valences
+//!   divisible by 4 sit slightly below the trend for large `n` (the spoke
+//!   differences then have a 3-dimensional extra linear dependency).
+//!
+//! Which sub-patches matter (checked, not assumed): over levels `k = 1..4`
+//! and all three parts, the sampled maximum of `B(u, v)` equals the diagonal
+//! maximum for every `n = 3..50`; the per-level diagonal maxima decrease
+//! after level 2, `c_ij = c_ji` on `Omega^k_2` to `1e-15`, and
+//! `Omega^k_1`, `Omega^k_3` mirror each other to `1e-15`.
 
 pub mod bound;
 pub mod differences;

@@ -390,3 +390,16 @@ fn sub_patches_join_continuously_and_converge_to_the_limit_point() {
         );
     }
 }
+
+/// The published "strictly decreasing for 3 <= n <= 48" ends exactly where our
+/// family's sequence first rises: beta(49) > beta(48). (For n >= 5 the maximum
+/// lies on Omega^1_2, so one level suffices here; the full table with 4 levels
+/// is in the report.)
+#[test]
+fn beta_stops_decreasing_after_48() {
+    let rows = super::bound::beta_table([46usize, 47, 48, 49], 1).unwrap();
+    let b: Vec<f64> = rows.iter().map(|r| r.beta).collect();
+    assert!(b[0] > b[1] && b[1] > b[2], "{b:?}");
+    assert!(b[3] > b[2], "{b:?}");
+    assert!(rows.iter().all(|r| r.t_max > 0.5 && r.level == 1));
+}
