@@ -7,7 +7,7 @@
 //! B-spline refinement: refined second differences are averages of old ones
 //! divided by 4), and the regular bound is `beta(4) = 1/4`.
 //!
-//! **At the extraordinary vertex [derived]:** the differences through `v`
+//! **At the extraordinary vertex \[derived\]:** the differences through `v`
 //! (`e_{i-1} - 2v + e_{i+1}`) do not annihilate the subdominant eigenvectors
 //! of the patch matrix for `n != 4`, so on such data `M` shrinks by exactly
 //! `lambda_1(n)` per step (`lambda_1 > 1/4`, e.g. `0.41` for `n = 3`,

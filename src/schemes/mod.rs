@@ -47,7 +47,7 @@ pub enum SchemeKind {
     CcVariant,
     /// Catmull-Clark (vertex-centred; one-ring matrix 2n+1).
     CatmullClark,
-    /// The shape-adjustable Catmull-Clark scheme with parameter c in [0, 1] (**[reconstructed]**).
+    /// The shape-adjustable Catmull-Clark scheme with parameter c in [0, 1] (**\[reconstructed\]**).
     AdjustableCc,
 }
 

@@ -10,7 +10,7 @@
 //!
 //! (and the same for `f̂_l`) it is block diagonal: one 3 x 3 block for `l = 0`
 //! (on `v, ê_0, f̂_0`) and one 2 x 2 block per frequency `l = 1..n-1`. With
-//! `theta = 2 pi l / n`, the blocks **[derived]** from the rules of math doc
+//! `theta = 2 pi l / n`, the blocks **\[derived\]** from the rules of math doc
 //! section 8 are
 //!
 //! ```text
@@ -237,7 +237,7 @@ pub fn stam_subdominant(n: usize) -> f64 {
 /// Catmull-Clark): the characteristic map's control net is `(x_1, x_2)`, and
 /// the extended matrix maps it to the control nets of the first ring's three
 /// regular sub-patches of sector 0 (sector `j` is the same net rotated by
-/// `2 pi j / n`). **[derived]**: on the one-ring, `v -> 0`,
+/// `2 pi j / n`). **\[derived\]**: on the one-ring, `v -> 0`,
 /// `e_i -> cos(i theta)`, `f_i -> (cos(i theta) + cos((i+1) theta)) / (4 lambda - 1)`
 /// (and the same with sin), from the second row of the `l = 1` block; the 7
 /// outer entries solve `(A_oo - lambda I) x_o = -A_or x_r`.

@@ -7,7 +7,7 @@
 //! * Catmull-Clark (`c = 1/2`): `(n^2 v + 4 sum e_i + sum f_i) / (n (n + 5))`
 //!   (Halstead, Kass and DeRose, "Efficient, fair interpolation using
 //!   Catmull-Clark surfaces", SIGGRAPH 1993, appendix).
-//! * Shape-adjustable scheme **[derived]** (from the rules of math doc
+//! * Shape-adjustable scheme **\[derived\]** (from the rules of math doc
 //!   section 8; the Fourier `l = 0` block gives three scalar equations):
 //!   `(n^2 v + 8c sum e_i + 4c^2 sum f_i) / (n (n + 8c + 4c^2))`. At `n = 4`
 //!   this is the tensor square of the univariate limit mask
@@ -127,7 +127,7 @@ pub fn left_fixed_vector<T: Scalar>(s: &DMatrix<T>) -> Result<Vec<T>> {
     Ok(solve_linear(a, b)?.iter().cloned().collect())
 }
 
-/// Tangent stencils **[derived]**: the two real left eigenvectors of the
+/// Tangent stencils **\[derived\]**: the two real left eigenvectors of the
 /// one-ring matrix for the `+` root `lambda` of Fourier block `l = 1` (the
 /// subdominant eigenvalue for Catmull-Clark; for the adjustable scheme compare
 /// with [`super::fourier::subdominant`]). With `theta = 2 pi / n`:

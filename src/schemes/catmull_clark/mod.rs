@@ -16,7 +16,7 @@
 //! Catmull-Clark rules (`e' = (v + e + f'_1 + f'_2)/4`,
 //! `v' = (Q + 2R + (n - 3) v)/n`).
 //!
-//! # The shape-adjustable scheme is **[reconstructed]**
+//! # The shape-adjustable scheme is **\[reconstructed\]**
 //!
 //! The OCR of seed 003 prints a vertex rule whose weights do not sum to 1 and
 //! an edge rule with `c` and `1 - c` swapped. The reading above (math doc
