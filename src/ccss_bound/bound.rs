@@ -321,3 +321,34 @@ pub fn write_beta_csv(rows: &[BetaRow], w: impl std::io::Write) -> Result<()> {
         .map_err(|e| super::CcssBoundError::Output(e.to_string()))?;
     Ok(())
 }
+
+/// Writes `D(t)` of each report on the global grid `t = k / samples`,
+/// `k = 0..=samples`, as CSV (`n,t,d`) for figures of the diagonal bound.
+/// Points beyond the examined levels (`t < 2^{-levels}`) are omitted.
+pub fn write_diagonal_csv(
+    reports: &[BoundReport],
+    samples: usize,
+    w: impl std::io::Write,
+) -> Result<()> {
+    let mut wr = csv::Writer::from_writer(w);
+    let err = |e: csv::Error| super::CcssBoundError::Output(e.to_string());
+    wr.write_record(["n", "t", "d"]).map_err(err)?;
+    for r in reports {
+        let levels = r.level_maxima.len() as i32;
+        for k in 0..=samples.max(1) {
+            let t = k as f64 / samples.max(1) as f64;
+            if t > 0.0 && t < 0.5f64.powi(levels) {
+                continue;
+            }
+            wr.write_record([
+                r.valence.to_string(),
+                t.to_string(),
+                r.diagonal(t).to_string(),
+            ])
+            .map_err(err)?;
+        }
+    }
+    wr.flush()
+        .map_err(|e| super::CcssBoundError::Output(e.to_string()))?;
+    Ok(())
+}

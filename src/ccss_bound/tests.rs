@@ -403,3 +403,24 @@ fn beta_stops_decreasing_after_48() {
     assert!(b[3] > b[2], "{b:?}");
     assert!(rows.iter().all(|r| r.t_max > 0.5 && r.level == 1));
 }
+
+#[test]
+fn diagonal_csv_for_figures() {
+    let r = bound(4, 2).unwrap();
+    let mut out = Vec::new();
+    super::bound::write_diagonal_csv(std::slice::from_ref(&r), 8, &mut out).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "n,t,d");
+    // t = 0 (D = 0), then t = 2/8.. 8/8 (t = 1/8 lies below the two examined levels).
+    assert_eq!(lines.len(), 1 + 1 + 7);
+    // n = 4: D(3/4) on Omega^1_2 is (1 - (1/2)^2)/4 = 3/16 at local t = 1/2.
+    let row: Vec<&str> = lines
+        .iter()
+        .find(|l| l.starts_with("4,0.75,"))
+        .unwrap()
+        .split(',')
+        .collect();
+    assert!((row[2].parse::<f64>().unwrap() - 0.1875).abs() < 1e-12);
+    assert!(lines[1].ends_with(",0"));
+}
