@@ -65,6 +65,9 @@ pub enum Error {
         /// What went wrong.
         reason: String,
     },
+    /// A report spec or report generation error.
+    #[error(transparent)]
+    Report(#[from] Box<crate::report::ReportError>),
 }
 
 /// Shorthand for results of the library core.

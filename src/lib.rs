@@ -13,7 +13,8 @@
 //!
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
-//! * [`schemes`]: local subdivision matrices through one assembly path.
+//! * [`schemes`]: local subdivision matrices through one assembly path;
+//! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory).
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -27,6 +28,7 @@
 
 pub mod error;
 pub mod knots;
+pub mod report;
 pub mod scalar;
 pub mod schemes;
 

@@ -3,6 +3,7 @@
 //! library, and formats the result. No numerics here.
 
 mod matrix;
+mod report;
 mod scheme_args;
 
 use clap::{Parser, Subcommand};
@@ -28,6 +29,8 @@ struct Cli {
 enum Command {
     /// Print a local subdivision matrix (S_n or its face block).
     Matrix(matrix::MatrixArgs),
+    /// Run a report spec (default analysis/default.toml) and write reports/<name>/.
+    Report(report::ReportArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -72,6 +75,7 @@ pub fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
+        Command::Report(args) => report::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
