@@ -378,8 +378,9 @@ pub fn circle_points(r: f64, samples: usize) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Draws a vertical colour bar for `color(t)`, t in [0, 1], labelled with the
-/// value range [vmin, vmax] and `label`.
+/// Draws a vertical colour bar for `color(t)`, t in [0, 1], spanning the values
+/// [vmin, vmax]: the bar at the left of `area`, tick labels to its right, and
+/// `label` written vertically at the right edge.
 pub fn colorbar(
     area: &Area<'_>,
     vmin: f64,
@@ -388,26 +389,24 @@ pub fn colorbar(
     theme: &Theme,
     color: &dyn Fn(f64) -> RGBColor,
 ) -> Result<(), ReportError> {
-    let (w, _) = area.dim_in_pixel();
+    let (w, h) = area.dim_in_pixel();
     let bar = theme.label as i32 * 2;
-    let left = theme.tick as i32 * 5;
-    let right = (w as i32 - left - bar).max(theme.tick as i32);
+    let ticks = theme.tick * 4;
+    let left = theme.tick as i32;
+    let right = (w as i32 - left - bar - ticks as i32).max(0);
     let mut chart = ChartBuilder::on(area)
         .margin_top(theme.label as i32 * 2)
         .margin_bottom(theme.label as i32 * 4)
+        .margin_left(left)
         .margin_right(right)
-        .y_label_area_size(left as u32)
+        .right_y_label_area_size(ticks)
         .build_cartesian_2d(0.0..1.0, vmin..vmax)
-        .map_err(draw_err)?;
+        .map_err(draw_err)?
+        .set_secondary_coord(0.0..1.0, vmin..vmax);
     chart
-        .configure_mesh()
-        .disable_x_mesh()
-        .disable_y_mesh()
-        .disable_x_axis()
-        .y_desc(label)
+        .configure_secondary_axes()
         .y_labels(6)
         .label_style(theme.font(theme.tick))
-        .axis_desc_style(theme.font(theme.label))
         .draw()
         .map_err(draw_err)?;
     let steps = 200;
@@ -421,5 +420,18 @@ pub fn colorbar(
             )
         }))
         .map_err(draw_err)?;
+    let x = (w as i32 - theme.label as i32 / 2 - 2).max(0);
+    area.draw(&Text::new(
+        label.to_owned(),
+        (x, h as i32 / 2),
+        theme
+            .font(theme.label)
+            .transform(FontTransform::Rotate270)
+            .pos(plotters::style::text_anchor::Pos::new(
+                plotters::style::text_anchor::HPos::Center,
+                plotters::style::text_anchor::VPos::Bottom,
+            )),
+    ))
+    .map_err(draw_err)?;
     Ok(())
 }

@@ -128,8 +128,15 @@ impl<'a> FigureSpec<'a> {
     /// Deserializes the kind's keys into `T` (which should use
     /// `#[serde(deny_unknown_fields)]`); errors carry line, column and key.
     pub fn parse<T: DeserializeOwned>(&self) -> Result<T, ReportError> {
-        T::deserialize(ValueDeserializer::from(self.value.clone()))
-            .map_err(|e| toml_error(self.src, e, Some(self.key.clone())))
+        T::deserialize(ValueDeserializer::from(self.value.clone())).map_err(|e| {
+            let mut err = toml_error(self.src, e, Some(self.key.clone()));
+            if let ReportError::Spec { message, .. } = &mut err {
+                if message.starts_with("unknown field") && !message.contains("`id`") {
+                    message.push_str(&format!(", or a shared key ({})", COMMON_KEYS.join(", ")));
+                }
+            }
+            err
+        })
     }
 
     /// An error about a value that deserialized but is invalid, located by its span.

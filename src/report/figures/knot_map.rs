@@ -180,10 +180,22 @@ impl Figure for KnotMap {
                 rows.into_iter().flatten().collect::<Vec<_>>(),
             ));
         }
+        let range = match self.color_by {
+            ColorBy::Class | ColorBy::ModulusRatio => (0.0, 1.0),
+            ColorBy::Angle => {
+                let max = panels
+                    .iter()
+                    .flat_map(|p| p.1.iter())
+                    .map(|c| c.angle().to_degrees())
+                    .fold(0.0f64, f64::max);
+                (0.0, ((max / 5.0).ceil() * 5.0).clamp(5.0, 180.0))
+            }
+        };
         Ok(Box::new(Output {
             panels,
             grid: g,
             color_by: self.color_by,
+            range,
         }))
     }
 }
@@ -192,6 +204,9 @@ struct Output {
     panels: Vec<(Vec<f64>, Vec<Cell>)>,
     grid: usize,
     color_by: ColorBy,
+    /// Value range of the continuous colour maps: [0, 1] for the modulus
+    /// ratio, [0, max rounded up to 5 degrees] for the angle.
+    range: (f64, f64),
 }
 
 /// Colour of a class: lightness decreases standard -> real_distinct -> complex_pair
@@ -224,13 +239,12 @@ impl Output {
     }
 
     fn color(&self, c: &Cell) -> RGBColor {
+        let (lo, hi) = self.range;
         match self.color_by {
             ColorBy::Class => class_color(&c.class),
-            ColorBy::ModulusRatio => {
-                viridis((c.modulus_ratio() * COLOR_LEVELS).floor() / COLOR_LEVELS)
-            }
-            ColorBy::Angle => {
-                viridis((c.angle() / std::f64::consts::PI * COLOR_LEVELS).floor() / COLOR_LEVELS)
+            ColorBy::ModulusRatio | ColorBy::Angle => {
+                let t = ((self.value(c) - lo) / (hi - lo)).clamp(0.0, 1.0);
+                viridis((t * COLOR_LEVELS).floor() / COLOR_LEVELS)
             }
         }
     }
@@ -329,8 +343,8 @@ impl FigureOutput for Output {
                 .disable_mesh()
                 .x_desc("r₀")
                 .y_desc("r₁")
-                .x_labels(6)
-                .y_labels(6)
+                .x_labels(3)
+                .y_labels(3)
                 .label_style(th.font(th.tick))
                 .axis_desc_style(th.font(th.label))
                 .x_label_formatter(&|x| format!("{x:.1}"))
@@ -426,10 +440,12 @@ impl FigureOutput for Output {
                 }
             }
             ColorBy::ModulusRatio => {
-                colorbar(&side, 0.0, 1.0, "|λ₂| / |λ₁|", &th, &viridis)?;
+                let (lo, hi) = self.range;
+                colorbar(&side, lo, hi, "|λ₂| / |λ₁|", &th, &viridis)?;
             }
             ColorBy::Angle => {
-                colorbar(&side, 0.0, 180.0, "θ = |arg λ₁|  (degrees)", &th, &viridis)?;
+                let (lo, hi) = self.range;
+                colorbar(&side, lo, hi, "θ = |arg λ₁|  (degrees)", &th, &viridis)?;
             }
         }
         Ok(())
