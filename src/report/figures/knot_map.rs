@@ -222,8 +222,10 @@ fn class_color(class: &str) -> RGBColor {
     }
 }
 
-fn rare(class: &str) -> bool {
-    !matches!(class, "real_distinct" | "complex_pair")
+/// Classes whose cells also get a cross (they are rare, often thin curves,
+/// and their grey fill alone would not stand out).
+fn crossed(class: &str) -> bool {
+    !matches!(class, "standard" | "real_distinct" | "complex_pair")
 }
 
 impl Output {
@@ -377,18 +379,13 @@ impl FigureOutput for Output {
             if self.color_by == ColorBy::Class {
                 let ms = ((plot_w as f64 / g) * 0.3).max(2.0) as i32;
                 chart
-                    .draw_series(
-                        cells
-                            .iter()
-                            .filter(|c| rare(&c.class) && c.class != "standard")
-                            .map(|c| {
-                                Marker::Cross.at(
-                                    ((c.i as f64 + 0.5) / g, (c.j as f64 + 0.5) / g),
-                                    ms,
-                                    BLACK,
-                                )
-                            }),
-                    )
+                    .draw_series(cells.iter().filter(|c| crossed(&c.class)).map(|c| {
+                        Marker::Cross.at(
+                            ((c.i as f64 + 0.5) / g, (c.j as f64 + 0.5) / g),
+                            ms,
+                            BLACK,
+                        )
+                    }))
                     .map_err(draw_err)?;
             }
         }
@@ -425,7 +422,7 @@ impl FigureOutput for Output {
                         BLACK.stroke_width(1),
                     ))
                     .map_err(draw_err)?;
-                    if rare(name) && name != "standard" {
+                    if crossed(name) {
                         side.draw(&Marker::Cross.at((x + s, y + s), s / 2, BLACK))
                             .map_err(draw_err)?;
                     }
