@@ -14,6 +14,8 @@
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
 //! * [`schemes`]: local subdivision matrices through one assembly path;
+//! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
+//! * [`contraction`]: Theorem 1, certified and measured (section 5);
 //! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory).
 //!
 //! ```
@@ -26,10 +28,12 @@
 
 #![warn(missing_docs)]
 
+pub mod contraction;
 pub mod error;
 pub mod knots;
 pub mod report;
 pub mod scalar;
 pub mod schemes;
+pub mod spectral;
 
 pub use error::{Error, Result};

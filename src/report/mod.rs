@@ -35,7 +35,6 @@
 //! assert!(names.contains(&"index.html") && names.contains(&"manifest.json"));
 //! ```
 
-pub mod analysis;
 pub mod backend;
 pub mod config;
 pub mod error;
