@@ -15,7 +15,8 @@
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
 //! * [`schemes`]: local subdivision matrices through one assembly path;
 //! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
-//! * [`contraction`]: Theorem 1, certified and measured (section 5).
+//! * [`contraction`]: Theorem 1, certified and measured (section 5);
+//! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -33,5 +34,7 @@ pub mod knots;
 pub mod scalar;
 pub mod schemes;
 pub mod spectral;
+#[cfg(feature = "testing")]
+pub mod testing;
 
 pub use error::{Error, Result};
