@@ -59,6 +59,7 @@ pub struct KernelWorkspace {
     /// Eigenvalues (real and imaginary parts).
     wr: Vec<f64>,
     wi: Vec<f64>,
+    sweeps: usize,
 }
 
 impl KernelWorkspace {
@@ -80,6 +81,17 @@ impl KernelWorkspace {
     /// The current input matrix (column major).
     pub fn matrix(&self) -> &[f64] {
         &self.a[..self.n * self.n]
+    }
+
+    /// The Hessenberg form computed by the last
+    /// [`eigenvalues`](Self::eigenvalues) call (column major).
+    pub fn hessenberg_form(&self) -> &[f64] {
+        &self.hess[..self.n * self.n]
+    }
+
+    /// QR sweeps used by the last [`eigenvalues`](Self::eigenvalues) call.
+    pub fn last_sweeps(&self) -> usize {
+        self.sweeps
     }
 
     /// Dimension of the current input.
@@ -109,7 +121,7 @@ impl KernelWorkspace {
         hessenberg(n, &mut self.h, &mut self.v);
         self.hess.clear();
         self.hess.extend_from_slice(&self.h);
-        hqr(n, &mut self.h, &mut self.wr, &mut self.wi)?;
+        self.sweeps = hqr(n, &mut self.h, &mut self.wr, &mut self.wi)?;
         Ok((&self.wr, &self.wi))
     }
 
@@ -306,10 +318,10 @@ pub(crate) fn hqr(
     a: &mut [f64],
     wr: &mut [f64],
     wi: &mut [f64],
-) -> Result<(), SpectralError> {
+) -> Result<usize, SpectralError> {
     let idx = |i: usize, j: usize| i + j * n;
     if n == 0 {
-        return Ok(());
+        return Ok(0);
     }
     let mut anorm = 0.0;
     for j in 0..n {
@@ -380,7 +392,7 @@ pub(crate) fn hqr(
                 });
             }
             if its > 0 && its % EXCEPTIONAL_SHIFT_PERIOD == 0 {
-                // Exceptional shift (dlahqr's constants 0.75 and -0.4375).
+                // Exceptional shift (EISPACK hqr; dlahqr's constants 0.75 and -0.4375).
                 t += x;
                 for i in 0..=nu {
                     a[idx(i, i)] -= x;
@@ -389,6 +401,22 @@ pub(crate) fn hqr(
                 x = 0.75 * s;
                 y = x;
                 w = -0.4375 * s * s;
+            } else {
+                // LAPACK 3.10 dlahqr: when both Francis shifts are real, use the
+                // one closer to a[nu][nu] twice. Two distinct real shifts placed
+                // symmetrically in a spectrum that is itself symmetric (NURDS
+                // with even n) stall the iteration.
+                let p = 0.5 * (y - x);
+                let disc = p * p + w;
+                if disc >= 0.0 {
+                    let sq = disc.sqrt();
+                    let mid = 0.5 * (x + y);
+                    let (s1, s2) = (mid + sq, mid - sq);
+                    let sigma = if (s1 - x).abs() <= (s2 - x).abs() { s1 } else { s2 };
+                    x = sigma;
+                    y = sigma;
+                    w = 0.0;
+                }
             }
             its += 1;
             total += 1;
@@ -482,7 +510,7 @@ pub(crate) fn hqr(
             }
         }
     }
-    Ok(())
+    Ok(total)
 }
 
 #[cfg(test)]

@@ -85,6 +85,11 @@ impl StructuredWorkspace {
         self.kernel.condition_number(lambda)
     }
 
+    /// QR sweeps of the last kernel call (diagnostics).
+    pub fn last_sweeps(&self) -> usize {
+        self.kernel.last_sweeps()
+    }
+
     /// Frobenius norm of the deflated block `B` last computed.
     pub fn frobenius_norm(&self) -> f64 {
         self.frobenius
