@@ -164,7 +164,7 @@ fn splitmix64_reference_values() {
 fn analyze_reports_the_three_pieces() {
     let s = LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.5, 0.3]).unwrap());
     let a = analyze(&s, &AnalyzeOptions::default()).unwrap();
-    let c = &a.contraction;
+    let c = a.contraction.as_ref().unwrap();
     assert!(c.certificate_holds && c.certificate_nonnegative);
     assert!((c.certificate_sum - 0.75).abs() < 1e-15);
     assert!(c.certificate_sum_defect < 1e-15);

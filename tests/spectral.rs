@@ -610,3 +610,39 @@ fn classification_decisions_and_indeterminate_reasons() {
     assert_eq!(s.class, SubdominantClass::NotSeparated);
     assert_eq!(s.note, Some("the dominant eigenvalue is not 1"));
 }
+
+#[test]
+fn classify_matrix_agrees_with_the_structured_path() {
+    use subdiv_lab::spectral::classify_matrix;
+    let mut rng = SplitMix64::new(4242);
+    let mut agree = 0;
+    for trial in 0..120 {
+        let n = 3 + trial % 12;
+        let s = LocalScheme::nurds(EdgeRatios::new(random_ratios(&mut rng, n)).unwrap());
+        let m = s.matrix().unwrap().into_matrix();
+        let a = classify_matrix(&m).unwrap();
+        let b = classify_scheme(&s).unwrap();
+        assert!((a.lambda1 - b.lambda1).norm() < 1e-9);
+        if let (Some(x), Some(y)) = (a.class.class_name(), b.class.class_name()) {
+            assert_eq!(x, y, "n = {n}: {a:?} vs {b:?}");
+            agree += 1;
+        }
+    }
+    assert!(agree > 100, "{agree}");
+    for n in 3..=32 {
+        let p = DMatrix::from_fn(n, n, |i, j| if (i + 1) % n == j { 1.0 } else { 0.0 });
+        assert_eq!(
+            classify_matrix(&p).unwrap().class,
+            SubdominantClass::NotSeparated
+        );
+    }
+    assert_eq!(
+        classify_matrix(&DMatrix::zeros(4, 4)).unwrap().class,
+        SubdominantClass::NotSeparated
+    );
+    for n in [4, 6, 9] {
+        let s = LocalScheme::<f64>::doo_sabin(n).unwrap();
+        let c = classify_matrix(&s.matrix().unwrap().into_matrix()).unwrap();
+        assert_eq!(c.class, SubdominantClass::Standard, "n = {n}: {c:?}");
+    }
+}
