@@ -16,7 +16,8 @@
 //! * [`schemes`]: local subdivision matrices through one assembly path;
 //! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
 //! * [`contraction`]: Theorem 1, certified and measured (section 5);
-//! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory).
+//! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory);
+//! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -35,5 +36,7 @@ pub mod report;
 pub mod scalar;
 pub mod schemes;
 pub mod spectral;
+#[cfg(feature = "testing")]
+pub mod testing;
 
 pub use error::{Error, Result};
