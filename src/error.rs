@@ -77,6 +77,12 @@ pub enum Error {
         /// What went wrong.
         reason: String,
     },
+    /// A report spec or report generation error.
+    #[error(transparent)]
+    Report(#[from] Box<crate::report::ReportError>),
+    /// An error of the spectral engine.
+    #[error(transparent)]
+    Spectral(#[from] crate::spectral::SpectralError),
 }
 
 /// Shorthand for results of the library core.

@@ -3,7 +3,9 @@
 //! library, and formats the result. No numerics here.
 
 mod ccss_bound;
+mod analyze;
 mod matrix;
+mod report;
 mod scheme_args;
 
 use clap::{Parser, Subcommand};
@@ -31,6 +33,10 @@ enum Command {
     Matrix(matrix::MatrixArgs),
     /// Distance bound beta(n) between a Catmull-Clark patch and its limit face (LP).
     CcssBound(ccss_bound::CcssBoundArgs),
+    /// Run a report spec (default analysis/default.toml) and write reports/<name>/.
+    Report(report::ReportArgs),
+    /// Spectrum, subdominant classification and Theorem 1 for one configuration.
+    Analyze(analyze::AnalyzeArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -76,6 +82,8 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
         Command::CcssBound(args) => ccss_bound::run(args),
+        Command::Report(args) => report::run(args),
+        Command::Analyze(args) => analyze::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
