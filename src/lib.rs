@@ -25,6 +25,8 @@
 
 #![warn(missing_docs)]
 
+pub mod bezier;
+pub mod charmap;
 pub mod error;
 pub mod knots;
 pub mod scalar;
