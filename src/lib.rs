@@ -13,7 +13,9 @@
 //!
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
-//! * [`schemes`]: local subdivision matrices through one assembly path.
+//! * [`schemes`]: local subdivision matrices through one assembly path;
+//! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
+//! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision.
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -25,8 +27,10 @@
 
 #![warn(missing_docs)]
 
+pub mod bspline;
 pub mod error;
 pub mod knots;
+pub mod mesh;
 pub mod scalar;
 pub mod schemes;
 
