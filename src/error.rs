@@ -65,6 +65,9 @@ pub enum Error {
         /// What went wrong.
         reason: String,
     },
+    /// Mesh construction, I/O parsing or refinement.
+    #[error(transparent)]
+    Mesh(#[from] crate::mesh::MeshError),
 }
 
 /// Shorthand for results of the library core.

@@ -13,7 +13,11 @@
 //!
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
-//! * [`schemes`]: local subdivision matrices through one assembly path.
+//! * [`schemes`]: local subdivision matrices through one assembly path;
+//! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
+//! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
+//! * [`bezier`]: tensor-product Bernstein patches and planar Bezier curves;
+//! * [`charmap`]: characteristic maps (regularity, injectivity) of the Doo-Sabin family.
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -26,9 +30,11 @@
 #![warn(missing_docs)]
 
 pub mod bezier;
+pub mod bspline;
 pub mod charmap;
 pub mod error;
 pub mod knots;
+pub mod mesh;
 pub mod scalar;
 pub mod schemes;
 
