@@ -177,8 +177,7 @@ impl TensorBezier {
                 for j in 0..=self.n {
                     let a = self.coeff(i, j) * wu;
                     for j2 in 0..=other.n {
-                        let wv =
-                            binomial(self.n, j) * binomial(other.n, j2) / binomial(n, j + j2);
+                        let wv = binomial(self.n, j) * binomial(other.n, j2) / binomial(n, j + j2);
                         out[(i + i2) * (n + 1) + j + j2] += a * wv * other.coeff(i2, j2);
                     }
                 }

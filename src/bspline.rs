@@ -454,7 +454,9 @@ mod tests {
         assert_eq!(dn.len(), 8);
         assert_eq!(en.len(), 8);
         // columns first then rows gives the same result
-        let gt: Vec<Vec<[f64; 1]>> = (0..5).map(|j| (0..4).map(|i| grid[i][j]).collect()).collect();
+        let gt: Vec<Vec<[f64; 1]>> = (0..5)
+            .map(|j| (0..4).map(|i| grid[i][j]).collect())
+            .collect();
         let (h, _, _) = refine_grid(&gt, &e, &d, false, true).unwrap();
         for i in 0..8 {
             for j in 0..8 {

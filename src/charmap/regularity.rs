@@ -72,7 +72,9 @@ pub struct ErrorModel {
 impl ErrorModel {
     /// Bound on the error of a Jacobian coefficient before subdivision.
     pub fn coefficient_bound(&self) -> f64 {
-        16.0 * self.delta * self.md + 32.0 * self.delta * self.delta + gamma(16) * 2.0 * self.md * self.md
+        16.0 * self.delta * self.md
+            + 32.0 * self.delta * self.delta
+            + gamma(16) * 2.0 * self.md * self.md
     }
 
     /// Bound after `depth` levels of subdivision, for coefficients of magnitude at most `cmax`.

@@ -99,7 +99,7 @@ pub fn patch_grid(n: usize, id: RingPatchId) -> [[usize; 3]; 3] {
     let x = ExtLayout::new(n);
     let i = id.index % n;
     let ip = i + n - 1; // i - 1 (mod n, via the layout)
-    // rows[b][a] as in the module docs, then transposed
+                        // rows[b][a] as in the module docs, then transposed
     let rows: [[usize; 3]; 3] = match id.kind {
         PatchKind::A => [
             [x.e_pnext(ip), x.f_p(i), x.f_p(i + 1)],
@@ -127,7 +127,10 @@ pub fn patch_grid(n: usize, id: RingPatchId) -> [[usize; 3]; 3] {
 }
 
 /// Knot spans `(u, v)` of a patch (canonical intervals `p_i = s_i`, `q_{i+1} = r_i`).
-pub fn patch_spans(ratios: &EdgeRatios<f64>, id: RingPatchId) -> Result<(QuadraticSpan, QuadraticSpan)> {
+pub fn patch_spans(
+    ratios: &EdgeRatios<f64>,
+    id: RingPatchId,
+) -> Result<(QuadraticSpan, QuadraticSpan)> {
     let i = id.index % ratios.valence();
     let (r, s) = (ratios.as_slice()[i], ratios.complement()[i]);
     let u = match id.kind {

@@ -147,7 +147,11 @@ pub fn limit_mesh(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
     let mut positions = face_limit_points(mesh, scheme);
     let mut faces: Vec<Vec<usize>> = Vec::with_capacity(mesh.vertex_count());
     for v in 0..mesh.vertex_count() {
-        let ring: Vec<usize> = mesh.vertex_ring(v).iter().map(|&h| mesh.face_of(h)).collect();
+        let ring: Vec<usize> = mesh
+            .vertex_ring(v)
+            .iter()
+            .map(|&h| mesh.face_of(h))
+            .collect();
         match regular_vertex_limit(mesh, v, scheme) {
             Some(p) => {
                 let centre = positions.len();

@@ -161,9 +161,7 @@ pub fn refine(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
         let start = mesh.face_start[f] as usize;
         let n = mesh.face_start[f + 1] as usize - start;
         sc.p.clear();
-        sc.p.extend(
-            (start..start + n).map(|h| mesh.positions[mesh.corner_vertex[h] as usize]),
-        );
+        sc.p.extend((start..start + n).map(|h| mesh.positions[mesh.corner_vertex[h] as usize]));
         let out = &mut positions[start..start + n];
         match scheme {
             SchemeKind::DooSabin => {
@@ -204,7 +202,11 @@ pub fn refine(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
                 sc.e.clear();
                 for i in 0..n {
                     let (a, b) = (sc.p[i], sc.p[(i + 1) % n]);
-                    let (ri, si) = if nurds { (sc.r[i], sc.s[i]) } else { (0.5, 0.5) };
+                    let (ri, si) = if nurds {
+                        (sc.r[i], sc.s[i])
+                    } else {
+                        (0.5, 0.5)
+                    };
                     sc.e.push([
                         ri * a[0] + si * b[0],
                         ri * a[1] + si * b[1],
@@ -250,7 +252,11 @@ pub fn refine(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
         // twin: in the E-face of c's edge
         let e = edge_of[c] as usize;
         let base = h_count + 4 * e;
-        twin[c] = if reps[e] as usize == c { base } else { base + 2 } as u32;
+        twin[c] = if reps[e] as usize == c {
+            base
+        } else {
+            base + 2
+        } as u32;
     }
     // E-faces.
     for (e, &h) in reps.iter().enumerate() {
