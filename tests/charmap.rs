@@ -605,3 +605,58 @@ fn indeterminate_is_rare_for_random_nurds_knots() {
         "indeterminate {indeterminate} of {total}"
     );
 }
+
+// ---------------------------------------------------------------- structured basis
+
+#[test]
+fn structured_subspace_equals_the_full_eigenvector_subspace() {
+    // Face-block null space of (A - l1)(A - l2) lifted by the block equations
+    // vs. eigenvectors of the full 4n x 4n matrix (faer): same plane, and the
+    // same verdict and min coefficient.
+    use subdiv_lab::charmap::basis::subdominant_basis;
+    let mut state = 7u64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        0.01 + 0.98 * ((state >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    let mut schemes = vec![
+        LocalScheme::<f64>::cc_variant(7).unwrap(),
+        LocalScheme::<f64>::doo_sabin(5).unwrap(),
+    ];
+    for n in 3..=8 {
+        for _ in 0..4 {
+            schemes.push(LocalScheme::nurds(
+                EdgeRatios::new((0..n).map(|_| next()).collect()).unwrap(),
+            ));
+        }
+    }
+    for s in schemes {
+        let full = basis_of(&s);
+        let sn = s.matrix().unwrap().into_matrix();
+        let st = subdominant_basis(&s, &sn, full.structure, full.lambda, 0.01).unwrap();
+        // principal angles: W_full^T W_st has singular values 1 <=> |det| = 1 for orthonormal 2-frames
+        let d = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
+        let g = [
+            [d(&full.w1, &st.w1), d(&full.w1, &st.w2)],
+            [d(&full.w2, &st.w1), d(&full.w2, &st.w2)],
+        ];
+        let det = g[0][0] * g[1][1] - g[0][1] * g[1][0];
+        assert!(
+            (det.abs() - 1.0).abs() < 1e-9,
+            "{} {:?}: |det| = {}",
+            s.kind(),
+            s.ratios().as_slice(),
+            det.abs()
+        );
+        assert!(st.residual < 1e-12);
+        let ext = ExtendedMatrix::new(&s).unwrap();
+        let (a, b) = (
+            check_basis(&ext, &s.ratios(), &full).unwrap(),
+            check_basis(&ext, &s.ratios(), &st).unwrap(),
+        );
+        assert_eq!(a.verdict, b.verdict);
+        assert!((a.min_jacobian_coeff().unwrap() - b.min_jacobian_coeff().unwrap()).abs() < 1e-8);
+    }
+}

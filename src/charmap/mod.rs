@@ -47,7 +47,9 @@
 //! assert_eq!(report.verdict.to_string(), "C1 (standard; Reif)");
 //! ```
 
+pub mod basis;
 pub mod extended;
+pub mod figure;
 pub mod regularity;
 pub mod ring;
 pub mod winding;
