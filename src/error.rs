@@ -68,6 +68,9 @@ pub enum Error {
     /// Mesh construction, I/O parsing or refinement.
     #[error(transparent)]
     Mesh(#[from] crate::mesh::MeshError),
+    /// An error of the spectral engine.
+    #[error(transparent)]
+    Spectral(#[from] crate::spectral::SpectralError),
 }
 
 /// Shorthand for results of the library core.

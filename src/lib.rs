@@ -18,6 +18,9 @@
 //! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
 //! * [`bezier`]: tensor-product Bernstein patches and planar Bezier curves;
 //! * [`charmap`]: characteristic maps (regularity, injectivity) of the Doo-Sabin family.
+//! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
+//! * [`contraction`]: Theorem 1, certified and measured (section 5);
+//! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -32,10 +35,14 @@
 pub mod bezier;
 pub mod bspline;
 pub mod charmap;
+pub mod contraction;
 pub mod error;
 pub mod knots;
 pub mod mesh;
 pub mod scalar;
 pub mod schemes;
+pub mod spectral;
+#[cfg(feature = "testing")]
+pub mod testing;
 
 pub use error::{Error, Result};

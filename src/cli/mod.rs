@@ -2,6 +2,7 @@
 //! validates through [`scheme_args`] (shared scheme/knot flags), calls the
 //! library, and formats the result. No numerics here.
 
+mod analyze;
 mod matrix;
 mod scheme_args;
 
@@ -28,6 +29,8 @@ struct Cli {
 enum Command {
     /// Print a local subdivision matrix (S_n or its face block).
     Matrix(matrix::MatrixArgs),
+    /// Spectrum, subdominant classification and Theorem 1 for one configuration.
+    Analyze(analyze::AnalyzeArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -72,6 +75,7 @@ pub fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
+        Command::Analyze(args) => analyze::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
