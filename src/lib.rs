@@ -17,7 +17,7 @@
 //! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
 //! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
 //! * [`bezier`]: tensor-product Bernstein patches and planar Bezier curves;
-//! * [`charmap`]: characteristic maps (regularity, injectivity) of the Doo-Sabin family.
+//! * [`charmap`]: characteristic maps (regularity, injectivity) of the Doo-Sabin family;
 //! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
 //! * [`contraction`]: Theorem 1, certified and measured (section 5);
 //! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.

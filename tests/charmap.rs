@@ -10,7 +10,7 @@ use subdiv_lab::charmap::extended::{ExtLayout, ExtendedMatrix};
 use subdiv_lab::charmap::regularity::RegularityVerdict;
 use subdiv_lab::charmap::ring::{PatchKind, Ring, RingPatchId};
 use subdiv_lab::charmap::{
-    check_basis, point_error, CharmapReport, Eigenstructure, PlanarBasis, Verdict,
+    check, check_basis, point_error, CharmapReport, Eigenstructure, PlanarBasis, Verdict,
 };
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
 use subdiv_lab::scalar::{Rational, Scalar};
@@ -76,7 +76,13 @@ fn basis_at(scheme: &LocalScheme<f64>, k: usize) -> PlanarBasis {
     PlanarBasis::new(&s, structure, [l1, l2], &a, &b, gap).unwrap()
 }
 
+/// The library entry point (spectral classification + structured subspace).
 fn report(scheme: &LocalScheme<f64>) -> CharmapReport {
+    check(scheme).unwrap()
+}
+
+/// Independent route: eigenvectors of the full 4n x 4n matrix (faer directly).
+fn report_full(scheme: &LocalScheme<f64>) -> CharmapReport {
     let ext = ExtendedMatrix::new(scheme).unwrap();
     check_basis(&ext, &scheme.ratios(), &basis_of(scheme)).unwrap()
 }
@@ -116,6 +122,9 @@ fn assert_c1(scheme: &LocalScheme<f64>) {
     assert!(g.min_coeff > g.relative_error_bound);
     assert_eq!(r.winding_number, Some(1));
     assert_eq!(r.inner_winding_number, Some(1));
+    let f = report_full(scheme);
+    assert_eq!(f.verdict, r.verdict);
+    assert!((f.min_jacobian_coeff().unwrap() - g.min_coeff).abs() < 1e-8);
 }
 
 // ---------------------------------------------------------------- extended matrix

@@ -56,6 +56,8 @@ pub mod winding;
 
 use crate::error::{Error, Result};
 use crate::knots::EdgeRatios;
+use crate::schemes::LocalScheme;
+use crate::spectral::{Subdominant, SubdominantClass};
 use extended::ExtendedMatrix;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -432,4 +434,105 @@ pub fn check_ring(ring: &Ring, delta: f64, structure: Eigenstructure) -> Charmap
         point_error: delta,
         verdict,
     }
+}
+
+/// Why a class has no characteristic map, or `None` if it has one.
+fn structure_of(class: &SubdominantClass) -> std::result::Result<Eigenstructure, (String, String)> {
+    match class {
+        SubdominantClass::Standard => Ok(Eigenstructure::Standard),
+        SubdominantClass::RealDistinct => Ok(Eigenstructure::RealDistinct),
+        SubdominantClass::ComplexPair => Ok(Eigenstructure::ComplexPair),
+        SubdominantClass::Defective => Err((
+            "defective".to_owned(),
+            "lambda_1 = lambda_2 has a 1-dimensional eigenspace, so the subdominant \
+             eigenvectors span a line, not a plane; the generic limit surface has no \
+             regular tangent plane parametrisation from them"
+                .to_owned(),
+        )),
+        SubdominantClass::NotSeparated => Err((
+            "not_separated".to_owned(),
+            "|lambda_2| = |lambda_3| (or lambda_0 is not a simple 1): no 2-dimensional \
+             dominant invariant subspace determines the local shape"
+                .to_owned(),
+        )),
+        SubdominantClass::Indeterminate { between, reason } => Err((
+            "indeterminate".to_owned(),
+            format!(
+                "the eigenstructure is undecided between {} and {} ({reason}), so the planar \
+                 basis and the verdict's label are not determined",
+                between.0.as_str(),
+                between.1.as_str()
+            ),
+        )),
+    }
+}
+
+/// The characteristic-map check of one configuration of the Doo-Sabin family,
+/// given its subdominant classification (from [`crate::spectral`]).
+///
+/// Cost: the `n x n` face block (a product and an SVD), `O(n)` small solves,
+/// the `9n x 4n` extended matrix and `3n` Jacobian patches; no `4n x 4n`
+/// eigen-decomposition.
+pub fn check_classified(scheme: &LocalScheme<f64>, sub: &Subdominant) -> Result<CharmapReport> {
+    match prepare(scheme, sub)? {
+        Prepared::NoMap(r) => Ok(r),
+        Prepared::Basis(ext, basis) => check_basis(&ext, &scheme.ratios(), &basis),
+    }
+}
+
+enum Prepared {
+    NoMap(CharmapReport),
+    Basis(ExtendedMatrix<f64>, PlanarBasis),
+}
+
+fn prepare(scheme: &LocalScheme<f64>, sub: &Subdominant) -> Result<Prepared> {
+    let structure = match structure_of(&sub.class) {
+        Ok(s) => s,
+        Err((class, reason)) => return Ok(Prepared::NoMap(CharmapReport::no_map(&class, &reason))),
+    };
+    let ext = ExtendedMatrix::new(scheme)?;
+    let sn = scheme.matrix()?.into_matrix();
+    let gap = sub.gap.min(1.0 - sub.lambda1.norm());
+    let basis = basis::subdominant_basis(scheme, &sn, structure, [sub.lambda1, sub.lambda2], gap)?;
+    Ok(Prepared::Basis(ext, basis))
+}
+
+/// The characteristic-map check of one configuration: classification by the
+/// spectral engine's structured fast path ([`crate::spectral::classify_scheme`]),
+/// then [`check_classified`]. This is the entry point for sweeps (one call per
+/// configuration, no shared state, safe to run in parallel).
+///
+/// ```
+/// use subdiv_lab::charmap::{check, Verdict};
+/// use subdiv_lab::knots::EdgeRatios;
+/// use subdiv_lab::schemes::LocalScheme;
+/// let r = check(&LocalScheme::<f64>::doo_sabin(5).unwrap()).unwrap();
+/// assert_eq!(r.verdict, Verdict::C1Standard);
+/// let r = check(&LocalScheme::nurds(EdgeRatios::new(vec![0.1, 0.8, 0.3]).unwrap())).unwrap();
+/// assert_ne!(r.verdict, Verdict::C1Standard); // non-standard: never "C1"
+/// ```
+pub fn check(scheme: &LocalScheme<f64>) -> Result<CharmapReport> {
+    let sub = crate::spectral::classify_scheme(scheme)?;
+    check_classified(scheme, &sub)
+}
+
+/// The plot data of a configuration's ring and `levels - 1` further levels
+/// (see [`figure::ring_plot`]), with the report of the check; `None` for the
+/// plot when there is no characteristic map.
+pub fn plot_data(
+    scheme: &LocalScheme<f64>,
+    levels: usize,
+    per_side: usize,
+) -> Result<(CharmapReport, Option<figure::RingPlot>)> {
+    let sub = crate::spectral::classify_scheme(scheme)?;
+    let (ext, basis) = match prepare(scheme, &sub)? {
+        Prepared::NoMap(r) => return Ok((r, None)),
+        Prepared::Basis(e, b) => (e, b),
+    };
+    let structure = basis.structure;
+    let ring = Ring::from_basis(&ext, &scheme.ratios(), &basis.w1, &basis.w2)?;
+    let report = check_ring(&ring, point_error(&ext, &basis), structure);
+    let orientation = report.regularity.as_ref().map_or(1, |r| r.orientation);
+    let plot = figure::ring_plot(&ring, basis.restriction, orientation, levels, per_side);
+    Ok((report, Some(plot)))
 }
