@@ -255,8 +255,8 @@ impl TensorBezier {
         let mut l = vec![0.0; m + 1];
         let mut h = vec![0.0; m + 1];
         for j in 0..=n {
-            for i in 0..=m {
-                col[i] = self.coeff(i, j);
+            for (i, c) in col.iter_mut().enumerate() {
+                *c = self.coeff(i, j);
             }
             split_1d(&col, a, &mut l, &mut h);
             for i in 0..=m {

@@ -88,15 +88,17 @@ fn solve_small<const K: usize>(mut m: [[f64; K]; K], mut b: [f64; K]) -> Option<
     let scale = m.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
     for col in 0..K {
         let piv = (col..K).max_by(|&i, &j| m[i][col].abs().total_cmp(&m[j][col].abs()))?;
-        if !(m[piv][col].abs() > LIFT_PIVOT_MIN * scale) {
+        let p = m[piv][col].abs();
+        if p.is_nan() || p <= LIFT_PIVOT_MIN * scale {
             return None;
         }
         m.swap(col, piv);
         b.swap(col, piv);
         for r in col + 1..K {
             let f = m[r][col] / m[col][col];
-            for c in col..K {
-                m[r][c] -= f * m[col][c];
+            let pivot_row = m[col];
+            for (x, y) in m[r][col..].iter_mut().zip(&pivot_row[col..]) {
+                *x -= f * y;
             }
             b[r] -= f * b[col];
         }

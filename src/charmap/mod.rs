@@ -164,7 +164,7 @@ impl PlanarBasis {
             *y -= proj2 * x;
         }
         let n2 = norm(&w2);
-        if !(n2 > MIN_BASIS_SINE * nb) {
+        if n2.is_nan() || n2 <= MIN_BASIS_SINE * nb {
             return Err(bad(format!(
                 "the two subdominant vectors are numerically parallel (sin angle = {:e})",
                 n2 / nb
@@ -191,7 +191,7 @@ impl PlanarBasis {
             res2 += r1 * r1 + r2 * r2;
         }
         let residual = res2.sqrt();
-        if !(gap > 0.0) {
+        if gap.is_nan() || gap <= 0.0 {
             return Err(bad(format!(
                 "no spectral gap around the subdominant pair (gap = {gap})"
             )));

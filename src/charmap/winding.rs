@@ -79,7 +79,7 @@ fn certified_angle(pts: &[[f64; 2]], e: f64) -> Option<f64> {
     let (mut lo, mut hi) = (0.0f64, 0.0f64);
     for p in pts {
         let r = p[0].hypot(p[1]);
-        if !(r > e) {
+        if r.is_nan() || r <= e {
             return None;
         }
         let unc = (e / r).min(1.0).asin() + 4.0 * f64::EPSILON;
