@@ -21,6 +21,7 @@
 //! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
 //! * [`contraction`]: Theorem 1, certified and measured (section 5);
 //! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
+//! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory).
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -39,6 +40,7 @@ pub mod contraction;
 pub mod error;
 pub mod knots;
 pub mod mesh;
+pub mod report;
 pub mod scalar;
 pub mod schemes;
 pub mod spectral;

@@ -4,6 +4,7 @@
 
 mod analyze;
 mod matrix;
+mod report;
 mod scheme_args;
 
 use clap::{Parser, Subcommand};
@@ -29,6 +30,8 @@ struct Cli {
 enum Command {
     /// Print a local subdivision matrix (S_n or its face block).
     Matrix(matrix::MatrixArgs),
+    /// Run a report spec (default analysis/default.toml) and write reports/<name>/.
+    Report(report::ReportArgs),
     /// Spectrum, subdominant classification and Theorem 1 for one configuration.
     Analyze(analyze::AnalyzeArgs),
 }
@@ -75,6 +78,7 @@ pub fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
+        Command::Report(args) => report::run(args),
         Command::Analyze(args) => analyze::run(args),
     };
     match result {
