@@ -315,6 +315,7 @@ fn consecutive_rings_nest_inner_boundary_is_the_next_outer_boundary() {
         LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.85, 0.4, 0.6, 0.1, 0.7]).unwrap()),
         LocalScheme::nurds(EdgeRatios::new(vec![0.9, 0.1, 0.9, 0.1, 0.5]).unwrap()),
         LocalScheme::nurds(EdgeRatios::new(vec![0.05, 0.3, 0.95]).unwrap()),
+        LocalScheme::nurds(EdgeRatios::new(vec![0.05, 0.9, 0.3, 0.6, 0.95, 0.2]).unwrap()),
     ];
     let mut seen = std::collections::HashSet::new();
     for s in schemes {
@@ -667,5 +668,143 @@ fn structured_subspace_equals_the_full_eigenvector_subspace() {
         );
         assert_eq!(a.verdict, b.verdict);
         assert!((a.min_jacobian_coeff().unwrap() - b.min_jacobian_coeff().unwrap()).abs() < 1e-8);
+    }
+}
+
+#[test]
+fn n4_uniform_ring_is_exactly_the_square_annulus_up_to_a_linear_map() {
+    // Exact subdominant eigenvectors of the regular 4x4 grid: the Greville
+    // coordinates (linear precision). The ring is then the square annulus
+    // 1/2 <= max(|x|, |y|) <= 1 itself, and the ring of the computed basis is a
+    // linear image of it.
+    let s = LocalScheme::<f64>::cc_variant(4).unwrap();
+    let xy: [(f64, f64); 16] = [
+        (-0.5, -0.5),
+        (0.5, -0.5),
+        (0.5, 0.5),
+        (-0.5, 0.5),
+        (-0.5, -1.5),
+        (0.5, -1.5),
+        (1.5, -0.5),
+        (1.5, 0.5),
+        (0.5, 1.5),
+        (-0.5, 1.5),
+        (-1.5, 0.5),
+        (-1.5, -0.5),
+        (-1.5, -1.5),
+        (1.5, -1.5),
+        (1.5, 1.5),
+        (-1.5, 1.5),
+    ];
+    let gx: Vec<f64> = xy.iter().map(|p| p.0).collect();
+    let gy: Vec<f64> = xy.iter().map(|p| p.1).collect();
+    let sn = s.matrix().unwrap().into_matrix();
+    for (w, name) in [(&gx, "x"), (&gy, "y")] {
+        let sw = &sn * nalgebra::DVector::from_column_slice(w);
+        for i in 0..16 {
+            assert!(
+                (sw[i] - 0.5 * w[i]).abs() < 1e-15,
+                "{name} is an eigenvector for 1/2"
+            );
+        }
+    }
+    let ext = ExtendedMatrix::new(&s).unwrap();
+    let exact = Ring::from_basis(&ext, &s.ratios(), &gx, &gy).unwrap();
+    let linf = |p: [f64; 2]| p[0].abs().max(p[1].abs());
+    for (chain, want) in [(exact.outer_boundary(), 1.0), (exact.inner_boundary(), 0.5)] {
+        for c in &chain {
+            for k in 0..=8 {
+                let p = c.eval(k as f64 / 8.0);
+                assert!(
+                    (linf(p) - want).abs() < 1e-14,
+                    "{p:?} not on the square max(|x|, |y|) = {want}"
+                );
+            }
+        }
+    }
+    for p in exact.patches() {
+        // each patch is an axis-parallel square of side 1/2
+        let (a, b) = (p.bezier.eval(0.0, 0.0), p.bezier.eval(1.0, 1.0));
+        assert!(
+            ((a[0] - b[0]).abs() - 0.5).abs() < 1e-14 && ((a[1] - b[1]).abs() - 0.5).abs() < 1e-14
+        );
+        // |J| = (1/2)^2 everywhere; the charts are oriented clockwise with respect
+        // to the counter-clockwise face, so J = -1/4 in these coordinates
+        assert!(
+            (p.bezier.jacobian_at(0.3, 0.6) + 0.25).abs() < 1e-14,
+            "{}: J = {}",
+            p.id,
+            p.bezier.jacobian_at(0.3, 0.6)
+        );
+    }
+    // computed basis: a linear image
+    let basis = basis_of(&s);
+    let ring = ring_of(&s, &basis);
+    let (p0, q0) = (
+        exact.patches()[0].bezier.eval(0.0, 0.0),
+        ring.patches()[0].bezier.eval(0.0, 0.0),
+    );
+    let (p1, q1) = (
+        exact.patches()[1].bezier.eval(1.0, 0.0),
+        ring.patches()[1].bezier.eval(1.0, 0.0),
+    );
+    // solve L [p0 p1] = [q0 q1]
+    let det = p0[0] * p1[1] - p1[0] * p0[1];
+    let inv = [[p1[1] / det, -p1[0] / det], [-p0[1] / det, p0[0] / det]];
+    let l = |k: usize| {
+        [
+            q0[k] * inv[0][0] + q1[k] * inv[1][0],
+            q0[k] * inv[0][1] + q1[k] * inv[1][1],
+        ]
+    };
+    let (lx, ly) = (l(0), l(1));
+    for (pe, pr) in exact.patches().iter().zip(ring.patches()) {
+        for (u, v) in [(0.0, 1.0), (0.5, 0.5), (1.0, 0.25)] {
+            let (e, r) = (pe.bezier.eval(u, v), pr.bezier.eval(u, v));
+            let img = [lx[0] * e[0] + lx[1] * e[1], ly[0] * e[0] + ly[1] * e[1]];
+            assert!(
+                (img[0] - r[0]).abs() < 1e-12 && (img[1] - r[1]).abs() < 1e-12,
+                "{}: {img:?} vs {r:?}",
+                pe.id
+            );
+        }
+    }
+}
+
+#[test]
+fn eigenstructures_without_a_planar_map_are_reported_with_a_reason() {
+    use subdiv_lab::charmap::check_classified;
+    use subdiv_lab::spectral::classify::ClassName;
+    use subdiv_lab::spectral::{classify_scheme, SubdominantClass};
+    let s = LocalScheme::<f64>::cc_variant(5).unwrap();
+    let base = classify_scheme(&s).unwrap();
+    for (class, code, needle) in [
+        (
+            SubdominantClass::Defective,
+            "defective",
+            "1-dimensional eigenspace",
+        ),
+        (
+            SubdominantClass::NotSeparated,
+            "not_separated",
+            "|lambda_2| = |lambda_3|",
+        ),
+        (
+            SubdominantClass::Indeterminate {
+                between: (ClassName::Standard, ClassName::ComplexPair),
+                reason: "test".into(),
+            },
+            "indeterminate",
+            "undecided between standard and complex_pair",
+        ),
+    ] {
+        let mut sub = base.clone();
+        sub.class = class;
+        let r = check_classified(&s, &sub).unwrap();
+        assert_eq!(r.verdict.code(), "no_charmap");
+        let text = r.verdict.to_string();
+        assert!(text.contains(code) && text.contains(needle), "{text}");
+        assert!(r.regularity.is_none() && r.winding_number.is_none());
+        assert_eq!(r.to_json()["regular"], serde_json::Value::Null);
     }
 }

@@ -32,7 +32,10 @@
 //!
 //! The parameter `s` of a patch runs along `x`, `t` along `y`; all `3n` charts
 //! induce the same orientation (the chart of `C_i` maps to that of `B_{i-1}`
-//! by a rotation by -90 degrees).
+//! by a rotation by -90 degrees). That orientation is clockwise with respect
+//! to the face's counter-clockwise corner order (for `n = 4` with the grid's
+//! own coordinates the Jacobian is `-1/4`; tests); the checks orient the
+//! planar basis by the sign of the Jacobian, so this is immaterial.
 //!
 //! Planar control points come from a 2-D real invariant subspace of `S_n`
 //! (see [`super::PlanarBasis`]): `x = Ext w1`, `y = Ext w2`.
