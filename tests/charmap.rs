@@ -190,6 +190,17 @@ fn extended_rows_for_configuration_points_equal_s_n_exactly() {
         );
         assert_eq!(l[x.v_eprev2(0)].to_string(), format!("(V0,E{},2)", n - 1));
         assert_eq!(l[x.v_c(2)].to_string(), "(V2,C2)");
+        // the f64 build agrees with the exact one
+        let sf = match &s {
+            LocalScheme::Nurds(r) => LocalScheme::nurds(r.to_f64()),
+            LocalScheme::DooSabin { valence } => LocalScheme::doo_sabin(*valence).unwrap(),
+            _ => LocalScheme::cc_variant(n).unwrap(),
+        };
+        let ef = ExtendedMatrix::new(&sf).unwrap();
+        let exact = m.to_f64();
+        for (a, b) in ef.matrix().matrix().iter().zip(exact.matrix().iter()) {
+            assert!((a - b).abs() < 1e-15);
+        }
     }
 }
 
