@@ -1,11 +1,11 @@
 //! Research statistics: eigenstructure classes and characteristic-map verdicts
 //! of NURDS faces with random knots (math doc sections 6, 7).
 //!
-//! Run: `cargo bench --bench charmap_stats` (optionally `-- SAMPLES SEED`;
-//! defaults 4000 per valence and seed 20261121).
+//! Run: `cargo bench --bench charmap_stats` (optionally `-- SAMPLES SEED LO`;
+//! defaults 4000 per valence, seed 20261121, LO = 0.01: ratios in [LO, 1 - LO]).
 //!
 //! Sampler: for each valence n = 3..8 and sample k, the edge ratios
-//! r_0..r_{n-1} are drawn independently and uniformly from [0.01, 0.99]
+//! r_0..r_{n-1} are drawn independently and uniformly from [LO, 1 - LO]
 //! (SplitMix64 seeded with `seed ^ (n << 32) ^ k`, 53-bit mantissa). Each
 //! configuration is classified by `spectral::classify_scheme` (structured
 //! path, its own documented tolerances) and checked by `charmap::check`
@@ -52,7 +52,13 @@ fn main() {
         .collect();
     let samples: usize = args.first().and_then(|s| s.parse().ok()).unwrap_or(4000);
     let seed: u64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(20261121);
-    println!("samples per valence: {samples}, seed: {seed}, ratios uniform in [0.01, 0.99]^n\n");
+    let lo: f64 = args
+        .get(2)
+        .and_then(|s| s.parse().ok())
+        .filter(|x: &f64| *x > 0.0 && *x < 0.5)
+        .unwrap_or(0.01);
+    let hi = 1.0 - lo;
+    println!("samples per valence: {samples}, seed: {seed}, ratios uniform in [{lo}, {hi}]^n\n");
     println!("| n | standard | real_distinct | complex_pair | defective | not_separated | class indeterminate | regular | regular+winding 1 | C1 | tpc real_distinct | tpc complex_pair | not_regular | not_injective | charmap indeterminate | errors | min rel. Jacobian coeff |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for n in 3..=8usize {
@@ -64,7 +70,7 @@ fn main() {
             .into_par_iter()
             .map(|k| {
                 let mut rng = SplitMix64(seed ^ ((n as u64) << 32) ^ k as u64);
-                let r: Vec<f64> = (0..n).map(|_| rng.uniform(0.01, 0.99)).collect();
+                let r: Vec<f64> = (0..n).map(|_| rng.uniform(lo, hi)).collect();
                 let s = LocalScheme::nurds(EdgeRatios::new(r).expect("ratios in (0, 1)"));
                 let class = match classify_scheme(&s) {
                     Ok(sub) => sub.class.name().to_owned(),

@@ -10,7 +10,7 @@ use subdiv_lab::charmap::extended::{ExtLayout, ExtendedMatrix};
 use subdiv_lab::charmap::regularity::RegularityVerdict;
 use subdiv_lab::charmap::ring::{PatchKind, Ring, RingPatchId};
 use subdiv_lab::charmap::{
-    check, check_basis, point_error, CharmapReport, Eigenstructure, PlanarBasis, Verdict,
+    check, check_basis, CharmapReport, Eigenstructure, PlanarBasis, Verdict,
 };
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
 use subdiv_lab::scalar::{Rational, Scalar};
@@ -588,13 +588,21 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(120))]
     #[test]
     fn random_nurds_verdicts_are_defined(r in (3usize..=8).prop_flat_map(|n| proptest::collection::vec(0.01f64..0.99, n))) {
-        let s = LocalScheme::nurds(EdgeRatios::new(r).unwrap());
+        let ratios = EdgeRatios::new(r).unwrap();
+        let s = LocalScheme::nurds(ratios.clone());
         let rep = report(&s);
         prop_assert!(VERDICT_CODES.contains(&rep.verdict.code()));
         if rep.structure != Some(Eigenstructure::Standard) {
             prop_assert_ne!(rep.verdict.code(), "c1");
         }
-        let _ = point_error;
+        // relabelling the corners (i -> i + 1) changes nothing
+        let rot = report(&LocalScheme::nurds(ratios.rotated(1)));
+        prop_assert_eq!(rot.verdict.code(), rep.verdict.code());
+        prop_assert_eq!(rot.winding_number, rep.winding_number);
+        if let (Some(a), Some(b)) = (rot.min_jacobian_coeff(), rep.min_jacobian_coeff()) {
+            prop_assert!((a - b).abs() < 1e-7, "min coeff {} vs {}", a, b);
+        }
+        prop_assert!(rep.point_error.is_nan() || rep.point_error < 1e-6, "point error {}", rep.point_error);
     }
 }
 
