@@ -22,6 +22,24 @@
 //! For non-standard eigenstructures the verdict is "tangent-plane continuous
 //! (non-standard: ...)", never "C1": the literature settles only the standard case.
 //!
+//! Submodules: [`extended`] (the `9n x 4n` matrix), [`ring`] (the `3n`
+//! patches and boundary chains), [`basis`] (the subdominant invariant
+//! subspace from the face block), [`regularity`] (Jacobian sign with error
+//! bound and subdivision), [`winding`] (certified winding numbers), [`figure`]
+//! (plot data). Entry points: [`check`] (one configuration, classification
+//! included; the sweep entry point), [`check_classified`] (when the
+//! classification is already known), [`check_basis`] / [`check_ring`] (any
+//! planar basis or ring, e.g. deliberately perturbed ones), [`plot_data`].
+//!
+//! **Error control.** Two error sources are bounded separately: (1) the error
+//! of the computed invariant subspace, *estimated* to first order as
+//! [`SUBSPACE_ERROR_SAFETY`] `* ||S W - W M||_F / gap` per entry (rigorous for
+//! normal matrices only, hence the safety factor); (2) all rounding from the
+//! basis onwards (extended matrix, Bezier conversion, derivatives, products,
+//! subdivision, evaluation), bounded rigorously with Higham's `gamma_k`
+//! ([`point_error`], [`regularity::ErrorModel`]). Verdicts within these bounds
+//! are `indeterminate`, never guessed.
+//!
 //! ```
 //! use subdiv_lab::charmap::{check_basis, Eigenstructure, PlanarBasis};
 //! use subdiv_lab::charmap::extended::ExtendedMatrix;
