@@ -1,6 +1,6 @@
 //! The extended matrix of the Doo-Sabin family: all `9n` new points of one step.
 //!
-//! Math doc section 7 **[derived]**. At level `k` the configuration around an
+//! Math doc section 7 **\[derived\]**. At level `k` the configuration around an
 //! n-sided face is the `4n` points of math doc section 4: the face
 //! `F = (P_0..P_{n-1})`, an E-face `E_i = (P_i, P_{i+1}, E_i2, E_i1)` on every
 //! edge and a V-face `V_i = (P_i, E_i1, C_i, E_{i-1,2})` at every corner. One
@@ -16,7 +16,7 @@
 //! original Doo-Sabin scheme, the n-gon uses its own weights; on quads they
 //! coincide with the uniform rule 9/16, 3/16, 3/16, 1/16).
 //!
-//! **Knot ratios of the faces [derived]** (from the knot propagation rules of
+//! **Knot ratios of the faces \[derived\]** (from the knot propagation rules of
 //! math doc section 3, valid from level 2 on): `F` has the ratios `r_i`; `E_i`
 //! is a tensor-product quad, non-uniform along the old edge and uniform across:
 //! in the corner order `(P_i, P_{i+1}, E_i2, E_i1)` its ratios are

@@ -379,7 +379,7 @@ impl CharmapReport {
 }
 
 /// Error bound of the ring's Bezier control points for a basis with entry
-/// error `vector_error` **[derived]**: `Ext` has absolute row sums `rho`, so the
+/// error `vector_error` **\[derived\]**: `Ext` has absolute row sums `rho`, so the
 /// `9n` points are off by at most `rho vector_error + gamma_K rho max|w|`
 /// (`K` = nonzeros per row + 1); the B-spline-to-Bezier conversion forms convex
 /// combinations of at most 4 points (`+ gamma_8 max|P|`).

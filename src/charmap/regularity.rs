@@ -2,7 +2,7 @@
 //!
 //! Math doc section 7. For a biquadratic patch `(x, y)` the Jacobian
 //! `J = x_s y_t - x_t y_s` is a Bernstein polynomial of bidegree (3, 3)
-//! ([`PlanarPatch::jacobian`]). By the convex-hull property, coefficients that
+//! ([`crate::bezier::PlanarPatch::jacobian`]). By the convex-hull property, coefficients that
 //! are all `> E` (after multiplying by the orientation `sigma = +-1`) certify
 //! `sigma J > 0` on the patch, where `E` bounds the floating-point error of the
 //! coefficients ([`ErrorModel`]). Otherwise the patch is split (de Casteljau,
@@ -36,12 +36,12 @@ pub fn gamma(k: usize) -> f64 {
     ku / (1.0 - ku)
 }
 
-/// The floating-point error model of the Jacobian coefficients **[derived]**.
+/// The floating-point error model of the Jacobian coefficients **\[derived\]**.
 ///
 /// Inputs: `delta`, an absolute bound on the error of every coordinate of every
 /// Bezier control point of the ring (the eigenvector error propagated through
 /// the extended matrix and the B-spline-to-Bezier conversion, plus the
-/// rounding of both; see [`super::PlanarBasis::point_error`]); `md`, the
+/// rounding of both; see [`super::point_error`]); `md`, the
 /// largest magnitude of a coefficient of `x_s, x_t, y_s, y_t`.
 ///
 /// A derivative coefficient `2 (b_{i+1,j} - b_ij)` is off by at most `4 delta`

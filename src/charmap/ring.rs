@@ -1,6 +1,6 @@
 //! The characteristic ring: `3n` biquadratic patches around the extraordinary face.
 //!
-//! Math doc section 7 **[derived]**. Among the `9n` points of one step (see
+//! Math doc section 7 **\[derived\]**. Among the `9n` points of one step (see
 //! [`super::extended`]) the new vertices `(E_i, P_i)`, `(E_i, P_{i+1})` and
 //! `(V_i, P_i)` have complete 3x3 regular neighbourhoods. In a chart around
 //! the old vertex `P_i` with `x` along the old edge `P_i -> P_{i+1}` and `y`
@@ -19,7 +19,7 @@
 //!                           (V_i,C_i)           (V_i,E_i1)     (E_i,E_i1)
 //! ```
 //!
-//! Knot intervals **[derived]** from the propagation rules of math doc section
+//! Knot intervals **\[derived\]** from the propagation rules of math doc section
 //! 3 (canonical corner intervals `p_i = 1 - r_i`, `q_{i+1} = r_i`; the common
 //! factor `2^-(k+1)` is irrelevant): across (`y`) every patch is uniform; along
 //! (`x`) `A_i` has intervals `(p_i, p_i, q_{i+1})`, `B_i` has
