@@ -14,9 +14,13 @@
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
 //! * [`schemes`]: local subdivision matrices through one assembly path;
-//! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face;
 //! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
 //! * [`contraction`]: Theorem 1, certified and measured (section 5);
+//! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
+//! * [`bezier`]: tensor-product Bernstein patches and planar Bezier curves;
+//! * [`charmap`]: characteristic maps (regularity, injectivity) of the Doo-Sabin family;
+//! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
+//! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face;
 //! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory);
 //! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
@@ -31,9 +35,13 @@
 #![warn(missing_docs)]
 
 pub mod ccss_bound;
+pub mod bezier;
+pub mod bspline;
+pub mod charmap;
 pub mod contraction;
 pub mod error;
 pub mod knots;
+pub mod mesh;
 pub mod report;
 pub mod scalar;
 pub mod schemes;

@@ -37,6 +37,7 @@ use super::backend::Area;
 use super::error::ReportError;
 use super::spec::{Common, FigureSpec};
 
+pub mod charmap_ring;
 pub mod config_table;
 pub mod convergence;
 pub mod knot_map;
@@ -62,6 +63,7 @@ pub const REGISTRY: &[FigureKind] = &[
     convergence::KIND,
     knot_map::KIND,
     config_table::KIND,
+    charmap_ring::KIND,
 ];
 
 /// The kind named `name`.
