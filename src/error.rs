@@ -65,6 +65,9 @@ pub enum Error {
         /// What went wrong.
         reason: String,
     },
+    /// A sweep spec, resume or merge error.
+    #[error(transparent)]
+    Sweep(#[from] crate::sweep::SweepError),
 }
 
 /// Shorthand for results of the library core.

@@ -13,7 +13,8 @@
 //!
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
-//! * [`schemes`]: local subdivision matrices through one assembly path.
+//! * [`schemes`]: local subdivision matrices through one assembly path;
+//! * [`sweep`]: parameter sweeps (specs, samplers, sharded resumable CSV output).
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -29,5 +30,6 @@ pub mod error;
 pub mod knots;
 pub mod scalar;
 pub mod schemes;
+pub mod sweep;
 
 pub use error::{Error, Result};

@@ -4,6 +4,7 @@
 
 mod matrix;
 mod scheme_args;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -28,6 +29,10 @@ struct Cli {
 enum Command {
     /// Print a local subdivision matrix (S_n or its face block).
     Matrix(matrix::MatrixArgs),
+    /// Run a parameter sweep from a TOML spec into a CSV (+ summary JSON).
+    Sweep(sweep::SweepArgs),
+    /// Merge shard CSVs of one sweep, checking no configuration is missing or duplicated.
+    Merge(sweep::MergeArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -72,6 +77,8 @@ pub fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
+        Command::Sweep(args) => sweep::run_sweep(args),
+        Command::Merge(args) => sweep::run_merge(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
