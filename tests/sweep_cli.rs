@@ -111,7 +111,10 @@ fn full_run_shape_and_summary() {
     assert_eq!(r0["min"], 0.05);
     assert_eq!(r0["min_id"], 0);
     assert_eq!(r0["max"], 0.95);
-    let rate = cols.iter().find(|c| c["name"] == "contraction_rate").unwrap();
+    let rate = cols
+        .iter()
+        .find(|c| c["name"] == "contraction_rate")
+        .unwrap();
     assert!(rate["max"].as_f64().unwrap() < 0.75);
 }
 
@@ -141,7 +144,14 @@ fn shards_partition_the_sweep_and_merge_back() {
     let mut seen = std::collections::BTreeSet::new();
     for i in 0..n {
         let p = dir.path().join(format!("shard-{i}.csv"));
-        ok(&["sweep", s(&spec), "--out", s(&p), "--shard", &format!("{i}/{n}")]);
+        ok(&[
+            "sweep",
+            s(&spec),
+            "--out",
+            s(&p),
+            "--shard",
+            &format!("{i}/{n}"),
+        ]);
         for l in fs::read_to_string(&p).unwrap().lines().skip(1) {
             let id: u64 = l.split(',').next().unwrap().parse().unwrap();
             assert_eq!(id % n, i);
@@ -197,7 +207,10 @@ fn resume_after_torn_write_is_byte_identical() {
             ok(&["sweep", s(&spec), "--out", s(&reference), "--shard", sh]);
         }
         let want = fs::read(&reference).unwrap();
-        for cut_row in [0usize, 1, rows / 2, 4095, 4096, rows - 1].into_iter().filter(|r| *r < rows) {
+        for cut_row in [0usize, 1, rows / 2, 4095, 4096, rows - 1]
+            .into_iter()
+            .filter(|r| *r < rows)
+        {
             let p = dir.path().join(format!("cut-{cut_row}.csv"));
             let _ = fs::remove_file(&p);
             fs::copy(&reference, &p).unwrap();
@@ -210,18 +223,38 @@ fn resume_after_torn_write_is_byte_identical() {
                 args.extend(["--shard", sh]);
             }
             ok(&args);
-            assert_eq!(fs::read(&p).unwrap(), want, "cut in row {cut_row}, shard {shard:?}");
+            assert_eq!(
+                fs::read(&p).unwrap(),
+                want,
+                "cut in row {cut_row}, shard {shard:?}"
+            );
             assert_eq!(summary(&p), summary(&reference));
         }
     }
     // Torn inside the header, and an interrupted --limit run continued in steps.
     let p = dir.path().join("steps.csv");
     fs::write(&p, "id,vale").unwrap();
-    ok(&["sweep", s(&spec), "--out", s(&p), "--resume", "--limit", "10"]);
+    ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&p),
+        "--resume",
+        "--limit",
+        "10",
+    ]);
     let ten = fs::read_to_string(&p).unwrap();
     assert_eq!(ten.lines().count(), 11);
     assert!(String::from_utf8_lossy(&expected).starts_with(&ten));
-    ok(&["sweep", s(&spec), "--out", s(&p), "--resume", "--limit", "5000"]);
+    ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&p),
+        "--resume",
+        "--limit",
+        "5000",
+    ]);
     ok(&["sweep", s(&spec), "--out", s(&p), "--resume"]);
     assert_eq!(fs::read(&p).unwrap(), expected);
     assert_eq!(summary(&p), summary(&full));
@@ -244,28 +277,82 @@ fn resume_refuses_a_changed_spec() {
     let o = run(&["sweep", s(&spec), "--out", s(&p), "--resume"]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("line 7: configuration id 6 where 5 was expected"), "{err}");
+    assert!(
+        err.contains("line 7: configuration id 6 where 5 was expected"),
+        "{err}"
+    );
 }
 
 #[test]
 fn bad_specs_name_the_key_and_create_no_file() {
     let dir = tempfile::tempdir().unwrap();
     let cases: Vec<(String, &str)> = vec![
-        (SPEC.replace("points_per_axis = 9", "points_per_axis = 0"), "sampler.points_per_axis must be >= 1, got 0"),
-        (SPEC.replace("[0.05, 0.95]", "[0.7, 0.2]"), "space.ratio_range: lower bound 0.7 > upper bound 0.2"),
-        (SPEC.replace("[0.05, 0.95]", "[0.0, 0.5]"), "space.ratio_range: bound 0 is outside the open interval (0, 1)"),
-        (SPEC.replace("[0.05, 0.95]", "[0.5, 1.5]"), "space.ratio_range: bound 1.5 is outside"),
-        (SPEC.replace("[0.05, 0.95]", "[0.3, 0.3]"), "space.ratio_range: empty range"),
-        (SPEC.replace("valences = [3, 4]", "valences = []"), "valences: empty list"),
-        (SPEC.replace("valences = [3, 4]", "valences = { from = 6, to = 4 }"), "valences: empty range"),
-        (SPEC.replace("valences = [3, 4]", "valences = [2, 4]"), "valences[0] must be a valence"),
-        (SPEC.replace("eigenvalues = 3", "eigenvalues = 3\nspeed = 1"), "columns.speed: unknown field"),
-        (SPEC.replace("kind = \"grid\"", "kind = \"grid\"\nsed = 1"), "sampler.sed: unknown field"),
-        (SPEC.replace("name = \"test-grid\"", "nme = \"x\""), "nme: unknown field"),
-        (SPEC.replace("kind = \"grid\"", "kind = \"latin\""), "sampler.kind: unknown sampler"),
-        (SPEC.replace("kind = \"ratios\"", "kind = \"corner-intervals\""), "space.ratio_range is not used"),
-        (SPEC.replace("ratio_range = [0.05, 0.95]", "ratio_range = [0.05, 0.95]\nfixed = { r9 = 0.5 }"), "space.fixed.r9: unknown coordinate"),
-        (SPEC.replace("kind = \"grid\"\npoints_per_axis = 9", "kind = \"random\"\ncount = 10"), "sampler.seed is required"),
+        (
+            SPEC.replace("points_per_axis = 9", "points_per_axis = 0"),
+            "sampler.points_per_axis must be >= 1, got 0",
+        ),
+        (
+            SPEC.replace("[0.05, 0.95]", "[0.7, 0.2]"),
+            "space.ratio_range: lower bound 0.7 > upper bound 0.2",
+        ),
+        (
+            SPEC.replace("[0.05, 0.95]", "[0.0, 0.5]"),
+            "space.ratio_range: bound 0 is outside the open interval (0, 1)",
+        ),
+        (
+            SPEC.replace("[0.05, 0.95]", "[0.5, 1.5]"),
+            "space.ratio_range: bound 1.5 is outside",
+        ),
+        (
+            SPEC.replace("[0.05, 0.95]", "[0.3, 0.3]"),
+            "space.ratio_range: empty range",
+        ),
+        (
+            SPEC.replace("valences = [3, 4]", "valences = []"),
+            "valences: empty list",
+        ),
+        (
+            SPEC.replace("valences = [3, 4]", "valences = { from = 6, to = 4 }"),
+            "valences: empty range",
+        ),
+        (
+            SPEC.replace("valences = [3, 4]", "valences = [2, 4]"),
+            "valences[0] must be a valence",
+        ),
+        (
+            SPEC.replace("eigenvalues = 3", "eigenvalues = 3\nspeed = 1"),
+            "columns.speed: unknown field",
+        ),
+        (
+            SPEC.replace("kind = \"grid\"", "kind = \"grid\"\nsed = 1"),
+            "sampler.sed: unknown field",
+        ),
+        (
+            SPEC.replace("name = \"test-grid\"", "nme = \"x\""),
+            "nme: unknown field",
+        ),
+        (
+            SPEC.replace("kind = \"grid\"", "kind = \"latin\""),
+            "sampler.kind: unknown sampler",
+        ),
+        (
+            SPEC.replace("kind = \"ratios\"", "kind = \"corner-intervals\""),
+            "space.ratio_range is not used",
+        ),
+        (
+            SPEC.replace(
+                "ratio_range = [0.05, 0.95]",
+                "ratio_range = [0.05, 0.95]\nfixed = { r9 = 0.5 }",
+            ),
+            "space.fixed.r9: unknown coordinate",
+        ),
+        (
+            SPEC.replace(
+                "kind = \"grid\"\npoints_per_axis = 9",
+                "kind = \"random\"\ncount = 10",
+            ),
+            "sampler.seed is required",
+        ),
     ];
     for (k, (text, want)) in cases.iter().enumerate() {
         let spec = write_spec(dir.path(), &format!("bad{k}.toml"), text);

@@ -73,7 +73,8 @@ fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
             .unwrap_or_default()
     ));
     fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
-    fs::rename(&tmp, path).with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
+    fs::rename(&tmp, path)
+        .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
     Ok(())
 }
 
@@ -119,7 +120,9 @@ fn scan_existing(
         }
         lineno += 1;
         let text = std::str::from_utf8(&line).map_err(|_| {
-            CliError::usage(anyhow!("{name}: line {lineno} is not UTF-8; not a sweep CSV"))
+            CliError::usage(anyhow!(
+                "{name}: line {lineno} is not UTF-8; not a sweep CSV"
+            ))
         })?;
         if lineno == 1 {
             if text != header {
@@ -179,64 +182,65 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         .map_err(CliError::failure)?;
 
     // Open the output (only now: a bad spec or flag creates no file).
-    let (mut sink, done, summary_file): (Box<dyn Write + Send>, u64, Option<PathBuf>) = match &args.out {
-        None => {
-            let mut w = BufWriter::with_capacity(1 << 20, std::io::stdout());
-            layout.write_header(&mut w).map_err(CliError::failure)?;
-            (Box::new(w), 0, None)
-        }
-        Some(path) => {
-            let spath = summary_path(path);
-            let exists = path.exists();
-            if exists && !args.resume {
-                return Err(CliError::usage(anyhow!(
-                    "{} exists; pass --resume to continue it, or remove it",
-                    path.display()
-                )));
+    let (mut sink, done, summary_file): (Box<dyn Write + Send>, u64, Option<PathBuf>) =
+        match &args.out {
+            None => {
+                let mut w = BufWriter::with_capacity(1 << 20, std::io::stdout());
+                layout.write_header(&mut w).map_err(CliError::failure)?;
+                (Box::new(w), 0, None)
             }
-            let (done, good, rewrite) = if exists {
-                scan_existing(path, &plan, &layout, shard, &mut summary)?
-            } else {
-                (0, 0, true)
-            };
-            let mut file = OpenOptions::new()
-                .create(true)
-                .truncate(false)
-                .write(true)
-                .open(path)
-                .with_context(|| format!("opening {}", path.display()))
-                .map_err(CliError::failure)?;
-            if exists {
-                file.set_len(good)
-                    .and_then(|_| file.seek(SeekFrom::End(0)).map(|_| ()))
-                    .with_context(|| format!("truncating {}", path.display()))
+            Some(path) => {
+                let spath = summary_path(path);
+                let exists = path.exists();
+                if exists && !args.resume {
+                    return Err(CliError::usage(anyhow!(
+                        "{} exists; pass --resume to continue it, or remove it",
+                        path.display()
+                    )));
+                }
+                let (done, good, rewrite) = if exists {
+                    scan_existing(path, &plan, &layout, shard, &mut summary)?
+                } else {
+                    (0, 0, true)
+                };
+                let mut file = OpenOptions::new()
+                    .create(true)
+                    .truncate(false)
+                    .write(true)
+                    .open(path)
+                    .with_context(|| format!("opening {}", path.display()))
                     .map_err(CliError::failure)?;
-                if rewrite && good == 0 {
-                    // Empty or torn inside the header.
+                if exists {
+                    file.set_len(good)
+                        .and_then(|_| file.seek(SeekFrom::End(0)).map(|_| ()))
+                        .with_context(|| format!("truncating {}", path.display()))
+                        .map_err(CliError::failure)?;
+                    if rewrite && good == 0 {
+                        // Empty or torn inside the header.
+                        layout.write_header(&mut file).map_err(CliError::failure)?;
+                    }
+                    if done > 0 || good > 0 {
+                        eprintln!(
+                            "sweep: resuming {} at row {done} of {expected}{}",
+                            path.display(),
+                            if rewrite && good > 0 {
+                                " (dropped a torn last line)"
+                            } else {
+                                ""
+                            }
+                        );
+                    }
+                } else {
                     layout.write_header(&mut file).map_err(CliError::failure)?;
                 }
-                if done > 0 || good > 0 {
-                    eprintln!(
-                        "sweep: resuming {} at row {done} of {expected}{}",
-                        path.display(),
-                        if rewrite && good > 0 {
-                            " (dropped a torn last line)"
-                        } else {
-                            ""
-                        }
-                    );
-                }
-            } else {
-                layout.write_header(&mut file).map_err(CliError::failure)?;
+                write_summary(&spath, &summary)?;
+                (
+                    Box::new(BufWriter::with_capacity(1 << 20, file)),
+                    done,
+                    Some(spath),
+                )
             }
-            write_summary(&spath, &summary)?;
-            (
-                Box::new(BufWriter::with_capacity(1 << 20, file)),
-                done,
-                Some(spath),
-            )
-        }
-    };
+        };
 
     // Progress bar on a terminal only.
     let bar = if std::io::stderr().is_terminal() && expected > done {
@@ -301,12 +305,15 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     Ok(())
 }
 
+/// Data lines of one shard CSV.
+type LineIter = Box<dyn Iterator<Item = Result<String, SweepError>>>;
+
 /// Lines of a data file after its header, as a [`MergeSource`].
 fn data_lines(
     path: &Path,
     header: &mut Option<String>,
     rows: std::rc::Rc<std::cell::Cell<u64>>,
-) -> CliResult<MergeSource<Box<dyn Iterator<Item = Result<String, SweepError>>>>> {
+) -> CliResult<MergeSource<LineIter>> {
     let name = path.display().to_string();
     let file = File::open(path)
         .with_context(|| format!("opening {name}"))
@@ -345,10 +352,12 @@ fn data_lines(
                 }
                 buf.pop();
                 rows.set(rows.get() + 1);
-                Some(String::from_utf8(std::mem::take(&mut buf)).map_err(|_| SweepError::Mismatch {
-                    source_name: n2.clone(),
-                    line: lineno,
-                    message: "not UTF-8".into(),
+                Some(String::from_utf8(std::mem::take(&mut buf)).map_err(|_| {
+                    SweepError::Mismatch {
+                        source_name: n2.clone(),
+                        line: lineno,
+                        message: "not UTF-8".into(),
+                    }
                 }))
             }
             Err(e) => Some(Err(SweepError::Io(format!("{n2}: {e}")))),
@@ -368,7 +377,13 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
         let mut text = String::new();
         File::open(&sp)
             .and_then(|mut f| f.read_to_string(&mut text))
-            .with_context(|| format!("reading {} (the summary `sweep` writes beside {})", sp.display(), p.display()))
+            .with_context(|| {
+                format!(
+                    "reading {} (the summary `sweep` writes beside {})",
+                    sp.display(),
+                    p.display()
+                )
+            })
             .map_err(CliError::usage)?;
         let s: Summary = serde_json::from_str(&text)
             .with_context(|| format!("parsing {}", sp.display()))
@@ -389,7 +404,11 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
         counters.push(c);
     }
     let header = header.unwrap_or_default();
-    if args.inputs.iter().any(|p| fs::canonicalize(p).ok() == fs::canonicalize(&args.out).ok()) {
+    if args
+        .inputs
+        .iter()
+        .any(|p| fs::canonicalize(p).ok() == fs::canonicalize(&args.out).ok())
+    {
         return Err(CliError::usage(anyhow!(
             "--out {} is one of the inputs",
             args.out.display()

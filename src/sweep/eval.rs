@@ -51,7 +51,13 @@ pub fn result_columns(columns: &Columns) -> Vec<ResultColumn> {
     let mut v = Vec::new();
     if columns.classification {
         v.push(text("class"));
-        for n in ["lambda1_re", "lambda1_im", "lambda2_re", "lambda2_im", "abs_lambda3"] {
+        for n in [
+            "lambda1_re",
+            "lambda1_im",
+            "lambda2_re",
+            "lambda2_im",
+            "abs_lambda3",
+        ] {
             v.push(num(n));
         }
     }

@@ -250,9 +250,7 @@ impl Layout {
         };
         let mut cells = self.coordinate_row(plan, &c);
         let n_results = self.names.len() - self.coordinates;
-        let error = match plan.scheme(&c).and_then(|s| {
-            eval.evaluate(plan, &c, &s)
-        }) {
+        let error = match plan.scheme(&c).and_then(|s| eval.evaluate(plan, &c, &s)) {
             Ok(r) if r.len() == n_results => {
                 cells.extend(r);
                 None
@@ -409,11 +407,7 @@ fn line_id(line: &str) -> Option<u64> {
 /// id order, checking that the ids are exactly `0..total`: an error names the
 /// first missing or duplicated id and where it was found. Memory is one line per
 /// source. Returns the number of rows written.
-pub fn merge<W, I>(
-    total: u64,
-    sources: Vec<MergeSource<I>>,
-    out: &mut W,
-) -> Result<u64, SweepError>
+pub fn merge<W, I>(total: u64, sources: Vec<MergeSource<I>>, out: &mut W) -> Result<u64, SweepError>
 where
     W: Write,
     I: Iterator<Item = Result<String, SweepError>>,
@@ -425,20 +419,21 @@ where
     let mut sources = sources;
     let mut heads: Vec<Option<Head>> = Vec::with_capacity(sources.len());
     let mut heap = BinaryHeap::new();
-    let advance = |src: &mut MergeSource<I>, lineno: u64| -> Result<Option<(u64, Head)>, SweepError> {
-        match src.lines.next() {
-            None => Ok(None),
-            Some(line) => {
-                let line = line?;
-                let id = line_id(&line).ok_or_else(|| SweepError::Mismatch {
-                    source_name: src.name.clone(),
-                    line: lineno,
-                    message: "no configuration id in the first field".into(),
-                })?;
-                Ok(Some((id, Head { line, lineno })))
+    let advance =
+        |src: &mut MergeSource<I>, lineno: u64| -> Result<Option<(u64, Head)>, SweepError> {
+            match src.lines.next() {
+                None => Ok(None),
+                Some(line) => {
+                    let line = line?;
+                    let id = line_id(&line).ok_or_else(|| SweepError::Mismatch {
+                        source_name: src.name.clone(),
+                        line: lineno,
+                        message: "no configuration id in the first field".into(),
+                    })?;
+                    Ok(Some((id, Head { line, lineno })))
+                }
             }
-        }
-    };
+        };
     for (k, src) in sources.iter_mut().enumerate() {
         match advance(src, 2)? {
             Some((id, h)) => {
@@ -452,7 +447,9 @@ where
     let mut last: Option<(u64, usize, u64)> = None;
     let mut buf = String::new();
     while let Some(std::cmp::Reverse((id, k))) = heap.pop() {
-        let head = heads[k].take().ok_or_else(|| SweepError::Merge("internal: empty head".into()))?;
+        let head = heads[k]
+            .take()
+            .ok_or_else(|| SweepError::Merge("internal: empty head".into()))?;
         if id < expected {
             let (_, pk, pl) = last.unwrap_or((id, k, head.lineno));
             return Err(SweepError::Merge(format!(
@@ -485,7 +482,9 @@ where
                 return Err(SweepError::Mismatch {
                     source_name: sources[k].name.clone(),
                     line: h.lineno,
-                    message: format!("configuration id {nid} after {id}: the file is not in id order"),
+                    message: format!(
+                        "configuration id {nid} after {id}: the file is not in id order"
+                    ),
                 });
             }
             heap.push(std::cmp::Reverse((nid, k)));
@@ -518,7 +517,10 @@ mod tests {
         push_text(&mut s, "a, \"b\"\nc");
         assert_eq!(split_csv_line(&s).unwrap(), vec!["a, \"b\" c"]);
         for x in [0.1, 1.0 / 3.0, 1e-300, 5e300, -0.0, 0.75] {
-            assert_eq!(format_number(x).parse::<f64>().unwrap().to_bits(), x.to_bits());
+            assert_eq!(
+                format_number(x).parse::<f64>().unwrap().to_bits(),
+                x.to_bits()
+            );
         }
     }
 
@@ -536,15 +538,36 @@ mod tests {
     #[test]
     fn merge_checks_ids() {
         let mut out = Vec::new();
-        assert_eq!(merge(5, vec![src("a", &[0, 2, 4]), src("b", &[1, 3])], &mut out).unwrap(), 5);
+        assert_eq!(
+            merge(5, vec![src("a", &[0, 2, 4]), src("b", &[1, 3])], &mut out).unwrap(),
+            5
+        );
         assert_eq!(String::from_utf8(out).unwrap(), "0,x\n1,x\n2,x\n3,x\n4,x\n");
-        let e = merge(5, vec![src("a", &[0, 2, 4]), src("b", &[1])], &mut Vec::new()).unwrap_err();
-        assert!(e.to_string().contains("configuration id 3 is missing"), "{e}");
-        let e = merge(5, vec![src("a", &[0, 2, 4]), src("b", &[1, 3]), src("c", &[2])], &mut Vec::new())
-            .unwrap_err();
-        assert!(e.to_string().contains("configuration id 2 appears twice"), "{e}");
+        let e = merge(
+            5,
+            vec![src("a", &[0, 2, 4]), src("b", &[1])],
+            &mut Vec::new(),
+        )
+        .unwrap_err();
+        assert!(
+            e.to_string().contains("configuration id 3 is missing"),
+            "{e}"
+        );
+        let e = merge(
+            5,
+            vec![src("a", &[0, 2, 4]), src("b", &[1, 3]), src("c", &[2])],
+            &mut Vec::new(),
+        )
+        .unwrap_err();
+        assert!(
+            e.to_string().contains("configuration id 2 appears twice"),
+            "{e}"
+        );
         let e = merge(3, vec![src("a", &[0, 1])], &mut Vec::new()).unwrap_err();
-        assert!(e.to_string().contains("configuration id 2 is missing"), "{e}");
+        assert!(
+            e.to_string().contains("configuration id 2 is missing"),
+            "{e}"
+        );
         let e = merge(2, vec![src("a", &[0, 1, 2])], &mut Vec::new()).unwrap_err();
         assert!(e.to_string().contains("beyond"), "{e}");
     }

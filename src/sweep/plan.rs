@@ -170,10 +170,7 @@ impl Plan {
                 total: self.total,
             });
         }
-        let b = match self
-            .blocks
-            .binary_search_by(|b| b.offset.cmp(&id))
-        {
+        let b = match self.blocks.binary_search_by(|b| b.offset.cmp(&id)) {
             Ok(i) => {
                 // Several blocks can share an offset only if some have count 0 (impossible:
                 // counts are >= 1); take the block starting here.
@@ -257,7 +254,11 @@ impl Plan {
 
     fn scheme_in<T: Scalar>(&self, c: &Configuration) -> crate::Result<LocalScheme<T>> {
         let n = c.valence;
-        let x: Vec<T> = c.coordinates.iter().map(|v| T::from_f64_lossless(*v)).collect();
+        let x: Vec<T> = c
+            .coordinates
+            .iter()
+            .map(|v| T::from_f64_lossless(*v))
+            .collect();
         let ratios = match self.spec.space.kind {
             SpaceKind::Uniform => None,
             SpaceKind::Ratios => Some(EdgeRatios::new(x)?),

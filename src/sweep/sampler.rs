@@ -95,8 +95,11 @@ impl Halton {
     pub fn new(d: usize, scramble_seed: Option<u64>, stream: u64) -> Self {
         Halton {
             bases: first_primes(d),
-            shift: scramble_seed
-                .map(|s| (0..d as u64).map(|k| hash_uniform(s, stream, u64::MAX, k)).collect()),
+            shift: scramble_seed.map(|s| {
+                (0..d as u64)
+                    .map(|k| hash_uniform(s, stream, u64::MAX, k))
+                    .collect()
+            }),
         }
     }
 
@@ -234,13 +237,13 @@ impl Sobol {
                 // Initial m_k (k = 1..s), odd and < 2^k. Dimension 1 (poly x + 1) uses
                 // m_1 = 1, which makes dimensions 0 and 1 a (0, 2)-sequence.
                 let mut m = vec![0u64; SOBOL_BITS + 1];
-                for k in 1..=s.min(SOBOL_BITS) {
+                for (k, mk) in m.iter_mut().enumerate().take(s.min(SOBOL_BITS) + 1).skip(1) {
                     let h = if dim == 1 {
                         1
                     } else {
-                        hash4(0x50b0_1, dim as u64, k as u64, 0)
+                        hash4(0x0005_0b01, dim as u64, k as u64, 0)
                     };
-                    m[k] = (h & ((1u64 << k) - 1)) | 1;
+                    *mk = (h & ((1u64 << k) - 1)) | 1;
                 }
                 // Recurrence m_k = 2 a_1 m_{k-1} ^ 4 a_2 m_{k-2} ^ ... ^ 2^s m_{k-s} ^ m_{k-s}.
                 for k in (s + 1)..=SOBOL_BITS {
@@ -353,8 +356,10 @@ mod tests {
                 .collect();
             // Every 1-D projection: one point per interval of length 2^-m.
             for k in 0..d {
-                let mut cells: Vec<u64> =
-                    pts.iter().map(|p| (p[k] * (1u64 << m) as f64) as u64).collect();
+                let mut cells: Vec<u64> = pts
+                    .iter()
+                    .map(|p| (p[k] * (1u64 << m) as f64) as u64)
+                    .collect();
                 cells.sort();
                 assert_eq!(cells, (0..1u64 << m).collect::<Vec<_>>(), "dim {k}");
             }

@@ -324,7 +324,12 @@ struct Ctx<'a> {
 }
 
 impl Ctx<'_> {
-    fn err<T>(&self, key: &str, span: Option<std::ops::Range<usize>>, message: String) -> Result<T, SweepError> {
+    fn err<T>(
+        &self,
+        key: &str,
+        span: Option<std::ops::Range<usize>>,
+        message: String,
+    ) -> Result<T, SweepError> {
         Err(SweepError::Spec {
             key: key.to_owned(),
             line: span.map(|s| line_of(self.text, s.start)),
@@ -337,7 +342,11 @@ impl Ctx<'_> {
 fn at_least(ctx: &Ctx, key: &str, v: &Spanned<i64>, min: i64) -> Result<u64, SweepError> {
     let x = *v.get_ref();
     if x < min {
-        return ctx.err(key, Some(v.span()), format!("{key} must be >= {min}, got {x}"));
+        return ctx.err(
+            key,
+            Some(v.span()),
+            format!("{key} must be >= {min}, got {x}"),
+        );
     }
     Ok(x as u64)
 }
@@ -359,7 +368,11 @@ fn range(
     }
     let (a, b) = (r[0], r[1]);
     if !(a.is_finite() && b.is_finite()) {
-        return ctx.err(key, span, format!("{key}: bounds must be finite, got [{a}, {b}]"));
+        return ctx.err(
+            key,
+            span,
+            format!("{key}: bounds must be finite, got [{a}, {b}]"),
+        );
     }
     if ratios {
         for x in [a, b] {
@@ -409,7 +422,11 @@ fn valences(ctx: &Ctx, v: &Spanned<toml::Value>) -> Result<Vec<usize>, SweepErro
                 span.clone(),
                 format!("{key} must be a valence in 3..={MAX_VALENCE}, got {n}"),
             ),
-            None => ctx.err(key, span.clone(), format!("{key} must be an integer, got {x}")),
+            None => ctx.err(
+                key,
+                span.clone(),
+                format!("{key} must be an integer, got {x}"),
+            ),
         }
     };
     let list = match v.get_ref() {
@@ -457,14 +474,20 @@ fn valences(ctx: &Ctx, v: &Spanned<toml::Value>) -> Result<Vec<usize>, SweepErro
             return ctx.err(
                 "valences",
                 span,
-                format!("valences must be a list [3, 5] or a range {{ from = 3, to = 8 }}, got {other}"),
+                format!(
+                    "valences must be a list [3, 5] or a range {{ from = 3, to = 8 }}, got {other}"
+                ),
             )
         }
     };
     let mut seen = std::collections::BTreeSet::new();
     for n in &list {
         if !seen.insert(*n) {
-            return ctx.err("valences", span, format!("valences: valence {n} is listed twice"));
+            return ctx.err(
+                "valences",
+                span,
+                format!("valences: valence {n} is listed twice"),
+            );
         }
     }
     Ok(list)
@@ -542,7 +565,12 @@ impl SweepSpec {
         }
         let range = match kind {
             SpaceKind::Ratios => {
-                forbid(&ctx, "space.interval_range", &rs.interval_range, "by space kind \"ratios\" (use space.ratio_range)")?;
+                forbid(
+                    &ctx,
+                    "space.interval_range",
+                    &rs.interval_range,
+                    "by space kind \"ratios\" (use space.ratio_range)",
+                )?;
                 match &rs.ratio_range {
                     Some(r) => Some(range(&ctx, "space.ratio_range", r, true)?),
                     None => {
@@ -555,20 +583,38 @@ impl SweepSpec {
                 }
             }
             SpaceKind::Uniform => {
-                forbid(&ctx, "space.ratio_range", &rs.ratio_range, "by space kind \"uniform\"")?;
-                forbid(&ctx, "space.interval_range", &rs.interval_range, "by space kind \"uniform\"")?;
+                forbid(
+                    &ctx,
+                    "space.ratio_range",
+                    &rs.ratio_range,
+                    "by space kind \"uniform\"",
+                )?;
+                forbid(
+                    &ctx,
+                    "space.interval_range",
+                    &rs.interval_range,
+                    "by space kind \"uniform\"",
+                )?;
                 forbid(&ctx, "space.fixed", &rs.fixed, "by space kind \"uniform\"")?;
                 None
             }
             _ => {
-                forbid(&ctx, "space.ratio_range", &rs.ratio_range, "by interval spaces (use space.interval_range)")?;
+                forbid(
+                    &ctx,
+                    "space.ratio_range",
+                    &rs.ratio_range,
+                    "by interval spaces (use space.interval_range)",
+                )?;
                 match &rs.interval_range {
                     Some(r) => Some(range(&ctx, "space.interval_range", r, false)?),
                     None => {
                         return ctx.err(
                             "space.interval_range",
                             Some(rs.kind.span()),
-                            format!("space.interval_range is required by space kind {:?}", kind.name()),
+                            format!(
+                                "space.interval_range is required by space kind {:?}",
+                                kind.name()
+                            ),
                         )
                     }
                 }
@@ -624,7 +670,8 @@ impl SweepSpec {
                 ),
             }
         };
-        let seed = |v: &Spanned<i64>| -> Result<u64, SweepError> { at_least(&ctx, "sampler.seed", v, 0) };
+        let seed =
+            |v: &Spanned<i64>| -> Result<u64, SweepError> { at_least(&ctx, "sampler.seed", v, 0) };
         let sampler = match skind {
             "grid" => {
                 let why = "by sampler kind \"grid\"";
@@ -691,16 +738,24 @@ impl SweepSpec {
                             format!("sampler.count must be <= {MAX_SOBOL_POINTS} for the Sobol sampler, got {count}"),
                         );
                     }
-                    Sampler::Sobol { count, scramble_seed }
+                    Sampler::Sobol {
+                        count,
+                        scramble_seed,
+                    }
                 } else {
-                    Sampler::Halton { count, scramble_seed }
+                    Sampler::Halton {
+                        count,
+                        scramble_seed,
+                    }
                 }
             }
             other => {
                 return ctx.err(
                     "sampler.kind",
                     Some(s.kind.span()),
-                    format!("sampler.kind: unknown sampler {other:?} (known: grid, random, halton, sobol)"),
+                    format!(
+                    "sampler.kind: unknown sampler {other:?} (known: grid, random, halton, sobol)"
+                ),
                 )
             }
         };
@@ -848,16 +903,30 @@ points_per_axis = 4
             "space.ratio_range: lower bound 0.7 > upper bound 0.2 (line 8)"
         );
         let e = err(&GOOD.replace("[0.1, 0.9]", "[0.0, 0.9]"));
-        assert!(e.to_string().starts_with("space.ratio_range: bound 0 is outside"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("space.ratio_range: bound 0 is outside"),
+            "{e}"
+        );
         let e = err(&GOOD.replace("[0.1, 0.9]", "[0.5, 0.5]"));
-        assert!(e.to_string().contains("space.ratio_range: empty range"), "{e}");
+        assert!(
+            e.to_string().contains("space.ratio_range: empty range"),
+            "{e}"
+        );
         let e = err(&GOOD.replace("kind = \"grid\"", "kind = \"grid\"\nbogus = 3"));
-        assert!(e.to_string().starts_with("sampler.bogus: unknown field"), "{e}");
+        assert!(
+            e.to_string().starts_with("sampler.bogus: unknown field"),
+            "{e}"
+        );
         assert!(e.to_string().contains("line 13"), "{e}");
         let e = err(&GOOD.replace("to = 5", "to = 2"));
         assert!(e.to_string().starts_with("valences: empty range"), "{e}");
         let e = err(&GOOD.replace("r2 = 0.5", "r3 = 0.5"));
-        assert!(e.to_string().starts_with("space.fixed.r3: unknown coordinate"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("space.fixed.r3: unknown coordinate"),
+            "{e}"
+        );
         let e = err(&GOOD.replace("r2 = 0.5", "r2 = 1.5"));
         assert!(e.to_string().starts_with("space.fixed.r2 must be"), "{e}");
         let e = err(&GOOD.replace("valences = { from = 3, to = 5 }", "valences = []"));
@@ -867,7 +936,11 @@ points_per_axis = 4
         let e = err(&GOOD.replace("\"nurds\"", "\"loop\""));
         assert!(e.to_string().starts_with("scheme: unknown scheme"), "{e}");
         let e = err(&GOOD.replace("to = 5", "to = 64"));
-        assert!(e.to_string().starts_with("sampler.points_per_axis: the sweep would have more"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("sampler.points_per_axis: the sweep would have more"),
+            "{e}"
+        );
         match e {
             SweepError::Spec { key, line, .. } => {
                 assert_eq!(key, "sampler.points_per_axis");
@@ -891,7 +964,10 @@ points_per_axis = 4
                     assert_eq!(kind.coordinate_index(n, &name), Some(k), "{name}");
                 }
                 assert_eq!(kind.coordinate_index(n, "x0"), None);
-                assert_eq!(kind.coordinate_index(n, &format!("{}{n}", kind.families()[0])), None);
+                assert_eq!(
+                    kind.coordinate_index(n, &format!("{}{n}", kind.families()[0])),
+                    None
+                );
             }
         }
         assert_eq!(SpaceKind::Ratios.coordinate_index(5, "r01"), None);

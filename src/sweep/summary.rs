@@ -53,7 +53,13 @@ impl ColumnStats {
         self.fold(Some(x), Some(id), Some(x), Some(id));
     }
 
-    fn fold(&mut self, min: Option<f64>, min_id: Option<u64>, max: Option<f64>, max_id: Option<u64>) {
+    fn fold(
+        &mut self,
+        min: Option<f64>,
+        min_id: Option<u64>,
+        max: Option<f64>,
+        max_id: Option<u64>,
+    ) {
         if let (Some(x), Some(id)) = (min, min_id) {
             let better = match (self.min, self.min_id) {
                 (Some(m), Some(mid)) => x < m || (x == m && id < mid),
@@ -150,9 +156,10 @@ impl Summary {
         if row.error.is_some() {
             self.errors += 1;
         }
-        let class = layout
-            .class_of(row)
-            .unwrap_or(if row.error.is_some() { "error" } else { "all" });
+        let class =
+            layout
+                .class_of(row)
+                .unwrap_or(if row.error.is_some() { "error" } else { "all" });
         *self
             .classes
             .entry(row.valence.to_string())
@@ -183,14 +190,20 @@ impl Summary {
     /// Combines the summary of another shard of the same sweep into this one. The
     /// result describes the union of the rows, as shard `0/1`.
     pub fn merge(&mut self, other: &Summary) -> Result<(), SweepError> {
-        if other.spec_digest != self.spec_digest || other.total_configurations != self.total_configurations {
+        if other.spec_digest != self.spec_digest
+            || other.total_configurations != self.total_configurations
+        {
             return Err(SweepError::Merge(format!(
                 "summaries come from different specs ({} with digest {}, {} with digest {})",
                 self.spec_name, self.spec_digest, other.spec_name, other.spec_digest
             )));
         }
         if other.columns.len() != self.columns.len()
-            || other.columns.iter().zip(&self.columns).any(|(a, b)| a.name != b.name)
+            || other
+                .columns
+                .iter()
+                .zip(&self.columns)
+                .any(|(a, b)| a.name != b.name)
         {
             return Err(SweepError::Merge("summaries have different columns".into()));
         }
