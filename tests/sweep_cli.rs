@@ -382,3 +382,45 @@ fn bad_specs_name_the_key_and_create_no_file() {
         assert!(!out.exists());
     }
 }
+
+#[test]
+fn resume_after_sigkill_is_byte_identical() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(
+        dir.path(),
+        "k.toml",
+        r#"
+scheme = "nurds"
+valences = [6, 9]
+[space]
+kind = "face-ep"
+interval_range = [0.1, 10.0]
+[sampler]
+kind = "sobol"
+count = 60000
+"#,
+    );
+    let full = dir.path().join("full.csv");
+    ok(&["sweep", s(&spec), "--out", s(&full)]);
+    let want = fs::read(&full).unwrap();
+    let p = dir.path().join("killed.csv");
+    let mut child = Command::new(BIN)
+        .args(["sweep", s(&spec), "--out", s(&p), "--threads", "2"])
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Kill (SIGKILL) once some rows are on disk but before the end.
+    let start = std::time::Instant::now();
+    while fs::metadata(&p).map(|m| m.len()).unwrap_or(0) < (want.len() / 4) as u64
+        && start.elapsed() < std::time::Duration::from_secs(60)
+    {
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let partial = fs::read(&p).unwrap();
+    assert!(want.starts_with(&partial[..partial.iter().rposition(|b| *b == b'\n').unwrap()]));
+    ok(&["sweep", s(&spec), "--out", s(&p), "--resume"]);
+    assert_eq!(fs::read(&p).unwrap(), want);
+    assert_eq!(summary(&p), summary(&full));
+}

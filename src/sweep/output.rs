@@ -139,14 +139,16 @@ impl Layout {
     /// The CSV line of `row` (with `\n`).
     pub fn format(&self, row: &Row) -> String {
         let mut s = String::with_capacity(32 + 24 * row.cells.len());
-        s.push_str(&row.id.to_string());
-        s.push(',');
-        s.push_str(&row.valence.to_string());
+        use std::fmt::Write as _;
+        // Writing to a String cannot fail.
+        let _ = write!(s, "{},{}", row.id, row.valence);
         for c in &row.cells {
             s.push(',');
             match c {
                 Cell::Empty => {}
-                Cell::Num(x) => s.push_str(&format_number(*x)),
+                Cell::Num(x) => {
+                    let _ = write!(s, "{x:?}");
+                }
                 Cell::Text(t) => push_text(&mut s, t),
             }
         }
@@ -372,14 +374,18 @@ where
         if chunk.is_empty() {
             break;
         }
-        let rows: Vec<Row> = chunk
+        let rows: Vec<(Row, String)> = chunk
             .par_iter()
             .with_min_len(8)
-            .map(|&id| layout.row(plan, eval, id))
+            .map(|&id| {
+                let r = layout.row(plan, eval, id);
+                let line = layout.format(&r);
+                (r, line)
+            })
             .collect();
         buf.clear();
-        for r in &rows {
-            buf.push_str(&layout.format(r));
+        for (r, line) in &rows {
+            buf.push_str(line);
             summary.add(layout, r);
         }
         out.write_all(buf.as_bytes())?;

@@ -83,6 +83,20 @@ impl ColumnStats {
     }
 }
 
+/// Decimal digits of `v` in `buf` (no allocation).
+fn small_decimal(mut v: usize, buf: &mut [u8; 20]) -> &str {
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (v % 10) as u8;
+        v /= 10;
+        if v == 0 {
+            break;
+        }
+    }
+    std::str::from_utf8(&buf[i..]).unwrap_or("?")
+}
+
 /// Throughput of the run(s) behind a summary.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Throughput {
@@ -160,12 +174,20 @@ impl Summary {
             layout
                 .class_of(row)
                 .unwrap_or(if row.error.is_some() { "error" } else { "all" });
-        *self
-            .classes
-            .entry(row.valence.to_string())
-            .or_default()
-            .entry(class.to_owned())
-            .or_default() += 1;
+        // Look up before inserting: no allocation once a (valence, class) pair is known.
+        let mut vbuf = [0u8; 20];
+        let vkey = small_decimal(row.valence, &mut vbuf);
+        if !self.classes.contains_key(vkey) {
+            self.classes.insert(vkey.to_owned(), BTreeMap::new());
+        }
+        if let Some(per) = self.classes.get_mut(vkey) {
+            match per.get_mut(class) {
+                Some(k) => *k += 1,
+                None => {
+                    per.insert(class.to_owned(), 1);
+                }
+            }
+        }
         for (stats, (pos, _)) in self.columns.iter_mut().zip(layout.numeric_columns()) {
             if let Some(x) = layout.number_at(row, *pos) {
                 stats.push(x, row.id);
