@@ -65,6 +65,9 @@ pub enum Error {
         /// What went wrong.
         reason: String,
     },
+    /// An error of the spectral engine.
+    #[error(transparent)]
+    Spectral(#[from] crate::spectral::SpectralError),
     /// A sweep spec, resume or merge error.
     #[error(transparent)]
     Sweep(#[from] crate::sweep::SweepError),

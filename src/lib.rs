@@ -14,7 +14,10 @@
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
 //! * [`schemes`]: local subdivision matrices through one assembly path;
-//! * [`sweep`]: parameter sweeps (specs, samplers, sharded resumable CSV output).
+//! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
+//! * [`contraction`]: Theorem 1, certified and measured (section 5);
+//! * [`sweep`]: parameter sweeps (specs, samplers, sharded resumable CSV output);
+//! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -26,10 +29,14 @@
 
 #![warn(missing_docs)]
 
+pub mod contraction;
 pub mod error;
 pub mod knots;
 pub mod scalar;
 pub mod schemes;
+pub mod spectral;
 pub mod sweep;
+#[cfg(feature = "testing")]
+pub mod testing;
 
 pub use error::{Error, Result};

@@ -2,6 +2,7 @@
 //! validates through [`scheme_args`] (shared scheme/knot flags), calls the
 //! library, and formats the result. No numerics here.
 
+mod analyze;
 mod matrix;
 mod scheme_args;
 mod sweep;
@@ -29,6 +30,8 @@ struct Cli {
 enum Command {
     /// Print a local subdivision matrix (S_n or its face block).
     Matrix(matrix::MatrixArgs),
+    /// Spectrum, subdominant classification and Theorem 1 for one configuration.
+    Analyze(analyze::AnalyzeArgs),
     /// Run a parameter sweep from a TOML spec into a CSV (+ summary JSON).
     Sweep(sweep::SweepArgs),
     /// Merge shard CSVs of one sweep, checking no configuration is missing or duplicated.
@@ -77,6 +80,7 @@ pub fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
+        Command::Analyze(args) => analyze::run(args),
         Command::Sweep(args) => sweep::run_sweep(args),
         Command::Merge(args) => sweep::run_merge(args),
     };
