@@ -139,6 +139,7 @@ impl Layout {
     /// The CSV line of `row` (with `\n`).
     pub fn format(&self, row: &Row) -> String {
         let mut s = String::with_capacity(32 + 24 * row.cells.len());
+        let mut ryu_buf = ryu::Buffer::new();
         use std::fmt::Write as _;
         // Writing to a String cannot fail.
         let _ = write!(s, "{},{}", row.id, row.valence);
@@ -146,9 +147,7 @@ impl Layout {
             s.push(',');
             match c {
                 Cell::Empty => {}
-                Cell::Num(x) => {
-                    let _ = write!(s, "{x:?}");
-                }
+                Cell::Num(x) => s.push_str(format_number_in(&mut ryu_buf, *x)),
                 Cell::Text(t) => push_text(&mut s, t),
             }
         }
@@ -278,9 +277,23 @@ impl Layout {
     }
 }
 
-/// Shortest round-trip text of an `f64` (`0.375`, `1e-20`, `NaN`, `inf`).
+/// Shortest round-trip text of an `f64` (`0.375`, `1e-20`, `1.0`, `NaN`, `inf`,
+/// `-inf`): Ryu's shortest digits; `str::parse::<f64>` reads every form back to the
+/// same bits.
 pub fn format_number(x: f64) -> String {
-    format!("{x:?}")
+    format_number_in(&mut ryu::Buffer::new(), x).to_owned()
+}
+
+fn format_number_in(buf: &mut ryu::Buffer, x: f64) -> &str {
+    if x.is_finite() {
+        buf.format_finite(x)
+    } else if x.is_nan() {
+        "NaN"
+    } else if x > 0.0 {
+        "inf"
+    } else {
+        "-inf"
+    }
 }
 
 fn push_text(s: &mut String, t: &str) {
@@ -522,7 +535,7 @@ mod tests {
         let mut s = String::new();
         push_text(&mut s, "a, \"b\"\nc");
         assert_eq!(split_csv_line(&s).unwrap(), vec!["a, \"b\" c"]);
-        for x in [0.1, 1.0 / 3.0, 1e-300, 5e300, -0.0, 0.75] {
+        for x in [0.1, 1.0 / 3.0, 1e-300, 5e300, -0.0, 0.75, 1.0, 1e16, 2.5e-8, f64::MIN_POSITIVE / 8.0] {
             assert_eq!(
                 format_number(x).parse::<f64>().unwrap().to_bits(),
                 x.to_bits()
