@@ -13,7 +13,16 @@ fn sweep_csv(spec: &str) -> (Vec<String>, Vec<Vec<String>>, Summary) {
     let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
     let mut out = Vec::new();
     layout.write_header(&mut out).unwrap();
-    output::run(&plan, &layout, &eval, 0..plan.total(), &mut out, &mut summary, &mut |_| {}).unwrap();
+    output::run(
+        &plan,
+        &layout,
+        &eval,
+        0..plan.total(),
+        &mut out,
+        &mut summary,
+        &mut |_| {},
+    )
+    .unwrap();
     let text = String::from_utf8(out).unwrap();
     let mut lines = text.lines();
     let header = split_csv_line(lines.next().unwrap()).unwrap();
@@ -22,7 +31,10 @@ fn sweep_csv(spec: &str) -> (Vec<String>, Vec<Vec<String>>, Summary) {
 }
 
 fn get<'a>(header: &[String], row: &'a [String], name: &str) -> &'a str {
-    &row[header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"))]
+    &row[header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name}"))]
 }
 
 fn num(header: &[String], row: &[String], name: &str) -> f64 {
@@ -72,7 +84,10 @@ eigenvalues = 12
         assert_eq!(num(&h, row, "lambda2_im"), a.subdominant.lambda2.im);
         assert_eq!(num(&h, row, "abs_lambda3"), a.subdominant.abs_lambda3);
         assert_eq!(num(&h, row, "gap"), a.subdominant.gap);
-        assert_eq!(num(&h, row, "contraction_rate"), a.contraction.spectral_bound);
+        assert_eq!(
+            num(&h, row, "contraction_rate"),
+            a.contraction.spectral_bound
+        );
         for (k, z) in a.eigenvalues.iter().enumerate() {
             assert_eq!(num(&h, row, &format!("ev{k}_re")), z[0]);
             assert_eq!(num(&h, row, &format!("ev{k}_im")), z[1]);
@@ -80,7 +95,12 @@ eigenvalues = 12
         // The full 4n x 4n analysis: an independent computation.
         let b = spectral::analyze(&scheme, &full).unwrap();
         if !b.subdominant.class.is_indeterminate() && !class.starts_with("indeterminate") {
-            assert_eq!(class, b.subdominant.class.name(), "r = {:?}", scheme.ratios());
+            assert_eq!(
+                class,
+                b.subdominant.class.name(),
+                "r = {:?}",
+                scheme.ratios()
+            );
             compared_full += 1;
         }
         // Near a double eigenvalue the two paths may differ by the engine's own
@@ -93,12 +113,22 @@ eigenvalues = 12
         // Conjugate pairs may come in either order: compare moduli and |im|.
         assert!(close(num(&h, row, "lambda1_re"), b.subdominant.lambda1.re));
         assert!(
-            close(num(&h, row, "lambda1_im").abs(), b.subdominant.lambda1.im.abs()),
+            close(
+                num(&h, row, "lambda1_im").abs(),
+                b.subdominant.lambda1.im.abs()
+            ),
             "{row:?} vs {:?}",
             b.subdominant
         );
-        assert!(close_k(num(&h, row, "abs_lambda3"), b.subdominant.abs_lambda3, 3));
-        assert!(close(num(&h, row, "contraction_rate"), b.contraction.spectral_bound));
+        assert!(close_k(
+            num(&h, row, "abs_lambda3"),
+            b.subdominant.abs_lambda3,
+            3
+        ));
+        assert!(close(
+            num(&h, row, "contraction_rate"),
+            b.contraction.spectral_bound
+        ));
         for (k, z) in b.eigenvalues.iter().enumerate() {
             let kk = if k < 4 { k } else { 4 };
             let tol = |x: f64, y: f64| {
@@ -109,14 +139,21 @@ eigenvalues = 12
                 }
             };
             assert!(tol(num(&h, row, &format!("ev{k}_re")), z[0]), "ev{k}");
-            assert!(tol(num(&h, row, &format!("ev{k}_im")).abs(), z[1].abs()), "ev{k}");
+            assert!(
+                tol(num(&h, row, &format!("ev{k}_im")).abs(), z[1].abs()),
+                "ev{k}"
+            );
         }
     }
     assert!(compared_full > 300, "{compared_full}");
     // The summary counts every row once and brackets every column.
     let counted: u64 = summary.classes["3"].values().sum();
     assert_eq!(counted, 343);
-    let rate = summary.columns.iter().find(|c| c.name == "contraction_rate").unwrap();
+    let rate = summary
+        .columns
+        .iter()
+        .find(|c| c.name == "contraction_rate")
+        .unwrap();
     assert!(rate.max.unwrap() < 0.75);
     let id = rate.max_id.unwrap() as usize;
     assert_eq!(num(&h, &rows[id], "contraction_rate"), rate.max.unwrap());

@@ -121,7 +121,8 @@ impl Evaluate for SpectralEvaluator {
     ) -> crate::Result<Vec<Cell>> {
         let cols = &self.columns;
         let mut out = Vec::with_capacity(16 + 2 * cols.eigenvalues);
-        let needs_sub = cols.classification || cols.gap || cols.contraction || cols.exact_certificate;
+        let needs_sub =
+            cols.classification || cols.gap || cols.contraction || cols.exact_certificate;
         let sub = if needs_sub {
             Some(spectral::classify_scheme(scheme)?)
         } else {
@@ -131,8 +132,14 @@ impl Evaluate for SpectralEvaluator {
             if cols.classification {
                 out.push(Cell::Text(class_text(&sub.class)));
                 out.extend(
-                    [sub.lambda1.re, sub.lambda1.im, sub.lambda2.re, sub.lambda2.im, sub.abs_lambda3]
-                        .map(Cell::Num),
+                    [
+                        sub.lambda1.re,
+                        sub.lambda1.im,
+                        sub.lambda2.re,
+                        sub.lambda2.im,
+                        sub.abs_lambda3,
+                    ]
+                    .map(Cell::Num),
                 );
             }
             if cols.gap {
@@ -167,7 +174,10 @@ impl Evaluate for SpectralEvaluator {
             out.push(Cell::Text(
                 v.class.map_or("undecided", |k| k.as_str()).to_owned(),
             ));
-            out.push(v.agrees_with_float.map_or(Cell::Empty, |a| Cell::Num(f64::from(u8::from(a)))));
+            out.push(
+                v.agrees_with_float
+                    .map_or(Cell::Empty, |a| Cell::Num(f64::from(u8::from(a)))),
+            );
         }
         Ok(out)
     }
@@ -177,7 +187,11 @@ impl Evaluate for SpectralEvaluator {
 fn class_text(c: &SubdominantClass) -> String {
     match c {
         SubdominantClass::Indeterminate { between, .. } => {
-            format!("indeterminate:{}/{}", between.0.as_str(), between.1.as_str())
+            format!(
+                "indeterminate:{}/{}",
+                between.0.as_str(),
+                between.1.as_str()
+            )
         }
         other => other.name().to_owned(),
     }

@@ -535,7 +535,18 @@ mod tests {
         let mut s = String::new();
         push_text(&mut s, "a, \"b\"\nc");
         assert_eq!(split_csv_line(&s).unwrap(), vec!["a, \"b\" c"]);
-        for x in [0.1, 1.0 / 3.0, 1e-300, 5e300, -0.0, 0.75, 1.0, 1e16, 2.5e-8, f64::MIN_POSITIVE / 8.0] {
+        for x in [
+            0.1,
+            1.0 / 3.0,
+            1e-300,
+            5e300,
+            -0.0,
+            0.75,
+            1.0,
+            1e16,
+            2.5e-8,
+            f64::MIN_POSITIVE / 8.0,
+        ] {
             assert_eq!(
                 format_number(x).parse::<f64>().unwrap().to_bits(),
                 x.to_bits()
