@@ -919,7 +919,7 @@ points_per_axis = 4
             "{e}"
         );
         assert!(e.to_string().contains("line 13"), "{e}");
-        let e = err(&GOOD.replace("to = 5", "to = 2"));
+        let e = err(&GOOD.replace("from = 3", "from = 7"));
         assert!(e.to_string().starts_with("valences: empty range"), "{e}");
         let e = err(&GOOD.replace("r2 = 0.5", "r3 = 0.5"));
         assert!(
