@@ -28,6 +28,10 @@ use std::io::Write;
 /// large enough that the rayon split overhead is negligible.
 pub const CHUNK: usize = 4096;
 
+/// Largest number of consecutive configurations one rayon task evaluates (fewer
+/// when a chunk is small, so that every thread gets several tasks).
+pub const SUB_CHUNK: usize = 64;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Kind {
     Numeric,
@@ -139,24 +143,30 @@ impl Layout {
     /// The CSV line of `row` (with `\n`).
     pub fn format(&self, row: &Row) -> String {
         let mut s = String::with_capacity(32 + 24 * row.cells.len());
+        self.format_into(row, &mut s);
+        s
+    }
+
+    /// Appends the CSV line of `row` (with `\n`) to `s`.
+    pub fn format_into(&self, row: &Row, s: &mut String) {
         let mut ryu_buf = ryu::Buffer::new();
-        use std::fmt::Write as _;
-        // Writing to a String cannot fail.
-        let _ = write!(s, "{},{}", row.id, row.valence);
+        let mut ibuf = itoa_buf();
+        s.push_str(small_uint(row.id, &mut ibuf));
+        s.push(',');
+        s.push_str(small_uint(row.valence as u64, &mut ibuf));
         for c in &row.cells {
             s.push(',');
             match c {
                 Cell::Empty => {}
                 Cell::Num(x) => s.push_str(format_number_in(&mut ryu_buf, *x)),
-                Cell::Text(t) => push_text(&mut s, t),
+                Cell::Text(t) => push_text(s, t),
             }
         }
         s.push(',');
         if let Some(e) = &row.error {
-            push_text(&mut s, e);
+            push_text(s, e);
         }
         s.push('\n');
-        s
     }
 
     /// Parses one line (without `\n`) back into a row.
@@ -277,6 +287,24 @@ impl Layout {
     }
 }
 
+fn itoa_buf() -> [u8; 20] {
+    [0; 20]
+}
+
+/// Decimal digits of `v` (no allocation).
+fn small_uint(mut v: u64, buf: &mut [u8; 20]) -> &str {
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (v % 10) as u8;
+        v /= 10;
+        if v == 0 {
+            break;
+        }
+    }
+    std::str::from_utf8(&buf[i..]).unwrap_or("?")
+}
+
 /// Shortest round-trip text of an `f64` (`0.375`, `1e-20`, `1.0`, `NaN`, `inf`,
 /// `-inf`): Ryu's shortest digits; `str::parse::<f64>` reads every form back to the
 /// same bits.
@@ -380,30 +408,34 @@ where
     let mut ids = ids.into_iter();
     let mut written = 0u64;
     let mut chunk: Vec<u64> = Vec::with_capacity(CHUNK);
-    let mut buf = String::new();
     loop {
         chunk.clear();
         chunk.extend(ids.by_ref().take(CHUNK));
         if chunk.is_empty() {
             break;
         }
-        let rows: Vec<(Row, String)> = chunk
-            .par_iter()
-            .with_min_len(8)
-            .map(|&id| {
-                let r = layout.row(plan, eval, id);
-                let line = layout.format(&r);
-                (r, line)
+        // Tasks of `sub` consecutive configurations: each formats its rows into one
+        // buffer and keeps a partial summary; buffers are written in order.
+        let sub = (chunk.len() / (8 * rayon::current_num_threads().max(1))).clamp(1, SUB_CHUNK);
+        let parts: Vec<(String, Summary)> = chunk
+            .par_chunks(sub)
+            .map(|ids| {
+                let mut text = String::with_capacity(ids.len() * (32 + 24 * layout.cells()));
+                let mut part = summary.empty_like();
+                for &id in ids {
+                    let r = layout.row(plan, eval, id);
+                    layout.format_into(&r, &mut text);
+                    part.add(layout, &r);
+                }
+                (text, part)
             })
             .collect();
-        buf.clear();
-        for (r, line) in &rows {
-            buf.push_str(line);
-            summary.add(layout, r);
+        for (text, part) in &parts {
+            out.write_all(text.as_bytes())?;
+            summary.absorb(part);
         }
-        out.write_all(buf.as_bytes())?;
         out.flush()?;
-        written += rows.len() as u64;
+        written += chunk.len() as u64;
         progress(written);
     }
     Ok(written)

@@ -195,6 +195,68 @@ impl Summary {
         }
     }
 
+    /// An empty accumulator for the same sweep, shard and columns (for partial
+    /// summaries that [`Summary::absorb`] folds back).
+    pub fn empty_like(&self) -> Summary {
+        Summary {
+            rows: 0,
+            errors: 0,
+            classes: BTreeMap::new(),
+            columns: self
+                .columns
+                .iter()
+                .map(|c| ColumnStats::new(c.name.clone()))
+                .collect(),
+            throughput: Throughput::default(),
+            ..self.clone_header()
+        }
+    }
+
+    fn clone_header(&self) -> Summary {
+        Summary {
+            spec_name: self.spec_name.clone(),
+            spec_digest: self.spec_digest.clone(),
+            total_configurations: self.total_configurations,
+            shard: self.shard,
+            limit: self.limit,
+            expected_rows: self.expected_rows,
+            rows: 0,
+            complete: false,
+            errors: 0,
+            classes: BTreeMap::new(),
+            columns: Vec::new(),
+            throughput: Throughput::default(),
+        }
+    }
+
+    /// Adds the rows of a partial summary of the same shard (from
+    /// [`Summary::empty_like`]); equivalent to adding its rows one by one.
+    pub fn absorb(&mut self, part: &Summary) {
+        self.rows += part.rows;
+        self.errors += part.errors;
+        self.complete = self.rows == self.expected_rows;
+        for (v, classes) in &part.classes {
+            if !self.classes.contains_key(v) {
+                self.classes.insert(v.clone(), BTreeMap::new());
+            }
+            if let Some(mine) = self.classes.get_mut(v) {
+                for (c, k) in classes {
+                    match mine.get_mut(c) {
+                        Some(x) => *x += k,
+                        None => {
+                            mine.insert(c.clone(), *k);
+                        }
+                    }
+                }
+            }
+        }
+        for (a, b) in self.columns.iter_mut().zip(&part.columns) {
+            a.count += b.count;
+            a.non_finite += b.non_finite;
+            a.fold(b.min, b.min_id, b.max, b.max_id);
+        }
+    }
+
     /// Records the throughput of this run.
     pub fn set_throughput(&mut self, evaluated: u64, seconds: f64, threads: usize) {
         self.throughput = Throughput {
@@ -229,19 +291,7 @@ impl Summary {
         {
             return Err(SweepError::Merge("summaries have different columns".into()));
         }
-        self.rows += other.rows;
-        self.errors += other.errors;
-        for (v, classes) in &other.classes {
-            let mine = self.classes.entry(v.clone()).or_default();
-            for (c, k) in classes {
-                *mine.entry(c.clone()).or_default() += k;
-            }
-        }
-        for (a, b) in self.columns.iter_mut().zip(&other.columns) {
-            a.count += b.count;
-            a.non_finite += b.non_finite;
-            a.fold(b.min, b.min_id, b.max, b.max_id);
-        }
+        self.absorb(other);
         let t = &mut self.throughput;
         t.evaluated += other.throughput.evaluated;
         t.seconds += other.throughput.seconds;
