@@ -13,7 +13,7 @@
 #   * numpy (OPENBLAS/OMP/MKL threads forced to 1 by the script it runs),
 #   * `subdiv-lab sweep` with --threads 1 and --threads 2 on a generated spec
 #     (scheme nurds, space ratios [0.01, 0.99], sampler random, default columns:
-#     class, lambda1, lambda2, |lambda3|, gap, modulus ratio, angle, contraction
+#     class, lambda1, lambda2, |lambda3|, gap, ratio / rho / theta, contraction
 #     rate), writing the full CSV to a temporary file,
 # and prints a markdown table: wall-clock configurations per second, the same per
 # CPU-second (user + sys time of the process, numpy's interpreter start-up
