@@ -3,8 +3,9 @@
 //! contraction rate), random edge ratios uniform in [0.01, 0.99] as in
 //! `shared/bench/numpy_reference.py`.
 //!
-//! * `evaluate_*`: the per-configuration path alone (enumerate + assemble +
-//!   spectral classification + CSV formatting), one thread;
+//! * `classify_only`: enumerate + assemble + spectral classification (the
+//!   evaluator), no output, one thread;
+//! * `evaluate_one_thread`: the per-configuration path with CSV formatting, one thread;
 //! * `sweep_1_thread` / `sweep_2_threads`: the whole streaming driver
 //!   (`sweep::output::run` into `io::sink`) on a rayon pool of 1 or 2 threads,
 //!   for the thread-scaling figure.
@@ -13,7 +14,9 @@
 //! `benches/compare_sweep_numpy.sh`.
 
 use std::hint::black_box;
-use subdiv_lab::sweep::{output, Layout, Plan, Shard, SpectralEvaluator, Summary, SweepSpec};
+use subdiv_lab::sweep::{
+    output, Evaluate, Layout, Plan, Shard, SpectralEvaluator, Summary, SweepSpec,
+};
 
 fn main() {
     divan::main();
@@ -35,6 +38,23 @@ fn plan(n: usize) -> Plan {
     ))
     .expect("bench spec is valid");
     Plan::new(spec)
+}
+
+#[divan::bench(args = [3, 5, 8, 16, 64])]
+fn classify_only(bencher: divan::Bencher, n: usize) {
+    let plan = plan(n);
+    let eval = SpectralEvaluator::new(plan.spec().columns);
+    bencher
+        .counter(divan::counter::ItemsCount::new(plan.total()))
+        .bench(|| {
+            let mut cells = 0usize;
+            for id in 0..plan.total() {
+                let c = plan.configuration(id).expect("id in range");
+                let s = plan.scheme(&c).expect("valid configuration");
+                cells += eval.evaluate(&plan, &c, &s).expect("evaluates").len();
+            }
+            black_box(cells)
+        });
 }
 
 #[divan::bench(args = [3, 5, 8, 16, 64])]
