@@ -246,9 +246,14 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     let bar = if std::io::stderr().is_terminal() && expected > done {
         let pb = indicatif::ProgressBar::new(expected);
         if let Ok(style) = indicatif::ProgressStyle::with_template(
-            "{spinner} [{elapsed_precise}] {wide_bar} {pos}/{len} {per_sec} ETA {eta}",
+            "{spinner} [{elapsed_precise}] {wide_bar} {pos}/{len} {rate} ETA {eta}",
         ) {
-            pb.set_style(style);
+            pb.set_style(style.with_key(
+                "rate",
+                |state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                    let _ = write!(w, "{:.0} configurations/s", state.per_sec());
+                },
+            ));
         }
         pb.set_position(done);
         pb.reset_eta();
