@@ -86,6 +86,9 @@ pub enum Error {
     /// An error of the spectral engine.
     #[error(transparent)]
     Spectral(#[from] crate::spectral::SpectralError),
+    /// A sweep spec, resume or merge error.
+    #[error(transparent)]
+    Sweep(#[from] crate::sweep::SweepError),
 }
 
 /// Shorthand for results of the library core.

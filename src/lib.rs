@@ -22,6 +22,7 @@
 //! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
 //! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face;
 //! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory);
+//! * [`sweep`]: parameter sweeps (specs, samplers, sharded resumable CSV output);
 //! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
@@ -46,6 +47,7 @@ pub mod report;
 pub mod scalar;
 pub mod schemes;
 pub mod spectral;
+pub mod sweep;
 #[cfg(feature = "testing")]
 pub mod testing;
 

@@ -7,6 +7,7 @@ mod analyze;
 mod matrix;
 mod report;
 mod scheme_args;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -37,6 +38,10 @@ enum Command {
     Report(report::ReportArgs),
     /// Spectrum, subdominant classification and Theorem 1 for one configuration.
     Analyze(analyze::AnalyzeArgs),
+    /// Run a parameter sweep from a TOML spec into a CSV (+ summary JSON).
+    Sweep(sweep::SweepArgs),
+    /// Merge shard CSVs of one sweep, checking no configuration is missing or duplicated.
+    Merge(sweep::MergeArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -84,6 +89,8 @@ pub fn main() -> ExitCode {
         Command::CcssBound(args) => ccss_bound::run(args),
         Command::Report(args) => report::run(args),
         Command::Analyze(args) => analyze::run(args),
+        Command::Sweep(args) => sweep::run_sweep(args),
+        Command::Merge(args) => sweep::run_merge(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -439,7 +439,13 @@ thread_local! {
 /// ```
 /// use nalgebra::DMatrix;
 /// use subdiv_lab::spectral::{classify_matrix, SubdominantClass};
-/// let s = DMatrix::from_row_slice(3, 3, &[1.0, 0.0, 0.0, 0.25, 0.5, 0.25, 0.0, 0.0, 0.25]);
+/// // Eigenvalues 1, 1/2, 1/4, 1/4: |lambda_2| = |lambda_3|.
+/// let s = DMatrix::from_row_slice(4, 4, &[
+///     1.0, 0.0, 0.0, 0.0,
+///     0.5, 0.5, 0.0, 0.0,
+///     0.75, 0.0, 0.25, 0.0,
+///     0.75, 0.0, 0.0, 0.25,
+/// ]);
 /// assert_eq!(classify_matrix(&s).unwrap().class, SubdominantClass::NotSeparated);
 /// ```
 pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {

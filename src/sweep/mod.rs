@@ -1,0 +1,104 @@
+//! Parameter sweeps: millions of configurations, deterministic, shardable and
+//! resumable.
+//!
+//! * [`spec`]: the TOML sweep specification and its validation ([`SweepSpec`]);
+//! * [`sampler`]: counter-based random draws, Halton and Sobol sequences;
+//! * [`plan`]: the enumeration `id -> configuration` ([`Plan`]) and [`Shard`]s;
+//! * [`eval`]: the per-configuration evaluation ([`Evaluate`], one place that calls
+//!   the spectral engine) and the result columns;
+//! * [`output`]: the CSV layout, row formatting and parsing, the streaming
+//!   [`run`](output::run) driver and the shard [`merge`](output::merge);
+//! * [`summary`]: the mergeable summary accumulator ([`Summary`]).
+//!
+//! The library does no file-system I/O: it writes to `impl std::io::Write` and
+//! reads lines the caller hands it. The `subdiv-lab sweep` and `subdiv-lab merge`
+//! commands do the files.
+//!
+//! ```
+//! use subdiv_lab::sweep::{output, Layout, Plan, Shard, SpectralEvaluator, Summary, SweepSpec};
+//! let spec = SweepSpec::from_toml(r#"
+//! scheme = "nurds"
+//! valences = [3]
+//! [space]
+//! kind = "ratios"
+//! ratio_range = [0.2, 0.8]
+//! [sampler]
+//! kind = "grid"
+//! points_per_axis = 2
+//! "#).unwrap();
+//! let plan = Plan::new(spec);
+//! let layout = Layout::new(&plan);
+//! let eval = SpectralEvaluator::new(plan.spec().columns);
+//! let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+//! let mut csv = Vec::new();
+//! layout.write_header(&mut csv).unwrap();
+//! output::run(&plan, &layout, &eval, 0..plan.total(), &mut csv, &mut summary, &mut |_| {}).unwrap();
+//! let text = String::from_utf8(csv).unwrap();
+//! assert_eq!(text.lines().count(), 1 + 8);
+//! assert!(text.starts_with("id,valence,r0,r1,r2,class,"));
+//! assert_eq!(summary.rows, 8);
+//! ```
+
+pub mod eval;
+pub mod output;
+pub mod plan;
+pub mod sampler;
+pub mod spec;
+pub mod summary;
+
+pub use eval::{Cell, Evaluate, SpectralEvaluator};
+pub use output::Layout;
+pub use plan::{Configuration, Plan, Shard};
+pub use spec::{Columns, Sampler, Space, SpaceKind, SweepSpec};
+pub use summary::Summary;
+
+use thiserror::Error as ThisError;
+
+/// Errors of sweep specs, enumeration, resume and merge.
+#[derive(Debug, Clone, PartialEq, ThisError)]
+#[non_exhaustive]
+pub enum SweepError {
+    /// An invalid spec; `message` starts with the TOML key path.
+    #[error("{message}{}", line.map(|l| format!(" (line {l})")).unwrap_or_default())]
+    Spec {
+        /// The TOML key path (`sampler.points_per_axis`, `space.fixed.r3`, ...).
+        key: String,
+        /// 1-based line in the spec, where known.
+        line: Option<usize>,
+        /// The full message.
+        message: String,
+    },
+    /// A shard that is not `I/N` with `0 <= I < N`.
+    #[error("shard must be I/N with 0 <= I < N, got {0:?}")]
+    BadShard(String),
+    /// A configuration id beyond the sweep.
+    #[error("configuration id {id} is out of range (the sweep has {total} configurations)")]
+    IdOutOfRange {
+        /// The id.
+        id: u64,
+        /// Number of configurations.
+        total: u64,
+    },
+    /// An existing CSV (resume or merge) does not match the spec.
+    #[error("{source_name}: line {line}: {message}")]
+    Mismatch {
+        /// File or stream name.
+        source_name: String,
+        /// 1-based line.
+        line: u64,
+        /// What does not match.
+        message: String,
+    },
+    /// Shards do not combine to the full sweep.
+    #[error("merge: {0}")]
+    Merge(String),
+    /// Writing output failed.
+    #[error("write failed: {0}")]
+    Io(String),
+}
+
+impl From<std::io::Error> for SweepError {
+    fn from(e: std::io::Error) -> Self {
+        SweepError::Io(e.to_string())
+    }
+}

@@ -1,0 +1,636 @@
+//! CSV layout, row formatting and parsing, the streaming sweep driver and the
+//! shard merge.
+//!
+//! The CSV has a header and one line per configuration:
+//!
+//! ```text
+//! id,valence,<coordinates>,<results>,error
+//! ```
+//!
+//! Coordinates are named for the largest valence of the sweep (`r0..r{N-1}`,
+//! `p0..p{N-1},q0..q{N-1}`, ...); a row of a smaller valence leaves the extra
+//! cells empty. Numbers are written in Rust's shortest round-trip form (reading a
+//! cell back gives the same `f64` bit for bit), so a summary rebuilt from the CSV
+//! equals the one accumulated while writing. Text cells never contain line
+//! breaks, so every line is one row; a line without its final `\n` is a torn
+//! write.
+
+use super::eval::{result_columns, Cell, Evaluate};
+use super::plan::Plan;
+use super::summary::Summary;
+use super::SweepError;
+use rayon::prelude::*;
+use std::collections::BinaryHeap;
+use std::io::Write;
+
+/// Configurations evaluated in parallel between two ordered writes. Bounds the
+/// memory of a run (a few MB of rows) independently of the sweep size, and is
+/// large enough that the rayon split overhead is negligible.
+pub const CHUNK: usize = 4096;
+
+/// Largest number of consecutive configurations one rayon task evaluates (fewer
+/// when a chunk is small, so that every thread gets several tasks).
+pub const SUB_CHUNK: usize = 64;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    Numeric,
+    Text,
+}
+
+/// One CSV row.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    /// Configuration id.
+    pub id: u64,
+    /// Valence.
+    pub valence: usize,
+    /// Coordinate cells then result cells, in column order.
+    pub cells: Vec<Cell>,
+    /// The evaluation error, if the configuration failed.
+    pub error: Option<String>,
+}
+
+/// The columns of a sweep's CSV.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layout {
+    names: Vec<String>,
+    kinds: Vec<Kind>,
+    coordinates: usize,
+    class: Option<usize>,
+    numeric: Vec<(usize, String)>,
+}
+
+impl Layout {
+    /// The layout of `plan`'s CSV.
+    pub fn new(plan: &Plan) -> Layout {
+        let mut names = Vec::new();
+        let mut kinds = Vec::new();
+        for c in plan.coordinate_columns() {
+            names.push(c);
+            kinds.push(Kind::Numeric);
+        }
+        let coordinates = names.len();
+        for c in result_columns(&plan.spec().columns) {
+            names.push(c.name.to_owned());
+            kinds.push(if c.numeric { Kind::Numeric } else { Kind::Text });
+        }
+        let class = names.iter().position(|n| n == "class");
+        let numeric = names
+            .iter()
+            .zip(&kinds)
+            .enumerate()
+            .filter(|(_, (_, k))| **k == Kind::Numeric)
+            .map(|(i, (n, _))| (i, n.clone()))
+            .collect();
+        Layout {
+            names,
+            kinds,
+            coordinates,
+            class,
+            numeric,
+        }
+    }
+
+    /// Number of cells (coordinates + results) of a row.
+    pub fn cells(&self) -> usize {
+        self.names.len()
+    }
+
+    /// Number of coordinate cells.
+    pub fn coordinate_cells(&self) -> usize {
+        self.coordinates
+    }
+
+    /// The header line (with `\n`).
+    pub fn header(&self) -> String {
+        let mut s = String::from("id,valence");
+        for n in &self.names {
+            s.push(',');
+            s.push_str(n);
+        }
+        s.push_str(",error\n");
+        s
+    }
+
+    /// Writes the header.
+    pub fn write_header<W: Write>(&self, out: &mut W) -> Result<(), SweepError> {
+        out.write_all(self.header().as_bytes())?;
+        Ok(())
+    }
+
+    /// Numeric cells: (cell index, column name).
+    pub fn numeric_columns(&self) -> &[(usize, String)] {
+        &self.numeric
+    }
+
+    /// The number in cell `pos` of `row`, if any.
+    pub fn number_at(&self, row: &Row, pos: usize) -> Option<f64> {
+        match row.cells.get(pos) {
+            Some(Cell::Num(x)) => Some(*x),
+            _ => None,
+        }
+    }
+
+    /// The `class` cell of `row`, if the sweep computes it and the row has one.
+    pub fn class_of<'a>(&self, row: &'a Row) -> Option<&'a str> {
+        match row.cells.get(self.class?) {
+            Some(Cell::Text(t)) => Some(t),
+            _ => None,
+        }
+    }
+
+    /// The CSV line of `row` (with `\n`).
+    pub fn format(&self, row: &Row) -> String {
+        let mut s = String::with_capacity(32 + 24 * row.cells.len());
+        self.format_into(row, &mut s);
+        s
+    }
+
+    /// Appends the CSV line of `row` (with `\n`) to `s`.
+    pub fn format_into(&self, row: &Row, s: &mut String) {
+        let mut ryu_buf = ryu::Buffer::new();
+        let mut ibuf = itoa_buf();
+        s.push_str(small_uint(row.id, &mut ibuf));
+        s.push(',');
+        s.push_str(small_uint(row.valence as u64, &mut ibuf));
+        for c in &row.cells {
+            s.push(',');
+            match c {
+                Cell::Empty => {}
+                Cell::Num(x) => s.push_str(format_number_in(&mut ryu_buf, *x)),
+                Cell::Text(t) => push_text(s, t),
+            }
+        }
+        s.push(',');
+        if let Some(e) = &row.error {
+            push_text(s, e);
+        }
+        s.push('\n');
+    }
+
+    /// Parses one line (without `\n`) back into a row.
+    pub fn parse(&self, line: &str) -> Result<Row, String> {
+        let fields = split_csv_line(line)?;
+        if fields.len() != self.names.len() + 3 {
+            return Err(format!(
+                "expected {} fields, found {}",
+                self.names.len() + 3,
+                fields.len()
+            ));
+        }
+        let id: u64 = fields[0]
+            .parse()
+            .map_err(|_| format!("id {:?} is not an integer", fields[0]))?;
+        let valence: usize = fields[1]
+            .parse()
+            .map_err(|_| format!("valence {:?} is not an integer", fields[1]))?;
+        let mut cells = Vec::with_capacity(self.names.len());
+        for ((f, k), name) in fields[2..2 + self.names.len()]
+            .iter()
+            .zip(&self.kinds)
+            .zip(&self.names)
+        {
+            cells.push(if f.is_empty() {
+                Cell::Empty
+            } else {
+                match k {
+                    Kind::Numeric => Cell::Num(
+                        f.parse()
+                            .map_err(|_| format!("{name} = {f:?} is not a number"))?,
+                    ),
+                    Kind::Text => Cell::Text(f.clone()),
+                }
+            });
+        }
+        let e = &fields[fields.len() - 1];
+        Ok(Row {
+            id,
+            valence,
+            cells,
+            error: (!e.is_empty()).then(|| e.clone()),
+        })
+    }
+
+    /// Checks an existing line of a resumed CSV: it must parse, format back to
+    /// itself, carry `expected_id`, and hold exactly the coordinates `plan` gives
+    /// that id. Returns the row (to rebuild the summary).
+    pub fn verify(&self, plan: &Plan, expected_id: u64, line: &str) -> Result<Row, String> {
+        let row = self.parse(line)?;
+        if row.id != expected_id {
+            return Err(format!(
+                "configuration id {} where {} was expected",
+                row.id, expected_id
+            ));
+        }
+        let mut round = self.format(&row);
+        round.pop();
+        if round != line {
+            return Err("the line is not in the form this sweep writes".into());
+        }
+        let c = plan.configuration(expected_id).map_err(|e| e.to_string())?;
+        let fresh = self.coordinate_row(plan, &c);
+        if row.valence != c.valence || row.cells[..self.coordinates] != fresh[..] {
+            return Err(format!(
+                "configuration {expected_id} has other parameters than the spec gives it (was the spec changed?)"
+            ));
+        }
+        Ok(row)
+    }
+
+    fn coordinate_row(&self, plan: &Plan, c: &super::Configuration) -> Vec<Cell> {
+        let mut cells = vec![Cell::Empty; self.coordinates];
+        for (k, x) in c.coordinates.iter().enumerate() {
+            cells[plan.coordinate_column(c.valence, k)] = Cell::Num(*x);
+        }
+        cells
+    }
+
+    /// Evaluates configuration `id` into a row.
+    pub fn row<E: Evaluate + ?Sized>(&self, plan: &Plan, eval: &E, id: u64) -> Row {
+        let c = match plan.configuration(id) {
+            Ok(c) => c,
+            Err(e) => {
+                return Row {
+                    id,
+                    valence: 0,
+                    cells: vec![Cell::Empty; self.names.len()],
+                    error: Some(e.to_string()),
+                }
+            }
+        };
+        let mut cells = self.coordinate_row(plan, &c);
+        let n_results = self.names.len() - self.coordinates;
+        let error = match plan.scheme(&c).and_then(|s| eval.evaluate(plan, &c, &s)) {
+            Ok(r) if r.len() == n_results => {
+                cells.extend(r);
+                None
+            }
+            Ok(r) => {
+                cells.resize(self.names.len(), Cell::Empty);
+                Some(format!(
+                    "internal: evaluator returned {} cells for {n_results} result columns",
+                    r.len()
+                ))
+            }
+            Err(e) => {
+                cells.resize(self.names.len(), Cell::Empty);
+                Some(e.to_string())
+            }
+        };
+        Row {
+            id: c.id,
+            valence: c.valence,
+            cells,
+            error,
+        }
+    }
+}
+
+fn itoa_buf() -> [u8; 20] {
+    [0; 20]
+}
+
+/// Decimal digits of `v` (no allocation).
+fn small_uint(mut v: u64, buf: &mut [u8; 20]) -> &str {
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (v % 10) as u8;
+        v /= 10;
+        if v == 0 {
+            break;
+        }
+    }
+    std::str::from_utf8(&buf[i..]).unwrap_or("?")
+}
+
+/// Shortest round-trip text of an `f64` (`0.375`, `1e-20`, `1.0`, `NaN`, `inf`,
+/// `-inf`): Ryu's shortest digits; `str::parse::<f64>` reads every form back to the
+/// same bits.
+pub fn format_number(x: f64) -> String {
+    format_number_in(&mut ryu::Buffer::new(), x).to_owned()
+}
+
+fn format_number_in(buf: &mut ryu::Buffer, x: f64) -> &str {
+    if x.is_finite() {
+        buf.format_finite(x)
+    } else if x.is_nan() {
+        "NaN"
+    } else if x > 0.0 {
+        "inf"
+    } else {
+        "-inf"
+    }
+}
+
+fn push_text(s: &mut String, t: &str) {
+    let t: String = t
+        .chars()
+        .map(|c| if c == '\n' || c == '\r' { ' ' } else { c })
+        .collect();
+    if t.contains(',') || t.contains('"') {
+        s.push('"');
+        s.push_str(&t.replace('"', "\"\""));
+        s.push('"');
+    } else {
+        s.push_str(&t);
+    }
+}
+
+/// Splits one CSV line (RFC 4180 quoting, no embedded line breaks).
+pub fn split_csv_line(line: &str) -> Result<Vec<String>, String> {
+    let mut out = Vec::new();
+    let mut cur = String::new();
+    let mut chars = line.chars().peekable();
+    let mut at_start = true;
+    loop {
+        if at_start && chars.peek() == Some(&'"') {
+            chars.next();
+            loop {
+                match chars.next() {
+                    Some('"') if chars.peek() == Some(&'"') => {
+                        chars.next();
+                        cur.push('"');
+                    }
+                    Some('"') => break,
+                    Some(c) => cur.push(c),
+                    None => return Err("unterminated quoted field".into()),
+                }
+            }
+            match chars.next() {
+                None => {
+                    out.push(std::mem::take(&mut cur));
+                    return Ok(out);
+                }
+                Some(',') => {
+                    out.push(std::mem::take(&mut cur));
+                    at_start = true;
+                    continue;
+                }
+                Some(c) => return Err(format!("unexpected {c:?} after a quoted field")),
+            }
+        }
+        at_start = false;
+        match chars.next() {
+            None => {
+                out.push(cur);
+                return Ok(out);
+            }
+            Some(',') => {
+                out.push(std::mem::take(&mut cur));
+                at_start = true;
+            }
+            Some('"') => return Err("quote inside an unquoted field".into()),
+            Some(c) => cur.push(c),
+        }
+    }
+}
+
+/// Evaluates the configurations `ids` (in order) and writes their rows to `out`,
+/// adding each to `summary`. Evaluation runs on the current rayon pool in chunks
+/// of [`CHUNK`]; rows are written in `ids` order whatever the thread count.
+/// `progress` is called with the number of rows written after each chunk.
+pub fn run<E, W, I>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    ids: I,
+    out: &mut W,
+    summary: &mut Summary,
+    progress: &mut dyn FnMut(u64),
+) -> Result<u64, SweepError>
+where
+    E: Evaluate + ?Sized,
+    W: Write,
+    I: IntoIterator<Item = u64>,
+{
+    let mut ids = ids.into_iter();
+    let mut written = 0u64;
+    let mut chunk: Vec<u64> = Vec::with_capacity(CHUNK);
+    loop {
+        chunk.clear();
+        chunk.extend(ids.by_ref().take(CHUNK));
+        if chunk.is_empty() {
+            break;
+        }
+        // Tasks of `sub` consecutive configurations: each formats its rows into one
+        // buffer and keeps a partial summary; buffers are written in order.
+        let sub = (chunk.len() / (8 * rayon::current_num_threads().max(1))).clamp(1, SUB_CHUNK);
+        let parts: Vec<(String, Summary)> = chunk
+            .par_chunks(sub)
+            .map(|ids| {
+                let mut text = String::with_capacity(ids.len() * (32 + 24 * layout.cells()));
+                let mut part = summary.empty_like();
+                for &id in ids {
+                    let r = layout.row(plan, eval, id);
+                    layout.format_into(&r, &mut text);
+                    part.add(layout, &r);
+                }
+                (text, part)
+            })
+            .collect();
+        for (text, part) in &parts {
+            out.write_all(text.as_bytes())?;
+            summary.absorb(part);
+        }
+        out.flush()?;
+        written += chunk.len() as u64;
+        progress(written);
+    }
+    Ok(written)
+}
+
+/// A source of CSV data lines (header already checked) for [`merge`]: a name
+/// (for messages) and its lines without `\n`, in file order.
+pub struct MergeSource<I> {
+    /// File name.
+    pub name: String,
+    /// Data lines.
+    pub lines: I,
+}
+
+fn line_id(line: &str) -> Option<u64> {
+    line.split(',').next()?.parse().ok()
+}
+
+/// Merges shard CSVs (each sorted by id, as `sweep` writes them) into one CSV in
+/// id order, checking that the ids are exactly `0..total`: an error names the
+/// first missing or duplicated id and where it was found. Memory is one line per
+/// source. Returns the number of rows written.
+pub fn merge<W, I>(total: u64, sources: Vec<MergeSource<I>>, out: &mut W) -> Result<u64, SweepError>
+where
+    W: Write,
+    I: Iterator<Item = Result<String, SweepError>>,
+{
+    struct Head {
+        line: String,
+        lineno: u64,
+    }
+    let mut sources = sources;
+    let mut heads: Vec<Option<Head>> = Vec::with_capacity(sources.len());
+    let mut heap = BinaryHeap::new();
+    let advance =
+        |src: &mut MergeSource<I>, lineno: u64| -> Result<Option<(u64, Head)>, SweepError> {
+            match src.lines.next() {
+                None => Ok(None),
+                Some(line) => {
+                    let line = line?;
+                    let id = line_id(&line).ok_or_else(|| SweepError::Mismatch {
+                        source_name: src.name.clone(),
+                        line: lineno,
+                        message: "no configuration id in the first field".into(),
+                    })?;
+                    Ok(Some((id, Head { line, lineno })))
+                }
+            }
+        };
+    for (k, src) in sources.iter_mut().enumerate() {
+        match advance(src, 2)? {
+            Some((id, h)) => {
+                heap.push(std::cmp::Reverse((id, k)));
+                heads.push(Some(h));
+            }
+            None => heads.push(None),
+        }
+    }
+    let mut expected = 0u64;
+    let mut last: Option<(u64, usize, u64)> = None;
+    let mut buf = String::new();
+    while let Some(std::cmp::Reverse((id, k))) = heap.pop() {
+        let head = heads[k]
+            .take()
+            .ok_or_else(|| SweepError::Merge("internal: empty head".into()))?;
+        if id < expected {
+            let (_, pk, pl) = last.unwrap_or((id, k, head.lineno));
+            return Err(SweepError::Merge(format!(
+                "configuration id {id} appears twice ({} line {}, {} line {})",
+                sources[pk].name, pl, sources[k].name, head.lineno
+            )));
+        }
+        if id > expected {
+            return Err(SweepError::Merge(format!(
+                "configuration id {expected} is missing (next id found: {id} in {} line {})",
+                sources[k].name, head.lineno
+            )));
+        }
+        if id >= total {
+            return Err(SweepError::Merge(format!(
+                "configuration id {id} ({} line {}) is beyond the sweep's {total} configurations",
+                sources[k].name, head.lineno
+            )));
+        }
+        buf.push_str(&head.line);
+        buf.push('\n');
+        if buf.len() > 1 << 16 {
+            out.write_all(buf.as_bytes())?;
+            buf.clear();
+        }
+        last = Some((id, k, head.lineno));
+        expected += 1;
+        if let Some((nid, h)) = advance(&mut sources[k], head.lineno + 1)? {
+            if nid <= id {
+                return Err(SweepError::Mismatch {
+                    source_name: sources[k].name.clone(),
+                    line: h.lineno,
+                    message: format!(
+                        "configuration id {nid} after {id}: the file is not in id order"
+                    ),
+                });
+            }
+            heap.push(std::cmp::Reverse((nid, k)));
+            heads[k] = Some(h);
+        }
+    }
+    out.write_all(buf.as_bytes())?;
+    out.flush()?;
+    if expected < total {
+        return Err(SweepError::Merge(format!(
+            "configuration id {expected} is missing (the shards end there; the sweep has {total} configurations)"
+        )));
+    }
+    Ok(expected)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_split_round_trips() {
+        assert_eq!(split_csv_line("1,,a").unwrap(), vec!["1", "", "a"]);
+        assert_eq!(
+            split_csv_line("\"x, \"\"y\"\"\",2").unwrap(),
+            vec!["x, \"y\"", "2"]
+        );
+        assert!(split_csv_line("\"abc").is_err());
+        let mut s = String::new();
+        push_text(&mut s, "a, \"b\"\nc");
+        assert_eq!(split_csv_line(&s).unwrap(), vec!["a, \"b\" c"]);
+        for x in [
+            0.1,
+            1.0 / 3.0,
+            1e-300,
+            5e300,
+            -0.0,
+            0.75,
+            1.0,
+            1e16,
+            2.5e-8,
+            f64::MIN_POSITIVE / 8.0,
+        ] {
+            assert_eq!(
+                format_number(x).parse::<f64>().unwrap().to_bits(),
+                x.to_bits()
+            );
+        }
+    }
+
+    fn src(name: &str, ids: &[u64]) -> MergeSource<std::vec::IntoIter<Result<String, SweepError>>> {
+        MergeSource {
+            name: name.into(),
+            lines: ids
+                .iter()
+                .map(|i| Ok(format!("{i},x")))
+                .collect::<Vec<_>>()
+                .into_iter(),
+        }
+    }
+
+    #[test]
+    fn merge_checks_ids() {
+        let mut out = Vec::new();
+        assert_eq!(
+            merge(5, vec![src("a", &[0, 2, 4]), src("b", &[1, 3])], &mut out).unwrap(),
+            5
+        );
+        assert_eq!(String::from_utf8(out).unwrap(), "0,x\n1,x\n2,x\n3,x\n4,x\n");
+        let e = merge(
+            5,
+            vec![src("a", &[0, 2, 4]), src("b", &[1])],
+            &mut Vec::new(),
+        )
+        .unwrap_err();
+        assert!(
+            e.to_string().contains("configuration id 3 is missing"),
+            "{e}"
+        );
+        let e = merge(
+            5,
+            vec![src("a", &[0, 2, 4]), src("b", &[1, 3]), src("c", &[2])],
+            &mut Vec::new(),
+        )
+        .unwrap_err();
+        assert!(
+            e.to_string().contains("configuration id 2 appears twice"),
+            "{e}"
+        );
+        let e = merge(3, vec![src("a", &[0, 1])], &mut Vec::new()).unwrap_err();
+        assert!(
+            e.to_string().contains("configuration id 2 is missing"),
+            "{e}"
+        );
+        let e = merge(2, vec![src("a", &[0, 1, 2])], &mut Vec::new()).unwrap_err();
+        assert!(e.to_string().contains("beyond"), "{e}");
+    }
+}

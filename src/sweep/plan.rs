@@ -1,0 +1,421 @@
+//! Deterministic enumeration of a sweep's configurations, and sharding.
+//!
+//! Configurations are numbered `0..total` by a **configuration id**: valences in
+//! spec order, and within a valence by sample index. The id alone determines the
+//! parameters:
+//!
+//! * grid: the sample index is a mixed-radix number with one digit per free
+//!   coordinate, the **last free coordinate varying fastest** (nested loops in
+//!   coordinate order `r0, r1, ...` or `p0.., q0..`); digit `j` of `k` points maps
+//!   to `(a (k - 1 - j) + b j) / (k - 1)` (ratios) or `a (b / a)^(j / (k - 1))` (intervals),
+//!   end points exact; a single point is the (geometric) midpoint;
+//! * random: coordinate `c` of sample `i` of valence `n` is
+//!   `hash_uniform(seed, n, i, c)`, mapped linearly (ratios) or log-uniformly
+//!   (intervals) onto `[a, b)`;
+//! * Halton / Sobol: point `i + 1` (Halton, skipping the origin) or `i` (Sobol, Gray
+//!   order) of the `d`-dimensional sequence, `d` = free coordinates of valence `n`,
+//!   scrambled per valence (stream `n`) when asked, mapped as for random.
+//!
+//! So results never depend on thread count or sharding. A [`Shard`] `I/N` is the
+//! set of ids with `id % N == I` (round-robin, so every shard gets the same mix of
+//! cheap and expensive valences); shard `I/N` processes its ids in increasing order.
+
+use super::sampler::{hash_uniform, Halton, Sobol};
+use super::spec::{Sampler, SpaceKind, SweepSpec};
+use super::SweepError;
+use crate::knots::{CornerIntervals, EdgeRatios};
+use crate::scalar::{Rational, Scalar};
+use crate::schemes::LocalScheme;
+use std::fmt;
+use std::str::FromStr;
+
+/// One configuration of a sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Configuration {
+    /// Stable configuration id.
+    pub id: u64,
+    /// Valence.
+    pub valence: usize,
+    /// All coordinates (sampled and fixed) in column order (see [`SpaceKind::families`]).
+    pub coordinates: Vec<f64>,
+}
+
+#[derive(Clone, Debug)]
+enum Generator {
+    Grid { k: u64 },
+    Random { seed: u64 },
+    Halton(Halton),
+    Sobol(Sobol),
+}
+
+#[derive(Clone, Debug)]
+struct Block {
+    valence: usize,
+    offset: u64,
+    /// Positions of the free coordinates.
+    free: Vec<usize>,
+    /// Fixed coordinates (position, value).
+    fixed: Vec<(usize, f64)>,
+    generator: Generator,
+}
+
+/// The enumeration of a validated spec.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    spec: SweepSpec,
+    blocks: Vec<Block>,
+    total: u64,
+}
+
+impl Plan {
+    /// Builds the enumeration (cheap: per-valence sequence tables only).
+    pub fn new(spec: SweepSpec) -> Plan {
+        let mut blocks = Vec::with_capacity(spec.valences.len());
+        let mut offset = 0u64;
+        let kind = spec.space.kind;
+        for &n in &spec.valences {
+            let fixed: Vec<(usize, f64)> = spec
+                .space
+                .fixed
+                .iter()
+                .filter_map(|(name, v)| kind.coordinate_index(n, name).map(|k| (k, *v)))
+                .collect();
+            let free: Vec<usize> = (0..kind.dimension(n))
+                .filter(|k| !fixed.iter().any(|(f, _)| f == k))
+                .collect();
+            let d = free.len();
+            let generator = match spec.sampler {
+                Sampler::Grid { points_per_axis } => Generator::Grid { k: points_per_axis },
+                Sampler::Random { seed, .. } => Generator::Random { seed },
+                Sampler::Halton { scramble_seed, .. } => {
+                    Generator::Halton(Halton::new(d, scramble_seed, n as u64))
+                }
+                Sampler::Sobol { scramble_seed, .. } => {
+                    Generator::Sobol(Sobol::new(d, scramble_seed, n as u64))
+                }
+            };
+            let count = spec.count_for(n);
+            blocks.push(Block {
+                valence: n,
+                offset,
+                free,
+                fixed,
+                generator,
+            });
+            offset += count;
+        }
+        Plan {
+            spec,
+            blocks,
+            total: offset,
+        }
+    }
+
+    /// The spec.
+    pub fn spec(&self) -> &SweepSpec {
+        &self.spec
+    }
+
+    /// Number of configurations.
+    pub fn total(&self) -> u64 {
+        self.total
+    }
+
+    /// Largest valence of the sweep.
+    pub fn max_valence(&self) -> usize {
+        self.spec.valences.iter().copied().max().unwrap_or(3)
+    }
+
+    /// Names of the coordinate columns (for the largest valence; rows of smaller
+    /// valences leave the extra cells empty).
+    pub fn coordinate_columns(&self) -> Vec<String> {
+        let kind = self.spec.space.kind;
+        let n = self.max_valence();
+        (0..kind.dimension(n))
+            .map(|k| kind.coordinate_name(n, k))
+            .collect()
+    }
+
+    /// Column position of coordinate `k` of a valence-`n` configuration.
+    pub fn coordinate_column(&self, n: usize, k: usize) -> usize {
+        let big = self.max_valence();
+        (k / n) * big + k % n
+    }
+
+    /// The configuration with this id.
+    ///
+    /// ```
+    /// use subdiv_lab::sweep::{Plan, SweepSpec};
+    /// let spec = SweepSpec::from_toml(r#"
+    /// scheme = "nurds"
+    /// valences = [3]
+    /// [space]
+    /// kind = "ratios"
+    /// ratio_range = [0.2, 0.8]
+    /// fixed = { r2 = 0.5 }
+    /// [sampler]
+    /// kind = "grid"
+    /// points_per_axis = 3
+    /// "#).unwrap();
+    /// let plan = Plan::new(spec);
+    /// assert_eq!(plan.total(), 9);
+    /// // Last free coordinate fastest: id 1 = (r0, r1) = (0.2, 0.5).
+    /// assert_eq!(plan.configuration(1).unwrap().coordinates, vec![0.2, 0.5, 0.5]);
+    /// assert!(plan.configuration(9).is_err());
+    /// ```
+    pub fn configuration(&self, id: u64) -> Result<Configuration, SweepError> {
+        if id >= self.total {
+            return Err(SweepError::IdOutOfRange {
+                id,
+                total: self.total,
+            });
+        }
+        let b = match self.blocks.binary_search_by(|b| b.offset.cmp(&id)) {
+            Ok(i) => {
+                // Several blocks can share an offset only if some have count 0 (impossible:
+                // counts are >= 1); take the block starting here.
+                &self.blocks[i]
+            }
+            Err(i) => &self.blocks[i - 1],
+        };
+        let local = id - b.offset;
+        let n = b.valence;
+        let kind = self.spec.space.kind;
+        let mut coords = vec![0.0; kind.dimension(n)];
+        for &(k, v) in &b.fixed {
+            coords[k] = v;
+        }
+        let (lo, hi) = self.spec.space.range.unwrap_or((0.5, 0.5));
+        let log = kind.is_log();
+        let map = |u: f64| -> f64 {
+            if log {
+                (lo.ln() + u * (hi.ln() - lo.ln())).exp().clamp(lo, hi)
+            } else {
+                (lo + u * (hi - lo)).clamp(lo, hi)
+            }
+        };
+        match &b.generator {
+            Generator::Grid { k } => {
+                let mut rest = local;
+                for &pos in b.free.iter().rev() {
+                    let j = rest % k;
+                    rest /= k;
+                    coords[pos] = if *k == 1 {
+                        map(0.5)
+                    } else if j == 0 {
+                        lo
+                    } else if j == k - 1 {
+                        hi
+                    } else if log {
+                        map(j as f64 / (k - 1) as f64)
+                    } else {
+                        // (a (k-1-j) + b j) / (k-1): decimal-looking values for decimal bounds.
+                        ((lo * (k - 1 - j) as f64 + hi * j as f64) / (k - 1) as f64).clamp(lo, hi)
+                    };
+                }
+            }
+            Generator::Random { seed } => {
+                for (c, &pos) in b.free.iter().enumerate() {
+                    coords[pos] = map(hash_uniform(*seed, n as u64, local, c as u64));
+                }
+            }
+            Generator::Halton(h) => {
+                let mut u = vec![0.0; b.free.len()];
+                h.point(local + 1, &mut u);
+                for (&pos, x) in b.free.iter().zip(u) {
+                    coords[pos] = map(x);
+                }
+            }
+            Generator::Sobol(s) => {
+                let mut u = vec![0.0; b.free.len()];
+                s.point(local, &mut u);
+                for (&pos, x) in b.free.iter().zip(u) {
+                    coords[pos] = map(x);
+                }
+            }
+        }
+        Ok(Configuration {
+            id,
+            valence: n,
+            coordinates: coords,
+        })
+    }
+
+    /// The scheme of a configuration, in `f64`.
+    pub fn scheme(&self, c: &Configuration) -> crate::Result<LocalScheme<f64>> {
+        self.scheme_in(c)
+    }
+
+    /// The scheme of a configuration in exact rational arithmetic (every `f64`
+    /// coordinate is a dyadic rational; the ratios are derived exactly from it).
+    pub fn exact_scheme(&self, c: &Configuration) -> crate::Result<LocalScheme<Rational>> {
+        self.scheme_in(c)
+    }
+
+    fn scheme_in<T: Scalar>(&self, c: &Configuration) -> crate::Result<LocalScheme<T>> {
+        let n = c.valence;
+        let x: Vec<T> = c
+            .coordinates
+            .iter()
+            .map(|v| T::from_f64_lossless(*v))
+            .collect();
+        let ratios = match self.spec.space.kind {
+            SpaceKind::Uniform => None,
+            SpaceKind::Ratios => Some(EdgeRatios::new(x)?),
+            SpaceKind::CornerIntervals => {
+                Some(CornerIntervals::new(x[..n].to_vec(), x[n..].to_vec())?.ratios()?)
+            }
+            SpaceKind::FaceEp => Some(EdgeRatios::face_ep(&x[..n], &x[n..])?),
+            SpaceKind::VertexEp => Some(EdgeRatios::vertex_ep(&x)?),
+        };
+        LocalScheme::from_kind(self.spec.scheme, n, ratios)
+    }
+}
+
+/// A shard `I/N`: the configurations with `id % N == I`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Shard {
+    /// Shard index `I` (0-based, `< count`).
+    pub index: u64,
+    /// Number of shards `N >= 1`.
+    pub count: u64,
+}
+
+impl Shard {
+    /// The whole sweep (`0/1`).
+    pub const ALL: Shard = Shard { index: 0, count: 1 };
+
+    /// Validated shard.
+    pub fn new(index: u64, count: u64) -> Result<Shard, SweepError> {
+        if count == 0 || index >= count {
+            return Err(SweepError::BadShard(format!("{index}/{count}")));
+        }
+        Ok(Shard { index, count })
+    }
+
+    /// Number of configurations of this shard in a sweep of `total`.
+    pub fn len(&self, total: u64) -> u64 {
+        if self.index >= total {
+            0
+        } else {
+            (total - self.index - 1) / self.count + 1
+        }
+    }
+
+    /// Whether the shard is empty in a sweep of `total`.
+    pub fn is_empty(&self, total: u64) -> bool {
+        self.len(total) == 0
+    }
+
+    /// The `j`-th id of this shard.
+    pub fn id(&self, j: u64) -> u64 {
+        self.index + j * self.count
+    }
+
+    /// Whether `id` belongs to the shard.
+    pub fn contains(&self, id: u64) -> bool {
+        id % self.count == self.index
+    }
+}
+
+impl fmt::Display for Shard {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+impl FromStr for Shard {
+    type Err = SweepError;
+    /// `"I/N"`.
+    ///
+    /// ```
+    /// use subdiv_lab::sweep::Shard;
+    /// let s: Shard = "2/8".parse().unwrap();
+    /// assert_eq!((s.index, s.count), (2, 8));
+    /// assert!("8/8".parse::<Shard>().is_err());
+    /// ```
+    fn from_str(s: &str) -> Result<Shard, SweepError> {
+        let bad = || SweepError::BadShard(s.to_owned());
+        let (i, n) = s.split_once('/').ok_or_else(bad)?;
+        let i: u64 = i.trim().parse().map_err(|_| bad())?;
+        let n: u64 = n.trim().parse().map_err(|_| bad())?;
+        Shard::new(i, n)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec(space: &str, sampler: &str) -> SweepSpec {
+        SweepSpec::from_toml(&format!(
+            "scheme = \"nurds\"\nvalences = [3, 5]\n[space]\n{space}\n[sampler]\n{sampler}\n"
+        ))
+        .unwrap()
+    }
+
+    #[test]
+    fn grid_enumerates_every_point_once() {
+        let p = Plan::new(spec(
+            "kind = \"ratios\"\nratio_range = [0.25, 0.75]",
+            "kind = \"grid\"\npoints_per_axis = 3",
+        ));
+        assert_eq!(p.total(), 27 + 243);
+        let mut seen = std::collections::HashSet::new();
+        for id in 0..p.total() {
+            let c = p.configuration(id).unwrap();
+            assert_eq!(c.valence, if id < 27 { 3 } else { 5 });
+            assert!(c.coordinates.iter().all(|x| [0.25, 0.5, 0.75].contains(x)));
+            let key: Vec<u64> = c.coordinates.iter().map(|x| x.to_bits()).collect();
+            assert!(seen.insert(key));
+            assert!(p.scheme(&c).is_ok());
+        }
+        assert_eq!(p.configuration(26).unwrap().coordinates, vec![0.75; 3]);
+        assert_eq!(p.configuration(27).unwrap().coordinates, vec![0.25; 5]);
+    }
+
+    #[test]
+    fn samplers_stay_in_range_and_are_deterministic() {
+        for sampler in [
+            "kind = \"random\"\ncount = 200\nseed = 4",
+            "kind = \"halton\"\ncount = 200",
+            "kind = \"sobol\"\ncount = 200\nscramble = true\nseed = 2",
+        ] {
+            let p = Plan::new(spec(
+                "kind = \"corner-intervals\"\ninterval_range = [0.01, 100.0]\nfixed = { q1 = 2.0 }",
+                sampler,
+            ));
+            let q = Plan::new(p.spec().clone());
+            for id in 0..p.total() {
+                let c = p.configuration(id).unwrap();
+                assert_eq!(c, q.configuration(id).unwrap());
+                assert_eq!(c.coordinates.len(), 2 * c.valence);
+                assert_eq!(c.coordinates[c.valence + 1], 2.0);
+                assert!(c.coordinates.iter().all(|x| (0.01..=100.0).contains(x)));
+                let s = p.scheme(&c).unwrap();
+                let e = p.exact_scheme(&c).unwrap();
+                for (a, b) in s.ratios().as_slice().iter().zip(e.ratios().as_slice()) {
+                    assert!((a - b.to_f64()).abs() < 1e-15);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn shards_partition() {
+        for total in [0u64, 1, 7, 100] {
+            for n in 1..6 {
+                let mut all: Vec<u64> = (0..n)
+                    .flat_map(|i| {
+                        let s = Shard::new(i, n).unwrap();
+                        (0..s.len(total)).map(move |j| s.id(j))
+                    })
+                    .collect();
+                all.sort();
+                assert_eq!(all, (0..total).collect::<Vec<_>>());
+            }
+        }
+        assert!("1/0".parse::<Shard>().is_err());
+        assert!("x/2".parse::<Shard>().is_err());
+    }
+}

@@ -1,0 +1,319 @@
+//! The sweep summary: counts per class per valence, the extremes of every
+//! numeric column with the configuration that attains them, throughput.
+//!
+//! A [`Summary`] is an accumulator: [`Summary::add`] takes rows in any order,
+//! [`Summary::merge`] combines the summaries of shards, and the result does not
+//! depend on the order (ties in an extreme go to the smaller configuration id).
+//! It serialises to the JSON written beside the CSV.
+
+use super::output::{Layout, Row};
+use super::plan::{Plan, Shard};
+use super::SweepError;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Extremes of one numeric column.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ColumnStats {
+    /// Column name.
+    pub name: String,
+    /// Number of finite values seen.
+    pub count: u64,
+    /// Number of non-finite values (NaN, infinities) seen; they do not enter min/max.
+    pub non_finite: u64,
+    /// Smallest value (`None` if no finite value).
+    pub min: Option<f64>,
+    /// Configuration id of the smallest value (smallest id on ties).
+    pub min_id: Option<u64>,
+    /// Largest value.
+    pub max: Option<f64>,
+    /// Configuration id of the largest value (smallest id on ties).
+    pub max_id: Option<u64>,
+}
+
+impl ColumnStats {
+    fn new(name: String) -> Self {
+        ColumnStats {
+            name,
+            count: 0,
+            non_finite: 0,
+            min: None,
+            min_id: None,
+            max: None,
+            max_id: None,
+        }
+    }
+
+    fn push(&mut self, x: f64, id: u64) {
+        if !x.is_finite() {
+            self.non_finite += 1;
+            return;
+        }
+        self.count += 1;
+        self.fold(Some(x), Some(id), Some(x), Some(id));
+    }
+
+    fn fold(
+        &mut self,
+        min: Option<f64>,
+        min_id: Option<u64>,
+        max: Option<f64>,
+        max_id: Option<u64>,
+    ) {
+        if let (Some(x), Some(id)) = (min, min_id) {
+            let better = match (self.min, self.min_id) {
+                (Some(m), Some(mid)) => x < m || (x == m && id < mid),
+                _ => true,
+            };
+            if better {
+                self.min = Some(x);
+                self.min_id = Some(id);
+            }
+        }
+        if let (Some(x), Some(id)) = (max, max_id) {
+            let better = match (self.max, self.max_id) {
+                (Some(m), Some(mid)) => x > m || (x == m && id < mid),
+                _ => true,
+            };
+            if better {
+                self.max = Some(x);
+                self.max_id = Some(id);
+            }
+        }
+    }
+}
+
+/// Decimal digits of `v` in `buf` (no allocation).
+fn small_decimal(mut v: usize, buf: &mut [u8; 20]) -> &str {
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (v % 10) as u8;
+        v /= 10;
+        if v == 0 {
+            break;
+        }
+    }
+    std::str::from_utf8(&buf[i..]).unwrap_or("?")
+}
+
+/// Throughput of the run(s) behind a summary.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Throughput {
+    /// Configurations evaluated in this run (not those read back on resume).
+    pub evaluated: u64,
+    /// Wall-clock seconds of the evaluation (summed over shards after a merge).
+    pub seconds: f64,
+    /// `evaluated / seconds`.
+    pub configurations_per_second: f64,
+    /// Worker threads (the largest over merged shards).
+    pub threads: usize,
+}
+
+/// The summary of a sweep (or of one shard of it).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Summary {
+    /// Spec name.
+    pub spec_name: String,
+    /// Spec digest ([`SweepSpec::digest`](super::SweepSpec::digest)).
+    pub spec_digest: String,
+    /// Configurations of the full sweep.
+    pub total_configurations: u64,
+    /// The shard these rows belong to (`0/1` after a merge).
+    pub shard: Shard,
+    /// `--limit` of the run (configurations of the shard), if any.
+    pub limit: Option<u64>,
+    /// Configurations the shard has when complete (respecting the limit).
+    pub expected_rows: u64,
+    /// Rows accumulated.
+    pub rows: u64,
+    /// Whether every expected row is present.
+    pub complete: bool,
+    /// Rows whose evaluation failed (`error` column non-empty).
+    pub errors: u64,
+    /// Counts per valence (key) per class (key).
+    pub classes: BTreeMap<String, BTreeMap<String, u64>>,
+    /// Extremes of every numeric column, in CSV column order.
+    pub columns: Vec<ColumnStats>,
+    /// Throughput.
+    pub throughput: Throughput,
+}
+
+impl Summary {
+    /// An empty summary for `shard` of `plan` (optionally limited to `limit` rows).
+    pub fn new(plan: &Plan, layout: &Layout, shard: Shard, limit: Option<u64>) -> Self {
+        let full = shard.len(plan.total());
+        Summary {
+            spec_name: plan.spec().name.clone(),
+            spec_digest: plan.spec().digest(),
+            total_configurations: plan.total(),
+            shard,
+            limit,
+            expected_rows: limit.map_or(full, |l| l.min(full)),
+            rows: 0,
+            complete: full == 0,
+            errors: 0,
+            classes: BTreeMap::new(),
+            columns: layout
+                .numeric_columns()
+                .iter()
+                .map(|(_, name)| ColumnStats::new(name.clone()))
+                .collect(),
+            throughput: Throughput::default(),
+        }
+    }
+
+    /// Adds one row.
+    pub fn add(&mut self, layout: &Layout, row: &Row) {
+        self.rows += 1;
+        self.complete = self.rows == self.expected_rows;
+        if row.error.is_some() {
+            self.errors += 1;
+        }
+        let class =
+            layout
+                .class_of(row)
+                .unwrap_or(if row.error.is_some() { "error" } else { "all" });
+        // Look up before inserting: no allocation once a (valence, class) pair is known.
+        let mut vbuf = [0u8; 20];
+        let vkey = small_decimal(row.valence, &mut vbuf);
+        if !self.classes.contains_key(vkey) {
+            self.classes.insert(vkey.to_owned(), BTreeMap::new());
+        }
+        if let Some(per) = self.classes.get_mut(vkey) {
+            match per.get_mut(class) {
+                Some(k) => *k += 1,
+                None => {
+                    per.insert(class.to_owned(), 1);
+                }
+            }
+        }
+        for (stats, (pos, _)) in self.columns.iter_mut().zip(layout.numeric_columns()) {
+            if let Some(x) = layout.number_at(row, *pos) {
+                stats.push(x, row.id);
+            }
+        }
+    }
+
+    /// An empty accumulator for the same sweep, shard and columns (for partial
+    /// summaries that [`Summary::absorb`] folds back).
+    pub fn empty_like(&self) -> Summary {
+        Summary {
+            rows: 0,
+            errors: 0,
+            classes: BTreeMap::new(),
+            columns: self
+                .columns
+                .iter()
+                .map(|c| ColumnStats::new(c.name.clone()))
+                .collect(),
+            throughput: Throughput::default(),
+            ..self.clone_header()
+        }
+    }
+
+    fn clone_header(&self) -> Summary {
+        Summary {
+            spec_name: self.spec_name.clone(),
+            spec_digest: self.spec_digest.clone(),
+            total_configurations: self.total_configurations,
+            shard: self.shard,
+            limit: self.limit,
+            expected_rows: self.expected_rows,
+            rows: 0,
+            complete: false,
+            errors: 0,
+            classes: BTreeMap::new(),
+            columns: Vec::new(),
+            throughput: Throughput::default(),
+        }
+    }
+
+    /// Adds the rows of a partial summary of the same shard (from
+    /// [`Summary::empty_like`]); equivalent to adding its rows one by one.
+    pub fn absorb(&mut self, part: &Summary) {
+        self.rows += part.rows;
+        self.errors += part.errors;
+        self.complete = self.rows == self.expected_rows;
+        for (v, classes) in &part.classes {
+            if !self.classes.contains_key(v) {
+                self.classes.insert(v.clone(), BTreeMap::new());
+            }
+            if let Some(mine) = self.classes.get_mut(v) {
+                for (c, k) in classes {
+                    match mine.get_mut(c) {
+                        Some(x) => *x += k,
+                        None => {
+                            mine.insert(c.clone(), *k);
+                        }
+                    }
+                }
+            }
+        }
+        for (a, b) in self.columns.iter_mut().zip(&part.columns) {
+            a.count += b.count;
+            a.non_finite += b.non_finite;
+            a.fold(b.min, b.min_id, b.max, b.max_id);
+        }
+    }
+
+    /// Records the throughput of this run.
+    pub fn set_throughput(&mut self, evaluated: u64, seconds: f64, threads: usize) {
+        self.throughput = Throughput {
+            evaluated,
+            seconds,
+            configurations_per_second: if seconds > 0.0 {
+                evaluated as f64 / seconds
+            } else {
+                0.0
+            },
+            threads,
+        };
+    }
+
+    /// Combines the summary of another shard of the same sweep into this one. The
+    /// result describes the union of the rows, as shard `0/1`.
+    pub fn merge(&mut self, other: &Summary) -> Result<(), SweepError> {
+        if other.spec_digest != self.spec_digest
+            || other.total_configurations != self.total_configurations
+        {
+            return Err(SweepError::Merge(format!(
+                "summaries come from different specs ({} with digest {}, {} with digest {})",
+                self.spec_name, self.spec_digest, other.spec_name, other.spec_digest
+            )));
+        }
+        if other.columns.len() != self.columns.len()
+            || other
+                .columns
+                .iter()
+                .zip(&self.columns)
+                .any(|(a, b)| a.name != b.name)
+        {
+            return Err(SweepError::Merge("summaries have different columns".into()));
+        }
+        self.absorb(other);
+        let t = &mut self.throughput;
+        t.evaluated += other.throughput.evaluated;
+        t.seconds += other.throughput.seconds;
+        t.threads = t.threads.max(other.throughput.threads);
+        t.configurations_per_second = if t.seconds > 0.0 {
+            t.evaluated as f64 / t.seconds
+        } else {
+            0.0
+        };
+        self.shard = Shard::ALL;
+        self.limit = None;
+        self.expected_rows = self.total_configurations;
+        self.complete = self.rows == self.total_configurations;
+        Ok(())
+    }
+
+    /// The summary without throughput (the deterministic part: equal for any thread
+    /// count, sharding or resume history).
+    pub fn without_throughput(&self) -> Summary {
+        Summary {
+            throughput: Throughput::default(),
+            ..self.clone()
+        }
+    }
+}

@@ -1,0 +1,426 @@
+//! End-to-end tests of `subdiv-lab sweep` and `subdiv-lab merge`: sharding,
+//! resume after a torn write, thread-count independence, bad specs.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const BIN: &str = env!("CARGO_BIN_EXE_subdiv-lab");
+
+/// n = 3 and 4 on a grid: 9^3 + 9^4 = 7290 configurations (two CSV chunks and more).
+const SPEC: &str = r#"
+name = "test-grid"
+scheme = "nurds"
+valences = [3, 4]
+
+[space]
+kind = "ratios"
+ratio_range = [0.05, 0.95]
+
+[sampler]
+kind = "grid"
+points_per_axis = 9
+
+[columns]
+eigenvalues = 3
+"#;
+
+fn write_spec(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    fs::write(&p, text).unwrap();
+    p
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(BIN).args(args).output().unwrap()
+}
+
+fn ok(args: &[&str]) -> Output {
+    let o = run(args);
+    assert!(
+        o.status.success(),
+        "{args:?} failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    o
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+fn summary(p: &Path) -> serde_json::Value {
+    let sp = p.with_file_name(
+        p.file_name()
+            .unwrap()
+            .to_str()
+            .unwrap()
+            .replace(".csv", ".summary.json"),
+    );
+    let mut v: serde_json::Value = serde_json::from_str(&fs::read_to_string(sp).unwrap()).unwrap();
+    v.as_object_mut().unwrap().remove("throughput");
+    v
+}
+
+/// Cuts the file in the middle of data row `row` (0-based), as a kill mid-write would.
+fn truncate_mid_line(path: &Path, row: usize) {
+    let bytes = fs::read(path).unwrap();
+    let starts: Vec<usize> = std::iter::once(0)
+        .chain(
+            bytes
+                .iter()
+                .enumerate()
+                .filter(|(_, b)| **b == b'\n')
+                .map(|(i, _)| i + 1),
+        )
+        .collect();
+    let (a, b) = (starts[row + 1], starts[row + 2]);
+    let cut = a + (b - a) / 2;
+    assert!(cut > a && cut < b - 1);
+    fs::write(path, &bytes[..cut]).unwrap();
+}
+
+#[test]
+fn full_run_shape_and_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "g.toml", SPEC);
+    let out = dir.path().join("g.csv");
+    ok(&["sweep", s(&spec), "--out", s(&out)]);
+    let text = fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 1 + 729 + 6561);
+    assert!(lines[0].starts_with("id,valence,r0,r1,r2,r3,class,"));
+    for (j, l) in lines[1..].iter().enumerate() {
+        assert!(l.starts_with(&format!("{j},")), "{l}");
+        assert!(l.ends_with(','), "row {j} has an error: {l}");
+    }
+    let sm = summary(&out);
+    assert_eq!(sm["rows"], 7290);
+    assert_eq!(sm["complete"], true);
+    assert_eq!(sm["errors"], 0);
+    let per_valence: u64 = sm["classes"]["3"]
+        .as_object()
+        .unwrap()
+        .values()
+        .map(|v| v.as_u64().unwrap())
+        .sum();
+    assert_eq!(per_valence, 729);
+    // Extremes of the coordinate columns are the grid ends.
+    let cols = sm["columns"].as_array().unwrap();
+    let r0 = cols.iter().find(|c| c["name"] == "r0").unwrap();
+    assert_eq!(r0["min"], 0.05);
+    assert_eq!(r0["min_id"], 0);
+    assert_eq!(r0["max"], 0.95);
+    let rate = cols
+        .iter()
+        .find(|c| c["name"] == "contraction_rate")
+        .unwrap();
+    assert!(rate["max"].as_f64().unwrap() < 0.75);
+}
+
+#[test]
+fn thread_count_does_not_change_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "g.toml", SPEC);
+    let a = dir.path().join("a.csv");
+    let b = dir.path().join("b.csv");
+    ok(&["sweep", s(&spec), "--out", s(&a), "--threads", "1"]);
+    ok(&["sweep", s(&spec), "--out", s(&b), "--threads", "2"]);
+    assert_eq!(fs::read(&a).unwrap(), fs::read(&b).unwrap());
+    assert_eq!(summary(&a), summary(&b));
+    // Standard output carries the same CSV.
+    let o = ok(&["sweep", s(&spec), "--threads", "2"]);
+    assert_eq!(o.stdout, fs::read(&a).unwrap());
+}
+
+#[test]
+fn shards_partition_the_sweep_and_merge_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "g.toml", SPEC);
+    let full = dir.path().join("full.csv");
+    ok(&["sweep", s(&spec), "--out", s(&full)]);
+    let n = 3;
+    let mut shards = Vec::new();
+    let mut seen = std::collections::BTreeSet::new();
+    for i in 0..n {
+        let p = dir.path().join(format!("shard-{i}.csv"));
+        ok(&[
+            "sweep",
+            s(&spec),
+            "--out",
+            s(&p),
+            "--shard",
+            &format!("{i}/{n}"),
+        ]);
+        for l in fs::read_to_string(&p).unwrap().lines().skip(1) {
+            let id: u64 = l.split(',').next().unwrap().parse().unwrap();
+            assert_eq!(id % n, i);
+            assert!(seen.insert(id), "id {id} in two shards");
+        }
+        shards.push(p);
+    }
+    assert_eq!(seen.len(), 7290);
+    assert_eq!(*seen.iter().next_back().unwrap(), 7289);
+    let merged = dir.path().join("merged.csv");
+    let mut args = vec!["merge"];
+    args.extend(shards.iter().map(|p| s(p)));
+    args.extend(["--out", s(&merged)]);
+    ok(&args);
+    assert_eq!(fs::read(&merged).unwrap(), fs::read(&full).unwrap());
+    assert_eq!(summary(&merged), summary(&full));
+
+    // A missing shard: the error names the first missing id, and no output appears.
+    let bad = dir.path().join("bad.csv");
+    let o = run(&["merge", s(&shards[0]), s(&shards[2]), "--out", s(&bad)]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("configuration id 1 is missing"), "{err}");
+    assert!(!bad.exists());
+    // A duplicated shard.
+    let o = run(&[
+        "merge",
+        s(&shards[0]),
+        s(&shards[1]),
+        s(&shards[2]),
+        s(&shards[1]),
+        "--out",
+        s(&bad),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("configuration id 1 appears twice"), "{err}");
+    assert!(!bad.exists());
+}
+
+#[test]
+fn resume_after_torn_write_is_byte_identical() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "g.toml", SPEC);
+    let full = dir.path().join("full.csv");
+    ok(&["sweep", s(&spec), "--out", s(&full)]);
+    let expected = fs::read(&full).unwrap();
+    for (shard, rows) in [(None, 7290usize), (Some("1/2"), 3645)] {
+        let mut reference = full.clone();
+        if let Some(sh) = shard {
+            reference = dir.path().join("ref-shard.csv");
+            let _ = fs::remove_file(&reference);
+            ok(&["sweep", s(&spec), "--out", s(&reference), "--shard", sh]);
+        }
+        let want = fs::read(&reference).unwrap();
+        for cut_row in [0usize, 1, rows / 2, 4095, 4096, rows - 1]
+            .into_iter()
+            .filter(|r| *r < rows)
+        {
+            let p = dir.path().join(format!("cut-{cut_row}.csv"));
+            let _ = fs::remove_file(&p);
+            fs::copy(&reference, &p).unwrap();
+            truncate_mid_line(&p, cut_row);
+            // Without --resume the existing file is refused.
+            let o = run(&["sweep", s(&spec), "--out", s(&p)]);
+            assert_eq!(o.status.code(), Some(2));
+            let mut args = vec!["sweep", s(&spec), "--out", s(&p), "--resume"];
+            if let Some(sh) = shard {
+                args.extend(["--shard", sh]);
+            }
+            ok(&args);
+            assert_eq!(
+                fs::read(&p).unwrap(),
+                want,
+                "cut in row {cut_row}, shard {shard:?}"
+            );
+            assert_eq!(summary(&p), summary(&reference));
+        }
+    }
+    // Torn inside the header, and an interrupted --limit run continued in steps.
+    let p = dir.path().join("steps.csv");
+    fs::write(&p, "id,vale").unwrap();
+    ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&p),
+        "--resume",
+        "--limit",
+        "10",
+    ]);
+    let ten = fs::read_to_string(&p).unwrap();
+    assert_eq!(ten.lines().count(), 11);
+    assert!(String::from_utf8_lossy(&expected).starts_with(&ten));
+    ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&p),
+        "--resume",
+        "--limit",
+        "5000",
+    ]);
+    ok(&["sweep", s(&spec), "--out", s(&p), "--resume"]);
+    assert_eq!(fs::read(&p).unwrap(), expected);
+    assert_eq!(summary(&p), summary(&full));
+}
+
+#[test]
+fn resume_refuses_a_changed_spec() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "g.toml", SPEC);
+    let p = dir.path().join("g.csv");
+    ok(&["sweep", s(&spec), "--out", s(&p), "--limit", "100"]);
+    let other = write_spec(dir.path(), "h.toml", &SPEC.replace("0.95", "0.9"));
+    let o = run(&["sweep", s(&other), "--out", s(&p), "--resume"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("other parameters than the spec"), "{err}");
+    // And a row with a wrong id is named with its line.
+    let text = fs::read_to_string(&p).unwrap().replacen("\n5,", "\n6,", 1);
+    fs::write(&p, text).unwrap();
+    let o = run(&["sweep", s(&spec), "--out", s(&p), "--resume"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("line 7: configuration id 6 where 5 was expected"),
+        "{err}"
+    );
+}
+
+#[test]
+fn bad_specs_name_the_key_and_create_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: Vec<(String, &str)> = vec![
+        (
+            SPEC.replace("points_per_axis = 9", "points_per_axis = 0"),
+            "sampler.points_per_axis must be >= 1, got 0",
+        ),
+        (
+            SPEC.replace("[0.05, 0.95]", "[0.7, 0.2]"),
+            "space.ratio_range: lower bound 0.7 > upper bound 0.2",
+        ),
+        (
+            SPEC.replace("[0.05, 0.95]", "[0.0, 0.5]"),
+            "space.ratio_range: bound 0 is outside the open interval (0, 1)",
+        ),
+        (
+            SPEC.replace("[0.05, 0.95]", "[0.5, 1.5]"),
+            "space.ratio_range: bound 1.5 is outside",
+        ),
+        (
+            SPEC.replace("[0.05, 0.95]", "[0.3, 0.3]"),
+            "space.ratio_range: empty range",
+        ),
+        (
+            SPEC.replace("valences = [3, 4]", "valences = []"),
+            "valences: empty list",
+        ),
+        (
+            SPEC.replace("valences = [3, 4]", "valences = { from = 6, to = 4 }"),
+            "valences: empty range",
+        ),
+        (
+            SPEC.replace("valences = [3, 4]", "valences = [2, 4]"),
+            "valences[0] must be a valence",
+        ),
+        (
+            SPEC.replace("eigenvalues = 3", "eigenvalues = 3\nspeed = 1"),
+            "columns.speed: unknown field",
+        ),
+        (
+            SPEC.replace("kind = \"grid\"", "kind = \"grid\"\nsed = 1"),
+            "sampler.sed: unknown field",
+        ),
+        (
+            SPEC.replace("name = \"test-grid\"", "nme = \"x\""),
+            "nme: unknown field",
+        ),
+        (
+            SPEC.replace("kind = \"grid\"", "kind = \"latin\""),
+            "sampler.kind: unknown sampler",
+        ),
+        (
+            SPEC.replace("kind = \"ratios\"", "kind = \"corner-intervals\""),
+            "space.ratio_range is not used",
+        ),
+        (
+            SPEC.replace(
+                "ratio_range = [0.05, 0.95]",
+                "ratio_range = [0.05, 0.95]\nfixed = { r9 = 0.5 }",
+            ),
+            "space.fixed.r9: unknown coordinate",
+        ),
+        (
+            SPEC.replace(
+                "kind = \"grid\"\npoints_per_axis = 9",
+                "kind = \"random\"\ncount = 10",
+            ),
+            "sampler.seed is required",
+        ),
+    ];
+    for (k, (text, want)) in cases.iter().enumerate() {
+        let spec = write_spec(dir.path(), &format!("bad{k}.toml"), text);
+        let out = dir.path().join(format!("bad{k}.csv"));
+        let o = run(&["sweep", s(&spec), "--out", s(&out)]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "case {k}: {err}");
+        assert!(err.contains(want), "case {k}: {err:?} lacks {want:?}");
+        assert!(err.contains("(line "), "case {k}: no line in {err:?}");
+        assert_eq!(err.trim_end().lines().count(), 1, "case {k}: {err:?}");
+        assert!(!out.exists(), "case {k} created {}", out.display());
+        assert!(!dir.path().join(format!("bad{k}.summary.json")).exists());
+        assert!(o.stdout.is_empty());
+    }
+    // Bad flags: also no file.
+    let spec = write_spec(dir.path(), "good.toml", SPEC);
+    let out = dir.path().join("flags.csv");
+    for flags in [
+        vec!["--shard", "3/3"],
+        vec!["--threads", "0"],
+        vec!["--shard", "x"],
+    ] {
+        let mut args = vec!["sweep", s(&spec), "--out", s(&out)];
+        args.extend(flags.iter().copied());
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(2), "{flags:?}");
+        assert!(!out.exists());
+    }
+}
+
+#[test]
+fn resume_after_sigkill_is_byte_identical() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(
+        dir.path(),
+        "k.toml",
+        r#"
+scheme = "nurds"
+valences = [6, 9]
+[space]
+kind = "face-ep"
+interval_range = [0.1, 10.0]
+[sampler]
+kind = "sobol"
+count = 60000
+"#,
+    );
+    let full = dir.path().join("full.csv");
+    ok(&["sweep", s(&spec), "--out", s(&full)]);
+    let want = fs::read(&full).unwrap();
+    let p = dir.path().join("killed.csv");
+    let mut child = Command::new(BIN)
+        .args(["sweep", s(&spec), "--out", s(&p), "--threads", "2"])
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Kill (SIGKILL) once some rows are on disk but before the end.
+    let start = std::time::Instant::now();
+    while fs::metadata(&p).map(|m| m.len()).unwrap_or(0) < (want.len() / 4) as u64
+        && start.elapsed() < std::time::Duration::from_secs(60)
+    {
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let partial = fs::read(&p).unwrap();
+    assert!(want.starts_with(&partial[..partial.iter().rposition(|b| *b == b'\n').unwrap()]));
+    ok(&["sweep", s(&spec), "--out", s(&p), "--resume"]);
+    assert_eq!(fs::read(&p).unwrap(), want);
+    assert_eq!(summary(&p), summary(&full));
+}

@@ -1,0 +1,214 @@
+//! A sweep's rows equal per-configuration `spectral::analyze` results.
+
+use subdiv_lab::knots::EdgeRatios;
+use subdiv_lab::schemes::LocalScheme;
+use subdiv_lab::spectral::{self, AnalyzeOptions, SpectrumPath};
+use subdiv_lab::sweep::output::{self, split_csv_line};
+use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, Summary, SweepSpec};
+
+fn sweep_csv(spec: &str) -> (Vec<String>, Vec<Vec<String>>, Summary) {
+    let plan = Plan::new(SweepSpec::from_toml(spec).unwrap());
+    let layout = Layout::new(&plan);
+    let eval = SpectralEvaluator::new(plan.spec().columns);
+    let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+    let mut out = Vec::new();
+    layout.write_header(&mut out).unwrap();
+    output::run(
+        &plan,
+        &layout,
+        &eval,
+        0..plan.total(),
+        &mut out,
+        &mut summary,
+        &mut |_| {},
+    )
+    .unwrap();
+    let text = String::from_utf8(out).unwrap();
+    let mut lines = text.lines();
+    let header = split_csv_line(lines.next().unwrap()).unwrap();
+    let rows = lines.map(|l| split_csv_line(l).unwrap()).collect();
+    (header, rows, summary)
+}
+
+fn get<'a>(header: &[String], row: &'a [String], name: &str) -> &'a str {
+    &row[header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name}"))]
+}
+
+fn num(header: &[String], row: &[String], name: &str) -> f64 {
+    get(header, row, name).parse().unwrap()
+}
+
+/// Agreement of the structured fast path (sweep) and the full 4n x 4n path:
+/// eigenvalues of modulus <= 1 of matrices with entries in [0, 1] and norm ~1,
+/// computed by two backward-stable methods; well-separated eigenvalues agree to
+/// a few hundred ulps times their condition number, which stays below ~1e3 on
+/// this grid (ratios in [0.05, 0.95]).
+const PATH_AGREEMENT: f64 = 1e-9;
+
+#[test]
+fn n3_grid_equals_per_configuration_analyze() {
+    let spec = r#"
+scheme = "nurds"
+valences = [3]
+[space]
+kind = "ratios"
+ratio_range = [0.05, 0.95]
+[sampler]
+kind = "grid"
+points_per_axis = 7
+[columns]
+eigenvalues = 12
+"#;
+    let (h, rows, summary) = sweep_csv(spec);
+    assert_eq!(rows.len(), 343);
+    let structured = AnalyzeOptions {
+        path: SpectrumPath::Structured,
+        ..AnalyzeOptions::default()
+    };
+    let full = AnalyzeOptions::default();
+    let mut compared_full = 0;
+    for row in &rows {
+        assert_eq!(get(&h, row, "error"), "");
+        let r: Vec<f64> = ["r0", "r1", "r2"].iter().map(|c| num(&h, row, c)).collect();
+        let scheme = LocalScheme::nurds(EdgeRatios::new(r).unwrap());
+        // The structured analysis: the same numbers, bit for bit.
+        let a = spectral::analyze(&scheme, &structured).unwrap();
+        let class = get(&h, row, "class");
+        assert!(class.starts_with(a.subdominant.class.name()), "{class}");
+        assert_eq!(num(&h, row, "lambda1_re"), a.subdominant.lambda1.re);
+        assert_eq!(num(&h, row, "lambda1_im"), a.subdominant.lambda1.im);
+        assert_eq!(num(&h, row, "lambda2_re"), a.subdominant.lambda2.re);
+        assert_eq!(num(&h, row, "lambda2_im"), a.subdominant.lambda2.im);
+        assert_eq!(num(&h, row, "abs_lambda3"), a.subdominant.abs_lambda3);
+        assert_eq!(num(&h, row, "gap"), a.subdominant.gap);
+        assert_eq!(
+            num(&h, row, "contraction_rate"),
+            a.contraction.as_ref().unwrap().spectral_bound
+        );
+        for (k, z) in a.eigenvalues.iter().enumerate() {
+            assert_eq!(num(&h, row, &format!("ev{k}_re")), z[0]);
+            assert_eq!(num(&h, row, &format!("ev{k}_im")), z[1]);
+        }
+        // The full 4n x 4n analysis: an independent computation.
+        let b = spectral::analyze(&scheme, &full).unwrap();
+        if !b.subdominant.class.is_indeterminate() && !class.starts_with("indeterminate") {
+            assert_eq!(
+                class,
+                b.subdominant.class.name(),
+                "r = {:?}",
+                scheme.ratios()
+            );
+            compared_full += 1;
+        }
+        // Near a double eigenvalue the two paths may differ by the engine's own
+        // error radii (O(sqrt(eps)) at a defective one): use them where larger.
+        let radius = |k: usize| {
+            PATH_AGREEMENT.max(a.subdominant.radii[k.min(3)] + b.subdominant.radii[k.min(3)])
+        };
+        let close_k = |x: f64, y: f64, k: usize| (x - y).abs() <= radius(k);
+        let close = |x: f64, y: f64| close_k(x, y, 1);
+        // Conjugate pairs may come in either order: compare moduli and |im|.
+        assert!(close(num(&h, row, "lambda1_re"), b.subdominant.lambda1.re));
+        assert!(
+            close(
+                num(&h, row, "lambda1_im").abs(),
+                b.subdominant.lambda1.im.abs()
+            ),
+            "{row:?} vs {:?}",
+            b.subdominant
+        );
+        assert!(close_k(
+            num(&h, row, "abs_lambda3"),
+            b.subdominant.abs_lambda3,
+            3
+        ));
+        assert!(close(
+            num(&h, row, "contraction_rate"),
+            b.contraction.as_ref().unwrap().spectral_bound
+        ));
+        for (k, z) in b.eigenvalues.iter().enumerate() {
+            let kk = if k < 4 { k } else { 4 };
+            let tol = |x: f64, y: f64| {
+                if kk < 4 {
+                    close_k(x, y, kk)
+                } else {
+                    (x - y).abs() <= PATH_AGREEMENT
+                }
+            };
+            assert!(tol(num(&h, row, &format!("ev{k}_re")), z[0]), "ev{k}");
+            assert!(
+                tol(num(&h, row, &format!("ev{k}_im")).abs(), z[1].abs()),
+                "ev{k}"
+            );
+        }
+    }
+    assert!(compared_full > 300, "{compared_full}");
+    // The summary counts every row once and brackets every column.
+    let counted: u64 = summary.classes["3"].values().sum();
+    assert_eq!(counted, 343);
+    let rate = summary
+        .columns
+        .iter()
+        .find(|c| c.name == "contraction_rate")
+        .unwrap();
+    assert!(rate.max.unwrap() < 0.75);
+    let id = rate.max_id.unwrap() as usize;
+    assert_eq!(num(&h, &rows[id], "contraction_rate"), rate.max.unwrap());
+}
+
+#[test]
+fn uniform_valences_match_the_closed_form_and_exact_certificate() {
+    let spec = r#"
+scheme = "cc-variant"
+valences = { from = 3, to = 12 }
+[space]
+kind = "uniform"
+[sampler]
+kind = "grid"
+points_per_axis = 1
+[columns]
+exact_certificate = true
+"#;
+    let (h, rows, summary) = sweep_csv(spec);
+    assert_eq!(rows.len(), 10);
+    for row in &rows {
+        let n: f64 = get(&h, row, "valence").parse().unwrap();
+        let want = 0.5 + (2.0 * std::f64::consts::PI / n).cos() / 4.0;
+        assert!((num(&h, row, "lambda1_re") - want).abs() < 1e-13);
+        assert_eq!(get(&h, row, "class"), "standard");
+        assert_eq!(get(&h, row, "exact_class"), "standard");
+        assert_eq!(get(&h, row, "exact_agrees"), "1.0");
+    }
+    assert_eq!(summary.errors, 0);
+}
+
+#[test]
+fn exact_certificate_agrees_on_a_random_slice() {
+    let spec = r#"
+scheme = "nurds"
+valences = [3, 5]
+[space]
+kind = "corner-intervals"
+interval_range = [0.1, 10.0]
+[sampler]
+kind = "random"
+count = 8
+seed = 3
+[columns]
+exact_certificate = true
+"#;
+    let (h, rows, _) = sweep_csv(spec);
+    let mut decided = 0;
+    for row in &rows {
+        assert_eq!(get(&h, row, "error"), "");
+        let agrees = get(&h, row, "exact_agrees");
+        assert_ne!(agrees, "0.0", "exact and float disagree: {row:?}");
+        if agrees == "1.0" {
+            decided += 1;
+        }
+    }
+    assert!(decided >= 12, "{decided}");
+}
