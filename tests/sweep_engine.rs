@@ -212,3 +212,50 @@ exact_certificate = true
     }
     assert!(decided >= 12, "{decided}");
 }
+
+/// The `charmap` column equals a direct `charmap::check` of each configuration,
+/// and the uniform valences are C1.
+#[test]
+fn charmap_column_equals_direct_check() {
+    let spec = r#"
+scheme = "nurds"
+valences = [3, 4, 6]
+[space]
+kind = "ratios"
+ratio_range = [0.05, 0.95]
+[sampler]
+kind = "random"
+count = 6
+seed = 11
+[columns]
+charmap = true
+"#;
+    let (h, rows, _) = sweep_csv(spec);
+    assert_eq!(rows.len(), 18);
+    for row in &rows {
+        assert_eq!(get(&h, row, "error"), "");
+        let n: usize = get(&h, row, "valence").parse().unwrap();
+        let r: Vec<f64> = (0..n).map(|i| num(&h, row, &format!("r{i}"))).collect();
+        let direct = subdiv_lab::charmap::check(&LocalScheme::nurds(EdgeRatios::new(r).unwrap())).unwrap();
+        assert_eq!(get(&h, row, "charmap_verdict"), direct.verdict.code());
+        assert_eq!(num(&h, row, "charmap_winding"), direct.winding_number.unwrap() as f64);
+        assert_eq!(num(&h, row, "charmap_min_jacobian"), direct.min_jacobian_coeff().unwrap());
+    }
+    let uniform = r#"
+scheme = "nurds"
+valences = { from = 3, to = 8 }
+[space]
+kind = "uniform"
+[sampler]
+kind = "grid"
+points_per_axis = 1
+[columns]
+charmap = true
+"#;
+    let (h, rows, _) = sweep_csv(uniform);
+    assert_eq!(rows.len(), 6);
+    for row in &rows {
+        assert_eq!(get(&h, row, "charmap_verdict"), "c1", "{row:?}");
+        assert_eq!(num(&h, row, "charmap_winding"), 1.0);
+    }
+}

@@ -9,6 +9,7 @@
 //! | `gap` | `gap` = `|lambda2| - |lambda3|`; `ratio` = `lambda2 / lambda1` when both are real; `rho` = `|lambda1|` and `theta` = `|arg lambda1|` (radians, in (0, pi)) for a complex pair (empty otherwise) |
 //! | `contraction` | `contraction_rate` = `|lambda1|`, the asymptotic per-step contraction of the face towards its limit point (math doc section 5; <= 3/4) |
 //! | `eigenvalues = K` | `ev0_re, ev0_im, .., ev{K-1}_re, ev{K-1}_im`: the K leading eigenvalues of `S_n` by non-increasing modulus (empty beyond `4n`) |
+//! | `charmap` | `charmap_verdict` (`c1`, `tpc_real_distinct`, `tpc_complex_pair`, `not_regular`, `not_injective`, `indeterminate`, `no_charmap`; see [`crate::charmap::Verdict`]), `charmap_min_jacobian` (smallest Bezier coefficient of the ring's Jacobian relative to the largest; > 0 certifies regularity), `charmap_winding` (winding number of the ring boundary around the origin) |
 //! | `exact_certificate` | `exact_class`: the classification decided exactly over the rationals from the exact value of the `f64` parameters (`undecided` when the exact method cannot decide); `exact_agrees` = 1 / 0 when both verdicts are decided and agree / disagree (empty otherwise) |
 //!
 //! `lambda0 = 1` is the dominant eigenvalue; `lambda1, lambda2` the subdominant
@@ -21,6 +22,7 @@
 
 use super::plan::{Configuration, Plan};
 use super::spec::Columns;
+use crate::charmap;
 use crate::schemes::LocalScheme;
 use crate::spectral::{self, SubdominantClass};
 
@@ -79,6 +81,11 @@ pub fn result_columns(columns: &Columns) -> Vec<ResultColumn> {
         v.push(num(&format!("ev{k}_re")));
         v.push(num(&format!("ev{k}_im")));
     }
+    if columns.charmap {
+        v.push(text("charmap_verdict"));
+        v.push(num("charmap_min_jacobian"));
+        v.push(num("charmap_winding"));
+    }
     if columns.exact_certificate {
         v.push(text("exact_class"));
         v.push(num("exact_agrees"));
@@ -121,8 +128,11 @@ impl Evaluate for SpectralEvaluator {
     ) -> crate::Result<Vec<Cell>> {
         let cols = &self.columns;
         let mut out = Vec::with_capacity(16 + 2 * cols.eigenvalues);
-        let needs_sub =
-            cols.classification || cols.gap || cols.contraction || cols.exact_certificate;
+        let needs_sub = cols.classification
+            || cols.gap
+            || cols.contraction
+            || cols.exact_certificate
+            || cols.charmap;
         let sub = if needs_sub {
             Some(spectral::classify_scheme(scheme)?)
         } else {
@@ -166,6 +176,18 @@ impl Evaluate for SpectralEvaluator {
                         out.push(Cell::Empty);
                     }
                 }
+            }
+        }
+        if cols.charmap {
+            if let Some(sub) = &sub {
+                let report = charmap::check_classified(scheme, sub)?;
+                out.push(Cell::Text(report.verdict.code().to_owned()));
+                out.push(report.min_jacobian_coeff().map_or(Cell::Empty, Cell::Num));
+                out.push(
+                    report
+                        .winding_number
+                        .map_or(Cell::Empty, |w| Cell::Num(w as f64)),
+                );
             }
         }
         if cols.exact_certificate {

@@ -28,6 +28,7 @@
 //! gap = true                       # gap |lambda2| - |lambda3|, modulus ratio, angle
 //! contraction = true               # asymptotic contraction rate |lambda1|
 //! exact_certificate = false        # exact classification over the rationals (slow)
+//! charmap = false                  # characteristic-map verdict (regular, injective)
 //! ```
 //!
 //! Coordinates of a valence-n configuration, by space kind:
@@ -212,6 +213,8 @@ pub struct Columns {
     pub contraction: bool,
     /// Exact classification over the rationals.
     pub exact_certificate: bool,
+    /// Characteristic-map verdict (regularity, injectivity; math doc section 7).
+    pub charmap: bool,
 }
 
 impl Default for Columns {
@@ -222,6 +225,7 @@ impl Default for Columns {
             gap: true,
             contraction: true,
             exact_certificate: false,
+            charmap: false,
         }
     }
 }
@@ -285,6 +289,7 @@ struct RawColumns {
     gap: Option<bool>,
     contraction: Option<bool>,
     exact_certificate: Option<bool>,
+    charmap: Option<bool>,
 }
 
 /// 1-based line of a byte offset.
@@ -778,6 +783,7 @@ impl SweepSpec {
         columns.gap = c.gap.unwrap_or(columns.gap);
         columns.contraction = c.contraction.unwrap_or(columns.contraction);
         columns.exact_certificate = c.exact_certificate.unwrap_or(columns.exact_certificate);
+        columns.charmap = c.charmap.unwrap_or(columns.charmap);
 
         let spec = SweepSpec {
             name: raw.name.unwrap_or_else(|| "sweep".to_owned()),
