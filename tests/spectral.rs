@@ -153,6 +153,10 @@ fn tensor_product_quad_knots() {
         assert_eq!(sub.class, SubdominantClass::Standard, "{sub:?}");
         let full = analyze(&s, &AnalyzeOptions::default()).unwrap();
         assert_eq!(full.subdominant.class, SubdominantClass::Standard);
+        assert_eq!(
+            full.subdominant_full.unwrap().class,
+            SubdominantClass::Standard
+        );
     }
 }
 
@@ -245,7 +249,9 @@ fn structured_and_full_agree_on_random_knots() {
         let full = full_values(&s);
         assert_spectra_close(&st, &full, 1e-6);
         let fast = classify_scheme(&s).unwrap();
-        let slow = analyze(&s, &AnalyzeOptions::default()).unwrap().subdominant;
+        let analysis = analyze(&s, &AnalyzeOptions::default()).unwrap();
+        assert_eq!(analysis.subdominant, fast);
+        let slow = analysis.subdominant_full.unwrap();
         if let (Some(a), Some(b)) = (fast.class.class_name(), slow.class.class_name()) {
             assert_eq!(a, b, "n = {n}: fast {fast:?} full {slow:?}");
             determinate += 1;
