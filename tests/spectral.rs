@@ -652,3 +652,32 @@ fn classify_matrix_agrees_with_the_structured_path() {
         assert_eq!(c.class, SubdominantClass::Standard, "n = {n}: {c:?}");
     }
 }
+
+#[test]
+fn quad_with_one_opposite_pair_summing_to_one_is_defective() {
+    // [derived, found by sweep and certified exactly] For n = 4 the two
+    // non-trivial face eigenvalues sum to 1 (trace); with r_0 + r_2 = 1 but
+    // r_1 + r_3 != 1 they coincide at 1/2 with a 1-dimensional eigenspace.
+    let q = |a: i64, b: i64| Rational::frac(a, b);
+    let rq = EdgeRatios::new(vec![q(69, 250), q(529, 1000), q(181, 250), q(37, 50)]).unwrap();
+    let f = classify_scheme(&LocalScheme::nurds(rq.to_f64())).unwrap();
+    assert_eq!(f.class, SubdominantClass::Defective, "{f:?}");
+    let v = exact_verdict(&LocalScheme::nurds(rq), Some(&f)).unwrap();
+    assert_eq!(v.top_pair, TopPair::RealDouble { semisimple: false });
+    assert_eq!(v.class, Some(ClassName::Defective));
+    // Both opposite pairs summing to 1 (tensor-product knots): standard.
+    let rq = EdgeRatios::new(vec![q(3, 10), q(1, 5), q(7, 10), q(4, 5)]).unwrap();
+    let f = classify_scheme(&LocalScheme::nurds(rq.to_f64())).unwrap();
+    assert_eq!(f.class, SubdominantClass::Standard, "{f:?}");
+    assert_eq!(
+        exact_verdict(&LocalScheme::nurds(rq), Some(&f))
+            .unwrap()
+            .class,
+        Some(ClassName::Standard)
+    );
+    // Original Doo-Sabin, exactly (rational weights for n = 3, 4, 6).
+    for n in [3, 4, 6] {
+        let v = exact_verdict(&LocalScheme::<Rational>::doo_sabin(n).unwrap(), None).unwrap();
+        assert_eq!(v.class, Some(ClassName::Standard), "n = {n}: {v:?}");
+    }
+}
