@@ -13,9 +13,11 @@
 //! * [`exact`]: exact certificates over the rationals (characteristic
 //!   polynomial, Sturm sequences, Schur-Cohn counts).
 //!
-//! Entry points: [`analyze`] (everything `subdiv-lab analyze --json` prints)
-//! and [`classify_scheme`] (classification only, structured, allocation-free
-//! after warm-up: the sweep path).
+//! Entry points: [`analyze`] (everything `subdiv-lab analyze --json` prints),
+//! [`classify_scheme`] (classification only, structured, allocation-free
+//! after warm-up: the sweep path for the Doo-Sabin family) and
+//! [`classify_matrix`] (classification only, for any square matrix, by the
+//! same kernel: the sweep path for schemes outside the family).
 //!
 //! ```
 //! use subdiv_lab::knots::EdgeRatios;
