@@ -25,7 +25,7 @@
 //! wrong numbers.
 //!
 //! Residuals are small (`~ dim eps ||S||`) for simple and semisimple
-//! eigenvalues, but only `O(sqrt(eps))` at defective ones. **[derived]** For
+//! eigenvalues, but only `O(sqrt(eps))` at defective ones. **\[derived\]** For
 //! NURDS with even `n` the face block always has the eigenvalue 1/4 (the
 //! alternating vector `(-1)^j` is a left null vector of `R`), which collides
 //! with the 1/4 of the E blocks; `S_n` then generally has a Jordan block at 1/4.

@@ -8,7 +8,7 @@
 //!   Francis double-shift QR, bounded iterations) for sweeps;
 //! * [`structured`]: the Doo-Sabin family fast path (face block + the known
 //!   1/4, 1/8, 1/16);
-//! * [`classify`]: the subdominant classes of section 7 with condition-scaled
+//! * [`classify`](mod@classify): the subdominant classes of section 7 with condition-scaled
 //!   tolerances;
 //! * [`exact`]: exact certificates over the rationals (characteristic
 //!   polynomial, Sturm sequences, Schur-Cohn counts).
