@@ -4,6 +4,7 @@
 
 mod matrix;
 mod scheme_args;
+mod subdivide;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -28,6 +29,8 @@ struct Cli {
 enum Command {
     /// Print a local subdivision matrix (S_n or its face block).
     Matrix(matrix::MatrixArgs),
+    /// Refine a closed polygon mesh (OBJ) with NURDS, Doo-Sabin or the Catmull-Clark variant.
+    Subdivide(subdivide::SubdivideArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -72,6 +75,7 @@ pub fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
+        Command::Subdivide(args) => subdivide::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
