@@ -65,12 +65,18 @@ fn defect(s: &LocalScheme<f64>, m: &[[f64; 3]], m_next: &[[f64; 3]]) -> f64 {
 
 /// Ratios of face `f` computed directly from the mesh's intervals.
 fn mesh_ratios(mesh: &Mesh, f: usize) -> EdgeRatios<f64> {
-    let (p, q): (Vec<f64>, Vec<f64>) = mesh.face_corners(f).map(|h| mesh.corner_intervals(h)).unzip();
+    let (p, q): (Vec<f64>, Vec<f64>) = mesh
+        .face_corners(f)
+        .map(|h| mesh.corner_intervals(h))
+        .unzip();
     CornerIntervals::new(p, q).unwrap().ratios().unwrap()
 }
 
 fn close_ratios(a: &EdgeRatios<f64>, b: &EdgeRatios<f64>) -> bool {
-    a.as_slice().iter().zip(b.as_slice()).all(|(x, y)| (x - y).abs() < 1e-14)
+    a.as_slice()
+        .iter()
+        .zip(b.as_slice())
+        .all(|(x, y)| (x - y).abs() < 1e-14)
 }
 
 /// Returns (face EPs checked, vertex EPs checked, worst defect).
@@ -88,11 +94,18 @@ fn check_mesh(name: &str, base: &Mesh, seed: u64, spread: f64) -> (usize, usize,
         let fwd: Vec<f64> = m0.face_corners(f).map(|h| m0.knot(h)).collect();
         let bwd: Vec<f64> = m0.face_corners(f).map(|h| m0.knot(m0.twin(h))).collect();
         let r = EdgeRatios::face_ep(&fwd, &bwd).unwrap();
-        assert!(close_ratios(&r, &mesh_ratios(&m2, f)), "{name}: face {f} ratios");
+        assert!(
+            close_ratios(&r, &mesh_ratios(&m2, f)),
+            "{name}: face {f} ratios"
+        );
         let m = face_neighbourhood_points(&m2, f).expect("4n configuration at level 2");
         let mn = face_neighbourhood_points(&m3, f).expect("4n configuration at level 3");
         let d = defect(&LocalScheme::nurds(r), &m, &mn);
-        assert!(d < TOL, "{name}: face EP {f} (n = {}): |M' - S M| = {d:e}", fwd.len());
+        assert!(
+            d < TOL,
+            "{name}: face EP {f} (n = {}): |M' - S M| = {d:e}",
+            fwd.len()
+        );
         worst = worst.max(d);
         if fwd.len() != 4 {
             nf += 1;
@@ -103,11 +116,18 @@ fn check_mesh(name: &str, base: &Mesh, seed: u64, spread: f64) -> (usize, usize,
         let a: Vec<f64> = m0.vertex_ring(v).iter().map(|&h| m0.knot(h)).collect();
         let r = EdgeRatios::vertex_ep(&a).unwrap();
         let f = f0 + e0 + v;
-        assert!(close_ratios(&r, &mesh_ratios(&m2, f)), "{name}: vertex {v} ratios");
+        assert!(
+            close_ratios(&r, &mesh_ratios(&m2, f)),
+            "{name}: vertex {v} ratios"
+        );
         let m = face_neighbourhood_points(&m2, f).expect("4n configuration at level 2");
         let mn = face_neighbourhood_points(&m3, f).expect("4n configuration at level 3");
         let d = defect(&LocalScheme::nurds(r), &m, &mn);
-        assert!(d < TOL, "{name}: vertex EP {v} (n = {}): |M' - S M| = {d:e}", a.len());
+        assert!(
+            d < TOL,
+            "{name}: vertex EP {v} (n = {}): |M' - S M| = {d:e}",
+            a.len()
+        );
         worst = worst.max(d);
         if a.len() != 4 {
             nv += 1;
@@ -128,8 +148,11 @@ fn nurds_mesh_step_equals_s_n_on_every_shipped_mesh() {
     let mut total = (0, 0);
     for (k, (name, mesh)) in generators::shipped().into_iter().enumerate() {
         for (j, spread) in [3.0, 30.0].into_iter().enumerate() {
-            let (nf, nv, worst) = check_mesh(name, &mesh, 0x9e3779b97f4a7c15 ^ (k * 7 + j) as u64, spread);
-            eprintln!("{name} spread {spread}: {nf} face EPs, {nv} vertex EPs, worst defect {worst:e}");
+            let (nf, nv, worst) =
+                check_mesh(name, &mesh, 0x9e3779b97f4a7c15 ^ (k * 7 + j) as u64, spread);
+            eprintln!(
+                "{name} spread {spread}: {nf} face EPs, {nv} vertex EPs, worst defect {worst:e}"
+            );
             total.0 += nf;
             total.1 += nv;
         }

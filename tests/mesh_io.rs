@@ -20,10 +20,20 @@ fn bad_meshes_name_the_element() {
     assert!(e.to_string().contains("boundary not supported"));
     // inconsistent orientation: one face flipped
     let e = err(&format!("{TET_V}f 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 3 4\n"));
-    assert!(matches!(e, MeshError::InconsistentOrientation { .. }), "{e}");
+    assert!(
+        matches!(e, MeshError::InconsistentOrientation { .. }),
+        "{e}"
+    );
     // non-manifold edge: three triangles on edge 1-2 (plus closing faces)
     let e = err("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
-    assert_eq!(e, MeshError::NonManifoldEdge { u: 0, v: 1, faces: 3 });
+    assert_eq!(
+        e,
+        MeshError::NonManifoldEdge {
+            u: 0,
+            v: 1,
+            faces: 3
+        }
+    );
     assert!(e.to_string().contains("OBJ 1-2"));
     // non-manifold vertex: two tetrahedra sharing one vertex
     let two = format!(
@@ -33,27 +43,63 @@ fn bad_meshes_name_the_element() {
     assert_eq!(e, MeshError::NonManifoldVertex { vertex: 0, fans: 2 });
     // degenerate faces
     let e = err(&format!("{TET_V}f 1 2\n"));
-    assert_eq!(e, MeshError::TooFewCorners { face: 0, corners: 2 });
+    assert_eq!(
+        e,
+        MeshError::TooFewCorners {
+            face: 0,
+            corners: 2
+        }
+    );
     let e = err(&format!("{TET_V}f 1 2 2 3\n"));
     assert_eq!(e, MeshError::RepeatedVertex { face: 0, vertex: 1 });
     // dangling index
     let e = err(&format!("{TET_V}f 1 2 9\n"));
-    assert_eq!(e, MeshError::DanglingIndex { face: 0, index: 8, vertex_count: 4 });
+    assert_eq!(
+        e,
+        MeshError::DanglingIndex {
+            face: 0,
+            index: 8,
+            vertex_count: 4
+        }
+    );
     // non-finite coordinates
     let e = err("v 0 0 nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 2\n");
-    assert!(matches!(e, MeshError::NonFiniteCoordinate { vertex: 0, .. }), "{e}");
+    assert!(
+        matches!(e, MeshError::NonFiniteCoordinate { vertex: 0, .. }),
+        "{e}"
+    );
     let e = err("v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 2\n");
-    assert!(matches!(e, MeshError::NonFiniteCoordinate { vertex: 1, .. }), "{e}");
+    assert!(
+        matches!(e, MeshError::NonFiniteCoordinate { vertex: 1, .. }),
+        "{e}"
+    );
     // isolated vertex, empty mesh
-    let e = err(&format!("{TET_V}v 5 5 5\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n"));
+    let e = err(&format!(
+        "{TET_V}v 5 5 5\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n"
+    ));
     assert_eq!(e, MeshError::IsolatedVertex { vertex: 4 });
     assert_eq!(err(TET_V), MeshError::Empty);
     // syntax
-    assert!(matches!(err("v 1 2\n"), MeshError::ObjSyntax { line: 1, .. }));
-    assert!(matches!(err("v 1 2 x\n"), MeshError::ObjSyntax { line: 1, .. }));
-    assert!(matches!(err(&format!("{TET_V}f 1 0 2\n")), MeshError::ObjSyntax { line: 5, .. }));
-    assert!(matches!(err(&format!("{TET_V}f -5 1 2\n")), MeshError::ObjSyntax { line: 5, .. }));
-    assert!(matches!(err(&format!("{TET_V}f a 1 2\n")), MeshError::ObjSyntax { line: 5, .. }));
+    assert!(matches!(
+        err("v 1 2\n"),
+        MeshError::ObjSyntax { line: 1, .. }
+    ));
+    assert!(matches!(
+        err("v 1 2 x\n"),
+        MeshError::ObjSyntax { line: 1, .. }
+    ));
+    assert!(matches!(
+        err(&format!("{TET_V}f 1 0 2\n")),
+        MeshError::ObjSyntax { line: 5, .. }
+    ));
+    assert!(matches!(
+        err(&format!("{TET_V}f -5 1 2\n")),
+        MeshError::ObjSyntax { line: 5, .. }
+    ));
+    assert!(matches!(
+        err(&format!("{TET_V}f a 1 2\n")),
+        MeshError::ObjSyntax { line: 5, .. }
+    ));
     // the same tetrahedron, correct, parses
     parse_obj(&format!("{TET_V}f 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n")).unwrap();
 }
@@ -66,7 +112,10 @@ fn obj_forms_and_ignored_statements() {
     let (m, info) = parse_obj(text).unwrap();
     assert_eq!(m.face_count(), 4);
     assert_eq!(info.ignored_statements, 7);
-    assert_eq!(info.ignored_keywords, ["mtllib", "o", "vt", "vn", "g", "s", "usemtl"]);
+    assert_eq!(
+        info.ignored_keywords,
+        ["mtllib", "o", "vt", "vn", "g", "s", "usemtl"]
+    );
     assert_eq!(m.face_vertices(2).collect::<Vec<_>>(), vec![0, 2, 3]);
 }
 
@@ -98,16 +147,45 @@ fn knot_file_errors_name_the_line() {
     let before = m.clone();
     // cube edge 1->2 exists (face 1 2 6 5 has 1->2); 1->8 does not
     let e = apply_knot_text(&mut m, "1 2 2.0\n\n1 8 1.0\n", 1.0).unwrap_err();
-    assert_eq!(e, MeshError::UnknownEdge { line: 3, u: 1, v: 8 });
+    assert_eq!(
+        e,
+        MeshError::UnknownEdge {
+            line: 3,
+            u: 1,
+            v: 8
+        }
+    );
     let e = apply_knot_text(&mut m, "1 2 2.0\n# c\n1 2 3.0\n", 1.0).unwrap_err();
-    assert_eq!(e, MeshError::DuplicateEdge { line: 3, u: 1, v: 2, first_line: 1 });
+    assert_eq!(
+        e,
+        MeshError::DuplicateEdge {
+            line: 3,
+            u: 1,
+            v: 2,
+            first_line: 1
+        }
+    );
     for bad in ["0", "-1.5", "nan", "inf"] {
         let e = apply_knot_text(&mut m, &format!("2 1 1\n1 2 {bad}\n"), 1.0).unwrap_err();
-        assert!(matches!(e, MeshError::KnotValue { line: 2, u: 1, v: 2, .. }), "{bad}: {e}");
+        assert!(
+            matches!(
+                e,
+                MeshError::KnotValue {
+                    line: 2,
+                    u: 1,
+                    v: 2,
+                    ..
+                }
+            ),
+            "{bad}: {e}"
+        );
     }
     for bad in ["1 2", "1 2 3 4", "0 2 1", "x 2 1", "1 2 one"] {
         let e = apply_knot_text(&mut m, &format!("{bad}\n"), 1.0).unwrap_err();
-        assert!(matches!(e, MeshError::KnotSyntax { line: 1, .. }), "{bad}: {e}");
+        assert!(
+            matches!(e, MeshError::KnotSyntax { line: 1, .. }),
+            "{bad}: {e}"
+        );
     }
     let e = apply_knot_text(&mut m, "", 0.0).unwrap_err();
     assert!(matches!(e, MeshError::InvalidDefaultInterval { .. }));
@@ -137,14 +215,26 @@ fn knot_file_defaults_and_round_trip() {
 #[test]
 fn programmatic_knots_are_validated() {
     let mut m = cube();
-    assert!(matches!(m.set_knot(0, -1.0), Err(MeshError::InvalidInterval { .. })));
-    assert!(matches!(m.set_knots(vec![1.0; 3]), Err(MeshError::CountMismatch { .. })));
+    assert!(matches!(
+        m.set_knot(0, -1.0),
+        Err(MeshError::InvalidInterval { .. })
+    ));
+    assert!(matches!(
+        m.set_knots(vec![1.0; 3]),
+        Err(MeshError::CountMismatch { .. })
+    ));
     let mut k = vec![1.0; m.half_edge_count()];
     k[5] = f64::NAN;
-    assert!(matches!(m.set_knots(k), Err(MeshError::InvalidInterval { .. })));
+    assert!(matches!(
+        m.set_knots(k),
+        Err(MeshError::InvalidInterval { .. })
+    ));
     let p = vec![[0.0; 3]; 8];
     let mut p2 = p.clone();
     p2[3][1] = f64::INFINITY;
     assert!(m.set_positions(p).is_ok());
-    assert!(matches!(m.set_positions(p2), Err(MeshError::NonFiniteCoordinate { vertex: 3, .. })));
+    assert!(matches!(
+        m.set_positions(p2),
+        Err(MeshError::NonFiniteCoordinate { vertex: 3, .. })
+    ));
 }

@@ -31,7 +31,10 @@ fn shipped_meshes_are_the_generated_ones() {
         // platform's sin/cos/sqrt may produce
         assert_eq!(parsed.face_count(), mesh.face_count(), "{name}");
         for f in 0..mesh.face_count() {
-            assert!(parsed.face_vertices(f).eq(mesh.face_vertices(f)), "{name} face {f}");
+            assert!(
+                parsed.face_vertices(f).eq(mesh.face_vertices(f)),
+                "{name} face {f}"
+            );
         }
         assert!(max_diff(&parsed, &mesh) < 1e-14, "{name}");
         mesh.check_invariants().unwrap();
@@ -40,7 +43,9 @@ fn shipped_meshes_are_the_generated_ones() {
         assert_eq!(chi, if name == "torus" { 0 } else { 2 }, "{name}");
     }
     let soccer = generators::truncated_icosahedron();
-    let sizes: Vec<usize> = (0..soccer.face_count()).map(|f| soccer.face_size(f)).collect();
+    let sizes: Vec<usize> = (0..soccer.face_count())
+        .map(|f| soccer.face_size(f))
+        .collect();
     assert_eq!(sizes.iter().filter(|&&n| n == 5).count(), 12);
     assert_eq!(sizes.iter().filter(|&&n| n == 6).count(), 20);
 }
@@ -81,7 +86,12 @@ fn check_contraction(name: &str, stats: &[LevelStats]) -> usize {
         for e in &s.extraordinary {
             if let Some(r) = e.ratio {
                 // Theorem 1: r <= 3/4 exactly; 1e-12 absorbs rounding of distances ~1e-3..1.
-                assert!(r <= 0.75 + 1e-12, "{name} level {} face {}: ratio {r}", s.level, e.face);
+                assert!(
+                    r <= 0.75 + 1e-12,
+                    "{name} level {} face {}: ratio {r}",
+                    s.level,
+                    e.face
+                );
                 checked += 1;
             }
         }
@@ -93,15 +103,23 @@ fn check_contraction(name: &str, stats: &[LevelStats]) -> usize {
 fn extraordinary_faces_contract_by_three_quarters() {
     let mut state = 12345u64;
     let mut rnd = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
     let mut total = 0;
     for (name, mesh) in generators::shipped() {
-        for scheme in [SchemeKind::Nurds, SchemeKind::DooSabin, SchemeKind::CcVariant] {
+        for scheme in [
+            SchemeKind::Nurds,
+            SchemeKind::DooSabin,
+            SchemeKind::CcVariant,
+        ] {
             let mut m = mesh.clone();
             if scheme == SchemeKind::Nurds {
-                let k = (0..m.half_edge_count()).map(|_| 100f64.powf(2.0 * rnd() - 1.0)).collect();
+                let k = (0..m.half_edge_count())
+                    .map(|_| 100f64.powf(2.0 * rnd() - 1.0))
+                    .collect();
                 m.set_knots(k).unwrap();
             }
             let (_, stats) = refine_with_stats(&m, scheme, 4).unwrap();

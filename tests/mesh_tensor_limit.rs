@@ -38,7 +38,9 @@ fn tensor_torus() -> (Mesh, Vec<f64>, Vec<f64>) {
 }
 
 fn grid_of(m: &Mesh) -> Vec<Vec<[f64; 3]>> {
-    (0..M).map(|i| (0..K).map(|j| m.positions()[i * K + j]).collect()).collect()
+    (0..M)
+        .map(|i| (0..K).map(|j| m.positions()[i * K + j]).collect())
+        .collect()
 }
 
 /// New vertex of corner c of face (i, j) and its refined grid position.
@@ -65,7 +67,10 @@ fn tensor_grid_step_is_biquadratic_refinement() {
                 where_[h] = (a, b);
                 let p = r.positions()[h];
                 for k in 0..3 {
-                    assert!((p[k] - g[a][b][k]).abs() < 1e-14, "face ({i},{j}) corner {c}");
+                    assert!(
+                        (p[k] - g[a][b][k]).abs() < 1e-14,
+                        "face ({i},{j}) corner {c}"
+                    );
                 }
             }
         }
@@ -102,7 +107,9 @@ fn tensor_region_of_a_perturbed_mesh() {
                 .enumerate()
                 .map(|(c, h)| {
                     let (a, b) = corner_grid_pos(i, j, c);
-                    (0..3).map(|k| (r.positions()[h][k] - g[a][b][k]).abs()).fold(0.0, f64::max)
+                    (0..3)
+                        .map(|k| (r.positions()[h][k] - g[a][b][k]).abs())
+                        .fold(0.0, f64::max)
                 })
                 .fold(0.0, f64::max);
             if touches {
@@ -120,10 +127,16 @@ fn tensor_region_of_a_perturbed_mesh() {
 /// The face point is invariant: the F-face child has the same limit point.
 #[test]
 fn face_limit_points_are_invariant() {
-    for scheme in [SchemeKind::Nurds, SchemeKind::DooSabin, SchemeKind::CcVariant] {
+    for scheme in [
+        SchemeKind::Nurds,
+        SchemeKind::DooSabin,
+        SchemeKind::CcVariant,
+    ] {
         let (m, _, _) = tensor_torus();
         let mut m2 = generators::truncated_icosahedron();
-        let k: Vec<f64> = (0..m2.half_edge_count()).map(|h| 0.2 + (h * 37 % 11) as f64 * 0.3).collect();
+        let k: Vec<f64> = (0..m2.half_edge_count())
+            .map(|h| 0.2 + (h * 37 % 11) as f64 * 0.3)
+            .collect();
         m2.set_knots(k).unwrap();
         for mesh in [m, m2] {
             let f0 = face_limit_points(&mesh, scheme);
@@ -145,10 +158,20 @@ fn face_limit_points_are_invariant() {
 fn regular_vertex_limit_is_the_v_face_limit() {
     let mut cases: Vec<(SchemeKind, Mesh)> = Vec::new();
     cases.push((SchemeKind::Nurds, tensor_torus().0));
-    for scheme in [SchemeKind::Nurds, SchemeKind::DooSabin, SchemeKind::CcVariant] {
+    for scheme in [
+        SchemeKind::Nurds,
+        SchemeKind::DooSabin,
+        SchemeKind::CcVariant,
+    ] {
         // refined twice: most vertices are regular (uniform knots are tensor)
-        cases.push((scheme, refine_levels(&generators::truncated_icosahedron(), scheme, 2).unwrap()));
-        cases.push((scheme, refine_levels(&generators::cube(), scheme, 2).unwrap()));
+        cases.push((
+            scheme,
+            refine_levels(&generators::truncated_icosahedron(), scheme, 2).unwrap(),
+        ));
+        cases.push((
+            scheme,
+            refine_levels(&generators::cube(), scheme, 2).unwrap(),
+        ));
     }
     let mut regular = 0;
     for (scheme, mesh) in cases {
@@ -163,11 +186,20 @@ fn regular_vertex_limit_is_the_v_face_limit() {
             let vf = base + v;
             let q = face_point(&r1, vf, scheme);
             for k in 0..3 {
-                assert!((p[k] - q[k]).abs() < 1e-13, "{scheme} vertex {v}: {p:?} vs {q:?}");
+                assert!(
+                    (p[k] - q[k]).abs() < 1e-13,
+                    "{scheme} vertex {v}: {p:?} vs {q:?}"
+                );
             }
             // after 4 more steps the V-face corners are within (3/4)^4 of the initial spread
-            let d0 = r1.face_vertices(vf).map(|w| dist(&r1.positions()[w], &p)).fold(0.0, f64::max);
-            let d6 = deep.face_vertices(vf).map(|w| dist(&deep.positions()[w], &p)).fold(0.0, f64::max);
+            let d0 = r1
+                .face_vertices(vf)
+                .map(|w| dist(&r1.positions()[w], &p))
+                .fold(0.0, f64::max);
+            let d6 = deep
+                .face_vertices(vf)
+                .map(|w| dist(&deep.positions()[w], &p))
+                .fold(0.0, f64::max);
             assert!(d6 <= 0.75f64.powi(4) * d0 + 1e-13, "{d6} vs {d0}");
         }
     }
@@ -187,7 +219,7 @@ fn regularity_needs_tensor_knots_and_quads() {
     m.set_knot(h, 42.0).unwrap();
     assert!(regular_patch(&m, 0, false).is_none());
     assert!(regular_patch(&m, 0, true).is_some()); // uniform schemes ignore knots
-    // valence 3 vertices of the cube are never regular
+                                                   // valence 3 vertices of the cube are never regular
     let cube = generators::cube();
     assert!((0..8).all(|v| regular_patch(&cube, v, true).is_none()));
 }
@@ -198,7 +230,9 @@ fn limit_mesh_is_a_closed_manifold_on_the_limit_surface() {
         let m = refine_levels(&generators::truncated_icosahedron(), scheme, 2).unwrap();
         let lm = limit_mesh(&m, scheme).unwrap();
         lm.check_invariants().unwrap();
-        let regular = (0..m.vertex_count()).filter(|&v| regular_vertex_limit(&m, v, scheme).is_some()).count();
+        let regular = (0..m.vertex_count())
+            .filter(|&v| regular_vertex_limit(&m, v, scheme).is_some())
+            .count();
         assert_eq!(lm.vertex_count(), m.face_count() + regular);
         // Euler characteristic of the sphere is preserved
         let chi = lm.vertex_count() as i64 - lm.edge_count() as i64 + lm.face_count() as i64;

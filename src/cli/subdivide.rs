@@ -45,13 +45,16 @@ pub(crate) struct SubdivideArgs {
     /// Print per-level statistics (counts; every extraordinary face's max |P_i - F| and its ratio).
     #[arg(long)]
     stats: bool,
+    /// Print the refinement wall time (excluding reading and writing) to standard error.
+    #[arg(long)]
+    timing: bool,
 }
 
 pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     let scheme: SchemeKind = args.scheme.parse().map_err(CliError::usage)?;
-    if args.output.is_none() && args.knots_out.is_none() && !args.stats {
+    if args.output.is_none() && args.knots_out.is_none() && !args.stats && !args.timing {
         return Err(CliError::usage(anyhow!(
-            "nothing to do: give -o OUT.obj, --knots-out OUT.knots or --stats"
+            "nothing to do: give -o OUT.obj, --knots-out OUT.knots, --stats or --timing"
         )));
     }
     if !scheme.takes_knots() && (args.knots.is_some() || args.knots_out.is_some()) {
@@ -106,12 +109,25 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     if args.stats {
         stats.push(level_stats(&mesh, scheme, 0, None));
     }
+    let mut refine_secs = 0.0;
     for level in 1..=args.levels {
+        let t = std::time::Instant::now();
         mesh = refine(&mesh, scheme).map_err(CliError::failure)?;
+        refine_secs += t.elapsed().as_secs_f64();
         if args.stats {
             let s = level_stats(&mesh, scheme, level, stats.last());
             stats.push(s);
         }
+    }
+    if args.timing {
+        eprintln!(
+            "refinement: {} levels, {} faces, {} vertices, {:.6} s, {:.0} output faces/s",
+            args.levels,
+            mesh.face_count(),
+            mesh.vertex_count(),
+            refine_secs,
+            mesh.face_count() as f64 / refine_secs.max(1e-9)
+        );
     }
 
     // Build every output in memory before touching the file system.
@@ -149,7 +165,11 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     Ok(())
 }
 
-fn print_stats(out: &mut impl Write, scheme: SchemeKind, stats: &[LevelStats]) -> std::io::Result<()> {
+fn print_stats(
+    out: &mut impl Write,
+    scheme: SchemeKind,
+    stats: &[LevelStats],
+) -> std::io::Result<()> {
     writeln!(out, "# subdivide --scheme {scheme}: per-level statistics")?;
     for s in stats {
         writeln!(

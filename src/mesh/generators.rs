@@ -141,7 +141,12 @@ pub fn torus(m: usize, k: usize, big_r: f64, r: f64) -> Mesh {
     let mut faces = Vec::with_capacity(m * k);
     for i in 0..m {
         for j in 0..k {
-            faces.push(vec![idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)]);
+            faces.push(vec![
+                idx(i, j),
+                idx(i + 1, j),
+                idx(i + 1, j + 1),
+                idx(i, j + 1),
+            ]);
         }
     }
     build(p, &faces)

@@ -46,7 +46,9 @@ pub fn apply_knot_text(mesh: &mut Mesh, text: &str, default: f64) -> Result<(), 
                 Ok(i) if i >= 1 => Ok(i),
                 _ => Err(MeshError::KnotSyntax {
                     line,
-                    message: format!("vertex index {tok:?} is not a positive integer (OBJ indices are 1-based)"),
+                    message: format!(
+                        "vertex index {tok:?} is not a positive integer (OBJ indices are 1-based)"
+                    ),
                 }),
             }
         };

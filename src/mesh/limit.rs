@@ -18,6 +18,9 @@
 //!   `max_i |P_i - F|`; Theorem 1 (math doc section 5) bounds its decrease per
 //!   level by the factor 3/4.
 
+// Index loops mirror the subscripts of the formulas in the math doc.
+#![allow(clippy::needless_range_loop)]
+
 use super::refine::{face_point, refine};
 use super::vec3::dist;
 use super::{Mesh, MeshError};
@@ -147,7 +150,11 @@ pub fn limit_mesh(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
     let mut positions = face_limit_points(mesh, scheme);
     let mut faces: Vec<Vec<usize>> = Vec::with_capacity(mesh.vertex_count());
     for v in 0..mesh.vertex_count() {
-        let ring: Vec<usize> = mesh.vertex_ring(v).iter().map(|&h| mesh.face_of(h)).collect();
+        let ring: Vec<usize> = mesh
+            .vertex_ring(v)
+            .iter()
+            .map(|&h| mesh.face_of(h))
+            .collect();
         match regular_vertex_limit(mesh, v, scheme) {
             Some(p) => {
                 let centre = positions.len();

@@ -32,6 +32,9 @@
 //! assert_eq!((once.face_count(), once.vertex_count()), (6 + 12 + 8, 24));
 //! ```
 
+// Index loops mirror the subscripts of the formulas in the math doc.
+#![allow(clippy::needless_range_loop)]
+
 pub mod generators;
 pub mod knot_file;
 pub mod limit;
