@@ -15,7 +15,8 @@
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
 //! * [`schemes`]: local subdivision matrices through one assembly path;
 //! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
-//! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision.
+//! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
+//! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
@@ -33,5 +34,7 @@ pub mod knots;
 pub mod mesh;
 pub mod scalar;
 pub mod schemes;
+#[cfg(feature = "testing")]
+pub mod testing;
 
 pub use error::{Error, Result};

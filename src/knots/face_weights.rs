@@ -198,14 +198,15 @@ pub fn stationary_distribution<T: Scalar>(ratios: &EdgeRatios<T>) -> Vec<T> {
         for row in p.iter_mut().take(k) {
             row[k] = row[k].clone() / total.clone();
         }
-        for i in 0..k {
-            let pik = p[i][k].clone();
+        let (head, tail) = p.split_at_mut(k);
+        let row_k = &tail[0][..k];
+        for row in head.iter_mut() {
+            let pik = row[k].clone();
             if pik.is_zero() {
                 continue;
             }
-            for j in 0..k {
-                let add = pik.clone() * p[k][j].clone();
-                p[i][j] = p[i][j].clone() + add;
+            for (x, y) in row[..k].iter_mut().zip(row_k) {
+                *x = x.clone() + pik.clone() * y.clone();
             }
         }
     }
