@@ -1,5 +1,8 @@
 //! Tensor-product grids (math doc section 2) and limit points (math doc section 5).
 
+// Grid loops mirror the (i, j) subscripts of the formulas.
+#![allow(clippy::needless_range_loop)]
+
 use subdiv_lab::bspline::refine_grid;
 use subdiv_lab::mesh::limit::{face_limit_points, limit_mesh, regular_patch, regular_vertex_limit};
 use subdiv_lab::mesh::refine::{face_point, refine, refine_levels};
@@ -22,13 +25,12 @@ fn tensor_torus() -> (Mesh, Vec<f64>, Vec<f64>) {
     let id = |i: usize, j: usize| (i % M) * K + (j % K);
     for i in 0..M {
         for j in 0..K {
-            for (a, b, val) in [
-                (id(i + 1, j), 0, d[i]),
-                (id(i + M - 1, j), 0, d[i]),
-                (id(i, j + 1), 0, e[j]),
-                (id(i, j + K - 1), 0, e[j]),
+            for (a, val) in [
+                (id(i + 1, j), d[i]),
+                (id(i + M - 1, j), d[i]),
+                (id(i, j + 1), e[j]),
+                (id(i, j + K - 1), e[j]),
             ] {
-                let _ = b;
                 let h = m.find_half_edge(id(i, j), a).unwrap();
                 m.set_knot(h, val).unwrap();
             }
