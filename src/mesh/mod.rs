@@ -20,7 +20,8 @@
 //! Submodules: [`obj`] (OBJ text in and out), [`knot_file`] (the knot-interval
 //! sidecar), [`refine`] (one step of each scheme), [`limit`] (limit points,
 //! limit meshes, per-level convergence statistics), [`generators`] (the small
-//! closed meshes shipped under `analysis/meshes/`).
+//! closed meshes shipped under `analysis/meshes/`), [`neighbourhood`] (the `4n`
+//! points of `S_n` around a face), [`projection`] (orthographic pictures).
 //!
 //! ```
 //! use subdiv_lab::mesh::{generators, refine::refine};
@@ -40,6 +41,7 @@ pub mod knot_file;
 pub mod limit;
 pub mod neighbourhood;
 pub mod obj;
+pub mod projection;
 pub mod refine;
 
 use std::fmt;
