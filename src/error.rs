@@ -68,6 +68,9 @@ pub enum Error {
     /// Mesh construction, I/O parsing or refinement.
     #[error(transparent)]
     Mesh(#[from] crate::mesh::MeshError),
+    /// A report spec or report generation error.
+    #[error(transparent)]
+    Report(#[from] Box<crate::report::ReportError>),
 }
 
 /// Shorthand for results of the library core.

@@ -16,6 +16,7 @@
 //! * [`schemes`]: local subdivision matrices through one assembly path;
 //! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
 //! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
+//! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory);
 //! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
@@ -32,6 +33,7 @@ pub mod bspline;
 pub mod error;
 pub mod knots;
 pub mod mesh;
+pub mod report;
 pub mod scalar;
 pub mod schemes;
 #[cfg(feature = "testing")]

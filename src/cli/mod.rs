@@ -3,6 +3,7 @@
 //! library, and formats the result. No numerics here.
 
 mod matrix;
+mod report;
 mod scheme_args;
 mod subdivide;
 
@@ -31,6 +32,8 @@ enum Command {
     Matrix(matrix::MatrixArgs),
     /// Refine a closed polygon mesh (OBJ) with NURDS, Doo-Sabin or the Catmull-Clark variant.
     Subdivide(subdivide::SubdivideArgs),
+    /// Run a report spec (default analysis/default.toml) and write reports/<name>/.
+    Report(report::ReportArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -76,6 +79,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
         Command::Subdivide(args) => subdivide::run(args),
+        Command::Report(args) => report::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
