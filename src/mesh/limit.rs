@@ -284,3 +284,29 @@ pub fn convergence_series(stats: &[LevelStats]) -> Vec<ConvergenceSeries> {
     }
     out
 }
+
+/// The edge ratios of face `f` from the mesh's directed-edge intervals
+/// (`p_i = knot(h_i)`, `q_i = knot(twin(h_{i-1}))`, math doc section 2).
+pub fn face_edge_ratios(mesh: &Mesh, f: usize) -> crate::Result<crate::knots::EdgeRatios<f64>> {
+    let (p, q): (Vec<f64>, Vec<f64>) = mesh
+        .face_corners(f)
+        .map(|h| mesh.corner_intervals(h))
+        .unzip();
+    crate::knots::CornerIntervals::new(p, q)?.ratios()
+}
+
+/// The local scheme that governs face `f` under `scheme` (NURDS: the face's
+/// own edge ratios, which refinement preserves; the uniform schemes: the valence).
+pub fn face_local_scheme(
+    mesh: &Mesh,
+    f: usize,
+    scheme: SchemeKind,
+) -> crate::Result<crate::schemes::LocalScheme<f64>> {
+    let n = mesh.face_size(f);
+    match scheme {
+        SchemeKind::Nurds => Ok(crate::schemes::LocalScheme::nurds(face_edge_ratios(
+            mesh, f,
+        )?)),
+        other => crate::schemes::LocalScheme::from_kind(other, n, None),
+    }
+}

@@ -40,6 +40,8 @@ use super::spec::{Common, FigureSpec};
 pub mod config_table;
 pub mod convergence;
 pub mod knot_map;
+pub mod mesh_convergence;
+pub mod mesh_picture;
 pub mod spectrum;
 pub mod valence;
 
@@ -62,6 +64,8 @@ pub const REGISTRY: &[FigureKind] = &[
     convergence::KIND,
     knot_map::KIND,
     config_table::KIND,
+    mesh_convergence::KIND,
+    mesh_picture::KIND,
 ];
 
 /// The kind named `name`.
