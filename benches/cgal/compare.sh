@@ -88,9 +88,21 @@ PY
 
 echo
 echo "Doo-Sabin, $IN_FACES input faces, $LEVELS levels (best of $RUNS runs; $(nproc) cores, $(uname -m))"
-printf '| %-12s | %12s | %10s | %16s | %14s |\n' "tool" "out faces" "refine s" "out faces / s" "peak RSS MiB"
-printf '|%s|%s|%s|%s|%s|\n' "--------------" "--------------" "------------" "------------------" "----------------"
-awk -v t="$CT" -v f="$CGAL_FACES" -v m="$CM" 'BEGIN{printf "| %-12s | %12d | %10.3f | %16.0f | %14.1f |\n", "CGAL 5.5", f, t, f/t, m/1024}'
-awk -v t="$OT" -v f="$OURS_FACES" -v m="$OM" 'BEGIN{printf "| %-12s | %12d | %10.3f | %16.0f | %14.1f |\n", "subdiv-lab", f, t, f/t, m/1024}'
+printf '| %-21s | %12s | %10s | %16s | %14s |\n' "tool" "out faces" "refine s" "out faces / s" "peak RSS MiB"
+printf '|%s|%s|%s|%s|%s|\n' "-----------------------" "--------------" "------------" "------------------" "----------------"
+awk -v t="$CT" -v f="$CGAL_FACES" -v m="$CM" 'BEGIN{printf "| %-21s | %12d | %10.3f | %16.0f | %14.1f |\n", "CGAL 5.5", f, t, f/t, m/1024}'
+awk -v t="$OT" -v f="$OURS_FACES" -v m="$OM" 'BEGIN{printf "| %-21s | %12d | %10.3f | %16.0f | %14.1f |\n", "subdiv-lab", f, t, f/t, m/1024}'
+# our other schemes on the same input, for context (no CGAL counterpart)
+for scheme in nurds cc-variant; do
+  bt=""; bm=""
+  for _ in $(seq "$RUNS"); do
+    /usr/bin/time -f "rss=%M" "$BIN" subdivide "$WORK/input.obj" --scheme "$scheme" --levels "$LEVELS" --timing 2>"$WORK/s.err"
+    t=$(grep refinement "$WORK/s.err" | sed -E 's/.* ([0-9.]+) s,.*/\1/'); m=$(grep rss= "$WORK/s.err" | sed -E 's/rss=//')
+    f=$(grep refinement "$WORK/s.err" | sed -E 's/.*levels, ([0-9]+) faces.*/\1/')
+    bt=$(printf '%s\n%s\n' "$bt" "$t" | grep . | best); bm=$(printf '%s\n%s\n' "$bm" "$m" | grep . | best)
+  done
+  awk -v t="$bt" -v f="$f" -v m="$bm" -v n="subdiv-lab $scheme" 'BEGIN{printf "| %-21s | %12d | %10.3f | %16.0f | %14.1f |\n", n, f, t, f/t, m/1024}'
+done
+echo "(the last rows are our NURDS (uniform default intervals; face weights computed per face) and CC variant: no CGAL counterpart)"
 echo
 echo "agreement at 2 levels: $AGREE"
