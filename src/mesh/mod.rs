@@ -11,7 +11,7 @@
 //! ```
 //!
 //! "the knot interval of vertex `u` along edge `uv`" (math doc section 2,
-//! **[derived]** for meshes of arbitrary topology). On a closed oriented
+//! **\[derived\]** for meshes of arbitrary topology). On a closed oriented
 //! manifold every directed edge `u -> v` is exactly one half-edge, so the
 //! intervals are one positive number per directed edge. On a face with corners
 //! `P_0..P_{n-1}` the corner intervals are `p_i = knot(h_i)` and

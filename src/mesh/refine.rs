@@ -4,7 +4,7 @@
 //!
 //! * **NURDS**: edge points `E_i = r_i P_i + (1 - r_i) P_{i+1}` with
 //!   `r_i = q_{i+1} / (p_i + q_{i+1})`, face point `F = sum_j c_j P_j` with the
-//!   face weights of [`crate::knots::face_weights`], and
+//!   face weights of [`crate::knots::face_weights()`], and
 //!   `P'_i = (P_i + E_{i-1} + E_i + F) / 4`;
 //! * **Catmull-Clark variant**: the same with `r_i = 1/2`, `c_j = 1/n`
 //!   (`P'_i = 1/2 P_i + 1/8 (P_{i-1} + P_{i+1}) + F/4`);
@@ -26,7 +26,7 @@
 //!   `k` in face `f_k`, the faces around `v` counter-clockwise starting at
 //!   [`Mesh::vertex_half_edge`] (the order of the vertex-EP preset).
 //!
-//! New knot intervals **[derived]** (math doc section 3): for the new vertex
+//! New knot intervals **\[derived\]** (math doc section 3): for the new vertex
 //! `X = (f, P_i)` with corner intervals `p, q`: `d(X -> (f,P_{i+1})) = p/2`,
 //! `d(X -> (f,P_{i-1})) = q/2`, spoke across the old edge `(P_i, P_{i+1})`:
 //! `q/2`, spoke across `(P_{i-1}, P_i)`: `p/2`. In the layout above every
