@@ -73,6 +73,15 @@ fn bad_meshes_name_the_element() {
         matches!(e, MeshError::NonFiniteCoordinate { vertex: 1, .. }),
         "{e}"
     );
+    // a pillow (two quads glued along all edges) is closed but has valence-2 vertices
+    let e = err("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 4 3 2 1\n");
+    assert_eq!(
+        e,
+        MeshError::LowValence {
+            vertex: 0,
+            valence: 2
+        }
+    );
     // isolated vertex, empty mesh
     let e = err(&format!(
         "{TET_V}v 5 5 5\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n"

@@ -130,6 +130,14 @@ pub enum MeshError {
         /// Number of fans (at least 2).
         fans: usize,
     },
+    /// A vertex with fewer than 3 edges: its V-face would have fewer than 3 sides.
+    #[error("vertex {vertex} (OBJ {}) has valence {valence}; subdivision needs at least 3 (its V-face would be degenerate)", vertex + 1)]
+    LowValence {
+        /// The vertex.
+        vertex: usize,
+        /// Its valence.
+        valence: usize,
+    },
     /// A vertex used by no face.
     #[error("vertex {vertex} (OBJ {}) is not used by any face", vertex + 1)]
     IsolatedVertex {
@@ -254,7 +262,8 @@ impl Mesh {
     ///
     /// Errors name the offending element: non-finite coordinates, dangling
     /// indices, degenerate faces, non-manifold edges and vertices, inconsistent
-    /// orientation, boundary edges, isolated vertices.
+    /// orientation, boundary edges, isolated vertices, vertices of valence
+    /// below 3 (whose V-faces would be degenerate).
     ///
     /// ```
     /// use subdiv_lab::mesh::{Mesh, MeshError};
@@ -428,6 +437,12 @@ impl Mesh {
                     }
                 }
                 return Err(MeshError::NonManifoldVertex { vertex: v, fans });
+            }
+            if ring < 3 {
+                return Err(MeshError::LowValence {
+                    vertex: v,
+                    valence: ring as usize,
+                });
             }
         }
         Ok(mesh)
