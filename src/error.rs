@@ -71,6 +71,9 @@ pub enum Error {
     /// A report spec or report generation error.
     #[error(transparent)]
     Report(#[from] Box<crate::report::ReportError>),
+    /// An error of the spectral engine.
+    #[error(transparent)]
+    Spectral(#[from] crate::spectral::SpectralError),
 }
 
 /// Shorthand for results of the library core.

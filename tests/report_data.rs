@@ -3,12 +3,14 @@
 //! 4-7): closed forms, the 3/4 bound, class and eigenvalue agreement.
 
 use std::collections::HashMap;
+use subdiv_lab::contraction::{measure, MeasureOptions};
 use subdiv_lab::knots::EdgeRatios;
-use subdiv_lab::report::figures::convergence::face_distances;
 use subdiv_lab::report::figures::NoProgress;
 use subdiv_lab::report::rng::derive_seed;
-use subdiv_lab::report::{analysis, generate, ReportSpec, RunInfo};
+use subdiv_lab::report::rng::{log_uniform, SplitMix64};
+use subdiv_lab::report::{generate, ReportSpec, RunInfo};
 use subdiv_lab::schemes::LocalScheme;
+use subdiv_lab::spectral::{analyze, classify_scheme, AnalyzeOptions};
 
 const SPEC: &str = r#"
 name = "data"
@@ -111,16 +113,16 @@ fn spectrum_csv_is_the_analysis() {
         LocalScheme::nurds(EdgeRatios::new(vec![0.3, 0.6, 0.5]).unwrap()),
     ];
     for (i, s) in configs.iter().enumerate() {
-        let a = analysis::analyze(s).unwrap();
+        let a = analyze(s, &AnalyzeOptions::default()).unwrap();
         let mine: Vec<&HashMap<String, String>> = rows
             .iter()
             .filter(|r| r["config"] == i.to_string())
             .collect();
         assert_eq!(mine.len(), 4 * s.valence(), "all 4n eigenvalues of S_n");
         for (row, z) in mine.iter().zip(&a.eigenvalues) {
-            assert_eq!(f(row, "re"), z.re);
-            assert_eq!(f(row, "im"), z.im);
-            assert_eq!(row["class"], a.sub.class.to_string());
+            assert_eq!(f(row, "re"), z[0]);
+            assert_eq!(f(row, "im"), z[1]);
+            assert_eq!(row["class"], a.subdominant.class.name());
         }
     }
     // Independent facts: uniform n = 5 subdominant pair = 1/2 + cos(2 pi/5)/4,
@@ -171,20 +173,20 @@ fn valence_csv_matches_closed_form_and_samples() {
     }
     // Independent recomputation of one sample from the documented seed scheme.
     let seed = r.spec.figures[1].common.seed;
-    let mut rng = subdiv_lab::report::rng::SplitMix64::new(derive_seed(seed, "7"));
-    let p: Vec<f64> = (0..7).map(|_| rng.log_uniform(3.0)).collect();
-    let q: Vec<f64> = (0..7).map(|_| rng.log_uniform(3.0)).collect();
+    let mut rng = SplitMix64::new(derive_seed(seed, "7"));
+    let p: Vec<f64> = (0..7).map(|_| log_uniform(&mut rng, 3.0)).collect();
+    let q: Vec<f64> = (0..7).map(|_| log_uniform(&mut rng, 3.0)).collect();
     let ratios = subdiv_lab::knots::CornerIntervals::new(p, q)
         .unwrap()
         .ratios()
         .unwrap();
-    let sub = analysis::classify(&LocalScheme::nurds(ratios)).unwrap();
+    let sub = classify_scheme(&LocalScheme::nurds(ratios)).unwrap();
     let first = samples
         .iter()
         .find(|s| s["n"] == "7" && s["sample"] == "0")
         .unwrap();
     assert_eq!(f(first, "abs_lambda1"), sub.lambda1.norm());
-    assert_eq!(first["class"], sub.class.to_string());
+    assert_eq!(first["class"], sub.class.name());
 }
 
 #[test]
@@ -202,12 +204,21 @@ fn convergence_csv_obeys_theorem_1_and_rate() {
             .filter(|r| r["config"] == i.to_string())
             .collect();
         // Recompute from the documented seed: the CSV is exactly this run.
-        let d = face_distances(
-            &s.face_block().unwrap(),
-            &s.face_weights(),
-            40,
-            derive_seed(seed, &i.to_string()),
-        );
+        let m = measure(
+            s,
+            &MeasureOptions {
+                levels: 40,
+                seed: derive_seed(seed, &i.to_string()),
+                dim: 3,
+            },
+        )
+        .unwrap();
+        let d: Vec<(usize, f64)> = m
+            .distances
+            .iter()
+            .enumerate()
+            .map(|(k, x)| (k, x / m.distances[0]))
+            .collect();
         assert_eq!(mine.len(), d.len());
         for (row, (k, dist)) in mine.iter().zip(&d) {
             assert_eq!(row["k"], k.to_string());
@@ -217,7 +228,7 @@ fn convergence_csv_obeys_theorem_1_and_rate() {
         }
         // The asymptotic rate is |lambda_1|: geometric mean of the last 10 step ratios.
         let l1 = f(mine[0], "abs_lambda1");
-        let sub = analysis::classify(s).unwrap();
+        let sub = classify_scheme(s).unwrap();
         assert_eq!(l1, sub.lambda1.norm());
         let (k1, d1) = d[d.len() - 1];
         let (k0, d0) = d[d.len() - 11];
@@ -238,11 +249,11 @@ fn knot_map_csv_matches_classification() {
         let r0 = f(row, "r0");
         let r1 = f(row, "r1");
         let r2: f64 = row["fixed"].parse().unwrap();
-        let sub = analysis::classify(&LocalScheme::nurds(
+        let sub = classify_scheme(&LocalScheme::nurds(
             EdgeRatios::new(vec![r0, r1, r2]).unwrap(),
         ))
         .unwrap();
-        assert_eq!(row["class"], sub.class.to_string());
+        assert_eq!(row["class"], sub.class.name());
         assert_eq!(f(row, "lambda1_re"), sub.lambda1.re);
         assert_eq!(f(row, "lambda1_im"), sub.lambda1.im);
         assert_eq!(

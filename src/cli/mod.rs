@@ -2,6 +2,7 @@
 //! validates through [`scheme_args`] (shared scheme/knot flags), calls the
 //! library, and formats the result. No numerics here.
 
+mod analyze;
 mod matrix;
 mod report;
 mod scheme_args;
@@ -34,6 +35,8 @@ enum Command {
     Subdivide(subdivide::SubdivideArgs),
     /// Run a report spec (default analysis/default.toml) and write reports/<name>/.
     Report(report::ReportArgs),
+    /// Spectrum, subdominant classification and Theorem 1 for one configuration.
+    Analyze(analyze::AnalyzeArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -80,6 +83,7 @@ pub fn main() -> ExitCode {
         Command::Matrix(args) => matrix::run(args),
         Command::Subdivide(args) => subdivide::run(args),
         Command::Report(args) => report::run(args),
+        Command::Analyze(args) => analyze::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -176,3 +176,42 @@ pub fn encode_png(rgb: &[u8], (w, h): (u32, u32)) -> Result<Vec<u8>, ReportError
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::plot::FONT_FAMILY;
+    use plotters::prelude::*;
+
+    fn draw_text(area: &Area<'_>) -> Result<(), ReportError> {
+        area.fill(&WHITE).map_err(present_err)?;
+        area.draw(&Text::new(
+            "λ₁ = 3/4",
+            (10, 30),
+            (FONT_FAMILY, 40).into_font(),
+        ))
+        .map_err(present_err)
+    }
+
+    #[test]
+    fn png_has_size_and_rasterised_text() {
+        let png_bytes = render_png((200, 100), &draw_text).unwrap();
+        let mut reader = png::Decoder::new(&png_bytes[..]).read_info().unwrap();
+        let mut buf = vec![0; reader.output_buffer_size()];
+        let info = reader.next_frame(&mut buf).unwrap();
+        assert_eq!((info.width, info.height), (200, 100));
+        // The bundled font drew glyphs: dark pixels exist.
+        let dark = buf[..info.buffer_size()]
+            .chunks(3)
+            .filter(|p| p[0] < 100)
+            .count();
+        assert!(dark > 50, "{dark}");
+    }
+
+    #[test]
+    fn svg_has_size_and_text_element() {
+        let svg = render_svg((200, 100), &draw_text).unwrap();
+        assert!(svg.contains("width=\"200\"") && svg.contains("height=\"100\""));
+        assert!(svg.contains("<text") && svg.contains("λ₁ = 3/4"));
+    }
+}

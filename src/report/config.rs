@@ -15,7 +15,7 @@
 //! from the figure's seed, so the configuration is fixed by the spec and seed.
 
 use super::error::ReportError;
-use super::rng::SplitMix64;
+use super::rng::{log_uniform, SplitMix64};
 use super::spec::FigureSpec;
 use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::schemes::{LocalScheme, SchemeKind};
@@ -133,8 +133,8 @@ impl ConfigSpec {
                 return Err(fs.error_at(m, key, "random_knots needs a valence"));
             };
             let n = *v.get_ref();
-            let p: Vec<f64> = (0..n).map(|_| rng.log_uniform(max)).collect();
-            let q: Vec<f64> = (0..n).map(|_| rng.log_uniform(max)).collect();
+            let p: Vec<f64> = (0..n).map(|_| log_uniform(rng, max)).collect();
+            let q: Vec<f64> = (0..n).map(|_| log_uniform(rng, max)).collect();
             let rk = format!("{key}.random_knots");
             let ci = CornerIntervals::new(p, q).map_err(|e| fs.error_at(m, &rk, e.to_string()))?;
             suffix = format!(", random knots <= {max}");

@@ -14,7 +14,7 @@
 //!   in [`figures::REGISTRY`];
 //! * [`plot`]: plotting helpers (bundled font, sizes, colours, markers);
 //! * [`backend`]: one drawing backend for SVG and PNG, in-memory rendering;
-//! * [`html`]: index.html;
+//! * [`html`]: the `index.html` page;
 //! * [`rng`]: the deterministic random generator behind random knots.
 //!
 //! ```
@@ -35,7 +35,6 @@
 //! assert!(names.contains(&"index.html") && names.contains(&"manifest.json"));
 //! ```
 
-pub mod analysis;
 pub mod backend;
 pub mod config;
 pub mod error;

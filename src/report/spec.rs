@@ -361,3 +361,84 @@ impl ReportSpec {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ONE: &str = "name = \"t\"\nseed = 5\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme = \"nurds\", valence = 3 }]\n";
+
+    #[test]
+    fn defaults_id_title_size_and_seed() {
+        let s = ReportSpec::parse(ONE).unwrap();
+        let c = &s.figures[0].common;
+        assert_eq!(c.id, "table-1");
+        assert_eq!(c.title, "Configurations");
+        assert_eq!(c.size, DEFAULT_SIZE);
+        assert_eq!(c.seed, derive_seed(5, "table-1"));
+        assert_eq!(s.source, ONE);
+    }
+
+    #[test]
+    fn explicit_seed_overrides_derived() {
+        let s = ReportSpec::parse(&ONE.replace("kind =", "seed = 99\nkind =")).unwrap();
+        assert_eq!(s.figures[0].common.seed, 99);
+    }
+
+    fn err(src: &str) -> String {
+        ReportSpec::parse(src).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn rejects_bad_sizes_ids_and_duplicates() {
+        let e = err(&ONE.replace("kind =", "width = 100\nkind ="));
+        assert!(
+            e.contains("line 4") && e.contains("figure[0].width") && e.contains("100"),
+            "{e}"
+        );
+        let e = err(&ONE.replace("kind =", "id = \"A b\"\nkind ="));
+        assert!(
+            e.contains("figure[0].id") && e.contains("not a valid figure id"),
+            "{e}"
+        );
+        let twice = format!("{ONE}[[figure]]\nkind = \"table\"\nid = \"table-1\"\nconfigs = [{{ scheme = \"nurds\", valence = 4 }}]\n");
+        let e = err(&twice);
+        assert!(
+            e.contains("line 8") && e.contains("duplicate figure id"),
+            "{e}"
+        );
+        let e = err("name = \"../x\"\n[[figure]]\nkind = \"table\"\n");
+        assert!(e.contains("line 1") && e.contains("name"), "{e}");
+    }
+
+    #[test]
+    fn rejects_missing_figures_and_missing_name() {
+        assert!(err("name = \"t\"\n").contains("no [[figure]]"));
+        let e = err("[[figure]]\nkind = \"table\"\nconfigs = []\n");
+        assert!(e.contains("name"), "{e}");
+    }
+
+    #[test]
+    fn unknown_figure_key_lists_shared_keys() {
+        let e = err(&ONE.replace("configs", "confgs"));
+        assert!(
+            e.contains("line 5") && e.contains("confgs") && e.contains("shared key"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn location_counts_lines_and_characters() {
+        let src = "ab\nλx\n\nz";
+        assert_eq!(Location::of(src, 0), Location { line: 1, column: 1 });
+        assert_eq!(Location::of(src, 3), Location { line: 2, column: 1 });
+        // 'x' follows the two-byte 'λ': column 2.
+        assert_eq!(Location::of(src, 5), Location { line: 2, column: 2 });
+        assert_eq!(
+            Location::of(src, src.len()),
+            Location { line: 4, column: 2 }
+        );
+        // An offset inside a multi-byte character does not panic.
+        assert_eq!(Location::of(src, 4).line, 2);
+    }
+}

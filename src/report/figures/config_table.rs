@@ -9,14 +9,16 @@
 //! configs = [ { scheme = "nurds", ratios = [0.3, 0.6, 0.5] }, ... ]
 //! ```
 
-use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
-use crate::report::analysis::{self, ConfigAnalysis};
+use super::{eigenvalues, num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use crate::contraction::MeasureOptions;
 use crate::report::backend::Area;
 use crate::report::config::{ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::html::escape;
+use crate::report::rng::derive_seed;
 use crate::report::rng::SplitMix64;
 use crate::report::spec::{Common, FigureSpec};
+use crate::spectral::{analyze, AnalyzeOptions, LocalAnalysis, SubdominantClass};
 use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::Deserialize;
@@ -72,8 +74,16 @@ impl Figure for Table {
         let rows = self
             .configs
             .par_iter()
-            .map(|c| {
-                let a = analysis::analyze(&c.scheme).map_err(|e| ctx.err(e));
+            .enumerate()
+            .map(|(i, c)| {
+                let options = AnalyzeOptions {
+                    measure: MeasureOptions {
+                        seed: derive_seed(ctx.common.seed, &i.to_string()),
+                        ..MeasureOptions::default()
+                    },
+                    ..AnalyzeOptions::default()
+                };
+                let a = analyze(&c.scheme, &options).map_err(|e| ctx.err(e));
                 ctx.tick(1);
                 a
             })
@@ -85,7 +95,7 @@ impl Figure for Table {
 }
 
 struct Output {
-    rows: Vec<(Configuration, ConfigAnalysis)>,
+    rows: Vec<(Configuration, LocalAnalysis)>,
 }
 
 /// Groups nearly equal eigenvalues: (value, multiplicity).
@@ -113,8 +123,16 @@ fn ctext(z: Complex64) -> String {
     }
 }
 
-fn opt(x: Option<f64>) -> String {
-    x.map_or_else(|| "NaN".into(), num)
+/// The class for humans; indeterminate verdicts name their two candidates and why.
+fn class_text(c: &SubdominantClass) -> String {
+    match c {
+        SubdominantClass::Indeterminate { between, reason } => format!(
+            "indeterminate between {} and {} ({reason})",
+            between.0.as_str().replace('_', " "),
+            between.1.as_str().replace('_', " ")
+        ),
+        other => other.name().replace('_', " "),
+    }
 }
 
 impl FigureOutput for Output {
@@ -155,18 +173,18 @@ impl FigureOutput for Output {
                     .map(|x| num(*x))
                     .collect::<Vec<_>>()
                     .join(";"),
-                a.sub.class.clone(),
-                num(a.sub.lambda1.re),
-                num(a.sub.lambda1.im),
-                num(a.sub.lambda2.re),
-                num(a.sub.lambda2.im),
-                num(a.sub.abs_lambda3),
-                num(a.gap),
-                num(a.certificate_sum),
-                a.certificate_nonnegative.to_string(),
-                opt(a.measured_rate),
+                a.subdominant.class.name().to_owned(),
+                num(a.subdominant.lambda1.re),
+                num(a.subdominant.lambda1.im),
+                num(a.subdominant.lambda2.re),
+                num(a.subdominant.lambda2.im),
+                num(a.subdominant.abs_lambda3),
+                num(a.subdominant.gap),
+                num(a.contraction.certificate_sum),
+                a.contraction.certificate_nonnegative.to_string(),
+                num(a.contraction.measured_rate),
             ]);
-            for (k, z) in a.eigenvalues.iter().enumerate() {
+            for (k, z) in eigenvalues(a).iter().enumerate() {
                 e.push(vec![
                     i.to_string(),
                     k.to_string(),
@@ -201,7 +219,7 @@ impl FigureOutput for Output {
                  <tr><th class=\"l\">|λ<sub>1</sub>|, |λ<sub>2</sub>|, |λ<sub>3</sub>|</th><td class=\"l\">{:.6}, {:.6}, {:.6}</td></tr>\
                  <tr><th class=\"l\">gap |λ<sub>2</sub>| − |λ<sub>3</sub>|</th><td class=\"l\">{:.6}</td></tr>\
                  <tr><th class=\"l\">Theorem 1 certificate sum (weights ≥ 0: {})</th><td class=\"l\">{}</td></tr>\
-                 <tr><th class=\"l\">measured contraction rate</th><td class=\"l\">{}</td></tr></table>",
+                 <tr><th class=\"l\">measured contraction rate</th><td class=\"l\">{:.6}</td></tr></table>",
                 escape(c.scheme.kind().name()),
                 c.scheme.valence(),
                 escape(
@@ -211,19 +229,19 @@ impl FigureOutput for Output {
                         .collect::<Vec<_>>()
                         .join(", ")
                 ),
-                escape(&a.sub.class.replace('_', " ")),
-                ctext(a.sub.lambda1),
-                ctext(a.sub.lambda2),
-                a.sub.lambda1.norm(),
-                a.sub.lambda2.norm(),
-                a.sub.abs_lambda3,
-                a.gap,
-                if a.certificate_nonnegative { "yes" } else { "no" },
-                num(a.certificate_sum),
-                a.measured_rate.map_or_else(|| "n/a".into(), |x| format!("{x:.6}")),
+                escape(&class_text(&a.subdominant.class)),
+                ctext(a.subdominant.lambda1),
+                ctext(a.subdominant.lambda2),
+                a.subdominant.lambda1.norm(),
+                a.subdominant.lambda2.norm(),
+                a.subdominant.abs_lambda3,
+                a.subdominant.gap,
+                if a.contraction.certificate_nonnegative { "yes" } else { "no" },
+                num(a.contraction.certificate_sum),
+                a.contraction.measured_rate,
             );
             h.push_str("<table><tr><th>#</th><th>eigenvalue of S<sub>n</sub></th><th>|λ|</th><th>multiplicity</th></tr>\n");
-            for (k, (z, m)) in grouped(&a.eigenvalues).iter().enumerate() {
+            for (k, (z, m)) in grouped(&eigenvalues(a)).iter().enumerate() {
                 let _ = writeln!(
                     h,
                     "<tr><td>{k}</td><td>{}</td><td>{:.6}</td><td>{m}</td></tr>",

@@ -1,9 +1,9 @@
 //! `kind = "convergence"`: max_i |P^k_i - F| against the step k on a log scale.
 //!
-//! The face points P^k (n points in R^3, random initial positions from the
-//! figure's seed) are refined with the face block A (math doc section 4),
-//! P^{k+1} = A P^k, and the distance to the limit point F = c^T P^0 (invariant,
-//! c^T A = c^T) is recorded relative to the initial distance. Drawn with the
+//! The distances come from [`crate::contraction::measure`]: the 4n points of
+//! the local neighbourhood (random in [-1, 1)^3, seed derived from the
+//! figure's seed and the configuration index) are refined with S_n, and
+//! max_i |P^k_i - F| over the face points is recorded relative to k = 0. Drawn with the
 //! Theorem 1 bound (3/4)^k (math doc section 5; rigorous: every curve must
 //! stay below it) and, per configuration, the asymptotic rate |lambda_1|^k of
 //! the subdominant eigenvalue, fitted through the last recorded step.
@@ -16,23 +16,19 @@
 //! ```
 
 use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
-use crate::report::analysis;
+use crate::contraction::{measure, MeasureOptions};
 use crate::report::backend::Area;
 use crate::report::config::{ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::plot::{dash, draw_err, series_color, titled, LegendGlyph, Marker, Theme};
-use crate::report::rng::SplitMix64;
+use crate::report::rng::{derive_seed, SplitMix64};
 use crate::report::spec::{Common, FigureSpec};
-use nalgebra::DMatrix;
+use crate::spectral::classify_scheme;
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Deserialize;
 use toml::Spanned;
 
-/// Relative distances below this are not recorded: the iteration's rounding
-/// error (a few hundred ulps of the coordinates after tens of steps) would
-/// dominate them, so the curve would show noise, not convergence.
-pub const RELATIVE_FLOOR: f64 = 1e-13;
 /// Largest accepted number of steps.
 pub const MAX_STEPS: usize = 500;
 /// Default number of steps.
@@ -98,43 +94,6 @@ struct Curve {
     fit: f64,
 }
 
-/// Relative distances max_i |P^k_i - F| / max_i |P^0_i - F| for k = 0..=steps
-/// (stopping below [`RELATIVE_FLOOR`]), from random initial points in R^3.
-pub fn face_distances(
-    face_block: &DMatrix<f64>,
-    weights: &[f64],
-    steps: usize,
-    seed: u64,
-) -> Vec<(usize, f64)> {
-    let n = face_block.nrows();
-    let mut rng = SplitMix64::new(seed);
-    let mut p = DMatrix::<f64>::from_fn(n, 3, |_, _| 2.0 * rng.uniform() - 1.0);
-    let f: Vec<f64> = (0..3)
-        .map(|d| (0..n).map(|j| weights[j] * p[(j, d)]).sum())
-        .collect();
-    let dist = |p: &DMatrix<f64>| -> f64 {
-        (0..n)
-            .map(|i| {
-                (0..3)
-                    .map(|d| (p[(i, d)] - f[d]).powi(2))
-                    .sum::<f64>()
-                    .sqrt()
-            })
-            .fold(0.0, f64::max)
-    };
-    let d0 = dist(&p);
-    let mut out = vec![(0, 1.0)];
-    for k in 1..=steps {
-        p = face_block * &p;
-        let rel = dist(&p) / d0;
-        if rel < RELATIVE_FLOOR {
-            break;
-        }
-        out.push((k, rel));
-    }
-    out
-}
-
 impl Figure for Convergence {
     fn work(&self) -> u64 {
         self.configs.len() as u64
@@ -146,12 +105,22 @@ impl Figure for Convergence {
             .par_iter()
             .enumerate()
             .map(|(i, c)| {
-                let a = c.scheme.face_block().map_err(|e| ctx.err(e))?;
-                let w = c.scheme.face_weights();
-                let sub = analysis::classify(&c.scheme).map_err(|e| ctx.err(e))?;
+                let sub = classify_scheme(&c.scheme).map_err(|e| ctx.err(e))?;
                 let lambda1 = sub.lambda1.norm();
-                let seed = crate::report::rng::derive_seed(ctx.common.seed, &i.to_string());
-                let points = face_distances(&a, &w, self.steps, seed);
+                let options = MeasureOptions {
+                    levels: self.steps,
+                    seed: derive_seed(ctx.common.seed, &i.to_string()),
+                    dim: 3,
+                };
+                let m = measure(&c.scheme, &options).map_err(|e| ctx.err(e))?;
+                let d0 = m.distances.first().copied().unwrap_or(0.0);
+                let points: Vec<(usize, f64)> = m
+                    .distances
+                    .iter()
+                    .enumerate()
+                    .map(|(k, d)| (k, d / d0))
+                    .take_while(|(_, r)| r.is_finite() && *r > 0.0)
+                    .collect();
                 let (k_last, d_last) = *points.last().unwrap_or(&(0, 1.0));
                 let fit = if lambda1 > 0.0 {
                     d_last / lambda1.powi(k_last as i32)
@@ -217,7 +186,6 @@ impl FigureOutput for Output {
             .iter()
             .flat_map(|c| c.points.iter().map(|p| p.1))
             .fold(1.0f64, f64::min)
-            .max(RELATIVE_FLOOR)
             / 2.0;
         let kmax = self.steps as f64;
         let mut chart = ChartBuilder::on(&body)

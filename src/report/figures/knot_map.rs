@@ -17,12 +17,12 @@
 
 use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::knots::EdgeRatios;
-use crate::report::analysis::{self, CLASSES};
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::plot::{colorbar, draw_err, subscript, titled, viridis, Marker, Theme};
 use crate::report::spec::{Common, FigureSpec};
 use crate::schemes::LocalScheme;
+use crate::spectral::classify_scheme;
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Deserialize;
@@ -35,6 +35,16 @@ pub const MAX_SLICES: usize = 6;
 /// Colour levels of the continuous maps (cells of equal level are merged
 /// into one rectangle, which keeps the SVG small).
 pub const COLOR_LEVELS: f64 = 256.0;
+
+/// Class names in legend order (math doc section 7).
+pub const CLASSES: &[&str] = &[
+    "standard",
+    "real_distinct",
+    "complex_pair",
+    "defective",
+    "not_separated",
+    "indeterminate",
+];
 
 /// The kind.
 pub(crate) const KIND: FigureKind = FigureKind {
@@ -161,12 +171,12 @@ impl Figure for KnotMap {
                         let mut r = vec![r0, r1];
                         r.extend_from_slice(fixed);
                         let ratios = EdgeRatios::new(r).map_err(|e| ctx.err(e))?;
-                        let sub = analysis::classify(&LocalScheme::nurds(ratios))
-                            .map_err(|e| ctx.err(e))?;
+                        let sub =
+                            classify_scheme(&LocalScheme::nurds(ratios)).map_err(|e| ctx.err(e))?;
                         row.push(Cell {
                             i,
                             j,
-                            class: sub.class,
+                            class: sub.class.name().to_owned(),
                             l1: sub.lambda1,
                             l2: sub.lambda2,
                         });
@@ -251,6 +261,39 @@ impl Output {
         }
     }
 
+    /// Legend lines of the class map: ("real distinct (58.2%)", class name),
+    /// for the classes that occur.
+    fn class_legend(&self) -> Vec<(String, String)> {
+        let total: usize = self.panels.iter().map(|p| p.1.len()).sum();
+        let mut names: Vec<String> = CLASSES.iter().map(|s| (*s).to_owned()).collect();
+        for c in self.panels.iter().flat_map(|p| p.1.iter()) {
+            if !names.contains(&c.class) {
+                names.push(c.class.clone());
+            }
+        }
+        names
+            .into_iter()
+            .filter_map(|name| {
+                let count = self
+                    .panels
+                    .iter()
+                    .flat_map(|p| p.1.iter())
+                    .filter(|c| c.class == name)
+                    .count();
+                if count == 0 {
+                    return None;
+                }
+                let pct = 100.0 * count as f64 / total as f64;
+                let share = if pct < 0.1 {
+                    format!("{count} cell{}", if count == 1 { "" } else { "s" })
+                } else {
+                    format!("{pct:.1}%")
+                };
+                Some((format!("{} ({share})", name.replace('_', " ")), name))
+            })
+            .collect()
+    }
+
     fn value_name(&self) -> &'static str {
         match self.color_by {
             ColorBy::Class => "class_index",
@@ -317,7 +360,21 @@ impl FigureOutput for Output {
         let th = Theme::for_size(common.size);
         let body = titled(area, &common.title, &th)?;
         let (w, _) = body.dim_in_pixel();
-        let side_w = (w as f64 * 0.18) as u32;
+        let legend = self.class_legend();
+        let side_w = match self.color_by {
+            ColorBy::Class => {
+                let widest = legend
+                    .iter()
+                    .map(|(text, _)| {
+                        body.estimate_text_size(text, &th.font(th.legend))
+                            .map_or(0, |s| s.0)
+                    })
+                    .max()
+                    .unwrap_or(0);
+                (widest + th.legend * 4 + th.tick * 2).clamp(w / 8, w / 3)
+            }
+            _ => (w as f64 * 0.18) as u32,
+        };
         let (maps, side) = body.split_horizontally(w - side_w);
         let k = self.panels.len();
         let areas = maps.split_evenly((1, k));
@@ -391,48 +448,27 @@ impl FigureOutput for Output {
         }
         match self.color_by {
             ColorBy::Class => {
-                let all: Vec<&Cell> = self.panels.iter().flat_map(|p| p.1.iter()).collect();
-                let mut present: Vec<&str> = CLASSES.to_vec();
-                for c in &all {
-                    if !present.contains(&c.class.as_str()) {
-                        present.push(&c.class);
-                    }
-                }
+                let x = th.tick as i32;
+                let s = th.legend as i32;
                 let mut y = th.label as i32 * 3;
                 side.draw(&Text::new(
                     "class",
-                    (th.tick as i32, y - th.label as i32 * 2),
+                    (x, y - th.label as i32 * 2),
                     th.font(th.label),
                 ))
                 .map_err(draw_err)?;
-                for name in present {
-                    let count = all.iter().filter(|c| c.class == name).count();
-                    if count == 0 {
-                        continue;
-                    }
-                    let x = th.tick as i32;
-                    let s = th.legend as i32;
-                    side.draw(&Rectangle::new(
-                        [(x, y), (x + s * 2, y + s * 2)],
-                        class_color(name).filled(),
-                    ))
-                    .map_err(draw_err)?;
-                    side.draw(&Rectangle::new(
-                        [(x, y), (x + s * 2, y + s * 2)],
-                        BLACK.stroke_width(1),
-                    ))
-                    .map_err(draw_err)?;
-                    if crossed(name) {
+                for (text, name) in legend {
+                    let bx = [(x, y), (x + s * 2, y + s * 2)];
+                    side.draw(&Rectangle::new(bx, class_color(&name).filled()))
+                        .map_err(draw_err)?;
+                    side.draw(&Rectangle::new(bx, BLACK.stroke_width(1)))
+                        .map_err(draw_err)?;
+                    if crossed(&name) {
                         side.draw(&Marker::Cross.at((x + s, y + s), s / 2, BLACK))
                             .map_err(draw_err)?;
                     }
-                    let pct = 100.0 * count as f64 / all.len() as f64;
-                    side.draw(&Text::new(
-                        format!("{} ({pct:.1}%)", name.replace('_', " ")),
-                        (x + s * 3, y + s / 3),
-                        th.font(th.legend),
-                    ))
-                    .map_err(draw_err)?;
+                    side.draw(&Text::new(text, (x + s * 3, y + s / 3), th.font(th.legend)))
+                        .map_err(draw_err)?;
                     y += s * 3;
                 }
             }

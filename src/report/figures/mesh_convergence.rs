@@ -25,13 +25,13 @@ use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::mesh::generators;
 use crate::mesh::limit::{convergence_series, face_local_scheme, refine_with_stats};
 use crate::mesh::Mesh;
-use crate::report::analysis;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::plot::{dash, draw_err, series_color, titled, LegendGlyph, Marker, Theme};
-use crate::report::rng::SplitMix64;
+use crate::report::rng::{log_uniform, SplitMix64};
 use crate::report::spec::{Common, FigureSpec};
 use crate::schemes::SchemeKind;
+use crate::spectral::classify_scheme;
 use plotters::prelude::*;
 use serde::Deserialize;
 use toml::Spanned;
@@ -97,7 +97,7 @@ pub(crate) fn built_in_mesh(
         }
         let mut rng = SplitMix64::new(fs.seed());
         let k = (0..mesh.half_edge_count())
-            .map(|_| rng.log_uniform(v))
+            .map(|_| log_uniform(&mut rng, v))
             .collect();
         mesh.set_knots(k)
             .map_err(|e| fs.error_at(s, "random_knots", e.to_string()))?;
@@ -233,7 +233,7 @@ impl Figure for MeshConvergence {
         for i in chosen {
             let s = &series[i];
             let local = face_local_scheme(&last, s.face, self.scheme).map_err(|e| ctx.err(e))?;
-            let lambda1 = analysis::classify(&local)
+            let lambda1 = classify_scheme(&local)
                 .map_err(|e| ctx.err(e))?
                 .lambda1
                 .norm();

@@ -186,6 +186,15 @@ impl DataTable {
     }
 }
 
+/// The eigenvalues of an analysis as complex numbers (in the analysis' order:
+/// decreasing modulus, dominant first).
+pub fn eigenvalues(a: &crate::spectral::LocalAnalysis) -> Vec<num_complex::Complex64> {
+    a.eigenvalues
+        .iter()
+        .map(|z| num_complex::Complex64::new(z[0], z[1]))
+        .collect()
+}
+
 /// Formats a number for CSV: shortest round-trip form (`NaN` for missing values).
 pub fn num(x: f64) -> String {
     format!("{x}")

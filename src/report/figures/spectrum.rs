@@ -10,8 +10,7 @@
 //! configs = [ { scheme = "cc-variant", valence = 5 }, ... ]   # 1 to 12 panels
 //! ```
 
-use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
-use crate::report::analysis::{self, ConfigAnalysis};
+use super::{eigenvalues, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::report::backend::Area;
 use crate::report::config::{ConfigSpec, Configuration};
 use crate::report::error::ReportError;
@@ -20,6 +19,8 @@ use crate::report::plot::{
 };
 use crate::report::rng::SplitMix64;
 use crate::report::spec::{Common, FigureSpec};
+use crate::spectral::{analyze, AnalyzeOptions, LocalAnalysis};
+use num_complex::Complex64;
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Deserialize;
@@ -94,7 +95,12 @@ impl Figure for Spectrum {
             .configs
             .par_iter()
             .map(|c| {
-                let a = analysis::analyze(&c.scheme).map_err(|e| ctx.err(e));
+                let a = analyze(&c.scheme, &AnalyzeOptions::default())
+                    .map(|a| {
+                        let e = eigenvalues(&a);
+                        (a, e)
+                    })
+                    .map_err(|e| ctx.err(e));
                 ctx.tick(1);
                 a
             })
@@ -107,7 +113,7 @@ impl Figure for Spectrum {
 }
 
 struct Output {
-    panels: Vec<(Configuration, ConfigAnalysis)>,
+    panels: Vec<(Configuration, (LocalAnalysis, Vec<Complex64>))>,
     columns: usize,
 }
 
@@ -129,11 +135,11 @@ impl FigureOutput for Output {
             ],
         );
         for (i, (c, a)) in self.panels.iter().enumerate() {
-            for (k, z) in a.eigenvalues.iter().enumerate() {
+            for (k, z) in a.1.iter().enumerate() {
                 t.push(vec![
                     i.to_string(),
                     c.label.clone(),
-                    a.sub.class.clone(),
+                    a.0.subdominant.class.name().to_owned(),
                     k.to_string(),
                     num(z.re),
                     num(z.im),
@@ -166,7 +172,7 @@ impl FigureOutput for Output {
 fn draw_panel(
     area: &Area<'_>,
     c: &Configuration,
-    a: &ConfigAnalysis,
+    (a, eig): &(LocalAnalysis, Vec<Complex64>),
     th: &Theme,
 ) -> Result<(), ReportError> {
     let (w, h) = area.dim_in_pixel();
@@ -230,30 +236,24 @@ fn draw_panel(
         .legend(move |p| LegendGlyph::line(p, &th2, grey, lw).dashed((d2, g2)));
     let ms = th.marker;
     let other = viridis(0.45);
-    let others: Vec<(f64, f64)> = a.eigenvalues.iter().skip(3).map(|z| (z.re, z.im)).collect();
+    let others: Vec<(f64, f64)> = eig.iter().skip(3).map(|z| (z.re, z.im)).collect();
     chart
         .draw_series(others.iter().map(|&p| Marker::Ring.at(p, ms, other)))
         .map_err(draw_err)?
         .label("other eigenvalues")
         .legend(move |p| LegendGlyph::line(p, &th2, other, 0).marker(Marker::Ring, ms));
     let sub_col = viridis(0.0);
-    let sub: Vec<(f64, f64)> = a
-        .eigenvalues
-        .iter()
-        .skip(1)
-        .take(2)
-        .map(|z| (z.re, z.im))
-        .collect();
+    let sub: Vec<(f64, f64)> = eig.iter().skip(1).take(2).map(|z| (z.re, z.im)).collect();
     chart
         .draw_series(sub.iter().map(|&p| Marker::Diamond.at(p, ms * 2, sub_col)))
         .map_err(draw_err)?
         .label(format!(
             "λ₁, λ₂ ({}): |λ₁| = {:.4}",
-            a.sub.class.replace('_', " "),
-            a.sub.lambda1.norm()
+            a.subdominant.class.name().replace('_', " "),
+            a.subdominant.lambda1.norm()
         ))
         .legend(move |p| LegendGlyph::line(p, &th2, sub_col, 0).marker(Marker::Diamond, ms * 2));
-    let dom: Vec<(f64, f64)> = a.eigenvalues.iter().take(1).map(|z| (z.re, z.im)).collect();
+    let dom: Vec<(f64, f64)> = eig.iter().take(1).map(|z| (z.re, z.im)).collect();
     chart
         .draw_series(dom.iter().map(|&p| Marker::Square.at(p, ms + 2, BLACK)))
         .map_err(draw_err)?

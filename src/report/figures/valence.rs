@@ -16,14 +16,14 @@
 
 use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::knots::{CornerIntervals, EdgeRatios};
-use crate::report::analysis;
 use crate::report::backend::Area;
 use crate::report::config::MAX_VALENCE;
 use crate::report::error::ReportError;
 use crate::report::plot::{dash, draw_err, mix_white, titled, viridis, LegendGlyph, Marker, Theme};
-use crate::report::rng::{derive_seed, SplitMix64};
+use crate::report::rng::{derive_seed, log_uniform, SplitMix64};
 use crate::report::spec::{Common, FigureSpec};
 use crate::schemes::LocalScheme;
+use crate::spectral::classify_scheme;
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Deserialize;
@@ -134,20 +134,24 @@ impl Figure for Valence {
             .into_par_iter()
             .map(|n| {
                 let uni = LocalScheme::nurds(EdgeRatios::uniform(n).map_err(|e| ctx.err(e))?);
-                let computed = analysis::classify(&uni)
+                let computed = classify_scheme(&uni)
                     .map_err(|e| ctx.err(e))?
                     .lambda1
                     .norm();
                 let mut rng = SplitMix64::new(derive_seed(ctx.common.seed, &n.to_string()));
                 let mut samples = Vec::with_capacity(self.samples);
                 for _ in 0..self.samples {
-                    let p: Vec<f64> = (0..n).map(|_| rng.log_uniform(self.max_ratio)).collect();
-                    let q: Vec<f64> = (0..n).map(|_| rng.log_uniform(self.max_ratio)).collect();
+                    let p: Vec<f64> = (0..n)
+                        .map(|_| log_uniform(&mut rng, self.max_ratio))
+                        .collect();
+                    let q: Vec<f64> = (0..n)
+                        .map(|_| log_uniform(&mut rng, self.max_ratio))
+                        .collect();
                     let r = CornerIntervals::new(p, q)
                         .and_then(|k| k.ratios())
                         .map_err(|e| ctx.err(e))?;
-                    let sub = analysis::classify(&LocalScheme::nurds(r)).map_err(|e| ctx.err(e))?;
-                    samples.push((sub.lambda1.norm(), sub.class));
+                    let sub = classify_scheme(&LocalScheme::nurds(r)).map_err(|e| ctx.err(e))?;
+                    samples.push((sub.lambda1.norm(), sub.class.name().to_owned()));
                 }
                 let min = samples.iter().map(|s| s.0).fold(f64::INFINITY, f64::min);
                 let max = samples
