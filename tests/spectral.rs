@@ -419,3 +419,230 @@ fn general_matrix_that_is_not_of_the_family() {
         .all(|k| *k >= 1.0 && k.is_finite()));
     let _ = Scalar::to_f64(&1.0f64);
 }
+
+#[test]
+fn kernel_agrees_with_faer_on_random_and_structured_matrices() {
+    let mut rng = SplitMix64::new(77);
+    let mut ws = KernelWorkspace::new();
+    for trial in 0..200 {
+        let n = 1 + trial % 40;
+        let m = DMatrix::from_fn(n, n, |_, _| rng.uniform(-1.0, 1.0));
+        ws.input(n).copy_from_slice(m.as_slice());
+        let (re, im) = ws.eigenvalues().unwrap();
+        let ours: Vec<Complex64> = re
+            .iter()
+            .zip(im)
+            .map(|(&a, &b)| Complex64::new(a, b))
+            .collect();
+        let theirs = Eigen::new(&m, EigenOptions::VALUES).unwrap();
+        assert_spectra_close(&ours, theirs.values(), 1e-9 * (1.0 + m.norm()));
+        // The saved Hessenberg form is Hessenberg and has the same trace.
+        let h = ws.hessenberg_form();
+        for j in 0..n {
+            for i in j + 2..n {
+                assert_eq!(h[i + j * n], 0.0);
+            }
+        }
+        let tr: f64 = (0..n).map(|i| h[i + i * n]).sum();
+        assert!((tr - m.trace()).abs() < 1e-12 * (1.0 + m.norm()) * n as f64);
+    }
+    // Face blocks of random NURDS configurations (the structured path's input).
+    for trial in 0..100 {
+        let n = 3 + trial % 30;
+        let s = LocalScheme::nurds(EdgeRatios::new(random_ratios(&mut rng, n)).unwrap());
+        let a = s.face_block().unwrap();
+        ws.input(n).copy_from_slice(a.as_slice());
+        let (re, im) = ws.eigenvalues().unwrap();
+        let ours: Vec<Complex64> = re
+            .iter()
+            .zip(im)
+            .map(|(&a, &b)| Complex64::new(a, b))
+            .collect();
+        let theirs = Eigen::new(&a, EigenOptions::VALUES).unwrap();
+        assert_spectra_close(&ours, theirs.values(), 1e-9);
+    }
+}
+
+#[test]
+fn structured_path_is_exact_on_known_spectra_and_counts_sweeps() {
+    use subdiv_lab::spectral::StructuredWorkspace;
+    let mut ws = StructuredWorkspace::new();
+    for n in [3usize, 8, 33] {
+        let s = LocalScheme::<f64>::cc_variant(n).unwrap();
+        let face = ws.face_nonunit(&s).unwrap().to_vec();
+        assert_eq!(face.len(), n - 1);
+        assert!((face[0].re - uniform_subdominant(n)).abs() < 1e-13);
+        assert!(ws.last_sweeps() <= 30 * n.max(10));
+    }
+}
+
+#[test]
+fn classification_decisions_and_indeterminate_reasons() {
+    use subdiv_lab::spectral::classify::{classify, decide, Decision, Evidence, SEPARATION_FACTOR};
+    assert_eq!(decide(0.0, 0.0), Decision::Zero);
+    assert_eq!(decide(1e-15, 1e-14), Decision::Zero);
+    assert_eq!(decide(1e-13, 1e-14), Decision::Grey);
+    assert_eq!(
+        decide(SEPARATION_FACTOR * 1e-14 * 1.01, 1e-14),
+        Decision::NonZero
+    );
+    let c = |re: f64, im: f64| Complex64::new(re, im);
+    let never = &mut |_: f64| -> Result<f64, subdiv_lab::spectral::SpectralError> {
+        panic!("rank test must not run for distinct eigenvalues")
+    };
+    // Clearly real distinct.
+    let v = [c(1.0, 0.0), c(0.6, 0.0), c(0.5, 0.0), c(0.25, 0.0)];
+    let r = [1e-15; 4];
+    let s = classify(
+        &Evidence {
+            values: &v,
+            radii: &r,
+            eta: 1e-15,
+        },
+        never,
+    )
+    .unwrap();
+    assert_eq!(s.class, SubdominantClass::RealDistinct);
+    assert_eq!(s.ratio, Some(0.5 / 0.6));
+    // Complex pair.
+    let v = [c(1.0, 0.0), c(0.5, 0.1), c(0.5, -0.1), c(0.25, 0.0)];
+    let s = classify(
+        &Evidence {
+            values: &v,
+            radii: &r,
+            eta: 1e-15,
+        },
+        never,
+    )
+    .unwrap();
+    assert_eq!(s.class, SubdominantClass::ComplexPair);
+    assert!((s.theta.unwrap() - (0.1f64).atan2(0.5)).abs() < 1e-15);
+    // Grey zone between a double and distinct eigenvalues.
+    let v = [
+        c(1.0, 0.0),
+        c(0.6 + 5e-13, 0.0),
+        c(0.6 - 5e-13, 0.0),
+        c(0.25, 0.0),
+    ];
+    let r = [1e-14; 4];
+    let s = classify(
+        &Evidence {
+            values: &v,
+            radii: &r,
+            eta: 1e-15,
+        },
+        &mut |_| Ok(1e-16),
+    )
+    .unwrap();
+    match &s.class {
+        SubdominantClass::Indeterminate { between, reason } => {
+            assert_eq!(*between, (ClassName::Standard, ClassName::RealDistinct));
+            assert!(reason.contains("grey zone"), "{reason}");
+        }
+        other => panic!("{other:?}"),
+    }
+    // Double: eigenspace dimension from the rank test.
+    let v = [c(1.0, 0.0), c(0.6, 0.0), c(0.6, 0.0), c(0.25, 0.0)];
+    let s = classify(
+        &Evidence {
+            values: &v,
+            radii: &r,
+            eta: 1e-15,
+        },
+        &mut |_| Ok(1e-16),
+    )
+    .unwrap();
+    assert_eq!(s.class, SubdominantClass::Standard);
+    let s = classify(
+        &Evidence {
+            values: &v,
+            radii: &r,
+            eta: 1e-15,
+        },
+        &mut |_| Ok(0.3),
+    )
+    .unwrap();
+    assert_eq!(s.class, SubdominantClass::Defective);
+    // |lambda_2| = |lambda_3|.
+    let v = [c(1.0, 0.0), c(0.6, 0.0), c(0.25, 0.0), c(0.25, 0.0)];
+    let s = classify(
+        &Evidence {
+            values: &v,
+            radii: &r,
+            eta: 1e-15,
+        },
+        never,
+    )
+    .unwrap();
+    assert_eq!(s.class, SubdominantClass::NotSeparated);
+    // lambda_0 not simple (cyclic permutation) and the zero matrix.
+    for n in [3, 7, 32] {
+        let p = DMatrix::from_fn(n, n, |i, j| if (i + 1) % n == j { 1.0 } else { 0.0 });
+        let e = Eigen::new(&p, EigenOptions::BOTH).unwrap();
+        let radii: Vec<f64> = e
+            .condition_numbers()
+            .unwrap()
+            .iter()
+            .map(|k| k * 1e-15 * n as f64)
+            .collect();
+        let s = classify(
+            &Evidence {
+                values: e.values(),
+                radii: &radii,
+                eta: 1e-15,
+            },
+            &mut |_| Ok(1.0),
+        )
+        .unwrap();
+        assert_eq!(s.class, SubdominantClass::NotSeparated, "n = {n}");
+    }
+    let z = DMatrix::<f64>::zeros(5, 5);
+    let e = Eigen::new(&z, EigenOptions::BOTH).unwrap();
+    let s = classify(
+        &Evidence {
+            values: e.values(),
+            radii: &[0.0; 5],
+            eta: 0.0,
+        },
+        &mut |_| Ok(0.0),
+    )
+    .unwrap();
+    assert_eq!(s.class, SubdominantClass::NotSeparated);
+    assert_eq!(s.note, Some("the dominant eigenvalue is not 1"));
+}
+
+#[test]
+fn classify_matrix_agrees_with_the_structured_path() {
+    use subdiv_lab::spectral::classify_matrix;
+    let mut rng = SplitMix64::new(4242);
+    let mut agree = 0;
+    for trial in 0..120 {
+        let n = 3 + trial % 12;
+        let s = LocalScheme::nurds(EdgeRatios::new(random_ratios(&mut rng, n)).unwrap());
+        let m = s.matrix().unwrap().into_matrix();
+        let a = classify_matrix(&m).unwrap();
+        let b = classify_scheme(&s).unwrap();
+        assert!((a.lambda1 - b.lambda1).norm() < 1e-9);
+        if let (Some(x), Some(y)) = (a.class.class_name(), b.class.class_name()) {
+            assert_eq!(x, y, "n = {n}: {a:?} vs {b:?}");
+            agree += 1;
+        }
+    }
+    assert!(agree > 100, "{agree}");
+    for n in 3..=32 {
+        let p = DMatrix::from_fn(n, n, |i, j| if (i + 1) % n == j { 1.0 } else { 0.0 });
+        assert_eq!(
+            classify_matrix(&p).unwrap().class,
+            SubdominantClass::NotSeparated
+        );
+    }
+    assert_eq!(
+        classify_matrix(&DMatrix::zeros(4, 4)).unwrap().class,
+        SubdominantClass::NotSeparated
+    );
+    for n in [4, 6, 9] {
+        let s = LocalScheme::<f64>::doo_sabin(n).unwrap();
+        let c = classify_matrix(&s.matrix().unwrap().into_matrix()).unwrap();
+        assert_eq!(c.class, SubdominantClass::Standard, "n = {n}: {c:?}");
+    }
+}

@@ -84,7 +84,6 @@ fn cplx(z: [f64; 2]) -> String {
 /// Human-readable summary.
 fn summary(a: &LocalAnalysis) -> String {
     let s = &a.subdominant;
-    let c = &a.contraction;
     let mut out = format!(
         "{} around an n = {} face ({} path, {} eigenvalues)\n",
         a.scheme,
@@ -139,7 +138,8 @@ fn summary(a: &LocalAnalysis) -> String {
     if let Some(e) = a.limit_weights_error {
         out += &format!("  left eigenvector for 1 vs (c, 0): max difference {e:.2e}\n");
     }
-    out += &format!(
+    if let Some(c) = &a.contraction {
+        out += &format!(
         "Theorem 1: certificate {} (weights >= 0: {}, min {:.3e}; row sums 3/4 to {:.1e}); spectral bound |lambda1| = {:.10} {} 3/4\n",
         if c.certificate_holds { "holds" } else { "FAILS" },
         c.certificate_nonnegative,
@@ -148,13 +148,14 @@ fn summary(a: &LocalAnalysis) -> String {
         c.spectral_bound,
         if c.spectral_bound_ok { "<=" } else { ">" }
     );
-    out += &format!(
+        out += &format!(
         "  measured over {} levels: max per-step ratio {:.6}, fitted rate {:.6} (|lambda1| = {:.6}, bound 0.75)\n",
         c.measured_distances.len().saturating_sub(1),
         c.measured_max_ratio,
         c.measured_rate,
         c.spectral_bound
     );
+    }
     if let Some(x) = &a.exact {
         out += &format!(
             "exact: class {} ({}); 1 simple: {}; {} distinct real roots of p(x)/(x-1); |lambda| < 3/4: {}; Theorem 1 certificate exact: {}",

@@ -347,6 +347,34 @@ impl<DB: DrawingBackend> Drawable<DB> for LegendGlyph {
     }
 }
 
+/// Draws a legend in its own area (beside a chart rather than over its data):
+/// one glyph per entry, followed by one or more text lines. The glyphs must
+/// have been made with anchor `(0, 0)`; they are moved into place here.
+pub fn side_legend(
+    area: &Area<'_>,
+    entries: &[(LegendGlyph, Vec<String>)],
+    theme: &Theme,
+) -> Result<(), ReportError> {
+    let x = theme.tick as i32;
+    let line_h = theme.legend as i32 * 5 / 4;
+    let mut y = theme.label as i32 * 2;
+    for (glyph, lines) in entries {
+        let mut g = *glyph;
+        g.at = (x, y + theme.legend as i32 / 2);
+        area.draw(&g).map_err(draw_err)?;
+        for (k, text) in lines.iter().enumerate() {
+            area.draw(&Text::new(
+                text.clone(),
+                (x + g.width + theme.legend as i32 / 2, y + k as i32 * line_h),
+                theme.font(theme.legend),
+            ))
+            .map_err(draw_err)?;
+        }
+        y += line_h * lines.len().max(1) as i32 + theme.legend as i32 / 2;
+    }
+    Ok(())
+}
+
 /// Dash patterns for reference lines: (dash length, gap) in pixels, scaled by the line width.
 pub fn dash(i: usize, theme: &Theme) -> (u32, u32) {
     let w = theme.line.max(1);

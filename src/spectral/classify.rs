@@ -207,7 +207,10 @@ pub enum Decision {
 }
 
 /// Decides whether `d >= 0` with error radius `e` is zero (see the module docs).
+///
+/// A NaN radius counts as infinite (no confident verdict is possible).
 pub fn decide(d: f64, e: f64) -> Decision {
+    let e = if e.is_nan() { f64::INFINITY } else { e };
     if d <= e {
         Decision::Zero
     } else if d > SEPARATION_FACTOR * e {

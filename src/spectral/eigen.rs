@@ -108,9 +108,11 @@ pub struct Eigen {
 
 /// The deterministic ordering: non-increasing modulus, then larger real
 /// part, then larger imaginary part.
+///
+/// Moduli are compared through `|z|^2` (monotone, no `hypot`).
 pub fn spectral_order(a: &Complex64, b: &Complex64) -> Ordering {
-    b.norm()
-        .total_cmp(&a.norm())
+    b.norm_sqr()
+        .total_cmp(&a.norm_sqr())
         .then(b.re.total_cmp(&a.re))
         .then(b.im.total_cmp(&a.im))
 }

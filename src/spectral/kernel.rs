@@ -49,8 +49,9 @@ pub struct KernelWorkspace {
     a: Vec<f64>,
     /// The Hessenberg form of the input, for condition numbers.
     hess: Vec<f64>,
-    /// Householder vector.
+    /// Householder vector and scratch.
     v: Vec<f64>,
+    w: Vec<f64>,
     /// Complex LU factors for inverse iteration.
     lu: Vec<Complex64>,
     piv: Vec<usize>,
@@ -59,6 +60,7 @@ pub struct KernelWorkspace {
     /// Eigenvalues (real and imaginary parts).
     wr: Vec<f64>,
     wi: Vec<f64>,
+    sweeps: usize,
 }
 
 impl KernelWorkspace {
@@ -80,6 +82,17 @@ impl KernelWorkspace {
     /// The current input matrix (column major).
     pub fn matrix(&self) -> &[f64] {
         &self.a[..self.n * self.n]
+    }
+
+    /// The Hessenberg form computed by the last
+    /// [`eigenvalues`](Self::eigenvalues) call (column major).
+    pub fn hessenberg_form(&self) -> &[f64] {
+        &self.hess[..self.n * self.n]
+    }
+
+    /// QR sweeps used by the last [`eigenvalues`](Self::eigenvalues) call.
+    pub fn last_sweeps(&self) -> usize {
+        self.sweeps
     }
 
     /// Dimension of the current input.
@@ -106,17 +119,21 @@ impl KernelWorkspace {
         self.wr.resize(n, 0.0);
         self.wi.clear();
         self.wi.resize(n, 0.0);
-        hessenberg(n, &mut self.h, &mut self.v);
+        self.w.clear();
+        self.w.resize(n, 0.0);
+        hessenberg(n, &mut self.h, &mut self.v, &mut self.w);
         self.hess.clear();
         self.hess.extend_from_slice(&self.h);
-        hqr(n, &mut self.h, &mut self.wr, &mut self.wi)?;
+        self.sweeps = hqr(n, &mut self.h, &mut self.wr, &mut self.wi)?;
         Ok((&self.wr, &self.wi))
     }
 
     /// The eigenvalue condition number `kappa = ||x|| ||y|| / |y^H x|` of the
     /// (computed) eigenvalue `lambda` of the input last passed to
     /// [`KernelWorkspace::eigenvalues`], with right and left eigenvectors `x`,
-    /// `y` from two steps of inverse iteration.
+    /// `y` from one step of inverse iteration (from a fixed non-special start
+    /// vector; one step suffices because `lambda` is accurate to rounding, so
+    /// the amplification of the eigenvector component is `~ gap / eps`).
     ///
     /// Works on the saved Hessenberg form `H = Q^T A Q` (`kappa` is invariant
     /// under orthogonal similarity), so one call costs `O(n^2)`: an LU
@@ -148,7 +165,7 @@ impl KernelWorkspace {
             .extend((0..n).map(|i| Complex64::new(1.0 + 0.5 * ((i * 7 % 11) as f64) / 11.0, 0.0)));
         self.y.clear();
         self.y.extend_from_slice(&self.x);
-        for _ in 0..2 {
+        for _ in 0..1 {
             hessenberg_solve(n, &self.lu, &self.piv, &mut self.x);
             normalise(&mut self.x);
             hessenberg_solve_adjoint(n, &self.lu, &self.piv, &mut self.y);
@@ -177,8 +194,10 @@ fn normalise(v: &mut [Complex64]) {
 /// are exactly or nearly zero are replaced by `tiny` (standard for inverse
 /// iteration at an eigenvalue).
 fn hessenberg_lu(n: usize, a: &mut [Complex64], piv: &mut [usize], tiny: f64) {
+    // |re| + |im| is a cheap norm with the same pivoting quality as the modulus.
+    let l1 = |z: Complex64| z.re.abs() + z.im.abs();
     for k in 0..n {
-        if k + 1 < n && a[k + 1 + k * n].norm() > a[k + k * n].norm() {
+        if k + 1 < n && l1(a[k + 1 + k * n]) > l1(a[k + k * n]) {
             piv[k] = 1;
             for j in k..n {
                 a.swap(k + j * n, k + 1 + j * n);
@@ -186,7 +205,7 @@ fn hessenberg_lu(n: usize, a: &mut [Complex64], piv: &mut [usize], tiny: f64) {
         } else {
             piv[k] = 0;
         }
-        if a[k + k * n].norm() <= tiny {
+        if l1(a[k + k * n]) <= tiny {
             a[k + k * n] = Complex64::new(tiny, 0.0);
         }
         if k + 1 < n {
@@ -240,60 +259,59 @@ fn hessenberg_solve_adjoint(n: usize, lu: &[Complex64], piv: &[usize], b: &mut [
 
 /// Householder reduction of the column-major `n x n` matrix `h` to upper
 /// Hessenberg form, in place (entries below the subdiagonal are zeroed).
-pub(crate) fn hessenberg(n: usize, h: &mut [f64], v: &mut [f64]) {
+/// `v` and `w` are scratch vectors of length `n`. All inner loops run over
+/// contiguous column slices.
+pub(crate) fn hessenberg(n: usize, h: &mut [f64], v: &mut [f64], w: &mut [f64]) {
     if n < 3 {
         return;
     }
     for k in 0..n - 2 {
-        // x = h[k+1.., k]
-        let mut scale = 0.0f64;
-        for i in k + 1..n {
-            scale = scale.max(h[i + k * n].abs());
-        }
+        let col = &h[k * n + k + 1..(k + 1) * n];
+        let scale = col.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         if scale == 0.0 {
             continue;
         }
+        let vk = &mut v[k + 1..n];
         let mut norm2 = 0.0;
-        for i in k + 1..n {
-            let t = h[i + k * n] / scale;
-            v[i] = t;
+        for (vi, x) in vk.iter_mut().zip(col) {
+            let t = x / scale;
+            *vi = t;
             norm2 += t * t;
         }
-        let x0 = v[k + 1];
+        let x0 = vk[0];
         let alpha = -x0.signum() * norm2.sqrt();
-        if x0 == 0.0 && norm2 == 0.0 {
-            continue;
-        }
-        v[k + 1] = x0 - alpha;
-        let vtv = norm2 - x0 * x0 + v[k + 1] * v[k + 1];
+        vk[0] = x0 - alpha;
+        let vtv = norm2 - x0 * x0 + vk[0] * vk[0];
         if vtv == 0.0 {
             continue;
         }
         let beta = 2.0 / vtv;
         // Left: rows k+1..n, columns k+1..n (column k is set explicitly).
         for j in k + 1..n {
-            let mut s = 0.0;
-            for i in k + 1..n {
-                s += v[i] * h[i + j * n];
-            }
-            s *= beta;
-            for i in k + 1..n {
-                h[i + j * n] -= s * v[i];
+            let cj = &mut h[j * n + k + 1..(j + 1) * n];
+            let s: f64 = cj.iter().zip(vk.iter()).map(|(x, y)| x * y).sum::<f64>() * beta;
+            for (x, y) in cj.iter_mut().zip(vk.iter()) {
+                *x -= s * y;
             }
         }
         h[k + 1 + k * n] = alpha * scale;
-        for i in k + 2..n {
-            h[i + k * n] = 0.0;
+        for x in &mut h[k * n + k + 2..(k + 1) * n] {
+            *x = 0.0;
         }
-        // Right: all rows, columns k+1..n.
-        for i in 0..n {
-            let mut s = 0.0;
-            for j in k + 1..n {
-                s += h[i + j * n] * v[j];
+        // Right: all rows, columns k+1..n: w = H v, H -= beta w v^T.
+        let w = &mut w[..n];
+        w.iter_mut().for_each(|x| *x = 0.0);
+        for (j, &vj) in (k + 1..n).zip(vk.iter()) {
+            let cj = &h[j * n..(j + 1) * n];
+            for (wi, x) in w.iter_mut().zip(cj) {
+                *wi += x * vj;
             }
-            s *= beta;
-            for j in k + 1..n {
-                h[i + j * n] -= s * v[j];
+        }
+        for (j, &vj) in (k + 1..n).zip(vk.iter()) {
+            let f = beta * vj;
+            let cj = &mut h[j * n..(j + 1) * n];
+            for (x, wi) in cj.iter_mut().zip(w.iter()) {
+                *x -= wi * f;
             }
         }
     }
@@ -306,15 +324,33 @@ pub(crate) fn hqr(
     a: &mut [f64],
     wr: &mut [f64],
     wi: &mut [f64],
-) -> Result<(), SpectralError> {
-    let idx = |i: usize, j: usize| i + j * n;
+) -> Result<usize, SpectralError> {
+    debug_assert!(a.len() >= n * n && wr.len() >= n && wi.len() >= n);
+    // Unchecked access: every index below is < n by the loop invariants
+    // (l <= m <= k <= nu < n, and the guards on k + 2 / m - 1), checked in debug builds.
+    macro_rules! g {
+        ($i:expr, $j:expr) => {{
+            let (i, j) = ($i, $j);
+            debug_assert!(i < n && j < n);
+            // SAFETY: i, j < n and a.len() >= n * n.
+            unsafe { *a.get_unchecked(i + j * n) }
+        }};
+    }
+    macro_rules! m {
+        ($i:expr, $j:expr) => {{
+            let (i, j) = ($i, $j);
+            debug_assert!(i < n && j < n);
+            // SAFETY: i, j < n and a.len() >= n * n.
+            unsafe { a.get_unchecked_mut(i + j * n) }
+        }};
+    }
     if n == 0 {
-        return Ok(());
+        return Ok(0);
     }
     let mut anorm = 0.0;
     for j in 0..n {
         for i in 0..n.min(j + 2) {
-            anorm += a[idx(i, j)].abs();
+            anorm += g!(i, j).abs();
         }
     }
     let eps = f64::EPSILON;
@@ -330,17 +366,17 @@ pub(crate) fn hqr(
             // Look for a small subdiagonal element.
             let mut l = nu;
             while l >= 1 {
-                let mut s = a[idx(l - 1, l - 1)].abs() + a[idx(l, l)].abs();
+                let mut s = g!(l - 1, l - 1).abs() + g!(l, l).abs();
                 if s == 0.0 {
                     s = anorm;
                 }
-                if a[idx(l, l - 1)].abs() <= eps * s {
-                    a[idx(l, l - 1)] = 0.0;
+                if g!(l, l - 1).abs() <= eps * s {
+                    *m!(l, l - 1) = 0.0;
                     break;
                 }
                 l -= 1;
             }
-            let mut x = a[idx(nu, nu)];
+            let mut x = g!(nu, nu);
             if l == nu {
                 // One root found.
                 wr[nu] = x + t;
@@ -348,8 +384,8 @@ pub(crate) fn hqr(
                 nn -= 1;
                 break;
             }
-            let mut y = a[idx(nu - 1, nu - 1)];
-            let mut w = a[idx(nu, nu - 1)] * a[idx(nu - 1, nu)];
+            let mut y = g!(nu - 1, nu - 1);
+            let mut w = g!(nu, nu - 1) * g!(nu - 1, nu);
             if l + 1 == nu {
                 // Two roots found.
                 let p = 0.5 * (y - x);
@@ -380,15 +416,35 @@ pub(crate) fn hqr(
                 });
             }
             if its > 0 && its % EXCEPTIONAL_SHIFT_PERIOD == 0 {
-                // Exceptional shift (dlahqr's constants 0.75 and -0.4375).
+                // Exceptional shift (EISPACK hqr; dlahqr's constants 0.75 and -0.4375).
                 t += x;
                 for i in 0..=nu {
-                    a[idx(i, i)] -= x;
+                    *m!(i, i) -= x;
                 }
-                let s = a[idx(nu, nu - 1)].abs() + a[idx(nu - 1, nu - 2)].abs();
+                let s = g!(nu, nu - 1).abs() + g!(nu - 1, nu - 2).abs();
                 x = 0.75 * s;
                 y = x;
                 w = -0.4375 * s * s;
+            } else {
+                // LAPACK 3.10 dlahqr: when both Francis shifts are real, use the
+                // one closer to a[nu][nu] twice. Two distinct real shifts placed
+                // symmetrically in a spectrum that is itself symmetric (NURDS
+                // with even n) stall the iteration.
+                let p = 0.5 * (y - x);
+                let disc = p * p + w;
+                if disc >= 0.0 {
+                    let sq = disc.sqrt();
+                    let mid = 0.5 * (x + y);
+                    let (s1, s2) = (mid + sq, mid - sq);
+                    let sigma = if (s1 - x).abs() <= (s2 - x).abs() {
+                        s1
+                    } else {
+                        s2
+                    };
+                    x = sigma;
+                    y = sigma;
+                    w = 0.0;
+                }
             }
             its += 1;
             total += 1;
@@ -396,12 +452,12 @@ pub(crate) fn hqr(
             let mut m = nu - 2;
             let (mut p, mut q, mut r);
             loop {
-                let z = a[idx(m, m)];
+                let z = g!(m, m);
                 let rr = x - z;
                 let ss = y - z;
-                p = (rr * ss - w) / a[idx(m + 1, m)] + a[idx(m, m + 1)];
-                q = a[idx(m + 1, m + 1)] - z - rr - ss;
-                r = a[idx(m + 2, m + 1)];
+                p = (rr * ss - w) / g!(m + 1, m) + g!(m, m + 1);
+                q = g!(m + 1, m + 1) - z - rr - ss;
+                r = g!(m + 2, m + 1);
                 let s = p.abs() + q.abs() + r.abs();
                 p /= s;
                 q /= s;
@@ -409,31 +465,26 @@ pub(crate) fn hqr(
                 if m == l {
                     break;
                 }
-                let u = a[idx(m, m - 1)].abs() * (q.abs() + r.abs());
-                let v =
-                    p.abs() * (a[idx(m - 1, m - 1)].abs() + z.abs() + a[idx(m + 1, m + 1)].abs());
+                let u = g!(m, m - 1).abs() * (q.abs() + r.abs());
+                let v = p.abs() * (g!(m - 1, m - 1).abs() + z.abs() + g!(m + 1, m + 1).abs());
                 if u <= eps * v {
                     break;
                 }
                 m -= 1;
             }
             for i in m + 2..=nu {
-                a[idx(i, i - 2)] = 0.0;
+                *m!(i, i - 2) = 0.0;
                 if i != m + 2 {
-                    a[idx(i, i - 3)] = 0.0;
+                    *m!(i, i - 3) = 0.0;
                 }
             }
             // Double QR step on rows l..nu and columns m..nu.
             let mut k = m;
             while k < nu {
                 if k != m {
-                    p = a[idx(k, k - 1)];
-                    q = a[idx(k + 1, k - 1)];
-                    r = if k != nu - 1 {
-                        a[idx(k + 2, k - 1)]
-                    } else {
-                        0.0
-                    };
+                    p = g!(k, k - 1);
+                    q = g!(k + 1, k - 1);
+                    r = if k != nu - 1 { g!(k + 2, k - 1) } else { 0.0 };
                     x = p.abs() + q.abs() + r.abs();
                     if x != 0.0 {
                         p /= x;
@@ -445,10 +496,10 @@ pub(crate) fn hqr(
                 if s != 0.0 {
                     if k == m {
                         if l != m {
-                            a[idx(k, k - 1)] = -a[idx(k, k - 1)];
+                            *m!(k, k - 1) = -g!(k, k - 1);
                         }
                     } else {
-                        a[idx(k, k - 1)] = -s * x;
+                        *m!(k, k - 1) = -s * x;
                     }
                     p += s;
                     x = p / s;
@@ -458,31 +509,31 @@ pub(crate) fn hqr(
                     r /= p;
                     // Row modification.
                     for j in k..=nu {
-                        let mut pp = a[idx(k, j)] + q * a[idx(k + 1, j)];
+                        let mut pp = g!(k, j) + q * g!(k + 1, j);
                         if k != nu - 1 {
-                            pp += r * a[idx(k + 2, j)];
-                            a[idx(k + 2, j)] -= pp * z;
+                            pp += r * g!(k + 2, j);
+                            *m!(k + 2, j) -= pp * z;
                         }
-                        a[idx(k + 1, j)] -= pp * y;
-                        a[idx(k, j)] -= pp * x;
+                        *m!(k + 1, j) -= pp * y;
+                        *m!(k, j) -= pp * x;
                     }
                     // Column modification.
                     let mmin = if nu < k + 3 { nu } else { k + 3 };
                     for i in l..=mmin {
-                        let mut pp = x * a[idx(i, k)] + y * a[idx(i, k + 1)];
+                        let mut pp = x * g!(i, k) + y * g!(i, k + 1);
                         if k != nu - 1 {
-                            pp += z * a[idx(i, k + 2)];
-                            a[idx(i, k + 2)] -= pp * r;
+                            pp += z * g!(i, k + 2);
+                            *m!(i, k + 2) -= pp * r;
                         }
-                        a[idx(i, k + 1)] -= pp * q;
-                        a[idx(i, k)] -= pp;
+                        *m!(i, k + 1) -= pp * q;
+                        *m!(i, k) -= pp;
                     }
                 }
                 k += 1;
             }
         }
     }
-    Ok(())
+    Ok(total)
 }
 
 #[cfg(test)]

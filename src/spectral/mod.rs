@@ -24,8 +24,9 @@
 //! let s = LocalScheme::nurds(EdgeRatios::new(vec![0.3, 0.6, 0.5, 0.2, 0.7]).unwrap());
 //! let a = analyze(&s, &AnalyzeOptions::default()).unwrap();
 //! assert_eq!(a.eigenvalues.len(), 20);
-//! assert!(a.contraction.certificate_nonnegative);
-//! assert!(a.contraction.spectral_bound <= 0.75);
+//! let c = a.contraction.as_ref().unwrap(); // Doo-Sabin family only
+//! assert!(c.certificate_nonnegative);
+//! assert!(c.spectral_bound <= 0.75);
 //! assert!(!matches!(a.subdominant.class, SubdominantClass::Standard));
 //! ```
 
@@ -192,8 +193,9 @@ pub struct LocalAnalysis {
     pub tangent_stencils: Option<[Vec<f64>; 2]>,
     /// Subdominant classification.
     pub subdominant: Subdominant,
-    /// Theorem 1.
-    pub contraction: ContractionSummary,
+    /// Theorem 1 (Doo-Sabin family only: the face-block contraction of
+    /// math doc section 5; `None` for other schemes).
+    pub contraction: Option<ContractionSummary>,
     /// Exact verdicts (`--exact`).
     pub exact: Option<exact::ExactVerdict>,
 }
@@ -203,6 +205,18 @@ impl LocalAnalysis {
     pub fn add_exact(&mut self, scheme: &LocalScheme<Rational>) -> Result<()> {
         self.exact = Some(exact::exact_verdict(scheme, Some(&self.subdominant))?);
         Ok(())
+    }
+}
+
+/// Error radius `max(kappa, 1) * eta` (0 when `eta = 0`, i.e. the zero matrix,
+/// even if `kappa` is infinite).
+fn radius(kappa: f64, eta: f64) -> f64 {
+    if eta == 0.0 {
+        0.0
+    } else if kappa.is_nan() {
+        f64::INFINITY
+    } else {
+        kappa.max(1.0) * eta
     }
 }
 
@@ -237,7 +251,7 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
             let dim = e.dim();
             let eta = BACKWARD_ERROR_FACTOR * dim as f64 * f64::EPSILON * e.frobenius_norm();
             let kappa = e.condition_numbers().unwrap_or(&[]).to_vec();
-            let radii: Vec<f64> = kappa.iter().map(|k| k.max(1.0) * eta).collect();
+            let radii: Vec<f64> = kappa.iter().map(|&k| radius(k, eta)).collect();
             subdominant = classify(
                 &Evidence {
                     values: e.values(),
@@ -294,25 +308,29 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
             tangents = None;
         }
     }
-    let cert = contraction::certificate(scheme)?;
-    let measured = contraction::measure(scheme, &options.measure)?;
     let spectral_bound = eigenvalues
         .iter()
         .skip(1)
         .map(|z| z[0].hypot(z[1]))
         .fold(0.0, f64::max);
-    let contraction = ContractionSummary {
-        certificate_sum: cert.row_sums.iter().copied().fold(0.0, f64::max),
-        certificate_sum_defect: cert.max_sum_defect(),
-        certificate_nonnegative: cert.nonnegative,
-        certificate_min_weight: cert.min_weight,
-        certificate_holds: cert.holds(),
-        spectral_bound,
-        spectral_bound_ok: spectral_bound <= 0.75,
-        measured_rate: measured.fitted_rate,
-        measured_max_ratio: measured.max_ratio,
-        measured_distances: measured.distances,
-        measured_ratios: measured.ratios,
+    let contraction = if scheme.kind().is_doo_sabin_family() {
+        let cert = contraction::certificate(scheme)?;
+        let measured = contraction::measure(scheme, &options.measure)?;
+        Some(ContractionSummary {
+            certificate_sum: cert.row_sums.iter().copied().fold(0.0, f64::max),
+            certificate_sum_defect: cert.max_sum_defect(),
+            certificate_nonnegative: cert.nonnegative,
+            certificate_min_weight: cert.min_weight,
+            certificate_holds: cert.holds(),
+            spectral_bound,
+            spectral_bound_ok: spectral_bound <= 0.75,
+            measured_rate: measured.fitted_rate,
+            measured_max_ratio: measured.max_ratio,
+            measured_distances: measured.distances,
+            measured_ratios: measured.ratios,
+        })
+    } else {
+        None
     };
     let (limit_weights, limit_weights_error) = match limit {
         Some((w, e)) => (Some(w), Some(e)),
@@ -389,7 +407,7 @@ pub fn classify_scheme_with(
                 _ => ws.condition_number(z),
             };
             last = Some((z, kappa));
-            slot.1 = kappa.max(1.0) * eta;
+            slot.1 = radius(kappa, eta);
         }
     }
     let values = [top[0].0, top[1].0, top[2].0, top[3].0];
@@ -406,4 +424,57 @@ pub fn classify_scheme_with(
             second_smallest_sigma(&b, lam)
         },
     )?)
+}
+
+thread_local! {
+    static MATRIX_WORKSPACE: RefCell<(kernel::KernelWorkspace, Vec<Complex64>)> =
+        RefCell::new((kernel::KernelWorkspace::new(), Vec::new()));
+}
+
+/// Classification only for any square matrix (e.g. schemes outside the
+/// Doo-Sabin family), by the allocation-free [`kernel`]: all eigenvalues,
+/// condition numbers of `lambda_1..lambda_3` by inverse iteration, and the
+/// rank test (faer SVD) only for a double-eigenvalue candidate.
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use subdiv_lab::spectral::{classify_matrix, SubdominantClass};
+/// let s = DMatrix::from_row_slice(3, 3, &[1.0, 0.0, 0.0, 0.25, 0.5, 0.25, 0.0, 0.0, 0.25]);
+/// assert_eq!(classify_matrix(&s).unwrap().class, SubdominantClass::NotSeparated);
+/// ```
+pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
+    let (n, m) = s.shape();
+    if n != m {
+        return Err(SpectralError::NotSquare { rows: n, cols: m }.into());
+    }
+    MATRIX_WORKSPACE.with(|cell| {
+        let mut guard = cell.borrow_mut();
+        let (ws, values) = &mut *guard;
+        ws.input(n).copy_from_slice(s.as_slice());
+        let (re, im) = ws.eigenvalues()?;
+        values.clear();
+        values.extend(re.iter().zip(im).map(|(&a, &b)| Complex64::new(a, b)));
+        values.sort_by(spectral_order);
+        let eta = BACKWARD_ERROR_FACTOR * n.max(1) as f64 * f64::EPSILON * s.norm();
+        let mut radii = [0.0f64; 4];
+        let mut last: Option<(Complex64, f64)> = None;
+        for k in 0..n.min(4) {
+            let z = values[k];
+            let kappa = match last {
+                Some((w, kw)) if w == z.conj() => kw,
+                _ => ws.condition_number(z),
+            };
+            last = Some((z, kappa));
+            radii[k] = radius(kappa, eta);
+        }
+        let top: Vec<Complex64> = values.iter().take(4).copied().collect();
+        Ok(classify(
+            &Evidence {
+                values: &top,
+                radii: &radii[..top.len()],
+                eta,
+            },
+            &mut |lam| second_smallest_sigma(s, lam),
+        )?)
+    })
 }

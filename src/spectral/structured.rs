@@ -85,6 +85,11 @@ impl StructuredWorkspace {
         self.kernel.condition_number(lambda)
     }
 
+    /// QR sweeps of the last kernel call (diagnostics).
+    pub fn last_sweeps(&self) -> usize {
+        self.kernel.last_sweeps()
+    }
+
     /// Frobenius norm of the deflated block `B` last computed.
     pub fn frobenius_norm(&self) -> f64 {
         self.frobenius
@@ -118,21 +123,36 @@ fn fill_face_like(scheme: &LocalScheme<f64>, n: usize, f: &mut [f64]) -> Result<
                 }
             }
         }
-        _ => {
-            let ratios = scheme.ratios();
-            let r = ratios.as_slice();
-            let s = ratios.complement();
+        LocalScheme::Nurds(ratios) => fill_m(n, ratios.as_slice(), ratios.complement(), f),
+        LocalScheme::CcVariant { .. } => {
+            // Uniform ratios 1/2 (no allocation): diagonal 1/2, neighbours 1/8.
             for i in 0..n {
                 let prev = (i + n - 1) % n;
                 let next = (i + 1) % n;
-                // (I + R)/4: diagonal (1 + s_{i-1} + r_i)/4, sub r_{i-1}/4, super s_i/4.
-                f[i + i * n] = 0.25 * (1.0 + s[prev] + r[i]);
-                f[i + prev * n] += 0.25 * r[prev];
-                f[i + next * n] += 0.25 * s[i];
+                f[i + i * n] = 0.25 * 2.0;
+                f[i + prev * n] += 0.125;
+                f[i + next * n] += 0.125;
             }
+        }
+        #[allow(unreachable_patterns)]
+        _ => {
+            return Err(SpectralError::NotDooSabinFamily {
+                scheme: scheme.kind().name(),
+            })
         }
     }
     Ok(())
+}
+
+/// `M = (I + R)/4`: diagonal `(1 + s_{i-1} + r_i)/4`, sub `r_{i-1}/4`, super `s_i/4`.
+fn fill_m(n: usize, r: &[f64], s: &[f64], f: &mut [f64]) {
+    for i in 0..n {
+        let prev = (i + n - 1) % n;
+        let next = (i + 1) % n;
+        f[i + i * n] = 0.25 * (1.0 + s[prev] + r[i]);
+        f[i + prev * n] += 0.25 * r[prev];
+        f[i + next * n] += 0.25 * s[i];
+    }
 }
 
 /// Trailing `(n-1) x (n-1)` block of `H F H`, `H = I - beta v v^T`,

@@ -180,9 +180,15 @@ impl FigureOutput for Output {
                 num(a.subdominant.lambda2.im),
                 num(a.subdominant.abs_lambda3),
                 num(a.subdominant.gap),
-                num(a.contraction.certificate_sum),
-                a.contraction.certificate_nonnegative.to_string(),
-                num(a.contraction.measured_rate),
+                a.contraction
+                    .as_ref()
+                    .map_or_else(|| "NaN".into(), |c| num(c.certificate_sum)),
+                a.contraction
+                    .as_ref()
+                    .map_or_else(String::new, |c| c.certificate_nonnegative.to_string()),
+                a.contraction
+                    .as_ref()
+                    .map_or_else(|| "NaN".into(), |c| num(c.measured_rate)),
             ]);
             for (k, z) in eigenvalues(a).iter().enumerate() {
                 e.push(vec![
@@ -219,7 +225,7 @@ impl FigureOutput for Output {
                  <tr><th class=\"l\">|λ<sub>1</sub>|, |λ<sub>2</sub>|, |λ<sub>3</sub>|</th><td class=\"l\">{:.6}, {:.6}, {:.6}</td></tr>\
                  <tr><th class=\"l\">gap |λ<sub>2</sub>| − |λ<sub>3</sub>|</th><td class=\"l\">{:.6}</td></tr>\
                  <tr><th class=\"l\">Theorem 1 certificate sum (weights ≥ 0: {})</th><td class=\"l\">{}</td></tr>\
-                 <tr><th class=\"l\">measured contraction rate</th><td class=\"l\">{:.6}</td></tr></table>",
+                 <tr><th class=\"l\">measured contraction rate</th><td class=\"l\">{}</td></tr></table>",
                 escape(c.scheme.kind().name()),
                 c.scheme.valence(),
                 escape(
@@ -236,9 +242,17 @@ impl FigureOutput for Output {
                 a.subdominant.lambda2.norm(),
                 a.subdominant.abs_lambda3,
                 a.subdominant.gap,
-                if a.contraction.certificate_nonnegative { "yes" } else { "no" },
-                num(a.contraction.certificate_sum),
-                a.contraction.measured_rate,
+                match &a.contraction {
+                    Some(c) if c.certificate_nonnegative => "yes",
+                    Some(_) => "no",
+                    None => "n/a",
+                },
+                a.contraction
+                    .as_ref()
+                    .map_or_else(|| "n/a".into(), |c| num(c.certificate_sum)),
+                a.contraction
+                    .as_ref()
+                    .map_or_else(|| "n/a".into(), |c| format!("{:.6}", c.measured_rate)),
             );
             h.push_str("<table><tr><th>#</th><th>eigenvalue of S<sub>n</sub></th><th>|λ|</th><th>multiplicity</th></tr>\n");
             for (k, (z, m)) in grouped(&eigenvalues(a)).iter().enumerate() {

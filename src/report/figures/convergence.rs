@@ -20,7 +20,9 @@ use crate::contraction::{measure, MeasureOptions};
 use crate::report::backend::Area;
 use crate::report::config::{ConfigSpec, Configuration};
 use crate::report::error::ReportError;
-use crate::report::plot::{dash, draw_err, series_color, titled, LegendGlyph, Marker, Theme};
+use crate::report::plot::{
+    dash, draw_err, series_color, side_legend, titled, LegendGlyph, Marker, Theme,
+};
 use crate::report::rng::{derive_seed, SplitMix64};
 use crate::report::spec::{Common, FigureSpec};
 use crate::spectral::classify_scheme;
@@ -188,7 +190,9 @@ impl FigureOutput for Output {
             .fold(1.0f64, f64::min)
             / 2.0;
         let kmax = self.steps as f64;
-        let mut chart = ChartBuilder::on(&body)
+        let (w, _) = body.dim_in_pixel();
+        let (plot_area, legend_area) = body.split_horizontally(w * 66 / 100);
+        let mut chart = ChartBuilder::on(&plot_area)
             .margin(th.tick as i32)
             .x_label_area_size(th.label * 3)
             .y_label_area_size(th.label * 4)
@@ -208,6 +212,8 @@ impl FigureOutput for Output {
             .map_err(draw_err)?;
         let n = self.curves.len();
         let lw = th.line;
+        let origin = (0, 0);
+        let mut legend = Vec::new();
         // Theorem 1 bound.
         let bound: Vec<(f64, f64)> = (0..=self.steps)
             .map(|k| (k as f64, 0.75f64.powi(k as i32)))
@@ -221,9 +227,12 @@ impl FigureOutput for Output {
                 gap,
                 BLACK.stroke_width(lw + 1),
             ))
-            .map_err(draw_err)?
-            .label("(3/4)^k  (Theorem 1 bound)")
-            .legend(move |p| LegendGlyph::line(p, &th, BLACK, lw + 1).dashed((dl, gap)));
+            .map_err(draw_err)?;
+        legend.push((
+            LegendGlyph::line(origin, &th, BLACK, lw + 1).dashed((dl, gap)),
+            vec!["(3/4)^k: Theorem 1 bound".to_owned()],
+        ));
+        let rate_dash = dash(1, &th);
         for (i, c) in self.curves.iter().enumerate() {
             let col = series_color(i, n);
             let marker = Marker::nth(i);
@@ -231,39 +240,37 @@ impl FigureOutput for Output {
             let pts: Vec<(f64, f64)> = c.points.iter().map(|&(k, d)| (k as f64, d)).collect();
             chart
                 .draw_series(LineSeries::new(pts.clone(), col.stroke_width(lw)))
-                .map_err(draw_err)?
-                .label(format!("{}  (|λ₁| = {:.4})", c.label, c.lambda1))
-                .legend(move |p| LegendGlyph::line(p, &th, col, lw).marker(marker, ms));
+                .map_err(draw_err)?;
             let every = (pts.len() / 12).max(1);
             chart
                 .draw_series(pts.iter().step_by(every).map(|&p| marker.at(p, ms, col)))
                 .map_err(draw_err)?;
-            let (dl, gap) = dash(1, &th);
             let rate: Vec<(f64, f64)> = (0..=self.steps)
                 .map(|k| (k as f64, c.fit * c.lambda1.powi(k as i32)))
                 .filter(|p| p.1 >= ymin && p.1 <= 1.5)
                 .collect();
             chart
-                .draw_series(DashedLineSeries::new(rate, dl, gap, col.stroke_width(lw)))
+                .draw_series(DashedLineSeries::new(
+                    rate,
+                    rate_dash.0,
+                    rate_dash.1,
+                    col.stroke_width(lw),
+                ))
                 .map_err(draw_err)?;
+            legend.push((
+                LegendGlyph::line(origin, &th, col, lw).marker(marker, ms),
+                vec![c.label.clone(), format!("|λ₁| = {:.4}", c.lambda1)],
+            ));
         }
-        // Legend entry for the rate lines (one, in black).
-        let dl2 = dash(1, &th);
-        chart
-            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
-            .map_err(draw_err)?
-            .label("C |λ₁|^k  (dotted, fitted at the last step)")
-            .legend(move |p| LegendGlyph::line(p, &th, BLACK, lw).dashed(dl2));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerLeft)
-            .label_font(th.font(th.legend))
-            .legend_area_size(th.legend_area())
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK.mix(0.5))
-            .margin(th.legend as i32 / 2)
-            .draw()
-            .map_err(draw_err)?;
+        legend.push((
+            LegendGlyph::line(origin, &th, BLACK, lw).dashed(rate_dash),
+            vec![
+                "C |λ₁|^k, dotted, in the".to_owned(),
+                "curve's colour (C fitted".to_owned(),
+                "at the last step)".to_owned(),
+            ],
+        ));
+        side_legend(&legend_area, &legend, &th)?;
         Ok(())
     }
 }
