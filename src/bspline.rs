@@ -49,6 +49,9 @@
 //! assert!((p[1] - 1.0).abs() < 1e-15);
 //! ```
 
+// Index loops mirror the subscripts of the formulas in the math doc.
+#![allow(clippy::needless_range_loop)]
+
 use crate::error::{Error, Result};
 
 fn check_interval(name: &'static str, index: usize, v: f64) -> Result<()> {
@@ -204,6 +207,9 @@ pub fn refine_curve<const D: usize>(
     Ok((q, dq))
 }
 
+/// A refined grid with its intervals along `u` and `v`.
+pub type RefinedGrid<const D: usize> = (Vec<Vec<[f64; D]>>, Vec<f64>, Vec<f64>);
+
 /// One refinement step of a tensor-product grid of biquadratic control points
 /// `grid[i][j]` (`i` along `u` with intervals `d`, `j` along `v` with
 /// intervals `e`): [`refine_curve`] applied to every row, then every column.
@@ -215,7 +221,7 @@ pub fn refine_grid<const D: usize>(
     e: &[f64],
     closed_u: bool,
     closed_v: bool,
-) -> Result<(Vec<Vec<[f64; D]>>, Vec<f64>, Vec<f64>)> {
+) -> Result<RefinedGrid<D>> {
     if grid.len() != d.len() {
         return Err(Error::CountMismatch {
             what: "u intervals (one per grid row)",

@@ -200,3 +200,38 @@ fn consistency_check_detects_wrong_ratios() {
     let mn = face_neighbourhood_points(&m3, f).unwrap();
     assert!(defect(&LocalScheme::nurds(wrong), &m, &mn) > 1e-4);
 }
+
+/// `S_n` needs the face to have been an F-face for one step in a mesh refined
+/// at least twice: faces *created* by the second step (E- and V-faces of level
+/// 2) do not yet satisfy it (their neighbours' transverse intervals differ),
+/// but their F-children at level 3 do.
+#[test]
+fn faces_created_at_step_two_satisfy_s_n_one_step_later() {
+    let mut m0 = generators::cube();
+    randomise(&mut m0, &mut Rng(11), 10.0);
+    let m1 = refine(&m0, SchemeKind::Nurds).unwrap();
+    let m2 = refine(&m1, SchemeKind::Nurds).unwrap();
+    let m3 = refine(&m2, SchemeKind::Nurds).unwrap();
+    let m4 = refine(&m3, SchemeKind::Nurds).unwrap();
+    let mut not_yet = 0;
+    for f in m1.face_count()..m2.face_count() {
+        let r = mesh_ratios(&m2, f);
+        if let (Some(m), Some(mn)) = (
+            face_neighbourhood_points(&m2, f),
+            face_neighbourhood_points(&m3, f),
+        ) {
+            if defect(&LocalScheme::nurds(r.clone()), &m, &mn) > 1e-6 {
+                not_yet += 1;
+            }
+        }
+        let m = face_neighbourhood_points(&m3, f).unwrap();
+        let mn = face_neighbourhood_points(&m4, f).unwrap();
+        let d = defect(&LocalScheme::nurds(mesh_ratios(&m3, f)), &m, &mn);
+        assert!(
+            d < TOL,
+            "face {f} created at level 2, checked at level 3: {d:e}"
+        );
+        assert!(close_ratios(&r, &mesh_ratios(&m3, f)));
+    }
+    assert!(not_yet > 0, "some level-2 faces should not satisfy S_n yet");
+}

@@ -2,11 +2,12 @@
 //! validates through [`scheme_args`] (shared scheme/knot flags), calls the
 //! library, and formats the result. No numerics here.
 
-mod ccss_bound;
 mod analyze;
+mod ccss_bound;
 mod matrix;
 mod report;
 mod scheme_args;
+mod subdivide;
 mod sweep;
 
 use clap::{Parser, Subcommand};
@@ -34,6 +35,8 @@ enum Command {
     Matrix(matrix::MatrixArgs),
     /// Distance bound beta(n) between a Catmull-Clark patch and its limit face (LP).
     CcssBound(ccss_bound::CcssBoundArgs),
+    /// Refine a closed polygon mesh (OBJ) with NURDS, Doo-Sabin or the Catmull-Clark variant.
+    Subdivide(subdivide::SubdivideArgs),
     /// Run a report spec (default analysis/default.toml) and write reports/<name>/.
     Report(report::ReportArgs),
     /// Spectrum, subdominant classification and Theorem 1 for one configuration.
@@ -87,6 +90,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
         Command::CcssBound(args) => ccss_bound::run(args),
+        Command::Subdivide(args) => subdivide::run(args),
         Command::Report(args) => report::run(args),
         Command::Analyze(args) => analyze::run(args),
         Command::Sweep(args) => sweep::run_sweep(args),

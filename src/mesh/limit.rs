@@ -9,7 +9,10 @@
 //!   the surface is a non-uniform biquadratic patch
 //!   ([`crate::bspline::BiquadraticPatch`]) whose corners are the four face
 //!   limit points; the vertex's V-face shrinks to the patch's parameter
-//!   midpoint, which is the vertex's limit position.
+//!   midpoint, which is the vertex's limit position **\[derived\]** (the
+//!   V-face's children carry the halved intervals of the centre span; checked
+//!   in `tests/mesh_tensor_limit.rs` against the face limit point of the V-face
+//!   after one mesh step, an independent route).
 //! * **Limit mesh**: the dual of the mesh, its vertices the face limit points;
 //!   each dual face of a regular vertex is split into a fan of triangles around
 //!   that vertex's limit point. Every vertex of the result lies on the limit
@@ -17,6 +20,9 @@
 //! * **Convergence statistics**: for every extraordinary face (`n != 4`),
 //!   `max_i |P_i - F|`; Theorem 1 (math doc section 5) bounds its decrease per
 //!   level by the factor 3/4.
+
+// Index loops mirror the subscripts of the formulas in the math doc.
+#![allow(clippy::needless_range_loop)]
 
 use super::refine::{face_point, refine};
 use super::vec3::dist;
@@ -280,4 +286,30 @@ pub fn convergence_series(stats: &[LevelStats]) -> Vec<ConvergenceSeries> {
         }
     }
     out
+}
+
+/// The edge ratios of face `f` from the mesh's directed-edge intervals
+/// (`p_i = knot(h_i)`, `q_i = knot(twin(h_{i-1}))`, math doc section 2).
+pub fn face_edge_ratios(mesh: &Mesh, f: usize) -> crate::Result<crate::knots::EdgeRatios<f64>> {
+    let (p, q): (Vec<f64>, Vec<f64>) = mesh
+        .face_corners(f)
+        .map(|h| mesh.corner_intervals(h))
+        .unzip();
+    crate::knots::CornerIntervals::new(p, q)?.ratios()
+}
+
+/// The local scheme that governs face `f` under `scheme` (NURDS: the face's
+/// own edge ratios, which refinement preserves; the uniform schemes: the valence).
+pub fn face_local_scheme(
+    mesh: &Mesh,
+    f: usize,
+    scheme: SchemeKind,
+) -> crate::Result<crate::schemes::LocalScheme<f64>> {
+    let n = mesh.face_size(f);
+    match scheme {
+        SchemeKind::Nurds => Ok(crate::schemes::LocalScheme::nurds(face_edge_ratios(
+            mesh, f,
+        )?)),
+        other => crate::schemes::LocalScheme::from_kind(other, n, None),
+    }
 }

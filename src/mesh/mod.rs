@@ -11,7 +11,7 @@
 //! ```
 //!
 //! "the knot interval of vertex `u` along edge `uv`" (math doc section 2,
-//! **[derived]** for meshes of arbitrary topology). On a closed oriented
+//! **\[derived\]** for meshes of arbitrary topology). On a closed oriented
 //! manifold every directed edge `u -> v` is exactly one half-edge, so the
 //! intervals are one positive number per directed edge. On a face with corners
 //! `P_0..P_{n-1}` the corner intervals are `p_i = knot(h_i)` and
@@ -20,7 +20,8 @@
 //! Submodules: [`obj`] (OBJ text in and out), [`knot_file`] (the knot-interval
 //! sidecar), [`refine`] (one step of each scheme), [`limit`] (limit points,
 //! limit meshes, per-level convergence statistics), [`generators`] (the small
-//! closed meshes shipped under `analysis/meshes/`).
+//! closed meshes shipped under `analysis/meshes/`), [`neighbourhood`] (the `4n`
+//! points of `S_n` around a face), [`projection`] (orthographic pictures).
 //!
 //! ```
 //! use subdiv_lab::mesh::{generators, refine::refine};
@@ -32,11 +33,15 @@
 //! assert_eq!((once.face_count(), once.vertex_count()), (6 + 12 + 8, 24));
 //! ```
 
+// Index loops mirror the subscripts of the formulas in the math doc.
+#![allow(clippy::needless_range_loop)]
+
 pub mod generators;
 pub mod knot_file;
 pub mod limit;
 pub mod neighbourhood;
 pub mod obj;
+pub mod projection;
 pub mod refine;
 
 use std::fmt;
@@ -124,6 +129,14 @@ pub enum MeshError {
         vertex: usize,
         /// Number of fans (at least 2).
         fans: usize,
+    },
+    /// A vertex with fewer than 3 edges: its V-face would have fewer than 3 sides.
+    #[error("vertex {vertex} (OBJ {}) has valence {valence}; subdivision needs at least 3 (its V-face would be degenerate)", vertex + 1)]
+    LowValence {
+        /// The vertex.
+        vertex: usize,
+        /// Its valence.
+        valence: usize,
     },
     /// A vertex used by no face.
     #[error("vertex {vertex} (OBJ {}) is not used by any face", vertex + 1)]
@@ -249,7 +262,8 @@ impl Mesh {
     ///
     /// Errors name the offending element: non-finite coordinates, dangling
     /// indices, degenerate faces, non-manifold edges and vertices, inconsistent
-    /// orientation, boundary edges, isolated vertices.
+    /// orientation, boundary edges, isolated vertices, vertices of valence
+    /// below 3 (whose V-faces would be degenerate).
     ///
     /// ```
     /// use subdiv_lab::mesh::{Mesh, MeshError};
@@ -423,6 +437,12 @@ impl Mesh {
                     }
                 }
                 return Err(MeshError::NonManifoldVertex { vertex: v, fans });
+            }
+            if ring < 3 {
+                return Err(MeshError::LowValence {
+                    vertex: v,
+                    valence: ring as usize,
+                });
             }
         }
         Ok(mesh)

@@ -9,6 +9,13 @@
 //! is `(P_i, E_i1, C_i, E_{i-1,2})`. The configuration exists after at most
 //! two refinement steps (every corner valence 4, every neighbour a quad).
 //!
+//! `M' = S_n M` holds for a face that already existed one level earlier in a
+//! mesh refined at least twice (the F-faces of level 2, i.e. children of
+//! level-1 faces, which include every extraordinary face). A face *created* by
+//! the second step (an E- or V-face of level 2) has the `4n` configuration but
+//! not yet equal transverse intervals around it, so `S_n` applies to it one
+//! level later (`tests/mesh_consistency.rs`).
+//!
 //! ```
 //! use subdiv_lab::mesh::{generators, neighbourhood::face_neighbourhood, refine::refine_levels};
 //! use subdiv_lab::schemes::SchemeKind;

@@ -4,7 +4,7 @@
 //!
 //! * **NURDS**: edge points `E_i = r_i P_i + (1 - r_i) P_{i+1}` with
 //!   `r_i = q_{i+1} / (p_i + q_{i+1})`, face point `F = sum_j c_j P_j` with the
-//!   face weights of [`crate::knots::face_weights`], and
+//!   face weights of [`crate::knots::face_weights()`], and
 //!   `P'_i = (P_i + E_{i-1} + E_i + F) / 4`;
 //! * **Catmull-Clark variant**: the same with `r_i = 1/2`, `c_j = 1/n`
 //!   (`P'_i = 1/2 P_i + 1/8 (P_{i-1} + P_{i+1}) + F/4`);
@@ -26,7 +26,7 @@
 //!   `k` in face `f_k`, the faces around `v` counter-clockwise starting at
 //!   [`Mesh::vertex_half_edge`] (the order of the vertex-EP preset).
 //!
-//! New knot intervals **[derived]** (math doc section 3): for the new vertex
+//! New knot intervals **\[derived\]** (math doc section 3): for the new vertex
 //! `X = (f, P_i)` with corner intervals `p, q`: `d(X -> (f,P_{i+1})) = p/2`,
 //! `d(X -> (f,P_{i-1})) = q/2`, spoke across the old edge `(P_i, P_{i+1})`:
 //! `q/2`, spoke across `(P_{i-1}, P_i)`: `p/2`. In the layout above every
@@ -35,6 +35,9 @@
 //!
 //! Twins and knots are produced directly from this layout (no hashing), in
 //! `O(H)` time and memory.
+
+// Index loops mirror the subscripts of the formulas in the math doc.
+#![allow(clippy::needless_range_loop)]
 
 use super::{Mesh, MeshError, MAX_HALF_EDGES};
 use crate::knots::face_weights::f64_kernel;
@@ -343,4 +346,79 @@ pub fn half_edges_after(mesh: &Mesh, levels: usize) -> u64 {
         h = h.saturating_mul(4);
     }
     h
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::generators;
+
+    /// The knot rules of math doc section 3, checked by looking the four
+    /// directed edges of every new vertex up by their end points (independent
+    /// of the index layout used to produce them).
+    #[test]
+    fn propagated_knots_follow_the_rules() {
+        let mut m = generators::truncated_icosahedron();
+        let k: Vec<f64> = (0..m.half_edge_count())
+            .map(|h| 0.1 + ((h * 7919) % 97) as f64 / 10.0)
+            .collect();
+        m.set_knots(k).unwrap();
+        let r = refine(&m, SchemeKind::Nurds).unwrap();
+        r.check_invariants().unwrap();
+        for c in 0..m.half_edge_count() {
+            let (p, q) = m.corner_intervals(c);
+            let x = c; // new vertex of corner c
+            let d = |to: usize| r.knot(r.find_half_edge(x, to).expect("edge exists"));
+            assert_eq!(d(m.next(c)), p / 2.0, "F-face edge to P_i+1");
+            assert_eq!(d(m.prev(c)), q / 2.0, "F-face edge to P_i-1");
+            assert_eq!(d(m.next(m.twin(c))), q / 2.0, "spoke across (P_i, P_i+1)");
+            assert_eq!(d(m.twin(m.prev(c))), p / 2.0, "spoke across (P_i-1, P_i)");
+            assert_eq!(r.valence(x), 4);
+        }
+        // face counts: F + E + V, sizes preserved for F-faces, V-faces have the valence
+        assert_eq!(
+            r.face_count(),
+            m.face_count() + m.edge_count() + m.vertex_count()
+        );
+        for f in 0..m.face_count() {
+            assert_eq!(r.face_size(f), m.face_size(f));
+        }
+        for v in 0..m.vertex_count() {
+            assert_eq!(
+                r.face_size(m.face_count() + m.edge_count() + v),
+                m.valence(v)
+            );
+        }
+    }
+
+    #[test]
+    fn tensor_quad_face_point_is_fact_2() {
+        // A single quad of the cube with tensor knots: F from the mesh equals
+        // the tensor face point of math doc section 2.
+        let mut m = generators::cube();
+        let (d0, d1, e0, e1) = (1.3, 0.4, 2.2, 0.7);
+        let f = 0;
+        let c: Vec<usize> = m.face_corners(f).collect();
+        // P0: p0 = d0, q0 = e0; P1: p1 = e0, q1 = d1; P2: p2 = d1, q2 = e1; P3: p3 = e1, q3 = d0
+        let p = [d0, e0, d1, e1];
+        let q = [e0, d1, e1, d0];
+        for i in 0..4 {
+            m.set_knot(c[i], p[i]).unwrap();
+            let h = m.rotate(c[i]);
+            m.set_knot(h, q[i]).unwrap();
+        }
+        let w = nurds_face_weights(&m, c[0], 4);
+        let den = (d0 + d1) * (e0 + e1);
+        let expected = [e1 * d1 / den, e1 * d0 / den, e0 * d0 / den, e0 * d1 / den];
+        for (a, b) in w.iter().zip(expected) {
+            assert!((a - b).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn refusing_oversized_results() {
+        let m = generators::cube();
+        assert_eq!(half_edges_after(&m, 2), 24 * 16);
+        assert_eq!(half_edges_after(&m, 100), u64::MAX);
+    }
 }

@@ -41,6 +41,8 @@ pub mod charmap_ring;
 pub mod config_table;
 pub mod convergence;
 pub mod knot_map;
+pub mod mesh_convergence;
+pub mod mesh_picture;
 pub mod spectrum;
 pub mod valence;
 
@@ -64,6 +66,8 @@ pub const REGISTRY: &[FigureKind] = &[
     knot_map::KIND,
     config_table::KIND,
     charmap_ring::KIND,
+    mesh_convergence::KIND,
+    mesh_picture::KIND,
 ];
 
 /// The kind named `name`.
