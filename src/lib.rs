@@ -14,8 +14,6 @@
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
 //! * [`schemes`]: local subdivision matrices through one assembly path;
-//! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
-//! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
 //! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
 //! * [`contraction`]: Theorem 1, certified and measured (section 5);
 //! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
@@ -37,11 +35,10 @@
 
 #![warn(missing_docs)]
 
-pub mod ccss_bound;
 pub mod bezier;
 pub mod bspline;
+pub mod ccss_bound;
 pub mod charmap;
-pub mod bspline;
 pub mod contraction;
 pub mod error;
 pub mod knots;
