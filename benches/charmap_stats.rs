@@ -45,6 +45,9 @@ struct Row {
     injective: usize,
 }
 
+/// Verdict code, regular, winding number, minimum relative Jacobian coefficient.
+type Outcome = (String, Option<bool>, Option<i64>, Option<f64>);
+
 fn main() {
     let args: Vec<String> = std::env::args()
         .skip(1)
@@ -63,10 +66,7 @@ fn main() {
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for n in 3..=8usize {
         let t0 = std::time::Instant::now();
-        let results: Vec<(
-            String,
-            Option<(String, Option<bool>, Option<i64>, Option<f64>)>,
-        )> = (0..samples)
+        let results: Vec<(String, Option<Outcome>)> = (0..samples)
             .into_par_iter()
             .map(|k| {
                 let mut rng = SplitMix64(seed ^ ((n as u64) << 32) ^ k as u64);

@@ -90,11 +90,11 @@ fn worst_defect(base: &Mesh, kind: SchemeKind, seed: u64) -> (f64, usize) {
                 .find(|&h| m2.origin(h) == v)
                 .unwrap_or_else(|| panic!("face {g} has no corner at vertex {v} ({label})"));
             let got = m3.positions()[h];
-            for k in 0..3 {
+            for (k, got_k) in got.iter().enumerate() {
                 let pred: f64 = (0..4 * n)
                     .map(|j| a[(row, j)] * m2.positions()[idx[j]][k])
                     .sum();
-                worst = worst.max((pred - got[k]).abs());
+                worst = worst.max((pred - got_k).abs());
             }
         }
         checked += 1;

@@ -236,10 +236,17 @@ charmap = true
         assert_eq!(get(&h, row, "error"), "");
         let n: usize = get(&h, row, "valence").parse().unwrap();
         let r: Vec<f64> = (0..n).map(|i| num(&h, row, &format!("r{i}"))).collect();
-        let direct = subdiv_lab::charmap::check(&LocalScheme::nurds(EdgeRatios::new(r).unwrap())).unwrap();
+        let direct =
+            subdiv_lab::charmap::check(&LocalScheme::nurds(EdgeRatios::new(r).unwrap())).unwrap();
         assert_eq!(get(&h, row, "charmap_verdict"), direct.verdict.code());
-        assert_eq!(num(&h, row, "charmap_winding"), direct.winding_number.unwrap() as f64);
-        assert_eq!(num(&h, row, "charmap_min_jacobian"), direct.min_jacobian_coeff().unwrap());
+        assert_eq!(
+            num(&h, row, "charmap_winding"),
+            direct.winding_number.unwrap() as f64
+        );
+        assert_eq!(
+            num(&h, row, "charmap_min_jacobian"),
+            direct.min_jacobian_coeff().unwrap()
+        );
     }
     let uniform = r#"
 scheme = "nurds"
