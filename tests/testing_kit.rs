@@ -5,11 +5,16 @@ use nalgebra::DMatrix;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestError, TestRunner};
 use subdiv_lab::schemes::LocalScheme;
+use subdiv_lab::schemes::SchemeKind;
+use subdiv_lab::spectral::ClassName;
 use subdiv_lab::testing::assertions::{
-    check_affine_invariance, check_face_contraction, ROW_SUM_TOL,
+    check_affine_invariance, check_charmap_regular_injective, check_dominant_simple,
+    check_face_contraction, check_mesh_contraction, check_spectral_radius, check_subdominant_class,
+    ROW_SUM_TOL,
 };
 use subdiv_lab::testing::strategies::{
-    edge_ratios, nurds_with_points, vertex_ep_ratios, IntervalBox,
+    edge_ratios, face_ep_ratios, meshes_with_knots, nurds_schemes, nurds_with_points,
+    vertex_ep_ratios, IntervalBox,
 };
 
 proptest! {
@@ -25,10 +30,72 @@ proptest! {
         check_face_contraction(s.matrix(), scheme.valence(), &points, 0.75, 40, &scheme)?;
     }
 
+    /// The spectral facts of math doc sections 4-7 for random knots.
+    #[test]
+    fn nurds_spectral_facts(scheme in nurds_schemes(3..=8, IntervalBox::new(0.05, 20.0).unwrap())) {
+        let s = scheme.matrix()?;
+        check_dominant_simple(s.matrix(), &scheme)?;
+        check_spectral_radius(s.matrix(), 0.75, &scheme)?;
+        // Generic non-uniform knots break the double subdominant eigenvalue.
+        check_subdominant_class(&scheme, &[ClassName::Standard, ClassName::RealDistinct, ClassName::ComplexPair, ClassName::Defective])?;
+        check_charmap_regular_injective(&scheme)?;
+    }
+
+    #[test]
+    fn face_ep_spectral_radius(r in face_ep_ratios(3..=10, IntervalBox::new(0.1, 10.0).unwrap().with_extremes(0.1))) {
+        let scheme = LocalScheme::nurds(r);
+        check_spectral_radius(scheme.matrix()?.matrix(), 0.75, &scheme)?;
+    }
+
     #[test]
     fn vertex_ep_configurations_are_affine(r in vertex_ep_ratios(3..=12, IntervalBox::new(0.1, 10.0).unwrap())) {
         let s = LocalScheme::nurds(r.clone()).matrix()?;
         check_affine_invariance(s.matrix(), &r, ROW_SUM_TOL)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    /// Mesh-level Theorem 1 on small closed meshes with random directed-edge knots.
+    #[test]
+    fn meshes_contract(mesh in meshes_with_knots(IntervalBox::new(0.2, 5.0).unwrap())) {
+        check_mesh_contraction(&mesh, SchemeKind::Nurds, 3, 0.75)?;
+    }
+}
+
+#[test]
+fn broken_spectral_radius_is_reported_with_a_shrunk_counterexample() {
+    let mut runner = TestRunner::new(Config {
+        cases: 32,
+        failure_persistence: None,
+        // proptest stops shrinking after 128 steps by default; a fully shrunk
+        // counterexample needs a few dozen steps per coordinate.
+        max_shrink_iters: 1_000_000,
+        ..Config::default()
+    });
+    let strategy = nurds_schemes(3..=10, IntervalBox::new(0.1, 10.0).unwrap());
+    let result = runner.run(&strategy, |scheme| {
+        check_spectral_radius(&under_relaxed(&scheme), 0.75, &scheme)?;
+        Ok(())
+    });
+    match result {
+        Err(TestError::Fail(reason, scheme)) => {
+            assert_eq!(scheme.valence(), 3, "not shrunk: {scheme:?}");
+            assert!(
+                scheme.ratios().as_slice().iter().all(|&x| x == 0.5),
+                "{scheme:?}"
+            );
+            let msg = reason.to_string();
+            // uniform n = 3: lambda_1 = 3/8, under-relaxed: 3/4 + 3/32 = 0.84375
+            assert!(
+                msg.contains("non-unit spectral radius failed")
+                    && msg.contains("|lambda_1| = 0.84375"),
+                "{msg}"
+            );
+            assert!(msg.contains("exceeds the bound 0.75"), "{msg}");
+        }
+        other => panic!("the broken scheme was not caught: {other:?}"),
     }
 }
 
@@ -49,6 +116,9 @@ fn broken_contraction_is_reported_with_a_shrunk_counterexample() {
     let mut runner = TestRunner::new(Config {
         cases: 64,
         failure_persistence: None,
+        // proptest stops shrinking after 128 steps by default; a fully shrunk
+        // counterexample needs a few dozen steps per coordinate.
+        max_shrink_iters: 1_000_000,
         ..Config::default()
     });
     let strategy = nurds_with_points(3..=10, IntervalBox::new(0.1, 10.0).unwrap());
@@ -86,6 +156,9 @@ fn broken_affine_invariance_names_the_row() {
     let mut runner = TestRunner::new(Config {
         cases: 32,
         failure_persistence: None,
+        // proptest stops shrinking after 128 steps by default; a fully shrunk
+        // counterexample needs a few dozen steps per coordinate.
+        max_shrink_iters: 1_000_000,
         ..Config::default()
     });
     let strategy = edge_ratios(3..=12, 0.05, 0.95);

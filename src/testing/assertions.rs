@@ -188,3 +188,206 @@ fn left_fixed_vector(a: &DMatrix<f64>) -> Option<DVector<f64>> {
     let c = m.lu().solve(&rhs)?;
     c.iter().all(|x| x.is_finite()).then_some(c)
 }
+
+fn subdominant_of(
+    matrix: &DMatrix<f64>,
+    check: &'static str,
+    configuration: &dyn fmt::Debug,
+) -> Result<crate::spectral::Subdominant, Violation> {
+    crate::spectral::classify_matrix(matrix)
+        .map_err(|e| Violation::new(check, configuration, format!("eigen-analysis failed: {e}")))
+}
+
+/// The dominant eigenvalue is 1 and simple: `|lambda_0 - 1|` is within its
+/// error radius and `|lambda_1 - 1|` is certainly non-zero (beyond
+/// [`crate::spectral::classify::SEPARATION_FACTOR`] times its radius; the
+/// radii are the spectral engine's condition-scaled error radii). A verdict in
+/// the grey zone is a violation: the property could not be certified.
+///
+/// ```
+/// use subdiv_lab::schemes::LocalScheme;
+/// use subdiv_lab::testing::assertions::check_dominant_simple;
+/// let s = LocalScheme::<f64>::cc_variant(5).unwrap();
+/// assert!(check_dominant_simple(s.matrix().unwrap().matrix(), &s).is_ok());
+/// let identity = nalgebra::DMatrix::<f64>::identity(4, 4);
+/// assert!(check_dominant_simple(&identity, &"identity").is_err());
+/// ```
+pub fn check_dominant_simple(
+    matrix: &DMatrix<f64>,
+    configuration: &dyn fmt::Debug,
+) -> Result<(), Violation> {
+    use crate::spectral::classify::{decide, Decision};
+    let check = "dominant eigenvalue 1 simple";
+    let sub = subdominant_of(matrix, check, configuration)?;
+    if decide((sub.lambda0 - 1.0).norm(), sub.radii[0]) != Decision::Zero {
+        return Err(Violation::new(
+            check,
+            configuration,
+            format!(
+                "lambda_0 = {} is not 1 (error radius {:.3e})",
+                sub.lambda0, sub.radii[0]
+            ),
+        ));
+    }
+    if decide((sub.lambda1 - 1.0).norm(), sub.radii[1]) != Decision::NonZero {
+        return Err(Violation::new(
+            check,
+            configuration,
+            format!(
+                "lambda_1 = {} cannot be separated from 1 (error radius {:.3e})",
+                sub.lambda1, sub.radii[1]
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The largest non-unit eigenvalue modulus `|lambda_1|` is at most `bound`
+/// (within the engine's error radius of `lambda_1`, so that an exact equality
+/// such as `|lambda_1| = 1/2` for `bound = 1/2` is not failed by rounding).
+///
+/// ```
+/// use subdiv_lab::schemes::LocalScheme;
+/// use subdiv_lab::testing::assertions::check_spectral_radius;
+/// let s = LocalScheme::<f64>::cc_variant(4).unwrap(); // |lambda_1| = 1/2
+/// let m = s.matrix().unwrap();
+/// assert!(check_spectral_radius(m.matrix(), 0.5, &s).is_ok());
+/// let v = check_spectral_radius(m.matrix(), 0.45, &s).unwrap_err();
+/// assert!(v.detail.contains("|lambda_1| = 0.5"));
+/// ```
+pub fn check_spectral_radius(
+    matrix: &DMatrix<f64>,
+    bound: f64,
+    configuration: &dyn fmt::Debug,
+) -> Result<(), Violation> {
+    let check = "non-unit spectral radius";
+    let sub = subdominant_of(matrix, check, configuration)?;
+    let modulus = sub.lambda1.norm();
+    if modulus.is_nan() || modulus > bound + sub.radii[1] {
+        return Err(Violation::new(
+            check,
+            configuration,
+            format!(
+                "|lambda_1| = {modulus} (lambda_1 = {}, error radius {:.3e}) exceeds the bound {bound}",
+                sub.lambda1, sub.radii[1]
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The subdominant class (math doc section 7) is one of `allowed`; an
+/// indeterminate classification is a violation that names both candidates.
+///
+/// ```
+/// use subdiv_lab::schemes::LocalScheme;
+/// use subdiv_lab::spectral::ClassName;
+/// use subdiv_lab::testing::assertions::check_subdominant_class;
+/// let s = LocalScheme::<f64>::doo_sabin(7).unwrap();
+/// assert!(check_subdominant_class(&s, &[ClassName::Standard]).is_ok());
+/// ```
+pub fn check_subdominant_class(
+    scheme: &crate::schemes::LocalScheme<f64>,
+    allowed: &[crate::spectral::ClassName],
+) -> Result<(), Violation> {
+    let check = "subdominant class";
+    let sub = crate::spectral::classify_scheme(scheme)
+        .map_err(|e| Violation::new(check, scheme, format!("eigen-analysis failed: {e}")))?;
+    match sub.class.class_name() {
+        Some(c) if allowed.contains(&c) => Ok(()),
+        _ => Err(Violation::new(
+            check,
+            scheme,
+            format!(
+                "class {:?} (lambda_1 = {}, lambda_2 = {}, |lambda_3| = {}) is not one of {:?}",
+                sub.class, sub.lambda1, sub.lambda2, sub.abs_lambda3, allowed
+            ),
+        )),
+    }
+}
+
+/// The characteristic map (math doc section 7) is regular and injective: the
+/// verdict is `C1 (standard; Reif)` or, for a non-standard eigenstructure,
+/// tangent-plane continuous. Anything else (not regular, not injective,
+/// indeterminate, no characteristic map) is a violation with the verdict text.
+///
+/// ```
+/// use subdiv_lab::schemes::LocalScheme;
+/// use subdiv_lab::testing::assertions::check_charmap_regular_injective;
+/// let s = LocalScheme::<f64>::cc_variant(6).unwrap();
+/// assert!(check_charmap_regular_injective(&s).is_ok());
+/// ```
+pub fn check_charmap_regular_injective(
+    scheme: &crate::schemes::LocalScheme<f64>,
+) -> Result<(), Violation> {
+    use crate::charmap::Verdict;
+    let check = "characteristic map regular and injective";
+    let report = crate::charmap::check(scheme).map_err(|e| {
+        Violation::new(
+            check,
+            scheme,
+            format!("characteristic-map check failed: {e}"),
+        )
+    })?;
+    match &report.verdict {
+        Verdict::C1Standard | Verdict::TangentPlaneContinuous { .. } => Ok(()),
+        other => Err(Violation::new(
+            check,
+            scheme,
+            format!(
+                "verdict: {other}; min Jacobian coefficient {:?}, winding number {:?}",
+                report.min_jacobian_coeff(),
+                report.winding_number
+            ),
+        )),
+    }
+}
+
+/// Mesh-level Theorem 1: refining `mesh` `levels` times with `scheme`, every
+/// extraordinary face's distance `max_i |P_i - F|` shrinks by at least `factor`
+/// per level (up to [`CONTRACTION_SLACK`]; distances below [`DISTANCE_FLOOR`]
+/// are not compared).
+///
+/// ```
+/// use subdiv_lab::mesh::generators;
+/// use subdiv_lab::schemes::SchemeKind;
+/// use subdiv_lab::testing::assertions::check_mesh_contraction;
+/// let cube = generators::cube();
+/// assert!(check_mesh_contraction(&cube, SchemeKind::Nurds, 3, 0.75).is_ok());
+/// ```
+pub fn check_mesh_contraction(
+    mesh: &crate::mesh::Mesh,
+    scheme: crate::schemes::SchemeKind,
+    levels: usize,
+    factor: f64,
+) -> Result<(), Violation> {
+    let check = "mesh face contraction";
+    let describe = format!(
+        "{} mesh with {} faces, {} vertices",
+        scheme.name(),
+        mesh.face_count(),
+        mesh.vertex_count()
+    );
+    let (_, stats) = crate::mesh::limit::refine_with_stats(mesh, scheme, levels)
+        .map_err(|e| Violation::new(check, &describe, format!("refinement failed: {e}")))?;
+    for level in &stats {
+        for face in &level.extraordinary {
+            if let Some(ratio) = face.ratio {
+                let previous = face.distance / ratio;
+                if previous > DISTANCE_FLOOR
+                    && (ratio.is_nan() || ratio > factor * (1.0 + CONTRACTION_SLACK))
+                {
+                    return Err(Violation::new(
+                        check,
+                        &describe,
+                        format!(
+                            "level {}: extraordinary face {} (n = {}) shrank by {ratio:.9} > factor {factor}",
+                            level.level, face.face, face.valence
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}

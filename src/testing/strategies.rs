@@ -87,11 +87,41 @@ impl IntervalBox {
 
 /// One interval: log-uniform in the box, stored as an exponent offset from the
 /// bound nearest 1 so that shrinking drives every interval to the same value.
+/// Resolution of [`offset`]: `2^-24` (relative to the unit of the offset),
+/// far finer than any property depends on.
+const OFFSET_STEPS_PER_UNIT: f64 = 16_777_216.0;
+
+/// A value in `[lo, hi]` (`lo <= 0 <= hi`) on a fine grid, uniformly
+/// distributed, that shrinks to exactly 0: an unsigned index `k` is mapped
+/// bijectively onto the grid steps `-a..=b` by alternating around 0
+/// (0, +1, -1, +2, -2, ...) and then continuing on the longer side. proptest
+/// shrinks an unsigned index to exactly 0 in a few dozen steps, whereas a
+/// float (or signed) binary search stops short of 0.
+fn offset(lo: f64, hi: f64) -> impl Strategy<Value = f64> + Clone {
+    let a = (-lo * OFFSET_STEPS_PER_UNIT).floor().max(0.0) as u64; // steps below 0
+    let b = (hi * OFFSET_STEPS_PER_UNIT).floor().max(0.0) as u64; // steps above 0
+    (0..=a + b).prop_map(move |k| {
+        let m = a.min(b);
+        let step: i64 = if k <= 2 * m {
+            if k % 2 == 0 {
+                (k / 2) as i64
+            } else {
+                -(k.div_ceil(2) as i64)
+            }
+        } else if b > a {
+            (k - m) as i64
+        } else {
+            -((k - m) as i64)
+        };
+        (step as f64 / OFFSET_STEPS_PER_UNIT).clamp(lo, hi)
+    })
+}
+
 fn interval(b: IntervalBox) -> impl Strategy<Value = f64> + Clone {
     let (lo, hi) = (b.min.ln(), b.max.ln());
     // anchor: the point of [lo, hi] nearest ln 1 = 0; offsets shrink towards 0.
     let anchor = 0f64.clamp(lo, hi);
-    let normal = (lo - anchor..=hi - anchor).prop_map(move |t| (anchor + t).exp());
+    let normal = offset(lo - anchor, hi - anchor).prop_map(move |t| (anchor + t).exp());
     let p_ext = b.extreme_probability;
     let weight_ext = (p_ext * 1000.0).round() as u32;
     let weight_norm = 1000 - weight_ext;
@@ -145,7 +175,7 @@ pub fn edge_ratios(
     let top = max_valence(&valence);
     (
         valences(valence),
-        prop::collection::vec(lo - anchor..=hi - anchor, top),
+        prop::collection::vec(offset(lo - anchor, hi - anchor), top),
     )
         .prop_map(move |(n, t)| {
             EdgeRatios::new(t[..n].iter().map(|x| (anchor + x).clamp(lo, hi)).collect())
@@ -215,5 +245,43 @@ pub fn nurds_with_points(
         v.extend_from_slice(&pts[hi..hi + 2 * n]);
         v.extend_from_slice(&pts[3 * hi..3 * hi + n]);
         (s, v)
+    })
+}
+
+/// Small closed polygon meshes from [`crate::mesh::generators`] (tetrahedron,
+/// cube, icosahedron, a 4 x 3 torus, truncated icosahedron: triangles, quads,
+/// pentagons and hexagons; valences 3 to 6) with one random knot interval per
+/// directed edge drawn from the box. Shrinks towards the tetrahedron and
+/// uniform intervals.
+///
+/// ```
+/// use proptest::strategy::{Strategy, ValueTree};
+/// use proptest::test_runner::TestRunner;
+/// use subdiv_lab::testing::strategies::{meshes_with_knots, IntervalBox};
+/// let s = meshes_with_knots(IntervalBox::new(0.5, 2.0).unwrap());
+/// let mesh = s.new_tree(&mut TestRunner::deterministic()).unwrap().current();
+/// assert!(mesh.knots().iter().all(|&d| (0.5..=2.0).contains(&d)));
+/// ```
+pub fn meshes_with_knots(b: IntervalBox) -> impl Strategy<Value = crate::mesh::Mesh> {
+    use crate::mesh::generators;
+    let build = |k: usize| match k {
+        0 => generators::tetrahedron(),
+        1 => generators::cube(),
+        2 => generators::icosahedron(),
+        3 => generators::torus(4, 3, 2.0, 0.7),
+        _ => generators::truncated_icosahedron(),
+    };
+    let most = (0..5)
+        .map(|k| build(k).half_edge_count())
+        .max()
+        .unwrap_or(0);
+    // The mesh index shrinks towards 0 (the tetrahedron); one interval per
+    // half-edge of the largest mesh, truncated to the drawn mesh.
+    (0usize..5, prop::collection::vec(interval(b), most)).prop_map(move |(k, knots)| {
+        let mut mesh = build(k);
+        let h = mesh.half_edge_count();
+        mesh.set_knots(knots[..h].to_vec())
+            .expect("strategy draws positive finite intervals, one per half-edge");
+        mesh
     })
 }
