@@ -1,18 +1,7 @@
 //! `subdiv-lab analyze`: the characteristic-map part (human and `--json`).
 
-use std::process::Command;
-
-fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_subdiv-lab"))
-        .args(args)
-        .output()
-        .expect("binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).expect("utf8"),
-        String::from_utf8(out.stderr).expect("utf8"),
-    )
-}
+mod common;
+use common::run;
 
 fn charmap_json(args: &[&str]) -> serde_json::Value {
     let mut a = vec!["analyze", "--json"];

@@ -1,19 +1,8 @@
 //! CLI tests for the Catmull-Clark family (`matrix --scheme catmull-clark|adjustable-cc`)
 //! and `ccss-bound`.
 
-use std::process::Command;
-
-fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_subdiv-lab"))
-        .args(args)
-        .output()
-        .expect("binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+mod common;
+use common::run;
 
 #[test]
 fn adjustable_matrix_exact_json() {

@@ -1,21 +1,10 @@
 //! `subdiv-lab matrix`: output round trips and bad-input handling.
 
-use std::process::Command;
+mod common;
+use common::run;
 use subdiv_lab::knots::CornerIntervals;
 use subdiv_lab::scalar::{parse_exact, Rational, Scalar};
 use subdiv_lab::schemes::LocalScheme;
-
-fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_subdiv-lab"))
-        .args(args)
-        .output()
-        .expect("binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).expect("utf8"),
-        String::from_utf8(out.stderr).expect("utf8"),
-    )
-}
 
 fn parse_csv_f64(text: &str) -> Vec<Vec<f64>> {
     text.lines()

@@ -190,3 +190,29 @@ pub fn default_label(scheme: &LocalScheme<f64>, suffix: &str) -> String {
         other => format!("{} n={n}", other.kind()),
     }
 }
+
+/// Validates the `configs` list of a figure: between 1 and `max` entries (a
+/// `max` of `None` means no upper limit), each resolved with keys
+/// `configs[i]` and random knots drawn from the figure's seed in list order.
+pub fn resolve_all(
+    fs: &FigureSpec<'_>,
+    configs: &Spanned<Vec<ConfigSpec>>,
+    max: Option<usize>,
+) -> Result<Vec<Configuration>, ReportError> {
+    let count = configs.get_ref().len();
+    let upper = max.unwrap_or(usize::MAX);
+    if count == 0 || count > upper {
+        let message = match max {
+            Some(m) => format!("give 1 to {m} configurations, got {count}"),
+            None => "configs must list at least one configuration".to_owned(),
+        };
+        return Err(fs.error_at(configs, "configs", message));
+    }
+    let mut rng = SplitMix64::new(fs.seed());
+    configs
+        .get_ref()
+        .iter()
+        .enumerate()
+        .map(|(i, c)| c.resolve(fs, &format!("configs[{i}]"), &mut rng))
+        .collect()
+}

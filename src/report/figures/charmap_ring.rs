@@ -28,10 +28,9 @@ use crate::charmap::figure::RingPlot;
 use crate::charmap::ring::PatchKind;
 use crate::charmap::{plot_data, CharmapReport};
 use crate::report::backend::Area;
-use crate::report::config::{ConfigSpec, Configuration};
+use crate::report::config::{resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::plot::{draw_err, mix_white, series_color, titled, Theme};
-use crate::report::rng::SplitMix64;
 use crate::report::spec::{Common, FigureSpec};
 use plotters::prelude::*;
 use rayon::prelude::*;
@@ -90,22 +89,8 @@ fn bounded(
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    let count = p.configs.get_ref().len();
-    if count == 0 || count > MAX_PANELS {
-        return Err(fs.error_at(
-            &p.configs,
-            "configs",
-            format!("give 1 to {MAX_PANELS} configurations, got {count}"),
-        ));
-    }
-    let mut rng = SplitMix64::new(fs.seed());
-    let configs = p
-        .configs
-        .get_ref()
-        .iter()
-        .enumerate()
-        .map(|(i, c)| c.resolve(fs, &format!("configs[{i}]"), &mut rng))
-        .collect::<Result<Vec<_>, _>>()?;
+    let configs = resolve_all(fs, &p.configs, Some(MAX_PANELS))?;
+    let count = configs.len();
     let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 3)?;
     let samples = bounded(fs, &p.samples, "samples", 2, MAX_SAMPLES, 6)?;
     let columns = bounded(fs, &p.columns, "columns", 1, MAX_PANELS, count.min(3))?.min(count);

@@ -12,17 +12,17 @@
 use super::{eigenvalues, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::contraction::MeasureOptions;
 use crate::report::backend::Area;
-use crate::report::config::{ConfigSpec, Configuration};
+use crate::report::config::{resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::html::escape;
 use crate::report::rng::derive_seed;
-use crate::report::rng::SplitMix64;
 use crate::report::spec::{Common, FigureSpec};
 use crate::spectral::{analyze, AnalyzeOptions, LocalAnalysis, SubdominantClass};
 use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::Deserialize;
 use std::fmt::Write;
+use toml::Spanned;
 
 /// Eigenvalues closer than this (absolute, in the complex plane) are listed as
 /// one value with a multiplicity in the HTML table. The repeated eigenvalues of
@@ -43,7 +43,7 @@ pub(crate) const KIND: FigureKind = FigureKind {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Params {
-    configs: Vec<ConfigSpec>,
+    configs: Spanned<Vec<ConfigSpec>>,
 }
 
 struct Table {
@@ -52,16 +52,7 @@ struct Table {
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    if p.configs.is_empty() {
-        return Err(fs.error("configs must list at least one configuration"));
-    }
-    let mut rng = SplitMix64::new(fs.seed());
-    let configs = p
-        .configs
-        .iter()
-        .enumerate()
-        .map(|(i, c)| c.resolve(fs, &format!("configs[{i}]"), &mut rng))
-        .collect::<Result<Vec<_>, _>>()?;
+    let configs = resolve_all(fs, &p.configs, None)?;
     Ok(Box::new(Table { configs }))
 }
 

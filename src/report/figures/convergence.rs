@@ -18,12 +18,12 @@
 use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::contraction::{measure, MeasureOptions};
 use crate::report::backend::Area;
-use crate::report::config::{ConfigSpec, Configuration};
+use crate::report::config::{resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::plot::{
     dash, draw_err, series_color, side_legend, titled, LegendGlyph, Marker, Theme,
 };
-use crate::report::rng::{derive_seed, SplitMix64};
+use crate::report::rng::derive_seed;
 use crate::report::spec::{Common, FigureSpec};
 use crate::spectral::classify_scheme;
 use plotters::prelude::*;
@@ -47,7 +47,7 @@ pub(crate) const KIND: FigureKind = FigureKind {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Params {
-    configs: Vec<ConfigSpec>,
+    configs: Spanned<Vec<ConfigSpec>>,
     steps: Option<Spanned<usize>>,
 }
 
@@ -58,16 +58,7 @@ struct Convergence {
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    let mut rng = SplitMix64::new(fs.seed());
-    if p.configs.is_empty() {
-        return Err(fs.error("configs must list at least one configuration"));
-    }
-    let configs = p
-        .configs
-        .iter()
-        .enumerate()
-        .map(|(i, c)| c.resolve(fs, &format!("configs[{i}]"), &mut rng))
-        .collect::<Result<Vec<_>, _>>()?;
+    let configs = resolve_all(fs, &p.configs, None)?;
     let steps = match &p.steps {
         None => DEFAULT_STEPS,
         Some(s) if (1..=MAX_STEPS).contains(s.get_ref()) => *s.get_ref(),

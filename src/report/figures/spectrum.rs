@@ -12,12 +12,11 @@
 
 use super::{eigenvalues, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::report::backend::Area;
-use crate::report::config::{ConfigSpec, Configuration};
+use crate::report::config::{resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::plot::{
     circle_points, dash, draw_err, titled, viridis, LegendGlyph, Marker, Theme,
 };
-use crate::report::rng::SplitMix64;
 use crate::report::spec::{Common, FigureSpec};
 use crate::spectral::{analyze, AnalyzeOptions, LocalAnalysis};
 use num_complex::Complex64;
@@ -52,22 +51,8 @@ struct Spectrum {
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    let count = p.configs.get_ref().len();
-    if count == 0 || count > MAX_PANELS {
-        return Err(fs.error_at(
-            &p.configs,
-            "configs",
-            format!("give 1 to {MAX_PANELS} configurations, got {count}"),
-        ));
-    }
-    let mut rng = SplitMix64::new(fs.seed());
-    let configs = p
-        .configs
-        .get_ref()
-        .iter()
-        .enumerate()
-        .map(|(i, c)| c.resolve(fs, &format!("configs[{i}]"), &mut rng))
-        .collect::<Result<Vec<_>, _>>()?;
+    let configs = resolve_all(fs, &p.configs, Some(MAX_PANELS))?;
+    let count = configs.len();
     let columns = match &p.columns {
         None => count.min(3),
         Some(c) if (1..=MAX_PANELS).contains(c.get_ref()) => (*c.get_ref()).min(count),
