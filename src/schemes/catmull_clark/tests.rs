@@ -223,13 +223,13 @@ fn stam_subdominant_closed_form_n_3_to_64() {
         // Numerical eigenvalues of the block computed from the assembled matrix.
         let s = one_ring_matrix::<f64>(n, &0.5).unwrap();
         let (blocks, _) = transform(s.matrix()).unwrap();
-        let ev = dense_complex_eigenvalues(&blocks[1].matrix);
+        let ev = faer_eigenvalues_of_complex(&blocks[1].matrix);
         let top = ev.iter().map(|z| z.norm()).fold(0.0, f64::max);
         assert!((top - stam).abs() < 1e-13, "n = {n}: {top} vs {stam}");
     }
 }
 
-fn dense_complex_eigenvalues(m: &DMatrix<Complex64>) -> Vec<Complex64> {
+fn faer_eigenvalues_of_complex(m: &DMatrix<Complex64>) -> Vec<Complex64> {
     let f = faer::Mat::<faer::c64>::from_fn(m.nrows(), m.ncols(), |i, j| {
         faer::c64::new(m[(i, j)].re, m[(i, j)].im)
     });
@@ -291,7 +291,7 @@ fn closed_form_block_eigenvalues_match_block_matrices() {
             let blocks = fourier_blocks(n, c).unwrap();
             for b in &blocks {
                 let closed = block_eigenvalues(n, b.frequency, c).unwrap();
-                let num = dense_complex_eigenvalues(&b.matrix);
+                let num = faer_eigenvalues_of_complex(&b.matrix);
                 let d = match_distance(&closed, &num);
                 // Double root at n = 4, c = 1 (l = 0, a 2x2 Jordan block at 0):
                 // eigenvalue error ~ sqrt(eps); excluded here, checked by the exact tests.
