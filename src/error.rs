@@ -77,6 +77,9 @@ pub enum Error {
         /// What went wrong.
         reason: String,
     },
+    /// An error of the spectral engine.
+    #[error(transparent)]
+    Spectral(#[from] crate::spectral::SpectralError),
 }
 
 /// Shorthand for results of the library core.

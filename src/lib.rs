@@ -15,6 +15,8 @@
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
 //! * [`schemes`]: local subdivision matrices through one assembly path;
 //! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face;
+//! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
+//! * [`contraction`]: Theorem 1, certified and measured (section 5);
 //! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
@@ -28,10 +30,12 @@
 #![warn(missing_docs)]
 
 pub mod ccss_bound;
+pub mod contraction;
 pub mod error;
 pub mod knots;
 pub mod scalar;
 pub mod schemes;
+pub mod spectral;
 #[cfg(feature = "testing")]
 pub mod testing;
 

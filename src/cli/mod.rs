@@ -3,6 +3,7 @@
 //! library, and formats the result. No numerics here.
 
 mod ccss_bound;
+mod analyze;
 mod matrix;
 mod scheme_args;
 
@@ -31,6 +32,8 @@ enum Command {
     Matrix(matrix::MatrixArgs),
     /// Distance bound beta(n) between a Catmull-Clark patch and its limit face (LP).
     CcssBound(ccss_bound::CcssBoundArgs),
+    /// Spectrum, subdominant classification and Theorem 1 for one configuration.
+    Analyze(analyze::AnalyzeArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -76,6 +79,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
         Command::CcssBound(args) => ccss_bound::run(args),
+        Command::Analyze(args) => analyze::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

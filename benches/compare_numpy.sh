@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Side-by-side throughput: subdiv-lab vs the vectorised numpy reference.
+#
+#   benches/compare_numpy.sh [COUNT] [VALENCES...]
+#
+# For each valence n it runs, in one go and on one thread each,
+#   * ../shared/bench/numpy_reference.py --valence n --count COUNT
+#     (numpy: build the 4n x 4n S_n for random ratios in [0.01, 0.99),
+#      LAPACK eigvals, sort, classify; OPENBLAS/MKL/OMP threads = 1),
+#   * our structured path  (cargo bench --bench throughput -- --path structured),
+#   * our full path        (cargo bench --bench throughput -- --path full:
+#      assemble S_n, faer eigenvalues of the 4n x 4n matrix, numpy's classifier),
+# each REPEAT times (default 3; the best run is kept, which filters out noise
+# from other processes), and prints a table of configurations per second and
+# the speed-up over numpy. Needs python3 with numpy (`pip install numpy`).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+COUNT=${1:-4000}
+shift || true
+VALENCES=${*:-3 5 8 16 32 64}
+REPEAT=${REPEAT:-3}
+# The reference lives next to the repository (../shared/bench); a git
+# worktree one level deeper finds it at ../../shared/bench. NUMPY_REF overrides.
+NUMPY_REF=${NUMPY_REF:-../shared/bench/numpy_reference.py}
+[ -f "$NUMPY_REF" ] || NUMPY_REF=../../shared/bench/numpy_reference.py
+python3 -c 'import numpy' 2>/dev/null || { echo "numpy missing: pip install numpy" >&2; exit 1; }
+[ -f "$NUMPY_REF" ] || { echo "missing $NUMPY_REF" >&2; exit 1; }
+cargo build --release --bench throughput >/dev/null 2>&1
+BIN=$(ls -t target/release/deps/throughput-* | grep -v '\.d$' | head -1)
+
+rate() { sed -n 's/.*configs_per_s=\([0-9]*\).*/\1/p'; }
+best() { # best of REPEAT runs of the command given as arguments
+  local b=0 r
+  for _ in $(seq "$REPEAT"); do
+    r=$("$@" | rate)
+    [ "$r" -gt "$b" ] && b=$r
+  done
+  echo "$b"
+}
+
+printf '%-8s %8s %14s %16s %10s %14s %10s\n' valence count numpy_cfg/s structured_cfg/s speedup full_cfg/s speedup
+for n in $VALENCES; do
+  c=$COUNT
+  # Large valences are slow in numpy (4n = 256): scale the count down.
+  if [ "$n" -ge 32 ]; then c=$(( COUNT / 10 > 50 ? COUNT / 10 : 50 )); fi
+  np=$(best python3 "$NUMPY_REF" --valence "$n" --count "$c")
+  st=$(best "$BIN" --valence "$n" --count "$c" --path structured)
+  fu=$(best "$BIN" --valence "$n" --count "$c" --path full)
+  printf '%-8s %8s %14s %16s %9.1fx %14s %9.1fx\n' "$n" "$c" "$np" "$st" \
+    "$(echo "$st / $np" | bc -l)" "$fu" "$(echo "$fu / $np" | bc -l)"
+done
+echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -1,0 +1,386 @@
+//! Classification of the subdominant eigenstructure (math doc section 7).
+//!
+//! With the eigenvalues ordered `1 = lambda_0, |lambda_1| >= |lambda_2| >= |lambda_3| >= ..`
+//! one of the following is reported:
+//!
+//! * **standard**: `lambda_0 = 1` simple; `lambda_1 = lambda_2 = lambda` real,
+//!   positive, with a 2-dimensional eigenspace; `lambda > |lambda_3|`;
+//! * **real_distinct**: `lambda_1 > lambda_2 > |lambda_3|`, both real;
+//! * **complex_pair**: `lambda_{1,2} = rho e^{+-i theta}`, `rho > |lambda_3|`;
+//! * **defective**: `lambda_1 = lambda_2` with a 1-dimensional eigenspace;
+//! * **not_separated**: `|lambda_2| = |lambda_3|` (or `lambda_0` not simple,
+//!   or not equal to 1);
+//! * **indeterminate**: the floating-point evidence cannot decide between two
+//!   of the above; [`SubdominantClass::Indeterminate`] names the two and why.
+//!
+//! # How decisions are made
+//!
+//! Every computed eigenvalue `lambda_k` carries an *error radius*
+//! `e_k = max(kappa_k, 1) * eta` where `kappa_k` is its condition number (from
+//! left and right eigenvectors) and `eta = BACKWARD_ERROR_FACTOR * dim * eps * ||X||_F`
+//! bounds the backward error of the QR algorithm on the matrix `X` whose
+//! eigenvalues were computed (first-order perturbation theory: a simple
+//! eigenvalue moves by at most `kappa ||E||`). Eigenvalues known in closed form
+//! (the `1/4, 1/8, 1/16` of the Doo-Sabin family) have radius 0.
+//!
+//! Each question "is the non-negative quantity `d` zero?" (`d = |lambda_1 - lambda_2|`,
+//! `|lambda_2| - |lambda_3|`, `|Im lambda_1|`, ...) with error radius `e` is
+//! answered by [`decide`]:
+//!
+//! * `d <= e`: **consistent with zero** (the data cannot exclude equality);
+//! * `d > SEPARATION_FACTOR * e`: **certainly non-zero**;
+//! * otherwise: **grey zone** -> `indeterminate`.
+//!
+//! The grey-zone factor also absorbs the failure of first-order bounds near a
+//! defective eigenvalue: there a perturbation `eta` splits a double eigenvalue
+//! by about `sqrt(eta)` and the condition numbers grow like `1 / sqrt(eta)`,
+//! so `d` and `e` stay of the same order and the verdict is "equal" or grey,
+//! never a confident "distinct".
+//!
+//! For a double eigenvalue the eigenspace dimension is decided from the second
+//! smallest singular value `sigma` of `X - lambda I`: `sigma <= RANK_FACTOR * (e_1 + e_2 + eta)`
+//! means a 2-dimensional eigenspace (standard), `sigma > SEPARATION_FACTOR *
+//! RANK_FACTOR * (e_1 + e_2 + eta)` a 1-dimensional one (defective), anything
+//! between is indeterminate.
+
+use super::SpectralError;
+use num_complex::Complex64;
+use serde::Serialize;
+
+/// Backward-error constant: the computed eigenvalues are exact for a matrix
+/// within `BACKWARD_ERROR_FACTOR * dim * eps * ||X||_F` of `X`.
+///
+/// Householder-based Hessenberg reduction and QR sweeps have backward errors of
+/// a small multiple of `dim eps ||X||` (Golub and Van Loan, 4th ed., 7.5.6);
+/// 10 covers the constants with margin.
+pub const BACKWARD_ERROR_FACTOR: f64 = 10.0;
+
+/// Grey-zone width: a quantity is certainly non-zero only above this multiple
+/// of its error radius. 100 keeps confident verdicts two orders of magnitude
+/// away from what rounding can explain.
+pub const SEPARATION_FACTOR: f64 = 100.0;
+
+/// Scale of the rank test for a double eigenvalue (see the module docs): the
+/// second-smallest singular value of `X - lambda I` at a semisimple double
+/// eigenvalue is at most a small multiple of the eigenvalue error.
+pub const RANK_FACTOR: f64 = 10.0;
+
+/// The classes of math doc section 7, without payload (used to name the two
+/// candidates of an indeterminate verdict).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ClassName {
+    /// See [`SubdominantClass::Standard`].
+    Standard,
+    /// See [`SubdominantClass::RealDistinct`].
+    RealDistinct,
+    /// See [`SubdominantClass::ComplexPair`].
+    ComplexPair,
+    /// See [`SubdominantClass::Defective`].
+    Defective,
+    /// See [`SubdominantClass::NotSeparated`].
+    NotSeparated,
+}
+
+impl ClassName {
+    /// The snake_case name used in reports and JSON.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ClassName::Standard => "standard",
+            ClassName::RealDistinct => "real_distinct",
+            ClassName::ComplexPair => "complex_pair",
+            ClassName::Defective => "defective",
+            ClassName::NotSeparated => "not_separated",
+        }
+    }
+}
+
+/// The subdominant eigenstructure (math doc section 7).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "class", rename_all = "snake_case")]
+pub enum SubdominantClass {
+    /// `lambda_1 = lambda_2 > |lambda_3|`, real positive, 2-dimensional eigenspace.
+    Standard,
+    /// `lambda_1 > lambda_2 > |lambda_3|`, both real.
+    RealDistinct,
+    /// `lambda_{1,2} = rho e^{+-i theta}`, `rho > |lambda_3|`.
+    ComplexPair,
+    /// `lambda_1 = lambda_2` with a 1-dimensional eigenspace.
+    Defective,
+    /// `|lambda_2| = |lambda_3|`, or `lambda_0` is not a simple eigenvalue 1.
+    NotSeparated,
+    /// The evidence cannot separate two classes at the stated tolerances.
+    Indeterminate {
+        /// The two candidate classes.
+        between: (ClassName, ClassName),
+        /// Which quantity fell in the grey zone, with its value and error radius.
+        reason: String,
+    },
+}
+
+impl SubdominantClass {
+    /// The snake_case name (`"indeterminate"` for the indeterminate case).
+    pub fn name(&self) -> &'static str {
+        match self {
+            SubdominantClass::Standard => "standard",
+            SubdominantClass::RealDistinct => "real_distinct",
+            SubdominantClass::ComplexPair => "complex_pair",
+            SubdominantClass::Defective => "defective",
+            SubdominantClass::NotSeparated => "not_separated",
+            SubdominantClass::Indeterminate { .. } => "indeterminate",
+        }
+    }
+
+    /// The payload-free name, `None` for indeterminate.
+    pub fn class_name(&self) -> Option<ClassName> {
+        Some(match self {
+            SubdominantClass::Standard => ClassName::Standard,
+            SubdominantClass::RealDistinct => ClassName::RealDistinct,
+            SubdominantClass::ComplexPair => ClassName::ComplexPair,
+            SubdominantClass::Defective => ClassName::Defective,
+            SubdominantClass::NotSeparated => ClassName::NotSeparated,
+            SubdominantClass::Indeterminate { .. } => return None,
+        })
+    }
+
+    /// Whether the verdict is indeterminate.
+    pub fn is_indeterminate(&self) -> bool {
+        matches!(self, SubdominantClass::Indeterminate { .. })
+    }
+}
+
+/// Serialises a complex number as `[re, im]`.
+pub(crate) fn ser_complex<S: serde::Serializer>(z: &Complex64, s: S) -> Result<S::Ok, S::Error> {
+    [z.re, z.im].serialize(s)
+}
+
+/// The subdominant eigenvalues and their classification.
+///
+/// ```
+/// use subdiv_lab::knots::EdgeRatios;
+/// use subdiv_lab::schemes::LocalScheme;
+/// use subdiv_lab::spectral::{classify_scheme, SubdominantClass};
+/// let s = LocalScheme::nurds(EdgeRatios::<f64>::uniform(6).unwrap());
+/// let sub = classify_scheme(&s).unwrap();
+/// assert_eq!(sub.class, SubdominantClass::Standard);
+/// assert!((sub.lambda1.re - 0.625).abs() < 1e-14);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Subdominant {
+    /// The classification.
+    #[serde(flatten)]
+    pub class: SubdominantClass,
+    /// `lambda_0` (1 for an affine-invariant scheme).
+    #[serde(serialize_with = "ser_complex")]
+    pub lambda0: Complex64,
+    /// `lambda_1`.
+    #[serde(serialize_with = "ser_complex")]
+    pub lambda1: Complex64,
+    /// `lambda_2`.
+    #[serde(serialize_with = "ser_complex")]
+    pub lambda2: Complex64,
+    /// `|lambda_3|` (0 if the matrix has fewer than 4 eigenvalues).
+    pub abs_lambda3: f64,
+    /// The gap `|lambda_2| - |lambda_3|`.
+    pub gap: f64,
+    /// `lambda_2 / lambda_1` when both are real (1 for a double eigenvalue).
+    pub ratio: Option<f64>,
+    /// `rho = |lambda_1|` for a complex pair.
+    pub rho: Option<f64>,
+    /// `theta = |arg lambda_1|` (radians, in `(0, pi)`) for a complex pair.
+    pub theta: Option<f64>,
+    /// Error radii `e_0..e_3` used for the decisions (see the module docs).
+    pub radii: [f64; 4],
+    /// A short explanation for `not_separated` verdicts.
+    pub note: Option<&'static str>,
+}
+
+/// Outcome of "is this non-negative quantity zero?".
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Decision {
+    /// Consistent with zero: `d <= e`.
+    Zero,
+    /// Certainly non-zero: `d > SEPARATION_FACTOR * e`.
+    NonZero,
+    /// In between.
+    Grey,
+}
+
+/// Decides whether `d >= 0` with error radius `e` is zero (see the module docs).
+///
+/// A NaN radius counts as infinite (no confident verdict is possible).
+pub fn decide(d: f64, e: f64) -> Decision {
+    let e = if e.is_nan() { f64::INFINITY } else { e };
+    if d <= e {
+        Decision::Zero
+    } else if d > SEPARATION_FACTOR * e {
+        Decision::NonZero
+    } else {
+        Decision::Grey
+    }
+}
+
+/// The evidence the classification works from.
+pub struct Evidence<'a> {
+    /// Eigenvalues sorted by non-increasing modulus (at least the first 4;
+    /// missing ones count as 0 with radius 0).
+    pub values: &'a [Complex64],
+    /// Error radius of each value (same length as `values`).
+    pub radii: &'a [f64],
+    /// The backward-error scale `eta` of the decomposition.
+    pub eta: f64,
+}
+
+/// Classifies the subdominant eigenstructure.
+///
+/// `rank_test(lambda)` must return the second smallest singular value of
+/// `X - lambda I` (it is called only for a real double eigenvalue candidate).
+pub fn classify(
+    ev: &Evidence<'_>,
+    rank_test: &mut dyn FnMut(f64) -> Result<f64, SpectralError>,
+) -> Result<Subdominant, SpectralError> {
+    let get = |k: usize| -> (Complex64, f64) {
+        match ev.values.get(k) {
+            Some(&z) => (z, ev.radii.get(k).copied().unwrap_or(0.0)),
+            None => (Complex64::new(0.0, 0.0), 0.0),
+        }
+    };
+    let (l0, e0) = get(0);
+    let (l1, e1) = get(1);
+    let (l2, e2) = get(2);
+    let (l3, e3) = get(3);
+    let abs3 = l3.norm();
+    let gap = l2.norm() - abs3;
+    let mut out = Subdominant {
+        class: SubdominantClass::NotSeparated,
+        lambda0: l0,
+        lambda1: l1,
+        lambda2: l2,
+        abs_lambda3: abs3,
+        gap,
+        ratio: None,
+        rho: None,
+        theta: None,
+        radii: [e0, e1, e2, e3],
+        note: None,
+    };
+    if ev.values.is_empty() {
+        out.note = Some("empty matrix");
+        return Ok(out);
+    }
+    // lambda_0 = 1.
+    if decide((l0 - 1.0).norm(), e0) == Decision::NonZero {
+        out.note = Some("the dominant eigenvalue is not 1");
+        return Ok(out);
+    }
+    // Core class from lambda_1, lambda_2.
+    let e12 = e1 + e2;
+    let d12 = (l1 - l2).norm();
+    let double_class = |rank: &mut dyn FnMut(f64) -> Result<f64, SpectralError>,
+                        lam: f64|
+     -> Result<(SubdominantClass, Option<&'static str>), SpectralError> {
+        let sigma = rank(lam)?;
+        let scale = RANK_FACTOR * (e12 + ev.eta);
+        Ok(match decide(sigma, scale) {
+            Decision::Zero if lam > SEPARATION_FACTOR * e12 => (SubdominantClass::Standard, None),
+            Decision::Zero => (
+                SubdominantClass::NotSeparated,
+                Some("the double subdominant eigenvalue is not (certainly) positive"),
+            ),
+            Decision::NonZero => (SubdominantClass::Defective, None),
+            Decision::Grey => (
+                SubdominantClass::Indeterminate {
+                    between: (ClassName::Standard, ClassName::Defective),
+                    reason: format!(
+                        "eigenspace dimension of the double eigenvalue {lam:.6e}: second smallest singular value {sigma:.3e} of S - lambda I is in the grey zone of {scale:.3e}"
+                    ),
+                },
+                None,
+            ),
+        })
+    };
+    let distinct_class =
+        if decide(l1.im.abs(), e1) == Decision::Zero && decide(l2.im.abs(), e2) == Decision::Zero {
+            ClassName::RealDistinct
+        } else {
+            ClassName::ComplexPair
+        };
+    let (mut class, mut note) = match decide(d12, e12) {
+        Decision::NonZero => match decide(l1.im.abs(), e1) {
+            Decision::NonZero => (SubdominantClass::ComplexPair, None),
+            Decision::Zero if decide(l2.im.abs(), e2) == Decision::Zero => {
+                (SubdominantClass::RealDistinct, None)
+            }
+            _ => (
+                SubdominantClass::Indeterminate {
+                    between: (ClassName::RealDistinct, ClassName::ComplexPair),
+                    reason: format!(
+                        "|Im lambda_1| = {:.3e} is in the grey zone of its error radius {e1:.3e}",
+                        l1.im.abs()
+                    ),
+                },
+                None,
+            ),
+        },
+        Decision::Zero => double_class(rank_test, 0.5 * (l1.re + l2.re))?,
+        Decision::Grey => {
+            let (dc, _) = double_class(rank_test, 0.5 * (l1.re + l2.re))?;
+            let dn = dc.class_name().unwrap_or(ClassName::Standard);
+            let dn = if dn == ClassName::NotSeparated {
+                ClassName::Standard
+            } else {
+                dn
+            };
+            (
+                SubdominantClass::Indeterminate {
+                    between: (dn, distinct_class),
+                    reason: format!(
+                        "|lambda_1 - lambda_2| = {d12:.3e} is in the grey zone of the error radius {e12:.3e}"
+                    ),
+                },
+                None,
+            )
+        }
+    };
+    // Separation from lambda_0 and lambda_3.
+    let sep0 = decide((l0.norm() - l1.norm()).max(0.0), e0 + e1);
+    let sep3 = decide(gap.max(0.0), e2 + e3);
+    if class != SubdominantClass::NotSeparated {
+        if sep0 == Decision::Zero {
+            class = SubdominantClass::NotSeparated;
+            note = Some("lambda_0 = 1 is not simple (|lambda_1| = |lambda_0|)");
+        } else if sep3 == Decision::Zero {
+            class = SubdominantClass::NotSeparated;
+            note = Some("|lambda_2| = |lambda_3|");
+        } else if let (Some(cn), true) = (
+            class.class_name(),
+            sep0 == Decision::Grey || sep3 == Decision::Grey,
+        ) {
+            let (what, d, e) = if sep0 == Decision::Grey {
+                ("|lambda_0| - |lambda_1|", l0.norm() - l1.norm(), e0 + e1)
+            } else {
+                ("|lambda_2| - |lambda_3|", gap, e2 + e3)
+            };
+            class = SubdominantClass::Indeterminate {
+                between: (cn, ClassName::NotSeparated),
+                reason: format!("{what} = {d:.3e} is in the grey zone of the error radius {e:.3e}"),
+            };
+        }
+    }
+    match class {
+        SubdominantClass::Standard | SubdominantClass::Defective => {
+            out.ratio = Some(1.0);
+        }
+        SubdominantClass::RealDistinct => {
+            out.ratio = Some(l2.re / l1.re);
+        }
+        SubdominantClass::ComplexPair => {
+            out.rho = Some(l1.norm());
+            out.theta = Some(l1.im.atan2(l1.re).abs());
+        }
+        _ => {}
+    }
+    out.class = class;
+    out.note = note;
+    Ok(out)
+}

@@ -1,0 +1,476 @@
+//! Exact certificates for rational input (math doc sections 4, 5, 7).
+//!
+//! For a Doo-Sabin-family configuration with rational parameters:
+//!
+//! 1. the characteristic polynomial `p` of the face block `A` over the
+//!    rationals (exact Hessenberg reduction by Gaussian similarity, then the
+//!    Hessenberg determinant recurrence); `q = p / (x - 1)` exactly (the
+//!    remainder must vanish: rows sum to 1); `1` is simple iff `q(1) != 0`;
+//! 2. the real roots of `q` by Sturm sequences: how many, isolating intervals,
+//!    multiplicities (from the chain `gcd(q, q')`, `gcd(q'', ..)`);
+//! 3. the subdominant structure of the full spectrum
+//!    `spec(S_n) = {1} U roots(q) U {1/4, 1/8, 1/16} (n each)`, decided exactly:
+//!    * **count by modulus**: the Schur-Cohn recursion ([`roots_outside`])
+//!      counts the roots with `|z| > t` for a rational `t`; a count of exactly 2
+//!      at `t` proves `|lambda_2| > t > |lambda_3|` (separation);
+//!    * **real or complex**: Sturm counts of the real roots in `|x| > t`: 0 means
+//!      the two are a complex-conjugate pair, 2 distinct real roots means
+//!      `real_distinct`, 1 real root means a real double root (a non-real root
+//!      cannot be alone: conjugates come in pairs);
+//!    * **eigenspace of a double root** `lambda`: `rank(A - lambda I)` computed
+//!      exactly in the field `Q(lambda)` = `Q[x] / (f)`, starting from the
+//!      square-free polynomial of the multiple roots of `q` and splitting `f`
+//!      by gcds whenever a pivot is a zero divisor (dynamic evaluation), keeping
+//!      the factor that vanishes at `lambda` (decided by a Sturm count on
+//!      `lambda`'s isolating interval);
+//!    * **not separated**: proven when `q` has at most one root of modulus
+//!      `> 1/4` (then `lambda_2 = lambda_3 = 1/4` from the E blocks), or when
+//!      the modulus count at every candidate threshold shows no gap and the
+//!      equal moduli are certified by a multiple root.
+//!
+//!    The rational thresholds `t` come from the floating-point estimates (any
+//!    `t` is valid: a wrong guess only makes the verdict undecided, never
+//!    wrong).
+//! 4. the spectral bound `|lambda| < 3/4` for every non-unit eigenvalue (the
+//!    Schur-Cohn count at `t = 3/4` is zero);
+//! 5. the Theorem 1 certificate in exact arithmetic ([`crate::contraction::certificate`]).
+
+use super::classify::{ClassName, Subdominant};
+use super::poly::{isolate_real_roots, roots_outside, Poly, Sturm};
+use super::SpectralError;
+use crate::contraction;
+use crate::error::Result;
+use crate::scalar::{rational_to_f64, Rational, Scalar};
+use crate::schemes::LocalScheme;
+use nalgebra::DMatrix;
+use num_bigint::BigInt;
+use num_traits::{One, Zero};
+use serde::Serialize;
+
+/// Width of the reported isolating intervals of real roots.
+pub const ISOLATION_WIDTH: f64 = 1e-12;
+
+/// The exact structure of the two subdominant eigenvalues.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum TopPair {
+    /// A real double root; `semisimple` = 2-dimensional eigenspace.
+    RealDouble {
+        /// Whether the eigenspace is 2-dimensional.
+        semisimple: bool,
+    },
+    /// Two distinct real roots.
+    RealDistinct,
+    /// A complex-conjugate pair.
+    ComplexPair,
+    /// Not decided (with the reason).
+    Undecided {
+        /// Why.
+        reason: String,
+    },
+}
+
+/// A real root of `q` with an isolating interval.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RealRoot {
+    /// `[a, b]` (as `f64`, rounded outward is not guaranteed; the exact
+    /// interval is `(a, b]` in rationals).
+    pub interval: [f64; 2],
+    /// Multiplicity.
+    pub multiplicity: usize,
+}
+
+/// Exact verdicts for one rational configuration.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ExactVerdict {
+    /// Characteristic polynomial of the face block, ascending coefficients.
+    pub face_charpoly: Vec<String>,
+    /// `q = p / (x - 1)`, ascending coefficients.
+    pub reduced_charpoly: Vec<String>,
+    /// `1` is a simple eigenvalue of the face block (`q(1) != 0`).
+    pub one_is_simple: bool,
+    /// Number of distinct real roots of `q`.
+    pub real_root_count: usize,
+    /// The real roots of `q`, increasing, with multiplicities.
+    pub real_roots: Vec<RealRoot>,
+    /// Every non-unit eigenvalue has modulus `< 3/4` (`None`: a root on the circle
+    /// `|z| = 3/4` could not be excluded).
+    pub spectral_bound_below_three_quarters: Option<bool>,
+    /// Structure of `lambda_1, lambda_2`.
+    pub top_pair: TopPair,
+    /// `|lambda_2| > |lambda_3|` (`None`: undecided).
+    pub separated: Option<bool>,
+    /// The exact class (`None`: undecided).
+    pub class: Option<ClassName>,
+    /// Why the class is what it is (or undecided).
+    pub reason: String,
+    /// Theorem 1 certificate holds exactly (weights >= 0, row sums exactly 3/4, `F` invariant).
+    pub theorem1_certificate: bool,
+    /// Whether the exact class equals the floating-point one (`None` when either
+    /// is undecided/indeterminate or no float verdict was given).
+    pub agrees_with_float: Option<bool>,
+}
+
+/// Characteristic polynomial `det(x I - A)` of a rational square matrix.
+pub fn charpoly(a: &DMatrix<Rational>) -> Poly {
+    let n = a.nrows();
+    let mut h = a.clone();
+    // Hessenberg reduction by Gaussian similarity transforms.
+    for k in 0..n.saturating_sub(2) {
+        let Some(p) = (k + 1..n).find(|&i| !h[(i, k)].is_zero()) else {
+            continue;
+        };
+        if p != k + 1 {
+            h.swap_rows(p, k + 1);
+            h.swap_columns(p, k + 1);
+        }
+        let piv = h[(k + 1, k)].clone();
+        for i in k + 2..n {
+            if h[(i, k)].is_zero() {
+                continue;
+            }
+            let m = &h[(i, k)] / &piv;
+            // row_i -= m row_{k+1}
+            for j in 0..n {
+                let t = &m * &h[(k + 1, j)];
+                h[(i, j)] -= t;
+            }
+            // col_{k+1} += m col_i
+            for r in 0..n {
+                let t = &m * &h[(r, i)];
+                h[(r, k + 1)] += t;
+            }
+        }
+    }
+    // p_k(x) = (x - h_kk) p_{k-1} - sum_{i<k} h_{ik} (prod_{j=i+1}^{k} h_{j,j-1}) p_{i-1}
+    // (1-based); here p[k] is the charpoly of the leading k x k block.
+    let mut ps: Vec<Poly> = vec![Poly::constant(Rational::one())];
+    for k in 0..n {
+        let mut pk = Poly::linear(h[(k, k)].clone()).mul(&ps[k]);
+        let mut prod = Rational::one();
+        for i in (0..k).rev() {
+            prod *= &h[(i + 1, i)];
+            if prod.is_zero() {
+                break;
+            }
+            let coef = &h[(i, k)] * &prod;
+            if !coef.is_zero() {
+                pk = pk.sub(&ps[i].scale(&coef));
+            }
+        }
+        ps.push(pk);
+    }
+    ps.pop().unwrap_or_else(|| Poly::constant(Rational::one()))
+}
+
+/// Rank of `A - lambda I` where `lambda` is the unique root of the square-free
+/// `f` in the isolating interval `(lo, hi]`, computed exactly in `Q[x]/(f)`
+/// with dynamic splitting of `f` (see the module docs).
+pub fn rank_at_root(a: &DMatrix<Rational>, f: &Poly, lo: &Rational, hi: &Rational) -> usize {
+    let n = a.nrows();
+    let mut f = f.clone();
+    // Entries are polynomials in x (mod f): A - x I.
+    let mut m: Vec<Vec<Poly>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let mut c = vec![a[(i, j)].clone()];
+                    if i == j {
+                        c.push(-Rational::one());
+                    }
+                    Poly::new(c)
+                })
+                .collect()
+        })
+        .collect();
+    // Is g(lambda) == 0? Splits f when gcd(g, f) is a proper factor.
+    let is_zero_at = |g: &Poly, f: &mut Poly| -> bool {
+        let g = g.rem(f);
+        if g.is_zero() {
+            return true;
+        }
+        let d = g.gcd(f);
+        if d.degree() == Some(0) {
+            return false;
+        }
+        let root_in_d = Sturm::new(&d).count(lo, hi) > 0;
+        if root_in_d {
+            *f = d;
+            true
+        } else {
+            *f = f.divrem(&d).0.monic();
+            false
+        }
+    };
+    let mut rank = 0;
+    let mut row = 0;
+    for col in 0..n {
+        let mut piv = None;
+        for (r, mrow) in m.iter().enumerate().skip(row) {
+            if !is_zero_at(&mrow[col], &mut f) {
+                piv = Some(r);
+                break;
+            }
+        }
+        let Some(p) = piv else { continue };
+        m.swap(row, p);
+        // Inverse of the pivot mod f (invertible: gcd with f is 1).
+        let pv = m[row][col].rem(&f);
+        let (g, s, _) = pv.xgcd(&f);
+        if g.degree() != Some(0) {
+            // Cannot happen after is_zero_at; treat as zero defensively.
+            continue;
+        }
+        let inv = s.scale(&(Rational::one() / g.lead())).rem(&f);
+        for r in row + 1..n {
+            let factor = m[r][col].mul(&inv).rem(&f);
+            if factor.is_zero() {
+                continue;
+            }
+            let (top, bottom) = m.split_at_mut(r);
+            for (dst, src) in bottom[0].iter_mut().zip(&top[row]).skip(col) {
+                *dst = dst.sub(&factor.mul(src)).rem(&f);
+            }
+        }
+        row += 1;
+        rank += 1;
+        if row == n {
+            break;
+        }
+    }
+    rank
+}
+
+/// A rational close to `x` (dyadic, 2^-40 resolution).
+fn rat(x: f64) -> Rational {
+    let scale = (1u64 << 40) as f64;
+    Rational::new(
+        BigInt::from((x * scale).round() as i64),
+        BigInt::from(1u64 << 40),
+    )
+}
+
+/// Exact verdicts for a Doo-Sabin-family configuration with rational
+/// parameters; `float` (optional) supplies the thresholds and is compared.
+///
+/// ```
+/// use subdiv_lab::knots::EdgeRatios;
+/// use subdiv_lab::scalar::Rational;
+/// use subdiv_lab::schemes::LocalScheme;
+/// use subdiv_lab::spectral::{exact::exact_verdict, ClassName};
+/// let s = LocalScheme::nurds(EdgeRatios::<Rational>::uniform(5).unwrap());
+/// let v = exact_verdict(&s, None).unwrap();
+/// assert_eq!(v.class, Some(ClassName::Standard));
+/// assert!(v.one_is_simple && v.theorem1_certificate);
+/// ```
+pub fn exact_verdict(
+    scheme: &LocalScheme<Rational>,
+    float: Option<&Subdominant>,
+) -> Result<ExactVerdict> {
+    let n = scheme.valence();
+    let a = scheme.face_block()?;
+    let p = charpoly(&a);
+    let (q, r) = p.divrem(&Poly::linear(Rational::one()));
+    if !r.is_zero() {
+        return Err(SpectralError::Exact(format!(
+            "1 is not an eigenvalue of the face block (p(1) = {})",
+            r.coeffs()[0].to_text()
+        ))
+        .into());
+    }
+    let one_is_simple = !q.eval(&Rational::one()).is_zero();
+    // Real roots with multiplicities.
+    let sf = q.squarefree();
+    let width = rat(ISOLATION_WIDTH).max(Rational::new(1.into(), BigInt::from(1u64 << 40)));
+    let intervals = if q.degree().unwrap_or(0) > 0 {
+        isolate_real_roots(&sf, &width)
+    } else {
+        Vec::new()
+    };
+    let mut chain = Vec::new();
+    let mut g = q.clone();
+    loop {
+        let d = g.gcd(&g.derivative());
+        if d.degree().unwrap_or(0) == 0 {
+            break;
+        }
+        chain.push(Sturm::new(&d.squarefree()));
+        g = d;
+    }
+    let real_roots: Vec<RealRoot> = intervals
+        .iter()
+        .map(|(lo, hi)| RealRoot {
+            interval: [rational_to_f64(lo), rational_to_f64(hi)],
+            multiplicity: 1 + chain.iter().filter(|s| s.count(lo, hi) > 0).count(),
+        })
+        .collect();
+    // Spectral bound |z| < 3/4.
+    let spectral_bound_below_three_quarters = if q.degree().unwrap_or(0) == 0 {
+        Some(true)
+    } else {
+        // Zero roots outside and a non-singular count => none on the circle either.
+        roots_outside(&q, &Rational::new(3.into(), 4.into())).map(|c| c == 0)
+    };
+    let cert = contraction::certificate(scheme)?;
+    let quarter = Rational::new(1.into(), 4.into());
+    // Count of all non-unit eigenvalues of S_n with modulus > t.
+    let count_full = |t: &Rational| -> Option<usize> {
+        let cq = if q.degree().unwrap_or(0) == 0 {
+            0
+        } else {
+            roots_outside(&q, t)?
+        };
+        let mut extra = 0;
+        for (v, m) in [(1i64, 4i64), (1, 8), (1, 16)] {
+            let e = Rational::new(v.into(), m.into());
+            if &e == t {
+                return None;
+            }
+            if &e > t {
+                extra += n;
+            }
+        }
+        Some(cq + extra)
+    };
+    let sturm_sf = Sturm::new(&sf);
+    let mut top_pair = TopPair::Undecided {
+        reason: "no threshold separated |lambda_2| from |lambda_3|".into(),
+    };
+    let mut separated = None;
+    let mut reason = String::new();
+    // Candidate thresholds: between the float |lambda_2| and |lambda_3|.
+    let mut candidates = Vec::new();
+    if let Some(f) = float {
+        let (m2, m3) = (f.lambda2.norm(), f.abs_lambda3);
+        if m2 > m3 {
+            for w in [0.5, 0.25, 0.75, 0.1, 0.9] {
+                candidates.push(rat(m3 + w * (m2 - m3)));
+            }
+        }
+    }
+    let mut found = false;
+    let mut double_positive = None;
+    for t in &candidates {
+        if t <= &Rational::zero() {
+            continue;
+        }
+        if let Some(c) = count_full(t) {
+            if c == 2 {
+                found = true;
+                separated = Some(true);
+                // Real roots of q with |x| > t (extras are below t: c == 2 < n).
+                let real = sturm_sf.count_above(t) + sturm_sf.count_below(&(-t.clone()));
+                top_pair = match real {
+                    0 => TopPair::ComplexPair,
+                    2 => TopPair::RealDistinct,
+                    1 => {
+                        // The double real root: its isolating interval, cut at +-t.
+                        let positive = sturm_sf.count_above(t) == 1;
+                        double_positive = Some(positive);
+                        let neg_t = -t.clone();
+                        let iv = intervals.iter().find_map(|(lo, hi)| {
+                            let (lo, hi) = if positive {
+                                (if lo > t { lo.clone() } else { t.clone() }, hi.clone())
+                            } else {
+                                (
+                                    lo.clone(),
+                                    if hi < &neg_t {
+                                        hi.clone()
+                                    } else {
+                                        neg_t.clone()
+                                    },
+                                )
+                            };
+                            (lo < hi && sturm_sf.count(&lo, &hi) == 1).then_some((lo, hi))
+                        });
+                        match iv {
+                            Some((lo, hi)) => {
+                                // Square-free polynomial of the multiple roots of q.
+                                let multi = q.gcd(&q.derivative()).squarefree();
+                                let rank = rank_at_root(&a, &multi, &lo, &hi);
+                                TopPair::RealDouble {
+                                    semisimple: rank + 2 == n,
+                                }
+                            }
+                            None => TopPair::Undecided {
+                                reason: "could not isolate the double real root".into(),
+                            },
+                        }
+                    }
+                    _ => TopPair::Undecided {
+                        reason: format!("{real} real roots among the two largest"),
+                    },
+                };
+                reason = format!(
+                    "exactly 2 eigenvalues have modulus > {} (Schur-Cohn); {} of them real (Sturm)",
+                    rational_to_f64(t),
+                    real
+                );
+                break;
+            }
+        }
+    }
+    if !found {
+        // Not separated when at most one root of q lies outside |z| = 1/4:
+        // then lambda_2 = lambda_3 = 1/4 (n >= 3 copies from the E blocks).
+        let cq = if q.degree().unwrap_or(0) == 0 {
+            Some(0)
+        } else {
+            roots_outside(&q, &quarter)
+        };
+        if let Some(c) = cq {
+            if c <= 1 {
+                separated = Some(false);
+                reason = format!(
+                    "{c} root(s) of q have modulus > 1/4, so |lambda_2| = |lambda_3| = 1/4 (E blocks)"
+                );
+                top_pair = TopPair::Undecided {
+                    reason: "lambda_2 is the multiple eigenvalue 1/4".into(),
+                };
+            }
+        }
+        if separated.is_none() {
+            reason =
+                "no rational threshold between |lambda_2| and |lambda_3| gave a count of 2".into();
+        }
+    }
+    let class = if !one_is_simple || separated == Some(false) {
+        Some(ClassName::NotSeparated)
+    } else if separated == Some(true) {
+        match &top_pair {
+            // Standard needs a positive double eigenvalue (math doc section 7);
+            // the float classifier reports a non-positive one as not separated.
+            TopPair::RealDouble { semisimple: true } if double_positive == Some(true) => {
+                Some(ClassName::Standard)
+            }
+            TopPair::RealDouble { semisimple: true } => Some(ClassName::NotSeparated),
+            TopPair::RealDouble { semisimple: false } => Some(ClassName::Defective),
+            TopPair::RealDistinct => Some(ClassName::RealDistinct),
+            TopPair::ComplexPair => Some(ClassName::ComplexPair),
+            TopPair::Undecided { .. } => None,
+        }
+    } else {
+        None
+    };
+    if !one_is_simple {
+        reason = "1 is a multiple root of the face block's characteristic polynomial".into();
+    }
+    let agrees_with_float = match (float.and_then(|f| f.class.class_name()), class) {
+        (Some(f), Some(e)) => Some(f == e),
+        _ => None,
+    };
+    Ok(ExactVerdict {
+        face_charpoly: p.to_text(),
+        reduced_charpoly: q.to_text(),
+        one_is_simple,
+        real_root_count: intervals.len(),
+        real_roots,
+        spectral_bound_below_three_quarters,
+        top_pair,
+        separated,
+        class,
+        reason,
+        theorem1_certificate: cert.holds(),
+        agrees_with_float,
+    })
+}

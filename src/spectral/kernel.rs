@@ -1,0 +1,616 @@
+//! A small dense eigenvalue kernel: Householder reduction to Hessenberg form
+//! followed by the Francis double-shift QR iteration, eigenvalues only.
+//!
+//! Written for the many tiny matrices of parameter sweeps (the `n x n` face
+//! block of the Doo-Sabin family, `n <= 64` typically), where the set-up cost of
+//! a general-purpose library dominates. Properties:
+//!
+//! * **no allocation per call**: all storage lives in a reusable
+//!   [`KernelWorkspace`];
+//! * **bounded iterations**: at most [`MAX_SWEEPS_PER_EIGENVALUE`] QR sweeps per
+//!   deflation and [`MAX_SWEEPS_PER_DIMENSION`] `* n` sweeps in total, with
+//!   exceptional shifts every [`EXCEPTIONAL_SHIFT_PERIOD`] sweeps (the shifts of
+//!   LAPACK's `dlahqr`, which break the cycle of the cyclic permutation
+//!   matrices); running out of sweeps is an error, never a hang;
+//! * deflation when a subdiagonal entry is below `eps` times its neighbouring
+//!   diagonal entries (the standard `dlahqr` criterion, backward stable).
+//!
+//! The algorithm is the classical EISPACK `hqr` (Wilkinson and Reinsch,
+//! Handbook for Automatic Computation II, 1971), which is backward stable: the
+//! computed eigenvalues are exact for a matrix within `O(n eps ||A||)` of the
+//! input. It is tested against faer's LAPACK-style implementation.
+//!
+//! The module also computes eigenvalue condition numbers of a few selected
+//! eigenvalues by inverse iteration on the Hessenberg form
+//! ([`KernelWorkspace::condition_number`]), `O(n^2)` each, without allocation.
+
+use super::SpectralError;
+use num_complex::Complex64;
+
+/// QR sweeps allowed before one eigenvalue (or a 2x2 block) deflates.
+///
+/// LAPACK allows 30 per eigenvalue with exceptional shifts at 10 and 20; we
+/// allow twice that with exceptional shifts every 10 sweeps: still a hard bound.
+pub const MAX_SWEEPS_PER_EIGENVALUE: usize = 60;
+
+/// Total QR sweeps allowed, per matrix dimension (LAPACK's `itmax = 30 n`).
+pub const MAX_SWEEPS_PER_DIMENSION: usize = 30;
+
+/// An exceptional (ad hoc) shift is used every this many sweeps without deflation.
+pub const EXCEPTIONAL_SHIFT_PERIOD: usize = 10;
+
+/// Reusable storage for the kernel (grows to the largest size seen).
+#[derive(Debug, Default, Clone)]
+pub struct KernelWorkspace {
+    n: usize,
+    /// Working copy (column major, `n x n`), destroyed by the QR iteration.
+    h: Vec<f64>,
+    /// Untouched copy of the input.
+    a: Vec<f64>,
+    /// The Hessenberg form of the input, for condition numbers.
+    hess: Vec<f64>,
+    /// Householder vector and scratch.
+    v: Vec<f64>,
+    w: Vec<f64>,
+    /// Complex LU factors for inverse iteration.
+    lu: Vec<Complex64>,
+    piv: Vec<usize>,
+    x: Vec<Complex64>,
+    y: Vec<Complex64>,
+    /// Eigenvalues (real and imaginary parts).
+    wr: Vec<f64>,
+    wi: Vec<f64>,
+    sweeps: usize,
+}
+
+impl KernelWorkspace {
+    /// An empty workspace.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Prepares an `n x n` input and returns it for filling (column major,
+    /// entry `(i, j)` at `i + j n`). All entries are zeroed first.
+    pub fn input(&mut self, n: usize) -> &mut [f64] {
+        self.n = n;
+        let nn = n * n;
+        self.a.clear();
+        self.a.resize(nn, 0.0);
+        &mut self.a
+    }
+
+    /// The current input matrix (column major).
+    pub fn matrix(&self) -> &[f64] {
+        &self.a[..self.n * self.n]
+    }
+
+    /// The Hessenberg form computed by the last
+    /// [`eigenvalues`](Self::eigenvalues) call (column major).
+    pub fn hessenberg_form(&self) -> &[f64] {
+        &self.hess[..self.n * self.n]
+    }
+
+    /// QR sweeps used by the last [`eigenvalues`](Self::eigenvalues) call.
+    pub fn last_sweeps(&self) -> usize {
+        self.sweeps
+    }
+
+    /// Dimension of the current input.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// Computes all eigenvalues of the current input; returns `(re, im)`
+    /// slices in no particular order (complex pairs are adjacent, positive
+    /// imaginary part first).
+    pub fn eigenvalues(&mut self) -> Result<(&[f64], &[f64]), SpectralError> {
+        let n = self.n;
+        if let Some(k) = self.a[..n * n].iter().position(|x| !x.is_finite()) {
+            return Err(SpectralError::NonFinite {
+                row: k % n,
+                col: k / n,
+            });
+        }
+        self.h.clear();
+        self.h.extend_from_slice(&self.a[..n * n]);
+        self.v.clear();
+        self.v.resize(n, 0.0);
+        self.wr.clear();
+        self.wr.resize(n, 0.0);
+        self.wi.clear();
+        self.wi.resize(n, 0.0);
+        self.w.clear();
+        self.w.resize(n, 0.0);
+        hessenberg(n, &mut self.h, &mut self.v, &mut self.w);
+        self.hess.clear();
+        self.hess.extend_from_slice(&self.h);
+        self.sweeps = hqr(n, &mut self.h, &mut self.wr, &mut self.wi)?;
+        Ok((&self.wr, &self.wi))
+    }
+
+    /// The eigenvalue condition number `kappa = ||x|| ||y|| / |y^H x|` of the
+    /// (computed) eigenvalue `lambda` of the input last passed to
+    /// [`KernelWorkspace::eigenvalues`], with right and left eigenvectors `x`,
+    /// `y` from one step of inverse iteration (from a fixed non-special start
+    /// vector; one step suffices because `lambda` is accurate to rounding, so
+    /// the amplification of the eigenvector component is `~ gap / eps`).
+    ///
+    /// Works on the saved Hessenberg form `H = Q^T A Q` (`kappa` is invariant
+    /// under orthogonal similarity), so one call costs `O(n^2)`: an LU
+    /// factorisation of the Hessenberg matrix `H - lambda I` with adjacent-row
+    /// pivoting and four triangular solves.
+    ///
+    /// `kappa >= 1`; a value near `1 / eps` means `lambda` is (numerically) a
+    /// multiple eigenvalue with a non-trivial Jordan block, or an ill-matched
+    /// pair of vectors in a multi-dimensional eigenspace.
+    pub fn condition_number(&mut self, lambda: Complex64) -> f64 {
+        let n = self.n;
+        if n == 0 {
+            return 1.0;
+        }
+        let norm = self.hess[..n * n].iter().map(|x| x * x).sum::<f64>().sqrt();
+        let tiny = f64::EPSILON * norm.max(f64::MIN_POSITIVE);
+        self.lu.clear();
+        self.lu
+            .extend(self.hess[..n * n].iter().map(|&x| Complex64::new(x, 0.0)));
+        for i in 0..n {
+            self.lu[i + i * n] -= lambda;
+        }
+        self.piv.clear();
+        self.piv.resize(n, 0);
+        hessenberg_lu(n, &mut self.lu, &mut self.piv, tiny);
+        // Deterministic, non-special starting vectors.
+        self.x.clear();
+        self.x
+            .extend((0..n).map(|i| Complex64::new(1.0 + 0.5 * ((i * 7 % 11) as f64) / 11.0, 0.0)));
+        self.y.clear();
+        self.y.extend_from_slice(&self.x);
+        for _ in 0..1 {
+            hessenberg_solve(n, &self.lu, &self.piv, &mut self.x);
+            normalise(&mut self.x);
+            hessenberg_solve_adjoint(n, &self.lu, &self.piv, &mut self.y);
+            normalise(&mut self.y);
+        }
+        let dot: Complex64 = self.y.iter().zip(&self.x).map(|(y, x)| y.conj() * x).sum();
+        let d = dot.norm();
+        if d == 0.0 || !d.is_finite() {
+            f64::INFINITY
+        } else {
+            (1.0 / d).max(1.0)
+        }
+    }
+}
+
+fn normalise(v: &mut [Complex64]) {
+    let s = v.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+    if s > 0.0 && s.is_finite() {
+        v.iter_mut().for_each(|z| *z /= s);
+    }
+}
+
+/// LU factorisation of an upper Hessenberg matrix (column major) in place:
+/// step `k` optionally swaps rows `k, k+1` (`piv[k] = 1`) and eliminates the
+/// subdiagonal entry with multiplier `l_k`, stored at `(k+1, k)`. Pivots that
+/// are exactly or nearly zero are replaced by `tiny` (standard for inverse
+/// iteration at an eigenvalue).
+fn hessenberg_lu(n: usize, a: &mut [Complex64], piv: &mut [usize], tiny: f64) {
+    // |re| + |im| is a cheap norm with the same pivoting quality as the modulus.
+    let l1 = |z: Complex64| z.re.abs() + z.im.abs();
+    for k in 0..n {
+        if k + 1 < n && l1(a[k + 1 + k * n]) > l1(a[k + k * n]) {
+            piv[k] = 1;
+            for j in k..n {
+                a.swap(k + j * n, k + 1 + j * n);
+            }
+        } else {
+            piv[k] = 0;
+        }
+        if l1(a[k + k * n]) <= tiny {
+            a[k + k * n] = Complex64::new(tiny, 0.0);
+        }
+        if k + 1 < n {
+            let l = a[k + 1 + k * n] / a[k + k * n];
+            a[k + 1 + k * n] = l;
+            for j in k + 1..n {
+                let u = a[k + j * n];
+                a[k + 1 + j * n] -= l * u;
+            }
+        }
+    }
+}
+
+/// Solves `H x = b` from [`hessenberg_lu`].
+fn hessenberg_solve(n: usize, lu: &[Complex64], piv: &[usize], b: &mut [Complex64]) {
+    for k in 0..n.saturating_sub(1) {
+        if piv[k] == 1 {
+            b.swap(k, k + 1);
+        }
+        let bk = b[k];
+        b[k + 1] -= lu[k + 1 + k * n] * bk;
+    }
+    for j in (0..n).rev() {
+        b[j] /= lu[j + j * n];
+        let bj = b[j];
+        for i in 0..j {
+            b[i] -= lu[i + j * n] * bj;
+        }
+    }
+}
+
+/// Solves `H^H y = b` from [`hessenberg_lu`]: `M H = U` with
+/// `M = M_{n-2} .. M_0`, `M_k = E_k P_k`, so `y = M_0^H .. M_{n-2}^H U^{-H} b`.
+fn hessenberg_solve_adjoint(n: usize, lu: &[Complex64], piv: &[usize], b: &mut [Complex64]) {
+    for j in 0..n {
+        let mut s = b[j];
+        for i in 0..j {
+            s -= lu[i + j * n].conj() * b[i];
+        }
+        b[j] = s / lu[j + j * n].conj();
+    }
+    for k in (0..n.saturating_sub(1)).rev() {
+        let l = lu[k + 1 + k * n];
+        let t = b[k + 1];
+        b[k] -= l.conj() * t;
+        if piv[k] == 1 {
+            b.swap(k, k + 1);
+        }
+    }
+}
+
+/// Householder reduction of the column-major `n x n` matrix `h` to upper
+/// Hessenberg form, in place (entries below the subdiagonal are zeroed).
+/// `v` and `w` are scratch vectors of length `n`. All inner loops run over
+/// contiguous column slices.
+pub(crate) fn hessenberg(n: usize, h: &mut [f64], v: &mut [f64], w: &mut [f64]) {
+    if n < 3 {
+        return;
+    }
+    for k in 0..n - 2 {
+        let col = &h[k * n + k + 1..(k + 1) * n];
+        let scale = col.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if scale == 0.0 {
+            continue;
+        }
+        let vk = &mut v[k + 1..n];
+        let mut norm2 = 0.0;
+        for (vi, x) in vk.iter_mut().zip(col) {
+            let t = x / scale;
+            *vi = t;
+            norm2 += t * t;
+        }
+        let x0 = vk[0];
+        let alpha = -x0.signum() * norm2.sqrt();
+        vk[0] = x0 - alpha;
+        let vtv = norm2 - x0 * x0 + vk[0] * vk[0];
+        if vtv == 0.0 {
+            continue;
+        }
+        let beta = 2.0 / vtv;
+        // Left: rows k+1..n, columns k+1..n (column k is set explicitly).
+        for j in k + 1..n {
+            let cj = &mut h[j * n + k + 1..(j + 1) * n];
+            let s: f64 = cj.iter().zip(vk.iter()).map(|(x, y)| x * y).sum::<f64>() * beta;
+            for (x, y) in cj.iter_mut().zip(vk.iter()) {
+                *x -= s * y;
+            }
+        }
+        h[k + 1 + k * n] = alpha * scale;
+        for x in &mut h[k * n + k + 2..(k + 1) * n] {
+            *x = 0.0;
+        }
+        // Right: all rows, columns k+1..n: w = H v, H -= beta w v^T.
+        let w = &mut w[..n];
+        w.iter_mut().for_each(|x| *x = 0.0);
+        for (j, &vj) in (k + 1..n).zip(vk.iter()) {
+            let cj = &h[j * n..(j + 1) * n];
+            for (wi, x) in w.iter_mut().zip(cj) {
+                *wi += x * vj;
+            }
+        }
+        for (j, &vj) in (k + 1..n).zip(vk.iter()) {
+            let f = beta * vj;
+            let cj = &mut h[j * n..(j + 1) * n];
+            for (x, wi) in cj.iter_mut().zip(w.iter()) {
+                *x -= wi * f;
+            }
+        }
+    }
+}
+
+/// Francis double-shift QR on an upper Hessenberg matrix (EISPACK `hqr`,
+/// eigenvalues only), with bounded iterations.
+pub(crate) fn hqr(
+    n: usize,
+    a: &mut [f64],
+    wr: &mut [f64],
+    wi: &mut [f64],
+) -> Result<usize, SpectralError> {
+    debug_assert!(a.len() >= n * n && wr.len() >= n && wi.len() >= n);
+    // Unchecked access: every index below is < n by the loop invariants
+    // (l <= m <= k <= nu < n, and the guards on k + 2 / m - 1), checked in debug builds.
+    macro_rules! g {
+        ($i:expr, $j:expr) => {{
+            let (i, j) = ($i, $j);
+            debug_assert!(i < n && j < n);
+            // SAFETY: i, j < n and a.len() >= n * n.
+            unsafe { *a.get_unchecked(i + j * n) }
+        }};
+    }
+    macro_rules! m {
+        ($i:expr, $j:expr) => {{
+            let (i, j) = ($i, $j);
+            debug_assert!(i < n && j < n);
+            // SAFETY: i, j < n and a.len() >= n * n.
+            unsafe { a.get_unchecked_mut(i + j * n) }
+        }};
+    }
+    if n == 0 {
+        return Ok(0);
+    }
+    let mut anorm = 0.0;
+    for j in 0..n {
+        for i in 0..n.min(j + 2) {
+            anorm += g!(i, j).abs();
+        }
+    }
+    let eps = f64::EPSILON;
+    let budget = MAX_SWEEPS_PER_DIMENSION * n.max(10);
+    let mut total = 0usize;
+    let mut t = 0.0;
+    // nn: index of the last row of the active block (inclusive), as isize.
+    let mut nn = n as isize - 1;
+    while nn >= 0 {
+        let mut its = 0usize;
+        loop {
+            let nu = nn as usize;
+            // Look for a small subdiagonal element.
+            let mut l = nu;
+            while l >= 1 {
+                let mut s = g!(l - 1, l - 1).abs() + g!(l, l).abs();
+                if s == 0.0 {
+                    s = anorm;
+                }
+                if g!(l, l - 1).abs() <= eps * s {
+                    *m!(l, l - 1) = 0.0;
+                    break;
+                }
+                l -= 1;
+            }
+            let mut x = g!(nu, nu);
+            if l == nu {
+                // One root found.
+                wr[nu] = x + t;
+                wi[nu] = 0.0;
+                nn -= 1;
+                break;
+            }
+            let mut y = g!(nu - 1, nu - 1);
+            let mut w = g!(nu, nu - 1) * g!(nu - 1, nu);
+            if l + 1 == nu {
+                // Two roots found.
+                let p = 0.5 * (y - x);
+                let q = p * p + w;
+                let z = q.abs().sqrt();
+                x += t;
+                if q >= 0.0 {
+                    let z = p + z.copysign(p);
+                    wr[nu - 1] = x + z;
+                    wr[nu] = if z != 0.0 { x - w / z } else { x + z };
+                    wi[nu - 1] = 0.0;
+                    wi[nu] = 0.0;
+                } else {
+                    wr[nu - 1] = x + p;
+                    wr[nu] = x + p;
+                    wi[nu - 1] = z;
+                    wi[nu] = -z;
+                }
+                nn -= 2;
+                break;
+            }
+            // No roots found yet: one more sweep.
+            if its >= MAX_SWEEPS_PER_EIGENVALUE || total >= budget {
+                return Err(SpectralError::NoConvergence {
+                    routine: "small-matrix QR kernel",
+                    size: n,
+                    sweeps: total,
+                });
+            }
+            if its > 0 && its % EXCEPTIONAL_SHIFT_PERIOD == 0 {
+                // Exceptional shift (EISPACK hqr; dlahqr's constants 0.75 and -0.4375).
+                t += x;
+                for i in 0..=nu {
+                    *m!(i, i) -= x;
+                }
+                let s = g!(nu, nu - 1).abs() + g!(nu - 1, nu - 2).abs();
+                x = 0.75 * s;
+                y = x;
+                w = -0.4375 * s * s;
+            } else {
+                // LAPACK 3.10 dlahqr: when both Francis shifts are real, use the
+                // one closer to a[nu][nu] twice. Two distinct real shifts placed
+                // symmetrically in a spectrum that is itself symmetric (NURDS
+                // with even n) stall the iteration.
+                let p = 0.5 * (y - x);
+                let disc = p * p + w;
+                if disc >= 0.0 {
+                    let sq = disc.sqrt();
+                    let mid = 0.5 * (x + y);
+                    let (s1, s2) = (mid + sq, mid - sq);
+                    let sigma = if (s1 - x).abs() <= (s2 - x).abs() {
+                        s1
+                    } else {
+                        s2
+                    };
+                    x = sigma;
+                    y = sigma;
+                    w = 0.0;
+                }
+            }
+            its += 1;
+            total += 1;
+            // Form shift and look for two consecutive small subdiagonal elements.
+            let mut m = nu - 2;
+            let (mut p, mut q, mut r);
+            loop {
+                let z = g!(m, m);
+                let rr = x - z;
+                let ss = y - z;
+                p = (rr * ss - w) / g!(m + 1, m) + g!(m, m + 1);
+                q = g!(m + 1, m + 1) - z - rr - ss;
+                r = g!(m + 2, m + 1);
+                let s = p.abs() + q.abs() + r.abs();
+                p /= s;
+                q /= s;
+                r /= s;
+                if m == l {
+                    break;
+                }
+                let u = g!(m, m - 1).abs() * (q.abs() + r.abs());
+                let v = p.abs() * (g!(m - 1, m - 1).abs() + z.abs() + g!(m + 1, m + 1).abs());
+                if u <= eps * v {
+                    break;
+                }
+                m -= 1;
+            }
+            for i in m + 2..=nu {
+                *m!(i, i - 2) = 0.0;
+                if i != m + 2 {
+                    *m!(i, i - 3) = 0.0;
+                }
+            }
+            // Double QR step on rows l..nu and columns m..nu.
+            let mut k = m;
+            while k < nu {
+                if k != m {
+                    p = g!(k, k - 1);
+                    q = g!(k + 1, k - 1);
+                    r = if k != nu - 1 { g!(k + 2, k - 1) } else { 0.0 };
+                    x = p.abs() + q.abs() + r.abs();
+                    if x != 0.0 {
+                        p /= x;
+                        q /= x;
+                        r /= x;
+                    }
+                }
+                let s = (p * p + q * q + r * r).sqrt().copysign(p);
+                if s != 0.0 {
+                    if k == m {
+                        if l != m {
+                            *m!(k, k - 1) = -g!(k, k - 1);
+                        }
+                    } else {
+                        *m!(k, k - 1) = -s * x;
+                    }
+                    p += s;
+                    x = p / s;
+                    y = q / s;
+                    let z = r / s;
+                    q /= p;
+                    r /= p;
+                    // Row modification.
+                    for j in k..=nu {
+                        let mut pp = g!(k, j) + q * g!(k + 1, j);
+                        if k != nu - 1 {
+                            pp += r * g!(k + 2, j);
+                            *m!(k + 2, j) -= pp * z;
+                        }
+                        *m!(k + 1, j) -= pp * y;
+                        *m!(k, j) -= pp * x;
+                    }
+                    // Column modification.
+                    let mmin = if nu < k + 3 { nu } else { k + 3 };
+                    for i in l..=mmin {
+                        let mut pp = x * g!(i, k) + y * g!(i, k + 1);
+                        if k != nu - 1 {
+                            pp += z * g!(i, k + 2);
+                            *m!(i, k + 2) -= pp * r;
+                        }
+                        *m!(i, k + 1) -= pp * q;
+                        *m!(i, k) -= pp;
+                    }
+                }
+                k += 1;
+            }
+        }
+    }
+    Ok(total)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn eig(n: usize, f: impl Fn(usize, usize) -> f64) -> Vec<Complex64> {
+        let mut ws = KernelWorkspace::new();
+        let a = ws.input(n);
+        for j in 0..n {
+            for i in 0..n {
+                a[i + j * n] = f(i, j);
+            }
+        }
+        let (re, im) = ws.eigenvalues().unwrap();
+        let mut v: Vec<Complex64> = re
+            .iter()
+            .zip(im)
+            .map(|(&r, &i)| Complex64::new(r, i))
+            .collect();
+        v.sort_by(|a, b| {
+            (b.norm(), b.re, b.im)
+                .partial_cmp(&(a.norm(), a.re, a.im))
+                .unwrap()
+        });
+        v
+    }
+
+    #[test]
+    fn cyclic_permutations_converge() {
+        for n in 1..=40 {
+            let v = eig(n, |i, j| if (i + 1) % n == j { 1.0 } else { 0.0 });
+            assert_eq!(v.len(), n);
+            for z in &v {
+                assert!((z.norm() - 1.0).abs() < 1e-12, "n={n} {z}");
+                // z^n = 1
+                assert!((z.powu(n as u32) - 1.0).norm() < 1e-10, "n={n} {z}");
+            }
+        }
+    }
+
+    #[test]
+    fn zero_and_tiny_matrices() {
+        assert!(eig(0, |_, _| 0.0).is_empty());
+        assert_eq!(eig(1, |_, _| 2.5), vec![Complex64::new(2.5, 0.0)]);
+        for n in 1..8 {
+            assert!(eig(n, |_, _| 0.0).iter().all(|z| z.norm() == 0.0));
+        }
+        let v = eig(2, |i, j| [[0.0, -1.0], [1.0, 0.0]][i][j]);
+        assert!((v[0] - Complex64::new(0.0, 1.0)).norm() < 1e-15);
+    }
+
+    #[test]
+    fn non_finite_input_is_an_error() {
+        let mut ws = KernelWorkspace::new();
+        ws.input(3)[4] = f64::NAN;
+        assert!(matches!(
+            ws.eigenvalues(),
+            Err(SpectralError::NonFinite { row: 1, col: 1 })
+        ));
+    }
+
+    #[test]
+    fn condition_number_of_normal_and_jordan() {
+        let mut ws = KernelWorkspace::new();
+        // Symmetric: kappa = 1.
+        let a = ws.input(3);
+        a.copy_from_slice(&[2.0, 1.0, 0.0, 1.0, 3.0, 1.0, 0.0, 1.0, 4.0]);
+        let (re, _) = ws.eigenvalues().unwrap();
+        let l = re[0];
+        let k = ws.condition_number(Complex64::new(l, 0.0));
+        assert!((k - 1.0).abs() < 1e-8, "{k}");
+        // Nearly defective: large kappa.
+        let a = ws.input(2);
+        a.copy_from_slice(&[1.0, 0.0, 1.0, 1.0 + 1e-10]);
+        ws.eigenvalues().unwrap();
+        let k = ws.condition_number(Complex64::new(1.0, 0.0));
+        assert!(k > 1e8, "{k}");
+    }
+}

@@ -1,0 +1,480 @@
+//! Eigen-analysis of local subdivision matrices (math doc sections 4-7).
+//!
+//! One concept per module:
+//!
+//! * [`eigen`]: general eigen-decomposition of any square matrix (faer), with
+//!   left/right vectors, residuals and condition numbers;
+//! * [`kernel`]: an allocation-free small dense eigenvalue kernel (Hessenberg +
+//!   Francis double-shift QR, bounded iterations) for sweeps;
+//! * [`structured`]: the Doo-Sabin family fast path (face block + the known
+//!   1/4, 1/8, 1/16);
+//! * [`classify`]: the subdominant classes of section 7 with condition-scaled
+//!   tolerances;
+//! * [`exact`]: exact certificates over the rationals (characteristic
+//!   polynomial, Sturm sequences, Schur-Cohn counts).
+//!
+//! Entry points: [`analyze`] (everything `subdiv-lab analyze --json` prints)
+//! and [`classify_scheme`] (classification only, structured, allocation-free
+//! after warm-up: the sweep path).
+//!
+//! ```
+//! use subdiv_lab::knots::EdgeRatios;
+//! use subdiv_lab::schemes::LocalScheme;
+//! use subdiv_lab::spectral::{analyze, AnalyzeOptions, SubdominantClass};
+//! let s = LocalScheme::nurds(EdgeRatios::new(vec![0.3, 0.6, 0.5, 0.2, 0.7]).unwrap());
+//! let a = analyze(&s, &AnalyzeOptions::default()).unwrap();
+//! assert_eq!(a.eigenvalues.len(), 20);
+//! let c = a.contraction.as_ref().unwrap(); // Doo-Sabin family only
+//! assert!(c.certificate_nonnegative);
+//! assert!(c.spectral_bound <= 0.75);
+//! assert!(!matches!(a.subdominant.class, SubdominantClass::Standard));
+//! ```
+
+pub mod classify;
+pub mod eigen;
+pub mod exact;
+pub mod kernel;
+pub mod poly;
+pub mod structured;
+
+pub use classify::{ClassName, Subdominant, SubdominantClass};
+pub use eigen::{Eigen, EigenOptions};
+pub use structured::{structured_spectrum, StructuredWorkspace};
+
+use crate::contraction::{self, MeasureOptions};
+use crate::error::Result;
+use crate::scalar::Rational;
+use crate::schemes::LocalScheme;
+use classify::{classify, Evidence, BACKWARD_ERROR_FACTOR};
+use eigen::spectral_order;
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+use serde::Serialize;
+use std::cell::RefCell;
+
+/// Errors of the spectral engine.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SpectralError {
+    /// The matrix is not square.
+    #[error("eigen-analysis needs a square matrix, got {rows} x {cols}")]
+    NotSquare {
+        /// Rows.
+        rows: usize,
+        /// Columns.
+        cols: usize,
+    },
+    /// A NaN or infinite entry.
+    #[error("matrix entry ({row}, {col}) is not finite")]
+    NonFinite {
+        /// Row.
+        row: usize,
+        /// Column.
+        col: usize,
+    },
+    /// The QR iteration did not converge within its bound.
+    #[error("{routine} did not converge for a {size} x {size} matrix ({sweeps} sweeps)")]
+    NoConvergence {
+        /// Which routine.
+        routine: &'static str,
+        /// Matrix dimension.
+        size: usize,
+        /// Sweeps used (0 if unknown).
+        sweeps: usize,
+    },
+    /// An eigenpair failed the independent residual check.
+    #[error("eigenpair {index} has residual {residual:e} above the bound {bound:e}")]
+    ResidualTooLarge {
+        /// Index in the sorted spectrum.
+        index: usize,
+        /// `||S v - lambda v||`.
+        residual: f64,
+        /// The bound it exceeds.
+        bound: f64,
+    },
+    /// The structured path was asked for a scheme outside the Doo-Sabin family.
+    #[error("the structured path needs a Doo-Sabin-family scheme, got {scheme}")]
+    NotDooSabinFamily {
+        /// Scheme name.
+        scheme: &'static str,
+    },
+    /// A singular value decomposition failed to converge.
+    #[error("singular value decomposition did not converge ({size} x {size})")]
+    SvdNoConvergence {
+        /// Matrix dimension.
+        size: usize,
+    },
+    /// An exact computation could not be carried out.
+    #[error("exact analysis: {0}")]
+    Exact(String),
+}
+
+/// Which spectrum computation [`analyze`] uses.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SpectrumPath {
+    /// Full `4n x 4n` decomposition with vectors (always available).
+    #[default]
+    Full,
+    /// Structured (face block + known eigenvalues); Doo-Sabin family only.
+    Structured,
+}
+
+/// Options of [`analyze`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AnalyzeOptions {
+    /// Spectrum path for the reported eigenvalues and classification.
+    pub path: SpectrumPath,
+    /// Measured-contraction options (levels, seed).
+    pub measure: MeasureOptions,
+}
+
+impl Default for AnalyzeOptions {
+    fn default() -> Self {
+        Self {
+            path: SpectrumPath::Full,
+            measure: MeasureOptions::default(),
+        }
+    }
+}
+
+/// Contraction summary (math doc section 5).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ContractionSummary {
+    /// Largest row sum of the certificate weights `W` (3/4; see [`contraction::certificate`]).
+    pub certificate_sum: f64,
+    /// Largest `|row sum of W - 3/4|` (0 up to rounding; exactly 0 for rationals).
+    pub certificate_sum_defect: f64,
+    /// All certificate weights are non-negative.
+    pub certificate_nonnegative: bool,
+    /// Smallest certificate weight.
+    pub certificate_min_weight: f64,
+    /// The certificate holds (non-negative, sums 3/4, `F` invariant).
+    pub certificate_holds: bool,
+    /// Largest non-unit eigenvalue modulus (`|lambda_1|`).
+    pub spectral_bound: f64,
+    /// `spectral_bound <= 3/4`.
+    pub spectral_bound_ok: bool,
+    /// Fitted asymptotic rate of `max_i |P^k_i - F|`.
+    pub measured_rate: f64,
+    /// Largest per-step ratio.
+    pub measured_max_ratio: f64,
+    /// `max_i |P^k_i - F|` per level.
+    pub measured_distances: Vec<f64>,
+    /// Per-step ratios.
+    pub measured_ratios: Vec<f64>,
+}
+
+/// Everything `subdiv-lab analyze --json` prints.
+#[derive(Clone, Debug, Serialize)]
+pub struct LocalAnalysis {
+    /// Scheme name.
+    pub scheme: &'static str,
+    /// Valence.
+    pub valence: usize,
+    /// Which path computed the spectrum.
+    pub path: SpectrumPath,
+    /// Full spectrum `[re, im]`, sorted by non-increasing modulus.
+    pub eigenvalues: Vec<[f64; 2]>,
+    /// Residuals `||S v - lambda v||` (full path only).
+    pub residuals: Option<Vec<f64>>,
+    /// Eigenvalue condition numbers (full path: all; structured: `None`).
+    pub condition_numbers: Option<Vec<f64>>,
+    /// Face weights `c`.
+    pub face_weights: Vec<f64>,
+    /// Left eigenvector for 1 normalised to sum 1 (full path): `c` on the P
+    /// points and 0 elsewhere.
+    pub limit_weights: Option<Vec<f64>>,
+    /// `max |limit_weights - (c, 0)|`.
+    pub limit_weights_error: Option<f64>,
+    /// Tangent stencils: left eigenvectors of `lambda_1`, `lambda_2` (real) or
+    /// real and imaginary part of the left eigenvector of a complex pair
+    /// (full path), scaled to unit max-norm.
+    pub tangent_stencils: Option<[Vec<f64>; 2]>,
+    /// Subdominant classification.
+    pub subdominant: Subdominant,
+    /// Theorem 1 (Doo-Sabin family only: the face-block contraction of
+    /// math doc section 5; `None` for other schemes).
+    pub contraction: Option<ContractionSummary>,
+    /// Exact verdicts (`--exact`).
+    pub exact: Option<exact::ExactVerdict>,
+}
+
+impl LocalAnalysis {
+    /// Adds the exact verdicts for the exact version of the same configuration.
+    pub fn add_exact(&mut self, scheme: &LocalScheme<Rational>) -> Result<()> {
+        self.exact = Some(exact::exact_verdict(scheme, Some(&self.subdominant))?);
+        Ok(())
+    }
+}
+
+/// Error radius `max(kappa, 1) * eta` (0 when `eta = 0`, i.e. the zero matrix,
+/// even if `kappa` is infinite).
+fn radius(kappa: f64, eta: f64) -> f64 {
+    if eta == 0.0 {
+        0.0
+    } else if kappa.is_nan() {
+        f64::INFINITY
+    } else {
+        kappa.max(1.0) * eta
+    }
+}
+
+fn c64(z: Complex64) -> [f64; 2] {
+    [z.re, z.im]
+}
+
+/// Second smallest singular value of `x - lambda I`.
+fn second_smallest_sigma(x: &DMatrix<f64>, lambda: f64) -> Result<f64, SpectralError> {
+    let n = x.nrows();
+    if n < 2 {
+        return Ok(f64::INFINITY);
+    }
+    let m = faer::Mat::<f64>::from_fn(n, n, |i, j| x[(i, j)] - if i == j { lambda } else { 0.0 });
+    let s = m
+        .singular_values()
+        .map_err(|_| SpectralError::SvdNoConvergence { size: n })?;
+    // Sorted non-increasing.
+    Ok(s[n - 2])
+}
+
+/// Full analysis of one configuration (math doc sections 4-7).
+pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<LocalAnalysis> {
+    let n = scheme.valence();
+    let lm = scheme.matrix()?;
+    let s = lm.matrix();
+    let face_weights = scheme.face_weights();
+    let (eigenvalues, residuals, conditions, limit, tangents, subdominant);
+    match options.path {
+        SpectrumPath::Full => {
+            let e = Eigen::new(s, EigenOptions::BOTH)?;
+            let dim = e.dim();
+            let eta = BACKWARD_ERROR_FACTOR * dim as f64 * f64::EPSILON * e.frobenius_norm();
+            let kappa = e.condition_numbers().unwrap_or(&[]).to_vec();
+            let radii: Vec<f64> = kappa.iter().map(|&k| radius(k, eta)).collect();
+            subdominant = classify(
+                &Evidence {
+                    values: e.values(),
+                    radii: &radii,
+                    eta,
+                },
+                &mut |lam| second_smallest_sigma(s, lam),
+            )?;
+            eigenvalues = e.values().iter().map(|&z| c64(z)).collect::<Vec<_>>();
+            residuals = e.residuals().map(<[f64]>::to_vec);
+            conditions = Some(kappa);
+            let left = e.left();
+            limit = left.map(|u| {
+                let col = u.column(0);
+                let sum: Complex64 = col.iter().sum();
+                let w: Vec<f64> = col.iter().map(|z| (z / sum).re).collect();
+                let err = w
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &x)| (x - if i < n { face_weights[i] } else { 0.0 }).abs())
+                    .fold(0.0, f64::max);
+                (w, err)
+            });
+            tangents = left.filter(|_| dim >= 3).map(|u| {
+                let scale = |v: Vec<f64>| {
+                    let m = v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+                    if m > 0.0 {
+                        v.iter().map(|x| x / m).collect()
+                    } else {
+                        v
+                    }
+                };
+                if e.values()[1].im.abs() > 0.0 {
+                    let col = u.column(1);
+                    [
+                        scale(col.iter().map(|z| z.re).collect()),
+                        scale(col.iter().map(|z| z.im).collect()),
+                    ]
+                } else {
+                    [
+                        scale(u.column(1).iter().map(|z| z.re).collect()),
+                        scale(u.column(2).iter().map(|z| z.re).collect()),
+                    ]
+                }
+            });
+        }
+        SpectrumPath::Structured => {
+            let all = structured_spectrum(scheme)?;
+            subdominant = classify_scheme(scheme)?;
+            eigenvalues = all.iter().map(|&z| c64(z)).collect();
+            residuals = None;
+            conditions = None;
+            limit = None;
+            tangents = None;
+        }
+    }
+    let spectral_bound = eigenvalues
+        .iter()
+        .skip(1)
+        .map(|z| z[0].hypot(z[1]))
+        .fold(0.0, f64::max);
+    let contraction = if scheme.kind().is_doo_sabin_family() {
+        let cert = contraction::certificate(scheme)?;
+        let measured = contraction::measure(scheme, &options.measure)?;
+        Some(ContractionSummary {
+            certificate_sum: cert.row_sums.iter().copied().fold(0.0, f64::max),
+            certificate_sum_defect: cert.max_sum_defect(),
+            certificate_nonnegative: cert.nonnegative,
+            certificate_min_weight: cert.min_weight,
+            certificate_holds: cert.holds(),
+            spectral_bound,
+            spectral_bound_ok: spectral_bound <= 0.75,
+            measured_rate: measured.fitted_rate,
+            measured_max_ratio: measured.max_ratio,
+            measured_distances: measured.distances,
+            measured_ratios: measured.ratios,
+        })
+    } else {
+        None
+    };
+    let (limit_weights, limit_weights_error) = match limit {
+        Some((w, e)) => (Some(w), Some(e)),
+        None => (None, None),
+    };
+    Ok(LocalAnalysis {
+        scheme: scheme.kind().name(),
+        valence: n,
+        path: options.path,
+        eigenvalues,
+        residuals,
+        condition_numbers: conditions,
+        face_weights,
+        limit_weights,
+        limit_weights_error,
+        tangent_stencils: tangents,
+        subdominant,
+        contraction,
+        exact: None,
+    })
+}
+
+thread_local! {
+    static WORKSPACE: RefCell<StructuredWorkspace> = RefCell::new(StructuredWorkspace::new());
+}
+
+/// Classification only, by the structured path (the sweep fast path).
+///
+/// Doo-Sabin family only; uses a thread-local [`StructuredWorkspace`], so it
+/// allocates nothing after the first call per thread and valence (except in
+/// the rare near-double case, which runs a singular value decomposition).
+/// Condition numbers of the face eigenvalues in positions 1-3 come from
+/// inverse iteration on the Hessenberg form (`O(n^2)` each).
+pub fn classify_scheme(scheme: &LocalScheme<f64>) -> Result<Subdominant> {
+    WORKSPACE.with(|ws| classify_scheme_with(&mut ws.borrow_mut(), scheme))
+}
+
+/// [`classify_scheme`] with an explicit workspace.
+pub fn classify_scheme_with(
+    ws: &mut StructuredWorkspace,
+    scheme: &LocalScheme<f64>,
+) -> Result<Subdominant> {
+    let n = scheme.valence();
+    let face_len = ws.face_nonunit(scheme)?.len();
+    let m = ws.deflated_dim();
+    let eta = BACKWARD_ERROR_FACTOR * m.max(1) as f64 * f64::EPSILON * ws.frobenius_norm();
+    // Merge the top of the face spectrum with the known 1/4 (n copies).
+    let mut top = [(Complex64::new(1.0, 0.0), 0.0f64, usize::MAX); 4];
+    let mut face_top = [Complex64::new(0.0, 0.0); 3];
+    let k = face_len.min(3);
+    {
+        let face = ws.face_nonunit_cached();
+        face_top[..k].copy_from_slice(&face[..k]);
+    }
+    let quarter = Complex64::new(structured::KNOWN_EIGENVALUES[0], 0.0);
+    let (mut fi, mut qi) = (0usize, 0usize);
+    for slot in top.iter_mut().skip(1) {
+        let take_face = fi < k && (qi >= n || spectral_order(&face_top[fi], &quarter).is_le());
+        if take_face {
+            *slot = (face_top[fi], 0.0, fi);
+            fi += 1;
+        } else {
+            *slot = (quarter, 0.0, usize::MAX);
+            qi += 1;
+        }
+    }
+    // Condition numbers for face eigenvalues among lambda_1..lambda_3.
+    let mut last: Option<(Complex64, f64)> = None;
+    for slot in top.iter_mut().skip(1) {
+        if slot.2 != usize::MAX {
+            let z = slot.0;
+            let kappa = match last {
+                Some((w, kw)) if w == z.conj() => kw,
+                _ => ws.condition_number(z),
+            };
+            last = Some((z, kappa));
+            slot.1 = radius(kappa, eta);
+        }
+    }
+    let values = [top[0].0, top[1].0, top[2].0, top[3].0];
+    let radii = [top[0].1, top[1].1, top[2].1, top[3].1];
+    let bm = ws.deflated_matrix();
+    Ok(classify(
+        &Evidence {
+            values: &values,
+            radii: &radii,
+            eta,
+        },
+        &mut |lam| {
+            let b = DMatrix::from_column_slice(m, m, bm);
+            second_smallest_sigma(&b, lam)
+        },
+    )?)
+}
+
+thread_local! {
+    static MATRIX_WORKSPACE: RefCell<(kernel::KernelWorkspace, Vec<Complex64>)> =
+        RefCell::new((kernel::KernelWorkspace::new(), Vec::new()));
+}
+
+/// Classification only for any square matrix (e.g. schemes outside the
+/// Doo-Sabin family), by the allocation-free [`kernel`]: all eigenvalues,
+/// condition numbers of `lambda_1..lambda_3` by inverse iteration, and the
+/// rank test (faer SVD) only for a double-eigenvalue candidate.
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use subdiv_lab::spectral::{classify_matrix, SubdominantClass};
+/// let s = DMatrix::from_row_slice(3, 3, &[1.0, 0.0, 0.0, 0.25, 0.5, 0.25, 0.0, 0.0, 0.25]);
+/// assert_eq!(classify_matrix(&s).unwrap().class, SubdominantClass::NotSeparated);
+/// ```
+pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
+    let (n, m) = s.shape();
+    if n != m {
+        return Err(SpectralError::NotSquare { rows: n, cols: m }.into());
+    }
+    MATRIX_WORKSPACE.with(|cell| {
+        let mut guard = cell.borrow_mut();
+        let (ws, values) = &mut *guard;
+        ws.input(n).copy_from_slice(s.as_slice());
+        let (re, im) = ws.eigenvalues()?;
+        values.clear();
+        values.extend(re.iter().zip(im).map(|(&a, &b)| Complex64::new(a, b)));
+        values.sort_by(spectral_order);
+        let eta = BACKWARD_ERROR_FACTOR * n.max(1) as f64 * f64::EPSILON * s.norm();
+        let mut radii = [0.0f64; 4];
+        let mut last: Option<(Complex64, f64)> = None;
+        for k in 0..n.min(4) {
+            let z = values[k];
+            let kappa = match last {
+                Some((w, kw)) if w == z.conj() => kw,
+                _ => ws.condition_number(z),
+            };
+            last = Some((z, kappa));
+            radii[k] = radius(kappa, eta);
+        }
+        let top: Vec<Complex64> = values.iter().take(4).copied().collect();
+        Ok(classify(
+            &Evidence {
+                values: &top,
+                radii: &radii[..top.len()],
+                eta,
+            },
+            &mut |lam| second_smallest_sigma(s, lam),
+        )?)
+    })
+}
