@@ -15,8 +15,11 @@
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
 //! * [`schemes`]: local subdivision matrices through one assembly path;
 //! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face;
+//! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
+//! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
 //! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
 //! * [`contraction`]: Theorem 1, certified and measured (section 5);
+//! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory);
 //! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
@@ -30,9 +33,12 @@
 #![warn(missing_docs)]
 
 pub mod ccss_bound;
+pub mod bspline;
 pub mod contraction;
 pub mod error;
 pub mod knots;
+pub mod mesh;
+pub mod report;
 pub mod scalar;
 pub mod schemes;
 pub mod spectral;

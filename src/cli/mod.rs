@@ -5,7 +5,9 @@
 mod ccss_bound;
 mod analyze;
 mod matrix;
+mod report;
 mod scheme_args;
+mod subdivide;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -32,6 +34,10 @@ enum Command {
     Matrix(matrix::MatrixArgs),
     /// Distance bound beta(n) between a Catmull-Clark patch and its limit face (LP).
     CcssBound(ccss_bound::CcssBoundArgs),
+    /// Refine a closed polygon mesh (OBJ) with NURDS, Doo-Sabin or the Catmull-Clark variant.
+    Subdivide(subdivide::SubdivideArgs),
+    /// Run a report spec (default analysis/default.toml) and write reports/<name>/.
+    Report(report::ReportArgs),
     /// Spectrum, subdominant classification and Theorem 1 for one configuration.
     Analyze(analyze::AnalyzeArgs),
 }
@@ -79,6 +85,8 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
         Command::CcssBound(args) => ccss_bound::run(args),
+        Command::Subdivide(args) => subdivide::run(args),
+        Command::Report(args) => report::run(args),
         Command::Analyze(args) => analyze::run(args),
     };
     match result {

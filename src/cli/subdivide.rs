@@ -1,0 +1,254 @@
+//! `subdiv-lab subdivide`: refine a closed OBJ mesh with NURDS, original
+//! Doo-Sabin or the Catmull-Clark variant.
+//!
+//! All outputs are produced in memory first and then written atomically (a
+//! temporary file in the target directory, renamed over the target), so an
+//! error never leaves a partial output file.
+
+use super::{CliError, CliResult};
+use anyhow::{anyhow, Context};
+use clap::Args;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use subdiv_lab::mesh::limit::{level_stats, limit_mesh, LevelStats};
+use subdiv_lab::mesh::refine::{half_edges_after, refine};
+use subdiv_lab::mesh::{knot_file, obj, MAX_HALF_EDGES};
+use subdiv_lab::schemes::SchemeKind;
+
+#[derive(Args, Debug)]
+pub(crate) struct SubdivideArgs {
+    /// Input mesh (closed, oriented OBJ).
+    input: PathBuf,
+    /// Scheme: nurds, doo-sabin or cc-variant.
+    #[arg(long)]
+    scheme: String,
+    /// Knot-interval file, one directed edge per line: "u v d" (1-based OBJ indices). NURDS only.
+    #[arg(long)]
+    knots: Option<PathBuf>,
+    /// Interval of every directed edge not listed in --knots.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    default_interval: f64,
+    /// Number of refinement steps.
+    #[arg(long, default_value_t = 1)]
+    levels: usize,
+    /// Output OBJ ("-" for standard output).
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    /// Write the refined knot intervals here (NURDS only).
+    #[arg(long)]
+    knots_out: Option<PathBuf>,
+    /// Write the limit mesh instead of the refined control mesh: face limit
+    /// points (the dual of the refined mesh), fanned around the limit point of
+    /// every regular vertex.
+    #[arg(long)]
+    limit: bool,
+    /// Print per-level statistics (counts; every extraordinary face's max |P_i - F| and its ratio).
+    #[arg(long)]
+    stats: bool,
+    /// Print the refinement wall time (excluding reading and writing) to standard error.
+    #[arg(long)]
+    timing: bool,
+}
+
+pub(crate) fn run(args: SubdivideArgs) -> CliResult {
+    let scheme: SchemeKind = args.scheme.parse().map_err(CliError::usage)?;
+    if args.output.is_none() && args.knots_out.is_none() && !args.stats && !args.timing {
+        return Err(CliError::usage(anyhow!(
+            "nothing to do: give -o OUT.obj, --knots-out OUT.knots, --stats or --timing"
+        )));
+    }
+    if !scheme.takes_knots() && (args.knots.is_some() || args.knots_out.is_some()) {
+        return Err(CliError::usage(anyhow!(
+            "--scheme {scheme} takes no knot intervals; use --scheme nurds for --knots/--knots-out"
+        )));
+    }
+    if !(args.default_interval.is_finite() && args.default_interval > 0.0) {
+        return Err(CliError::usage(anyhow!(
+            "--default-interval must be finite and > 0, got {}",
+            args.default_interval
+        )));
+    }
+    let text = std::fs::read_to_string(&args.input)
+        .with_context(|| format!("cannot read {}", args.input.display()))
+        .map_err(CliError::usage)?;
+    let (mut mesh, info) = obj::parse_obj(&text)
+        .with_context(|| format!("{}", args.input.display()))
+        .map_err(CliError::usage)?;
+    if info.ignored_statements > 0 {
+        eprintln!(
+            "note: ignored {} OBJ statements ({})",
+            info.ignored_statements,
+            info.ignored_keywords.join(", ")
+        );
+    }
+    let knot_text = match &args.knots {
+        Some(path) => Some(
+            std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read {}", path.display()))
+                .map_err(CliError::usage)?,
+        ),
+        None => None,
+    };
+    if let (Some(path), Some(t)) = (&args.knots, &knot_text) {
+        knot_file::apply_knot_text(&mut mesh, t, args.default_interval)
+            .with_context(|| format!("{}", path.display()))
+            .map_err(CliError::usage)?;
+    } else {
+        knot_file::apply_knot_text(&mut mesh, "", args.default_interval)
+            .map_err(CliError::usage)?;
+    }
+    let needed = half_edges_after(&mesh, args.levels);
+    if needed > MAX_HALF_EDGES {
+        return Err(CliError::usage(anyhow!(
+            "--levels {}: the result would have {needed} half-edges (limit {MAX_HALF_EDGES})",
+            args.levels
+        )));
+    }
+
+    let mut stats: Vec<LevelStats> = Vec::new();
+    if args.stats {
+        stats.push(level_stats(&mesh, scheme, 0, None));
+    }
+    let mut refine_secs = 0.0;
+    for level in 1..=args.levels {
+        let t = std::time::Instant::now();
+        mesh = refine(&mesh, scheme).map_err(CliError::failure)?;
+        refine_secs += t.elapsed().as_secs_f64();
+        if args.stats {
+            let s = level_stats(&mesh, scheme, level, stats.last());
+            stats.push(s);
+        }
+    }
+    if args.timing {
+        eprintln!(
+            "refinement: {} levels, {} faces, {} vertices, {:.6} s, {:.0} output faces/s",
+            args.levels,
+            mesh.face_count(),
+            mesh.vertex_count(),
+            refine_secs,
+            mesh.face_count() as f64 / refine_secs.max(1e-9)
+        );
+    }
+
+    // Build every output in memory before touching the file system.
+    let mut outputs: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    let mut to_stdout: Option<Vec<u8>> = None;
+    if let Some(path) = &args.output {
+        let mut buf = Vec::new();
+        if args.limit {
+            let lm = limit_mesh(&mesh, scheme).map_err(CliError::failure)?;
+            obj::write_obj(&lm, &mut buf).map_err(CliError::failure)?;
+        } else {
+            obj::write_obj(&mesh, &mut buf).map_err(CliError::failure)?;
+        }
+        if path.as_os_str() == "-" {
+            to_stdout = Some(buf);
+        } else {
+            outputs.push((path.clone(), buf));
+        }
+    }
+    if let Some(path) = &args.knots_out {
+        let mut buf = Vec::new();
+        knot_file::write_knots(&mesh, &mut buf).map_err(CliError::failure)?;
+        outputs.push((path.clone(), buf));
+    }
+    write_all_atomically(&outputs)?;
+
+    let stdout = std::io::stdout();
+    let mut out = stdout.lock();
+    if args.stats {
+        print_stats(&mut out, scheme, &stats).map_err(CliError::failure)?;
+    }
+    if let Some(buf) = to_stdout {
+        out.write_all(&buf).map_err(CliError::failure)?;
+    }
+    Ok(())
+}
+
+fn print_stats(
+    out: &mut impl Write,
+    scheme: SchemeKind,
+    stats: &[LevelStats],
+) -> std::io::Result<()> {
+    writeln!(out, "# subdivide --scheme {scheme}: per-level statistics")?;
+    for s in stats {
+        writeln!(
+            out,
+            "level {}: faces {}, vertices {}, extraordinary faces {}",
+            s.level,
+            s.faces,
+            s.vertices,
+            s.extraordinary.len()
+        )?;
+        for e in &s.extraordinary {
+            match e.ratio {
+                Some(r) => writeln!(
+                    out,
+                    "  face {} (n={}): max|P_i - F| = {:.6e}, ratio {:.6}",
+                    e.face, e.valence, e.distance, r
+                )?,
+                None => writeln!(
+                    out,
+                    "  face {} (n={}): max|P_i - F| = {:.6e}, ratio -",
+                    e.face, e.valence, e.distance
+                )?,
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Writes each buffer to a temporary file next to its target, then renames all
+/// of them into place; on any error the temporary files are removed and no
+/// target is touched.
+fn write_all_atomically(outputs: &[(PathBuf, Vec<u8>)]) -> CliResult {
+    let mut temps: Vec<(PathBuf, &Path)> = Vec::new();
+    let cleanup = |temps: &[(PathBuf, &Path)]| {
+        for (t, _) in temps {
+            let _ = std::fs::remove_file(t);
+        }
+    };
+    for (target, data) in outputs {
+        match write_temp(target, data) {
+            Ok(tmp) => temps.push((tmp, target.as_path())),
+            Err(e) => {
+                cleanup(&temps);
+                return Err(CliError::failure(e));
+            }
+        }
+    }
+    for (i, (tmp, target)) in temps.iter().enumerate() {
+        if let Err(e) = std::fs::rename(tmp, target) {
+            cleanup(&temps[i..]);
+            return Err(CliError::failure(
+                anyhow!(e).context(format!("cannot write {}", target.display())),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn write_temp(target: &Path, data: &[u8]) -> anyhow::Result<PathBuf> {
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = target
+        .file_name()
+        .ok_or_else(|| anyhow!("{} is not a file path", target.display()))?
+        .to_string_lossy()
+        .into_owned();
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let result = (|| -> std::io::Result<()> {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(data)?;
+        f.sync_all()
+    })();
+    match result {
+        Ok(()) => Ok(tmp),
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            Err(anyhow!(e).context(format!("cannot write {}", target.display())))
+        }
+    }
+}

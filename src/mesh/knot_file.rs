@@ -1,0 +1,109 @@
+//! The knot-interval sidecar file: one directed edge per line, `u v d`
+//! (1-based OBJ vertex indices, `d = d(u -> v) > 0`). `#` starts a comment;
+//! blank lines are skipped. Every directed edge not listed takes the default
+//! interval. An edge the mesh does not have, a repeated edge, or a value that
+//! is not a finite positive number is an error naming the line.
+//!
+//! ```
+//! use subdiv_lab::mesh::{generators, knot_file};
+//! let mut cube = generators::cube();
+//! knot_file::apply_knot_text(&mut cube, "# d(1->2) = 3\n1 2 3\n", 1.0).unwrap();
+//! let h = cube.find_half_edge(0, 1).unwrap();
+//! assert_eq!(cube.knot(h), 3.0);
+//! let err = knot_file::apply_knot_text(&mut cube, "1 2 3\n1 2 4\n", 1.0).unwrap_err();
+//! assert!(err.to_string().contains("line 2"));
+//! ```
+
+use super::{Mesh, MeshError};
+use std::io::{self, Write};
+
+/// Sets every knot interval of `mesh` from the sidecar text; unlisted
+/// directed edges get `default`. On error the mesh is unchanged.
+pub fn apply_knot_text(mesh: &mut Mesh, text: &str, default: f64) -> Result<(), MeshError> {
+    if !(default.is_finite() && default > 0.0) {
+        return Err(MeshError::InvalidDefaultInterval {
+            value: format!("{default:?}"),
+        });
+    }
+    let mut knots = vec![default; mesh.half_edge_count()];
+    // line on which each half-edge was set (0 = not yet)
+    let mut set_on = vec![0usize; mesh.half_edge_count()];
+    for (k, raw) in text.lines().enumerate() {
+        let line = k + 1;
+        let content = raw.split('#').next().unwrap_or("");
+        let tokens: Vec<&str> = content.split_whitespace().collect();
+        if tokens.is_empty() {
+            continue;
+        }
+        if tokens.len() != 3 {
+            return Err(MeshError::KnotSyntax {
+                line,
+                message: format!("expected \"u v d\", got {} fields", tokens.len()),
+            });
+        }
+        let index = |tok: &str| -> Result<usize, MeshError> {
+            match tok.parse::<usize>() {
+                Ok(i) if i >= 1 => Ok(i),
+                _ => Err(MeshError::KnotSyntax {
+                    line,
+                    message: format!(
+                        "vertex index {tok:?} is not a positive integer (OBJ indices are 1-based)"
+                    ),
+                }),
+            }
+        };
+        let (u, v) = (index(tokens[0])?, index(tokens[1])?);
+        let d: f64 = tokens[2].parse().map_err(|_| MeshError::KnotSyntax {
+            line,
+            message: format!("interval {:?} is not a number", tokens[2]),
+        })?;
+        let h = mesh
+            .find_half_edge(u - 1, v - 1)
+            .ok_or(MeshError::UnknownEdge { line, u, v })?;
+        if set_on[h] != 0 {
+            return Err(MeshError::DuplicateEdge {
+                line,
+                u,
+                v,
+                first_line: set_on[h],
+            });
+        }
+        if !(d.is_finite() && d > 0.0) {
+            return Err(MeshError::KnotValue {
+                line,
+                u,
+                v,
+                value: tokens[2].to_owned(),
+            });
+        }
+        set_on[h] = line;
+        knots[h] = d;
+    }
+    mesh.set_knots(knots)
+}
+
+/// Writes every directed edge `u v d` (1-based, round-trip precision), in half-edge order.
+pub fn write_knots<W: Write>(mesh: &Mesh, out: &mut W) -> io::Result<()> {
+    writeln!(
+        out,
+        "# subdiv-lab knot intervals: u v d(u->v), {} directed edges",
+        mesh.half_edge_count()
+    )?;
+    for h in 0..mesh.half_edge_count() {
+        writeln!(
+            out,
+            "{} {} {:?}",
+            mesh.origin(h) + 1,
+            mesh.target(h) + 1,
+            mesh.knot(h)
+        )?;
+    }
+    Ok(())
+}
+
+/// [`write_knots`] into a `String`.
+pub fn write_knots_string(mesh: &Mesh) -> String {
+    let mut buf = Vec::new();
+    let _ = write_knots(mesh, &mut buf);
+    String::from_utf8(buf).unwrap_or_default()
+}

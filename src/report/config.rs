@@ -1,0 +1,192 @@
+//! Scheme configurations as written in report specs.
+//!
+//! ```toml
+//! configs = [
+//!   { scheme = "cc-variant", valence = 5 },
+//!   { scheme = "nurds", ratios = [0.3, 0.6, 0.5] },            # r_i per edge
+//!   { scheme = "nurds", knots = [[1, 2], [2, 1], [1, 1]] },    # [p_i, q_i] per corner
+//!   { scheme = "nurds", valence = 6, random_knots = 4.0 },     # p_i, q_i log-uniform in [1, 4]
+//!   { scheme = "doo-sabin", valence = 3, label = "Doo-Sabin, triangle" },
+//! ]
+//! ```
+//!
+//! `scheme = "nurds"` without `ratios`, `knots` or `random_knots` is uniform
+//! NURDS of the given valence. Random knots are drawn while the spec is parsed,
+//! from the figure's seed, so the configuration is fixed by the spec and seed.
+
+use super::error::ReportError;
+use super::rng::{log_uniform, SplitMix64};
+use super::spec::FigureSpec;
+use crate::knots::{CornerIntervals, EdgeRatios};
+use crate::schemes::{LocalScheme, SchemeKind};
+use serde::Deserialize;
+use toml::Spanned;
+
+/// Largest accepted valence in a report configuration (the figures' cost grows like n^3).
+pub const MAX_VALENCE: usize = 256;
+
+/// One configuration as written in a spec.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConfigSpec {
+    /// Scheme name (`nurds`, `doo-sabin`, `cc-variant`).
+    pub scheme: Spanned<String>,
+    /// Valence (inferred from `ratios`/`knots` when omitted).
+    pub valence: Option<Spanned<usize>>,
+    /// Edge ratios r_i in (0, 1).
+    pub ratios: Option<Spanned<Vec<f64>>>,
+    /// Corner knot intervals `[p_i, q_i]`.
+    pub knots: Option<Spanned<Vec<[f64; 2]>>>,
+    /// Random knot intervals, log-uniform in [1, value].
+    pub random_knots: Option<Spanned<f64>>,
+    /// Legend label (default: generated from the parameters).
+    pub label: Option<String>,
+}
+
+/// A validated configuration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Configuration {
+    /// Label used in legends and tables.
+    pub label: String,
+    /// The configuration.
+    pub scheme: LocalScheme<f64>,
+}
+
+/// Short text of a ratio list for labels.
+pub fn ratios_text(r: &EdgeRatios<f64>) -> String {
+    let parts: Vec<String> = r.as_slice().iter().map(|x| format!("{x:.3}")).collect();
+    format!("({})", parts.join(", "))
+}
+
+impl ConfigSpec {
+    /// Validates the configuration; `key` is its dotted key (for messages),
+    /// `rng` supplies random knots.
+    pub fn resolve(
+        &self,
+        fs: &FigureSpec<'_>,
+        key: &str,
+        rng: &mut SplitMix64,
+    ) -> Result<Configuration, ReportError> {
+        let kind: SchemeKind =
+            self.scheme
+                .get_ref()
+                .parse()
+                .map_err(|e: crate::schemes::UnknownScheme| {
+                    fs.error_at(&self.scheme, &format!("{key}.scheme"), e.to_string())
+                })?;
+        let given = [
+            self.ratios.is_some(),
+            self.knots.is_some(),
+            self.random_knots.is_some(),
+        ]
+        .iter()
+        .filter(|b| **b)
+        .count();
+        if given > 1 {
+            return Err(fs.error_at(
+                &self.scheme,
+                key,
+                "give at most one of ratios, knots and random_knots",
+            ));
+        }
+        if !kind.takes_knots() && given > 0 {
+            return Err(fs.error_at(
+                &self.scheme,
+                &format!("{key}.scheme"),
+                format!("scheme {kind} takes no knot intervals; use scheme = \"nurds\""),
+            ));
+        }
+        if let Some(v) = &self.valence {
+            let n = *v.get_ref();
+            if !(3..=MAX_VALENCE).contains(&n) {
+                return Err(fs.error_at(
+                    v,
+                    &format!("{key}.valence"),
+                    format!("valence must be between 3 and {MAX_VALENCE}, got {n}"),
+                ));
+            }
+        }
+        let mut suffix = String::new();
+        let ratios: Option<EdgeRatios<f64>> = if let Some(r) = &self.ratios {
+            let er = EdgeRatios::new(r.get_ref().clone())
+                .map_err(|e| fs.error_at(r, &format!("{key}.ratios"), e.to_string()))?;
+            Some(er)
+        } else if let Some(k) = &self.knots {
+            let p: Vec<f64> = k.get_ref().iter().map(|x| x[0]).collect();
+            let q: Vec<f64> = k.get_ref().iter().map(|x| x[1]).collect();
+            let ci = CornerIntervals::new(p, q)
+                .map_err(|e| fs.error_at(k, &format!("{key}.knots"), e.to_string()))?;
+            Some(
+                ci.ratios()
+                    .map_err(|e| fs.error_at(k, &format!("{key}.knots"), e.to_string()))?,
+            )
+        } else if let Some(m) = &self.random_knots {
+            let max = *m.get_ref();
+            if !(max.is_finite() && max > 1.0 && max <= 1e6) {
+                return Err(fs.error_at(
+                    m,
+                    &format!("{key}.random_knots"),
+                    format!("random_knots is the largest interval ratio, in (1, 1e6]; got {max}"),
+                ));
+            }
+            let Some(v) = &self.valence else {
+                return Err(fs.error_at(m, key, "random_knots needs a valence"));
+            };
+            let n = *v.get_ref();
+            let p: Vec<f64> = (0..n).map(|_| log_uniform(rng, max)).collect();
+            let q: Vec<f64> = (0..n).map(|_| log_uniform(rng, max)).collect();
+            let rk = format!("{key}.random_knots");
+            let ci = CornerIntervals::new(p, q).map_err(|e| fs.error_at(m, &rk, e.to_string()))?;
+            suffix = format!(", random knots <= {max}");
+            Some(
+                ci.ratios()
+                    .map_err(|e| fs.error_at(m, &rk, e.to_string()))?,
+            )
+        } else {
+            None
+        };
+        let valence = match (&ratios, &self.valence) {
+            (Some(r), Some(v)) if r.valence() != *v.get_ref() => {
+                return Err(fs.error_at(
+                    v,
+                    &format!("{key}.valence"),
+                    format!(
+                        "valence {} does not match the {} knot values given",
+                        v.get_ref(),
+                        r.valence()
+                    ),
+                ))
+            }
+            (Some(r), _) => r.valence(),
+            (None, Some(v)) => *v.get_ref(),
+            (None, None) => {
+                return Err(fs.error_at(
+                    &self.scheme,
+                    key,
+                    "valence is required unless ratios or knots are given",
+                ))
+            }
+        };
+        let scheme = LocalScheme::from_kind(kind, valence, ratios.clone())
+            .map_err(|e| fs.error_at(&self.scheme, key, e.to_string()))?;
+        let label = match &self.label {
+            Some(l) => l.clone(),
+            None => default_label(&scheme, &suffix),
+        };
+        Ok(Configuration { label, scheme })
+    }
+}
+
+/// The generated legend label of a configuration.
+pub fn default_label(scheme: &LocalScheme<f64>, suffix: &str) -> String {
+    let n = scheme.valence();
+    match scheme {
+        LocalScheme::Nurds(r) if r.is_uniform() => format!("NURDS n={n}, uniform"),
+        LocalScheme::Nurds(r) if suffix.is_empty() && n <= 6 => {
+            format!("NURDS n={n}, r={}", ratios_text(r))
+        }
+        LocalScheme::Nurds(_) if suffix.is_empty() => format!("NURDS n={n}, non-uniform"),
+        LocalScheme::Nurds(_) => format!("NURDS n={n}{suffix}"),
+        other => format!("{} n={n}", other.kind()),
+    }
+}

@@ -1,0 +1,402 @@
+//! `kind = "mesh-convergence"`: every extraordinary face of a refined mesh
+//! shrinking to its limit point, on a log scale.
+//!
+//! A built-in closed mesh ([`crate::mesh::generators`]) is refined `levels`
+//! times with the mesh-level scheme ([`crate::mesh::refine`]); for each
+//! extraordinary face the distance `max_i |P_i - F|` to its limit point `F`
+//! is recorded at every level ([`crate::mesh::limit::refine_with_stats`]) and
+//! plotted relative to its first value against the number of steps `j` since
+//! the face appeared (face EPs at level 0, vertex EPs at level 1). Drawn with
+//! the Theorem 1 bound `(3/4)^j` (math doc section 5) and, per face, the
+//! asymptotic rate `C |lambda_1|^j` of its local matrix (fitted at the last
+//! level).
+//!
+//! ```toml
+//! [[figure]]
+//! kind = "mesh-convergence"
+//! mesh = "truncated_icosahedron"   # cube, tetrahedron, icosahedron, truncated_icosahedron, torus
+//! scheme = "nurds"                 # nurds, doo-sabin, cc-variant
+//! levels = 6                       # 1..=7
+//! random_knots = 4.0               # NURDS only: intervals log-uniform in [1, s] (default: uniform)
+//! max_faces = 6                    # faces plotted (default 6), chosen to cover distinct valences
+//! ```
+
+use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use crate::mesh::generators;
+use crate::mesh::limit::{convergence_series, face_local_scheme, refine_with_stats};
+use crate::mesh::Mesh;
+use crate::report::backend::Area;
+use crate::report::error::ReportError;
+use crate::report::plot::{dash, draw_err, series_color, titled, LegendGlyph, Marker, Theme};
+use crate::report::rng::{log_uniform, SplitMix64};
+use crate::report::spec::{Common, FigureSpec};
+use crate::schemes::SchemeKind;
+use crate::spectral::classify_scheme;
+use plotters::prelude::*;
+use serde::Deserialize;
+use toml::Spanned;
+
+/// Largest accepted number of levels (the truncated icosahedron at 7 levels has 2.9M faces).
+pub const MAX_LEVELS: usize = 7;
+/// Relative distances below this are not plotted: rounding of coordinates of
+/// size ~1 dominates them.
+pub const RELATIVE_FLOOR: f64 = 1e-13;
+
+/// The kind.
+pub(crate) const KIND: FigureKind = FigureKind {
+    name: "mesh-convergence",
+    default_title: "Extraordinary faces of a refined mesh converging to their limit points",
+    summary: "max_i |P_i - F| of every extraordinary face of a refined mesh against the step, with (3/4)^j and |lambda_1|^j",
+    parse,
+};
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Params {
+    mesh: Spanned<String>,
+    scheme: Spanned<String>,
+    levels: Option<Spanned<usize>>,
+    random_knots: Option<Spanned<f64>>,
+    max_faces: Option<Spanned<usize>>,
+}
+
+/// A built-in mesh by name, with optional random knots; shared with `mesh-picture`.
+pub(crate) fn built_in_mesh(
+    fs: &FigureSpec<'_>,
+    name: &Spanned<String>,
+    scheme: SchemeKind,
+    random_knots: Option<&Spanned<f64>>,
+) -> Result<Mesh, ReportError> {
+    let mut mesh = generators::shipped()
+        .into_iter()
+        .find(|(n, _)| *n == name.get_ref().as_str())
+        .map(|(_, m)| m)
+        .ok_or_else(|| {
+            let names: Vec<&str> = generators::shipped().iter().map(|(n, _)| *n).collect();
+            fs.error_at(
+                name,
+                "mesh",
+                format!(
+                    "unknown mesh {:?} (built-in: {})",
+                    name.get_ref(),
+                    names.join(", ")
+                ),
+            )
+        })?;
+    if let Some(s) = random_knots {
+        let v = *s.get_ref();
+        if scheme != SchemeKind::Nurds {
+            return Err(fs.error_at(s, "random_knots", "random_knots needs scheme = \"nurds\""));
+        }
+        if !(v.is_finite() && v >= 1.0) {
+            return Err(fs.error_at(
+                s,
+                "random_knots",
+                format!("random_knots must be >= 1, got {v}"),
+            ));
+        }
+        let mut rng = SplitMix64::new(fs.seed());
+        let k = (0..mesh.half_edge_count())
+            .map(|_| log_uniform(&mut rng, v))
+            .collect();
+        mesh.set_knots(k)
+            .map_err(|e| fs.error_at(s, "random_knots", e.to_string()))?;
+    }
+    Ok(mesh)
+}
+
+/// The scheme name of a mesh figure.
+pub(crate) fn mesh_scheme(
+    fs: &FigureSpec<'_>,
+    s: &Spanned<String>,
+) -> Result<SchemeKind, ReportError> {
+    s.get_ref()
+        .parse::<SchemeKind>()
+        .map_err(|e| fs.error_at(s, "scheme", e.to_string()))
+}
+
+struct MeshConvergence {
+    mesh: Mesh,
+    mesh_name: String,
+    scheme: SchemeKind,
+    levels: usize,
+    max_faces: usize,
+}
+
+fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
+    let p: Params = fs.parse()?;
+    let scheme = mesh_scheme(fs, &p.scheme)?;
+    let mesh = built_in_mesh(fs, &p.mesh, scheme, p.random_knots.as_ref())?;
+    let levels = match &p.levels {
+        None => 6,
+        Some(l) if (1..=MAX_LEVELS).contains(l.get_ref()) => *l.get_ref(),
+        Some(l) => {
+            return Err(fs.error_at(
+                l,
+                "levels",
+                format!(
+                    "levels must be between 1 and {MAX_LEVELS}, got {}",
+                    l.get_ref()
+                ),
+            ))
+        }
+    };
+    let max_faces = match &p.max_faces {
+        None => 6,
+        Some(m) if (1..=32).contains(m.get_ref()) => *m.get_ref(),
+        Some(m) => {
+            return Err(fs.error_at(
+                m,
+                "max_faces",
+                format!("max_faces must be between 1 and 32, got {}", m.get_ref()),
+            ))
+        }
+    };
+    if !(0..mesh.face_count()).any(|f| mesh.is_extraordinary_face(f))
+        && !(0..mesh.vertex_count()).any(|v| mesh.valence(v) != 4)
+    {
+        return Err(fs.error_at(
+            &p.mesh,
+            "mesh",
+            "this mesh has no extraordinary faces or vertices",
+        ));
+    }
+    Ok(Box::new(MeshConvergence {
+        mesh,
+        mesh_name: p.mesh.get_ref().clone(),
+        scheme,
+        levels,
+        max_faces,
+    }))
+}
+
+/// One face's curve.
+#[derive(Clone, Debug)]
+struct Curve {
+    face: usize,
+    valence: usize,
+    first_level: usize,
+    distances: Vec<f64>,
+    lambda1: f64,
+    fit: f64,
+}
+
+impl Curve {
+    fn label(&self) -> String {
+        let origin = if self.first_level == 0 {
+            "face"
+        } else {
+            "vertex"
+        };
+        format!("{origin} EP {} (n = {})", self.face, self.valence)
+    }
+    fn relative(&self) -> Vec<(usize, f64)> {
+        let d0 = self.distances[0];
+        self.distances
+            .iter()
+            .enumerate()
+            .map(|(j, d)| (j, d / d0))
+            .filter(|p| p.1 >= RELATIVE_FLOOR)
+            .collect()
+    }
+}
+
+impl Figure for MeshConvergence {
+    fn work(&self) -> u64 {
+        self.levels as u64 + 1
+    }
+
+    fn compute(&self, ctx: &Context<'_>) -> Result<Box<dyn FigureOutput>, ReportError> {
+        let (last, stats) = refine_with_stats(&self.mesh, self.scheme, self.levels)
+            .map_err(|e| ctx.err(e.into()))?;
+        ctx.tick(self.levels as u64);
+        let mut series = convergence_series(&stats);
+        series.retain(|s| s.distances.len() >= 2);
+        // choose faces: one per (origin, valence) first, then fill in order
+        let mut chosen: Vec<usize> = Vec::new();
+        let mut seen = std::collections::BTreeSet::new();
+        for (i, s) in series.iter().enumerate() {
+            if seen.insert((s.first_level, s.valence)) && chosen.len() < self.max_faces {
+                chosen.push(i);
+            }
+        }
+        for i in 0..series.len() {
+            if chosen.len() >= self.max_faces {
+                break;
+            }
+            if !chosen.contains(&i) {
+                chosen.push(i);
+            }
+        }
+        chosen.sort_unstable();
+        let mut curves = Vec::new();
+        for i in chosen {
+            let s = &series[i];
+            let local = face_local_scheme(&last, s.face, self.scheme).map_err(|e| ctx.err(e))?;
+            let lambda1 = classify_scheme(&local)
+                .map_err(|e| ctx.err(e))?
+                .lambda1
+                .norm();
+            let mut c = Curve {
+                face: s.face,
+                valence: s.valence,
+                first_level: s.first_level,
+                distances: s.distances.clone(),
+                lambda1,
+                fit: 1.0,
+            };
+            let rel = c.relative();
+            let (j, d) = *rel.last().unwrap_or(&(0, 1.0));
+            c.fit = if lambda1 > 0.0 {
+                d / lambda1.powi(j as i32)
+            } else {
+                1.0
+            };
+            curves.push(c);
+        }
+        ctx.tick(1);
+        Ok(Box::new(Output {
+            curves,
+            levels: self.levels,
+            title_note: format!(
+                "{}, {}, {} levels",
+                self.mesh_name, self.scheme, self.levels
+            ),
+        }))
+    }
+}
+
+struct Output {
+    curves: Vec<Curve>,
+    levels: usize,
+    title_note: String,
+}
+
+impl FigureOutput for Output {
+    fn tables(&self) -> Vec<DataTable> {
+        let mut t = DataTable::new(
+            None,
+            &[
+                "face",
+                "valence",
+                "first_level",
+                "level",
+                "j",
+                "distance",
+                "relative_distance",
+                "bound_3_4_pow_j",
+                "abs_lambda1",
+                "rate_line",
+            ],
+        );
+        for c in &self.curves {
+            for (j, rel) in c.relative() {
+                t.push(vec![
+                    c.face.to_string(),
+                    c.valence.to_string(),
+                    c.first_level.to_string(),
+                    (c.first_level + j).to_string(),
+                    j.to_string(),
+                    num(c.distances[j]),
+                    num(rel),
+                    num(0.75f64.powi(j as i32)),
+                    num(c.lambda1),
+                    num(c.fit * c.lambda1.powi(j as i32)),
+                ]);
+            }
+        }
+        vec![t]
+    }
+
+    fn draw(&self, area: &Area<'_>, common: &Common) -> Result<(), ReportError> {
+        let th = Theme::for_size(common.size);
+        let body = titled(area, &common.title, &th)?;
+        let ymin = self
+            .curves
+            .iter()
+            .flat_map(|c| c.relative().into_iter().map(|p| p.1))
+            .fold(1.0f64, f64::min)
+            .max(RELATIVE_FLOOR)
+            / 2.0;
+        let jmax = self.levels as f64;
+        let mut chart = ChartBuilder::on(&body)
+            .margin(th.tick as i32)
+            .x_label_area_size(th.label * 3)
+            .y_label_area_size(th.label * 4)
+            .caption(&self.title_note, th.font(th.label))
+            .build_cartesian_2d(0.0..jmax, (ymin..1.5f64).log_scale())
+            .map_err(draw_err)?;
+        chart
+            .configure_mesh()
+            .x_desc("steps j since the face appeared")
+            .y_desc("max_i |P_i − F| relative to j = 0")
+            .x_label_formatter(&|x| format!("{x:.0}"))
+            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .label_style(th.font(th.tick))
+            .axis_desc_style(th.font(th.label))
+            .light_line_style(WHITE.mix(0.0))
+            .bold_line_style(BLACK.mix(0.12))
+            .draw()
+            .map_err(draw_err)?;
+        let lw = th.line;
+        let bound: Vec<(f64, f64)> = (0..=self.levels)
+            .map(|j| (j as f64, 0.75f64.powi(j as i32)))
+            .filter(|p| p.1 >= ymin)
+            .collect();
+        let (dl, gap) = dash(2, &th);
+        chart
+            .draw_series(DashedLineSeries::new(
+                bound,
+                dl,
+                gap,
+                BLACK.stroke_width(lw + 1),
+            ))
+            .map_err(draw_err)?
+            .label("(3/4)^j  (Theorem 1 bound)")
+            .legend(move |p| LegendGlyph::line(p, &th, BLACK, lw + 1).dashed((dl, gap)));
+        let n = self.curves.len();
+        for (i, c) in self.curves.iter().enumerate() {
+            let col = series_color(i, n);
+            let marker = Marker::nth(i);
+            let ms = th.marker;
+            let pts: Vec<(f64, f64)> = c
+                .relative()
+                .into_iter()
+                .map(|(j, d)| (j as f64, d))
+                .collect();
+            chart
+                .draw_series(LineSeries::new(pts.clone(), col.stroke_width(lw)))
+                .map_err(draw_err)?
+                .label(format!("{}  (|λ₁| = {:.4})", c.label(), c.lambda1))
+                .legend(move |p| LegendGlyph::line(p, &th, col, lw).marker(marker, ms));
+            chart
+                .draw_series(pts.iter().map(|&p| marker.at(p, ms, col)))
+                .map_err(draw_err)?;
+            let (dl, gap) = dash(1, &th);
+            let rate: Vec<(f64, f64)> = (0..=self.levels)
+                .map(|j| (j as f64, c.fit * c.lambda1.powi(j as i32)))
+                .filter(|p| p.1 >= ymin && p.1 <= 1.5)
+                .collect();
+            chart
+                .draw_series(DashedLineSeries::new(rate, dl, gap, col.stroke_width(lw)))
+                .map_err(draw_err)?;
+        }
+        let dl2 = dash(1, &th);
+        chart
+            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
+            .map_err(draw_err)?
+            .label("C |λ₁|^j  (dotted, fitted at the last level)")
+            .legend(move |p| LegendGlyph::line(p, &th, BLACK, lw).dashed(dl2));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerLeft)
+            .label_font(th.font(th.legend))
+            .legend_area_size(th.legend_area())
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK.mix(0.5))
+            .margin(th.legend as i32 / 2)
+            .draw()
+            .map_err(draw_err)?;
+        Ok(())
+    }
+}

@@ -1,0 +1,437 @@
+//! Plotting helpers shared by the figure kinds: the bundled font, sizes that
+//! stay readable at paper size, greyscale-safe colours, marker shapes and a
+//! colour bar.
+//!
+//! Fonts: DejaVu Sans is compiled into the binary (`fonts/DejaVuSans.ttf`,
+//! licence in `fonts/LICENSE-DejaVu.txt`) and registered with plotters under
+//! the family name `sans-serif`; plotters' `ab_glyph` feature then lays out
+//! and rasterises all text with it. System fonts and fontconfig are never
+//! consulted. (SVG files name the family `sans-serif`; SVG viewers draw the
+//! text with their own sans-serif font, which is what SVG text is for.)
+//!
+//! Colours: series colours are samples of viridis, whose lightness increases
+//! monotonically, so series stay distinguishable in greyscale; every series
+//! also gets its own marker shape (and reference lines their own dash
+//! pattern), so nothing depends on colour alone.
+
+use super::backend::Area;
+use super::error::ReportError;
+use plotters::element::{Drawable, PointCollection};
+use plotters::prelude::*;
+use plotters::style::colors::colormaps::ViridisRGB;
+use plotters_backend::{BackendCoord, DrawingErrorKind};
+use std::sync::OnceLock;
+
+/// The bundled font (DejaVu Sans, Bitstream Vera licence).
+pub static FONT_DATA: &[u8] = include_bytes!("fonts/DejaVuSans.ttf");
+/// The family name the bundled font is registered under.
+pub const FONT_FAMILY: &str = "sans-serif";
+
+/// Registers the bundled font with plotters (once per process).
+pub fn ensure_font() -> Result<(), ReportError> {
+    static DONE: OnceLock<bool> = OnceLock::new();
+    let ok = *DONE.get_or_init(|| {
+        [
+            FontStyle::Normal,
+            FontStyle::Bold,
+            FontStyle::Italic,
+            FontStyle::Oblique,
+        ]
+        .into_iter()
+        .all(|s| plotters::style::register_font(FONT_FAMILY, s, FONT_DATA).is_ok())
+    });
+    if ok {
+        Ok(())
+    } else {
+        Err(ReportError::Font)
+    }
+}
+
+/// Text and line sizes for a figure of a given pixel size.
+///
+/// Sizes scale with the smaller side (but at least 62% of the width), so a
+/// 1600 x 1000 figure printed 16 cm wide (about 250 dpi) has 8-11 pt text.
+#[derive(Clone, Copy, Debug)]
+pub struct Theme {
+    /// Figure title.
+    pub title: u32,
+    /// Panel titles and axis descriptions.
+    pub label: u32,
+    /// Tick labels.
+    pub tick: u32,
+    /// Legend text.
+    pub legend: u32,
+    /// Data line width.
+    pub line: u32,
+    /// Marker size (radius-like, pixels).
+    pub marker: i32,
+}
+
+impl Theme {
+    /// The theme for a figure of `(width, height)` pixels.
+    pub fn for_size((w, h): (u32, u32)) -> Self {
+        let b = (w.min(h) as f64).max(w as f64 * 0.62);
+        Theme {
+            title: (b * 0.045).round() as u32,
+            label: (b * 0.036).round() as u32,
+            tick: (b * 0.031).round() as u32,
+            legend: (b * 0.028).round() as u32,
+            line: ((b / 420.0).round() as u32).max(1),
+            marker: ((b / 160.0).round() as i32).max(3),
+        }
+    }
+
+    /// Width of legend glyphs (pixels).
+    pub fn glyph(&self) -> i32 {
+        self.legend as i32 * 2
+    }
+
+    /// `legend_area_size` for plotters' series labels: glyph plus a gap.
+    pub fn legend_area(&self) -> u32 {
+        self.legend * 2 + self.legend / 2
+    }
+
+    /// A text style of `size` pixels in the bundled font.
+    pub fn font(&self, size: u32) -> TextStyle<'static> {
+        (FONT_FAMILY, size).into_font().color(&BLACK)
+    }
+}
+
+/// Converts a plotters drawing error into a report error.
+pub fn draw_err<E: std::fmt::Display>(e: E) -> ReportError {
+    ReportError::Render {
+        figure: String::new(),
+        message: e.to_string(),
+    }
+}
+
+/// Fills the area white and draws the figure title; returns the area below it.
+pub fn titled<'a>(area: &Area<'a>, title: &str, theme: &Theme) -> Result<Area<'a>, ReportError> {
+    area.fill(&WHITE).map_err(draw_err)?;
+    area.margin(theme.title / 3, 0, 0, 0)
+        .titled(title, theme.font(theme.title))
+        .map_err(draw_err)
+}
+
+/// `c` blended with white: `alpha` = 1 gives `c`, 0 gives white (opaque, so
+/// it prints the same in every format).
+pub fn mix_white(c: RGBColor, alpha: f64) -> RGBColor {
+    let m = |x: u8| (255.0 - (255.0 - x as f64) * alpha).round() as u8;
+    RGBColor(m(c.0), m(c.1), m(c.2))
+}
+
+/// Viridis at `t` in [0, 1].
+pub fn viridis(t: f64) -> RGBColor {
+    ViridisRGB::get_color(t.clamp(0.0, 1.0))
+}
+
+/// Colour of series `i` of `count`: viridis between 0 and 0.82 (the lightest
+/// yellows are avoided on white paper).
+pub fn series_color(i: usize, count: usize) -> RGBColor {
+    if count <= 1 {
+        return viridis(0.0);
+    }
+    viridis(0.82 * i as f64 / (count - 1) as f64)
+}
+
+/// Marker shapes, cycled through by series index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Marker {
+    /// Filled circle.
+    Circle,
+    /// Filled square.
+    Square,
+    /// Filled upward triangle.
+    Triangle,
+    /// Filled diamond.
+    Diamond,
+    /// Filled downward triangle.
+    TriangleDown,
+    /// Diagonal cross (unfilled).
+    Cross,
+    /// Open circle.
+    Ring,
+    /// Plus sign (unfilled).
+    Plus,
+}
+
+impl Marker {
+    /// All markers, in cycling order.
+    pub const ALL: [Marker; 8] = [
+        Marker::Circle,
+        Marker::Square,
+        Marker::Triangle,
+        Marker::Diamond,
+        Marker::TriangleDown,
+        Marker::Cross,
+        Marker::Ring,
+        Marker::Plus,
+    ];
+
+    /// The marker of series `i`.
+    pub fn nth(i: usize) -> Marker {
+        Marker::ALL[i % Marker::ALL.len()]
+    }
+
+    /// A drawable marker centred at `at` (data or pixel coordinates) with half-size `s` pixels.
+    pub fn at<C>(self, at: C, s: i32, color: RGBColor) -> MarkerElement<C> {
+        MarkerElement {
+            at,
+            shape: self,
+            size: s,
+            color,
+        }
+    }
+}
+
+/// A marker as a plotters element (works on every backend).
+#[derive(Clone, Debug)]
+pub struct MarkerElement<C> {
+    at: C,
+    shape: Marker,
+    size: i32,
+    color: RGBColor,
+}
+
+impl<'a, C: 'a> PointCollection<'a, C> for &'a MarkerElement<C> {
+    type Point = &'a C;
+    type IntoIter = std::iter::Once<&'a C>;
+    fn point_iter(self) -> Self::IntoIter {
+        std::iter::once(&self.at)
+    }
+}
+
+impl<C, DB: DrawingBackend> Drawable<DB> for MarkerElement<C> {
+    fn draw<I: Iterator<Item = BackendCoord>>(
+        &self,
+        mut points: I,
+        backend: &mut DB,
+        _: (u32, u32),
+    ) -> Result<(), DrawingErrorKind<DB::ErrorType>> {
+        let Some((x, y)) = points.next() else {
+            return Ok(());
+        };
+        let s = self.size;
+        let fill = ShapeStyle::from(&self.color).filled();
+        let stroke = ShapeStyle::from(&self.color).stroke_width((s as u32 / 3).max(2));
+        let poly = |pts: &[(i32, i32)]| -> Vec<BackendCoord> {
+            pts.iter().map(|&(dx, dy)| (x + dx, y + dy)).collect()
+        };
+        match self.shape {
+            Marker::Circle => backend.draw_circle((x, y), s as u32, &fill, true),
+            Marker::Ring => backend.draw_circle((x, y), s as u32, &stroke, false),
+            Marker::Square => {
+                let t = (s as f64 * 0.85) as i32;
+                backend.draw_rect((x - t, y - t), (x + t, y + t), &fill, true)
+            }
+            Marker::Triangle => {
+                let t = (s as f64 * 1.15) as i32;
+                backend.fill_polygon(poly(&[(0, -t), (t, t * 3 / 4), (-t, t * 3 / 4)]), &fill)
+            }
+            Marker::TriangleDown => {
+                let t = (s as f64 * 1.15) as i32;
+                backend.fill_polygon(poly(&[(0, t), (t, -t * 3 / 4), (-t, -t * 3 / 4)]), &fill)
+            }
+            Marker::Diamond => {
+                let t = (s as f64 * 1.2) as i32;
+                backend.fill_polygon(poly(&[(0, -t), (t, 0), (0, t), (-t, 0)]), &fill)
+            }
+            Marker::Cross => {
+                backend.draw_line((x - s, y - s), (x + s, y + s), &stroke)?;
+                backend.draw_line((x - s, y + s), (x + s, y - s), &stroke)
+            }
+            Marker::Plus => {
+                backend.draw_line((x - s, y), (x + s, y), &stroke)?;
+                backend.draw_line((x, y - s), (x, y + s), &stroke)
+            }
+        }
+    }
+}
+
+/// A legend glyph: a (dashed) line, a marker, or a filled box, `width` pixels wide,
+/// starting at the legend anchor. Use [`Theme::glyph`] as width and
+/// [`Theme::legend_area`] for `legend_area_size` so text never overlaps it.
+#[derive(Clone, Copy, Debug)]
+pub struct LegendGlyph {
+    at: BackendCoord,
+    width: i32,
+    color: RGBColor,
+    line: u32,
+    dash: Option<(u32, u32)>,
+    marker: Option<(Marker, i32)>,
+    boxed: bool,
+}
+
+impl LegendGlyph {
+    /// A solid line.
+    pub fn line(at: BackendCoord, th: &Theme, color: RGBColor, line: u32) -> Self {
+        LegendGlyph {
+            at,
+            width: th.glyph(),
+            color,
+            line,
+            dash: None,
+            marker: None,
+            boxed: false,
+        }
+    }
+    /// A dashed line with (dash, gap) lengths.
+    pub fn dashed(mut self, dash: (u32, u32)) -> Self {
+        self.dash = Some(dash);
+        self
+    }
+    /// A marker in the middle (and no line if `line` was 0).
+    pub fn marker(mut self, m: Marker, size: i32) -> Self {
+        self.marker = Some((m, size));
+        self
+    }
+    /// A filled box instead of a line.
+    pub fn boxed(mut self) -> Self {
+        self.boxed = true;
+        self
+    }
+}
+
+impl<'a> PointCollection<'a, BackendCoord> for &'a LegendGlyph {
+    type Point = &'a BackendCoord;
+    type IntoIter = std::iter::Once<&'a BackendCoord>;
+    fn point_iter(self) -> Self::IntoIter {
+        std::iter::once(&self.at)
+    }
+}
+
+impl<DB: DrawingBackend> Drawable<DB> for LegendGlyph {
+    fn draw<I: Iterator<Item = BackendCoord>>(
+        &self,
+        mut points: I,
+        backend: &mut DB,
+        size: (u32, u32),
+    ) -> Result<(), DrawingErrorKind<DB::ErrorType>> {
+        let Some((x, y)) = points.next() else {
+            return Ok(());
+        };
+        let w = self.width;
+        if self.boxed {
+            let h = w / 3;
+            backend.draw_rect(
+                (x, y - h),
+                (x + w, y + h),
+                &ShapeStyle::from(&self.color).filled(),
+                true,
+            )?;
+            backend.draw_rect(
+                (x, y - h),
+                (x + w, y + h),
+                &ShapeStyle::from(&BLACK.mix(0.5)),
+                false,
+            )?;
+        } else if self.line > 0 {
+            let style = ShapeStyle::from(&self.color).stroke_width(self.line);
+            match self.dash {
+                None => backend.draw_line((x, y), (x + w, y), &style)?,
+                Some((d, g)) => {
+                    let (d, g) = (d.max(1) as i32, g as i32);
+                    let mut a = x;
+                    while a < x + w {
+                        backend.draw_line((a, y), ((a + d).min(x + w), y), &style)?;
+                        a += d + g;
+                    }
+                }
+            }
+        }
+        if let Some((m, s)) = self.marker {
+            m.at((), s, self.color)
+                .draw(std::iter::once((x + w / 2, y)), backend, size)?;
+        }
+        Ok(())
+    }
+}
+
+/// Dash patterns for reference lines: (dash length, gap) in pixels, scaled by the line width.
+pub fn dash(i: usize, theme: &Theme) -> (u32, u32) {
+    let w = theme.line.max(1);
+    match i % 3 {
+        0 => (8 * w, 5 * w),
+        1 => (2 * w, 4 * w),
+        _ => (14 * w, 5 * w),
+    }
+}
+
+/// `r` with the index `k` as Unicode subscript digits (`r₁₂`).
+pub fn subscript(base: &str, k: usize) -> String {
+    const SUB: [char; 10] = ['₀', '₁', '₂', '₃', '₄', '₅', '₆', '₇', '₈', '₉'];
+    let digits: String = k
+        .to_string()
+        .chars()
+        .map(|c| SUB[c.to_digit(10).unwrap_or(0) as usize])
+        .collect();
+    format!("{base}{digits}")
+}
+
+/// Points of the circle |z| = r, for drawing in the complex plane.
+pub fn circle_points(r: f64, samples: usize) -> Vec<(f64, f64)> {
+    (0..=samples)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / samples as f64;
+            (r * t.cos(), r * t.sin())
+        })
+        .collect()
+}
+
+/// Draws a vertical colour bar for `color(t)`, t in [0, 1], spanning the values
+/// [vmin, vmax]: the bar at the left of `area`, tick labels to its right, and
+/// `label` written vertically at the right edge.
+pub fn colorbar(
+    area: &Area<'_>,
+    vmin: f64,
+    vmax: f64,
+    label: &str,
+    theme: &Theme,
+    color: &dyn Fn(f64) -> RGBColor,
+) -> Result<(), ReportError> {
+    let (w, h) = area.dim_in_pixel();
+    let bar = theme.label as i32 * 2;
+    let ticks = theme.tick * 4;
+    let left = theme.tick as i32;
+    let right = (w as i32 - left - bar - ticks as i32).max(0);
+    let mut chart = ChartBuilder::on(area)
+        .margin_top(theme.label as i32 * 2)
+        .margin_bottom(theme.label as i32 * 4)
+        .margin_left(left)
+        .margin_right(right)
+        .right_y_label_area_size(ticks)
+        .build_cartesian_2d(0.0..1.0, vmin..vmax)
+        .map_err(draw_err)?
+        .set_secondary_coord(0.0..1.0, vmin..vmax);
+    chart
+        .configure_secondary_axes()
+        .y_labels(6)
+        .label_style(theme.font(theme.tick))
+        .draw()
+        .map_err(draw_err)?;
+    let steps = 200;
+    chart
+        .draw_series((0..steps).map(|k| {
+            let a = vmin + (vmax - vmin) * k as f64 / steps as f64;
+            let b = vmin + (vmax - vmin) * (k + 1) as f64 / steps as f64;
+            Rectangle::new(
+                [(0.0, a), (1.0, b)],
+                color(k as f64 / (steps - 1) as f64).filled(),
+            )
+        }))
+        .map_err(draw_err)?;
+    let x = (w as i32 - theme.label as i32 / 2 - 2).max(0);
+    area.draw(&Text::new(
+        label.to_owned(),
+        (x, h as i32 / 2),
+        theme
+            .font(theme.label)
+            .transform(FontTransform::Rotate270)
+            .pos(plotters::style::text_anchor::Pos::new(
+                plotters::style::text_anchor::HPos::Center,
+                plotters::style::text_anchor::VPos::Bottom,
+            )),
+    ))
+    .map_err(draw_err)?;
+    Ok(())
+}

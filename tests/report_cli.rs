@@ -1,0 +1,322 @@
+//! End-to-end tests of `subdiv-lab report`: files written, PNGs decode with the
+//! stated size, SVGs parse, index.html links resolve, bad specs fail with the
+//! line and key and leave no output directory.
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const SMALL_SPEC: &str = r#"
+name = "small"
+title = "Small test report"
+seed = 7
+
+[[figure]]
+kind = "spectrum"
+id = "spec"
+width = 900
+height = 600
+configs = [
+  { scheme = "cc-variant", valence = 5 },
+  { scheme = "nurds", ratios = [0.3, 0.6, 0.5] },
+]
+
+[[figure]]
+kind = "subdominant-vs-valence"
+id = "valence"
+width = 800
+height = 500
+valence = [3, 9]
+samples = 3
+
+[[figure]]
+kind = "convergence"
+id = "conv"
+width = 820
+height = 520
+steps = 12
+configs = [{ scheme = "nurds", valence = 4, random_knots = 3.0 }]
+
+[[figure]]
+kind = "knot-map"
+id = "map"
+width = 1000
+height = 450
+slices = [[0.3], [0.7]]
+grid = 9
+color_by = "modulus-ratio"
+
+[[figure]]
+kind = "table"
+id = "tab"
+configs = [{ scheme = "doo-sabin", valence = 3 }]
+"#;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_subdiv-lab"))
+}
+
+fn write_spec(dir: &Path, text: &str) -> PathBuf {
+    let p = dir.join("spec.toml");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn run_report(spec: &Path, out: &Path) -> std::process::Output {
+    bin()
+        .args([
+            "report",
+            spec.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ])
+        .output()
+        .unwrap()
+}
+
+/// Local files referenced by href/src attributes in index.html.
+fn referenced(html: &str) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    for attr in ["href=\"", "src=\""] {
+        let mut rest = html;
+        while let Some(i) = rest.find(attr) {
+            rest = &rest[i + attr.len()..];
+            let end = rest.find('"').unwrap();
+            let target = &rest[..end];
+            if !target.starts_with('#') {
+                out.insert(target.to_owned());
+            }
+            rest = &rest[end..];
+        }
+    }
+    out
+}
+
+#[test]
+fn small_spec_writes_complete_report() {
+    let tmp = tempfile::tempdir().unwrap();
+    let spec = write_spec(tmp.path(), SMALL_SPEC);
+    let out = tmp.path().join("out");
+    let o = run_report(&spec, &out);
+    assert!(
+        o.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(
+        o.stdout.is_empty() && o.stderr.is_empty(),
+        "--quiet prints nothing"
+    );
+
+    let files: BTreeSet<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    let expected: BTreeSet<String> = [
+        "index.html",
+        "manifest.json",
+        "spec.svg",
+        "spec.png",
+        "spec.csv",
+        "valence.svg",
+        "valence.png",
+        "valence.csv",
+        "valence-samples.csv",
+        "conv.svg",
+        "conv.png",
+        "conv.csv",
+        "map.svg",
+        "map.png",
+        "map.csv",
+        "tab.csv",
+        "tab-eigenvalues.csv",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    assert_eq!(files, expected);
+    // No temporary directories left next to the output.
+    let siblings: Vec<String> = std::fs::read_dir(tmp.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(siblings.len(), 2, "{siblings:?}");
+
+    // Every PNG decodes with the size the manifest states.
+    let manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("manifest.json")).unwrap()).unwrap();
+    assert_eq!(manifest["name"], "small");
+    assert_eq!(manifest["seed"], 7);
+    assert_eq!(manifest["spec"], SMALL_SPEC);
+    let figs = manifest["figures"].as_array().unwrap();
+    assert_eq!(figs.len(), 5);
+    let mut pngs = 0;
+    for f in figs {
+        assert!(f["seed"].is_u64());
+        assert!(f["compute_seconds"].as_f64().unwrap() >= 0.0);
+        let Some(png) = f["png"].as_str() else {
+            assert_eq!(f["kind"], "table");
+            continue;
+        };
+        let (w, h) = (
+            f["size"][0].as_u64().unwrap(),
+            f["size"][1].as_u64().unwrap(),
+        );
+        let decoder = png::Decoder::new(std::fs::File::open(out.join(png)).unwrap());
+        let mut reader = decoder.read_info().unwrap();
+        let mut buf = vec![0; reader.output_buffer_size()];
+        let info = reader.next_frame(&mut buf).unwrap();
+        assert_eq!((info.width as u64, info.height as u64), (w, h), "{png}");
+        assert_eq!(info.color_type, png::ColorType::Rgb);
+        // Not blank: some dark pixels (text, axes) and mostly white background.
+        let px = &buf[..info.buffer_size()];
+        let dark = px.chunks(3).filter(|c| c.iter().all(|&v| v < 80)).count();
+        assert!(dark > 500, "{png}: only {dark} dark pixels");
+        pngs += 1;
+
+        // The SVG parses as XML and has the stated size.
+        let svg_name = f["svg"].as_str().unwrap();
+        let svg = std::fs::read_to_string(out.join(svg_name)).unwrap();
+        let doc = roxmltree::Document::parse(&svg).unwrap_or_else(|e| panic!("{svg_name}: {e}"));
+        let root = doc.root_element();
+        assert_eq!(root.tag_name().name(), "svg");
+        assert_eq!(root.attribute("width").unwrap(), w.to_string());
+        assert_eq!(root.attribute("height").unwrap(), h.to_string());
+        assert!(
+            doc.descendants().any(|n| n.tag_name().name() == "text"),
+            "{svg_name} has no text"
+        );
+    }
+    assert_eq!(pngs, 4);
+
+    // index.html references every figure and CSV, and nothing that is missing.
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let refs = referenced(&html);
+    for f in &files {
+        if f != "index.html" {
+            assert!(refs.contains(f), "index.html does not reference {f}");
+        }
+    }
+    for r in &refs {
+        assert!(files.contains(r), "index.html references missing {r}");
+    }
+    assert!(
+        !html.contains("http://") && !html.contains("https://"),
+        "no network references"
+    );
+    assert!(
+        html.contains("<table>"),
+        "the table figure adds an HTML table"
+    );
+}
+
+#[test]
+fn rerun_replaces_existing_report() {
+    let tmp = tempfile::tempdir().unwrap();
+    let spec = write_spec(
+        tmp.path(),
+        "name = \"t\"\n[[figure]]\nkind = \"table\"\nid = \"a\"\nconfigs = [{ scheme = \"cc-variant\", valence = 4 }]\n",
+    );
+    let out = tmp.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(out.join("stale.txt"), "old").unwrap();
+    let o = run_report(&spec, &out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!out.join("stale.txt").exists());
+    assert!(out.join("a.csv").exists());
+}
+
+/// (spec text, substrings the error must contain).
+fn bad_specs() -> Vec<(&'static str, String, Vec<&'static str>)> {
+    let head = "name = \"bad\"\n[[figure]]\n";
+    vec![
+        (
+            "unknown scheme",
+            format!("{head}kind = \"spectrum\"\nconfigs = [\n  {{ scheme = \"loop\", valence = 5 }},\n]\n"),
+            vec!["line 5", "configs[0].scheme", "unknown scheme \"loop\""],
+        ),
+        (
+            "bad knots",
+            format!("{head}kind = \"convergence\"\nconfigs = [{{ scheme = \"nurds\", knots = [[1, 2], [0, 1], [1, 1]] }}]\n"),
+            vec!["line 4", "configs[0].knots", "p_1", "> 0"],
+        ),
+        (
+            "bad ratios",
+            format!("{head}kind = \"table\"\n\nconfigs = [{{ scheme = \"nurds\", ratios = [0.3, 1.5, 0.5] }}]\n"),
+            vec!["line 5", "configs[0].ratios", "r_1", "1.5"],
+        ),
+        (
+            "unknown figure kind",
+            format!("{head}id = \"x\"\nkind = \"histogram\"\n"),
+            vec!["line 4", "figure[0].kind", "unknown figure kind \"histogram\"", "spectrum"],
+        ),
+        (
+            "unknown key in a figure",
+            format!("{head}kind = \"knot-map\"\nslices = [[0.5]]\ncolour_by = \"class\"\n"),
+            vec!["line 5", "figure[0]", "colour_by"],
+        ),
+        (
+            "unknown key in a configuration",
+            format!("{head}kind = \"spectrum\"\nconfigs = [{{ scheme = \"nurds\", valence = 3, ratio = [0.5] }}]\n"),
+            vec!["line 4", "ratio"],
+        ),
+        (
+            "unknown top-level key",
+            "name = \"bad\"\ntitel = \"typo\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme = \"nurds\", valence = 3 }]\n".to_owned(),
+            vec!["line 2", "titel"],
+        ),
+        (
+            "TOML syntax error",
+            format!("{head}kind = \"table\"\nconfigs = [{{ scheme = \"nurds\" valence = 3 }}]\n"),
+            vec!["line 4"],
+        ),
+    ]
+}
+
+#[test]
+fn bad_specs_fail_with_line_and_key_and_leave_no_output() {
+    for (what, text, needles) in bad_specs() {
+        let tmp = tempfile::tempdir().unwrap();
+        let spec = write_spec(tmp.path(), &text);
+        let out = tmp.path().join("out");
+        let o = run_report(&spec, &out);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{what}: exit code, stderr {err}");
+        for n in &needles {
+            assert!(err.contains(n), "{what}: {n:?} missing from {err:?}");
+        }
+        assert_eq!(
+            err.trim().lines().count(),
+            1,
+            "{what}: one-line message: {err:?}"
+        );
+        assert!(!out.exists(), "{what}: output directory was created");
+        let left: Vec<_> = std::fs::read_dir(tmp.path()).unwrap().collect();
+        assert_eq!(left.len(), 1, "{what}: only the spec remains");
+    }
+}
+
+#[test]
+fn missing_spec_file_is_a_usage_error() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = run_report(&tmp.path().join("nope.toml"), &tmp.path().join("out"));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("nope.toml"));
+    assert!(!tmp.path().join("out").exists());
+}
+
+#[test]
+fn default_spec_parses() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/analysis/default.toml"
+    ))
+    .unwrap();
+    let spec = subdiv_lab::report::ReportSpec::parse(&text).unwrap();
+    assert_eq!(spec.name, "default");
+    let kinds: BTreeSet<&str> = spec.figures.iter().map(|f| f.common.kind).collect();
+    for k in subdiv_lab::report::figures::REGISTRY {
+        assert!(kinds.contains(k.name), "default report lacks {}", k.name);
+    }
+}
