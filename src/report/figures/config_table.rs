@@ -180,9 +180,15 @@ impl FigureOutput for Output {
                 num(a.subdominant.lambda2.im),
                 num(a.subdominant.abs_lambda3),
                 num(a.subdominant.gap),
-                num(a.contraction.certificate_sum),
-                a.contraction.certificate_nonnegative.to_string(),
-                num(a.contraction.measured_rate),
+                a.contraction
+                    .as_ref()
+                    .map_or_else(String::new, |c| num(c.certificate_sum)),
+                a.contraction
+                    .as_ref()
+                    .map_or_else(String::new, |c| c.certificate_nonnegative.to_string()),
+                a.contraction
+                    .as_ref()
+                    .map_or_else(String::new, |c| num(c.measured_rate)),
             ]);
             for (k, z) in eigenvalues(a).iter().enumerate() {
                 e.push(vec![
@@ -236,9 +242,15 @@ impl FigureOutput for Output {
                 a.subdominant.lambda2.norm(),
                 a.subdominant.abs_lambda3,
                 a.subdominant.gap,
-                if a.contraction.certificate_nonnegative { "yes" } else { "no" },
-                num(a.contraction.certificate_sum),
-                a.contraction.measured_rate,
+                match &a.contraction {
+                    Some(c) if c.certificate_nonnegative => "yes",
+                    Some(_) => "no",
+                    None => "n/a",
+                },
+                a.contraction
+                    .as_ref()
+                    .map_or_else(|| "n/a".to_owned(), |c| num(c.certificate_sum)),
+                a.contraction.as_ref().map_or(f64::NAN, |c| c.measured_rate),
             );
             h.push_str("<table><tr><th>#</th><th>eigenvalue of S<sub>n</sub></th><th>|λ|</th><th>multiplicity</th></tr>\n");
             for (k, (z, m)) in grouped(&eigenvalues(a)).iter().enumerate() {
