@@ -32,8 +32,8 @@
 
 #![warn(missing_docs)]
 
-pub mod ccss_bound;
 pub mod bspline;
+pub mod ccss_bound;
 pub mod contraction;
 pub mod error;
 pub mod knots;

@@ -2,8 +2,8 @@
 //! validates through [`scheme_args`] (shared scheme/knot flags), calls the
 //! library, and formats the result. No numerics here.
 
-mod ccss_bound;
 mod analyze;
+mod ccss_bound;
 mod matrix;
 mod report;
 mod scheme_args;
