@@ -17,6 +17,8 @@
 //! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face;
 //! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
 //! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
+//! * [`bezier`]: tensor-product Bernstein patches and planar Bezier curves;
+//! * [`charmap`]: characteristic maps (regularity, injectivity) of the Doo-Sabin family;
 //! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
 //! * [`contraction`]: Theorem 1, certified and measured (section 5);
 //! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory);
@@ -32,8 +34,10 @@
 
 #![warn(missing_docs)]
 
+pub mod bezier;
 pub mod bspline;
 pub mod ccss_bound;
+pub mod charmap;
 pub mod contraction;
 pub mod error;
 pub mod knots;

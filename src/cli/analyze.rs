@@ -1,8 +1,10 @@
-//! `subdiv-lab analyze`: spectrum, subdominant class and Theorem 1 for one configuration.
+//! `subdiv-lab analyze`: spectrum, subdominant class, Theorem 1 and the
+//! characteristic-map verdict for one configuration.
 
 use super::scheme_args::SchemeArgs;
 use super::{CliError, CliResult};
 use clap::{Args, ValueEnum};
+use subdiv_lab::charmap;
 use subdiv_lab::contraction::MeasureOptions;
 use subdiv_lab::spectral::{
     analyze, AnalyzeOptions, LocalAnalysis, SpectrumPath, SubdominantClass,
@@ -59,13 +61,67 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     if let Some(exact) = &resolved.exact {
         result.add_exact(exact).map_err(CliError::failure)?;
     }
+    // Characteristic map (math doc section 7); a numerical failure there is
+    // reported inside the "charmap" object, not as a failure of the analysis.
+    let charmap = charmap::check_classified(&resolved.f64, &result.subdominant);
     if args.json {
-        let text = serde_json::to_string_pretty(&result).map_err(CliError::failure)?;
+        let mut value = serde_json::to_value(&result).map_err(CliError::failure)?;
+        if let serde_json::Value::Object(map) = &mut value {
+            map.insert("charmap".to_owned(), charmap_json(&charmap));
+        }
+        let text = serde_json::to_string_pretty(&value).map_err(CliError::failure)?;
         println!("{text}");
     } else {
         print!("{}", summary(&result));
+        print!("{}", charmap_summary(&charmap));
     }
     Ok(())
+}
+
+fn charmap_json(c: &subdiv_lab::Result<charmap::CharmapReport>) -> serde_json::Value {
+    match c {
+        Ok(r) => r.to_json(),
+        Err(e) => serde_json::json!({
+            "regular": null, "min_jacobian_coeff": null, "winding_number": null,
+            "verdict": format!("indeterminate (characteristic map not computed: {e})"),
+            "verdict_code": "indeterminate", "error": e.to_string(),
+        }),
+    }
+}
+
+/// Human-readable characteristic-map lines.
+fn charmap_summary(c: &subdiv_lab::Result<charmap::CharmapReport>) -> String {
+    let r = match c {
+        Ok(r) => r,
+        Err(e) => return format!("characteristic map: not computed ({e})\n"),
+    };
+    let mut out = format!("characteristic map: {}\n", r.verdict);
+    if let Some(g) = &r.regularity {
+        out += &format!(
+            "  Jacobian: {} (min coefficient {:.6e} relative to max |c|, at {} s={:.3} t={:.3}; error bound {:.1e}; {} pieces, depth {})\n",
+            g.verdict.as_str(),
+            g.min_coeff,
+            g.min_location.patch,
+            g.min_location.s,
+            g.min_location.t,
+            g.relative_error_bound,
+            g.pieces,
+            g.max_depth
+        );
+        if let Some((p, v)) = g.witness {
+            out += &format!(
+                "  wrong-sign Jacobian {v:.6e} (relative) at {} s={:.6} t={:.6}\n",
+                p.patch, p.s, p.t
+            );
+        }
+        let w = |x: Option<i64>| x.map_or("undecided".to_owned(), |w| w.to_string());
+        out += &format!(
+            "  winding number of the boundary around the origin: outer {}, inner {}\n",
+            w(r.winding_number),
+            w(r.inner_winding_number)
+        );
+    }
+    out
 }
 
 fn cplx(z: [f64; 2]) -> String {

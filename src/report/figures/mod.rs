@@ -37,6 +37,7 @@ use super::backend::Area;
 use super::error::ReportError;
 use super::spec::{Common, FigureSpec};
 
+pub mod charmap_ring;
 pub mod config_table;
 pub mod convergence;
 pub mod knot_map;
@@ -66,6 +67,7 @@ pub const REGISTRY: &[FigureKind] = &[
     config_table::KIND,
     mesh_convergence::KIND,
     mesh_picture::KIND,
+    charmap_ring::KIND,
 ];
 
 /// The kind named `name`.

@@ -1,0 +1,556 @@
+//! Characteristic maps of the Doo-Sabin family: regularity and injectivity.
+//!
+//! Math doc section 7. The characteristic map of a configuration is the
+//! planar map whose coordinates are the subdominant eigenfunctions; its ring
+//! is built from `3n` biquadratic patches ([`ring`]) whose control points are
+//! the extended matrix ([`extended`]) applied to a basis of the subdominant
+//! real invariant subspace:
+//!
+//! * `standard` (`lambda_1 = lambda_2` real, 2-D eigenspace): any basis of the
+//!   eigenspace (Reif's criterion: C1 for generic data iff the map is regular
+//!   and injective);
+//! * `real_distinct`: `(v_1, v_2)`;
+//! * `complex_pair`: `(Re v, Im v)`;
+//! * `defective`, `not_separated`: no characteristic map (a 1-D eigenspace, or
+//!   no pair of subdominant eigenvalues to span a plane).
+//!
+//! Regularity and injectivity (regular, and the boundary winds exactly once
+//! around the origin once the basis is oriented so that the Jacobian is
+//! positive) do not change under a linear change of the planar basis, so the
+//! checks run on an orthonormal basis of the invariant subspace
+//! ([`PlanarBasis::new`]), which is also what makes the error analysis simple.
+//! For non-standard eigenstructures the verdict is "tangent-plane continuous
+//! (non-standard: ...)", never "C1": the literature settles only the standard case.
+//!
+//! Submodules: [`extended`] (the `9n x 4n` matrix), [`ring`] (the `3n`
+//! patches and boundary chains), [`basis`] (the subdominant invariant
+//! subspace from the face block), [`regularity`] (Jacobian sign with error
+//! bound and subdivision), [`winding`] (certified winding numbers), [`figure`]
+//! (plot data). Entry points: [`check`] (one configuration, classification
+//! included; the sweep entry point), [`check_classified`] (when the
+//! classification is already known), [`check_basis`] / [`check_ring`] (any
+//! planar basis or ring, e.g. deliberately perturbed ones), [`plot_data`].
+//!
+//! **Error control.** Two error sources are bounded separately: (1) the error
+//! of the computed invariant subspace, *estimated* to first order as
+//! [`SUBSPACE_ERROR_SAFETY`] `* ||S W - W M||_F / gap` per entry (rigorous for
+//! normal matrices only, hence the safety factor); (2) all rounding from the
+//! basis onwards (extended matrix, Bezier conversion, derivatives, products,
+//! subdivision, evaluation), bounded rigorously with Higham's `gamma_k`
+//! ([`point_error`], [`regularity::ErrorModel`]). Verdicts within these bounds
+//! are `indeterminate`, never guessed.
+//!
+//! ```
+//! use subdiv_lab::charmap::{check_basis, Eigenstructure, PlanarBasis};
+//! use subdiv_lab::charmap::extended::ExtendedMatrix;
+//! use subdiv_lab::schemes::LocalScheme;
+//! use num_complex::Complex64;
+//! // n = 4, uniform: the subdominant eigenvectors are the linear functions of the grid.
+//! let s = LocalScheme::<f64>::cc_variant(4).unwrap();
+//! let ext = ExtendedMatrix::new(&s).unwrap();
+//! let sn = s.matrix().unwrap();
+//! // Greville coordinates of the 16 points (P, E, C) in the regular 4x4 grid
+//! let xy: [(f64, f64); 16] = [
+//!     (-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5),           // P_0..P_3
+//!     (-0.5, -1.5), (0.5, -1.5), (1.5, -0.5), (1.5, 0.5),           // E_01 E_02 E_11 E_12
+//!     (0.5, 1.5), (-0.5, 1.5), (-1.5, 0.5), (-1.5, -0.5),           // E_21 E_22 E_31 E_32
+//!     (-1.5, -1.5), (1.5, -1.5), (1.5, 1.5), (-1.5, 1.5),           // C_0..C_3
+//! ];
+//! let w1: Vec<f64> = xy.iter().map(|p| p.0).collect();
+//! let w2: Vec<f64> = xy.iter().map(|p| p.1).collect();
+//! let lam = [Complex64::new(0.5, 0.0); 2];
+//! let basis = PlanarBasis::new(sn.matrix(), Eigenstructure::Standard, lam, &w1, &w2, 0.25).unwrap();
+//! let report = check_basis(&ext, &s.ratios(), &basis).unwrap();
+//! assert_eq!(report.winding_number, Some(1));
+//! assert_eq!(report.verdict.to_string(), "C1 (standard; Reif)");
+//! ```
+
+pub mod basis;
+pub mod extended;
+pub mod figure;
+pub mod regularity;
+pub mod ring;
+pub mod winding;
+
+use crate::error::{Error, Result};
+use crate::knots::EdgeRatios;
+use crate::schemes::LocalScheme;
+use crate::spectral::{Subdominant, SubdominantClass};
+use extended::ExtendedMatrix;
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+use regularity::{check_regularity, gamma, Regularity, RegularityVerdict};
+use ring::Ring;
+use std::fmt;
+
+/// Safety factor on the first-order estimate `||S W - W M||_F / gap` of the
+/// error of the computed invariant subspace (exact for normal matrices; for
+/// non-normal ones the true separation can be smaller than the eigenvalue gap,
+/// hence the factor).
+pub const SUBSPACE_ERROR_SAFETY: f64 = 100.0;
+
+/// Smallest accepted `sin` of the angle between the two computed basis vectors;
+/// below it the vectors do not determine a plane (numerically parallel).
+pub const MIN_BASIS_SINE: f64 = 1e-8;
+
+/// The eigenstructures that have a characteristic map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Eigenstructure {
+    /// `lambda_1 = lambda_2` real with a 2-D eigenspace.
+    Standard,
+    /// `lambda_1 > lambda_2`, both real.
+    RealDistinct,
+    /// `lambda_{1,2} = rho e^{+-i theta}`.
+    ComplexPair,
+}
+
+impl Eigenstructure {
+    /// `standard`, `real_distinct` or `complex_pair`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Eigenstructure::Standard => "standard",
+            Eigenstructure::RealDistinct => "real_distinct",
+            Eigenstructure::ComplexPair => "complex_pair",
+        }
+    }
+}
+
+/// An orthonormal basis `W = [w1 w2]` of the subdominant real invariant subspace
+/// of `S_n`, with `M = W^T S W` (so that `S W ~ W M`) and an error estimate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlanarBasis {
+    /// The eigenstructure the subspace belongs to.
+    pub structure: Eigenstructure,
+    /// The subdominant eigenvalues `lambda_1, lambda_2`.
+    pub lambda: [Complex64; 2],
+    /// First basis vector (`4n` entries, unit 2-norm).
+    pub w1: Vec<f64>,
+    /// Second basis vector (orthogonal to `w1`, unit 2-norm).
+    pub w2: Vec<f64>,
+    /// The restriction `M` (row-major 2x2): next ring = `M` applied to this ring.
+    pub restriction: [[f64; 2]; 2],
+    /// `||S W - W M||_F`.
+    pub residual: f64,
+    /// Estimated bound on the error of every entry of `w1`, `w2`:
+    /// [`SUBSPACE_ERROR_SAFETY`] `* residual / gap`.
+    pub vector_error: f64,
+}
+
+impl PlanarBasis {
+    /// Orthonormalises two real vectors spanning the subspace (`(v1, v2)` or
+    /// `(Re v, Im v)`), computes `M = W^T S W`, the residual and the error
+    /// estimate. `gap` is a lower bound on the distance of `lambda_{1,2}` from
+    /// the rest of the spectrum (e.g. `min(|lambda_2| - |lambda_3|, 1 - |lambda_1|)`).
+    pub fn new(
+        s: &DMatrix<f64>,
+        structure: Eigenstructure,
+        lambda: [Complex64; 2],
+        a: &[f64],
+        b: &[f64],
+        gap: f64,
+    ) -> Result<Self> {
+        let dim = s.nrows();
+        for v in [a, b] {
+            if v.len() != dim {
+                return Err(Error::CountMismatch {
+                    what: "planar basis vector (4n entries)",
+                    expected: dim,
+                    got: v.len(),
+                });
+            }
+        }
+        let bad = |reason: String| Error::Numerical {
+            routine: "characteristic map basis",
+            reason,
+        };
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let na = norm(a);
+        if !(na > 0.0 && na.is_finite()) {
+            return Err(bad(format!("first basis vector has norm {na}")));
+        }
+        let w1: Vec<f64> = a.iter().map(|x| x / na).collect();
+        let nb = norm(b);
+        if !(nb > 0.0 && nb.is_finite()) {
+            return Err(bad(format!("second basis vector has norm {nb}")));
+        }
+        let proj: f64 = w1.iter().zip(b).map(|(x, y)| x * y).sum();
+        let mut w2: Vec<f64> = b.iter().zip(&w1).map(|(y, x)| y - proj * x).collect();
+        // re-orthogonalise once (classical Gram-Schmidt twice is enough)
+        let proj2: f64 = w1.iter().zip(&w2).map(|(x, y)| x * y).sum();
+        for (y, x) in w2.iter_mut().zip(&w1) {
+            *y -= proj2 * x;
+        }
+        let n2 = norm(&w2);
+        if n2.is_nan() || n2 <= MIN_BASIS_SINE * nb {
+            return Err(bad(format!(
+                "the two subdominant vectors are numerically parallel (sin angle = {:e})",
+                n2 / nb
+            )));
+        }
+        for y in w2.iter_mut() {
+            *y /= n2;
+        }
+        let sw1: Vec<f64> = (0..dim)
+            .map(|i| (0..dim).map(|j| s[(i, j)] * w1[j]).sum())
+            .collect();
+        let sw2: Vec<f64> = (0..dim)
+            .map(|i| (0..dim).map(|j| s[(i, j)] * w2[j]).sum())
+            .collect();
+        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
+        let m = [
+            [dot(&w1, &sw1), dot(&w1, &sw2)],
+            [dot(&w2, &sw1), dot(&w2, &sw2)],
+        ];
+        let mut res2 = 0.0;
+        for i in 0..dim {
+            let r1 = sw1[i] - (w1[i] * m[0][0] + w2[i] * m[1][0]);
+            let r2 = sw2[i] - (w1[i] * m[0][1] + w2[i] * m[1][1]);
+            res2 += r1 * r1 + r2 * r2;
+        }
+        let residual = res2.sqrt();
+        if gap.is_nan() || gap <= 0.0 {
+            return Err(bad(format!(
+                "no spectral gap around the subdominant pair (gap = {gap})"
+            )));
+        }
+        // the residual is itself computed in floating point: add its rounding floor
+        let floor = gamma(2 * dim) * frob(s);
+        let vector_error = SUBSPACE_ERROR_SAFETY * (residual + floor) / gap;
+        Ok(Self {
+            structure,
+            lambda,
+            w1,
+            w2,
+            restriction: m,
+            residual,
+            vector_error,
+        })
+    }
+}
+
+fn frob(s: &DMatrix<f64>) -> f64 {
+    s.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// The overall verdict of the characteristic-map check.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Verdict {
+    /// Standard eigenstructure, regular and injective: C1 (Reif's criterion).
+    C1Standard,
+    /// Non-standard eigenstructure, regular and injective: tangent-plane
+    /// continuity (the generalised test; not "C1").
+    TangentPlaneContinuous {
+        /// `real_distinct` or `complex_pair`.
+        structure: Eigenstructure,
+    },
+    /// The characteristic map is not regular (a point with the wrong Jacobian sign exists).
+    NotRegular,
+    /// Regular, but the boundary winds `winding` times around the origin.
+    NotInjective {
+        /// The certified winding number.
+        winding: i64,
+    },
+    /// The floating-point evidence cannot decide.
+    Indeterminate {
+        /// Why.
+        reason: String,
+    },
+    /// No characteristic map exists for this eigenstructure.
+    NoCharacteristicMap {
+        /// `defective`, `not_separated` or `indeterminate`.
+        class: String,
+        /// Why there is no planar map.
+        reason: String,
+    },
+}
+
+impl Verdict {
+    /// A short machine-readable code (sweep columns).
+    pub fn code(&self) -> &'static str {
+        match self {
+            Verdict::C1Standard => "c1",
+            Verdict::TangentPlaneContinuous {
+                structure: Eigenstructure::RealDistinct,
+            } => "tpc_real_distinct",
+            Verdict::TangentPlaneContinuous {
+                structure: Eigenstructure::ComplexPair,
+            } => "tpc_complex_pair",
+            Verdict::TangentPlaneContinuous { .. } => "tpc",
+            Verdict::NotRegular => "not_regular",
+            Verdict::NotInjective { .. } => "not_injective",
+            Verdict::Indeterminate { .. } => "indeterminate",
+            Verdict::NoCharacteristicMap { .. } => "no_charmap",
+        }
+    }
+}
+
+impl fmt::Display for Verdict {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Verdict::C1Standard => f.write_str("C1 (standard; Reif)"),
+            Verdict::TangentPlaneContinuous { structure } => write!(
+                f,
+                "tangent-plane continuous (non-standard: {})",
+                structure.as_str()
+            ),
+            Verdict::NotRegular => f.write_str("not regular (characteristic map folds)"),
+            Verdict::NotInjective { winding } => {
+                write!(f, "not injective (winding number {winding})")
+            }
+            Verdict::Indeterminate { reason } => write!(f, "indeterminate ({reason})"),
+            Verdict::NoCharacteristicMap { class, reason } => {
+                write!(f, "no characteristic map ({class}: {reason})")
+            }
+        }
+    }
+}
+
+/// The full result of a characteristic-map check.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct CharmapReport {
+    /// Eigenstructure of the planar basis (`None` when there is no map).
+    pub structure: Option<Eigenstructure>,
+    /// Regularity details (`None` when there is no map).
+    pub regularity: Option<Regularity>,
+    /// Certified winding number of the outer boundary (ring on the left,
+    /// basis oriented so that the Jacobian is positive); `None` if undecided.
+    pub winding_number: Option<i64>,
+    /// The same for the inner boundary (a cross-check: equal for an embedded ring).
+    pub inner_winding_number: Option<i64>,
+    /// Absolute error bound used for the ring's control points (planar basis of unit vectors).
+    pub point_error: f64,
+    /// The verdict.
+    pub verdict: Verdict,
+}
+
+impl CharmapReport {
+    /// A report for an eigenstructure without characteristic map.
+    pub fn no_map(class: &str, reason: &str) -> Self {
+        Self {
+            structure: None,
+            regularity: None,
+            winding_number: None,
+            inner_winding_number: None,
+            point_error: f64::NAN,
+            verdict: Verdict::NoCharacteristicMap {
+                class: class.to_owned(),
+                reason: reason.to_owned(),
+            },
+        }
+    }
+
+    /// `Some(true)` regular, `Some(false)` not regular, `None` undecided or no map.
+    pub fn regular(&self) -> Option<bool> {
+        match self.regularity.as_ref()?.verdict {
+            RegularityVerdict::Regular => Some(true),
+            RegularityVerdict::NotRegular => Some(false),
+            RegularityVerdict::Indeterminate => None,
+        }
+    }
+
+    /// `min sigma c_ij / max |c_ij|` (see [`Regularity::min_coeff`]).
+    pub fn min_jacobian_coeff(&self) -> Option<f64> {
+        self.regularity.as_ref().map(|r| r.min_coeff)
+    }
+
+    /// The `"charmap"` JSON object: `regular`, `min_jacobian_coeff`,
+    /// `winding_number`, `verdict` (human text), plus `verdict_code`,
+    /// `regularity`, `structure`, `inner_winding_number`, and the witness.
+    pub fn to_json(&self) -> serde_json::Value {
+        let reg = self.regularity.as_ref();
+        serde_json::json!({
+            "regular": self.regular(),
+            "regularity": reg.map(|r| r.verdict.as_str()),
+            "min_jacobian_coeff": self.min_jacobian_coeff(),
+            "min_jacobian_location": reg.map(|r| serde_json::json!({
+                "patch": r.min_location.patch.to_string(), "s": r.min_location.s, "t": r.min_location.t})),
+            "relative_error_bound": reg.map(|r| r.relative_error_bound),
+            "witness": reg.and_then(|r| r.witness).map(|(p, v)| serde_json::json!({
+                "patch": p.patch.to_string(), "s": p.s, "t": p.t, "jacobian": v})),
+            "winding_number": self.winding_number,
+            "inner_winding_number": self.inner_winding_number,
+            "structure": self.structure.map(Eigenstructure::as_str),
+            "verdict": self.verdict.to_string(),
+            "verdict_code": self.verdict.code(),
+        })
+    }
+}
+
+/// Error bound of the ring's Bezier control points for a basis with entry
+/// error `vector_error` **\[derived\]**: `Ext` has absolute row sums `rho`, so the
+/// `9n` points are off by at most `rho vector_error + gamma_K rho max|w|`
+/// (`K` = nonzeros per row + 1); the B-spline-to-Bezier conversion forms convex
+/// combinations of at most 4 points (`+ gamma_8 max|P|`).
+pub fn point_error(ext: &ExtendedMatrix<f64>, basis: &PlanarBasis) -> f64 {
+    let m = ext.matrix().matrix();
+    let mut rho = 0.0f64;
+    let mut nnz = 0usize;
+    for i in 0..m.nrows() {
+        let row = m.row(i);
+        rho = rho.max(row.iter().map(|x| x.abs()).sum());
+        nnz = nnz.max(row.iter().filter(|x| **x != 0.0).count());
+    }
+    let wmax = basis
+        .w1
+        .iter()
+        .chain(&basis.w2)
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+    let pmax = rho * wmax;
+    rho * basis.vector_error + gamma(nnz + 1) * pmax + gamma(8) * pmax
+}
+
+/// Runs the regularity and winding checks for a planar basis of `S_n`'s
+/// subdominant subspace (the geometric part of [`check`]-style entry points).
+pub fn check_basis(
+    ext: &ExtendedMatrix<f64>,
+    ratios: &EdgeRatios<f64>,
+    basis: &PlanarBasis,
+) -> Result<CharmapReport> {
+    let ring = Ring::from_basis(ext, ratios, &basis.w1, &basis.w2)?;
+    let delta = point_error(ext, basis);
+    Ok(check_ring(&ring, delta, basis.structure))
+}
+
+/// Regularity, winding numbers and verdict of a ring whose control points are
+/// accurate to `delta` (absolute).
+pub fn check_ring(ring: &Ring, delta: f64, structure: Eigenstructure) -> CharmapReport {
+    let reg = check_regularity(ring, delta);
+    let oriented;
+    let r = if reg.orientation < 0 {
+        oriented = ring.mirrored();
+        &oriented
+    } else {
+        ring
+    };
+    let winding = winding::winding_number(&r.outer_boundary(), delta);
+    let inner = winding::winding_number(&r.inner_boundary(), delta);
+    let verdict = match (reg.verdict, winding) {
+        (RegularityVerdict::NotRegular, _) => Verdict::NotRegular,
+        (RegularityVerdict::Indeterminate, _) => Verdict::Indeterminate {
+            reason: format!(
+                "Jacobian sign not certified (min coefficient {:.3e}, error bound {:.3e}, relative)",
+                reg.min_coeff, reg.relative_error_bound
+            ),
+        },
+        (RegularityVerdict::Regular, None) => Verdict::Indeterminate {
+            reason: "winding number not certified (boundary within rounding of the origin)"
+                .to_owned(),
+        },
+        (RegularityVerdict::Regular, Some(1)) => match structure {
+            Eigenstructure::Standard => Verdict::C1Standard,
+            s => Verdict::TangentPlaneContinuous { structure: s },
+        },
+        (RegularityVerdict::Regular, Some(w)) => Verdict::NotInjective { winding: w },
+    };
+    CharmapReport {
+        structure: Some(structure),
+        regularity: Some(reg),
+        winding_number: winding,
+        inner_winding_number: inner,
+        point_error: delta,
+        verdict,
+    }
+}
+
+/// Why a class has no characteristic map, or `None` if it has one.
+fn structure_of(class: &SubdominantClass) -> std::result::Result<Eigenstructure, (String, String)> {
+    match class {
+        SubdominantClass::Standard => Ok(Eigenstructure::Standard),
+        SubdominantClass::RealDistinct => Ok(Eigenstructure::RealDistinct),
+        SubdominantClass::ComplexPair => Ok(Eigenstructure::ComplexPair),
+        SubdominantClass::Defective => Err((
+            "defective".to_owned(),
+            "lambda_1 = lambda_2 has a 1-dimensional eigenspace, so the subdominant \
+             eigenvectors span a line, not a plane; the generic limit surface has no \
+             regular tangent plane parametrisation from them"
+                .to_owned(),
+        )),
+        SubdominantClass::NotSeparated => Err((
+            "not_separated".to_owned(),
+            "|lambda_2| = |lambda_3| (or lambda_0 is not a simple 1): no 2-dimensional \
+             dominant invariant subspace determines the local shape"
+                .to_owned(),
+        )),
+        SubdominantClass::Indeterminate { between, reason } => Err((
+            "indeterminate".to_owned(),
+            format!(
+                "the eigenstructure is undecided between {} and {} ({reason}), so the planar \
+                 basis and the verdict's label are not determined",
+                between.0.as_str(),
+                between.1.as_str()
+            ),
+        )),
+    }
+}
+
+/// The characteristic-map check of one configuration of the Doo-Sabin family,
+/// given its subdominant classification (from [`crate::spectral`]).
+///
+/// Cost: the `n x n` face block (a product and an SVD), `O(n)` small solves,
+/// the `9n x 4n` extended matrix and `3n` Jacobian patches; no `4n x 4n`
+/// eigen-decomposition.
+pub fn check_classified(scheme: &LocalScheme<f64>, sub: &Subdominant) -> Result<CharmapReport> {
+    match prepare(scheme, sub)? {
+        Prepared::NoMap(r) => Ok(r),
+        Prepared::Basis(ext, basis) => check_basis(&ext, &scheme.ratios(), &basis),
+    }
+}
+
+enum Prepared {
+    NoMap(CharmapReport),
+    Basis(ExtendedMatrix<f64>, PlanarBasis),
+}
+
+fn prepare(scheme: &LocalScheme<f64>, sub: &Subdominant) -> Result<Prepared> {
+    let structure = match structure_of(&sub.class) {
+        Ok(s) => s,
+        Err((class, reason)) => return Ok(Prepared::NoMap(CharmapReport::no_map(&class, &reason))),
+    };
+    let ext = ExtendedMatrix::new(scheme)?;
+    let sn = scheme.matrix()?.into_matrix();
+    let gap = sub.gap.min(1.0 - sub.lambda1.norm());
+    let basis = basis::subdominant_basis(scheme, &sn, structure, [sub.lambda1, sub.lambda2], gap)?;
+    Ok(Prepared::Basis(ext, basis))
+}
+
+/// The characteristic-map check of one configuration: classification by the
+/// spectral engine's structured fast path ([`crate::spectral::classify_scheme`]),
+/// then [`check_classified`]. This is the entry point for sweeps (one call per
+/// configuration, no shared state, safe to run in parallel).
+///
+/// ```
+/// use subdiv_lab::charmap::{check, Verdict};
+/// use subdiv_lab::knots::EdgeRatios;
+/// use subdiv_lab::schemes::LocalScheme;
+/// let r = check(&LocalScheme::<f64>::doo_sabin(5).unwrap()).unwrap();
+/// assert_eq!(r.verdict, Verdict::C1Standard);
+/// let r = check(&LocalScheme::nurds(EdgeRatios::new(vec![0.1, 0.8, 0.3]).unwrap())).unwrap();
+/// assert_ne!(r.verdict, Verdict::C1Standard); // non-standard: never "C1"
+/// ```
+pub fn check(scheme: &LocalScheme<f64>) -> Result<CharmapReport> {
+    let sub = crate::spectral::classify_scheme(scheme)?;
+    check_classified(scheme, &sub)
+}
+
+/// The plot data of a configuration's ring and `levels - 1` further levels
+/// (see [`figure::ring_plot`]), with the report of the check; `None` for the
+/// plot when there is no characteristic map.
+pub fn plot_data(
+    scheme: &LocalScheme<f64>,
+    levels: usize,
+    per_side: usize,
+) -> Result<(CharmapReport, Option<figure::RingPlot>)> {
+    let sub = crate::spectral::classify_scheme(scheme)?;
+    let (ext, basis) = match prepare(scheme, &sub)? {
+        Prepared::NoMap(r) => return Ok((r, None)),
+        Prepared::Basis(e, b) => (e, b),
+    };
+    let structure = basis.structure;
+    let ring = Ring::from_basis(&ext, &scheme.ratios(), &basis.w1, &basis.w2)?;
+    let report = check_ring(&ring, point_error(&ext, &basis), structure);
+    let orientation = report.regularity.as_ref().map_or(1, |r| r.orientation);
+    let plot = figure::ring_plot(&ring, basis.restriction, orientation, levels, per_side);
+    Ok((report, Some(plot)))
+}

@@ -1,0 +1,360 @@
+//! `kind = "charmap"`: the characteristic ring of each configuration (math doc
+//! section 7) drawn in the plane, with the next levels (scaled / rotated
+//! copies), patches coloured, and a Jacobian-sign overlay.
+//!
+//! The data come from [`crate::charmap::plot_data`]: the `3n` biquadratic ring
+//! patches `A_i`, `B_i`, `C_i` on the (orthonormalised) subdominant planar
+//! basis, oriented so that the Jacobian is positive; level `k` is the ring
+//! mapped `k` times by the restriction `M` of `S_n` to the planar subspace.
+//! Each patch outline is filled (colour by patch position around the face,
+//! lighter for deeper levels); the overlay marks sample points of the ring
+//! (level 0) where `sigma J > 0` (small dark dots) and `sigma J <= 0` (large
+//! red crosses, a fold). The verdict is written under each panel (short form:
+//! "TPC" = tangent-plane continuous, non-standard eigenstructure). The CSV
+//! tables hold exactly the plotted data (outlines, signed samples of all
+//! levels, verdicts).
+//!
+//! ```toml
+//! [[figure]]
+//! kind = "charmap"
+//! levels = 3                  # ring + 2 further levels (1..=6, default 3)
+//! samples = 6                 # Jacobian samples per patch side (2..=20, default 6)
+//! columns = 2                 # panels per row (default: up to 3)
+//! configs = [ { scheme = "doo-sabin", valence = 5 }, ... ]   # 1 to 6 panels
+//! ```
+
+use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use crate::charmap::figure::RingPlot;
+use crate::charmap::ring::PatchKind;
+use crate::charmap::{plot_data, CharmapReport};
+use crate::report::backend::Area;
+use crate::report::config::{ConfigSpec, Configuration};
+use crate::report::error::ReportError;
+use crate::report::plot::{draw_err, mix_white, series_color, titled, Theme};
+use crate::report::rng::SplitMix64;
+use crate::report::spec::{Common, FigureSpec};
+use plotters::prelude::*;
+use rayon::prelude::*;
+use serde::Deserialize;
+use toml::Spanned;
+
+/// Most panels in one figure.
+pub const MAX_PANELS: usize = 6;
+/// Most levels drawn.
+pub const MAX_LEVELS: usize = 6;
+/// Most Jacobian samples per patch side.
+pub const MAX_SAMPLES: usize = 20;
+
+/// The kind.
+pub(crate) const KIND: FigureKind = FigureKind {
+    name: "charmap",
+    default_title: "Characteristic rings and their Jacobian sign",
+    summary: "characteristic ring (3n biquadratic patches) and further levels in the plane, Jacobian-sign overlay, verdict",
+    parse,
+};
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Params {
+    configs: Spanned<Vec<ConfigSpec>>,
+    levels: Option<Spanned<usize>>,
+    samples: Option<Spanned<usize>>,
+    columns: Option<Spanned<usize>>,
+}
+
+struct Charmap {
+    configs: Vec<Configuration>,
+    levels: usize,
+    samples: usize,
+    columns: usize,
+}
+
+fn bounded(
+    fs: &FigureSpec<'_>,
+    v: &Option<Spanned<usize>>,
+    key: &str,
+    lo: usize,
+    hi: usize,
+    default: usize,
+) -> Result<usize, ReportError> {
+    match v {
+        None => Ok(default),
+        Some(x) if (lo..=hi).contains(x.get_ref()) => Ok(*x.get_ref()),
+        Some(x) => Err(fs.error_at(
+            x,
+            key,
+            format!("{key} must be between {lo} and {hi}, got {}", x.get_ref()),
+        )),
+    }
+}
+
+fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
+    let p: Params = fs.parse()?;
+    let count = p.configs.get_ref().len();
+    if count == 0 || count > MAX_PANELS {
+        return Err(fs.error_at(
+            &p.configs,
+            "configs",
+            format!("give 1 to {MAX_PANELS} configurations, got {count}"),
+        ));
+    }
+    let mut rng = SplitMix64::new(fs.seed());
+    let configs = p
+        .configs
+        .get_ref()
+        .iter()
+        .enumerate()
+        .map(|(i, c)| c.resolve(fs, &format!("configs[{i}]"), &mut rng))
+        .collect::<Result<Vec<_>, _>>()?;
+    let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 3)?;
+    let samples = bounded(fs, &p.samples, "samples", 2, MAX_SAMPLES, 6)?;
+    let columns = bounded(fs, &p.columns, "columns", 1, MAX_PANELS, count.min(3))?.min(count);
+    Ok(Box::new(Charmap {
+        configs,
+        levels,
+        samples,
+        columns,
+    }))
+}
+
+impl Figure for Charmap {
+    fn work(&self) -> u64 {
+        self.configs.len() as u64
+    }
+
+    fn compute(&self, ctx: &Context<'_>) -> Result<Box<dyn FigureOutput>, ReportError> {
+        let panels = self
+            .configs
+            .par_iter()
+            .map(|c| {
+                let (report, plot) =
+                    plot_data(&c.scheme, self.levels, self.samples).map_err(|e| ctx.err(e))?;
+                ctx.tick(1);
+                Ok(Panel {
+                    config: c.clone(),
+                    report,
+                    plot,
+                })
+            })
+            .collect::<Result<Vec<_>, ReportError>>()?;
+        Ok(Box::new(Output {
+            panels,
+            columns: self.columns,
+        }))
+    }
+}
+
+struct Panel {
+    config: Configuration,
+    report: CharmapReport,
+    plot: Option<RingPlot>,
+}
+
+struct Output {
+    panels: Vec<Panel>,
+    columns: usize,
+}
+
+fn kind_name(k: PatchKind) -> &'static str {
+    match k {
+        PatchKind::A => "A",
+        PatchKind::B => "B",
+        PatchKind::C => "C",
+    }
+}
+
+impl FigureOutput for Output {
+    fn tables(&self) -> Vec<DataTable> {
+        let mut outline = DataTable::new(
+            None,
+            &[
+                "config", "label", "level", "patch", "kind", "sector", "point", "x", "y",
+            ],
+        );
+        let mut signs = DataTable::new(
+            Some("jacobian"),
+            &["config", "level", "patch", "x", "y", "sign"],
+        );
+        let mut verdicts = DataTable::new(
+            Some("verdict"),
+            &[
+                "config",
+                "label",
+                "structure",
+                "regular",
+                "min_jacobian_coeff",
+                "winding_number",
+                "verdict",
+            ],
+        );
+        for (i, p) in self.panels.iter().enumerate() {
+            let r = &p.report;
+            verdicts.push(vec![
+                i.to_string(),
+                p.config.label.clone(),
+                r.structure.map_or("none", |s| s.as_str()).to_owned(),
+                r.regular()
+                    .map_or("undecided".to_owned(), |b| b.to_string()),
+                r.min_jacobian_coeff().map_or("NaN".to_owned(), num),
+                r.winding_number
+                    .map_or("undecided".to_owned(), |w| w.to_string()),
+                r.verdict.to_string(),
+            ]);
+            let Some(plot) = &p.plot else { continue };
+            for pp in &plot.patches {
+                for (k, q) in pp.outline.iter().enumerate() {
+                    outline.push(vec![
+                        i.to_string(),
+                        p.config.label.clone(),
+                        pp.level.to_string(),
+                        pp.patch.to_string(),
+                        kind_name(pp.patch.kind).to_owned(),
+                        pp.patch.index.to_string(),
+                        k.to_string(),
+                        num(q[0]),
+                        num(q[1]),
+                    ]);
+                }
+                for (q, s) in &pp.samples {
+                    signs.push(vec![
+                        i.to_string(),
+                        pp.level.to_string(),
+                        pp.patch.to_string(),
+                        num(q[0]),
+                        num(q[1]),
+                        s.to_string(),
+                    ]);
+                }
+            }
+        }
+        vec![outline, signs, verdicts]
+    }
+
+    fn draw(&self, area: &Area<'_>, common: &Common) -> Result<(), ReportError> {
+        let th = Theme::for_size(common.size);
+        let body = titled(area, &common.title, &th)?;
+        let cols = self.columns.max(1);
+        let rows = self.panels.len().div_ceil(cols);
+        let (pw, ph) = (common.size.0 / cols as u32, common.size.1 / rows as u32);
+        let side = pw.min(ph).max(common.size.0.min(common.size.1) * 70 / 100);
+        let panel_theme = Theme::for_size((side, side));
+        let areas = body.split_evenly((rows, cols));
+        for (p, pa) in self.panels.iter().zip(areas.iter()) {
+            draw_panel(pa, p, &panel_theme)?;
+        }
+        Ok(())
+    }
+}
+
+fn draw_panel(area: &Area<'_>, p: &Panel, th: &Theme) -> Result<(), ReportError> {
+    let (w, h) = area.dim_in_pixel();
+    // verdict line at the bottom of the panel, label as the caption
+    let verdict = short_verdict(&p.report);
+    area.draw_text(
+        &verdict,
+        &th.font(th.tick),
+        (th.tick as i32, h as i32 - 2 * th.tick as i32),
+    )
+    .map_err(draw_err)?;
+    let Some(plot) = &p.plot else {
+        area.titled(&p.config.label, th.font(th.label))
+            .map_err(draw_err)?;
+        return Ok(());
+    };
+    let area = &area.margin(0, 2 * th.tick, 0, 0);
+    let mut r = 0.0f64;
+    for pp in plot.patches.iter().filter(|q| q.level == 0) {
+        for q in &pp.outline {
+            r = r.max(q[0].abs()).max(q[1].abs());
+        }
+    }
+    let r = if r > 0.0 { r * 1.05 } else { 1.0 };
+    let cap = th.label * 3;
+    let aspect = w.max(1) as f64 / (h.saturating_sub(cap)).max(1) as f64;
+    let (rx, ry) = if aspect >= 1.0 {
+        (r * aspect, r)
+    } else {
+        (r, r / aspect)
+    };
+    let mut chart = ChartBuilder::on(area)
+        .caption(p.config.label.clone(), th.font(th.tick))
+        .margin(th.tick as i32 / 2)
+        .build_cartesian_2d(-rx..rx, -ry..ry)
+        .map_err(draw_err)?;
+    let n = plot
+        .patches
+        .iter()
+        .map(|q| q.patch.index)
+        .max()
+        .unwrap_or(0)
+        + 1;
+    for pp in plot.patches.iter().rev() {
+        // colour by position around the face: A, B, C of sector i get neighbouring hues
+        let slot = 3 * pp.patch.index
+            + match pp.patch.kind {
+                PatchKind::A => 0,
+                PatchKind::B => 1,
+                PatchKind::C => 2,
+            };
+        let base = series_color(slot, 3 * n);
+        let fill = mix_white(base, 0.35 + 0.5 * (pp.level as f64 / 6.0).min(0.6));
+        let pts: Vec<(f64, f64)> = pp.outline.iter().map(|q| (q[0], q[1])).collect();
+        chart
+            .draw_series(std::iter::once(Polygon::new(pts.clone(), fill.filled())))
+            .map_err(draw_err)?;
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                pts,
+                BLACK.mix(0.6).stroke_width(1),
+            )))
+            .map_err(draw_err)?;
+    }
+    let dot = (th.marker / 3).max(1);
+    for pp in plot.patches.iter().filter(|q| q.level == 0) {
+        for (q, s) in &pp.samples {
+            if *s > 0 {
+                chart
+                    .draw_series(std::iter::once(Circle::new(
+                        (q[0], q[1]),
+                        dot,
+                        BLACK.mix(0.55).filled(),
+                    )))
+                    .map_err(draw_err)?;
+            } else {
+                chart
+                    .draw_series(std::iter::once(Cross::new(
+                        (q[0], q[1]),
+                        th.marker,
+                        RED.stroke_width(2),
+                    )))
+                    .map_err(draw_err)?;
+            }
+        }
+    }
+    chart
+        .draw_series(std::iter::once(Cross::new(
+            (0.0, 0.0),
+            th.marker,
+            BLACK.stroke_width(2),
+        )))
+        .map_err(draw_err)?;
+    Ok(())
+}
+
+/// The verdict, shortened to fit under a panel (the CSV has the full text).
+fn short_verdict(r: &CharmapReport) -> String {
+    use crate::charmap::Verdict;
+    let w = r
+        .winding_number
+        .map_or(String::new(), |w| format!(", winding {w}"));
+    match &r.verdict {
+        Verdict::C1Standard => format!("C1 (standard; Reif){w}"),
+        Verdict::TangentPlaneContinuous { structure } => {
+            format!("TPC ({}){w}", structure.as_str())
+        }
+        Verdict::NotRegular => "NOT regular".to_owned(),
+        Verdict::NotInjective { winding } => format!("NOT injective (winding {winding})"),
+        Verdict::Indeterminate { .. } => "indeterminate".to_owned(),
+        Verdict::NoCharacteristicMap { class, .. } => format!("no map ({class})"),
+    }
+}

@@ -1,0 +1,829 @@
+//! Characteristic maps of the Doo-Sabin family (math doc section 7).
+
+use faer::diag::Diag;
+use faer::linalg::evd::{evd_real, evd_scratch, ComputeEigenvectors};
+use faer::{Mat, Par};
+use num_complex::Complex64;
+use proptest::prelude::*;
+use subdiv_lab::bezier::BezierCurve;
+use subdiv_lab::charmap::extended::{ExtLayout, ExtendedMatrix};
+use subdiv_lab::charmap::regularity::RegularityVerdict;
+use subdiv_lab::charmap::ring::{PatchKind, Ring, RingPatchId};
+use subdiv_lab::charmap::{
+    check, check_basis, CharmapReport, Eigenstructure, PlanarBasis, Verdict,
+};
+use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
+use subdiv_lab::scalar::{Rational, Scalar};
+use subdiv_lab::schemes::LocalScheme;
+
+/// Independent eigen-decomposition (faer directly) of S_n: the subdominant pair's
+/// planar basis, classified crudely (tests only).
+fn basis_of(scheme: &LocalScheme<f64>) -> PlanarBasis {
+    basis_at(scheme, 1)
+}
+
+/// The planar basis of the eigenvalue pair at sorted positions `k, k + 1`.
+fn basis_at(scheme: &LocalScheme<f64>, k: usize) -> PlanarBasis {
+    let s = scheme.matrix().unwrap().into_matrix();
+    let n = s.nrows();
+    let a = Mat::<f64>::from_fn(n, n, |i, j| s[(i, j)]);
+    let mut re = Diag::<f64>::zeros(n);
+    let mut im = Diag::<f64>::zeros(n);
+    let mut u = Mat::<f64>::zeros(n, n);
+    let scratch = evd_scratch::<f64>(
+        n,
+        ComputeEigenvectors::No,
+        ComputeEigenvectors::Yes,
+        Par::Seq,
+        Default::default(),
+    );
+    let mut mem = faer::dyn_stack::MemBuffer::new(scratch);
+    let stack = faer::dyn_stack::MemStack::new(&mut mem);
+    evd_real(
+        a.as_ref(),
+        re.as_mut(),
+        im.as_mut(),
+        None,
+        Some(u.as_mut()),
+        Par::Seq,
+        stack,
+        Default::default(),
+    )
+    .unwrap();
+    let mut order: Vec<usize> = (0..n).collect();
+    let modulus = |k: usize| re[k].hypot(im[k]);
+    order.sort_by(|&x, &y| modulus(y).total_cmp(&modulus(x)));
+    let (k1, k2, k3) = (order[k], order[k + 1], order[k + 2]);
+    let l1 = Complex64::new(re[k1], im[k1]);
+    let l2 = Complex64::new(re[k2], im[k2]);
+    let gap = (modulus(k2) - modulus(k3)).min(modulus(order[k - 1]) - modulus(k1));
+    let col = |k: usize| (0..n).map(|i| u[(i, k)]).collect::<Vec<f64>>();
+    let (structure, a, b) = if im[k1] != 0.0 {
+        // columns j (Re) and j+1 (Im) for the member with positive imaginary part
+        let j = if im[k1] > 0.0 { k1 } else { k2 };
+        let j = j.min(if im[j] > 0.0 { j } else { j - 1 });
+        let st = if im[k1].abs() < 1e-9 {
+            Eigenstructure::Standard
+        } else {
+            Eigenstructure::ComplexPair
+        };
+        (st, col(j), col(j + 1))
+    } else if (re[k1] - re[k2]).abs() < 1e-9 {
+        (Eigenstructure::Standard, col(k1), col(k2))
+    } else {
+        (Eigenstructure::RealDistinct, col(k1), col(k2))
+    };
+    PlanarBasis::new(&s, structure, [l1, l2], &a, &b, gap).unwrap()
+}
+
+/// The library entry point (spectral classification + structured subspace).
+fn report(scheme: &LocalScheme<f64>) -> CharmapReport {
+    check(scheme).unwrap()
+}
+
+/// Independent route: eigenvectors of the full 4n x 4n matrix (faer directly).
+fn report_full(scheme: &LocalScheme<f64>) -> CharmapReport {
+    let ext = ExtendedMatrix::new(scheme).unwrap();
+    check_basis(&ext, &scheme.ratios(), &basis_of(scheme)).unwrap()
+}
+
+fn ring_of(scheme: &LocalScheme<f64>, basis: &PlanarBasis) -> Ring {
+    let ext = ExtendedMatrix::new(scheme).unwrap();
+    Ring::from_basis(&ext, &scheme.ratios(), &basis.w1, &basis.w2).unwrap()
+}
+
+fn rat(a: i64, b: i64) -> Rational {
+    Rational::frac(a, b)
+}
+
+fn assert_c1(scheme: &LocalScheme<f64>) {
+    let r = report(scheme);
+    let g = r.regularity.as_ref().unwrap();
+    let why = match g.witness {
+        Some((p, v)) => format!(
+            "wrong-sign Jacobian {v:e} at {} ({}, {})",
+            p.patch, p.s, p.t
+        ),
+        None => format!(
+            "min coefficient {:e} at {}",
+            g.min_coeff, g.min_location.patch
+        ),
+    };
+    assert_eq!(
+        r.verdict,
+        Verdict::C1Standard,
+        "{} n={}: {} ({why}); winding {:?}",
+        scheme.kind(),
+        scheme.valence(),
+        r.verdict,
+        r.winding_number
+    );
+    assert_eq!(g.verdict, RegularityVerdict::Regular);
+    assert!(g.min_coeff > g.relative_error_bound);
+    assert_eq!(r.winding_number, Some(1));
+    assert_eq!(r.inner_winding_number, Some(1));
+    let f = report_full(scheme);
+    assert_eq!(f.verdict, r.verdict);
+    assert!((f.min_jacobian_coeff().unwrap() - g.min_coeff).abs() < 1e-8);
+}
+
+// ---------------------------------------------------------------- extended matrix
+
+#[test]
+fn extended_rows_for_configuration_points_equal_s_n_exactly() {
+    let cases: Vec<LocalScheme<Rational>> = vec![
+        LocalScheme::nurds(
+            EdgeRatios::new(vec![
+                rat(1, 3),
+                rat(5, 7),
+                rat(1, 2),
+                rat(9, 10),
+                rat(2, 11),
+            ])
+            .unwrap(),
+        ),
+        LocalScheme::nurds(EdgeRatios::new(vec![rat(1, 100), rat(99, 100), rat(3, 4)]).unwrap()),
+        LocalScheme::nurds(
+            CornerIntervals::new(
+                vec![rat(13, 10), rat(22, 10), rat(4, 10), rat(7, 10)],
+                vec![rat(22, 10), rat(13, 10), rat(7, 10), rat(4, 10)],
+            )
+            .unwrap()
+            .ratios()
+            .unwrap(),
+        ),
+        LocalScheme::doo_sabin(3).unwrap(),
+        LocalScheme::doo_sabin(6).unwrap(),
+        LocalScheme::cc_variant(7).unwrap(),
+    ];
+    for s in cases {
+        let n = s.valence();
+        let sn = s.matrix().unwrap();
+        let ext = ExtendedMatrix::new(&s).unwrap();
+        let m = ext.matrix();
+        assert_eq!(m.matrix().shape(), (9 * n, 4 * n));
+        assert_eq!(&m.rows()[..4 * n], sn.rows());
+        assert_eq!(m.cols(), sn.cols());
+        for i in 0..4 * n {
+            for j in 0..4 * n {
+                assert_eq!(
+                    m.matrix()[(i, j)],
+                    sn.matrix()[(i, j)],
+                    "{} row {i} col {j}",
+                    s.kind()
+                );
+            }
+        }
+        // every row sums to exactly 1, all weights non-negative
+        assert!(m
+            .row_sum_defects()
+            .iter()
+            .all(|d| *d == Rational::frac(0, 1)));
+        assert!(m.matrix().iter().all(|x| *x >= Rational::frac(0, 1)));
+        // labels: (F,P_i), (E_i,P_i), (E_i,P_{i+1}), (V_i,P_i), then the rest
+        let l = ext.labels();
+        let x = ExtLayout::new(n);
+        assert_eq!(l[x.f_p(1)].to_string(), "(F,P1)");
+        assert_eq!(
+            l[x.e_pnext(n - 1)].to_string(),
+            "(E".to_string() + &(n - 1).to_string() + ",P0)"
+        );
+        assert_eq!(l[x.v_eprev2(0)].to_string(), format!("(V0,E{},2)", n - 1));
+        assert_eq!(l[x.v_c(2)].to_string(), "(V2,C2)");
+        // the f64 build agrees with the exact one
+        let sf = match &s {
+            LocalScheme::Nurds(r) => LocalScheme::nurds(r.to_f64()),
+            LocalScheme::DooSabin { valence } => LocalScheme::doo_sabin(*valence).unwrap(),
+            _ => LocalScheme::cc_variant(n).unwrap(),
+        };
+        let ef = ExtendedMatrix::new(&sf).unwrap();
+        let exact = m.to_f64();
+        for (a, b) in ef.matrix().matrix().iter().zip(exact.matrix().iter()) {
+            assert!((a - b).abs() < 1e-15);
+        }
+    }
+}
+
+#[test]
+fn extended_rows_of_new_points_follow_the_face_rules() {
+    // (E_i, E_i1) = 1/4 (E_i1 + midpoint(E_i1, P_i) + edge point of E_i1 E_i2 + face point), tensor face point.
+    let r = [0.3, 0.8, 0.55];
+    let s = LocalScheme::nurds(EdgeRatios::new(r.to_vec()).unwrap());
+    let ext = ExtendedMatrix::new(&s).unwrap();
+    let lay = subdiv_lab::schemes::doo_sabin::Layout::new(3);
+    let x = ExtLayout::new(3);
+    for i in 0..3 {
+        let (ri, si) = (r[i], 1.0 - r[i]);
+        let row = ext.matrix().matrix().row(x.e_e1(i));
+        let want = [
+            (lay.e1(i), (1.0 + 0.5 + ri + ri / 2.0) / 4.0),
+            (lay.p(i), (0.5 + ri / 2.0) / 4.0),
+            (lay.e2(i), (si + si / 2.0) / 4.0),
+            (lay.p(i + 1), (si / 2.0) / 4.0),
+        ];
+        for (col, w) in want {
+            assert!(
+                (row[col] - w).abs() < 1e-15,
+                "row (E{i},E{i}1) col {col}: {} vs {w}",
+                row[col]
+            );
+        }
+        // V-face: (V_i, C_i) = 9/16 C_i + 3/16 (E_i1 + E_{i-1,2}) + 1/16 P_i
+        let row = ext.matrix().matrix().row(x.v_c(i));
+        assert_eq!(row[lay.c(i)], 9.0 / 16.0);
+        assert_eq!(row[lay.e1(i)], 3.0 / 16.0);
+        assert_eq!(row[lay.e2(i + 2)], 3.0 / 16.0);
+        assert_eq!(row[lay.p(i)], 1.0 / 16.0);
+    }
+}
+
+// ---------------------------------------------------------------- ring geometry
+
+fn same_curve(a: &BezierCurve, b: &BezierCurve, tol: f64) -> bool {
+    a.points.len() == b.points.len()
+        && a.points
+            .iter()
+            .zip(&b.points)
+            .all(|(p, q)| (p[0] - q[0]).abs() <= tol && (p[1] - q[1]).abs() <= tol)
+}
+
+#[test]
+fn neighbouring_ring_patches_share_boundaries_and_bezier_matches_bspline() {
+    // Arbitrary planar data: the join property holds for any control points.
+    let r = vec![0.15, 0.7, 0.42, 0.93, 0.5];
+    let s = LocalScheme::nurds(EdgeRatios::new(r).unwrap());
+    let ext = ExtendedMatrix::new(&s).unwrap();
+    let w1: Vec<f64> = (0..20).map(|k| ((k * 7 % 11) as f64).sin()).collect();
+    let w2: Vec<f64> = (0..20).map(|k| ((k * 5 % 13) as f64).cos()).collect();
+    let ring = Ring::from_basis(&ext, &s.ratios(), &w1, &w2).unwrap();
+    let id = |kind, index| RingPatchId { kind, index };
+    for i in 0..5 {
+        let a = &ring.patch(id(PatchKind::A, i)).bezier;
+        let b = &ring.patch(id(PatchKind::B, i)).bezier;
+        let c = &ring.patch(id(PatchKind::C, i)).bezier;
+        let bprev = &ring.patch(id(PatchKind::B, i + 4)).bezier;
+        assert!(
+            same_curve(&a.boundary_s(true), &b.boundary_s(false), 1e-14),
+            "A{i}|B{i}"
+        );
+        assert!(
+            same_curve(&c.boundary_s(true), &a.boundary_s(false), 1e-14),
+            "C{i}|A{i}"
+        );
+        assert!(
+            same_curve(
+                &bprev.boundary_s(true),
+                &c.boundary_t(false).reversed(),
+                1e-14
+            ),
+            "B{}|C{i}",
+            i + 4
+        );
+        for p in ring.patches() {
+            for (u, v) in [(0.0, 0.0), (0.3, 0.9), (1.0, 0.5)] {
+                let (e, f) = (p.bezier.eval(u, v), p.spline.eval(u, v));
+                assert!((e[0] - f[0]).abs() < 1e-14 && (e[1] - f[1]).abs() < 1e-14);
+            }
+        }
+    }
+    // The boundary chains close up.
+    for chain in [ring.outer_boundary(), ring.inner_boundary()] {
+        for k in 0..chain.len() {
+            let (a, b) = (
+                chain[k].points.last().unwrap(),
+                chain[(k + 1) % chain.len()].points[0],
+            );
+            assert!((a[0] - b[0]).abs() < 1e-14 && (a[1] - b[1]).abs() < 1e-14);
+        }
+    }
+}
+
+/// Distance from `p` to the polyline sampled from `curves` (dense).
+fn dist_to_chain(p: [f64; 2], pts: &[[f64; 2]]) -> f64 {
+    pts.windows(2)
+        .map(|w| {
+            let (a, b) = (w[0], w[1]);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let l2 = d[0] * d[0] + d[1] * d[1];
+            let t = if l2 > 0.0 {
+                (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / l2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            ((p[0] - a[0] - t * d[0]).powi(2) + (p[1] - a[1] - t * d[1]).powi(2)).sqrt()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn consecutive_rings_nest_inner_boundary_is_the_next_outer_boundary() {
+    // Ring k+1 = M^T ring k (M = W^T S W): its outer boundary must be ring k's
+    // inner boundary. This checks the extended matrix, the patch layout and the
+    // knot spans together, for standard, real_distinct and complex_pair bases.
+    let schemes = vec![
+        LocalScheme::<f64>::cc_variant(5).unwrap(),
+        LocalScheme::<f64>::doo_sabin(3).unwrap(),
+        LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.85, 0.4, 0.6, 0.1, 0.7]).unwrap()),
+        LocalScheme::nurds(EdgeRatios::new(vec![0.9, 0.1, 0.9, 0.1, 0.5]).unwrap()),
+        LocalScheme::nurds(EdgeRatios::new(vec![0.05, 0.3, 0.95]).unwrap()),
+        LocalScheme::nurds(EdgeRatios::new(vec![0.05, 0.9, 0.3, 0.6, 0.95, 0.2]).unwrap()),
+    ];
+    let mut seen = std::collections::HashSet::new();
+    for s in schemes {
+        let basis = basis_of(&s);
+        seen.insert(basis.structure);
+        let ring = ring_of(&s, &basis);
+        let m = basis.restriction;
+        let next = |p: [f64; 2]| {
+            [
+                m[0][0] * p[0] + m[1][0] * p[1],
+                m[0][1] * p[0] + m[1][1] * p[1],
+            ]
+        };
+        let mut outer_next = Vec::new();
+        for c in ring.outer_boundary() {
+            for k in 0..=400 {
+                outer_next.push(next(c.eval(k as f64 / 400.0)));
+            }
+        }
+        let scale = ring.max_abs();
+        for c in ring.inner_boundary() {
+            for k in 0..=10 {
+                let p = c.eval(k as f64 / 10.0);
+                let d = dist_to_chain(p, &outer_next);
+                assert!(
+                    d < 1e-4 * scale,
+                    "{} n={}: inner point {p:?} is {d:e} from the next ring",
+                    s.kind(),
+                    s.valence()
+                );
+            }
+        }
+        // and the eigen-relation really holds (residual tiny)
+        assert!(basis.residual < 1e-12, "residual {}", basis.residual);
+    }
+    assert!(
+        seen.len() >= 2,
+        "cases should cover several eigenstructures: {seen:?}"
+    );
+}
+
+// ---------------------------------------------------------------- n = 4
+
+#[test]
+fn n4_uniform_and_tensor_rings_are_affine_images_of_a_rectangular_annulus() {
+    let tensor = |d0: f64, d1: f64, e0: f64, e1: f64| {
+        // fact 2 of math doc section 3: P0: p=d0,q=e0; P1: p=e0,q=d1; P2: p=d1,q=e1; P3: p=e1,q=d0
+        CornerIntervals::new(vec![d0, e0, d1, e1], vec![e0, d1, e1, d0])
+            .unwrap()
+            .ratios()
+            .unwrap()
+    };
+    let schemes = vec![
+        LocalScheme::<f64>::cc_variant(4).unwrap(),
+        LocalScheme::<f64>::doo_sabin(4).unwrap(),
+        LocalScheme::nurds(tensor(1.3, 0.4, 2.2, 0.7)),
+        LocalScheme::nurds(tensor(0.05, 3.0, 1.0, 0.2)),
+    ];
+    for s in schemes {
+        let basis = basis_of(&s);
+        assert_eq!(
+            basis.structure,
+            Eigenstructure::Standard,
+            "{:?}",
+            basis.lambda
+        );
+        assert!((basis.lambda[0].re - 0.5).abs() < 1e-12);
+        let ring = ring_of(&s, &basis);
+        let scale = ring.max_abs();
+        for p in ring.patches() {
+            // every net is affine in (i, j): b_ij = b_00 + i a + j b
+            let b = |i, j| p.bezier.control(i, j);
+            for i in 0..3 {
+                for j in 0..3 {
+                    for k in 0..2 {
+                        let aff = b(0, 0)[k]
+                            + i as f64 / 2.0 * (b(2, 0)[k] - b(0, 0)[k])
+                            + j as f64 / 2.0 * (b(0, 2)[k] - b(0, 0)[k]);
+                        assert!(
+                            (b(i, j)[k] - aff).abs() < 1e-12 * scale,
+                            "{} {}: not affine",
+                            s.kind(),
+                            p.id
+                        );
+                    }
+                }
+            }
+            // constant Jacobian on each patch
+            let j = p.bezier.jacobian();
+            let (lo, hi) = (j.min_coeff().0, j.max_coeff().0);
+            assert!(
+                (hi - lo).abs() < 1e-10 * hi.abs().max(lo.abs()),
+                "{}: J in [{lo}, {hi}]",
+                p.id
+            );
+        }
+        // the image is the region between two parallelograms: the ring's outer
+        // boundary consists of straight segments with 4 corners; simplest check:
+        // all 12 patches are pieces of ONE affine map of the knot plane, i.e. the
+        // A/B/C nets' edge vectors along x and y are parallel to two fixed directions.
+        let r = report(&s);
+        assert_eq!(r.verdict, Verdict::C1Standard);
+        assert_eq!(r.winding_number, Some(1));
+        let g = r.regularity.unwrap();
+        assert!(
+            g.min_coeff > 0.0 && g.pieces == 12,
+            "no subdivision needed: {}",
+            g.pieces
+        );
+        if s.kind() != subdiv_lab::schemes::SchemeKind::Nurds {
+            assert!(
+                (g.min_coeff - 1.0).abs() < 1e-9,
+                "uniform: all coefficients equal"
+            );
+        }
+    }
+}
+
+// ---------------------------------------------------------------- uniform surveys
+
+#[test]
+fn cc_variant_is_c1_for_n_3_to_32() {
+    for n in 3..=32 {
+        assert_c1(&LocalScheme::<f64>::cc_variant(n).unwrap());
+    }
+}
+
+#[test]
+fn original_doo_sabin_is_c1_for_n_3_to_32() {
+    for n in 3..=32 {
+        assert_c1(&LocalScheme::<f64>::doo_sabin(n).unwrap());
+    }
+}
+
+// ---------------------------------------------------------------- counterexamples
+
+#[test]
+fn a_folding_perturbation_is_not_regular_with_an_evaluated_witness() {
+    // Reflect the outer points (E_i, E_i2) through (E_i, P_{i+1}): new row =
+    // 2 row(E_i,P_{i+1}) - row(E_i,E_i2) (rows still sum to 1). The patches
+    // B_i then fold back over themselves.
+    let s = LocalScheme::<f64>::cc_variant(5).unwrap();
+    let ext = ExtendedMatrix::new(&s).unwrap();
+    let x = ExtLayout::new(5);
+    let m = ext.matrix().matrix().clone();
+    let folded = ext
+        .map_entries(|i, j, v| {
+            if (0..5).any(|k| x.e_e2(k) == i) {
+                let k = (i - x.e_e2(0)) / 2;
+                2.0 * m[(x.e_pnext(k), j)] - v
+            } else {
+                *v
+            }
+        })
+        .unwrap();
+    let basis = basis_of(&s);
+    let r = check_basis(&folded, &s.ratios(), &basis).unwrap();
+    assert_eq!(r.verdict, Verdict::NotRegular, "{}", r.verdict);
+    let g = r.regularity.as_ref().unwrap();
+    let (p, v) = g.witness.expect("a witness point");
+    assert!(v < 0.0);
+    // Evaluate the Jacobian at the witness independently: central differences of
+    // the B-spline patch (not the Bezier form).
+    let ring = Ring::from_basis(&folded, &s.ratios(), &basis.w1, &basis.w2).unwrap();
+    let patch = &ring.patch(p.patch).spline;
+    let h = 1e-6;
+    let (s0, t0) = (p.s.clamp(h, 1.0 - h), p.t.clamp(h, 1.0 - h));
+    let (a, b) = (patch.eval(s0 + h, t0), patch.eval(s0 - h, t0));
+    let (c, d) = (patch.eval(s0, t0 + h), patch.eval(s0, t0 - h));
+    let xs = [(a[0] - b[0]) / (2.0 * h), (a[1] - b[1]) / (2.0 * h)];
+    let xt = [(c[0] - d[0]) / (2.0 * h), (c[1] - d[1]) / (2.0 * h)];
+    let jac = xs[0] * xt[1] - xs[1] * xt[0];
+    assert!(
+        f64::from(g.orientation) * jac < 0.0,
+        "witness {p:?}: J = {jac}, orientation {}",
+        g.orientation
+    );
+    // the unperturbed matrix is fine
+    assert_eq!(
+        check_basis(&ext, &s.ratios(), &basis).unwrap().verdict,
+        Verdict::C1Standard
+    );
+}
+
+#[test]
+fn the_second_fourier_mode_is_not_injective() {
+    // Using the eigenvectors of the k = 2 Fourier mode (lambda = 1/2 + cos(4 pi/n)/4)
+    // as a "characteristic map" gives a ring that winds twice (z -> z^2-like).
+    for n in [5usize, 7, 9] {
+        let s = LocalScheme::<f64>::cc_variant(n).unwrap();
+        let basis = basis_at(&s, 3);
+        let want = 0.5 + (4.0 * std::f64::consts::PI / n as f64).cos() / 4.0;
+        assert!(
+            (basis.lambda[0].re - want).abs() < 1e-12,
+            "{:?} vs {want}",
+            basis.lambda
+        );
+        let ext = ExtendedMatrix::new(&s).unwrap();
+        let r = check_basis(&ext, &s.ratios(), &basis).unwrap();
+        assert_ne!(r.verdict, Verdict::C1Standard);
+        match r.verdict {
+            Verdict::NotInjective { winding } => assert_eq!(winding, 2, "n={n}"),
+            Verdict::NotRegular => {}
+            ref v => panic!("n={n}: unexpected {v}"),
+        }
+    }
+}
+
+// ---------------------------------------------------------------- invariances
+
+fn summary(r: &CharmapReport) -> (String, i64, f64) {
+    (
+        r.verdict.code().to_owned(),
+        r.winding_number.unwrap_or(i64::MIN),
+        r.min_jacobian_coeff().unwrap_or(f64::NAN),
+    )
+}
+
+#[test]
+fn rotating_face_labels_and_scaling_knots_change_nothing() {
+    let p = vec![1.0, 0.3, 2.5, 0.8, 1.7, 0.45];
+    let q = vec![0.6, 1.9, 0.2, 1.1, 0.9, 2.2];
+    let knots = CornerIntervals::new(p, q).unwrap();
+    let base = report(&LocalScheme::nurds(knots.ratios().unwrap()));
+    let (code, w, min) = summary(&base);
+    for k in 1..6 {
+        let rot = report(&LocalScheme::nurds(knots.rotated(k).ratios().unwrap()));
+        let (c2, w2, m2) = summary(&rot);
+        assert_eq!((c2.as_str(), w2), (code.as_str(), w), "rotation by {k}");
+        assert!(
+            (m2 - min).abs() < 1e-8,
+            "rotation by {k}: min coeff {m2} vs {min}"
+        );
+    }
+    for f in [1e-3, 7.3, 1e4] {
+        let sc = report(&LocalScheme::nurds(
+            knots.scaled(&f).unwrap().ratios().unwrap(),
+        ));
+        let (c2, w2, m2) = summary(&sc);
+        assert_eq!((c2.as_str(), w2), (code.as_str(), w), "scale {f}");
+        assert!((m2 - min).abs() < 1e-10, "scale {f}: {m2} vs {min}");
+        assert_eq!(sc.structure, base.structure);
+    }
+}
+
+// ---------------------------------------------------------------- random knots
+
+const VERDICT_CODES: &[&str] = &[
+    "c1",
+    "tpc_real_distinct",
+    "tpc_complex_pair",
+    "not_regular",
+    "not_injective",
+    "indeterminate",
+    "no_charmap",
+];
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(120))]
+    #[test]
+    fn random_nurds_verdicts_are_defined(r in (3usize..=8).prop_flat_map(|n| proptest::collection::vec(0.01f64..0.99, n))) {
+        let ratios = EdgeRatios::new(r).unwrap();
+        let s = LocalScheme::nurds(ratios.clone());
+        let rep = report(&s);
+        prop_assert!(VERDICT_CODES.contains(&rep.verdict.code()));
+        if rep.structure != Some(Eigenstructure::Standard) {
+            prop_assert_ne!(rep.verdict.code(), "c1");
+        }
+        // relabelling the corners (i -> i + 1) changes nothing
+        let rot = report(&LocalScheme::nurds(ratios.rotated(1)));
+        prop_assert_eq!(rot.verdict.code(), rep.verdict.code());
+        prop_assert_eq!(rot.winding_number, rep.winding_number);
+        if let (Some(a), Some(b)) = (rot.min_jacobian_coeff(), rep.min_jacobian_coeff()) {
+            prop_assert!((a - b).abs() < 1e-7, "min coeff {} vs {}", a, b);
+        }
+        prop_assert!(rep.point_error.is_nan() || rep.point_error < 1e-6, "point error {}", rep.point_error);
+    }
+}
+
+#[test]
+fn indeterminate_is_rare_for_random_nurds_knots() {
+    // Deterministic LCG sampler, 200 configurations per n = 3..8.
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        0.01 + 0.98 * ((state >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    let mut total = 0;
+    let mut indeterminate = 0;
+    for n in 3..=8 {
+        for _ in 0..200 {
+            let r: Vec<f64> = (0..n).map(|_| next()).collect();
+            let rep = report(&LocalScheme::nurds(EdgeRatios::new(r).unwrap()));
+            total += 1;
+            if rep.verdict.code() == "indeterminate" {
+                indeterminate += 1;
+            }
+        }
+    }
+    println!("indeterminate: {indeterminate} of {total}");
+    assert!(
+        indeterminate * 100 <= total,
+        "indeterminate {indeterminate} of {total}"
+    );
+}
+
+// ---------------------------------------------------------------- structured basis
+
+#[test]
+fn structured_subspace_equals_the_full_eigenvector_subspace() {
+    // Face-block null space of (A - l1)(A - l2) lifted by the block equations
+    // vs. eigenvectors of the full 4n x 4n matrix (faer): same plane, and the
+    // same verdict and min coefficient.
+    use subdiv_lab::charmap::basis::subdominant_basis;
+    let mut state = 7u64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        0.01 + 0.98 * ((state >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    let mut schemes = vec![
+        LocalScheme::<f64>::cc_variant(7).unwrap(),
+        LocalScheme::<f64>::doo_sabin(5).unwrap(),
+    ];
+    for n in 3..=8 {
+        for _ in 0..4 {
+            schemes.push(LocalScheme::nurds(
+                EdgeRatios::new((0..n).map(|_| next()).collect()).unwrap(),
+            ));
+        }
+    }
+    for s in schemes {
+        let full = basis_of(&s);
+        let sn = s.matrix().unwrap().into_matrix();
+        let st = subdominant_basis(&s, &sn, full.structure, full.lambda, 0.01).unwrap();
+        // principal angles: W_full^T W_st has singular values 1 <=> |det| = 1 for orthonormal 2-frames
+        let d = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
+        let g = [
+            [d(&full.w1, &st.w1), d(&full.w1, &st.w2)],
+            [d(&full.w2, &st.w1), d(&full.w2, &st.w2)],
+        ];
+        let det = g[0][0] * g[1][1] - g[0][1] * g[1][0];
+        assert!(
+            (det.abs() - 1.0).abs() < 1e-9,
+            "{} {:?}: |det| = {}",
+            s.kind(),
+            s.ratios().as_slice(),
+            det.abs()
+        );
+        assert!(st.residual < 1e-12);
+        let ext = ExtendedMatrix::new(&s).unwrap();
+        let (a, b) = (
+            check_basis(&ext, &s.ratios(), &full).unwrap(),
+            check_basis(&ext, &s.ratios(), &st).unwrap(),
+        );
+        assert_eq!(a.verdict, b.verdict);
+        assert!((a.min_jacobian_coeff().unwrap() - b.min_jacobian_coeff().unwrap()).abs() < 1e-8);
+    }
+}
+
+#[test]
+fn n4_uniform_ring_is_exactly_the_square_annulus_up_to_a_linear_map() {
+    // Exact subdominant eigenvectors of the regular 4x4 grid: the Greville
+    // coordinates (linear precision). The ring is then the square annulus
+    // 1/2 <= max(|x|, |y|) <= 1 itself, and the ring of the computed basis is a
+    // linear image of it.
+    let s = LocalScheme::<f64>::cc_variant(4).unwrap();
+    let xy: [(f64, f64); 16] = [
+        (-0.5, -0.5),
+        (0.5, -0.5),
+        (0.5, 0.5),
+        (-0.5, 0.5),
+        (-0.5, -1.5),
+        (0.5, -1.5),
+        (1.5, -0.5),
+        (1.5, 0.5),
+        (0.5, 1.5),
+        (-0.5, 1.5),
+        (-1.5, 0.5),
+        (-1.5, -0.5),
+        (-1.5, -1.5),
+        (1.5, -1.5),
+        (1.5, 1.5),
+        (-1.5, 1.5),
+    ];
+    let gx: Vec<f64> = xy.iter().map(|p| p.0).collect();
+    let gy: Vec<f64> = xy.iter().map(|p| p.1).collect();
+    let sn = s.matrix().unwrap().into_matrix();
+    for (w, name) in [(&gx, "x"), (&gy, "y")] {
+        let sw = &sn * nalgebra::DVector::from_column_slice(w);
+        for i in 0..16 {
+            assert!(
+                (sw[i] - 0.5 * w[i]).abs() < 1e-15,
+                "{name} is an eigenvector for 1/2"
+            );
+        }
+    }
+    let ext = ExtendedMatrix::new(&s).unwrap();
+    let exact = Ring::from_basis(&ext, &s.ratios(), &gx, &gy).unwrap();
+    let linf = |p: [f64; 2]| p[0].abs().max(p[1].abs());
+    for (chain, want) in [(exact.outer_boundary(), 1.0), (exact.inner_boundary(), 0.5)] {
+        for c in &chain {
+            for k in 0..=8 {
+                let p = c.eval(k as f64 / 8.0);
+                assert!(
+                    (linf(p) - want).abs() < 1e-14,
+                    "{p:?} not on the square max(|x|, |y|) = {want}"
+                );
+            }
+        }
+    }
+    for p in exact.patches() {
+        // each patch is an axis-parallel square of side 1/2
+        let (a, b) = (p.bezier.eval(0.0, 0.0), p.bezier.eval(1.0, 1.0));
+        assert!(
+            ((a[0] - b[0]).abs() - 0.5).abs() < 1e-14 && ((a[1] - b[1]).abs() - 0.5).abs() < 1e-14
+        );
+        // |J| = (1/2)^2 everywhere; the charts are oriented clockwise with respect
+        // to the counter-clockwise face, so J = -1/4 in these coordinates
+        assert!(
+            (p.bezier.jacobian_at(0.3, 0.6) + 0.25).abs() < 1e-14,
+            "{}: J = {}",
+            p.id,
+            p.bezier.jacobian_at(0.3, 0.6)
+        );
+    }
+    // computed basis: a linear image
+    let basis = basis_of(&s);
+    let ring = ring_of(&s, &basis);
+    let (p0, q0) = (
+        exact.patches()[0].bezier.eval(0.0, 0.0),
+        ring.patches()[0].bezier.eval(0.0, 0.0),
+    );
+    let (p1, q1) = (
+        exact.patches()[1].bezier.eval(1.0, 0.0),
+        ring.patches()[1].bezier.eval(1.0, 0.0),
+    );
+    // solve L [p0 p1] = [q0 q1]
+    let det = p0[0] * p1[1] - p1[0] * p0[1];
+    let inv = [[p1[1] / det, -p1[0] / det], [-p0[1] / det, p0[0] / det]];
+    let l = |k: usize| {
+        [
+            q0[k] * inv[0][0] + q1[k] * inv[1][0],
+            q0[k] * inv[0][1] + q1[k] * inv[1][1],
+        ]
+    };
+    let (lx, ly) = (l(0), l(1));
+    for (pe, pr) in exact.patches().iter().zip(ring.patches()) {
+        for (u, v) in [(0.0, 1.0), (0.5, 0.5), (1.0, 0.25)] {
+            let (e, r) = (pe.bezier.eval(u, v), pr.bezier.eval(u, v));
+            let img = [lx[0] * e[0] + lx[1] * e[1], ly[0] * e[0] + ly[1] * e[1]];
+            assert!(
+                (img[0] - r[0]).abs() < 1e-12 && (img[1] - r[1]).abs() < 1e-12,
+                "{}: {img:?} vs {r:?}",
+                pe.id
+            );
+        }
+    }
+}
+
+#[test]
+fn eigenstructures_without_a_planar_map_are_reported_with_a_reason() {
+    use subdiv_lab::charmap::check_classified;
+    use subdiv_lab::spectral::classify::ClassName;
+    use subdiv_lab::spectral::{classify_scheme, SubdominantClass};
+    let s = LocalScheme::<f64>::cc_variant(5).unwrap();
+    let base = classify_scheme(&s).unwrap();
+    for (class, code, needle) in [
+        (
+            SubdominantClass::Defective,
+            "defective",
+            "1-dimensional eigenspace",
+        ),
+        (
+            SubdominantClass::NotSeparated,
+            "not_separated",
+            "|lambda_2| = |lambda_3|",
+        ),
+        (
+            SubdominantClass::Indeterminate {
+                between: (ClassName::Standard, ClassName::ComplexPair),
+                reason: "test".into(),
+            },
+            "indeterminate",
+            "undecided between standard and complex_pair",
+        ),
+    ] {
+        let mut sub = base.clone();
+        sub.class = class;
+        let r = check_classified(&s, &sub).unwrap();
+        assert_eq!(r.verdict.code(), "no_charmap");
+        let text = r.verdict.to_string();
+        assert!(text.contains(code) && text.contains(needle), "{text}");
+        assert!(r.regularity.is_none() && r.winding_number.is_none());
+        assert_eq!(r.to_json()["regular"], serde_json::Value::Null);
+    }
+}
