@@ -14,6 +14,7 @@
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
 //! * [`schemes`]: local subdivision matrices through one assembly path;
+//! * [`cc_study`]: parameter study of the shape-adjustable Catmull-Clark scheme (spectral part);
 //! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face;
 //! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
 //! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
@@ -36,6 +37,7 @@
 
 pub mod bezier;
 pub mod bspline;
+pub mod cc_study;
 pub mod ccss_bound;
 pub mod charmap;
 pub mod contraction;

@@ -253,3 +253,56 @@ fn cli_analyze_json_for_the_catmull_clark_family() {
     assert_eq!(code, 1);
     assert!(err.contains("face block"), "{err}");
 }
+
+mod study {
+    use subdiv_lab::cc_study::{standard_intervals, study_curve, study_point};
+
+    #[test]
+    fn curves_agree_with_the_fourier_blocks() {
+        for n in [3, 4, 7, 16, 32] {
+            for p in study_curve(n, 20).unwrap() {
+                let m = p.lambda1[0].hypot(p.lambda1[1]);
+                assert!(
+                    (m - p.fourier_subdominant).abs() < 1e-10,
+                    "n = {n}, c = {}",
+                    p.c
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn c_zero_is_not_separated_and_catmull_clark_is_standard() {
+        // c = 0: spectrum 1, 1/2 (n-fold), 1/4 (n-fold) -> |lambda_2| = |lambda_3|.
+        for n in 3..=32 {
+            assert_eq!(
+                study_point(n, 0.0).unwrap().class,
+                "not_separated",
+                "n = {n}"
+            );
+            assert_eq!(study_point(n, 0.5).unwrap().class, "standard", "n = {n}");
+        }
+    }
+
+    #[test]
+    fn standard_intervals_are_bracketed_to_the_tolerance() {
+        for n in [3, 5, 8, 32] {
+            let iv = standard_intervals(n, 16, 1e-6).unwrap();
+            assert!(!iv.is_empty());
+            for i in &iv {
+                assert!(i.lo <= i.hi);
+                if i.lo > 0.0 {
+                    assert!((i.lo - i.lo_outside).abs() <= 1e-6);
+                    assert_eq!(study_point(n, i.lo).unwrap().class, "standard");
+                    assert_ne!(study_point(n, i.lo_outside).unwrap().class, "standard");
+                }
+                if i.hi < 1.0 {
+                    assert!((i.hi_outside - i.hi).abs() <= 1e-6);
+                    assert_ne!(study_point(n, i.hi_outside).unwrap().class, "standard");
+                }
+            }
+            // Catmull-Clark (c = 1/2) lies in one of them.
+            assert!(iv.iter().any(|i| i.lo <= 0.5 && 0.5 <= i.hi), "n = {n}");
+        }
+    }
+}
