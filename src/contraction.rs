@@ -17,7 +17,7 @@
 //!    `W >= 0`, every row sum `= 3/4` and `c^T A = c^T`, exactly for rational
 //!    input. For NURDS `W = (I + R)/4` (the formula above); for original
 //!    Doo-Sabin `W_ij = (2 + 2 cos(2 pi (i-j)/n)) / (4n)`, `W_ii = (n+4)/(4n)`
-//!    **[derived]**, so the theorem holds for the whole family.
+//!    **\[derived\]**, so the theorem holds for the whole family.
 //! 2. [`measure`]: iterate `S_n` on random control points (deterministic
 //!    [`SplitMix64`]) and record `m_k = max_i |P^k_i - F|` for `k = 0..levels`,
 //!    the per-step ratios `m_{k+1} / m_k` and the fitted asymptotic rate.

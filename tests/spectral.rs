@@ -153,6 +153,10 @@ fn tensor_product_quad_knots() {
         assert_eq!(sub.class, SubdominantClass::Standard, "{sub:?}");
         let full = analyze(&s, &AnalyzeOptions::default()).unwrap();
         assert_eq!(full.subdominant.class, SubdominantClass::Standard);
+        assert_eq!(
+            full.subdominant_full.unwrap().class,
+            SubdominantClass::Standard
+        );
     }
 }
 
@@ -245,7 +249,9 @@ fn structured_and_full_agree_on_random_knots() {
         let full = full_values(&s);
         assert_spectra_close(&st, &full, 1e-6);
         let fast = classify_scheme(&s).unwrap();
-        let slow = analyze(&s, &AnalyzeOptions::default()).unwrap().subdominant;
+        let analysis = analyze(&s, &AnalyzeOptions::default()).unwrap();
+        assert_eq!(analysis.subdominant, fast);
+        let slow = analysis.subdominant_full.unwrap();
         if let (Some(a), Some(b)) = (fast.class.class_name(), slow.class.class_name()) {
             assert_eq!(a, b, "n = {n}: fast {fast:?} full {slow:?}");
             determinate += 1;
@@ -644,5 +650,34 @@ fn classify_matrix_agrees_with_the_structured_path() {
         let s = LocalScheme::<f64>::doo_sabin(n).unwrap();
         let c = classify_matrix(&s.matrix().unwrap().into_matrix()).unwrap();
         assert_eq!(c.class, SubdominantClass::Standard, "n = {n}: {c:?}");
+    }
+}
+
+#[test]
+fn quad_with_one_opposite_pair_summing_to_one_is_defective() {
+    // [derived, found by sweep and certified exactly] For n = 4 the two
+    // non-trivial face eigenvalues sum to 1 (trace); with r_0 + r_2 = 1 but
+    // r_1 + r_3 != 1 they coincide at 1/2 with a 1-dimensional eigenspace.
+    let q = |a: i64, b: i64| Rational::frac(a, b);
+    let rq = EdgeRatios::new(vec![q(69, 250), q(529, 1000), q(181, 250), q(37, 50)]).unwrap();
+    let f = classify_scheme(&LocalScheme::nurds(rq.to_f64())).unwrap();
+    assert_eq!(f.class, SubdominantClass::Defective, "{f:?}");
+    let v = exact_verdict(&LocalScheme::nurds(rq), Some(&f)).unwrap();
+    assert_eq!(v.top_pair, TopPair::RealDouble { semisimple: false });
+    assert_eq!(v.class, Some(ClassName::Defective));
+    // Both opposite pairs summing to 1 (tensor-product knots): standard.
+    let rq = EdgeRatios::new(vec![q(3, 10), q(1, 5), q(7, 10), q(4, 5)]).unwrap();
+    let f = classify_scheme(&LocalScheme::nurds(rq.to_f64())).unwrap();
+    assert_eq!(f.class, SubdominantClass::Standard, "{f:?}");
+    assert_eq!(
+        exact_verdict(&LocalScheme::nurds(rq), Some(&f))
+            .unwrap()
+            .class,
+        Some(ClassName::Standard)
+    );
+    // Original Doo-Sabin, exactly (rational weights for n = 3, 4, 6).
+    for n in [3, 4, 6] {
+        let v = exact_verdict(&LocalScheme::<Rational>::doo_sabin(n).unwrap(), None).unwrap();
+        assert_eq!(v.class, Some(ClassName::Standard), "n = {n}: {v:?}");
     }
 }

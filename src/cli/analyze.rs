@@ -184,6 +184,14 @@ fn summary(a: &LocalAnalysis) -> String {
         s.abs_lambda3,
         s.gap
     );
+    if let Some(full) = &a.subdominant_full {
+        if full.class != s.class {
+            out += &format!(
+                "  (full 4n x 4n matrix alone: {}; the structured verdict uses the exactly known E/C eigenvalues)\n",
+                full.class.name()
+            );
+        }
+    }
     if let Some(r) = s.ratio {
         out += &format!("  lambda2 / lambda1 = {r:.10}\n");
     }

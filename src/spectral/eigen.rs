@@ -25,7 +25,7 @@
 //! wrong numbers.
 //!
 //! Residuals are small (`~ dim eps ||S||`) for simple and semisimple
-//! eigenvalues, but only `O(sqrt(eps))` at defective ones. **[derived]** For
+//! eigenvalues, but only `O(sqrt(eps))` at defective ones. **\[derived\]** For
 //! NURDS with even `n` the face block always has the eigenvalue 1/4 (the
 //! alternating vector `(-1)^j` is a left null vector of `R`), which collides
 //! with the 1/4 of the E blocks; `S_n` then generally has a Jordan block at 1/4.
@@ -53,6 +53,11 @@ pub const TRACE_CHECK_FACTOR: f64 = 1e4;
 /// eigenvalues; inverse iteration restores residuals of the order of the
 /// eigenvalue error (`eps` for semisimple, `sqrt(eps)` for defective ones).
 pub const RESIDUAL_REFINE_FACTOR: f64 = 100.0;
+
+/// Eigenvalues closer than `REFINE_CLUSTER * ||S||_F` share one LU
+/// factorisation during refinement (inverse iteration converges to the
+/// cluster's invariant subspace from each vector's own starting point).
+pub const REFINE_CLUSTER: f64 = 1e-6;
 
 /// A residual above `RESIDUAL_FAIL_FACTOR * sqrt(dim * eps) * ||S||_F` after
 /// refinement means the decomposition is wrong, not merely inaccurate: even a
@@ -128,17 +133,29 @@ fn refine(
 ) {
     let n = m.nrows();
     let norm = m.norm().max(f64::MIN_POSITIVE);
+    // One factorisation per cluster: eigenvalues within REFINE_CLUSTER * ||S||
+    // of the cached shift reuse its LU (a multiple eigenvalue such as the 1/4
+    // of the Doo-Sabin family would otherwise cost one O(dim^3) LU per copy).
+    let mut cache: Option<(
+        Complex64,
+        nalgebra::linalg::LU<Complex64, nalgebra::Dyn, nalgebra::Dyn>,
+    )> = None;
     for k in 0..n {
         if res[k] <= trigger {
             continue;
         }
-        // Shift slightly off the eigenvalue so the LU is not exactly singular.
-        let lambda = values[k] + Complex64::new(norm * 1e-14, 0.0);
-        let mut a = m.clone();
-        for i in 0..n {
-            a[(i, i)] -= lambda;
+        let reuse =
+            matches!(&cache, Some((c, _)) if (c - values[k]).norm() <= REFINE_CLUSTER * norm);
+        if !reuse {
+            // Shift slightly off the eigenvalue so the LU is not exactly singular.
+            let lambda = values[k] + Complex64::new(norm * 1e-14, 0.0);
+            let mut a = m.clone();
+            for i in 0..n {
+                a[(i, i)] -= lambda;
+            }
+            cache = Some((values[k], a.lu()));
         }
-        let lu = a.lu();
+        let Some((_, lu)) = &cache else { continue };
         let mut x = vecs.column(k).into_owned();
         // faer can return non-finite vectors at exactly repeated eigenvalues
         // (e.g. the adjustable Catmull-Clark scheme at c = 0, where 1/2 and

@@ -241,6 +241,18 @@ pub fn rank_at_root(a: &DMatrix<Rational>, f: &Poly, lo: &Rational, hi: &Rationa
     rank
 }
 
+/// The floating-point classification of the same configuration (for thresholds).
+fn float_guide(scheme: &LocalScheme<Rational>) -> Option<Subdominant> {
+    let f = match scheme {
+        LocalScheme::Nurds(r) => LocalScheme::nurds(r.to_f64()),
+        LocalScheme::DooSabin { valence } => LocalScheme::<f64>::doo_sabin(*valence).ok()?,
+        LocalScheme::CcVariant { valence } => LocalScheme::<f64>::cc_variant(*valence).ok()?,
+        #[allow(unreachable_patterns)]
+        _ => return None,
+    };
+    super::classify_scheme(&f).ok()
+}
+
 /// A rational close to `x` (dyadic, 2^-40 resolution).
 fn rat(x: f64) -> Rational {
     let scale = (1u64 << 40) as f64;
@@ -251,7 +263,8 @@ fn rat(x: f64) -> Rational {
 }
 
 /// Exact verdicts for a Doo-Sabin-family configuration with rational
-/// parameters; `float` (optional) supplies the thresholds and is compared.
+/// parameters; `float` (optional; computed internally when `None`) supplies
+/// the thresholds, and a given `float` verdict is compared.
 ///
 /// ```
 /// use subdiv_lab::knots::EdgeRatios;
@@ -340,7 +353,12 @@ pub fn exact_verdict(
     let mut reason = String::new();
     // Candidate thresholds: between the float |lambda_2| and |lambda_3|.
     let mut candidates = Vec::new();
-    if let Some(f) = float {
+    // Without a float verdict, compute one (thresholds only; any t is valid).
+    let own_guide = match float {
+        Some(_) => None,
+        None => float_guide(scheme),
+    };
+    if let Some(f) = float.or(own_guide.as_ref()) {
         let (m2, m3) = (f.lambda2.norm(), f.abs_lambda3);
         if m2 > m3 {
             for w in [0.5, 0.25, 0.75, 0.1, 0.9] {

@@ -8,14 +8,16 @@
 //!   Francis double-shift QR, bounded iterations) for sweeps;
 //! * [`structured`]: the Doo-Sabin family fast path (face block + the known
 //!   1/4, 1/8, 1/16);
-//! * [`classify`]: the subdominant classes of section 7 with condition-scaled
+//! * [`classify`](mod@classify): the subdominant classes of section 7 with condition-scaled
 //!   tolerances;
 //! * [`exact`]: exact certificates over the rationals (characteristic
 //!   polynomial, Sturm sequences, Schur-Cohn counts).
 //!
-//! Entry points: [`analyze`] (everything `subdiv-lab analyze --json` prints)
-//! and [`classify_scheme`] (classification only, structured, allocation-free
-//! after warm-up: the sweep path).
+//! Entry points: [`analyze`] (everything `subdiv-lab analyze --json` prints),
+//! [`classify_scheme`] (classification only, structured, allocation-free
+//! after warm-up: the sweep path for the Doo-Sabin family) and
+//! [`classify_matrix`] (classification only, for any square matrix, by the
+//! same kernel: the sweep path for schemes outside the family).
 //!
 //! ```
 //! use subdiv_lab::knots::EdgeRatios;
@@ -199,8 +201,16 @@ pub struct LocalAnalysis {
     /// real and imaginary part of the left eigenvector of a complex pair
     /// (full path), scaled to unit max-norm.
     pub tangent_stencils: Option<[Vec<f64>; 2]>,
-    /// Subdominant classification.
+    /// Subdominant classification. For the Doo-Sabin family it is made from
+    /// the structured evidence ([`classify_scheme`]: the E/C eigenvalues are
+    /// known exactly, condition numbers come from the face block), because in
+    /// the full `S_n` the E-block eigenvalue 1/4 collides with face
+    /// eigenvalues and is generally defective there (see [`eigen`]), which
+    /// makes first-order error radii of the full matrix meaningless near 1/4.
     pub subdominant: Subdominant,
+    /// The classification from the full `4n x 4n` decomposition alone (full
+    /// path only); an independent cross-check of `subdominant`.
+    pub subdominant_full: Option<Subdominant>,
     /// Theorem 1 (Doo-Sabin family only: the face-block contraction of
     /// math doc section 5; `None` for other schemes).
     pub contraction: Option<ContractionSummary>,
@@ -253,7 +263,7 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
     let s = lm.matrix();
     let face_weights = scheme.face_weights();
     let expected_limit = expected_limit_weights(scheme)?;
-    let (eigenvalues, residuals, conditions, limit, tangents, subdominant);
+    let (eigenvalues, residuals, conditions, limit, tangents, subdominant, subdominant_full);
     match options.path {
         SpectrumPath::Full => {
             let e = Eigen::new(s, EigenOptions::BOTH)?;
@@ -261,7 +271,7 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
             let eta = BACKWARD_ERROR_FACTOR * dim as f64 * f64::EPSILON * e.frobenius_norm();
             let kappa = e.condition_numbers().unwrap_or(&[]).to_vec();
             let radii: Vec<f64> = kappa.iter().map(|&k| radius(k, eta)).collect();
-            subdominant = classify(
+            let full = classify(
                 &Evidence {
                     values: e.values(),
                     radii: &radii,
@@ -269,6 +279,12 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
                 },
                 &mut |lam| second_smallest_sigma(s, lam),
             )?;
+            subdominant = if scheme.kind().is_doo_sabin_family() {
+                classify_scheme(scheme)?
+            } else {
+                full.clone()
+            };
+            subdominant_full = Some(full);
             eigenvalues = e.values().iter().map(|&z| c64(z)).collect::<Vec<_>>();
             residuals = e.residuals().map(<[f64]>::to_vec);
             conditions = Some(kappa);
@@ -313,6 +329,7 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
                 None => structured_spectrum(scheme)?,
             };
             subdominant = classify_scheme(scheme)?;
+            subdominant_full = None;
             eigenvalues = all.iter().map(|&z| c64(z)).collect();
             residuals = None;
             conditions = None;
@@ -367,6 +384,7 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
         limit_weights_error,
         tangent_stencils: tangents,
         subdominant,
+        subdominant_full,
         contraction,
         exact: None,
         fourier_deviation,
@@ -513,7 +531,13 @@ thread_local! {
 /// ```
 /// use nalgebra::DMatrix;
 /// use subdiv_lab::spectral::{classify_matrix, SubdominantClass};
-/// let s = DMatrix::from_row_slice(3, 3, &[1.0, 0.0, 0.0, 0.25, 0.5, 0.25, 0.0, 0.0, 0.25]);
+/// // Eigenvalues 1, 1/2, 1/4, 1/4: |lambda_2| = |lambda_3|.
+/// let s = DMatrix::from_row_slice(4, 4, &[
+///     1.0, 0.0, 0.0, 0.0,
+///     0.5, 0.5, 0.0, 0.0,
+///     0.75, 0.0, 0.25, 0.0,
+///     0.75, 0.0, 0.0, 0.25,
+/// ]);
 /// assert_eq!(classify_matrix(&s).unwrap().class, SubdominantClass::NotSeparated);
 /// ```
 pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {

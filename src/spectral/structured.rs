@@ -1,4 +1,4 @@
-//! Structured spectrum of the Doo-Sabin family (math doc section 4, **[derived]**).
+//! Structured spectrum of the Doo-Sabin family (math doc section 4, **\[derived\]**).
 //!
 //! `S_n` is block lower-triangular (P block `n x n`; E block = `n` decoupled
 //! 2x2 blocks `[[ (1+r)/8, (1-r)/8 ], [ r/8, (2-r)/8 ]]` with trace 3/8 and
@@ -13,7 +13,7 @@
 //! multiple of `e_0`: the trailing `(n-1) x (n-1)` block `B` of `H A H` has
 //! `spec(B) = spec(A) \ {1}`. For NURDS and the Catmull-Clark variant,
 //! `A = M + 1 c^T / 4` with `M = (I + R)/4`, and `H 1 c^T H` only touches row 0,
-//! so `B` is the trailing block of `H M H` **[derived]**: the face weights `c`
+//! so `B` is the trailing block of `H M H` **\[derived\]**: the face weights `c`
 //! are not needed for the spectrum at all (no closed form, no linear solve).
 //!
 //! `B` goes to the allocation-free [`kernel`](super::kernel). This path is for
