@@ -20,6 +20,7 @@
 //! * [`bezier`]: tensor-product Bernstein patches and planar Bezier curves;
 //! * [`charmap`]: characteristic maps (regularity, injectivity) of the Doo-Sabin family;
 //! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
+//! * [`cc_study`]: parameter study of the shape-adjustable Catmull-Clark scheme (spectral part);
 //! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face;
 //! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory);
 //! * [`sweep`]: parameter sweeps (specs, samplers, sharded resumable CSV output);
@@ -37,6 +38,7 @@
 
 pub mod bezier;
 pub mod bspline;
+pub mod cc_study;
 pub mod ccss_bound;
 pub mod charmap;
 pub mod contraction;

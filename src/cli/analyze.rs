@@ -140,13 +140,17 @@ fn cplx(z: [f64; 2]) -> String {
 /// Human-readable summary.
 fn summary(a: &LocalAnalysis) -> String {
     let s = &a.subdominant;
+    let cc = a.fourier_deviation.is_some();
     let mut out = format!(
-        "{} around an n = {} face ({} path, {} eigenvalues)\n",
+        "{} around an n = {} {} ({} path, {} eigenvalues)\n",
         a.scheme,
         a.valence,
-        match a.path {
-            SpectrumPath::Full => "full 4n x 4n",
-            SpectrumPath::Structured => "structured",
+        if cc { "vertex" } else { "face" },
+        match (a.path, cc) {
+            (SpectrumPath::Full, false) => "full 4n x 4n",
+            (SpectrumPath::Full, true) => "full (2n+1) one-ring",
+            (SpectrumPath::Structured, false) => "structured",
+            (SpectrumPath::Structured, true) => "Fourier blocks",
         },
         a.eigenvalues.len()
     );
@@ -194,13 +198,31 @@ fn summary(a: &LocalAnalysis) -> String {
     if let (Some(rho), Some(theta)) = (s.rho, s.theta) {
         out += &format!("  rho = {rho:.10}, theta = {theta:.10} rad\n");
     }
-    out += "face weights c:";
-    for w in &a.face_weights {
-        out += &format!(" {w:.8}");
-    }
-    out.push('\n');
-    if let Some(e) = a.limit_weights_error {
-        out += &format!("  left eigenvector for 1 vs (c, 0): max difference {e:.2e}\n");
+    if cc {
+        if let Some(w) = &a.limit_weights {
+            out += "limit stencil (v, e_0.., f_0..):";
+            for x in w {
+                out += &format!(" {x:.8}");
+            }
+            out.push('\n');
+        }
+        if let Some(e) = a.limit_weights_error {
+            out += &format!(
+                "  left eigenvector for 1 vs closed-form limit stencil: max difference {e:.2e}\n"
+            );
+        }
+        if let Some(d) = a.fourier_deviation {
+            out += &format!("  spectrum vs closed-form Fourier blocks: max difference {d:.2e}\n");
+        }
+    } else {
+        out += "face weights c:";
+        for w in &a.face_weights {
+            out += &format!(" {w:.8}");
+        }
+        out.push('\n');
+        if let Some(e) = a.limit_weights_error {
+            out += &format!("  left eigenvector for 1 vs (c, 0): max difference {e:.2e}\n");
+        }
     }
     if let Some(c) = &a.contraction {
         out += &format!(

@@ -3,6 +3,7 @@
 //! library, and formats the result. No numerics here.
 
 mod analyze;
+mod cc_study;
 mod ccss_bound;
 mod matrix;
 mod report;
@@ -35,6 +36,8 @@ enum Command {
     Matrix(matrix::MatrixArgs),
     /// Distance bound beta(n) between a Catmull-Clark patch and its limit face (LP).
     CcssBound(ccss_bound::CcssBoundArgs),
+    /// Adjustable Catmull-Clark parameter study: eigenvalues and class against c (CSV).
+    CcStudy(cc_study::CcStudyArgs),
     /// Refine a closed polygon mesh (OBJ) with NURDS, Doo-Sabin or the Catmull-Clark variant.
     Subdivide(subdivide::SubdivideArgs),
     /// Run a report spec (default analysis/default.toml) and write reports/<name>/.
@@ -90,6 +93,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Matrix(args) => matrix::run(args),
         Command::CcssBound(args) => ccss_bound::run(args),
+        Command::CcStudy(args) => cc_study::run(args),
         Command::Subdivide(args) => subdivide::run(args),
         Command::Report(args) => report::run(args),
         Command::Analyze(args) => analyze::run(args),

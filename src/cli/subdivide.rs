@@ -19,9 +19,12 @@ use subdiv_lab::schemes::SchemeKind;
 pub(crate) struct SubdivideArgs {
     /// Input mesh (closed, oriented OBJ).
     input: PathBuf,
-    /// Scheme: nurds, doo-sabin or cc-variant.
+    /// Scheme: nurds, doo-sabin, cc-variant, catmull-clark or adjustable-cc.
     #[arg(long)]
     scheme: String,
+    /// Shape parameter c in [0, 1] of --scheme adjustable-cc (0.3, 1/3, 25e-2).
+    #[arg(long)]
+    c: Option<String>,
     /// Knot-interval file, one directed edge per line: "u v d" (1-based OBJ indices). NURDS only.
     #[arg(long)]
     knots: Option<PathBuf>,
@@ -39,7 +42,8 @@ pub(crate) struct SubdivideArgs {
     knots_out: Option<PathBuf>,
     /// Write the limit mesh instead of the refined control mesh: face limit
     /// points (the dual of the refined mesh), fanned around the limit point of
-    /// every regular vertex.
+    /// every regular vertex. Catmull-Clark family: the refined mesh with every
+    /// vertex moved to its limit position (needs --levels >= 1 for non-quads).
     #[arg(long)]
     limit: bool,
     /// Print per-level statistics (counts; every extraordinary face's max |P_i - F| and its ratio).
@@ -52,6 +56,14 @@ pub(crate) struct SubdivideArgs {
 
 pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     let scheme: SchemeKind = args.scheme.parse().map_err(CliError::usage)?;
+    if scheme.is_catmull_clark_family() {
+        return run_cc(args, scheme);
+    }
+    if args.c.is_some() {
+        return Err(CliError::usage(anyhow!(
+            "--c is the shape parameter of --scheme adjustable-cc only"
+        )));
+    }
     if args.output.is_none() && args.knots_out.is_none() && !args.stats && !args.timing {
         return Err(CliError::usage(anyhow!(
             "nothing to do: give -o OUT.obj, --knots-out OUT.knots, --stats or --timing"
@@ -250,5 +262,89 @@ fn write_temp(target: &Path, data: &[u8]) -> anyhow::Result<PathBuf> {
             let _ = std::fs::remove_file(&tmp);
             Err(anyhow!(e).context(format!("cannot write {}", target.display())))
         }
+    }
+}
+
+/// `subdivide` for the Catmull-Clark family (`--scheme catmull-clark|adjustable-cc [--c C]`).
+fn run_cc(args: SubdivideArgs, scheme: SchemeKind) -> CliResult {
+    let c = match (scheme, &args.c) {
+        (SchemeKind::CatmullClark, None) => 0.5,
+        (SchemeKind::CatmullClark, Some(_)) => {
+            return Err(CliError::usage(anyhow!(
+                "--scheme catmull-clark has c = 1/2; use --scheme adjustable-cc --c C"
+            )))
+        }
+        (_, None) => {
+            return Err(CliError::usage(anyhow!(
+                "--scheme adjustable-cc needs --c C in [0, 1]"
+            )))
+        }
+        (_, Some(t)) => subdiv_lab::scalar::parse_exact(t)
+            .map(|r| subdiv_lab::scalar::Scalar::to_f64(&r))
+            .filter(|x| (0.0..=1.0).contains(x))
+            .ok_or_else(|| CliError::usage(anyhow!("--c: {t:?} is not a number in [0, 1]")))?,
+    };
+    if args.knots.is_some() || args.knots_out.is_some() || args.stats {
+        return Err(CliError::usage(anyhow!(
+            "--knots, --knots-out and --stats are Doo-Sabin-family options"
+        )));
+    }
+    let Some(path) = args.output.clone() else {
+        if args.timing {
+            // Timing only: fall through with no output.
+            return cc_refine_and_write(&args, c, None);
+        }
+        return Err(CliError::usage(anyhow!(
+            "nothing to do: give -o OUT.obj or --timing"
+        )));
+    };
+    cc_refine_and_write(&args, c, Some(path))
+}
+
+fn cc_refine_and_write(args: &SubdivideArgs, c: f64, path: Option<PathBuf>) -> CliResult {
+    use subdiv_lab::mesh::catmull_clark::{limit_mesh_cc, refine_cc};
+    let text = std::fs::read_to_string(&args.input)
+        .with_context(|| format!("cannot read {}", args.input.display()))
+        .map_err(CliError::usage)?;
+    let (mut mesh, _) = obj::parse_obj(&text)
+        .with_context(|| format!("{}", args.input.display()))
+        .map_err(CliError::usage)?;
+    let needed = half_edges_after(&mesh, args.levels);
+    if needed > MAX_HALF_EDGES {
+        return Err(CliError::usage(anyhow!(
+            "--levels {}: the result would have {needed} half-edges (limit {MAX_HALF_EDGES})",
+            args.levels
+        )));
+    }
+    let t = std::time::Instant::now();
+    for _ in 0..args.levels {
+        mesh = refine_cc(&mesh, c).map_err(CliError::failure)?;
+    }
+    let secs = t.elapsed().as_secs_f64();
+    if args.timing {
+        eprintln!(
+            "refinement: {} levels, {} faces, {} vertices, {:.6} s",
+            args.levels,
+            mesh.face_count(),
+            mesh.vertex_count(),
+            secs
+        );
+    }
+    let Some(path) = path else { return Ok(()) };
+    let out_mesh = if args.limit {
+        limit_mesh_cc(&mesh, c).map_err(CliError::failure)?
+    } else {
+        mesh
+    };
+    let mut buf = Vec::new();
+    obj::write_obj(&out_mesh, &mut buf).map_err(CliError::failure)?;
+    if path.as_os_str() == "-" {
+        std::io::stdout()
+            .lock()
+            .write_all(&buf)
+            .map_err(CliError::failure)?;
+        Ok(())
+    } else {
+        write_all_atomically(&[(path, buf)])
     }
 }

@@ -36,6 +36,7 @@
 // Index loops mirror the subscripts of the formulas in the math doc.
 #![allow(clippy::needless_range_loop)]
 
+pub mod catmull_clark;
 pub mod generators;
 pub mod knot_file;
 pub mod limit;
@@ -231,6 +232,21 @@ pub enum MeshError {
     /// A scheme this module does not refine.
     #[error("mesh refinement does not support scheme {0}")]
     UnsupportedScheme(String),
+    /// A Catmull-Clark-family operation that needs quads met another face.
+    #[error(
+        "face {face} has {corners} corners; {operation} needs an all-quad mesh (refine once first)"
+    )]
+    NotAllQuads {
+        /// The face.
+        face: usize,
+        /// Its number of corners.
+        corners: usize,
+        /// What needed quads.
+        operation: &'static str,
+    },
+    /// The shape parameter `c` of the Catmull-Clark family is outside `[0, 1]`.
+    #[error("shape parameter c = {0} is not in [0, 1]")]
+    InvalidShapeParameter(f64),
 }
 
 /// Largest number of half-edges a mesh may have (indices are `u32`).

@@ -157,6 +157,16 @@ fn refine(
         }
         let Some((_, lu)) = &cache else { continue };
         let mut x = vecs.column(k).into_owned();
+        // faer can return non-finite vectors at exactly repeated eigenvalues
+        // (e.g. the adjustable Catmull-Clark scheme at c = 0, where 1/2 and
+        // 1/4 have multiplicity n): restart from a deterministic generic
+        // vector, different for each k.
+        if x.iter().any(|z| !(z.re.is_finite() && z.im.is_finite())) || x.norm() == 0.0 {
+            x = nalgebra::DVector::from_fn(n, |i, _| {
+                let t = ((i + 1) * (k + 2)) as f64 * 0.618_033_988_749_895;
+                Complex64::new(0.5 + (t - t.floor()), 0.0)
+            });
+        }
         let mut ok = true;
         for _ in 0..2 {
             match lu.solve(&x) {
@@ -178,7 +188,7 @@ fn refine(
             continue;
         }
         let r = (m * &x - &x * values[k]).norm();
-        if r < res[k] {
+        if r < res[k] || res[k].is_nan() {
             res[k] = r;
             vecs.set_column(k, &x);
         }

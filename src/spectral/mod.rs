@@ -182,13 +182,21 @@ pub struct LocalAnalysis {
     pub residuals: Option<Vec<f64>>,
     /// Eigenvalue condition numbers (full path: all; structured: `None`).
     pub condition_numbers: Option<Vec<f64>>,
-    /// Face weights `c`.
+    /// Face weights `c` (empty for the Catmull-Clark family).
     pub face_weights: Vec<f64>,
     /// Left eigenvector for 1 normalised to sum 1 (full path): `c` on the P
-    /// points and 0 elsewhere.
+    /// points and 0 elsewhere for the Doo-Sabin family; the limit stencil of
+    /// [`crate::schemes::catmull_clark::limit::limit_stencil`] for the
+    /// Catmull-Clark family.
     pub limit_weights: Option<Vec<f64>>,
-    /// `max |limit_weights - (c, 0)|`.
+    /// `max |limit_weights - expected|` with the closed-form stencil above.
     pub limit_weights_error: Option<f64>,
+    /// Catmull-Clark family only: largest distance between the reported
+    /// spectrum and the closed-form Fourier-block eigenvalues
+    /// ([`crate::schemes::catmull_clark::fourier::spectrum`]), after sorting
+    /// both; an accuracy cross-check of the full path (0 on the structured
+    /// path, which reports the Fourier eigenvalues themselves).
+    pub fourier_deviation: Option<f64>,
     /// Tangent stencils: left eigenvectors of `lambda_1`, `lambda_2` (real) or
     /// real and imaginary part of the left eigenvector of a complex pair
     /// (full path), scaled to unit max-norm.
@@ -254,6 +262,7 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
     let lm = scheme.matrix()?;
     let s = lm.matrix();
     let face_weights = scheme.face_weights();
+    let expected_limit = expected_limit_weights(scheme)?;
     let (eigenvalues, residuals, conditions, limit, tangents, subdominant, subdominant_full);
     match options.path {
         SpectrumPath::Full => {
@@ -287,7 +296,7 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
                 let err = w
                     .iter()
                     .enumerate()
-                    .map(|(i, &x)| (x - if i < n { face_weights[i] } else { 0.0 }).abs())
+                    .map(|(i, &x)| (x - expected_limit.get(i).copied().unwrap_or(0.0)).abs())
                     .fold(0.0, f64::max);
                 (w, err)
             });
@@ -315,7 +324,10 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
             });
         }
         SpectrumPath::Structured => {
-            let all = structured_spectrum(scheme)?;
+            let all = match cc_parameter(scheme) {
+                Some(c) => crate::schemes::catmull_clark::fourier::spectrum(n, c)?,
+                None => structured_spectrum(scheme)?,
+            };
             subdominant = classify_scheme(scheme)?;
             subdominant_full = None;
             eigenvalues = all.iter().map(|&z| c64(z)).collect();
@@ -349,6 +361,13 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
     } else {
         None
     };
+    let fourier_deviation = match cc_parameter(scheme) {
+        Some(c) => Some(fourier_deviation(
+            &eigenvalues,
+            &crate::schemes::catmull_clark::fourier::spectrum(n, c)?,
+        )),
+        None => None,
+    };
     let (limit_weights, limit_weights_error) = match limit {
         Some((w, e)) => (Some(w), Some(e)),
         None => (None, None),
@@ -368,7 +387,54 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
         subdominant_full,
         contraction,
         exact: None,
+        fourier_deviation,
     })
+}
+
+/// The shape parameter `c` of a Catmull-Clark-family scheme (`None` otherwise).
+fn cc_parameter(scheme: &LocalScheme<f64>) -> Option<f64> {
+    if scheme.kind().is_catmull_clark_family() {
+        scheme.shape_parameter()
+    } else {
+        None
+    }
+}
+
+/// The closed-form left eigenvector for 1 of `scheme.matrix()`, normalised to
+/// sum 1: `(c, 0)` for the Doo-Sabin family (math doc section 4), the limit
+/// stencil over the one-ring for the Catmull-Clark family (math doc section 6).
+fn expected_limit_weights(scheme: &LocalScheme<f64>) -> Result<Vec<f64>> {
+    match cc_parameter(scheme) {
+        Some(c) => crate::schemes::catmull_clark::limit::limit_stencil(scheme.valence(), &c),
+        None => Ok(scheme.face_weights()),
+    }
+}
+
+/// Largest distance between two spectra after sorting both by
+/// [`spectral_order`] (`INFINITY` if the lengths differ). Within a cluster of
+/// (nearly) equal modulus the order may differ, so each value is matched to the
+/// nearest unused value of the other list.
+fn fourier_deviation(a: &[[f64; 2]], b: &[Complex64]) -> f64 {
+    if a.len() != b.len() {
+        return f64::INFINITY;
+    }
+    let mut used = vec![false; b.len()];
+    let mut worst = 0.0f64;
+    for z in a {
+        let z = Complex64::new(z[0], z[1]);
+        let mut best = (f64::INFINITY, usize::MAX);
+        for (j, w) in b.iter().enumerate() {
+            let d = (z - w).norm();
+            if !used[j] && d < best.0 {
+                best = (d, j);
+            }
+        }
+        if best.1 != usize::MAX {
+            used[best.1] = true;
+        }
+        worst = worst.max(best.0);
+    }
+    worst
 }
 
 thread_local! {
@@ -382,15 +448,23 @@ thread_local! {
 /// the rare near-double case, which runs a singular value decomposition).
 /// Condition numbers of the face eigenvalues in positions 1-3 come from
 /// inverse iteration on the Hessenberg form (`O(n^2)` each).
+///
+/// Catmull-Clark family: there is no face block; the (2n+1) one-ring matrix
+/// is classified by [`classify_matrix`] (the allocation-free kernel; the
+/// one-ring matrix itself is assembled per call).
 pub fn classify_scheme(scheme: &LocalScheme<f64>) -> Result<Subdominant> {
     WORKSPACE.with(|ws| classify_scheme_with(&mut ws.borrow_mut(), scheme))
 }
 
-/// [`classify_scheme`] with an explicit workspace.
+/// [`classify_scheme`] with an explicit workspace (unused for the
+/// Catmull-Clark family).
 pub fn classify_scheme_with(
     ws: &mut StructuredWorkspace,
     scheme: &LocalScheme<f64>,
 ) -> Result<Subdominant> {
+    if scheme.kind().is_catmull_clark_family() {
+        return classify_matrix(scheme.matrix()?.matrix());
+    }
     let n = scheme.valence();
     let face_len = ws.face_nonunit(scheme)?.len();
     let m = ws.deflated_dim();

@@ -1,0 +1,75 @@
+//! `subdiv-lab cc-study`: the shape-adjustable Catmull-Clark parameter study
+//! (subdominant eigenvalues, `|lambda_3|`, class against `c`; certified-standard
+//! intervals of `c` per valence by bisection). CSV on standard output.
+
+use super::{CliError, CliResult};
+use anyhow::anyhow;
+use clap::Args;
+use subdiv_lab::cc_study::{standard_intervals, study_curve};
+
+#[derive(Args, Debug)]
+pub(crate) struct CcStudyArgs {
+    /// Smallest valence.
+    #[arg(long, default_value_t = 3)]
+    n_min: usize,
+    /// Largest valence.
+    #[arg(long, default_value_t = 32)]
+    n_max: usize,
+    /// Grid cells in c (samples + 1 values in [0, 1]).
+    #[arg(long, default_value_t = 100)]
+    samples: usize,
+    /// Bisection width for the interval ends.
+    #[arg(long, default_value_t = 1e-6)]
+    tol: f64,
+    /// Print the curves (one row per (n, c)) instead of the intervals.
+    #[arg(long)]
+    curves: bool,
+}
+
+pub(crate) fn run(args: CcStudyArgs) -> CliResult {
+    if args.n_min < 3 || args.n_max < args.n_min || args.n_max > 256 {
+        return Err(CliError::usage(anyhow!(
+            "need 3 <= --n-min <= --n-max <= 256, got {}..{}",
+            args.n_min,
+            args.n_max
+        )));
+    }
+    if args.samples == 0 || args.samples > 100_000 || !(args.tol > 0.0 && args.tol < 1.0) {
+        return Err(CliError::usage(anyhow!(
+            "need 1 <= --samples <= 100000 and 0 < --tol < 1"
+        )));
+    }
+    if args.curves {
+        println!(
+            "n,c,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,class,fourier_subdominant"
+        );
+        for n in args.n_min..=args.n_max {
+            for p in study_curve(n, args.samples).map_err(CliError::failure)? {
+                println!(
+                    "{},{},{:e},{:e},{:e},{:e},{:e},{},{:e}",
+                    n,
+                    p.c,
+                    p.lambda1[0],
+                    p.lambda1[1],
+                    p.lambda2[0],
+                    p.lambda2[1],
+                    p.abs_lambda3,
+                    p.class,
+                    p.fourier_subdominant
+                );
+            }
+        }
+    } else {
+        println!("n,interval,c_lo,c_hi,c_lo_outside,c_hi_outside");
+        for n in args.n_min..=args.n_max {
+            let iv = standard_intervals(n, args.samples, args.tol).map_err(CliError::failure)?;
+            for (k, i) in iv.iter().enumerate() {
+                println!(
+                    "{n},{k},{:.9},{:.9},{:.9},{:.9}",
+                    i.lo, i.hi, i.lo_outside, i.hi_outside
+                );
+            }
+        }
+    }
+    Ok(())
+}
