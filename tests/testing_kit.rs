@@ -14,8 +14,20 @@ use subdiv_lab::testing::assertions::{
 };
 use subdiv_lab::testing::strategies::{
     edge_ratios, face_ep_ratios, meshes_with_knots, nurds_schemes, nurds_with_points,
-    vertex_ep_ratios, IntervalBox,
+    vertex_ep_ratios, IntervalBox, GRID_RESOLUTION,
 };
+
+/// Uniform knots to within the strategy grid: a log-interval one grid step
+/// off moves a ratio by GRID_RESOLUTION / 4; two intervals per ratio.
+fn near_uniform(r: &[f64]) -> bool {
+    r.iter().all(|&x| (x - 0.5).abs() <= GRID_RESOLUTION / 2.0)
+}
+
+/// A runner with a fixed seed: the shrunk counterexample is reproducible.
+fn deterministic_runner(config: Config) -> TestRunner {
+    let rng = proptest::test_runner::TestRng::deterministic_rng(config.rng_algorithm);
+    TestRunner::new_with_rng(config, rng)
+}
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
@@ -66,7 +78,7 @@ proptest! {
 
 #[test]
 fn broken_spectral_radius_is_reported_with_a_shrunk_counterexample() {
-    let mut runner = TestRunner::new(Config {
+    let mut runner = deterministic_runner(Config {
         cases: 32,
         failure_persistence: None,
         // proptest stops shrinking after 128 steps by default; a fully shrunk
@@ -82,10 +94,7 @@ fn broken_spectral_radius_is_reported_with_a_shrunk_counterexample() {
     match result {
         Err(TestError::Fail(reason, scheme)) => {
             assert_eq!(scheme.valence(), 3, "not shrunk: {scheme:?}");
-            assert!(
-                scheme.ratios().as_slice().iter().all(|&x| x == 0.5),
-                "{scheme:?}"
-            );
+            assert!(near_uniform(scheme.ratios().as_slice()), "{scheme:?}");
             let msg = reason.to_string();
             // uniform n = 3: lambda_1 = 3/8, under-relaxed: 3/4 + 3/32 = 0.84375
             assert!(
@@ -113,7 +122,7 @@ fn under_relaxed(scheme: &LocalScheme) -> DMatrix<f64> {
 
 #[test]
 fn broken_contraction_is_reported_with_a_shrunk_counterexample() {
-    let mut runner = TestRunner::new(Config {
+    let mut runner = deterministic_runner(Config {
         cases: 64,
         failure_persistence: None,
         // proptest stops shrinking after 128 steps by default; a fully shrunk
@@ -139,7 +148,7 @@ fn broken_contraction_is_reported_with_a_shrunk_counterexample() {
             assert_eq!(scheme.valence(), 3, "not shrunk: {scheme:?}");
             let r = scheme.ratios();
             assert!(
-                r.as_slice().iter().all(|&x| x == 0.5),
+                near_uniform(r.as_slice()),
                 "knots not shrunk to uniform: {r:?}"
             );
             let msg = reason.to_string();
@@ -153,7 +162,7 @@ fn broken_contraction_is_reported_with_a_shrunk_counterexample() {
 
 #[test]
 fn broken_affine_invariance_names_the_row() {
-    let mut runner = TestRunner::new(Config {
+    let mut runner = deterministic_runner(Config {
         cases: 32,
         failure_persistence: None,
         // proptest stops shrinking after 128 steps by default; a fully shrunk
@@ -174,7 +183,7 @@ fn broken_affine_invariance_names_the_row() {
         Err(TestError::Fail(reason, r)) => {
             assert_eq!(r.valence(), 3);
             // ratios shrink towards 1/2
-            assert!(r.as_slice().iter().all(|&x| x == 0.5), "{r:?}");
+            assert!(near_uniform(r.as_slice()), "{r:?}");
             let msg = reason.to_string();
             assert!(
                 msg.contains("affine invariance failed") && msg.contains("row 4 sums to"),

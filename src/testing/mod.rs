@@ -6,13 +6,14 @@
 //! subdiv-lab's own tests use, so they need not rebuild them.
 //!
 //! * Strategies shrink towards the simplest configuration: smallest valence,
-//!   uniform knots, points at the origin, so failures are readable.
+//!   uniform knots (to within [`strategies::GRID_RESOLUTION`]), points at the
+//!   origin, so failures are readable.
 //! * Checks return `Result<_, Violation>` with the configuration and the
 //!   offending row, eigenvalue or level; `Violation` is a `std::error::Error`,
 //!   so `?` works inside `proptest!`.
 //!
 //! proptest stops shrinking after 128 steps by default (proptest 1.12); a
-//! fully shrunk counterexample (smallest valence, exactly uniform knots) needs
+//! fully shrunk counterexample (smallest valence, uniform knots) needs
 //! a few dozen steps per coordinate, so raise `max_shrink_iters` (the kit's
 //! own tests use `1_000_000`; shrinking stops much earlier in practice).
 //!

@@ -87,9 +87,14 @@ impl IntervalBox {
 
 /// One interval: log-uniform in the box, stored as an exponent offset from the
 /// bound nearest 1 so that shrinking drives every interval to the same value.
-/// Resolution of [`offset`]: `2^-24` (relative to the unit of the offset),
-/// far finer than any property depends on.
-const OFFSET_STEPS_PER_UNIT: f64 = 16_777_216.0;
+/// Grid resolution of the drawn values: log-intervals and ratio offsets are
+/// multiples of `GRID_RESOLUTION = 2^-24`, far finer than any property depends
+/// on. Shrinking drives each value to the anchor (uniform knots, ratio 1/2);
+/// proptest's shrinker can stop one grid step short of it, so a shrunk
+/// counterexample is uniform to within a few multiples of this resolution.
+pub const GRID_RESOLUTION: f64 = 1.0 / 16_777_216.0;
+
+const OFFSET_STEPS_PER_UNIT: f64 = 1.0 / GRID_RESOLUTION;
 
 /// A value in `[lo, hi]` (`lo <= 0 <= hi`) on a fine grid, uniformly
 /// distributed, that shrinks to exactly 0: an unsigned index `k` is mapped
