@@ -63,6 +63,14 @@ configs = [
   { scheme = "nurds", knots = [[1.3, 2.2], [2.2, 0.4], [0.4, 0.7], [0.7, 1.3]] },
   { scheme = "doo-sabin", valence = 6 },
 ]
+
+[[figure]]
+kind = "ccss-bound"
+id = "beta"
+width = 600
+height = 400
+valence = [3, 6]
+levels = 3
 "#;
 
 type Rows = Vec<HashMap<String, String>>;
@@ -303,4 +311,23 @@ fn table_csv_certificate_and_tensor_spectrum() {
     assert_eq!(eig.iter().filter(|e| e["config"] == "1").count(), 24);
     let html = String::from_utf8(r.files["index.html"].clone()).unwrap();
     assert!(html.contains("original Doo-Sabin") || html.contains("doo-sabin n=6"));
+}
+
+#[test]
+fn ccss_bound_csv_is_the_lp_bound() {
+    let r = report();
+    let rows = csv(&r, "beta.csv");
+    assert_eq!(rows.len(), 4);
+    for row in &rows {
+        let n: usize = row["n"].parse().unwrap();
+        let direct = subdiv_lab::ccss_bound::bound::bound(n, 3).unwrap();
+        assert_eq!(f(row, "beta"), direct.beta, "n = {n}");
+        assert_eq!(f(row, "sampled_full_max"), direct.full_max, "n = {n}");
+        assert!(f(row, "lp_residual") < 1e-12, "n = {n}");
+    }
+    // The published facts on this range: beta(4) = 1/4, beta(3) > 1/4, decreasing from 3 on.
+    let beta: Vec<f64> = rows.iter().map(|row| f(row, "beta")).collect();
+    assert!((beta[1] - 0.25).abs() < 1e-12, "{beta:?}");
+    assert!(beta[0] > 0.25);
+    assert!(beta.windows(2).all(|w| w[1] < w[0]), "{beta:?}");
 }

@@ -37,6 +37,7 @@ use super::backend::Area;
 use super::error::ReportError;
 use super::spec::{Common, FigureSpec};
 
+pub mod ccss_bound;
 pub mod charmap_ring;
 pub mod config_table;
 pub mod convergence;
@@ -68,6 +69,7 @@ pub const REGISTRY: &[FigureKind] = &[
     charmap_ring::KIND,
     mesh_convergence::KIND,
     mesh_picture::KIND,
+    ccss_bound::KIND,
 ];
 
 /// The kind named `name`.
