@@ -16,7 +16,7 @@
 //! levels = 4            # sub-patch levels k = 1..levels examined (default 4)
 //! ```
 
-use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use super::{num, valence_range, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::ccss_bound::bound::bound;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
@@ -56,22 +56,7 @@ struct CcssBound {
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    let (lo, hi) = match &p.valence {
-        None => (3, 20),
-        Some(v) => {
-            let [a, b] = *v.get_ref();
-            if !(3 <= a && a <= b && b <= MAX_VALENCE) {
-                return Err(fs.error_at(
-                    v,
-                    "valence",
-                    format!(
-                        "valence range must satisfy 3 <= lo <= hi <= {MAX_VALENCE}, got [{a}, {b}]"
-                    ),
-                ));
-            }
-            (a, b)
-        }
-    };
+    let (lo, hi) = valence_range(fs, &p.valence, (3, 20), MAX_VALENCE)?;
     let levels = match &p.levels {
         None => 4,
         Some(l) if (1..=MAX_LEVELS).contains(l.get_ref()) => *l.get_ref(),

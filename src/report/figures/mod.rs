@@ -203,3 +203,28 @@ pub fn eigenvalues(a: &crate::spectral::LocalAnalysis) -> Vec<num_complex::Compl
 pub fn num(x: f64) -> String {
     format!("{x}")
 }
+
+/// Validates an inclusive valence range key (`valence = [lo, hi]`):
+/// `3 <= lo <= hi <= max`; `None` gives `default`.
+pub(crate) fn valence_range(
+    fs: &FigureSpec<'_>,
+    value: &Option<toml::Spanned<[usize; 2]>>,
+    default: (usize, usize),
+    max: usize,
+) -> Result<(usize, usize), ReportError> {
+    match value {
+        None => Ok(default),
+        Some(v) => {
+            let [a, b] = *v.get_ref();
+            if 3 <= a && a <= b && b <= max {
+                Ok((a, b))
+            } else {
+                Err(fs.error_at(
+                    v,
+                    "valence",
+                    format!("valence range must satisfy 3 <= lo <= hi <= {max}, got [{a}, {b}]"),
+                ))
+            }
+        }
+    }
+}

@@ -14,7 +14,7 @@
 //! random_knots = 4.0          # largest interval ratio (default 4)
 //! ```
 
-use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use super::{num, valence_range, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::report::backend::Area;
 use crate::report::config::MAX_VALENCE;
@@ -58,22 +58,7 @@ struct Valence {
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    let (lo, hi) = match &p.valence {
-        None => (3, 64),
-        Some(v) => {
-            let [a, b] = *v.get_ref();
-            if !(3 <= a && a <= b && b <= MAX_VALENCE) {
-                return Err(fs.error_at(
-                    v,
-                    "valence",
-                    format!(
-                        "valence range must satisfy 3 <= lo <= hi <= {MAX_VALENCE}, got [{a}, {b}]"
-                    ),
-                ));
-            }
-            (a, b)
-        }
-    };
+    let (lo, hi) = valence_range(fs, &p.valence, (3, 64), MAX_VALENCE)?;
     let samples = match &p.samples {
         None => 24,
         Some(s) if *s.get_ref() <= MAX_SAMPLES => *s.get_ref(),
