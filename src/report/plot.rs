@@ -463,3 +463,26 @@ pub fn colorbar(
     .map_err(draw_err)?;
     Ok(())
 }
+
+/// Draws the series legend inside the plot area at `position`, in the report's
+/// style (legend font, translucent white box, thin border).
+pub fn inner_legend<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+    th: &Theme,
+) -> Result<(), ReportError>
+where
+    DB: DrawingBackend + 'a,
+    CT: CoordTranslate,
+{
+    chart
+        .configure_series_labels()
+        .position(position)
+        .label_font(th.font(th.legend))
+        .legend_area_size(th.legend_area())
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK.mix(0.5))
+        .margin(th.legend as i32 / 2)
+        .draw()
+        .map_err(draw_err)
+}

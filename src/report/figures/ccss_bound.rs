@@ -16,11 +16,13 @@
 //! levels = 4            # sub-patch levels k = 1..levels examined (default 4)
 //! ```
 
-use super::{num, valence_range, Context, DataTable, Figure, FigureKind, FigureOutput};
+use super::{bounded, num, valence_range, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::ccss_bound::bound::bound;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
-use crate::report::plot::{dash, draw_err, titled, viridis, LegendGlyph, Marker, Theme};
+use crate::report::plot::{
+    dash, draw_err, inner_legend, titled, viridis, LegendGlyph, Marker, Theme,
+};
 use crate::report::spec::{Common, FigureSpec};
 use plotters::prelude::*;
 use rayon::prelude::*;
@@ -57,20 +59,7 @@ struct CcssBound {
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
     let (lo, hi) = valence_range(fs, &p.valence, (3, 20), MAX_VALENCE)?;
-    let levels = match &p.levels {
-        None => 4,
-        Some(l) if (1..=MAX_LEVELS).contains(l.get_ref()) => *l.get_ref(),
-        Some(l) => {
-            return Err(fs.error_at(
-                l,
-                "levels",
-                format!(
-                    "levels must be between 1 and {MAX_LEVELS}, got {}",
-                    l.get_ref()
-                ),
-            ))
-        }
-    };
+    let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 4)?;
     Ok(Box::new(CcssBound { lo, hi, levels }))
 }
 
@@ -198,16 +187,7 @@ impl FigureOutput for Output {
             .map_err(draw_err)?
             .label("sampled max of B(u, v) over all sub-patches")
             .legend(move |p| LegendGlyph::line(p, &th, light, 0).marker(Marker::Ring, ms * 2));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font(th.font(th.legend))
-            .legend_area_size(th.legend_area())
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK.mix(0.5))
-            .margin(th.legend as i32 / 2)
-            .draw()
-            .map_err(draw_err)?;
+        inner_legend(&mut chart, SeriesLabelPosition::UpperRight, &th)?;
         Ok(())
     }
 }

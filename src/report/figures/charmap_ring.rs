@@ -23,7 +23,7 @@
 //! configs = [ { scheme = "doo-sabin", valence = 5 }, ... ]   # 1 to 6 panels
 //! ```
 
-use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::charmap::figure::RingPlot;
 use crate::charmap::ring::PatchKind;
 use crate::charmap::{plot_data, CharmapReport};
@@ -66,25 +66,6 @@ struct Charmap {
     levels: usize,
     samples: usize,
     columns: usize,
-}
-
-fn bounded(
-    fs: &FigureSpec<'_>,
-    v: &Option<Spanned<usize>>,
-    key: &str,
-    lo: usize,
-    hi: usize,
-    default: usize,
-) -> Result<usize, ReportError> {
-    match v {
-        None => Ok(default),
-        Some(x) if (lo..=hi).contains(x.get_ref()) => Ok(*x.get_ref()),
-        Some(x) => Err(fs.error_at(
-            x,
-            key,
-            format!("{key} must be between {lo} and {hi}, got {}", x.get_ref()),
-        )),
-    }
 }
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {

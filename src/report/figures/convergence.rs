@@ -15,7 +15,7 @@
 //! configs = [ { scheme = "nurds", valence = 5, random_knots = 4.0 }, ... ]
 //! ```
 
-use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::contraction::{measure, MeasureOptions};
 use crate::report::backend::Area;
 use crate::report::config::{resolve_all, ConfigSpec, Configuration};
@@ -59,20 +59,7 @@ struct Convergence {
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
     let configs = resolve_all(fs, &p.configs, None)?;
-    let steps = match &p.steps {
-        None => DEFAULT_STEPS,
-        Some(s) if (1..=MAX_STEPS).contains(s.get_ref()) => *s.get_ref(),
-        Some(s) => {
-            return Err(fs.error_at(
-                s,
-                "steps",
-                format!(
-                    "steps must be between 1 and {MAX_STEPS}, got {}",
-                    s.get_ref()
-                ),
-            ))
-        }
-    };
+    let steps = bounded(fs, &p.steps, "steps", 1, MAX_STEPS, DEFAULT_STEPS)?;
     Ok(Box::new(Convergence { configs, steps }))
 }
 

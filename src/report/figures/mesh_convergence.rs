@@ -21,13 +21,15 @@
 //! max_faces = 6                    # faces plotted (default 6), chosen to cover distinct valences
 //! ```
 
-use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::mesh::generators;
 use crate::mesh::limit::{convergence_series, face_local_scheme, refine_with_stats};
 use crate::mesh::Mesh;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
-use crate::report::plot::{dash, draw_err, series_color, titled, LegendGlyph, Marker, Theme};
+use crate::report::plot::{
+    dash, draw_err, inner_legend, series_color, titled, LegendGlyph, Marker, Theme,
+};
 use crate::report::rng::{log_uniform, SplitMix64};
 use crate::report::spec::{Common, FigureSpec};
 use crate::schemes::SchemeKind;
@@ -127,31 +129,8 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
     let scheme = mesh_scheme(fs, &p.scheme)?;
     let mesh = built_in_mesh(fs, &p.mesh, scheme, p.random_knots.as_ref())?;
-    let levels = match &p.levels {
-        None => 6,
-        Some(l) if (1..=MAX_LEVELS).contains(l.get_ref()) => *l.get_ref(),
-        Some(l) => {
-            return Err(fs.error_at(
-                l,
-                "levels",
-                format!(
-                    "levels must be between 1 and {MAX_LEVELS}, got {}",
-                    l.get_ref()
-                ),
-            ))
-        }
-    };
-    let max_faces = match &p.max_faces {
-        None => 6,
-        Some(m) if (1..=32).contains(m.get_ref()) => *m.get_ref(),
-        Some(m) => {
-            return Err(fs.error_at(
-                m,
-                "max_faces",
-                format!("max_faces must be between 1 and 32, got {}", m.get_ref()),
-            ))
-        }
-    };
+    let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 6)?;
+    let max_faces = bounded(fs, &p.max_faces, "max_faces", 1, 32, 6)?;
     if !(0..mesh.face_count()).any(|f| mesh.is_extraordinary_face(f))
         && !(0..mesh.vertex_count()).any(|v| mesh.valence(v) != 4)
     {
@@ -387,16 +366,7 @@ impl FigureOutput for Output {
             .map_err(draw_err)?
             .label("C |λ₁|^j  (dotted, fitted at the last level)")
             .legend(move |p| LegendGlyph::line(p, &th, BLACK, lw).dashed(dl2));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerLeft)
-            .label_font(th.font(th.legend))
-            .legend_area_size(th.legend_area())
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK.mix(0.5))
-            .margin(th.legend as i32 / 2)
-            .draw()
-            .map_err(draw_err)?;
+        inner_legend(&mut chart, SeriesLabelPosition::LowerLeft, &th)?;
         Ok(())
     }
 }

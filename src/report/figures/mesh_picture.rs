@@ -17,7 +17,7 @@
 //! ```
 
 use super::mesh_convergence::{built_in_mesh, mesh_scheme};
-use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::mesh::projection::{project, Projected, View};
 use crate::mesh::refine::refine_levels;
 use crate::mesh::Mesh;
@@ -65,20 +65,7 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
     let scheme = mesh_scheme(fs, &p.scheme)?;
     let mesh = built_in_mesh(fs, &p.mesh, scheme, p.random_knots.as_ref())?;
-    let levels = match &p.levels {
-        None => 2,
-        Some(l) if (1..=MAX_LEVELS).contains(l.get_ref()) => *l.get_ref(),
-        Some(l) => {
-            return Err(fs.error_at(
-                l,
-                "levels",
-                format!(
-                    "levels must be between 1 and {MAX_LEVELS}, got {}",
-                    l.get_ref()
-                ),
-            ))
-        }
-    };
+    let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 2)?;
     let angle = |a: &Option<Spanned<f64>>, key: &str, default: f64, lim: f64| match a {
         None => Ok(default),
         Some(v) if v.get_ref().is_finite() && v.get_ref().abs() <= lim => Ok(*v.get_ref()),

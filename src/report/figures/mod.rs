@@ -228,3 +228,27 @@ pub(crate) fn valence_range(
         }
     }
 }
+
+/// Validates an optional bounded integer key: `lo <= value <= hi`; `None`
+/// gives `default`. The error names the key and its line.
+pub(crate) fn bounded<T>(
+    fs: &FigureSpec<'_>,
+    value: &Option<toml::Spanned<T>>,
+    key: &str,
+    lo: T,
+    hi: T,
+    default: T,
+) -> Result<T, ReportError>
+where
+    T: Copy + PartialOrd + std::fmt::Display,
+{
+    match value {
+        None => Ok(default),
+        Some(x) if lo <= *x.get_ref() && *x.get_ref() <= hi => Ok(*x.get_ref()),
+        Some(x) => Err(fs.error_at(
+            x,
+            key,
+            format!("{key} must be between {lo} and {hi}, got {}", x.get_ref()),
+        )),
+    }
+}

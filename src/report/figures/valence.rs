@@ -19,7 +19,9 @@ use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::report::backend::Area;
 use crate::report::config::MAX_VALENCE;
 use crate::report::error::ReportError;
-use crate::report::plot::{dash, draw_err, mix_white, titled, viridis, LegendGlyph, Marker, Theme};
+use crate::report::plot::{
+    dash, draw_err, inner_legend, mix_white, titled, viridis, LegendGlyph, Marker, Theme,
+};
 use crate::report::rng::{derive_seed, log_uniform, SplitMix64};
 use crate::report::spec::{Common, FigureSpec};
 use crate::schemes::LocalScheme;
@@ -309,16 +311,7 @@ impl FigureOutput for Output {
             .map_err(draw_err)?
             .label("computed |λ₁|, uniform NURDS")
             .legend(move |p| LegendGlyph::line(p, &th, dark, 0).marker(Marker::Ring, ms));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .label_font(th.font(th.legend))
-            .legend_area_size(th.legend_area())
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK.mix(0.5))
-            .margin(th.legend as i32 / 2)
-            .draw()
-            .map_err(draw_err)?;
+        inner_legend(&mut chart, SeriesLabelPosition::LowerRight, &th)?;
         Ok(())
     }
 }
