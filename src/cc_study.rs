@@ -1,8 +1,10 @@
 //! Parameter study of the shape-adjustable Catmull-Clark scheme (issue 8,
 //! item 3; math doc sections 6-8): for each valence `n`, as a function of
-//! `c` in `[0, 1]`, the subdominant eigenvalues, `|lambda_3|` and the
-//! subdominant class, and the interval(s) of `c` on which the class is
-//! certified `standard`, located by bisection.
+//! `c` in `[0, 1]`, the subdominant eigenvalues, `|lambda_3|`, the
+//! subdominant class and the characteristic-map verdict, and the interval(s)
+//! of `c` on which the scheme is certified C1 (class `standard`, map regular
+//! and injective: Reif's criterion) or certified `standard`, located by
+//! bisection.
 //!
 //! Classification is [`crate::spectral::classify_scheme`] (the common engine's
 //! kernel on the `(2n+1)` one-ring matrix, condition-scaled tolerances; a
@@ -10,20 +12,31 @@
 //! standard). The eigenvalues are cross-checked against the closed-form
 //! Fourier blocks ([`crate::schemes::catmull_clark::fourier`]).
 //!
-//! **Scope**: the C1 criterion also needs the characteristic map to be
-//! regular and injective; that verdict is not part of this study (the
-//! characteristic map of the Catmull-Clark family is not implemented yet), so
-//! the intervals here are the *spectral* part of the C1 intervals only.
+//! The characteristic-map verdict is [`crate::charmap::check_classified`]
+//! (the cone certificate of [`crate::charmap::catmull_clark`]; the bicubic
+//! Bezier certificate at `c = 1/2`). A point counts as C1 only when every
+//! step is *certified*; `indeterminate` anywhere counts as "not certified",
+//! so the intervals are inner bounds of the true C1 set, and the verdict just
+//! outside each end says why the bisection stopped there.
+//!
+//! The regular part of the surface is C1 for every `c` in `(0, 1]` (the
+//! univariate rule's second divided-difference rule `(c/2, 1 - c, c/2)` is
+//! contractive, see [`crate::charmap::catmull_clark`]), so Reif's criterion at
+//! the extraordinary point decides.
 //!
 //! ```
-//! use subdiv_lab::cc_study::{standard_intervals, study_point};
+//! use subdiv_lab::cc_study::{c1_intervals, standard_intervals, study_point};
 //! let p = study_point(5, 0.5).unwrap();
 //! assert_eq!(p.class, "standard");
+//! assert_eq!(p.charmap, "c1");
 //! let iv = standard_intervals(5, 20, 1e-6).unwrap();
 //! assert_eq!(iv.len(), 1);
 //! assert!(iv[0].hi == 1.0 && iv[0].lo < 1e-3);
+//! let c1 = c1_intervals(5, 20, 1e-6).unwrap();
+//! assert!(c1[0].lo <= iv[0].lo + 1e-6 || c1[0].lo >= iv[0].lo);
 //! ```
 
+use crate::charmap;
 use crate::error::Result;
 use crate::schemes::catmull_clark::fourier;
 use crate::schemes::LocalScheme;
@@ -47,12 +60,16 @@ pub struct StudyPoint {
     pub class: &'static str,
     /// `|lambda_1|` from the closed-form Fourier blocks (cross-check).
     pub fourier_subdominant: f64,
+    /// Characteristic-map verdict code ([`charmap::Verdict::code`]: `c1`,
+    /// `not_regular`, `not_injective`, `indeterminate`, `no_charmap`).
+    pub charmap: &'static str,
 }
 
 /// Classifies the adjustable scheme at `(n, c)`.
 pub fn study_point(n: usize, c: f64) -> Result<StudyPoint> {
     let s = LocalScheme::<f64>::adjustable_cc(n, c)?;
     let sub = classify_scheme(&s)?;
+    let map = charmap::check_classified(&s, &sub)?;
     Ok(StudyPoint {
         valence: n,
         c,
@@ -61,15 +78,35 @@ pub fn study_point(n: usize, c: f64) -> Result<StudyPoint> {
         abs_lambda3: sub.abs_lambda3,
         class: sub.class.name(),
         fourier_subdominant: fourier::subdominant(n, c)?,
+        charmap: map.verdict.code(),
     })
 }
 
-fn is_standard(n: usize, c: f64) -> Result<bool> {
+/// What a study point is tested for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Criterion {
+    /// Subdominant class certified `standard`.
+    Standard,
+    /// Certified C1: `standard` and the characteristic map certified regular and injective.
+    C1,
+}
+
+/// The verdict of `(n, c)` under `criterion`: `Ok("")` when it holds,
+/// otherwise a short reason (the class, or `charmap:<verdict code>`).
+fn verdict(n: usize, c: f64, criterion: Criterion) -> Result<String> {
     let s = LocalScheme::<f64>::adjustable_cc(n, c)?;
-    Ok(matches!(
-        classify_scheme(&s)?.class,
-        SubdominantClass::Standard
-    ))
+    let sub = classify_scheme(&s)?;
+    if !matches!(sub.class, SubdominantClass::Standard) {
+        return Ok(sub.class.name().to_owned());
+    }
+    if criterion == Criterion::Standard {
+        return Ok(String::new());
+    }
+    let map = charmap::check_classified(&s, &sub)?;
+    Ok(match map.verdict {
+        charmap::Verdict::C1Standard => String::new(),
+        v => format!("charmap:{}", v.code()),
+    })
 }
 
 /// `samples + 1` equally spaced values of `c` in `[0, 1]` for one valence.
@@ -80,45 +117,78 @@ pub fn study_curve(n: usize, samples: usize) -> Result<Vec<StudyPoint>> {
         .collect()
 }
 
-/// A maximal interval of `c` on which the class is certified standard.
+/// A maximal interval of `c` on which the criterion is certified.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CInterval {
-    /// Lower end (certified standard here).
+    /// Lower end (certified here).
     pub lo: f64,
-    /// Upper end (certified standard here).
+    /// Upper end (certified here).
     pub hi: f64,
-    /// `lo - step` of the bisection: not certified standard (or `lo` if `lo = 0`).
+    /// `lo - step` of the bisection: not certified (or `lo` if `lo = 0`).
     pub lo_outside: f64,
-    /// `hi + step`: not certified standard (or `hi` if `hi = 1`).
+    /// `hi + step`: not certified (or `hi` if `hi = 1`).
     pub hi_outside: f64,
+    /// Why `lo_outside` is not certified (class name or `charmap:<code>`;
+    /// empty if `lo = 0`).
+    pub below: String,
+    /// Why `hi_outside` is not certified (empty if `hi = 1`).
+    pub above: String,
 }
 
-/// Bisection between `inside` (standard) and `outside` (not) to width `tol`;
-/// returns `(inside, outside)`.
-fn bisect(n: usize, mut inside: f64, mut outside: f64, tol: f64) -> Result<(f64, f64)> {
+/// Bisection between `inside` (certified) and `outside` (not) to width `tol`;
+/// returns `(inside, outside, reason at outside)`.
+fn bisect(
+    n: usize,
+    mut inside: f64,
+    mut outside: f64,
+    mut reason: String,
+    tol: f64,
+    criterion: Criterion,
+) -> Result<(f64, f64, String)> {
     while (inside - outside).abs() > tol {
         let mid = 0.5 * (inside + outside);
-        if is_standard(n, mid)? {
+        let v = verdict(n, mid, criterion)?;
+        if v.is_empty() {
             inside = mid;
         } else {
             outside = mid;
+            reason = v;
         }
     }
-    Ok((inside, outside))
+    Ok((inside, outside, reason))
 }
 
 /// The intervals of `c` in `[0, 1]` on which valence `n` is certified
-/// standard: a grid of `samples + 1` values brackets every change, and each
-/// end is located by bisection to `tol`. Changes between two grid points that
-/// cancel out (two ends within one grid cell) are not seen: choose `samples`
-/// accordingly.
+/// standard (see [`intervals`]).
 pub fn standard_intervals(n: usize, samples: usize, tol: f64) -> Result<Vec<CInterval>> {
+    intervals(n, samples, tol, Criterion::Standard)
+}
+
+/// The intervals of `c` in `[0, 1]` on which valence `n` is certified C1
+/// (see [`intervals`]).
+pub fn c1_intervals(n: usize, samples: usize, tol: f64) -> Result<Vec<CInterval>> {
+    intervals(n, samples, tol, Criterion::C1)
+}
+
+/// The intervals of `c` in `[0, 1]` on which valence `n` satisfies
+/// `criterion` with certainty: a grid of `samples + 1` values brackets every
+/// change, and each end is located by bisection to `tol` (both ends of the
+/// final bracket are reported, with the reason just outside). Changes between
+/// two grid points that cancel out (two ends within one grid cell) are not
+/// seen: choose `samples` accordingly.
+pub fn intervals(
+    n: usize,
+    samples: usize,
+    tol: f64,
+    criterion: Criterion,
+) -> Result<Vec<CInterval>> {
     let m = samples.max(1);
     let grid: Vec<f64> = (0..=m).map(|k| k as f64 / m as f64).collect();
-    let flags: Vec<bool> = grid
+    let reasons: Vec<String> = grid
         .iter()
-        .map(|&c| is_standard(n, c))
+        .map(|&c| verdict(n, c, criterion))
         .collect::<Result<_>>()?;
+    let flags: Vec<bool> = reasons.iter().map(String::is_empty).collect();
     let mut out = Vec::new();
     let mut k = 0;
     while k <= m {
@@ -130,21 +200,25 @@ pub fn standard_intervals(n: usize, samples: usize, tol: f64) -> Result<Vec<CInt
         while k < m && flags[k + 1] {
             k += 1;
         }
-        let (lo, lo_outside) = if start == 0 {
-            (0.0, 0.0)
+        let (lo, lo_outside, below) = if start == 0 {
+            (0.0, 0.0, String::new())
         } else {
-            bisect(n, grid[start], grid[start - 1], tol)?
+            let r = reasons[start - 1].clone();
+            bisect(n, grid[start], grid[start - 1], r, tol, criterion)?
         };
-        let (hi, hi_outside) = if k == m {
-            (1.0, 1.0)
+        let (hi, hi_outside, above) = if k == m {
+            (1.0, 1.0, String::new())
         } else {
-            bisect(n, grid[k], grid[k + 1], tol)?
+            let r = reasons[k + 1].clone();
+            bisect(n, grid[k], grid[k + 1], r, tol, criterion)?
         };
         out.push(CInterval {
             lo,
             hi,
             lo_outside,
             hi_outside,
+            below,
+            above,
         });
         k += 1;
     }

@@ -77,7 +77,7 @@ fn basis_at(scheme: &LocalScheme<f64>, k: usize) -> PlanarBasis {
 }
 
 /// The library entry point (spectral classification + structured subspace).
-fn report(scheme: &LocalScheme<f64>) -> CharmapReport {
+fn report(scheme: &LocalScheme<f64>) -> CharmapReport<subdiv_lab::charmap::AnyPatchId> {
     check(scheme).unwrap()
 }
 
@@ -537,7 +537,7 @@ fn the_second_fourier_mode_is_not_injective() {
 
 // ---------------------------------------------------------------- invariances
 
-fn summary(r: &CharmapReport) -> (String, i64, f64) {
+fn summary(r: &CharmapReport<subdiv_lab::charmap::AnyPatchId>) -> (String, i64, f64) {
     (
         r.verdict.code().to_owned(),
         r.winding_number.unwrap_or(i64::MIN),

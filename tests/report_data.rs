@@ -71,6 +71,23 @@ width = 600
 height = 400
 valence = [3, 6]
 levels = 3
+
+[[figure]]
+kind = "cc-eigenvalues"
+id = "cc-eig"
+width = 600
+height = 400
+valences = [3, 6]
+samples = 8
+
+[[figure]]
+kind = "cc-c1-interval"
+id = "cc-c1"
+width = 600
+height = 400
+valence = [3, 5]
+samples = 4
+tol = 1e-4
 "#;
 
 type Rows = Vec<HashMap<String, String>>;
@@ -330,4 +347,43 @@ fn ccss_bound_csv_is_the_lp_bound() {
     assert!((beta[1] - 0.25).abs() < 1e-12, "{beta:?}");
     assert!(beta[0] > 0.25);
     assert!(beta.windows(2).all(|w| w[1] < w[0]), "{beta:?}");
+}
+
+#[test]
+fn cc_figures_csv_is_the_parameter_study() {
+    use subdiv_lab::cc_study::{intervals, study_point, Criterion};
+    use subdiv_lab::schemes::catmull_clark::fourier::stam_subdominant;
+    let r = report();
+    let rows = csv(&r, "cc-eig.csv");
+    assert_eq!(rows.len(), 2 * 9);
+    for row in &rows {
+        let n: usize = row["n"].parse().unwrap();
+        let c = f(row, "c");
+        let p = study_point(n, c).unwrap();
+        assert_eq!(f(row, "lambda1"), p.lambda1[0].hypot(p.lambda1[1]));
+        assert_eq!(f(row, "abs_lambda3"), p.abs_lambda3);
+        assert_eq!(
+            (row["class"].as_str(), row["charmap"].as_str()),
+            (p.class, p.charmap)
+        );
+        if c == 0.5 {
+            // Catmull-Clark: Stam's closed form
+            assert!((f(row, "lambda1") - stam_subdominant(n)).abs() < 1e-12);
+        }
+    }
+    let rows = csv(&r, "cc-c1.csv");
+    for n in 3..=5 {
+        for (name, crit) in [("c1", Criterion::C1), ("standard", Criterion::Standard)] {
+            let direct = intervals(n, 4, 1e-4, crit).unwrap();
+            let got: Vec<_> = rows
+                .iter()
+                .filter(|row| row["n"] == n.to_string() && row["criterion"] == name)
+                .collect();
+            assert_eq!(got.len(), direct.len(), "n = {n}, {name}");
+            for (row, d) in got.iter().zip(&direct) {
+                assert_eq!((f(row, "c_lo"), f(row, "c_hi")), (d.lo, d.hi));
+                assert_eq!(row["below"], d.below);
+            }
+        }
+    }
 }

@@ -66,6 +66,7 @@
 //! ```
 
 pub mod basis;
+pub mod catmull_clark;
 pub mod extended;
 pub mod figure;
 pub mod regularity;
@@ -307,13 +308,15 @@ impl fmt::Display for Verdict {
     }
 }
 
-/// The full result of a characteristic-map check.
+/// The full result of a characteristic-map check (`P` identifies ring patches:
+/// [`RingPatchId`](ring::RingPatchId) for the Doo-Sabin family,
+/// [`CcPatchId`](catmull_clark::CcPatchId) for the Catmull-Clark family).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct CharmapReport {
+pub struct CharmapReport<P = ring::RingPatchId> {
     /// Eigenstructure of the planar basis (`None` when there is no map).
     pub structure: Option<Eigenstructure>,
     /// Regularity details (`None` when there is no map).
-    pub regularity: Option<Regularity>,
+    pub regularity: Option<Regularity<P>>,
     /// Certified winding number of the outer boundary (ring on the left,
     /// basis oriented so that the Jacobian is positive); `None` if undecided.
     pub winding_number: Option<i64>,
@@ -325,7 +328,41 @@ pub struct CharmapReport {
     pub verdict: Verdict,
 }
 
-impl CharmapReport {
+/// A ring patch of either scheme family (the patch type of [`check`] and
+/// [`check_classified`], which serve both families).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(untagged)]
+pub enum AnyPatchId {
+    /// A biquadratic patch of the Doo-Sabin family's ring.
+    DooSabin(ring::RingPatchId),
+    /// A regular cell of the Catmull-Clark family's ring.
+    CatmullClark(catmull_clark::CcPatchId),
+}
+
+impl fmt::Display for AnyPatchId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            AnyPatchId::DooSabin(p) => p.fmt(f),
+            AnyPatchId::CatmullClark(p) => p.fmt(f),
+        }
+    }
+}
+
+impl<P> CharmapReport<P> {
+    /// The same report with every patch identifier mapped by `f`.
+    pub fn map_patches<Q>(self, f: impl Fn(P) -> Q) -> CharmapReport<Q> {
+        CharmapReport {
+            structure: self.structure,
+            regularity: self.regularity.map(|r| r.map_patches(&f)),
+            winding_number: self.winding_number,
+            inner_winding_number: self.inner_winding_number,
+            point_error: self.point_error,
+            verdict: self.verdict,
+        }
+    }
+}
+
+impl<P> CharmapReport<P> {
     /// A report for an eigenstructure without characteristic map.
     pub fn no_map(class: &str, reason: &str) -> Self {
         Self {
@@ -355,6 +392,9 @@ impl CharmapReport {
         self.regularity.as_ref().map(|r| r.min_coeff)
     }
 
+}
+
+impl<P: fmt::Display> CharmapReport<P> {
     /// The `"charmap"` JSON object: `regular`, `min_jacobian_coeff`,
     /// `winding_number`, `verdict` (human text), plus `verdict_code`,
     /// `regularity`, `structure`, `inner_winding_number`, and the witness.
@@ -367,7 +407,7 @@ impl CharmapReport {
             "min_jacobian_location": reg.map(|r| serde_json::json!({
                 "patch": r.min_location.patch.to_string(), "s": r.min_location.s, "t": r.min_location.t})),
             "relative_error_bound": reg.map(|r| r.relative_error_bound),
-            "witness": reg.and_then(|r| r.witness).map(|(p, v)| serde_json::json!({
+            "witness": reg.and_then(|r| r.witness.as_ref()).map(|(p, v)| serde_json::json!({
                 "patch": p.patch.to_string(), "s": p.s, "t": p.t, "jacobian": v})),
             "winding_number": self.winding_number,
             "inner_winding_number": self.inner_winding_number,
@@ -426,6 +466,18 @@ pub fn check_ring(ring: &Ring, delta: f64, structure: Eigenstructure) -> Charmap
     };
     let winding = winding::winding_number(&r.outer_boundary(), delta);
     let inner = winding::winding_number(&r.inner_boundary(), delta);
+    assemble_report(reg, winding, inner, delta, structure)
+}
+
+/// The verdict from a regularity result and the certified winding numbers
+/// (shared by both scheme families).
+fn assemble_report<P>(
+    reg: Regularity<P>,
+    winding: Option<i64>,
+    inner: Option<i64>,
+    delta: f64,
+    structure: Eigenstructure,
+) -> CharmapReport<P> {
     let verdict = match (reg.verdict, winding) {
         (RegularityVerdict::NotRegular, _) => Verdict::NotRegular,
         (RegularityVerdict::Indeterminate, _) => Verdict::Indeterminate {
@@ -485,16 +537,40 @@ fn structure_of(class: &SubdominantClass) -> std::result::Result<Eigenstructure,
     }
 }
 
-/// The characteristic-map check of one configuration of the Doo-Sabin family,
-/// given its subdominant classification (from [`crate::spectral`]).
+/// The characteristic-map check of one configuration of either family, given
+/// its subdominant classification (from [`crate::spectral`]): the Doo-Sabin
+/// family's biquadratic ring, or for Catmull-Clark and the adjustable scheme
+/// the ring of [`catmull_clark`] (bicubic Bezier certificate at `c = 1/2`,
+/// cone certificate otherwise).
 ///
-/// Cost: the `n x n` face block (a product and an SVD), `O(n)` small solves,
-/// the `9n x 4n` extended matrix and `3n` Jacobian patches; no `4n x 4n`
-/// eigen-decomposition.
-pub fn check_classified(scheme: &LocalScheme<f64>, sub: &Subdominant) -> Result<CharmapReport> {
-    match prepare(scheme, sub)? {
-        Prepared::NoMap(r) => Ok(r),
-        Prepared::Basis(ext, basis) => check_basis(&ext, &scheme.ratios(), &basis),
+/// Cost (Doo-Sabin family): the `n x n` face block (a product and an SVD),
+/// `O(n)` small solves, the `9n x 4n` extended matrix and `3n` Jacobian
+/// patches; no `4n x 4n` eigen-decomposition.
+pub fn check_classified(
+    scheme: &LocalScheme<f64>,
+    sub: &Subdominant,
+) -> Result<CharmapReport<AnyPatchId>> {
+    // Catmull-Clark proper (c = 1/2) gets the bicubic Bezier certificate the
+    // literature uses; other c the cone certificate (non-polynomial cells).
+    let cc = |n: usize, c: f64| {
+        let cert = if c == 0.5 {
+            catmull_clark::Certificate::Bicubic
+        } else {
+            catmull_clark::Certificate::Cone
+        };
+        catmull_clark::check_classified(n, c, sub, cert)
+            .map(|r| r.map_patches(AnyPatchId::CatmullClark))
+    };
+    match scheme {
+        LocalScheme::CatmullClark { valence } => cc(*valence, 0.5),
+        LocalScheme::AdjustableCc { valence, c } => cc(*valence, *c),
+        _ => {
+            let r = match prepare(scheme, sub)? {
+                Prepared::NoMap(r) => r,
+                Prepared::Basis(ext, basis) => check_basis(&ext, &scheme.ratios(), &basis)?,
+            };
+            Ok(r.map_patches(AnyPatchId::DooSabin))
+        }
     }
 }
 
@@ -529,7 +605,7 @@ fn prepare(scheme: &LocalScheme<f64>, sub: &Subdominant) -> Result<Prepared> {
 /// let r = check(&LocalScheme::nurds(EdgeRatios::new(vec![0.1, 0.8, 0.3]).unwrap())).unwrap();
 /// assert_ne!(r.verdict, Verdict::C1Standard); // non-standard: never "C1"
 /// ```
-pub fn check(scheme: &LocalScheme<f64>) -> Result<CharmapReport> {
+pub fn check(scheme: &LocalScheme<f64>) -> Result<CharmapReport<AnyPatchId>> {
     let sub = crate::spectral::classify_scheme(scheme)?;
     check_classified(scheme, &sub)
 }

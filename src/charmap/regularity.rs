@@ -1,8 +1,10 @@
 //! Regularity of a ring: the sign of the Jacobian determinant on every patch.
 //!
-//! Math doc section 7. For a biquadratic patch `(x, y)` the Jacobian
-//! `J = x_s y_t - x_t y_s` is a Bernstein polynomial of bidegree (3, 3)
-//! ([`crate::bezier::PlanarPatch::jacobian`]). By the convex-hull property, coefficients that
+//! Math doc section 7. For a planar patch `(x, y)` of bidegree `(p, p)` the
+//! Jacobian `J = x_s y_t - x_t y_s` is a Bernstein polynomial of bidegree
+//! `(2p - 1, 2p - 1)` ([`crate::bezier::PlanarPatch::jacobian`]): (3, 3) for
+//! the biquadratic rings of the Doo-Sabin family, (5, 5) for the bicubic rings
+//! of Catmull-Clark ([`super::catmull_clark`]). By the convex-hull property, coefficients that
 //! are all `> E` (after multiplying by the orientation `sigma = +-1`) certify
 //! `sigma J > 0` on the patch, where `E` bounds the floating-point error of the
 //! coefficients ([`ErrorModel`]). Otherwise the patch is split (de Casteljau,
@@ -18,7 +20,8 @@
 //! coefficients is the integral over the patch).
 
 use super::ring::{Ring, RingPatchId};
-use crate::bezier::TensorBezier;
+use crate::bezier::{PlanarPatch, TensorBezier};
+use crate::error::{Error, Result};
 
 /// Maximum de Casteljau subdivision depth per patch (pieces of side `2^-10`).
 pub const MAX_DEPTH: u32 = 10;
@@ -42,44 +45,53 @@ pub fn gamma(k: usize) -> f64 {
 /// Bezier control point of the ring (the eigenvector error propagated through
 /// the extended matrix and the B-spline-to-Bezier conversion, plus the
 /// rounding of both; see [`super::point_error`]); `md`, the
-/// largest magnitude of a coefficient of `x_s, x_t, y_s, y_t`.
+/// largest magnitude of a coefficient of `x_s, x_t, y_s, y_t`; `degree`, the
+/// patch bidegree `p` (2 biquadratic, 3 bicubic).
 ///
-/// A derivative coefficient `2 (b_{i+1,j} - b_ij)` is off by at most `4 delta`
-/// (plus one rounding, counted below). Each Jacobian coefficient is a
-/// difference of two convex combinations (non-negative weights summing to 1)
-/// of products `f g` of derivative coefficients, and
-/// `|Δ(fg)| <= |Δf| |g| + |f| |Δg| + |Δf| |Δg| <= 8 delta md + 16 delta^2`,
-/// so the propagated error is at most `16 delta md + 32 delta^2`. The rounding
-/// of the product (at most 6 terms of 4 factors each, two such sums and a
-/// difference) is at most `gamma_16 * 2 md^2`.
+/// A derivative coefficient `p (b_{i+1,j} - b_ij)` is off by at most
+/// `2 p delta` (plus one rounding, counted below). Each Jacobian coefficient
+/// is a difference of two convex combinations (non-negative weights summing
+/// to 1) of products `f g` of derivative coefficients, and
+/// `|Δ(fg)| <= |Δf| |g| + |f| |Δg| + |Δf| |Δg| <= 4 p delta md + 4 p^2 delta^2`,
+/// so the propagated error is at most `8 p delta md + 8 p^2 delta^2`
+/// (`16 delta md + 32 delta^2` for `p = 2`). Rounding: a product coefficient
+/// sums at most `p^2` terms (`p` indices per direction), each formed with 7
+/// roundings (a weight of 3 binomial ratios, two multiplications), then the
+/// sum and the difference: at most `gamma_{8 + 2 p^2} * 2 md^2`
+/// (`gamma_16` for `p = 2`, `gamma_26` for `p = 3`; generous for both).
 ///
-/// Subdivision: a split at 1/2 forms each new coefficient by at most three
-/// averaging steps `(a + b)/2` (halving is exact), so each level in `s` and in
-/// `t` adds at most `gamma_3 * max|c|`; depth `d` adds `2 d gamma_3 max|c|`.
+/// Subdivision: a split at 1/2 of a Bernstein polynomial of degree `2p - 1`
+/// forms each new coefficient by at most `2p - 1` averaging steps `(a + b)/2`
+/// (halving is exact), so each level in `s` and in `t` adds at most
+/// `gamma_{2p-1} * max|c|`; depth `d` adds `2 d gamma_{2p-1} max|c|`.
 ///
 /// Direct evaluation of `J` at a point (witnesses) from the derivative patches:
-/// de Casteljau on 6 coefficients per derivative (convex, `gamma_6` relative
-/// to their magnitudes), two products and a difference: at most
-/// `16 delta md + 32 delta^2 + gamma_16 * 2 md^2` as well.
+/// de Casteljau on the derivative coefficients (convex, `gamma_{2p}` relative
+/// to their magnitudes), two products and a difference: within the
+/// coefficient bound as well.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct ErrorModel {
     /// Error bound of the Bezier control points (absolute, per coordinate).
     pub delta: f64,
     /// Largest derivative coefficient magnitude.
     pub md: f64,
+    /// Bidegree `p` of the patches (2 or 3).
+    pub degree: usize,
 }
 
 impl ErrorModel {
     /// Bound on the error of a Jacobian coefficient before subdivision.
     pub fn coefficient_bound(&self) -> f64 {
-        16.0 * self.delta * self.md
-            + 32.0 * self.delta * self.delta
-            + gamma(16) * 2.0 * self.md * self.md
+        let p = self.degree as f64;
+        8.0 * p * self.delta * self.md
+            + 8.0 * p * p * self.delta * self.delta
+            + gamma(8 + 2 * self.degree * self.degree) * 2.0 * self.md * self.md
     }
 
     /// Bound after `depth` levels of subdivision, for coefficients of magnitude at most `cmax`.
     pub fn subdivided_bound(&self, depth: u32, cmax: f64) -> f64 {
-        self.coefficient_bound() + 2.0 * depth as f64 * gamma(3) * cmax
+        self.coefficient_bound()
+            + 2.0 * depth as f64 * gamma((2 * self.degree).saturating_sub(1)) * cmax
     }
 
     /// Bound on a directly evaluated Jacobian value.
@@ -111,11 +123,13 @@ impl RegularityVerdict {
     }
 }
 
-/// A point of the ring's domain: patch and local parameters.
+/// A point of the ring's domain: patch and local parameters. The patch
+/// identifier is [`RingPatchId`] for the Doo-Sabin family and
+/// [`super::catmull_clark::CcPatchId`] for the Catmull-Clark family.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct DomainPoint {
+pub struct DomainPoint<P = RingPatchId> {
     /// The patch.
-    pub patch: RingPatchId,
+    pub patch: P,
     /// Local parameter along `x`.
     pub s: f64,
     /// Local parameter along `y`.
@@ -124,49 +138,89 @@ pub struct DomainPoint {
 
 /// Result of the regularity check.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct Regularity {
+pub struct Regularity<P = RingPatchId> {
     /// The verdict.
     pub verdict: RegularityVerdict,
     /// Orientation `sigma` (sign of the signed area).
     pub orientation: i8,
-    /// `min sigma c_ij / max |c_ij|` over the unsubdivided coefficients of all
-    /// patches (invariant under linear changes of the planar basis).
+    /// `min sigma c_ij / max |c_ij|` over the unsubdivided certificate
+    /// coefficients of all patches (Bezier coefficients of the Jacobian, or
+    /// the pairwise determinants of the derivative cones of
+    /// [`super::catmull_clark`]); invariant under linear changes of the
+    /// planar basis.
     pub min_coeff: f64,
-    /// Where the minimum is: patch, and the coefficient's Greville point `(i/3, j/3)`.
-    pub min_location: DomainPoint,
+    /// Where the minimum is: patch, and the coefficient's Greville point
+    /// (`(i/m, j/n)` for a Bezier coefficient).
+    pub min_location: DomainPoint<P>,
     /// The coefficient error bound relative to `max |c_ij|`.
     pub relative_error_bound: f64,
     /// For `not_regular`: a point with `sigma J < 0` and the value of `sigma J`
     /// there (relative to `max |c_ij|`), evaluated directly from the derivatives.
-    pub witness: Option<(DomainPoint, f64)>,
+    pub witness: Option<(DomainPoint<P>, f64)>,
     /// For `indeterminate`: a piece left undecided (its lower-left corner).
-    pub undecided: Option<DomainPoint>,
+    pub undecided: Option<DomainPoint<P>>,
     /// Pieces examined (3n without subdivision).
     pub pieces: usize,
     /// Deepest subdivision level used.
     pub max_depth: u32,
 }
 
+impl<P> Regularity<P> {
+    /// The same result with every patch identifier mapped by `f`.
+    pub fn map_patches<Q>(self, f: impl Fn(P) -> Q) -> Regularity<Q> {
+        let dp = |d: DomainPoint<P>| DomainPoint {
+            patch: f(d.patch),
+            s: d.s,
+            t: d.t,
+        };
+        Regularity {
+            verdict: self.verdict,
+            orientation: self.orientation,
+            min_coeff: self.min_coeff,
+            min_location: dp(self.min_location),
+            relative_error_bound: self.relative_error_bound,
+            witness: self.witness.map(|(d, v)| (dp(d), v)),
+            undecided: self.undecided.map(dp),
+            pieces: self.pieces,
+            max_depth: self.max_depth,
+        }
+    }
+}
+
 /// Checks the sign of the Jacobian on every patch of `ring`; `delta` bounds the
 /// error of the ring's Bezier control points (see [`ErrorModel`]).
 pub fn check_regularity(ring: &Ring, delta: f64) -> Regularity {
-    let jac: Vec<(RingPatchId, TensorBezier)> = ring
-        .patches()
-        .iter()
-        .map(|p| (p.id, p.bezier.jacobian()))
-        .collect();
+    let patches: Vec<(RingPatchId, &PlanarPatch)> =
+        ring.patches().iter().map(|p| (p.id, &p.bezier)).collect();
+    // a ring has 3n >= 9 patches
+    check_bezier_patches(&patches, delta).unwrap_or_else(|_| unreachable!("ring without patches"))
+}
+
+/// Checks the sign of the Jacobian on a set of planar Bezier patches of one
+/// bidegree `(p, p)`, `p >= 1` (a ring of any scheme whose ring patches are
+/// polynomial); `delta` bounds the error of their control points (see
+/// [`ErrorModel`]). An empty set is an error.
+pub fn check_bezier_patches<P: Copy>(
+    patches: &[(P, &PlanarPatch)],
+    delta: f64,
+) -> Result<Regularity<P>> {
+    let Some(first) = patches.first() else {
+        return Err(Error::CountMismatch {
+            what: "patches for the regularity check",
+            expected: 1,
+            got: 0,
+        });
+    };
+    let jac: Vec<(P, TensorBezier)> = patches.iter().map(|(id, p)| (*id, p.jacobian())).collect();
     let mut md = 0.0f64;
-    for p in ring.patches() {
-        for d in [
-            p.bezier.x.deriv_s(),
-            p.bezier.x.deriv_t(),
-            p.bezier.y.deriv_s(),
-            p.bezier.y.deriv_t(),
-        ] {
+    let mut degree = 1;
+    for (_, p) in patches {
+        degree = degree.max(p.degree().0).max(p.degree().1);
+        for d in [p.x.deriv_s(), p.x.deriv_t(), p.y.deriv_s(), p.y.deriv_t()] {
             md = md.max(d.max_abs());
         }
     }
-    let model = ErrorModel { delta, md };
+    let model = ErrorModel { delta, md, degree };
     let cmax = jac.iter().map(|(_, j)| j.max_abs()).fold(0.0, f64::max);
     let area: f64 = jac
         .iter()
@@ -177,7 +231,7 @@ pub fn check_regularity(ring: &Ring, delta: f64) -> Regularity {
     // Minimum over the unsubdivided coefficients.
     let mut min_coeff = f64::INFINITY;
     let mut min_location = DomainPoint {
-        patch: jac[0].0,
+        patch: first.0,
         s: 0.0,
         t: 0.0,
     };
@@ -212,15 +266,16 @@ pub fn check_regularity(ring: &Ring, delta: f64) -> Regularity {
     if cmax == 0.0 || !cmax.is_finite() {
         out.verdict = RegularityVerdict::Indeterminate;
         out.undecided = Some(min_location);
-        return out;
+        return Ok(out);
     }
-    let patch_of = |id: RingPatchId| &ring.patch(id).bezier;
-    // Work list: (patch, piece coefficients, s0, t0, size, depth).
-    let mut work: Vec<(RingPatchId, TensorBezier, f64, f64, f64, u32)> = jac
+    // Work list: (patch index, piece coefficients, s0, t0, size, depth).
+    let mut work: Vec<(usize, TensorBezier, f64, f64, f64, u32)> = jac
         .into_iter()
-        .map(|(id, j)| (id, j, 0.0, 0.0, 1.0, 0))
+        .enumerate()
+        .map(|(k, (_, j))| (k, j, 0.0, 0.0, 1.0, 0))
         .collect();
-    while let Some((id, j, s0, t0, h, depth)) = work.pop() {
+    while let Some((k, j, s0, t0, h, depth)) = work.pop() {
+        let (id, patch) = patches[k];
         out.pieces += 1;
         out.max_depth = out.max_depth.max(depth);
         let bound = model.subdivided_bound(depth, cmax);
@@ -233,16 +288,16 @@ pub fn check_regularity(ring: &Ring, delta: f64) -> Regularity {
         for (a, b) in [(0, 0), (m, 0), (0, n), (m, n)] {
             if sigma * j.coeff(a, b) < -bound {
                 let (s, t) = (s0 + h * (a / m) as f64, t0 + h * (b / n) as f64);
-                let v = sigma * patch_of(id).jacobian_at(s, t);
+                let v = sigma * patch.jacobian_at(s, t);
                 if v < -eval_bound {
                     out.verdict = RegularityVerdict::NotRegular;
                     out.witness = Some((DomainPoint { patch: id, s, t }, v / scale));
-                    return out;
+                    return Ok(out);
                 }
             }
         }
         let (sc, tc) = (s0 + h / 2.0, t0 + h / 2.0);
-        let vc = sigma * patch_of(id).jacobian_at(sc, tc);
+        let vc = sigma * patch.jacobian_at(sc, tc);
         if vc < -eval_bound {
             out.verdict = RegularityVerdict::NotRegular;
             out.witness = Some((
@@ -253,7 +308,7 @@ pub fn check_regularity(ring: &Ring, delta: f64) -> Regularity {
                 },
                 vc / scale,
             ));
-            return out;
+            return Ok(out);
         }
         if depth >= MAX_DEPTH || out.pieces + work.len() + 4 > MAX_PIECES {
             out.verdict = RegularityVerdict::Indeterminate;
@@ -268,11 +323,11 @@ pub fn check_regularity(ring: &Ring, delta: f64) -> Regularity {
         let h2 = h / 2.0;
         for (piece, ds) in [(l, 0.0), (r, h2)] {
             let (b0, b1) = piece.split_t(0.5);
-            work.push((id, b0, s0 + ds, t0, h2, depth + 1));
-            work.push((id, b1, s0 + ds, t0 + h2, h2, depth + 1));
+            work.push((k, b0, s0 + ds, t0, h2, depth + 1));
+            work.push((k, b1, s0 + ds, t0 + h2, h2, depth + 1));
         }
     }
-    out
+    Ok(out)
 }
 
 /// `min sigma c_ij` with its index.

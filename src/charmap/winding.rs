@@ -1,20 +1,24 @@
-//! Certified winding number of a closed chain of planar Bezier curves around the origin.
+//! Certified winding number of a closed chain of planar curves around the origin.
 //!
-//! Math doc section 7 (injectivity). Each curve is split (de Casteljau at 1/2)
-//! until the control points of every piece lie in an open cone with apex at
-//! the origin and opening `< pi - `[`ANGLE_MARGIN`], *after* widening every
-//! control point's direction by its angular uncertainty `asin(eps_k / |b_k|)`
-//! (`eps_k` = the control-point error bound plus the rounding of the splits).
-//! The convex hull of the control points, hence the piece, then lies in the
-//! cone: it avoids the origin and its change of argument equals the principal
-//! angle from its first to its last control point. The gaps between the end
-//! of one curve and the start of the next (identical in exact arithmetic,
-//! rounding apart in floating point) are bridged by their principal angles
-//! as well. The total is an exact multiple of `2 pi` in exact arithmetic;
-//! the computed sum must be within [`INTEGRALITY_TOL`] (in turns) of an
-//! integer, otherwise the result is undecided. A piece that still fails at
-//! [`MAX_SPLIT_DEPTH`] (the curve passes through or within rounding of the
-//! origin) also leaves the winding number undecided.
+//! Math doc section 7 (injectivity). A curve here is anything with the
+//! convex-hull property and a subdivision rule ([`HullCurve`]): Bezier curves
+//! (de Casteljau) and the limit curves of non-negative stationary subdivision
+//! rules (e.g. [`super::catmull_clark::WindowCurve`]). Each curve is split at
+//! its parametric midpoint until the hull points of every piece lie in an open
+//! cone with apex at the origin and opening `< pi - `[`ANGLE_MARGIN`], *after*
+//! widening every point's direction by its angular uncertainty
+//! `asin(eps_k / |b_k|)` (`eps_k` = the control-point error bound plus the
+//! rounding of the splits). The convex hull of the points, hence the piece,
+//! then lies in the cone: it avoids the origin and its change of argument
+//! equals the principal angle from its first to its last point (the piece's
+//! end points are hull points). The gaps between the end of one curve and the
+//! start of the next (identical in exact arithmetic, rounding apart in
+//! floating point) are bridged by their principal angles as well. The total
+//! is an exact multiple of `2 pi` in exact arithmetic; the computed sum must
+//! be within [`INTEGRALITY_TOL`] (in turns) of an integer, otherwise the
+//! result is undecided. A piece that still fails at [`MAX_SPLIT_DEPTH`] (the
+//! curve passes through or within rounding of the origin) also leaves the
+//! winding number undecided.
 
 use crate::bezier::BezierCurve;
 use std::f64::consts::PI;
@@ -22,32 +26,73 @@ use std::f64::consts::PI;
 /// Safety margin on the cone opening (radians).
 pub const ANGLE_MARGIN: f64 = 1e-9;
 
-/// Maximum de Casteljau depth per curve.
+/// Maximum split depth per curve.
 pub const MAX_SPLIT_DEPTH: u32 = 40;
 
 /// Largest accepted distance (in turns) of the accumulated angle from an integer.
 pub const INTEGRALITY_TOL: f64 = 1e-6;
 
+/// A planar curve piece with a convex-hull certificate and a midpoint split.
+pub trait HullCurve: Sized {
+    /// Points whose convex hull contains the curve; the first is the curve's
+    /// start point and the last its end point.
+    fn hull(&self) -> Vec<[f64; 2]>;
+    /// The two halves (parametric midpoint split).
+    fn halves(&self) -> (Self, Self);
+    /// Bound on the rounding added to every hull point by one split, for
+    /// points of magnitude at most `scale`.
+    fn split_error(&self, scale: f64) -> f64;
+    /// Bound on the rounding of the hull points themselves beyond the error
+    /// of the data (e.g. end points computed by a stencil), magnitude `scale`.
+    fn hull_error(&self, scale: f64) -> f64;
+}
+
+impl HullCurve for BezierCurve {
+    fn hull(&self) -> Vec<[f64; 2]> {
+        self.points.clone()
+    }
+    fn halves(&self) -> (Self, Self) {
+        self.split(0.5)
+    }
+    /// de Casteljau at 1/2 of degree `d`: `d` averaging levels (halving exact).
+    fn split_error(&self, scale: f64) -> f64 {
+        2.0 * super::regularity::gamma(self.points.len().saturating_sub(1).max(1)) * scale
+    }
+    fn hull_error(&self, _scale: f64) -> f64 {
+        0.0
+    }
+}
+
 /// Winding number of the closed chain `curves` around the origin, or `None`
 /// if it cannot be certified. `eps` bounds the absolute error of the control
 /// points; consecutive curves must join (end of `k` = start of `k + 1`, and of
 /// the last = start of the first) up to rounding.
-pub fn winding_number(curves: &[BezierCurve], eps: f64) -> Option<i64> {
+pub fn winding_number<C: HullCurve>(curves: &[C], eps: f64) -> Option<i64> {
     let mut total = 0.0;
     let mut scale = 0.0f64;
-    for c in curves {
-        for p in &c.points {
+    let hulls: Vec<Vec<[f64; 2]>> = curves.iter().map(HullCurve::hull).collect();
+    for h in &hulls {
+        for p in h {
             scale = scale.max(p[0].abs()).max(p[1].abs());
         }
     }
-    let split_err = 2.0 * super::regularity::gamma(2) * scale;
+    let mut worst_split = 0.0f64;
     for (k, c) in curves.iter().enumerate() {
-        total += curve_angle(c, eps, split_err, 0)?;
-        let next = &curves[(k + 1) % curves.len()];
-        let (a, b) = (c.points.last()?, next.points.first()?);
+        let split_err = c.split_error(scale);
+        worst_split = worst_split.max(split_err);
+        let e0 = eps + c.hull_error(scale);
+        total += curve_angle(c, &hulls[k], e0, split_err, 0)?;
+    }
+    for k in 0..curves.len() {
+        let (a, b) = (hulls[k].last()?, hulls[(k + 1) % curves.len()].first()?);
         if a != b {
             // bridge: both points must be clearly away from the origin
-            total += certified_angle(&[*a, *b], eps + split_err * MAX_SPLIT_DEPTH as f64)?;
+            let e = eps
+                + curves[k]
+                    .hull_error(scale)
+                    .max(curves[(k + 1) % curves.len()].hull_error(scale))
+                + worst_split * MAX_SPLIT_DEPTH as f64;
+            total += certified_angle(&[*a, *b], e)?;
         }
     }
     let turns = total / (2.0 * PI);
@@ -59,22 +104,32 @@ pub fn winding_number(curves: &[BezierCurve], eps: f64) -> Option<i64> {
     }
 }
 
-fn curve_angle(c: &BezierCurve, eps: f64, split_err: f64, depth: u32) -> Option<f64> {
+fn curve_angle<C: HullCurve>(
+    c: &C,
+    hull: &[[f64; 2]],
+    eps: f64,
+    split_err: f64,
+    depth: u32,
+) -> Option<f64> {
     let e = eps + split_err * depth as f64;
-    if let Some(a) = certified_angle(&c.points, e) {
+    if let Some(a) = certified_angle(hull, e) {
         return Some(a);
     }
     if depth >= MAX_SPLIT_DEPTH {
         return None;
     }
-    let (l, r) = c.split(0.5);
-    Some(curve_angle(&l, eps, split_err, depth + 1)? + curve_angle(&r, eps, split_err, depth + 1)?)
+    let (l, r) = c.halves();
+    let (hl, hr) = (l.hull(), r.hull());
+    Some(
+        curve_angle(&l, &hl, eps, split_err, depth + 1)?
+            + curve_angle(&r, &hr, eps, split_err, depth + 1)?,
+    )
 }
 
 /// The principal angle from the first to the last point if all points (each
 /// uncertain by `e`) lie in an open cone of opening `< pi - ANGLE_MARGIN`.
 fn certified_angle(pts: &[[f64; 2]], e: f64) -> Option<f64> {
-    let p0 = pts[0];
+    let p0 = *pts.first()?;
     let th0 = p0[1].atan2(p0[0]);
     let (mut lo, mut hi) = (0.0f64, 0.0f64);
     for p in pts {

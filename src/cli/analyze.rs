@@ -78,7 +78,9 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     Ok(())
 }
 
-fn charmap_json(c: &subdiv_lab::Result<charmap::CharmapReport>) -> serde_json::Value {
+fn charmap_json(
+    c: &subdiv_lab::Result<charmap::CharmapReport<charmap::AnyPatchId>>,
+) -> serde_json::Value {
     match c {
         Ok(r) => r.to_json(),
         Err(e) => serde_json::json!({
@@ -90,7 +92,7 @@ fn charmap_json(c: &subdiv_lab::Result<charmap::CharmapReport>) -> serde_json::V
 }
 
 /// Human-readable characteristic-map lines.
-fn charmap_summary(c: &subdiv_lab::Result<charmap::CharmapReport>) -> String {
+fn charmap_summary(c: &subdiv_lab::Result<charmap::CharmapReport<charmap::AnyPatchId>>) -> String {
     let r = match c {
         Ok(r) => r,
         Err(e) => return format!("characteristic map: not computed ({e})\n"),

@@ -1,11 +1,12 @@
 //! `subdiv-lab cc-study`: the shape-adjustable Catmull-Clark parameter study
-//! (subdominant eigenvalues, `|lambda_3|`, class against `c`; certified-standard
-//! intervals of `c` per valence by bisection). CSV on standard output.
+//! (subdominant eigenvalues, `|lambda_3|`, class and characteristic-map
+//! verdict against `c`; certified C1 or certified-standard intervals of `c`
+//! per valence by bisection). CSV on standard output.
 
 use super::{CliError, CliResult};
 use anyhow::anyhow;
 use clap::Args;
-use subdiv_lab::cc_study::{standard_intervals, study_curve};
+use subdiv_lab::cc_study::{intervals, study_curve, Criterion};
 
 #[derive(Args, Debug)]
 pub(crate) struct CcStudyArgs {
@@ -24,6 +25,16 @@ pub(crate) struct CcStudyArgs {
     /// Print the curves (one row per (n, c)) instead of the intervals.
     #[arg(long)]
     curves: bool,
+    /// What the intervals certify: `c1` (standard, characteristic map regular
+    /// and injective) or `standard` (the spectral part only).
+    #[arg(long, value_enum, default_value_t = CriterionArg::C1)]
+    criterion: CriterionArg,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum CriterionArg {
+    C1,
+    Standard,
 }
 
 pub(crate) fn run(args: CcStudyArgs) -> CliResult {
@@ -41,12 +52,12 @@ pub(crate) fn run(args: CcStudyArgs) -> CliResult {
     }
     if args.curves {
         println!(
-            "n,c,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,class,fourier_subdominant"
+            "n,c,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,class,fourier_subdominant,charmap"
         );
         for n in args.n_min..=args.n_max {
             for p in study_curve(n, args.samples).map_err(CliError::failure)? {
                 println!(
-                    "{},{},{:e},{:e},{:e},{:e},{:e},{},{:e}",
+                    "{},{},{:e},{:e},{:e},{:e},{:e},{},{:e},{}",
                     n,
                     p.c,
                     p.lambda1[0],
@@ -55,18 +66,23 @@ pub(crate) fn run(args: CcStudyArgs) -> CliResult {
                     p.lambda2[1],
                     p.abs_lambda3,
                     p.class,
-                    p.fourier_subdominant
+                    p.fourier_subdominant,
+                    p.charmap
                 );
             }
         }
     } else {
-        println!("n,interval,c_lo,c_hi,c_lo_outside,c_hi_outside");
+        let criterion = match args.criterion {
+            CriterionArg::C1 => Criterion::C1,
+            CriterionArg::Standard => Criterion::Standard,
+        };
+        println!("n,interval,c_lo,c_hi,c_lo_outside,c_hi_outside,below,above");
         for n in args.n_min..=args.n_max {
-            let iv = standard_intervals(n, args.samples, args.tol).map_err(CliError::failure)?;
+            let iv = intervals(n, args.samples, args.tol, criterion).map_err(CliError::failure)?;
             for (k, i) in iv.iter().enumerate() {
                 println!(
-                    "{n},{k},{:.9},{:.9},{:.9},{:.9}",
-                    i.lo, i.hi, i.lo_outside, i.hi_outside
+                    "{n},{k},{:.9e},{:.9e},{:.9e},{:.9e},{},{}",
+                    i.lo, i.hi, i.lo_outside, i.hi_outside, i.below, i.above
                 );
             }
         }

@@ -37,6 +37,8 @@ use super::backend::Area;
 use super::error::ReportError;
 use super::spec::{Common, FigureSpec};
 
+pub mod cc_c1_interval;
+pub mod cc_eigenvalues;
 pub mod ccss_bound;
 pub mod charmap_ring;
 pub mod config_table;
@@ -70,6 +72,8 @@ pub const REGISTRY: &[FigureKind] = &[
     mesh_convergence::KIND,
     mesh_picture::KIND,
     ccss_bound::KIND,
+    cc_eigenvalues::KIND,
+    cc_c1_interval::KIND,
 ];
 
 /// The kind named `name`.

@@ -237,21 +237,49 @@ pub fn stam_subdominant(n: usize) -> f64 {
 /// Catmull-Clark): the characteristic map's control net is `(x_1, x_2)`, and
 /// the extended matrix maps it to the control nets of the first ring's three
 /// regular sub-patches of sector 0 (sector `j` is the same net rotated by
-/// `2 pi j / n`). **\[derived\]**: on the one-ring, `v -> 0`,
-/// `e_i -> cos(i theta)`, `f_i -> (cos(i theta) + cos((i+1) theta)) / (4 lambda - 1)`
-/// (and the same with sin), from the second row of the `l = 1` block; the 7
-/// outer entries solve `(A_oo - lambda I) x_o = -A_or x_r`.
+/// `2 pi j / n`). See [`mode_patch_eigenvectors`] (`l = 1`).
 /// Returns `(lambda, [x_cos, x_sin])`.
 pub fn subdominant_patch_eigenvectors(
     n: usize,
     c: f64,
 ) -> Result<(f64, [nalgebra::DVector<f64>; 2])> {
-    let ev = block_eigenvalues(n, 1, c)?;
+    mode_patch_eigenvectors(n, c, 1)
+}
+
+/// The real right eigenvectors of the `(2n+8)` patch matrix for the larger
+/// root `lambda` of Fourier block `l` (`1 <= l < n`). **\[derived\]**: with
+/// `theta = 2 pi l / n`, on the one-ring `v -> 0`, `e_i -> cos(i theta)`,
+/// `f_i -> (cos(i theta) + cos((i+1) theta)) / (4 lambda - 1)` (and the same
+/// with sin), from the second row of the block (the face rule does not depend
+/// on `c`); the 7 outer entries solve `(A_oo - lambda I) x_o = -A_or x_r`.
+/// Sector `j`'s net is sector 0's rotated by `j theta` in the plane
+/// `(x_cos, x_sin)`. Returns `(lambda, [x_cos, x_sin])`.
+pub fn mode_patch_eigenvectors(
+    n: usize,
+    c: f64,
+    l: usize,
+) -> Result<(f64, [nalgebra::DVector<f64>; 2])> {
+    if l == 0 || 2 * l == n {
+        return Err(Error::InvalidParameter {
+            name: "frequency",
+            value: l.to_string(),
+            reason: "modes 0 and n/2 have no rotating eigenvector pair; use l in 1..n with 2l != n",
+        });
+    }
+    let ev = block_eigenvalues(n, l, c)?;
     let lambda = ev[0].re.max(ev[1].re);
+    if (4.0 * lambda - 1.0).abs() <= 4.0 * f64::EPSILON {
+        return Err(Error::Numerical {
+            routine: "Fourier mode eigenvectors",
+            reason: format!(
+                "mode {l} at n = {n}, c = {c} has lambda = 1/4 (face entries undefined)"
+            ),
+        });
+    }
     let a = super::patch_matrix::<f64>(n, &c)?.into_matrix();
     let lay = super::PatchLayout::new(n)?;
     let r = lay.one_ring_len();
-    let theta = 2.0 * PI / n as f64;
+    let theta = 2.0 * PI * l as f64 / n as f64;
     let make = |f: fn(f64) -> f64| -> Result<nalgebra::DVector<f64>> {
         let mut x = nalgebra::DVector::zeros(lay.patch_len());
         for i in 0..n {
