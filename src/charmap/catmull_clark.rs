@@ -988,6 +988,41 @@ mod tests {
         }
     }
 
+    /// `||S_d^k||_inf` for the difference rule `d(z)` of the derived rule
+    /// (`d = c/2 + (1 - c) z + c/2 z^2`): max over residues mod `2^k` of the
+    /// absolute coefficient sums of `d(z) d(z^2) ... d(z^(2^(k-1)))`.
+    fn difference_rule_norm(c: f64, k: u32) -> f64 {
+        let mut poly = vec![1.0];
+        for j in 0..k {
+            let step = 1usize << j;
+            let d = [c / 2.0, 1.0 - c, c / 2.0];
+            let mut out = vec![0.0; poly.len() + 2 * step];
+            for (i, p) in poly.iter().enumerate() {
+                for (e, q) in d.iter().enumerate() {
+                    out[i + e * step] += p * q;
+                }
+            }
+            poly = out;
+        }
+        let m = 1usize << k;
+        (0..m)
+            .map(|r| poly.iter().skip(r).step_by(m).map(|x| x.abs()).sum::<f64>())
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn derived_rule_converges_for_c_in_0_1() {
+        // the claim in the module docs: one-step norm max(c, 1 - c), two-step 1/2 at c = 1
+        for c in [0.01, 0.3, 0.5, 0.8, 0.99] {
+            let one = difference_rule_norm(c, 1);
+            assert!((one - c.max(1.0 - c)).abs() < 1e-15 && one < 1.0, "c = {c}");
+        }
+        assert_eq!(difference_rule_norm(1.0, 1), 1.0);
+        assert_eq!(difference_rule_norm(1.0, 2), 0.5);
+        // c = 0: never contractive (the derived rule is piecewise constant)
+        assert_eq!(difference_rule_norm(0.0, 6), 1.0);
+    }
+
     #[test]
     fn limit_stencil_is_a_fixed_point_of_the_local_matrix() {
         for c in [0.1, 0.5, 0.9, 1.0] {

@@ -391,7 +391,6 @@ impl<P> CharmapReport<P> {
     pub fn min_jacobian_coeff(&self) -> Option<f64> {
         self.regularity.as_ref().map(|r| r.min_coeff)
     }
-
 }
 
 impl<P: fmt::Display> CharmapReport<P> {
