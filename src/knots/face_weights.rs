@@ -10,7 +10,7 @@
 //!
 //! Writing `p_i = s_i (p_i + q_{i+1})`, `q_{i+1} = r_i (p_i + q_{i+1})` with
 //! `s_i = 1 - r_i`, every product above contains each edge sum `p_i + q_{i+1}`
-//! exactly once, so that common factor cancels and **[derived]**
+//! exactly once, so that common factor cancels and **\[derived\]**
 //!
 //! ```text
 //! alpha_j  ∝  sum_{m=0}^{n} w_m T_m(j),   w_0 = w_n = 1/2, w_m = 1 otherwise,
@@ -19,11 +19,11 @@
 //!
 //! These products over- and underflow `f64` for large `n` or extreme ratios
 //! (`(1e-6)^256`), so the `f64` kernel keeps every product as a mantissa and a
-//! separate `i64` binary exponent ([`ExtFloat`]): all terms are positive, so
+//! separate `i64` binary exponent (`ExtFloat`): all terms are positive, so
 //! no cancellation occurs and the relative error is `O(n eps)` for any `n` and
 //! any ratios. The rational kernel evaluates the same formula exactly.
 //!
-//! Independent check (math doc fact 3, **[derived]**): `c` is the stationary
+//! Independent check (math doc fact 3, **\[derived\]**): `c` is the stationary
 //! distribution of the cyclic Markov chain `P = R/2`, computed here by the
 //! subtraction-free GTH elimination ([`stationary_distribution`]).
 

@@ -18,7 +18,7 @@
 //! [`CornerIntervals`] is the user-facing form; [`EdgeRatios::to_corner_intervals`]
 //! gives a canonical corner form back (`p_i = 1 - r_i`, `q_i = r_{i-1}`).
 //!
-//! The two extraordinary-point presets of math doc section 3 **[derived]** are
+//! The two extraordinary-point presets of math doc section 3 **\[derived\]** are
 //! [`EdgeRatios::face_ep`] (an initial n-gon) and [`EdgeRatios::vertex_ep`] (the
 //! V-face of an initial valence-n vertex).
 
@@ -264,7 +264,7 @@ impl<T: Scalar> EdgeRatios<T> {
         Self::from_edge_pairs(forward, backward)
     }
 
-    /// Vertex EP preset **[derived]** (math doc section 3): a valence-n vertex `v`
+    /// Vertex EP preset **\[derived\]** (math doc section 3): a valence-n vertex `v`
     /// with faces `f_0..f_{n-1}` numbered counter-clockwise, `w_k = next_{f_k}(v)`
     /// and `a_k = d(v -> w_k)`. Corner `k` of its V-face lies in `f_k` and
     /// `r_k = a_{k+2} / (a_k + a_{k+2})`.
