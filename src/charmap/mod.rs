@@ -32,13 +32,17 @@
 //! planar basis or ring, e.g. deliberately perturbed ones), [`plot_data`].
 //!
 //! **Error control.** Two error sources are bounded separately: (1) the error
-//! of the computed invariant subspace, *estimated* to first order as
-//! [`SUBSPACE_ERROR_SAFETY`] `* ||S W - W M||_F / gap` per entry (rigorous for
-//! normal matrices only, hence the safety factor); (2) all rounding from the
-//! basis onwards (extended matrix, Bezier conversion, derivatives, products,
-//! subdivision, evaluation), bounded rigorously with Higham's `gamma_k`
+//! of the computed invariant subspace, bounded by Stewart's perturbation
+//! theorem ([`subspace_bound`]: `4 ||E_21||_F / sep` per entry, with the
+//! separation `sep(M, L_22)` computed from the smallest singular value of its
+//! Kronecker form, minus that computation's own error bound); (2) all rounding
+//! from the basis onwards (extended matrix, Bezier conversion, derivatives,
+//! products, subdivision, evaluation), bounded with Higham's `gamma_k`
 //! ([`point_error`], [`regularity::ErrorModel`]). Verdicts within these bounds
-//! are `indeterminate`, never guessed.
+//! are `indeterminate`, never guessed. Not covered: the floating-point error
+//! of the SVD that yields `sep` is taken from LAPACK-style backward stability
+//! (`|Δsigma| <= c m eps ||K||`, with `c` = [`SVD_ERROR_FACTOR`]), not proven
+//! for faer's implementation.
 //!
 //! ```
 //! use subdiv_lab::charmap::{check_basis, Eigenstructure, PlanarBasis};
@@ -85,10 +89,17 @@ use ring::Ring;
 use std::fmt;
 
 /// Safety factor on the first-order estimate `||S W - W M||_F / gap` of the
-/// error of the computed invariant subspace (exact for normal matrices; for
-/// non-normal ones the true separation can be smaller than the eigenvalue gap,
-/// hence the factor).
+/// error of the computed invariant subspace, reported as
+/// [`PlanarBasis::estimated_error`] next to the rigorous bound (for
+/// comparison: exact for normal matrices; for non-normal ones the true
+/// separation can be smaller than the eigenvalue gap, hence the factor).
 pub const SUBSPACE_ERROR_SAFETY: f64 = 100.0;
+
+/// Backward-error factor `c` of the SVD that computes the separation: the
+/// computed smallest singular value of the `2m x 2m` Kronecker matrix `K` is
+/// taken to be within `c (2m) eps ||K||_F` of the exact one (LAPACK's bound
+/// has `c` of order 1; we allow 8).
+pub const SVD_ERROR_FACTOR: f64 = 8.0;
 
 /// Smallest accepted `sin` of the angle between the two computed basis vectors;
 /// below it the vectors do not determine a plane (numerically parallel).
@@ -133,9 +144,17 @@ pub struct PlanarBasis {
     pub restriction: [[f64; 2]; 2],
     /// `||S W - W M||_F`.
     pub residual: f64,
-    /// Estimated bound on the error of every entry of `w1`, `w2`:
-    /// [`SUBSPACE_ERROR_SAFETY`] `* residual / gap`.
+    /// Bound on the error of every entry of `w1`, `w2` (there is an exact
+    /// invariant subspace with a basis within this distance, entry-wise):
+    /// Stewart's bound ([`subspace_bound`]), `+inf` when its hypothesis
+    /// fails (the subspace is then not certified and every verdict built on
+    /// it is `indeterminate`).
     pub vector_error: f64,
+    /// The first-order estimate [`SUBSPACE_ERROR_SAFETY`] `* residual / gap`
+    /// (for comparison with the bound; not used by the checks).
+    pub estimated_error: f64,
+    /// Lower bound on `sep(M, L_22)` (0 if none could be certified).
+    pub separation: f64,
 }
 
 impl PlanarBasis {
@@ -217,7 +236,8 @@ impl PlanarBasis {
         }
         // the residual is itself computed in floating point: add its rounding floor
         let floor = gamma(2 * dim) * frob(s);
-        let vector_error = SUBSPACE_ERROR_SAFETY * (residual + floor) / gap;
+        let estimated_error = SUBSPACE_ERROR_SAFETY * (residual + floor) / gap;
+        let (vector_error, separation) = subspace_bound(s, &w1, &w2)?;
         Ok(Self {
             structure,
             lambda,
@@ -226,8 +246,88 @@ impl PlanarBasis {
             restriction: m,
             residual,
             vector_error,
+            estimated_error,
+            separation,
         })
     }
+}
+
+/// Rigorous (up to [`SVD_ERROR_FACTOR`]) entry-wise error bound of an
+/// orthonormal basis `W = [w1 w2]` of an approximate invariant subspace of
+/// `S`, and the certified separation **\[derived\]** from Stewart's theorem
+/// (G. W. Stewart, SIAM Review 15, 1973; Golub and Van Loan, *Matrix
+/// Computations*, 3rd ed., Theorem 7.2.4):
+///
+/// With `Q = [W W_perp]` orthogonal (QR of `W`), `Q^T S Q = T + E` where
+/// `T = [[M, T_12], [0, L_22]]` has the exactly invariant subspace
+/// `span(e_1, e_2)` and `E = [[0, 0], [E_21, 0]]`. If
+/// `sep = sep(M, L_22) = sigma_min(I ⊗ M - L_22^T ⊗ I) > 0` and
+/// `||E||_2 (1 + 5 ||T_12||_2 / sep) <= sep / 5`, then `S` has an invariant
+/// subspace spanned by `W + W_perp P` with `||P||_2 <= 4 ||E_21||_2 / sep`;
+/// every entry of `W_perp P e_j` is at most `||P||_2`. We use Frobenius norms
+/// (upper bounds of the 2-norms), add the rounding of `Q^T S Q`
+/// (`gamma_{4 dim} ||S||_F`) to `||E_21||` and `||T_12||`, and subtract the
+/// SVD's error from `sigma_min`. Returns `(bound, sep_lower)`; the bound is
+/// `+inf` when the hypothesis fails.
+///
+/// Cost: one `dim x dim` QR and product, and the singular values of a
+/// `2 (dim - 2)` square matrix.
+pub fn subspace_bound(s: &DMatrix<f64>, w1: &[f64], w2: &[f64]) -> Result<(f64, f64)> {
+    let dim = s.nrows();
+    if dim < 3 {
+        return Ok((0.0, f64::INFINITY));
+    }
+    let wmat = faer::Mat::<f64>::from_fn(dim, 2, |i, j| if j == 0 { w1[i] } else { w2[i] });
+    let q = wmat.qr().compute_Q();
+    let sm = faer::Mat::<f64>::from_fn(dim, dim, |i, j| s[(i, j)]);
+    let t = q.transpose() * &sm * &q;
+    let m = dim - 2;
+    let fro = |rows: std::ops::Range<usize>, cols: std::ops::Range<usize>| {
+        let mut acc = 0.0;
+        for i in rows {
+            for j in cols.clone() {
+                acc += t[(i, j)] * t[(i, j)];
+            }
+        }
+        acc.sqrt()
+    };
+    let round = gamma(4 * dim) * frob(s);
+    let e21 = fro(2..dim, 0..2) + round;
+    let t12 = fro(0..2, 2..dim) + round;
+    // K = I_m ⊗ M - L22^T ⊗ I_2 on vec(X), X 2 x m (column-major: X[a][i] at a + 2 i)
+    let k = faer::Mat::<f64>::from_fn(2 * m, 2 * m, |r, c| {
+        let (a, i) = (r % 2, r / 2);
+        let (b, j) = (c % 2, c / 2);
+        let mut v = 0.0;
+        if i == j {
+            v += t[(a, b)];
+        }
+        if a == b {
+            v -= t[(2 + j, 2 + i)];
+        }
+        v
+    });
+    let mut kf = 0.0;
+    for c in 0..2 * m {
+        for r in 0..2 * m {
+            kf += k[(r, c)] * k[(r, c)];
+        }
+    }
+    let kf = kf.sqrt();
+    let sv = k.singular_values().map_err(|_| Error::Numerical {
+        routine: "subspace separation (SVD)",
+        reason: format!("no convergence for a {0} x {0} Kronecker matrix", 2 * m),
+    })?;
+    let smin = sv.last().copied().unwrap_or(0.0);
+    // sep of the exact T: the computed K is off by the rounding of Q^T S Q too
+    let sep = smin - SVD_ERROR_FACTOR * (2 * m) as f64 * f64::EPSILON * kf - 2.0 * round;
+    if sep.is_nan() || sep <= 0.0 || !sep.is_finite() {
+        return Ok((f64::INFINITY, 0.0));
+    }
+    if e21 * (1.0 + 5.0 * t12 / sep) > sep / 5.0 {
+        return Ok((f64::INFINITY, sep));
+    }
+    Ok((4.0 * e21 / sep, sep))
 }
 
 fn frob(s: &DMatrix<f64>) -> f64 {
@@ -478,6 +578,11 @@ fn assemble_report<P>(
     structure: Eigenstructure,
 ) -> CharmapReport<P> {
     let verdict = match (reg.verdict, winding) {
+        _ if !delta.is_finite() => Verdict::Indeterminate {
+            reason: "the subdominant invariant subspace is not certified (Stewart's \
+                     separation hypothesis fails: eigenvalues too close for the residual)"
+                .to_owned(),
+        },
         (RegularityVerdict::NotRegular, _) => Verdict::NotRegular,
         (RegularityVerdict::Indeterminate, _) => Verdict::Indeterminate {
             reason: format!(

@@ -283,6 +283,9 @@ pub fn check_bezier_patches<P: Copy>(
         if lo > bound {
             continue;
         }
+        // subdivision never takes the coefficients below the rounding floor:
+        // once the bound exceeds every coefficient of the piece, stop there
+        let hopeless = bound.is_nan() || bound >= j.max_abs();
         // Witness search: corners (exact values) and centre, evaluated directly.
         let (m, n) = j.degree();
         for (a, b) in [(0, 0), (m, 0), (0, n), (m, n)] {
@@ -310,7 +313,7 @@ pub fn check_bezier_patches<P: Copy>(
             ));
             return Ok(out);
         }
-        if depth >= MAX_DEPTH || out.pieces + work.len() + 4 > MAX_PIECES {
+        if hopeless || depth >= MAX_DEPTH || out.pieces + work.len() + 4 > MAX_PIECES {
             out.verdict = RegularityVerdict::Indeterminate;
             out.undecided.get_or_insert(DomainPoint {
                 patch: id,
