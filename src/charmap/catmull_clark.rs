@@ -391,20 +391,8 @@ pub fn check_cone_regularity(
             min_location = DomainPoint { patch: *id, s, t };
         }
     }
-    let mut out = Regularity {
-        verdict: RegularityVerdict::Regular,
-        orientation: sigma as i8,
-        min_coeff: min_coeff / scale,
-        min_location,
-        relative_error_bound: model.det_bound(0) / scale,
-        witness: None,
-        undecided: None,
-        pieces: 0,
-        max_depth: 0,
-    };
-    if cmax == 0.0 || !cmax.is_finite() {
-        out.verdict = RegularityVerdict::Indeterminate;
-        out.undecided = Some(min_location);
+    let mut out = Regularity::initial(sigma, min_coeff, min_location, model.det_bound(0), cmax);
+    if out.verdict == RegularityVerdict::Indeterminate {
         return Ok(out);
     }
     let mut work: Vec<(usize, Window, f64, f64, f64, u32)> = cells
@@ -799,24 +787,11 @@ pub fn point_error(
     basis: &PlanarBasis,
     maps: &[[[f64; 2]; 2]],
 ) -> f64 {
-    let mut rho = 0.0f64;
-    let mut nnz = 0usize;
-    for i in 0..ext.nrows() {
-        let row = ext.row(i);
-        rho = rho.max(row.iter().map(|x| x.abs()).sum());
-        nnz = nnz.max(row.iter().filter(|x| **x != 0.0).count());
-    }
-    let wmax = basis
-        .w1
-        .iter()
-        .chain(&basis.w2)
-        .fold(0.0f64, |a, x| a.max(x.abs()));
+    let (e0, p0) = super::propagated_error(ext, basis);
     let g = maps
         .iter()
         .map(|m| (m[0][0].abs() + m[0][1].abs()).max(m[1][0].abs() + m[1][1].abs()))
         .fold(1.0f64, f64::max);
-    let p0 = rho * wmax;
-    let e0 = rho * basis.vector_error + gamma(nnz + 1) * p0;
     let pmax = g * p0;
     g * e0 + gamma(8) * pmax + gamma(10) * pmax
 }

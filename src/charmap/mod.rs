@@ -523,7 +523,15 @@ impl<P: fmt::Display> CharmapReport<P> {
 /// (`K` = nonzeros per row + 1); the B-spline-to-Bezier conversion forms convex
 /// combinations of at most 4 points (`+ gamma_8 max|P|`).
 pub fn point_error(ext: &ExtendedMatrix<f64>, basis: &PlanarBasis) -> f64 {
-    let m = ext.matrix().matrix();
+    let (e, pmax) = propagated_error(ext.matrix().matrix(), basis);
+    e + gamma(8) * pmax
+}
+
+/// The error of `m * [w1 w2]` for a basis with entry error `vector_error`,
+/// and a bound on its entries: `m` has absolute row sums `rho` and at most
+/// `K - 1` nonzeros per row, so each entry is off by at most
+/// `rho vector_error + gamma_K rho max|w|`. Returns `(error, rho max|w|)`.
+pub(crate) fn propagated_error(m: &DMatrix<f64>, basis: &PlanarBasis) -> (f64, f64) {
     let mut rho = 0.0f64;
     let mut nnz = 0usize;
     for i in 0..m.nrows() {
@@ -537,7 +545,7 @@ pub fn point_error(ext: &ExtendedMatrix<f64>, basis: &PlanarBasis) -> f64 {
         .chain(&basis.w2)
         .fold(0.0f64, |a, x| a.max(x.abs()));
     let pmax = rho * wmax;
-    rho * basis.vector_error + gamma(nnz + 1) * pmax + gamma(8) * pmax
+    (rho * basis.vector_error + gamma(nnz + 1) * pmax, pmax)
 }
 
 /// Runs the regularity and winding checks for a planar basis of `S_n`'s

@@ -165,6 +165,37 @@ pub struct Regularity<P = RingPatchId> {
     pub max_depth: u32,
 }
 
+impl<P: Copy> Regularity<P> {
+    /// The state before the work loop of a certificate: `Regular` so far,
+    /// or `Indeterminate` at once when the certificate's coefficients are all
+    /// zero or not finite (`scale` = their largest magnitude).
+    pub(crate) fn initial(
+        orientation: f64,
+        min_coeff: f64,
+        min_location: DomainPoint<P>,
+        error_bound: f64,
+        scale: f64,
+    ) -> Self {
+        let degenerate = scale == 0.0 || !scale.is_finite();
+        let s = if scale > 0.0 { scale } else { 1.0 };
+        Self {
+            verdict: if degenerate {
+                RegularityVerdict::Indeterminate
+            } else {
+                RegularityVerdict::Regular
+            },
+            orientation: orientation as i8,
+            min_coeff: min_coeff / s,
+            min_location,
+            relative_error_bound: error_bound / s,
+            witness: None,
+            undecided: degenerate.then_some(min_location),
+            pieces: 0,
+            max_depth: 0,
+        }
+    }
+}
+
 impl<P> Regularity<P> {
     /// The same result with every patch identifier mapped by `f`.
     pub fn map_patches<Q>(self, f: impl Fn(P) -> Q) -> Regularity<Q> {
@@ -252,20 +283,14 @@ pub fn check_bezier_patches<P: Copy>(
         }
     }
     let eval_bound = model.evaluation_bound();
-    let mut out = Regularity {
-        verdict: RegularityVerdict::Regular,
-        orientation: sigma as i8,
-        min_coeff: min_coeff / scale,
+    let mut out = Regularity::initial(
+        sigma,
+        min_coeff,
         min_location,
-        relative_error_bound: model.coefficient_bound() / scale,
-        witness: None,
-        undecided: None,
-        pieces: 0,
-        max_depth: 0,
-    };
-    if cmax == 0.0 || !cmax.is_finite() {
-        out.verdict = RegularityVerdict::Indeterminate;
-        out.undecided = Some(min_location);
+        model.coefficient_bound(),
+        cmax,
+    );
+    if out.verdict == RegularityVerdict::Indeterminate {
         return Ok(out);
     }
     // Work list: (patch index, piece coefficients, s0, t0, size, depth).
