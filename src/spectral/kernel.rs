@@ -22,7 +22,14 @@
 //!
 //! The module also computes eigenvalue condition numbers of a few selected
 //! eigenvalues by inverse iteration on the Hessenberg form
-//! ([`KernelWorkspace::condition_number`]), `O(n^2)` each, without allocation.
+//! ([`KernelWorkspace::condition_number`]), `O(n^2)` each, without allocation
+//! (in real arithmetic for a real eigenvalue).
+//!
+//! Speed notes (small `n` is latency-bound: the chain scale -> square root ->
+//! divisions of each 3x3 reflector dominates): reflectors use one reciprocal
+//! instead of several divisions, skip EISPACK's rescaling of `(p, q, r)` where
+//! it cannot matter ([`SAFE_MIN`]..[`SAFE_MAX`]), and the last reflector of
+//! a sweep has its own two-row loops.
 
 use super::SpectralError;
 use num_complex::Complex64;
@@ -39,12 +46,13 @@ pub const MAX_SWEEPS_PER_DIMENSION: usize = 30;
 /// An exceptional (ad hoc) shift is used every this many sweeps without deflation.
 pub const EXCEPTIONAL_SHIFT_PERIOD: usize = 10;
 
-/// Below [`SAFE_MAX`] and above [`SAFE_MIN`] (`2^{+-500}`), the sum of three
-/// squares of numbers of modulus at most `x` neither overflows nor underflows
-/// to a subnormal when their `|.|`-sum is `x` (`(x/3)^2 >= 2^-1004`,
-/// `3 x^2 <= 2^1002`), so reflectors need no rescaling.
+/// Upper end (`2^500`) of the range of `x = |p| + |q| + |r|` in which the QR
+/// sweep of [`hqr`] forms `p^2 + q^2 + r^2` without EISPACK's rescaling by `x`:
+/// that sum lies in `[x^2 / 3, x^2]`, so for `2^-500 <= x <= 2^500` it is a
+/// normal number (`>= 2^-1002`, `<= 2^1000`) and can neither overflow nor lose
+/// precision to underflow; outside the range the sweep rescales as EISPACK does.
 const SAFE_MAX: f64 = 3.273_390_607_896_142e150;
-/// See [`SAFE_MAX`] (`2^-500`).
+/// Lower end (`2^-500`) of the no-rescaling range; see [`SAFE_MAX`].
 const SAFE_MIN: f64 = 3.054_936_363_499_605e-151;
 
 /// Reusable storage for the kernel (grows to the largest size seen).
@@ -171,8 +179,8 @@ impl KernelWorkspace {
         self.piv.resize(n, 0);
         if lambda.im == 0.0 {
             // A real eigenvalue of a real matrix: real arithmetic throughout
-            // (the same LU, pivots and vectors as the complex path would
-            // compute, at a quarter of the cost).
+            // (the LU, pivots and vectors the complex path computes, up to
+            // rounding, at about a quarter of the cost; tested below).
             let lam = lambda.re;
             self.lur.clear();
             self.lur.extend_from_slice(&self.hess[..n * n]);
