@@ -51,9 +51,9 @@ pub const EXCEPTIONAL_SHIFT_PERIOD: usize = 10;
 /// that sum lies in `[x^2 / 3, x^2]`, so for `2^-500 <= x <= 2^500` it is a
 /// normal number (`>= 2^-1002`, `<= 2^1000`) and can neither overflow nor lose
 /// precision to underflow; outside the range the sweep rescales as EISPACK does.
-const SAFE_MAX: f64 = 3.273_390_607_896_142e150;
+pub const SAFE_MAX: f64 = 3.273_390_607_896_142e150;
 /// Lower end (`2^-500`) of the no-rescaling range; see [`SAFE_MAX`].
-const SAFE_MIN: f64 = 3.054_936_363_499_605e-151;
+pub const SAFE_MIN: f64 = 3.054_936_363_499_605e-151;
 
 /// Reusable storage for the kernel (grows to the largest size seen).
 #[derive(Debug, Default, Clone)]
