@@ -584,9 +584,11 @@ pub(crate) fn hqr(
             its += 1;
             total += 1;
             // Form shift and look for two consecutive small subdiagonal elements.
-            let mut m = nu - 2;
+            // The bulge starts at l (EISPACK's search for two consecutive
+            // small subdiagonal entries, to start lower, rarely pays at small n).
+            let m = l;
             let (mut p, mut q, mut r);
-            loop {
+            {
                 let z = g!(m, m);
                 let rr = x - z;
                 let ss = y - z;
@@ -597,15 +599,6 @@ pub(crate) fn hqr(
                 p /= s;
                 q /= s;
                 r /= s;
-                if m == l {
-                    break;
-                }
-                let u = g!(m, m - 1).abs() * (q.abs() + r.abs());
-                let v = p.abs() * (g!(m - 1, m - 1).abs() + z.abs() + g!(m + 1, m + 1).abs());
-                if u <= eps * v {
-                    break;
-                }
-                m -= 1;
             }
             for i in m + 2..=nu {
                 *m!(i, i - 2) = 0.0;
