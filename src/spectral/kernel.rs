@@ -841,4 +841,121 @@ mod tests {
             }
         }
     }
+
+    /// Largest distance from a kernel eigenvalue to the nearest faer eigenvalue
+    /// of the same matrix, and the trace defect.
+    fn versus_faer(ws: &mut KernelWorkspace, a: &nalgebra::DMatrix<f64>) -> (f64, f64) {
+        use crate::spectral::eigen::{Eigen, EigenOptions};
+        let n = a.nrows();
+        let ours = eig_of(ws, a.as_slice(), n);
+        let theirs = Eigen::new(a, EigenOptions::VALUES).unwrap();
+        let d = ours
+            .iter()
+            .map(|z| {
+                theirs
+                    .values()
+                    .iter()
+                    .map(|w| (z - w).norm())
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0, f64::max);
+        let tr: Complex64 = ours.iter().sum();
+        (d, (tr.re - a.trace()).abs() + tr.im.abs())
+    }
+
+    #[test]
+    fn adversarial_inputs_agree_with_faer() {
+        use crate::knots::EdgeRatios;
+        use crate::schemes::LocalScheme;
+        use nalgebra::DMatrix;
+        let mut ws = KernelWorkspace::new();
+        let mut rng = crate::contraction::SplitMix64::new(2024);
+        // NURDS face blocks with extreme ratios (1e-6 and 1 - 1e-6 mixed in).
+        for trial in 0..60 {
+            let n = 3 + trial % 20;
+            let r: Vec<f64> = (0..n)
+                .map(|i| match (i + trial) % 3 {
+                    0 => 1e-6,
+                    1 => 1.0 - 1e-6,
+                    _ => rng.uniform(0.01, 0.99),
+                })
+                .collect();
+            let a = LocalScheme::nurds(EdgeRatios::new(r).unwrap())
+                .face_block()
+                .unwrap();
+            let (d, t) = versus_faer(&mut ws, &a);
+            // Well separated except near-double roots: compare loosely, the
+            // trace tightly.
+            assert!(d < 1e-6, "n = {n}: {d:e}");
+            assert!(t < 1e-12 * n as f64, "n = {n}: trace defect {t:e}");
+        }
+        // Defective: Jordan blocks J_k(1/2), also hidden by a similarity.
+        for k in 2..=5usize {
+            let j = DMatrix::from_fn(k, k, |i, c| {
+                if i == c {
+                    0.5
+                } else if c == i + 1 {
+                    1.0
+                } else {
+                    0.0
+                }
+            });
+            let q = DMatrix::from_fn(k, k, |_, _| rng.uniform(-1.0, 1.0))
+                + DMatrix::identity(k, k) * 3.0;
+            let a = &q * &j * q.try_inverse().unwrap();
+            for m in [j, a] {
+                let v = eig_of(&mut ws, m.as_slice(), k);
+                // A k-fold defective eigenvalue moves by ~ eps^(1/k).
+                let tol = 100.0 * f64::EPSILON.powf(1.0 / k as f64);
+                assert!(v.iter().all(|z| (z - 0.5).norm() < tol), "k = {k}: {v:?}");
+                let (_, t) = versus_faer(&mut ws, &m);
+                assert!(t < 1e-12, "k = {k}: trace defect {t:e}");
+            }
+        }
+        // Graded (badly scaled by a diagonal similarity) and companion matrices.
+        for n in 3..=16usize {
+            let b = DMatrix::from_fn(n, n, |_, _| rng.uniform(-1.0, 1.0));
+            let g = DMatrix::from_fn(n, n, |i, j| b[(i, j)] * 10f64.powi(i as i32 - j as i32));
+            let (d, _) = versus_faer(&mut ws, &g);
+            let scale = g.norm();
+            assert!(d < 1e-6 * scale, "graded n = {n}: {d:e}");
+            // Companion matrix of prod_k (x - k / n): eigenvalues k / n, k = 1..n
+            // (Wilkinson-like, unbalanced: ill-conditioned beyond n ~ 10 for
+            // any unbalanced QR, faer's and the old kernel's alike).
+            if n > 10 {
+                continue;
+            }
+            let mut c = vec![1.0f64];
+            for k in 1..=n {
+                let root = k as f64 / n as f64;
+                let mut next = vec![0.0; c.len() + 1];
+                for (i, &ci) in c.iter().enumerate() {
+                    next[i + 1] += ci;
+                    next[i] -= root * ci;
+                }
+                c = next;
+            }
+            let comp = DMatrix::from_fn(n, n, |i, j| {
+                if j == n - 1 {
+                    -c[i]
+                } else if i == j + 1 {
+                    1.0
+                } else {
+                    0.0
+                }
+            });
+            let v = eig_of(&mut ws, comp.as_slice(), n);
+            let (d, _) = versus_faer(&mut ws, &comp);
+            assert!(d < 1e-6, "companion n = {n}: {d:e}");
+            if n <= 8 {
+                for z in &v {
+                    let k = (z.re * n as f64).round();
+                    assert!(
+                        (1.0..=n as f64).contains(&k) && (z - k / n as f64).norm() < 1e-6,
+                        "companion n = {n}: {z}"
+                    );
+                }
+            }
+        }
+    }
 }
