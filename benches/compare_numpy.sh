@@ -13,6 +13,8 @@
 # each REPEAT times (default 3; the best run is kept, which filters out noise
 # from other processes), and prints a table of configurations per second and
 # the speed-up over numpy. Needs python3 with numpy (`pip install numpy`).
+# Environment: REPEAT (runs per cell, best kept), NUMPY_REF (path of the
+# reference script), THROUGHPUT_BIN (use this throughput binary, no build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 COUNT=${1:-4000}
@@ -25,8 +27,14 @@ NUMPY_REF=${NUMPY_REF:-../shared/bench/numpy_reference.py}
 [ -f "$NUMPY_REF" ] || NUMPY_REF=../../shared/bench/numpy_reference.py
 python3 -c 'import numpy' 2>/dev/null || { echo "numpy missing: pip install numpy" >&2; exit 1; }
 [ -f "$NUMPY_REF" ] || { echo "missing $NUMPY_REF" >&2; exit 1; }
-cargo build --release --bench throughput >/dev/null 2>&1
-BIN=$(ls -t target/release/deps/throughput-* | grep -v '\.d$' | head -1)
+# THROUGHPUT_BIN runs a saved throughput binary instead of building one (e.g.
+# the binary of an older commit, for a before/after table under equal load).
+if [ -n "${THROUGHPUT_BIN:-}" ]; then
+  BIN=$THROUGHPUT_BIN
+else
+  cargo build --release --bench throughput >/dev/null 2>&1
+  BIN=$(ls -t target/release/deps/throughput-* | grep -v '\.d$' | head -1)
+fi
 
 rate() { sed -n 's/.*configs_per_s=\([0-9]*\).*/\1/p'; }
 best() { # best of REPEAT runs of the command given as arguments

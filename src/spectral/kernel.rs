@@ -22,7 +22,14 @@
 //!
 //! The module also computes eigenvalue condition numbers of a few selected
 //! eigenvalues by inverse iteration on the Hessenberg form
-//! ([`KernelWorkspace::condition_number`]), `O(n^2)` each, without allocation.
+//! ([`KernelWorkspace::condition_number`]), `O(n^2)` each, without allocation
+//! (in real arithmetic for a real eigenvalue).
+//!
+//! Speed notes (small `n` is latency-bound: the chain scale -> square root ->
+//! divisions of each 3x3 reflector dominates): reflectors use one reciprocal
+//! instead of several divisions, skip EISPACK's rescaling of `(p, q, r)` where
+//! it cannot matter ([`SAFE_MIN`]..[`SAFE_MAX`]), and the last reflector of
+//! a sweep has its own two-row loops.
 
 use super::SpectralError;
 use num_complex::Complex64;
@@ -38,6 +45,15 @@ pub const MAX_SWEEPS_PER_DIMENSION: usize = 30;
 
 /// An exceptional (ad hoc) shift is used every this many sweeps without deflation.
 pub const EXCEPTIONAL_SHIFT_PERIOD: usize = 10;
+
+/// Upper end (`2^500`) of the range of `x = |p| + |q| + |r|` in which the QR
+/// sweep of [`hqr`] forms `p^2 + q^2 + r^2` without EISPACK's rescaling by `x`:
+/// that sum lies in `[x^2 / 3, x^2]`, so for `2^-500 <= x <= 2^500` it is a
+/// normal number (`>= 2^-1002`, `<= 2^1000`) and can neither overflow nor lose
+/// precision to underflow; outside the range the sweep rescales as EISPACK does.
+pub const SAFE_MAX: f64 = 3.273_390_607_896_142e150;
+/// Lower end (`2^-500`) of the no-rescaling range; see [`SAFE_MAX`].
+pub const SAFE_MIN: f64 = 3.054_936_363_499_605e-151;
 
 /// Reusable storage for the kernel (grows to the largest size seen).
 #[derive(Debug, Default, Clone)]
@@ -57,6 +73,15 @@ pub struct KernelWorkspace {
     piv: Vec<usize>,
     x: Vec<Complex64>,
     y: Vec<Complex64>,
+    /// Inverse pivots of the LU factors.
+    dinv: Vec<Complex64>,
+    /// Real LU factors, inverse pivots and vectors for real eigenvalues.
+    lur: Vec<f64>,
+    dinvr: Vec<f64>,
+    xr: Vec<f64>,
+    yr: Vec<f64>,
+    /// Frobenius norm of `hess`.
+    hess_norm: f64,
     /// Eigenvalues (real and imaginary parts).
     wr: Vec<f64>,
     wi: Vec<f64>,
@@ -124,6 +149,7 @@ impl KernelWorkspace {
         hessenberg(n, &mut self.h, &mut self.v, &mut self.w);
         self.hess.clear();
         self.hess.extend_from_slice(&self.h);
+        self.hess_norm = self.hess.iter().map(|x| x * x).sum::<f64>().sqrt();
         self.sweeps = hqr(n, &mut self.h, &mut self.wr, &mut self.wi)?;
         Ok((&self.wr, &self.wi))
     }
@@ -148,40 +174,129 @@ impl KernelWorkspace {
         if n == 0 {
             return 1.0;
         }
-        let norm = self.hess[..n * n].iter().map(|x| x * x).sum::<f64>().sqrt();
-        let tiny = f64::EPSILON * norm.max(f64::MIN_POSITIVE);
-        self.lu.clear();
-        self.lu
-            .extend(self.hess[..n * n].iter().map(|&x| Complex64::new(x, 0.0)));
-        for i in 0..n {
-            self.lu[i + i * n] -= lambda;
-        }
+        let tiny = f64::EPSILON * self.hess_norm.max(f64::MIN_POSITIVE);
         self.piv.clear();
         self.piv.resize(n, 0);
-        hessenberg_lu(n, &mut self.lu, &mut self.piv, tiny);
-        // Deterministic, non-special starting vectors.
-        self.x.clear();
-        self.x
-            .extend((0..n).map(|i| Complex64::new(1.0 + 0.5 * ((i * 7 % 11) as f64) / 11.0, 0.0)));
-        self.y.clear();
-        self.y.extend_from_slice(&self.x);
-        for _ in 0..1 {
-            hessenberg_solve(n, &self.lu, &self.piv, &mut self.x);
-            normalise(&mut self.x);
-            hessenberg_solve_adjoint(n, &self.lu, &self.piv, &mut self.y);
-            normalise(&mut self.y);
-        }
-        let dot: Complex64 = self.y.iter().zip(&self.x).map(|(y, x)| y.conj() * x).sum();
-        let d = dot.norm();
-        if d == 0.0 || !d.is_finite() {
-            f64::INFINITY
+        if lambda.im == 0.0 {
+            // A real eigenvalue of a real matrix: real arithmetic throughout
+            // (the LU, pivots and vectors the complex path computes, up to
+            // rounding, at about a quarter of the cost; tested below).
+            let lam = lambda.re;
+            self.lur.clear();
+            self.lur.extend_from_slice(&self.hess[..n * n]);
+            for i in 0..n {
+                self.lur[i + i * n] -= lam;
+            }
+            inverse_iteration_kappa(
+                n,
+                &mut self.lur,
+                &mut self.piv,
+                tiny,
+                &mut self.dinvr,
+                &mut self.xr,
+                &mut self.yr,
+            )
         } else {
-            (1.0 / d).max(1.0)
+            self.lu.clear();
+            self.lu
+                .extend(self.hess[..n * n].iter().map(|&x| Complex64::new(x, 0.0)));
+            for i in 0..n {
+                self.lu[i + i * n] -= lambda;
+            }
+            inverse_iteration_kappa(
+                n,
+                &mut self.lu,
+                &mut self.piv,
+                tiny,
+                &mut self.dinv,
+                &mut self.x,
+                &mut self.y,
+            )
         }
     }
 }
 
-fn normalise(v: &mut [Complex64]) {
+/// The scalar types of the inverse iteration ([`f64`] for real eigenvalues,
+/// [`Complex64`] otherwise).
+trait Field:
+    Copy
+    + std::ops::Sub<Output = Self>
+    + std::ops::SubAssign
+    + std::ops::Mul<Output = Self>
+    + std::ops::Div<Output = Self>
+    + std::ops::DivAssign<f64>
+    + std::iter::Sum
+{
+    fn from_f64(x: f64) -> Self;
+    fn conj(self) -> Self;
+    /// `|re| + |im|`: a cheap norm with the same pivoting quality as the modulus.
+    fn l1(self) -> f64;
+    fn norm_sqr(self) -> f64;
+}
+
+impl Field for f64 {
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+    fn conj(self) -> Self {
+        self
+    }
+    fn l1(self) -> f64 {
+        self.abs()
+    }
+    fn norm_sqr(self) -> f64 {
+        self * self
+    }
+}
+
+impl Field for Complex64 {
+    fn from_f64(x: f64) -> Self {
+        Complex64::new(x, 0.0)
+    }
+    fn conj(self) -> Self {
+        Complex64::conj(&self)
+    }
+    fn l1(self) -> f64 {
+        self.re.abs() + self.im.abs()
+    }
+    fn norm_sqr(self) -> f64 {
+        Complex64::norm_sqr(&self)
+    }
+}
+
+/// `kappa = ||x|| ||y|| / |y^H x|` from one step of inverse iteration with
+/// `lu = H - lambda I` (destroyed: replaced by its LU factors, the inverse
+/// pivots go to `dinv`), from fixed, deterministic, non-special start vectors.
+fn inverse_iteration_kappa<T: Field>(
+    n: usize,
+    lu: &mut [T],
+    piv: &mut [usize],
+    tiny: f64,
+    dinv: &mut Vec<T>,
+    x: &mut Vec<T>,
+    y: &mut Vec<T>,
+) -> f64 {
+    dinv.clear();
+    dinv.resize(n, T::from_f64(0.0));
+    hessenberg_lu(n, lu, piv, dinv, tiny);
+    x.clear();
+    x.extend((0..n).map(|i| T::from_f64(1.0 + 0.5 * ((i * 7 % 11) as f64) / 11.0)));
+    y.clear();
+    y.extend_from_slice(x);
+    hessenberg_solve(n, lu, piv, dinv, x);
+    normalise(x);
+    hessenberg_solve_adjoint(n, lu, piv, dinv, y);
+    normalise(y);
+    let dot: T = y.iter().zip(x.iter()).map(|(&y, &x)| y.conj() * x).sum();
+    let d = dot.norm_sqr().sqrt();
+    if d == 0.0 || !d.is_finite() {
+        f64::INFINITY
+    } else {
+        (1.0 / d).max(1.0)
+    }
+}
+
+fn normalise<T: Field>(v: &mut [T]) {
     let s = v.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
     if s > 0.0 && s.is_finite() {
         v.iter_mut().for_each(|z| *z /= s);
@@ -193,11 +308,9 @@ fn normalise(v: &mut [Complex64]) {
 /// subdiagonal entry with multiplier `l_k`, stored at `(k+1, k)`. Pivots that
 /// are exactly or nearly zero are replaced by `tiny` (standard for inverse
 /// iteration at an eigenvalue).
-fn hessenberg_lu(n: usize, a: &mut [Complex64], piv: &mut [usize], tiny: f64) {
-    // |re| + |im| is a cheap norm with the same pivoting quality as the modulus.
-    let l1 = |z: Complex64| z.re.abs() + z.im.abs();
+fn hessenberg_lu<T: Field>(n: usize, a: &mut [T], piv: &mut [usize], dinv: &mut [T], tiny: f64) {
     for k in 0..n {
-        if k + 1 < n && l1(a[k + 1 + k * n]) > l1(a[k + k * n]) {
+        if k + 1 < n && a[k + 1 + k * n].l1() > a[k + k * n].l1() {
             piv[k] = 1;
             for j in k..n {
                 a.swap(k + j * n, k + 1 + j * n);
@@ -205,11 +318,13 @@ fn hessenberg_lu(n: usize, a: &mut [Complex64], piv: &mut [usize], tiny: f64) {
         } else {
             piv[k] = 0;
         }
-        if l1(a[k + k * n]) <= tiny {
-            a[k + k * n] = Complex64::new(tiny, 0.0);
+        if a[k + k * n].l1() <= tiny {
+            a[k + k * n] = T::from_f64(tiny);
         }
+        let inv = T::from_f64(1.0) / a[k + k * n];
+        dinv[k] = inv;
         if k + 1 < n {
-            let l = a[k + 1 + k * n] / a[k + k * n];
+            let l = a[k + 1 + k * n] * inv;
             a[k + 1 + k * n] = l;
             for j in k + 1..n {
                 let u = a[k + j * n];
@@ -220,7 +335,7 @@ fn hessenberg_lu(n: usize, a: &mut [Complex64], piv: &mut [usize], tiny: f64) {
 }
 
 /// Solves `H x = b` from [`hessenberg_lu`].
-fn hessenberg_solve(n: usize, lu: &[Complex64], piv: &[usize], b: &mut [Complex64]) {
+fn hessenberg_solve<T: Field>(n: usize, lu: &[T], piv: &[usize], dinv: &[T], b: &mut [T]) {
     for k in 0..n.saturating_sub(1) {
         if piv[k] == 1 {
             b.swap(k, k + 1);
@@ -229,23 +344,23 @@ fn hessenberg_solve(n: usize, lu: &[Complex64], piv: &[usize], b: &mut [Complex6
         b[k + 1] -= lu[k + 1 + k * n] * bk;
     }
     for j in (0..n).rev() {
-        b[j] /= lu[j + j * n];
-        let bj = b[j];
-        for i in 0..j {
-            b[i] -= lu[i + j * n] * bj;
+        let bj = b[j] * dinv[j];
+        b[j] = bj;
+        for (bi, &l) in b[..j].iter_mut().zip(&lu[j * n..j * n + j]) {
+            *bi -= l * bj;
         }
     }
 }
 
 /// Solves `H^H y = b` from [`hessenberg_lu`]: `M H = U` with
 /// `M = M_{n-2} .. M_0`, `M_k = E_k P_k`, so `y = M_0^H .. M_{n-2}^H U^{-H} b`.
-fn hessenberg_solve_adjoint(n: usize, lu: &[Complex64], piv: &[usize], b: &mut [Complex64]) {
+fn hessenberg_solve_adjoint<T: Field>(n: usize, lu: &[T], piv: &[usize], dinv: &[T], b: &mut [T]) {
     for j in 0..n {
         let mut s = b[j];
-        for i in 0..j {
-            s -= lu[i + j * n].conj() * b[i];
+        for (&bi, &l) in b[..j].iter().zip(&lu[j * n..j * n + j]) {
+            s -= l.conj() * bi;
         }
-        b[j] = s / lu[j + j * n].conj();
+        b[j] = s * dinv[j].conj();
     }
     for k in (0..n.saturating_sub(1)).rev() {
         let l = lu[k + 1 + k * n];
@@ -273,8 +388,11 @@ pub(crate) fn hessenberg(n: usize, h: &mut [f64], v: &mut [f64], w: &mut [f64]) 
         }
         let vk = &mut v[k + 1..n];
         let mut norm2 = 0.0;
+        // Scaling by a power of two would be exact; by 1/scale it rounds once
+        // more than x / scale, which is immaterial for a reflector.
+        let inv_scale = 1.0 / scale;
         for (vi, x) in vk.iter_mut().zip(col) {
-            let t = x / scale;
+            let t = x * inv_scale;
             *vi = t;
             norm2 += t * t;
         }
@@ -315,6 +433,23 @@ pub(crate) fn hessenberg(n: usize, h: &mut [f64], v: &mut [f64], w: &mut [f64]) 
             }
         }
     }
+}
+
+/// Applies the 3-row reflector of [`hqr`] to one column segment `c = (c_k, c_k+1, c_k+2)`.
+#[inline(always)]
+fn row3(c: &mut [f64], q: f64, r: f64, x: f64, y: f64, z: f64) {
+    let pp = c[0] + q * c[1] + r * c[2];
+    c[2] -= pp * z;
+    c[1] -= pp * y;
+    c[0] -= pp * x;
+}
+
+/// The 2-row reflector of the last step of a [`hqr`] sweep.
+#[inline(always)]
+fn row2(c: &mut [f64], q: f64, x: f64, y: f64) {
+    let pp = c[0] + q * c[1];
+    c[1] -= pp * y;
+    c[0] -= pp * x;
 }
 
 /// Francis double-shift QR on an upper Hessenberg matrix (EISPACK `hqr`,
@@ -449,9 +584,11 @@ pub(crate) fn hqr(
             its += 1;
             total += 1;
             // Form shift and look for two consecutive small subdiagonal elements.
-            let mut m = nu - 2;
+            // The bulge starts at l (EISPACK's search for two consecutive
+            // small subdiagonal entries, to start lower, rarely pays at small n).
+            let m = l;
             let (mut p, mut q, mut r);
-            loop {
+            {
                 let z = g!(m, m);
                 let rr = x - z;
                 let ss = y - z;
@@ -462,15 +599,6 @@ pub(crate) fn hqr(
                 p /= s;
                 q /= s;
                 r /= s;
-                if m == l {
-                    break;
-                }
-                let u = g!(m, m - 1).abs() * (q.abs() + r.abs());
-                let v = p.abs() * (g!(m - 1, m - 1).abs() + z.abs() + g!(m + 1, m + 1).abs());
-                if u <= eps * v {
-                    break;
-                }
-                m -= 1;
             }
             for i in m + 2..=nu {
                 *m!(i, i - 2) = 0.0;
@@ -481,15 +609,24 @@ pub(crate) fn hqr(
             // Double QR step on rows l..nu and columns m..nu.
             let mut k = m;
             while k < nu {
+                // The last reflector of a sweep acts on two rows/columns only.
+                let three = k != nu - 1;
                 if k != m {
                     p = g!(k, k - 1);
                     q = g!(k + 1, k - 1);
-                    r = if k != nu - 1 { g!(k + 2, k - 1) } else { 0.0 };
+                    r = if three { g!(k + 2, k - 1) } else { 0.0 };
+                    // EISPACK scales (p, q, r) by x = |p| + |q| + |r| against
+                    // over/underflow in p^2 + q^2 + r^2; inside the safe range
+                    // the scaling changes nothing but rounding, so it is skipped
+                    // there (a division less on the critical path of a sweep).
                     x = p.abs() + q.abs() + r.abs();
-                    if x != 0.0 {
-                        p /= x;
-                        q /= x;
-                        r /= x;
+                    if (SAFE_MIN..=SAFE_MAX).contains(&x) {
+                        x = 1.0;
+                    } else if x != 0.0 {
+                        let ix = 1.0 / x;
+                        p *= ix;
+                        q *= ix;
+                        r *= ix;
                     }
                 }
                 let s = (p * p + q * q + r * r).sqrt().copysign(p);
@@ -502,31 +639,44 @@ pub(crate) fn hqr(
                         *m!(k, k - 1) = -s * x;
                     }
                     p += s;
-                    x = p / s;
-                    y = q / s;
-                    let z = r / s;
-                    q /= p;
-                    r /= p;
-                    // Row modification.
-                    for j in k..=nu {
-                        let mut pp = g!(k, j) + q * g!(k + 1, j);
-                        if k != nu - 1 {
-                            pp += r * g!(k + 2, j);
-                            *m!(k + 2, j) -= pp * z;
-                        }
-                        *m!(k + 1, j) -= pp * y;
-                        *m!(k, j) -= pp * x;
-                    }
-                    // Column modification.
+                    let is = 1.0 / s;
+                    x = p * is;
+                    y = q * is;
+                    let z = r * is;
+                    let ip = 1.0 / p;
+                    q *= ip;
+                    r *= ip;
                     let mmin = if nu < k + 3 { nu } else { k + 3 };
-                    for i in l..=mmin {
-                        let mut pp = x * g!(i, k) + y * g!(i, k + 1);
-                        if k != nu - 1 {
-                            pp += z * g!(i, k + 2);
-                            *m!(i, k + 2) -= pp * r;
+                    // Columns k.. of the block (column major, contiguous).
+                    let (ck, rest) = a[k * n..(nu + 1) * n].split_at_mut(n);
+                    let (ck1, rest) = rest.split_at_mut(n);
+                    if three {
+                        // Row modification: rows k..k+2 of columns k..nu.
+                        row3(&mut ck[k..k + 3], q, r, x, y, z);
+                        row3(&mut ck1[k..k + 3], q, r, x, y, z);
+                        for cj in rest.chunks_exact_mut(n) {
+                            row3(&mut cj[k..k + 3], q, r, x, y, z);
                         }
-                        *m!(i, k + 1) -= pp * q;
-                        *m!(i, k) -= pp;
+                        // Column modification: rows l..=mmin of columns k..k+2.
+                        let ck2 = &mut rest[..n];
+                        for ((a0, a1), a2) in ck[l..=mmin]
+                            .iter_mut()
+                            .zip(&mut ck1[l..=mmin])
+                            .zip(&mut ck2[l..=mmin])
+                        {
+                            let pp = x * *a0 + y * *a1 + z * *a2;
+                            *a2 -= pp * r;
+                            *a1 -= pp * q;
+                            *a0 -= pp;
+                        }
+                    } else {
+                        row2(&mut ck[k..k + 2], q, x, y);
+                        row2(&mut ck1[k..k + 2], q, x, y);
+                        for (a0, a1) in ck[l..=mmin].iter_mut().zip(&mut ck1[l..=mmin]) {
+                            let pp = x * *a0 + y * *a1;
+                            *a1 -= pp * q;
+                            *a0 -= pp;
+                        }
                     }
                 }
                 k += 1;
@@ -612,5 +762,200 @@ mod tests {
         ws.eigenvalues().unwrap();
         let k = ws.condition_number(Complex64::new(1.0, 0.0));
         assert!(k > 1e8, "{k}");
+    }
+
+    fn random_matrix(rng: &mut crate::contraction::SplitMix64, n: usize) -> Vec<f64> {
+        (0..n * n).map(|_| rng.uniform(-1.0, 1.0)).collect()
+    }
+
+    fn eig_of(ws: &mut KernelWorkspace, a: &[f64], n: usize) -> Vec<Complex64> {
+        ws.input(n).copy_from_slice(a);
+        let (re, im) = ws.eigenvalues().unwrap();
+        let mut v: Vec<Complex64> = re
+            .iter()
+            .zip(im)
+            .map(|(&r, &i)| Complex64::new(r, i))
+            .collect();
+        v.sort_by(super::super::eigen::spectral_order);
+        v
+    }
+
+    #[test]
+    fn real_and_complex_inverse_iteration_agree_for_real_eigenvalues() {
+        // The real-arithmetic path for real lambda must give the condition
+        // number the complex path gives for the same lambda.
+        let mut rng = crate::contraction::SplitMix64::new(5);
+        let mut ws = KernelWorkspace::new();
+        let mut checked = 0;
+        for trial in 0..60 {
+            let n = 2 + trial % 12;
+            let a = random_matrix(&mut rng, n);
+            let values = eig_of(&mut ws, &a, n);
+            for z in values.iter().filter(|z| z.im == 0.0) {
+                let real = ws.condition_number(*z);
+                let tiny = f64::EPSILON * ws.hess_norm.max(f64::MIN_POSITIVE);
+                let mut lu: Vec<Complex64> = ws.hess[..n * n]
+                    .iter()
+                    .map(|&x| Complex64::new(x, 0.0))
+                    .collect();
+                for i in 0..n {
+                    lu[i + i * n] -= *z;
+                }
+                let (mut piv, mut d, mut x, mut y) = (vec![0; n], vec![], vec![], vec![]);
+                let complex =
+                    inverse_iteration_kappa(n, &mut lu, &mut piv, tiny, &mut d, &mut x, &mut y);
+                assert!(
+                    (real - complex).abs() <= 1e-10 * complex,
+                    "n = {n}, lambda = {z}: {real} vs {complex}"
+                );
+                assert!(real >= 1.0 && real.is_finite());
+                checked += 1;
+            }
+        }
+        assert!(checked > 100, "{checked}");
+    }
+
+    #[test]
+    fn extreme_scales_take_the_rescaled_reflector_path() {
+        // Entries of modulus ~2^+-505 are outside [SAFE_MIN, SAFE_MAX], so the
+        // QR sweeps rescale (p, q, r); at ~2^+-400 they are inside and do not.
+        // Either way the spectrum must scale along (squares of the entries,
+        // formed by the shifts, stay normal numbers).
+        let mut rng = crate::contraction::SplitMix64::new(9);
+        let mut ws = KernelWorkspace::new();
+        for trial in 0..40 {
+            let n = 3 + trial % 15;
+            let a = random_matrix(&mut rng, n);
+            let base = eig_of(&mut ws, &a, n);
+            for scale in [505, -505, 400, -400].map(|e| 2f64.powi(e)) {
+                let b: Vec<f64> = a.iter().map(|x| x * scale).collect();
+                let ev = eig_of(&mut ws, &b, n);
+                assert_eq!(ev.len(), n);
+                for v in &ev {
+                    let d = base
+                        .iter()
+                        .map(|u| (u - v / scale).norm())
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(d <= 1e-9, "n = {n}, scale {scale:e}: {v} ({d:e})");
+                }
+            }
+        }
+    }
+
+    /// Largest distance from a kernel eigenvalue to the nearest faer eigenvalue
+    /// of the same matrix, and the trace defect.
+    fn versus_faer(ws: &mut KernelWorkspace, a: &nalgebra::DMatrix<f64>) -> (f64, f64) {
+        use crate::spectral::eigen::{Eigen, EigenOptions};
+        let n = a.nrows();
+        let ours = eig_of(ws, a.as_slice(), n);
+        let theirs = Eigen::new(a, EigenOptions::VALUES).unwrap();
+        let d = ours
+            .iter()
+            .map(|z| {
+                theirs
+                    .values()
+                    .iter()
+                    .map(|w| (z - w).norm())
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0, f64::max);
+        let tr: Complex64 = ours.iter().sum();
+        (d, (tr.re - a.trace()).abs() + tr.im.abs())
+    }
+
+    #[test]
+    fn adversarial_inputs_agree_with_faer() {
+        use crate::knots::EdgeRatios;
+        use crate::schemes::LocalScheme;
+        use nalgebra::DMatrix;
+        let mut ws = KernelWorkspace::new();
+        let mut rng = crate::contraction::SplitMix64::new(2024);
+        // NURDS face blocks with extreme ratios (1e-6 and 1 - 1e-6 mixed in).
+        for trial in 0..60 {
+            let n = 3 + trial % 20;
+            let r: Vec<f64> = (0..n)
+                .map(|i| match (i + trial) % 3 {
+                    0 => 1e-6,
+                    1 => 1.0 - 1e-6,
+                    _ => rng.uniform(0.01, 0.99),
+                })
+                .collect();
+            let a = LocalScheme::nurds(EdgeRatios::new(r).unwrap())
+                .face_block()
+                .unwrap();
+            let (d, t) = versus_faer(&mut ws, &a);
+            // Well separated except near-double roots: compare loosely, the
+            // trace tightly.
+            assert!(d < 1e-6, "n = {n}: {d:e}");
+            assert!(t < 1e-12 * n as f64, "n = {n}: trace defect {t:e}");
+        }
+        // Defective: Jordan blocks J_k(1/2), also hidden by a similarity.
+        for k in 2..=5usize {
+            let j = DMatrix::from_fn(k, k, |i, c| {
+                if i == c {
+                    0.5
+                } else if c == i + 1 {
+                    1.0
+                } else {
+                    0.0
+                }
+            });
+            let q = DMatrix::from_fn(k, k, |_, _| rng.uniform(-1.0, 1.0))
+                + DMatrix::identity(k, k) * 3.0;
+            let a = &q * &j * q.try_inverse().unwrap();
+            for m in [j, a] {
+                let v = eig_of(&mut ws, m.as_slice(), k);
+                // A k-fold defective eigenvalue moves by ~ eps^(1/k).
+                let tol = 100.0 * f64::EPSILON.powf(1.0 / k as f64);
+                assert!(v.iter().all(|z| (z - 0.5).norm() < tol), "k = {k}: {v:?}");
+                let (_, t) = versus_faer(&mut ws, &m);
+                assert!(t < 1e-12, "k = {k}: trace defect {t:e}");
+            }
+        }
+        // Graded (badly scaled by a diagonal similarity) and companion matrices.
+        for n in 3..=16usize {
+            let b = DMatrix::from_fn(n, n, |_, _| rng.uniform(-1.0, 1.0));
+            let g = DMatrix::from_fn(n, n, |i, j| b[(i, j)] * 10f64.powi(i as i32 - j as i32));
+            let (d, _) = versus_faer(&mut ws, &g);
+            let scale = g.norm();
+            assert!(d < 1e-6 * scale, "graded n = {n}: {d:e}");
+            // Companion matrix of prod_k (x - k / n): eigenvalues k / n, k = 1..n
+            // (Wilkinson-like, unbalanced: ill-conditioned beyond n ~ 10 for
+            // any unbalanced QR, faer's and the old kernel's alike).
+            if n > 10 {
+                continue;
+            }
+            let mut c = vec![1.0f64];
+            for k in 1..=n {
+                let root = k as f64 / n as f64;
+                let mut next = vec![0.0; c.len() + 1];
+                for (i, &ci) in c.iter().enumerate() {
+                    next[i + 1] += ci;
+                    next[i] -= root * ci;
+                }
+                c = next;
+            }
+            let comp = DMatrix::from_fn(n, n, |i, j| {
+                if j == n - 1 {
+                    -c[i]
+                } else if i == j + 1 {
+                    1.0
+                } else {
+                    0.0
+                }
+            });
+            let v = eig_of(&mut ws, comp.as_slice(), n);
+            let (d, _) = versus_faer(&mut ws, &comp);
+            assert!(d < 1e-6, "companion n = {n}: {d:e}");
+            if n <= 8 {
+                for z in &v {
+                    let k = (z.re * n as f64).round();
+                    assert!(
+                        (1.0..=n as f64).contains(&k) && (z - k / n as f64).norm() < 1e-6,
+                        "companion n = {n}: {z}"
+                    );
+                }
+            }
+        }
     }
 }
