@@ -9,7 +9,7 @@
 //!
 //! Coordinates are named for the largest valence of the sweep (`r0..r{N-1}`,
 //! `p0..p{N-1},q0..q{N-1}`, ...); a row of a smaller valence leaves the extra
-//! cells empty. Numbers are written in Rust's shortest round-trip form (reading a
+//! cells empty. Numbers are written in the shortest round-trip form, Ryu's format (reading a
 //! cell back gives the same `f64` bit for bit), so a summary rebuilt from the CSV
 //! equals the one accumulated while writing. Text cells never contain line
 //! breaks, so every line is one row; a line without its final `\n` is a torn
@@ -23,13 +23,17 @@ use rayon::prelude::*;
 use std::collections::BinaryHeap;
 use std::io::Write;
 
-/// Configurations evaluated in parallel between two ordered writes. Bounds the
-/// memory of a run (a few MB of rows) independently of the sweep size, and is
-/// large enough that the rayon split overhead is negligible.
+/// Largest number of configurations evaluated in parallel as one chunk (fewer
+/// when rows are long, so that a chunk's text stays within about 8 MB). At most
+/// two chunks are in memory (one being evaluated, the previous one being
+/// written), which bounds the memory of a run independently of the sweep size;
+/// the chunk is large enough that the rayon split overhead is negligible.
 pub const CHUNK: usize = 4096;
 
 /// Largest number of consecutive configurations one rayon task evaluates (fewer
-/// when a chunk is small, so that every thread gets several tasks).
+/// when a chunk is small, so that every thread gets several tasks). A task
+/// formats its rows into one buffer and keeps one partial summary, reusing its
+/// per-row storage, so a row costs no allocation.
 pub const SUB_CHUNK: usize = 64;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
