@@ -97,3 +97,5 @@ print(f"| {n} | {count} | {float(np_wall):.0f} | {float(one):.0f} | {np_rate_cpu
       f"{float(one_cpu) / max(float(two_cpu), 1e-9):.2f} |")
 PY
 done
+echo
+echo "load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -5,10 +5,15 @@
 //!
 //! * `classify_only`: enumerate + assemble + spectral classification (the
 //!   evaluator), no output, one thread;
-//! * `evaluate_one_thread`: the per-configuration path with CSV formatting, one thread;
+//! * `evaluate_one_thread`: the public per-row API (`Layout::row` building a
+//!   `Row`, then `Layout::format`), one thread; it allocates per row, unlike the
+//!   driver;
 //! * `sweep_1_thread` / `sweep_2_threads`: the whole streaming driver
-//!   (`sweep::output::run` into `io::sink`) on a rayon pool of 1 or 2 threads,
-//!   for the thread-scaling figure.
+//!   (`sweep::output::run` into `io::sink`: reused per-task buffers, staged
+//!   cells, partial summaries, chunk writes overlapped with evaluation) on a
+//!   rayon pool of 1 or 2 threads, for the thread-scaling figure. The
+//!   difference `sweep_1_thread` - `classify_only` is the sweep's own overhead
+//!   (enumeration, CSV text, summary).
 //!
 //! Run: `cargo bench --bench sweep`. Side by side with numpy:
 //! `benches/compare_sweep_numpy.sh`.

@@ -24,7 +24,10 @@ use super::plan::{Configuration, Plan};
 use super::spec::Columns;
 use crate::charmap;
 use crate::schemes::LocalScheme;
+use crate::spectral::structured::StructuredWorkspace;
 use crate::spectral::{self, SubdominantClass};
+use num_complex::Complex64;
+use std::cell::RefCell;
 
 /// One CSV cell.
 #[derive(Clone, Debug, PartialEq)]
@@ -93,6 +96,38 @@ pub fn result_columns(columns: &Columns) -> Vec<ResultColumn> {
     v
 }
 
+/// Receives the result cells of one configuration, in column order (see
+/// [`Evaluate::write_results`]). The sweep driver implements it with a reusable
+/// staging buffer, so a row costs no allocation; `Vec<Cell>` implements it too.
+pub trait CellSink {
+    /// An empty cell.
+    fn empty(&mut self);
+    /// A number.
+    fn num(&mut self, x: f64);
+    /// Text.
+    fn text(&mut self, t: &str);
+    /// The cell `c`.
+    fn cell(&mut self, c: &Cell) {
+        match c {
+            Cell::Empty => self.empty(),
+            Cell::Num(x) => self.num(*x),
+            Cell::Text(t) => self.text(t),
+        }
+    }
+}
+
+impl CellSink for Vec<Cell> {
+    fn empty(&mut self) {
+        self.push(Cell::Empty);
+    }
+    fn num(&mut self, x: f64) {
+        self.push(Cell::Num(x));
+    }
+    fn text(&mut self, t: &str) {
+        self.push(Cell::Text(t.to_owned()));
+    }
+}
+
 /// Evaluates one configuration into its result cells (one per
 /// [`result_columns`] entry, in order). Implementations must be deterministic:
 /// the same configuration gives the same cells on any thread.
@@ -104,6 +139,24 @@ pub trait Evaluate: Sync {
         c: &Configuration,
         scheme: &LocalScheme<f64>,
     ) -> crate::Result<Vec<Cell>>;
+
+    /// Writes the result cells of `c` to `out`, in order; the cells must equal
+    /// those of [`evaluate`](Self::evaluate). On an error the cells already
+    /// written are discarded by the caller. The default calls `evaluate`; an
+    /// evaluator overrides it to avoid building a `Vec<Cell>` per configuration
+    /// (the sweep driver calls this method).
+    fn write_results(
+        &self,
+        plan: &Plan,
+        c: &Configuration,
+        scheme: &LocalScheme<f64>,
+        out: &mut dyn CellSink,
+    ) -> crate::Result<()> {
+        for cell in &self.evaluate(plan, c, scheme)? {
+            out.cell(cell);
+        }
+        Ok(())
+    }
 }
 
 /// The evaluator of the `sweep` command: the project's spectral engine.
@@ -119,6 +172,35 @@ impl SpectralEvaluator {
     }
 }
 
+/// Per-thread storage of the spectral evaluator: the structured workspace (so
+/// the `eigenvalues` columns reuse the face spectrum the classification
+/// computed) and the spectrum buffer.
+#[derive(Default)]
+struct Scratch {
+    ws: StructuredWorkspace,
+    spectrum: Vec<Complex64>,
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
+}
+
+/// The full spectrum of `S_n` from the face spectrum in `ws`, in the order of
+/// [`structured_spectrum`](spectral::structured::structured_spectrum) (the same
+/// construction: `1`, the non-unit face eigenvalues, then
+/// [`KNOWN_EIGENVALUES`](spectral::structured::KNOWN_EIGENVALUES) `n` times
+/// each, sorted by [`spectral_order`](spectral::eigen::spectral_order); a
+/// test checks the two agree bit for bit).
+fn full_spectrum(n: usize, face: &[Complex64], all: &mut Vec<Complex64>) {
+    all.clear();
+    all.push(Complex64::new(1.0, 0.0));
+    all.extend_from_slice(face);
+    for v in spectral::structured::KNOWN_EIGENVALUES {
+        all.extend(std::iter::repeat_n(Complex64::new(v, 0.0), n));
+    }
+    all.sort_by(spectral::eigen::spectral_order);
+}
+
 impl Evaluate for SpectralEvaluator {
     fn evaluate(
         &self,
@@ -126,54 +208,103 @@ impl Evaluate for SpectralEvaluator {
         c: &Configuration,
         scheme: &LocalScheme<f64>,
     ) -> crate::Result<Vec<Cell>> {
+        let mut out = Vec::with_capacity(16 + 2 * self.columns.eigenvalues);
+        self.write_results(plan, c, scheme, &mut out)?;
+        Ok(out)
+    }
+
+    fn write_results(
+        &self,
+        plan: &Plan,
+        c: &Configuration,
+        scheme: &LocalScheme<f64>,
+        out: &mut dyn CellSink,
+    ) -> crate::Result<()> {
+        SCRATCH.with(|cell| {
+            let mut guard = cell.borrow_mut();
+            self.write_with(&mut guard, plan, c, scheme, out)
+        })
+    }
+}
+
+impl SpectralEvaluator {
+    fn write_with(
+        &self,
+        scratch: &mut Scratch,
+        plan: &Plan,
+        c: &Configuration,
+        scheme: &LocalScheme<f64>,
+        out: &mut dyn CellSink,
+    ) -> crate::Result<()> {
         let cols = &self.columns;
-        let mut out = Vec::with_capacity(16 + 2 * cols.eigenvalues);
         let needs_sub = cols.classification
             || cols.gap
             || cols.contraction
             || cols.exact_certificate
             || cols.charmap;
-        let sub = if needs_sub {
-            Some(spectral::classify_scheme(scheme)?)
-        } else {
+        // The Doo-Sabin family (every scheme a sweep spec names) goes through the
+        // structured path with the per-thread workspace; anything else through
+        // the general classifier.
+        let structured = scheme.kind().is_doo_sabin_family();
+        let sub = if !needs_sub {
             None
+        } else if structured {
+            Some(spectral::classify_scheme_with(&mut scratch.ws, scheme)?)
+        } else {
+            Some(spectral::classify_scheme(scheme)?)
         };
         if let Some(sub) = &sub {
             if cols.classification {
-                out.push(Cell::Text(class_text(&sub.class)));
-                out.extend(
-                    [
-                        sub.lambda1.re,
-                        sub.lambda1.im,
-                        sub.lambda2.re,
-                        sub.lambda2.im,
-                        sub.abs_lambda3,
-                    ]
-                    .map(Cell::Num),
-                );
+                match &sub.class {
+                    SubdominantClass::Indeterminate { .. } => out.text(&class_text(&sub.class)),
+                    other => out.text(other.name()),
+                }
+                for x in [
+                    sub.lambda1.re,
+                    sub.lambda1.im,
+                    sub.lambda2.re,
+                    sub.lambda2.im,
+                    sub.abs_lambda3,
+                ] {
+                    out.num(x);
+                }
             }
             if cols.gap {
-                let opt = |x: Option<f64>| x.map_or(Cell::Empty, Cell::Num);
-                out.push(Cell::Num(sub.gap));
-                out.push(opt(sub.ratio));
-                out.push(opt(sub.rho));
-                out.push(opt(sub.theta));
+                out.num(sub.gap);
+                for x in [sub.ratio, sub.rho, sub.theta] {
+                    match x {
+                        Some(x) => out.num(x),
+                        None => out.empty(),
+                    }
+                }
             }
             if cols.contraction {
-                out.push(Cell::Num(sub.lambda1.norm()));
+                out.num(sub.lambda1.norm());
             }
         }
         if cols.eigenvalues > 0 {
-            let all = spectral::structured::structured_spectrum(scheme)?;
+            let all = if structured {
+                // Reuse the face spectrum of the classification when there is one.
+                let face = if sub.is_some() {
+                    scratch.ws.face_nonunit_cached()
+                } else {
+                    scratch.ws.face_nonunit(scheme)?
+                };
+                full_spectrum(scheme.valence(), face, &mut scratch.spectrum);
+                &scratch.spectrum[..]
+            } else {
+                scratch.spectrum = spectral::structured::structured_spectrum(scheme)?;
+                &scratch.spectrum[..]
+            };
             for k in 0..cols.eigenvalues {
                 match all.get(k) {
                     Some(z) => {
-                        out.push(Cell::Num(z.re));
-                        out.push(Cell::Num(z.im));
+                        out.num(z.re);
+                        out.num(z.im);
                     }
                     None => {
-                        out.push(Cell::Empty);
-                        out.push(Cell::Empty);
+                        out.empty();
+                        out.empty();
                     }
                 }
             }
@@ -181,27 +312,27 @@ impl Evaluate for SpectralEvaluator {
         if cols.charmap {
             if let Some(sub) = &sub {
                 let report = charmap::check_classified(scheme, sub)?;
-                out.push(Cell::Text(report.verdict.code().to_owned()));
-                out.push(report.min_jacobian_coeff().map_or(Cell::Empty, Cell::Num));
-                out.push(
-                    report
-                        .winding_number
-                        .map_or(Cell::Empty, |w| Cell::Num(w as f64)),
-                );
+                out.text(report.verdict.code());
+                match report.min_jacobian_coeff() {
+                    Some(x) => out.num(x),
+                    None => out.empty(),
+                }
+                match report.winding_number {
+                    Some(w) => out.num(w as f64),
+                    None => out.empty(),
+                }
             }
         }
         if cols.exact_certificate {
             let exact = plan.exact_scheme(c)?;
             let v = spectral::exact::exact_verdict(&exact, sub.as_ref())?;
-            out.push(Cell::Text(
-                v.class.map_or("undecided", |k| k.as_str()).to_owned(),
-            ));
-            out.push(
-                v.agrees_with_float
-                    .map_or(Cell::Empty, |a| Cell::Num(f64::from(u8::from(a)))),
-            );
+            out.text(v.class.map_or("undecided", |k| k.as_str()));
+            match v.agrees_with_float {
+                Some(a) => out.num(f64::from(u8::from(a))),
+                None => out.empty(),
+            }
         }
-        Ok(out)
+        Ok(())
     }
 }
 
@@ -216,5 +347,61 @@ fn class_text(c: &SubdominantClass) -> String {
             )
         }
         other => other.name().to_owned(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sweep::SweepSpec;
+
+    /// The `eigenvalues` columns come from the per-thread workspace (reusing the
+    /// classification's face spectrum); they must equal `structured_spectrum`
+    /// bit for bit, whatever was computed before on the thread.
+    #[test]
+    fn eigenvalue_columns_equal_structured_spectrum() {
+        for classification in [true, false] {
+            let spec = SweepSpec::from_toml(&format!(
+                "scheme = \"nurds\"\nvalences = [3, 7, 4, 16, 5]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"random\"\ncount = 40\nseed = 3\n[columns]\nclassification = {classification}\ngap = false\ncontraction = false\neigenvalues = 70\n"
+            ))
+            .unwrap();
+            let plan = Plan::new(spec);
+            let eval = SpectralEvaluator::new(plan.spec().columns);
+            // Interleave valences so the workspace is reused across sizes.
+            let ids: Vec<u64> = (0..40)
+                .flat_map(|i| (0..5).map(move |v| v * 40 + i))
+                .collect();
+            for id in ids {
+                let c = plan.configuration(id).unwrap();
+                let scheme = plan.scheme(&c).unwrap();
+                let cells = eval.evaluate(&plan, &c, &scheme).unwrap();
+                let all = spectral::structured::structured_spectrum(&scheme).unwrap();
+                let first = if classification { 6 } else { 0 };
+                if classification {
+                    let sub = spectral::classify_scheme(&scheme).unwrap();
+                    assert_eq!(cells[1], Cell::Num(sub.lambda1.re));
+                    assert_eq!(cells[5], Cell::Num(sub.abs_lambda3));
+                }
+                for k in 0..70 {
+                    let (re, im) = (&cells[first + 2 * k], &cells[first + 2 * k + 1]);
+                    match all.get(k) {
+                        Some(z) => {
+                            assert_eq!(
+                                (re, im),
+                                (&Cell::Num(z.re), &Cell::Num(z.im)),
+                                "id {id} k {k}"
+                            );
+                            if let (Cell::Num(a), Cell::Num(b)) = (re, im) {
+                                assert_eq!(
+                                    (a.to_bits(), b.to_bits()),
+                                    (z.re.to_bits(), z.im.to_bits())
+                                );
+                            }
+                        }
+                        None => assert_eq!((re, im), (&Cell::Empty, &Cell::Empty)),
+                    }
+                }
+            }
+        }
     }
 }

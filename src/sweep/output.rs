@@ -9,27 +9,31 @@
 //!
 //! Coordinates are named for the largest valence of the sweep (`r0..r{N-1}`,
 //! `p0..p{N-1},q0..q{N-1}`, ...); a row of a smaller valence leaves the extra
-//! cells empty. Numbers are written in Rust's shortest round-trip form (reading a
+//! cells empty. Numbers are written in the shortest round-trip form, Ryu's format (reading a
 //! cell back gives the same `f64` bit for bit), so a summary rebuilt from the CSV
 //! equals the one accumulated while writing. Text cells never contain line
 //! breaks, so every line is one row; a line without its final `\n` is a torn
 //! write.
 
-use super::eval::{result_columns, Cell, Evaluate};
-use super::plan::Plan;
-use super::summary::Summary;
+use super::eval::{result_columns, Cell, CellSink, Evaluate};
+use super::plan::{Configuration, Plan};
+use super::summary::{PartialSummary, Summary};
 use super::SweepError;
 use rayon::prelude::*;
 use std::collections::BinaryHeap;
 use std::io::Write;
 
-/// Configurations evaluated in parallel between two ordered writes. Bounds the
-/// memory of a run (a few MB of rows) independently of the sweep size, and is
-/// large enough that the rayon split overhead is negligible.
+/// Largest number of configurations evaluated in parallel as one chunk (fewer
+/// when rows are long, so that a chunk's text stays within about 8 MB). At most
+/// two chunks are in memory (one being evaluated, the previous one being
+/// written), which bounds the memory of a run independently of the sweep size;
+/// the chunk is large enough that the rayon split overhead is negligible.
 pub const CHUNK: usize = 4096;
 
 /// Largest number of consecutive configurations one rayon task evaluates (fewer
-/// when a chunk is small, so that every thread gets several tasks).
+/// when a chunk is small, so that every thread gets several tasks). A task
+/// formats its rows into one buffer and keeps one partial summary, reusing its
+/// per-row storage, so a row costs no allocation.
 pub const SUB_CHUNK: usize = 64;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -149,7 +153,7 @@ impl Layout {
 
     /// Appends the CSV line of `row` (with `\n`) to `s`.
     pub fn format_into(&self, row: &Row, s: &mut String) {
-        let mut ryu_buf = ryu::Buffer::new();
+        let mut digits = zmij::Buffer::new();
         let mut ibuf = itoa_buf();
         s.push_str(small_uint(row.id, &mut ibuf));
         s.push(',');
@@ -158,7 +162,7 @@ impl Layout {
             s.push(',');
             match c {
                 Cell::Empty => {}
-                Cell::Num(x) => s.push_str(format_number_in(&mut ryu_buf, *x)),
+                Cell::Num(x) => push_number(s, &mut digits, *x),
                 Cell::Text(t) => push_text(s, t),
             }
         }
@@ -287,6 +291,179 @@ impl Layout {
     }
 }
 
+/// A staged result cell (text as a range of [`Stage::text`]).
+#[derive(Clone, Copy, Debug)]
+enum Slot {
+    Empty,
+    Num(f64),
+    Text(usize, usize),
+}
+
+/// The result cells of one configuration, staged without allocation (the
+/// buffers are reused row after row).
+#[derive(Debug, Default)]
+struct Stage {
+    slots: Vec<Slot>,
+    text: String,
+}
+
+impl Stage {
+    fn clear(&mut self) {
+        self.slots.clear();
+        self.text.clear();
+    }
+}
+
+impl CellSink for Stage {
+    fn empty(&mut self) {
+        self.slots.push(Slot::Empty);
+    }
+    fn num(&mut self, x: f64) {
+        self.slots.push(Slot::Num(x));
+    }
+    fn text(&mut self, t: &str) {
+        let start = self.text.len();
+        self.text.push_str(t);
+        self.slots.push(Slot::Text(start, self.text.len()));
+    }
+}
+
+/// Reusable per-task storage of the sweep driver.
+struct Scratch {
+    config: Configuration,
+    sampler: Vec<f64>,
+    stage: Stage,
+    /// Coordinate cells of the current row (by column).
+    coordinates: Vec<Option<f64>>,
+    digits: zmij::Buffer,
+}
+
+impl Scratch {
+    fn new() -> Self {
+        Scratch {
+            config: Configuration {
+                id: 0,
+                valence: 0,
+                coordinates: Vec::new(),
+            },
+            sampler: Vec::new(),
+            stage: Stage::default(),
+            coordinates: Vec::new(),
+            digits: zmij::Buffer::new(),
+        }
+    }
+}
+
+impl Layout {
+    /// The sweep driver's path for one configuration: evaluates `id`, appends
+    /// its CSV line to `text` and adds it to `part`. Equal, byte for byte and
+    /// for the summary, to [`row`](Self::row) + [`format_into`](Self::format_into)
+    /// + [`Summary::add`] (a test checks it), but allocation-free after warm-up.
+    fn append_row<E: Evaluate + ?Sized>(
+        &self,
+        plan: &Plan,
+        eval: &E,
+        id: u64,
+        sc: &mut Scratch,
+        text: &mut String,
+        part: &mut PartialSummary,
+    ) {
+        let n_results = self.names.len() - self.coordinates;
+        sc.stage.clear();
+        sc.coordinates.clear();
+        sc.coordinates.resize(self.coordinates, None);
+        let mut error: Option<String> = None;
+        let valence = match plan.configuration_into(id, &mut sc.config, &mut sc.sampler) {
+            Ok(()) => {
+                let c = &sc.config;
+                for (k, x) in c.coordinates.iter().enumerate() {
+                    sc.coordinates[plan.coordinate_column(c.valence, k)] = Some(*x);
+                }
+                match plan
+                    .scheme(c)
+                    .and_then(|s| eval.write_results(plan, c, &s, &mut sc.stage))
+                {
+                    Ok(()) if sc.stage.slots.len() == n_results => {}
+                    Ok(()) => {
+                        error = Some(format!(
+                            "internal: evaluator returned {} cells for {n_results} result columns",
+                            sc.stage.slots.len()
+                        ));
+                        sc.stage.clear();
+                    }
+                    Err(e) => {
+                        error = Some(e.to_string());
+                        sc.stage.clear();
+                    }
+                }
+                c.valence
+            }
+            Err(e) => {
+                error = Some(e.to_string());
+                sc.coordinates.clear();
+                sc.coordinates.resize(self.coordinates, None);
+                0
+            }
+        };
+        let mut ibuf = itoa_buf();
+        text.push_str(small_uint(id, &mut ibuf));
+        text.push(',');
+        text.push_str(small_uint(valence as u64, &mut ibuf));
+        let mut numeric = 0usize;
+        for (pos, x) in sc.coordinates.iter().enumerate() {
+            text.push(',');
+            let is_num = self.kinds[pos] == Kind::Numeric;
+            if let Some(x) = x {
+                push_number(text, &mut sc.digits, *x);
+                if is_num {
+                    part.push(numeric, *x, id);
+                }
+            }
+            if is_num {
+                numeric += 1;
+            }
+        }
+        let mut class: Option<&str> = None;
+        if sc.stage.slots.is_empty() {
+            for _ in 0..n_results {
+                text.push(',');
+            }
+        } else {
+            for (k, slot) in sc.stage.slots.iter().enumerate() {
+                let pos = self.coordinates + k;
+                text.push(',');
+                let is_num = self.kinds[pos] == Kind::Numeric;
+                match *slot {
+                    Slot::Empty => {}
+                    Slot::Num(x) => {
+                        push_number(text, &mut sc.digits, x);
+                        if is_num {
+                            part.push(numeric, x, id);
+                        }
+                    }
+                    Slot::Text(a, b) => {
+                        let t = &sc.stage.text[a..b];
+                        push_text(text, t);
+                        if self.class == Some(pos) {
+                            class = Some(t);
+                        }
+                    }
+                }
+                if is_num {
+                    numeric += 1;
+                }
+            }
+        }
+        text.push(',');
+        if let Some(e) = &error {
+            push_text(text, e);
+        }
+        text.push('\n');
+        let class = class.unwrap_or(if error.is_some() { "error" } else { "all" });
+        part.count_row(valence, class, error.is_some());
+    }
+}
+
 fn itoa_buf() -> [u8; 20] {
     [0; 20]
 }
@@ -305,26 +482,50 @@ fn small_uint(mut v: u64, buf: &mut [u8; 20]) -> &str {
     std::str::from_utf8(&buf[i..]).unwrap_or("?")
 }
 
-/// Shortest round-trip text of an `f64` (`0.375`, `1e-20`, `1.0`, `NaN`, `inf`,
-/// `-inf`): Ryu's shortest digits; `str::parse::<f64>` reads every form back to the
-/// same bits.
+/// Shortest round-trip text of an `f64` (`0.375`, `1e-20`, `1e16`, `1.0`, `NaN`,
+/// `inf`, `-inf`): the shortest digits that read back to the same bits (Ryu's
+/// output format: positive exponents without a sign); `str::parse::<f64>` reads
+/// every form back to the same bits.
 pub fn format_number(x: f64) -> String {
-    format_number_in(&mut ryu::Buffer::new(), x).to_owned()
+    let mut s = String::new();
+    push_number(&mut s, &mut zmij::Buffer::new(), x);
+    s
 }
 
-fn format_number_in(buf: &mut ryu::Buffer, x: f64) -> &str {
+/// Appends [`format_number`]`(x)` to `s`. The digits come from the Żmij
+/// algorithm (about 1.5x faster than Ryu here); its text differs from Ryu's
+/// only by the `+` of a positive exponent (`1e+16`), dropped here, so the CSV
+/// bytes are those Ryu wrote (a test compares the two on random doubles).
+fn push_number(s: &mut String, buf: &mut zmij::Buffer, x: f64) {
     if x.is_finite() {
-        buf.format_finite(x)
+        let t = buf.format_finite(x);
+        // A '+' can only be the sign of a positive exponent, so only |x| >= 1 has one.
+        let plus = if x.abs() < 1.0 {
+            None
+        } else {
+            t.bytes().position(|b| b == b'+')
+        };
+        match plus {
+            Some(i) => {
+                s.push_str(&t[..i]);
+                s.push_str(&t[i + 1..]);
+            }
+            None => s.push_str(t),
+        }
     } else if x.is_nan() {
-        "NaN"
+        s.push_str("NaN");
     } else if x > 0.0 {
-        "inf"
+        s.push_str("inf");
     } else {
-        "-inf"
+        s.push_str("-inf");
     }
 }
 
 fn push_text(s: &mut String, t: &str) {
+    if !t.contains(['\n', '\r', ',', '"']) {
+        s.push_str(t);
+        return;
+    }
     let t: String = t
         .chars()
         .map(|c| if c == '\n' || c == '\r' { ' ' } else { c })
@@ -389,8 +590,10 @@ pub fn split_csv_line(line: &str) -> Result<Vec<String>, String> {
 
 /// Evaluates the configurations `ids` (in order) and writes their rows to `out`,
 /// adding each to `summary`. Evaluation runs on the current rayon pool in chunks
-/// of [`CHUNK`]; rows are written in `ids` order whatever the thread count.
-/// `progress` is called with the number of rows written after each chunk.
+/// of at most [`CHUNK`] configurations; while one chunk is evaluated, the
+/// previous one is written (so the workers do not wait for the output). Rows are
+/// written in `ids` order whatever the thread count. `progress` is called with
+/// the number of rows written after each chunk.
 pub fn run<E, W, I>(
     plan: &Plan,
     layout: &Layout,
@@ -406,39 +609,84 @@ where
     I: IntoIterator<Item = u64>,
 {
     let mut ids = ids.into_iter();
+    let threads = rayon::current_num_threads().max(1);
+    let numeric = layout.numeric.len();
+    let chunk_len = chunk_len(layout);
     let mut written = 0u64;
-    let mut chunk: Vec<u64> = Vec::with_capacity(CHUNK);
+    // Rows evaluated but not yet written: (text, partial summary) per task.
+    let mut pending: Vec<(String, PartialSummary)> = Vec::new();
+    let mut next: Vec<u64> = Vec::with_capacity(chunk_len);
     loop {
-        chunk.clear();
-        chunk.extend(ids.by_ref().take(CHUNK));
-        if chunk.is_empty() {
+        next.clear();
+        next.extend(ids.by_ref().take(chunk_len));
+        if next.is_empty() && pending.is_empty() {
             break;
         }
-        // Tasks of `sub` consecutive configurations: each formats its rows into one
-        // buffer and keeps a partial summary; buffers are written in order.
-        let sub = (chunk.len() / (8 * rayon::current_num_threads().max(1))).clamp(1, SUB_CHUNK);
-        let parts: Vec<(String, Summary)> = chunk
-            .par_chunks(sub)
-            .map(|ids| {
-                let mut text = String::with_capacity(ids.len() * (32 + 24 * layout.cells()));
-                let mut part = summary.empty_like();
-                for &id in ids {
-                    let r = layout.row(plan, eval, id);
-                    layout.format_into(&r, &mut text);
-                    part.add(layout, &r);
+        let mut evaluated: Vec<(String, PartialSummary)> = Vec::new();
+        let mut wrote: Result<u64, SweepError> = Ok(0);
+        rayon::in_place_scope(|scope| {
+            if !next.is_empty() {
+                let chunk = &next;
+                let slot = &mut evaluated;
+                scope.spawn(move |_| {
+                    *slot = evaluate_chunk(plan, layout, eval, chunk, threads, numeric);
+                });
+            }
+            // Meanwhile, on this thread: write the previous chunk in order.
+            wrote = (|| {
+                let mut rows = 0u64;
+                for (text, part) in &pending {
+                    out.write_all(text.as_bytes())?;
+                    summary.absorb_partial(part);
+                    rows += part.rows();
                 }
-                (text, part)
-            })
-            .collect();
-        for (text, part) in &parts {
-            out.write_all(text.as_bytes())?;
-            summary.absorb(part);
+                if rows > 0 {
+                    out.flush()?;
+                }
+                Ok(rows)
+            })();
+        });
+        let rows = wrote?;
+        if rows > 0 {
+            written += rows;
+            progress(written);
         }
-        out.flush()?;
-        written += chunk.len() as u64;
-        progress(written);
+        pending = evaluated;
     }
     Ok(written)
+}
+
+/// Configurations per chunk: [`CHUNK`], fewer for long rows (large valences)
+/// so that a chunk's text stays within about 8 MB.
+fn chunk_len(layout: &Layout) -> usize {
+    let row_bytes = 32 + 24 * layout.cells();
+    ((8 << 20) / row_bytes).clamp(SUB_CHUNK, CHUNK)
+}
+
+/// Evaluates one chunk on the current pool: tasks of consecutive
+/// configurations, each formatting its rows into one buffer and keeping a
+/// partial summary, returned in order.
+fn evaluate_chunk<E: Evaluate + ?Sized>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    chunk: &[u64],
+    threads: usize,
+    numeric: usize,
+) -> Vec<(String, PartialSummary)> {
+    let sub = (chunk.len() / (8 * threads)).clamp(1, SUB_CHUNK);
+    chunk
+        .par_chunks(sub)
+        .map(|ids| {
+            let mut text = String::with_capacity(ids.len() * (32 + 24 * layout.cells()));
+            let mut part = PartialSummary::new(numeric);
+            let mut scratch = Scratch::new();
+            for &id in ids {
+                layout.append_row(plan, eval, id, &mut scratch, &mut text, &mut part);
+            }
+            (text, part)
+        })
+        .collect()
 }
 
 /// A source of CSV data lines (header already checked) for [`merge`]: a name
@@ -554,6 +802,8 @@ where
 
 #[cfg(test)]
 mod tests {
+    use super::super::eval::SpectralEvaluator;
+    use super::super::plan::Shard;
     use super::*;
 
     #[test]
@@ -584,6 +834,173 @@ mod tests {
                 x.to_bits()
             );
         }
+    }
+
+    #[test]
+    fn numbers_are_written_as_ryu_writes_them() {
+        // The CSV format is Ryu's shortest round trip; the digits now come from
+        // Zmij, so compare the two on random bit patterns, random values of
+        // every magnitude and short decimals.
+        let mut ryu_buf = ryu::Buffer::new();
+        let mut digits = zmij::Buffer::new();
+        let mut s = String::new();
+        let mut check = |x: f64| {
+            s.clear();
+            push_number(&mut s, &mut digits, x);
+            let want = if x.is_finite() {
+                ryu_buf.format_finite(x)
+            } else {
+                ""
+            };
+            if x.is_finite() {
+                assert_eq!(s, want, "{x:e}");
+            }
+            assert_eq!(s.parse::<f64>().unwrap().to_bits(), x.to_bits(), "{s}");
+        };
+        for i in 0..200_000u64 {
+            let h = super::super::sampler::mix64(i);
+            let bits = f64::from_bits(h);
+            if !bits.is_nan() {
+                check(bits);
+            }
+            let u = (h >> 11) as f64 / (1u64 << 53) as f64;
+            let e = (super::super::sampler::mix64(h) % 90) as i32 - 45;
+            check(u * 10f64.powi(e));
+            check(-u);
+            check((h % 100_000) as f64 / 10f64.powi((h % 23) as i32));
+        }
+        for x in [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.1,
+            1e15,
+            1e16,
+            1e17,
+            123_456_789_012_345_680.0,
+            1e-5,
+            1e-6,
+            1e-7,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ] {
+            check(x);
+        }
+        assert_eq!(format_number(f64::NAN), "NaN");
+        assert_eq!(format_number(f64::INFINITY), "inf");
+        assert_eq!(format_number(1e16), "1e16");
+        assert_eq!(format_number(1.0), "1.0");
+    }
+
+    /// An evaluator that returns the wrong number of cells for odd ids and fails
+    /// for ids divisible by 5, to exercise the error rows of the fast path.
+    struct Faulty(SpectralEvaluator);
+
+    impl Evaluate for Faulty {
+        fn evaluate(
+            &self,
+            plan: &Plan,
+            c: &Configuration,
+            scheme: &crate::schemes::LocalScheme<f64>,
+        ) -> crate::Result<Vec<Cell>> {
+            let mut v = self.0.evaluate(plan, c, scheme)?;
+            if c.id % 5 == 0 {
+                return Err(crate::Error::InvalidParameter {
+                    name: "test",
+                    value: format!("id {}", c.id),
+                    reason: "a failure with a comma, and \"quotes\"",
+                });
+            }
+            if c.id % 2 == 1 {
+                v.push(Cell::Text("extra".into()));
+            }
+            Ok(v)
+        }
+    }
+
+    /// The driver's allocation-free path equals `row` + `format` + `Summary::add`
+    /// (and `run` writes exactly that, for any thread count).
+    fn assert_fast_path_matches<E: Evaluate>(spec: &str, eval_of: impl Fn(&Plan) -> E) {
+        let plan = Plan::new(super::super::SweepSpec::from_toml(spec).unwrap());
+        let layout = Layout::new(&plan);
+        let eval = eval_of(&plan);
+        let ids: Vec<u64> = (0..plan.total())
+            .chain([plan.total(), plan.total() + 7])
+            .collect();
+        let mut want = String::new();
+        let mut want_summary = Summary::new(&plan, &layout, Shard::ALL, None);
+        for &id in &ids {
+            let r = layout.row(&plan, &eval, id);
+            layout.format_into(&r, &mut want);
+            want_summary.add(&layout, &r);
+        }
+        let mut got = String::new();
+        let mut part = PartialSummary::new(layout.numeric.len());
+        let mut scratch = Scratch::new();
+        for &id in &ids {
+            layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
+        }
+        let mut got_summary = Summary::new(&plan, &layout, Shard::ALL, None);
+        got_summary.absorb_partial(&part);
+        assert_eq!(got, want);
+        assert_eq!(got_summary, want_summary);
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut out = Vec::new();
+            let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+            let mut calls = Vec::new();
+            let n = pool
+                .install(|| {
+                    run(
+                        &plan,
+                        &layout,
+                        &eval,
+                        ids.iter().copied(),
+                        &mut out,
+                        &mut summary,
+                        &mut |k| calls.push(k),
+                    )
+                })
+                .unwrap();
+            assert_eq!(n, ids.len() as u64);
+            assert_eq!(calls.last(), Some(&n));
+            assert!(calls.windows(2).all(|w| w[0] < w[1]));
+            assert_eq!(String::from_utf8(out).unwrap(), want);
+            assert_eq!(summary, want_summary);
+        }
+    }
+
+    #[test]
+    fn fast_path_matches_row_format_and_summary() {
+        let spectral = |p: &Plan| SpectralEvaluator::new(p.spec().columns);
+        assert_fast_path_matches(
+            "scheme = \"nurds\"\nvalences = [4, 3]\n[space]\nkind = \"ratios\"\nratio_range = [0.001, 0.999]\nfixed = { r1 = 0.5 }\n[sampler]\nkind = \"grid\"\npoints_per_axis = 5\n[columns]\neigenvalues = 13\n",
+            spectral,
+        );
+        assert_fast_path_matches(
+            "scheme = \"nurds\"\nvalences = [3, 6]\n[space]\nkind = \"corner-intervals\"\ninterval_range = [0.001, 1000.0]\n[sampler]\nkind = \"random\"\ncount = 300\nseed = 5\n[columns]\ngap = false\ncharmap = true\n",
+            spectral,
+        );
+        assert_fast_path_matches(
+            "scheme = \"nurds\"\nvalences = [5]\n[space]\nkind = \"vertex-ep\"\ninterval_range = [0.1, 10.0]\n[sampler]\nkind = \"sobol\"\ncount = 200\nscramble = true\nseed = 2\n[columns]\nclassification = false\ngap = false\ncontraction = false\neigenvalues = 3\n",
+            spectral,
+        );
+        assert_fast_path_matches(
+            "scheme = \"cc-variant\"\nvalences = { from = 3, to = 9 }\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\neigenvalues = 2\n",
+            spectral,
+        );
+        assert_fast_path_matches(
+            "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"face-ep\"\ninterval_range = [0.01, 100.0]\n[sampler]\nkind = \"halton\"\ncount = 120\n",
+            |p: &Plan| Faulty(SpectralEvaluator::new(p.spec().columns)),
+        );
     }
 
     fn src(name: &str, ids: &[u64]) -> MergeSource<std::vec::IntoIter<Result<String, SweepError>>> {

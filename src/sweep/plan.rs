@@ -164,6 +164,24 @@ impl Plan {
     /// assert!(plan.configuration(9).is_err());
     /// ```
     pub fn configuration(&self, id: u64) -> Result<Configuration, SweepError> {
+        let mut c = Configuration {
+            id,
+            valence: 0,
+            coordinates: Vec::new(),
+        };
+        self.configuration_into(id, &mut c, &mut Vec::new())?;
+        Ok(c)
+    }
+
+    /// [`configuration`](Self::configuration) into `c`, reusing its coordinate
+    /// storage and `scratch` (the sweep driver's allocation-free path). On an
+    /// error `c` is unspecified.
+    pub(crate) fn configuration_into(
+        &self,
+        id: u64,
+        c: &mut Configuration,
+        scratch: &mut Vec<f64>,
+    ) -> Result<(), SweepError> {
         if id >= self.total {
             return Err(SweepError::IdOutOfRange {
                 id,
@@ -181,7 +199,11 @@ impl Plan {
         let local = id - b.offset;
         let n = b.valence;
         let kind = self.spec.space.kind;
-        let mut coords = vec![0.0; kind.dimension(n)];
+        c.id = id;
+        c.valence = n;
+        let coords = &mut c.coordinates;
+        coords.clear();
+        coords.resize(kind.dimension(n), 0.0);
         for &(k, v) in &b.fixed {
             coords[k] = v;
         }
@@ -220,25 +242,23 @@ impl Plan {
                 }
             }
             Generator::Halton(h) => {
-                let mut u = vec![0.0; b.free.len()];
-                h.point(local + 1, &mut u);
-                for (&pos, x) in b.free.iter().zip(u) {
+                scratch.clear();
+                scratch.resize(b.free.len(), 0.0);
+                h.point(local + 1, scratch);
+                for (&pos, &x) in b.free.iter().zip(scratch.iter()) {
                     coords[pos] = map(x);
                 }
             }
             Generator::Sobol(s) => {
-                let mut u = vec![0.0; b.free.len()];
-                s.point(local, &mut u);
-                for (&pos, x) in b.free.iter().zip(u) {
+                scratch.clear();
+                scratch.resize(b.free.len(), 0.0);
+                s.point(local, scratch);
+                for (&pos, &x) in b.free.iter().zip(scratch.iter()) {
                     coords[pos] = map(x);
                 }
             }
         }
-        Ok(Configuration {
-            id,
-            valence: n,
-            coordinates: coords,
-        })
+        Ok(())
     }
 
     /// The scheme of a configuration, in `f64`.

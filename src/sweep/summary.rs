@@ -97,6 +97,86 @@ fn small_decimal(mut v: usize, buf: &mut [u8; 20]) -> &str {
     std::str::from_utf8(&buf[i..]).unwrap_or("?")
 }
 
+/// Extremes of one numeric column in a [`PartialSummary`] (plain numbers, no
+/// allocation per update; same tie rule as [`ColumnStats`]).
+#[derive(Clone, Copy, Debug, Default)]
+struct Extremes {
+    count: u64,
+    non_finite: u64,
+    min: Option<(f64, u64)>,
+    max: Option<(f64, u64)>,
+}
+
+impl Extremes {
+    #[inline]
+    fn push(&mut self, x: f64, id: u64) {
+        if !x.is_finite() {
+            self.non_finite += 1;
+            return;
+        }
+        self.count += 1;
+        match self.min {
+            Some((m, mid)) if !(x < m || (x == m && id < mid)) => {}
+            _ => self.min = Some((x, id)),
+        }
+        match self.max {
+            Some((m, mid)) if !(x > m || (x == m && id < mid)) => {}
+            _ => self.max = Some((x, id)),
+        }
+    }
+}
+
+/// The summary of a run of rows, kept by one worker of the sweep driver and
+/// folded into a [`Summary`] with [`Summary::absorb_partial`]: equivalent to
+/// [`Summary::add`] on each row, without the per-row map look-ups by string.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PartialSummary {
+    rows: u64,
+    errors: u64,
+    /// (valence, class, count); few distinct pairs, so a linear scan.
+    classes: Vec<(usize, String, u64)>,
+    columns: Vec<Extremes>,
+}
+
+impl PartialSummary {
+    /// An empty partial summary for `numeric_columns` numeric columns.
+    pub(crate) fn new(numeric_columns: usize) -> Self {
+        PartialSummary {
+            columns: vec![Extremes::default(); numeric_columns],
+            ..Default::default()
+        }
+    }
+
+    /// Rows counted.
+    pub(crate) fn rows(&self) -> u64 {
+        self.rows
+    }
+
+    /// Counts one row of `valence` in `class` (`errored`: its error cell is set).
+    #[inline]
+    pub(crate) fn count_row(&mut self, valence: usize, class: &str, errored: bool) {
+        self.rows += 1;
+        if errored {
+            self.errors += 1;
+        }
+        match self
+            .classes
+            .iter_mut()
+            .find(|(v, c, _)| *v == valence && c == class)
+        {
+            Some((_, _, k)) => *k += 1,
+            None => self.classes.push((valence, class.to_owned(), 1)),
+        }
+    }
+
+    /// The value `x` of numeric column `k` (its ordinal among the numeric
+    /// columns) in configuration `id`.
+    #[inline]
+    pub(crate) fn push(&mut self, k: usize, x: f64, id: u64) {
+        self.columns[k].push(x, id);
+    }
+}
+
 /// Throughput of the run(s) behind a summary.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Throughput {
@@ -254,6 +334,40 @@ impl Summary {
             a.count += b.count;
             a.non_finite += b.non_finite;
             a.fold(b.min, b.min_id, b.max, b.max_id);
+        }
+    }
+
+    /// Adds the rows of a [`PartialSummary`] of the same layout; equivalent to
+    /// adding its rows one by one (counts add up, extremes fold with the same
+    /// smaller-id tie rule, so the order of partials does not matter).
+    pub(crate) fn absorb_partial(&mut self, part: &PartialSummary) {
+        self.rows += part.rows;
+        self.errors += part.errors;
+        self.complete = self.rows == self.expected_rows;
+        let mut vbuf = [0u8; 20];
+        for (valence, class, k) in &part.classes {
+            let vkey = small_decimal(*valence, &mut vbuf);
+            if !self.classes.contains_key(vkey) {
+                self.classes.insert(vkey.to_owned(), BTreeMap::new());
+            }
+            if let Some(per) = self.classes.get_mut(vkey) {
+                match per.get_mut(class.as_str()) {
+                    Some(x) => *x += k,
+                    None => {
+                        per.insert(class.clone(), *k);
+                    }
+                }
+            }
+        }
+        for (a, b) in self.columns.iter_mut().zip(&part.columns) {
+            a.count += b.count;
+            a.non_finite += b.non_finite;
+            a.fold(
+                b.min.map(|m| m.0),
+                b.min.map(|m| m.1),
+                b.max.map(|m| m.0),
+                b.max.map(|m| m.1),
+            );
         }
     }
 
