@@ -23,6 +23,9 @@
 # Our numbers include enumeration, CSV formatting and writing; numpy's do not
 # include any output.
 #
+# SWEEP_BIN=/path/to/subdiv-lab runs that binary instead of building this
+# checkout (before/after comparisons).
+#
 # Needs python3 with numpy (installed with `pip install --user numpy` if
 # missing). The reference script is looked up at $NUMPY_REFERENCE, then
 # ../shared/bench/numpy_reference.py from the repository root and its parents.
@@ -41,8 +44,12 @@ fi
 [ -n "$REF" ] && [ -f "$REF" ] || { echo "numpy_reference.py not found; set NUMPY_REFERENCE" >&2; exit 1; }
 python3 -c 'import numpy' 2>/dev/null || python3 -m pip install --user numpy >&2
 
-(cd "$ROOT" && cargo build --release --quiet)
-BIN="$ROOT/target/release/subdiv-lab"
+if [ -n "${SWEEP_BIN:-}" ]; then
+  BIN="$SWEEP_BIN"   # e.g. an older build, for before/after tables
+else
+  (cd "$ROOT" && cargo build --release --quiet)
+  BIN="$ROOT/target/release/subdiv-lab"
+fi
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
 
