@@ -266,3 +266,90 @@ charmap = true
         assert_eq!(num(&h, row, "charmap_winding"), 1.0);
     }
 }
+
+#[test]
+fn adjustable_cc_shape_sweep_equals_the_parameter_study() {
+    use subdiv_lab::cc_study::study_point;
+    use subdiv_lab::schemes::catmull_clark::fourier;
+    let spec = r#"
+scheme = "adjustable-cc"
+valences = [3, 5, 8]
+[space]
+kind = "shape"
+c_range = [0.0, 1.0]
+[sampler]
+kind = "grid"
+points_per_axis = 5
+[columns]
+eigenvalues = 3
+charmap = true
+"#;
+    let (h, rows, summary) = sweep_csv(spec);
+    assert_eq!(rows.len(), 15);
+    assert_eq!(summary.errors, 0);
+    for row in &rows {
+        let n: usize = get(&h, row, "valence").parse().unwrap();
+        let c = num(&h, row, "c");
+        let p = study_point(n, c).unwrap();
+        assert_eq!(get(&h, row, "class"), p.class, "n = {n}, c = {c}");
+        assert_eq!(num(&h, row, "lambda1_re"), p.lambda1[0]);
+        assert_eq!(num(&h, row, "abs_lambda3"), p.abs_lambda3);
+        assert_eq!(get(&h, row, "charmap_verdict"), p.charmap);
+        let ev = fourier::spectrum(n, c).unwrap();
+        for (k, z) in ev.iter().take(3).enumerate() {
+            assert_eq!(num(&h, row, &format!("ev{k}_re")), z.re);
+        }
+        // c = 0 is not separated; every other grid value is certified C1
+        let want = if c == 0.0 { "no_charmap" } else { "c1" };
+        assert_eq!(p.charmap, want, "n = {n}, c = {c}");
+    }
+    let counted: u64 = summary.classes["5"].values().sum();
+    assert_eq!(counted, 5);
+}
+
+#[test]
+fn catmull_clark_family_spec_errors_name_the_key() {
+    let base = r#"
+scheme = "adjustable-cc"
+valences = [3]
+[space]
+kind = "shape"
+c_range = [0.0, 1.0]
+[sampler]
+kind = "grid"
+points_per_axis = 3
+"#;
+    let err = |t: &str| SweepSpec::from_toml(t).unwrap_err().to_string();
+    assert!(SweepSpec::from_toml(base).is_ok());
+    let e = err(&base.replace("[0.0, 1.0]", "[0.5, 1.2]"));
+    assert!(
+        e.starts_with("space.c_range: bound 1.2 is outside [0, 1]"),
+        "{e}"
+    );
+    let e = err(&base.replace("[0.0, 1.0]", "[0.6, 0.2]"));
+    assert!(
+        e.starts_with("space.c_range: lower bound 0.6 > upper bound 0.2"),
+        "{e}"
+    );
+    let e = err(&base.replace("c_range = [0.0, 1.0]", ""));
+    assert!(e.starts_with("space.c_range is required"), "{e}");
+    let e = err(&base.replace("kind = \"shape\"", "kind = \"ratios\""));
+    assert!(e.starts_with("space.kind: scheme adjustable-cc"), "{e}");
+    let e = err(&base.replace("adjustable-cc", "nurds"));
+    assert!(e.starts_with("space.kind: kind \"shape\""), "{e}");
+    let e = err(&format!("{base}[columns]\nexact_certificate = true\n"));
+    assert!(e.starts_with("columns.exact_certificate"), "{e}");
+    // Catmull-Clark proper: uniform space only
+    let cc = base
+        .replace("adjustable-cc", "catmull-clark")
+        .replace(
+            "kind = \"shape\"\nc_range = [0.0, 1.0]",
+            "kind = \"uniform\"",
+        )
+        .replace("points_per_axis = 3", "points_per_axis = 1");
+    let (h, rows, _) = sweep_csv(&cc);
+    assert_eq!(rows.len(), 1);
+    assert_eq!(get(&h, &rows[0], "class"), "standard");
+    let stam = subdiv_lab::schemes::catmull_clark::fourier::stam_subdominant(3);
+    assert!((num(&h, &rows[0], "lambda1_re") - stam).abs() < 1e-14);
+}

@@ -673,10 +673,9 @@ pub fn check_classified(
         catmull_clark::check_classified(n, c, sub, cert)
             .map(|r| r.map_patches(AnyPatchId::CatmullClark))
     };
-    match scheme {
-        LocalScheme::CatmullClark { valence } => cc(*valence, 0.5),
-        LocalScheme::AdjustableCc { valence, c } => cc(*valence, *c),
-        _ => {
+    match scheme.catmull_clark_parameters() {
+        Some((n, c)) => cc(n, c),
+        None => {
             let r = match prepare(scheme, sub)? {
                 Prepared::NoMap(r) => r,
                 Prepared::Basis(ext, basis) => check_basis(&ext, &scheme.ratios(), &basis)?,

@@ -8,7 +8,7 @@
 //! | `classification` | `class`, `lambda1_re`, `lambda1_im`, `lambda2_re`, `lambda2_im`, `abs_lambda3` |
 //! | `gap` | `gap` = `|lambda2| - |lambda3|`; `ratio` = `lambda2 / lambda1` when both are real; `rho` = `|lambda1|` and `theta` = `|arg lambda1|` (radians, in (0, pi)) for a complex pair (empty otherwise) |
 //! | `contraction` | `contraction_rate` = `|lambda1|`, the asymptotic per-step contraction of the face towards its limit point (math doc section 5; <= 3/4) |
-//! | `eigenvalues = K` | `ev0_re, ev0_im, .., ev{K-1}_re, ev{K-1}_im`: the K leading eigenvalues of `S_n` by non-increasing modulus (empty beyond `4n`) |
+//! | `eigenvalues = K` | `ev0_re, ev0_im, .., ev{K-1}_re, ev{K-1}_im`: the K leading eigenvalues of `S_n` by non-increasing modulus (empty beyond `4n`; for the Catmull-Clark family those of the `(2n+1)` one-ring matrix from the Fourier blocks, empty beyond `2n + 1`) |
 //! | `charmap` | `charmap_verdict` (`c1`, `tpc_real_distinct`, `tpc_complex_pair`, `not_regular`, `not_injective`, `indeterminate`, `no_charmap`; see [`crate::charmap::Verdict`]), `charmap_min_jacobian` (smallest Bezier coefficient of the ring's Jacobian relative to the largest; > 0 certifies regularity), `charmap_winding` (winding number of the ring boundary around the origin) |
 //! | `exact_certificate` | `exact_class`: the classification decided exactly over the rationals from the exact value of the `f64` parameters (`undecided` when the exact method cannot decide); `exact_agrees` = 1 / 0 when both verdicts are decided and agree / disagree (empty otherwise) |
 //!
@@ -23,6 +23,7 @@
 use super::plan::{Configuration, Plan};
 use super::spec::Columns;
 use crate::charmap;
+use crate::schemes::catmull_clark::fourier;
 use crate::schemes::LocalScheme;
 use crate::spectral::structured::StructuredWorkspace;
 use crate::spectral::{self, SubdominantClass};
@@ -291,6 +292,10 @@ impl SpectralEvaluator {
                     scratch.ws.face_nonunit(scheme)?
                 };
                 full_spectrum(scheme.valence(), face, &mut scratch.spectrum);
+                &scratch.spectrum[..]
+            } else if let Some((n, c)) = scheme.catmull_clark_parameters() {
+                // the closed-form Fourier blocks of the (2n+1) one-ring matrix
+                scratch.spectrum = fourier::spectrum(n, c)?;
                 &scratch.spectrum[..]
             } else {
                 scratch.spectrum = spectral::structured::structured_spectrum(scheme)?;

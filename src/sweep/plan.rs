@@ -279,8 +279,12 @@ impl Plan {
             .iter()
             .map(|v| T::from_f64_lossless(*v))
             .collect();
+        if self.spec.space.kind == SpaceKind::Shape {
+            let c = x.into_iter().next();
+            return LocalScheme::from_kind_with_c(self.spec.scheme, n, None, c);
+        }
         let ratios = match self.spec.space.kind {
-            SpaceKind::Uniform => None,
+            SpaceKind::Uniform | SpaceKind::Shape => None,
             SpaceKind::Ratios => Some(EdgeRatios::new(x)?),
             SpaceKind::CornerIntervals => {
                 Some(CornerIntervals::new(x[..n].to_vec(), x[n..].to_vec())?.ratios()?)

@@ -6,13 +6,14 @@
 //!
 //! ```toml
 //! name = "n3-grid"                 # optional; default "sweep"
-//! scheme = "nurds"                 # nurds | doo-sabin | cc-variant
+//! scheme = "nurds"                 # nurds | doo-sabin | cc-variant | catmull-clark | adjustable-cc
 //! valences = [3]                   # a list, or a range: { from = 3, to = 16 } (inclusive)
 //!
 //! [space]
-//! kind = "ratios"                  # ratios | corner-intervals | face-ep | vertex-ep | uniform
+//! kind = "ratios"                  # ratios | corner-intervals | face-ep | vertex-ep | uniform | shape
 //! ratio_range = [0.05, 0.95]       # kind = "ratios": every r_i in [a, b], 0 < a < b < 1
 //! # interval_range = [0.1, 10.0]   # interval kinds: log-uniform in [a, b], 0 < a < b
+//! # c_range = [0.0, 1.0]           # kind = "shape": the shape parameter c in [a, b], 0 <= a < b <= 1
 //! fixed = { r2 = 0.5 }             # optional: fixed coordinates (slices)
 //!
 //! [sampler]
@@ -39,9 +40,17 @@
 //! * `face-ep`: `forward0.., backward0..` (directed edge intervals of an initial n-gon,
 //!   math doc section 3), log-uniform;
 //! * `vertex-ep`: `a0..a{n-1}` (intervals around an initial valence-n vertex, math doc
-//!   section 3 **[derived]**), log-uniform;
+//!   section 3 **\[derived\]**), log-uniform;
 //! * `uniform`: no coordinates (one configuration per valence; the only space of the
-//!   knot-free schemes `doo-sabin` and `cc-variant`).
+//!   knot-free schemes `doo-sabin`, `cc-variant` and `catmull-clark`);
+//! * `shape`: `c`, the shape parameter of `adjustable-cc` (math doc section 8
+//!   **\[reconstructed\]**), uniform in `c_range` (the only space of that scheme).
+//!
+//! For the Catmull-Clark family the classification is the common engine's on
+//! the `(2n + 1)` one-ring matrix, `eigenvalues` come from the closed-form
+//! Fourier blocks ([`crate::schemes::catmull_clark::fourier::spectrum`]), the
+//! `charmap` column is [`crate::charmap::catmull_clark`]'s certificate, and
+//! `exact_certificate` is not available (it is a face-block method).
 //!
 //! Every validation error names the key (`sampler.points_per_axis must be >= 1, got 0`)
 //! and, where the TOML parser knows it, the line.
@@ -82,6 +91,8 @@ pub enum SpaceKind {
     VertexEp,
     /// Uniform knots: no coordinates.
     Uniform,
+    /// The shape parameter `c` of the adjustable Catmull-Clark scheme.
+    Shape,
 }
 
 impl SpaceKind {
@@ -93,6 +104,7 @@ impl SpaceKind {
             SpaceKind::FaceEp => "face-ep",
             SpaceKind::VertexEp => "vertex-ep",
             SpaceKind::Uniform => "uniform",
+            SpaceKind::Shape => "shape",
         }
     }
 
@@ -103,6 +115,7 @@ impl SpaceKind {
             SpaceKind::FaceEp,
             SpaceKind::VertexEp,
             SpaceKind::Uniform,
+            SpaceKind::Shape,
         ]
         .into_iter()
         .find(|k| k.name() == s)
@@ -116,12 +129,16 @@ impl SpaceKind {
             SpaceKind::FaceEp => &["forward", "backward"],
             SpaceKind::VertexEp => &["a"],
             SpaceKind::Uniform => &[],
+            SpaceKind::Shape => &["c"],
         }
     }
 
     /// Number of coordinates of a valence-`n` configuration.
     pub fn dimension(self, n: usize) -> usize {
-        self.families().len() * n
+        match self {
+            SpaceKind::Shape => 1,
+            _ => self.families().len() * n,
+        }
     }
 
     /// Whether coordinates are sampled log-uniformly (knot intervals) rather than
@@ -135,12 +152,18 @@ impl SpaceKind {
 
     /// The name of coordinate `k` of a valence-`n` configuration (`r2`, `q0`, ...).
     pub fn coordinate_name(self, n: usize, k: usize) -> String {
+        if self == SpaceKind::Shape {
+            return "c".to_owned();
+        }
         let fam = self.families()[k / n];
         format!("{fam}{}", k % n)
     }
 
     /// Position of a named coordinate in a valence-`n` configuration, if it exists.
     pub fn coordinate_index(self, n: usize, name: &str) -> Option<usize> {
+        if self == SpaceKind::Shape {
+            return (name == "c").then_some(0);
+        }
         // Longest family prefix first ("backward" before "b..." would not clash, but be safe).
         self.families().iter().enumerate().find_map(|(f, fam)| {
             let rest = name.strip_prefix(fam)?;
@@ -268,6 +291,7 @@ struct RawSpace {
     kind: Spanned<String>,
     ratio_range: Option<Spanned<Vec<f64>>>,
     interval_range: Option<Spanned<Vec<f64>>>,
+    c_range: Option<Spanned<Vec<f64>>>,
     fixed: Option<Spanned<BTreeMap<String, Spanned<f64>>>>,
 }
 
@@ -356,11 +380,22 @@ fn at_least(ctx: &Ctx, key: &str, v: &Spanned<i64>, min: i64) -> Result<u64, Swe
     Ok(x as u64)
 }
 
+/// The domain a range key lives in.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Domain {
+    /// Edge ratios: the open interval (0, 1).
+    Ratio,
+    /// Knot intervals: positive.
+    Interval,
+    /// The shape parameter: the closed interval [0, 1].
+    Shape,
+}
+
 fn range(
     ctx: &Ctx,
     key: &str,
     v: &Spanned<Vec<f64>>,
-    ratios: bool,
+    domain: Domain,
 ) -> Result<(f64, f64), SweepError> {
     let span = Some(v.span());
     let r = v.get_ref();
@@ -379,7 +414,19 @@ fn range(
             format!("{key}: bounds must be finite, got [{a}, {b}]"),
         );
     }
-    if ratios {
+    if domain == Domain::Shape {
+        for x in [a, b] {
+            if !(0.0..=1.0).contains(&x) {
+                return ctx.err(
+                    key,
+                    span,
+                    format!(
+                        "{key}: bound {x} is outside [0, 1], the range of the shape parameter c"
+                    ),
+                );
+            }
+        }
+    } else if domain == Domain::Ratio {
         for x in [a, b] {
             if !(x > 0.0 && x < 1.0) {
                 return ctx.err(
@@ -553,13 +600,29 @@ impl SweepSpec {
                     "space.kind",
                     Some(rs.kind.span()),
                     format!(
-                        "space.kind: unknown space {:?} (known: ratios, corner-intervals, face-ep, vertex-ep, uniform)",
+                        "space.kind: unknown space {:?} (known: ratios, corner-intervals, face-ep, vertex-ep, uniform, shape)",
                         rs.kind.get_ref()
                     ),
                 )
             }
         };
-        if !scheme.takes_knots() && kind != SpaceKind::Uniform {
+        if scheme.takes_c() != (kind == SpaceKind::Shape) {
+            let msg = if scheme.takes_c() {
+                format!("space.kind: scheme {scheme} is sampled over its shape parameter; use kind = \"shape\" with space.c_range")
+            } else {
+                format!("space.kind: kind \"shape\" samples the shape parameter c of scheme \"adjustable-cc\", not of {scheme}")
+            };
+            return ctx.err("space.kind", Some(rs.kind.span()), msg);
+        }
+        if kind != SpaceKind::Shape {
+            forbid(
+                &ctx,
+                "space.c_range",
+                &rs.c_range,
+                "except by space kind \"shape\"",
+            )?;
+        }
+        if !scheme.takes_knots() && !matches!(kind, SpaceKind::Uniform | SpaceKind::Shape) {
             return ctx.err(
                 "space.kind",
                 Some(rs.kind.span()),
@@ -577,12 +640,27 @@ impl SweepSpec {
                     "by space kind \"ratios\" (use space.ratio_range)",
                 )?;
                 match &rs.ratio_range {
-                    Some(r) => Some(range(&ctx, "space.ratio_range", r, true)?),
+                    Some(r) => Some(range(&ctx, "space.ratio_range", r, Domain::Ratio)?),
                     None => {
                         return ctx.err(
                             "space.ratio_range",
                             Some(rs.kind.span()),
                             "space.ratio_range is required by space kind \"ratios\"".into(),
+                        )
+                    }
+                }
+            }
+            SpaceKind::Shape => {
+                let why = "by space kind \"shape\" (use space.c_range)";
+                forbid(&ctx, "space.ratio_range", &rs.ratio_range, why)?;
+                forbid(&ctx, "space.interval_range", &rs.interval_range, why)?;
+                match &rs.c_range {
+                    Some(r) => Some(range(&ctx, "space.c_range", r, Domain::Shape)?),
+                    None => {
+                        return ctx.err(
+                            "space.c_range",
+                            Some(rs.kind.span()),
+                            "space.c_range is required by space kind \"shape\"".into(),
                         )
                     }
                 }
@@ -611,7 +689,7 @@ impl SweepSpec {
                     "by interval spaces (use space.interval_range)",
                 )?;
                 match &rs.interval_range {
-                    Some(r) => Some(range(&ctx, "space.interval_range", r, false)?),
+                    Some(r) => Some(range(&ctx, "space.interval_range", r, Domain::Interval)?),
                     None => {
                         return ctx.err(
                             "space.interval_range",
@@ -644,16 +722,16 @@ impl SweepSpec {
                     );
                 }
                 let x = *value.get_ref();
-                let ok = if kind == SpaceKind::Ratios {
-                    x > 0.0 && x < 1.0
-                } else {
-                    x.is_finite() && x > 0.0
+                let ok = match kind {
+                    SpaceKind::Ratios => x > 0.0 && x < 1.0,
+                    SpaceKind::Shape => (0.0..=1.0).contains(&x),
+                    _ => x.is_finite() && x > 0.0,
                 };
                 if !ok {
-                    let domain = if kind == SpaceKind::Ratios {
-                        "an edge ratio strictly between 0 and 1"
-                    } else {
-                        "a finite knot interval > 0"
+                    let domain = match kind {
+                        SpaceKind::Ratios => "an edge ratio strictly between 0 and 1",
+                        SpaceKind::Shape => "a shape parameter c in [0, 1]",
+                        _ => "a finite knot interval > 0",
                     };
                     return ctx.err(&key, span, format!("{key} must be {domain}, got {x}"));
                 }
@@ -784,6 +862,13 @@ impl SweepSpec {
         columns.contraction = c.contraction.unwrap_or(columns.contraction);
         columns.exact_certificate = c.exact_certificate.unwrap_or(columns.exact_certificate);
         columns.charmap = c.charmap.unwrap_or(columns.charmap);
+        if columns.exact_certificate && scheme.is_catmull_clark_family() {
+            return ctx.err(
+                "columns.exact_certificate",
+                None,
+                format!("columns.exact_certificate: the exact certificate is a face-block method of the Doo-Sabin family; scheme {scheme} has none"),
+            );
+        }
 
         let spec = SweepSpec {
             name: raw.name.unwrap_or_else(|| "sweep".to_owned()),
