@@ -156,11 +156,16 @@ impl FigureOutput for Output {
         let ymin = values.clone().fold(f64::INFINITY, f64::min).min(0.5);
         let ymax = values.fold(0.0f64, f64::max).max(0.5);
         let pad = (ymax - ymin).max(1e-3) * 0.06;
+        let count = self.curves.len();
         let mut chart = ChartBuilder::on(&body)
             .margin(th.tick as i32)
             .x_label_area_size(th.label * 3)
             .y_label_area_size(th.label * 4)
-            .build_cartesian_2d(-0.02f64..1.02f64, (ymin - pad)..(ymax + pad))
+            // headroom above the curves for the legend (one row per valence + 1)
+            .build_cartesian_2d(
+                -0.02f64..1.02f64,
+                (ymin - pad)..(ymax + pad + (ymax - ymin).max(1e-3) * 0.08 * (count + 1) as f64),
+            )
             .map_err(draw_err)?;
         chart
             .configure_mesh()
@@ -175,7 +180,6 @@ impl FigureOutput for Output {
             .draw()
             .map_err(draw_err)?;
         let lw = th.line;
-        let count = self.curves.len();
         let (d, g) = dash(1, &th);
         for (k, (n, curve)) in self.curves.iter().enumerate() {
             let col = series_color(k, count);
