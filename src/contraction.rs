@@ -213,6 +213,12 @@ pub struct Measured {
 /// current face point `c^T P^k` (zero in exact arithmetic, since `F` is
 /// invariant), so the rates are measured over all 60 levels.
 pub fn measure(scheme: &LocalScheme<f64>, options: &MeasureOptions) -> Result<Measured> {
+    if !scheme.kind().is_doo_sabin_family() {
+        return Err(crate::error::Error::NotApplicable {
+            scheme: scheme.kind().name(),
+            operation: "the face contraction of Theorem 1 (a Doo-Sabin-family notion)",
+        });
+    }
     let s = scheme.matrix()?.into_matrix();
     let c = scheme.face_weights();
     let n = scheme.valence();

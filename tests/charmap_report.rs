@@ -114,3 +114,27 @@ fn bad_charmap_specs_name_the_key() {
         .to_string();
     assert!(e.contains("configs"), "{e}");
 }
+
+#[test]
+fn doo_sabin_only_figures_reject_catmull_clark_configs_at_parse_time() {
+    // Regression: a convergence figure with a Catmull-Clark configuration used
+    // to panic inside the contraction measurement (no face weights).
+    for kind in ["charmap", "convergence"] {
+        let text = format!(
+            "name = \"x\"\n[[figure]]\nkind = \"{kind}\"\nconfigs = [{{ scheme = \"doo-sabin\", valence = 4 }}, {{ scheme = \"catmull-clark\", valence = 5 }}]\n"
+        );
+        let e = ReportSpec::parse(&text)
+            .map(|_| ())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("line 4")
+                && e.contains("configs[1].scheme")
+                && e.contains("Doo-Sabin family"),
+            "{kind}: {e}"
+        );
+    }
+    let cc = subdiv_lab::schemes::LocalScheme::<f64>::adjustable_cc(5, 0.3).unwrap();
+    let e = subdiv_lab::contraction::measure(&cc, &Default::default()).unwrap_err();
+    assert!(e.to_string().contains("Doo-Sabin-family"), "{e}");
+}

@@ -673,8 +673,8 @@ pub fn check_classified(
         catmull_clark::check_classified(n, c, sub, cert)
             .map(|r| r.map_patches(AnyPatchId::CatmullClark))
     };
-    match scheme.catmull_clark_parameters() {
-        Some((n, c)) => cc(n, c),
+    match scheme.shape_parameter() {
+        Some(c) => cc(scheme.valence(), c),
         None => {
             let r = match prepare(scheme, sub)? {
                 Prepared::NoMap(r) => r,

@@ -216,3 +216,27 @@ pub fn resolve_all(
         .map(|(i, c)| c.resolve(fs, &format!("configs[{i}]"), &mut rng))
         .collect()
 }
+
+/// Rejects configurations outside the Doo-Sabin family for figures built on
+/// its notions (face contraction, the 9n-point characteristic ring); the
+/// error names `configs[i].scheme` and its line.
+pub fn require_doo_sabin_family(
+    fs: &FigureSpec<'_>,
+    specs: &Spanned<Vec<ConfigSpec>>,
+    configs: &[Configuration],
+    what: &str,
+) -> Result<(), ReportError> {
+    for (i, (spec, c)) in specs.get_ref().iter().zip(configs).enumerate() {
+        if !c.scheme.kind().is_doo_sabin_family() {
+            return Err(fs.error_at(
+                &spec.scheme,
+                &format!("configs[{i}].scheme"),
+                format!(
+                    "scheme {} is not in the Doo-Sabin family (nurds, doo-sabin, cc-variant), which {what} needs",
+                    c.scheme.kind()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -148,24 +148,6 @@ pub enum LocalScheme<T = f64> {
     },
 }
 
-impl LocalScheme<f64> {
-    /// `(valence, c)` for the Catmull-Clark family (`c = 1/2` for
-    /// Catmull-Clark), `None` for the Doo-Sabin family.
-    ///
-    /// ```
-    /// use subdiv_lab::schemes::LocalScheme;
-    /// assert_eq!(LocalScheme::<f64>::catmull_clark(5).unwrap().catmull_clark_parameters(), Some((5, 0.5)));
-    /// assert_eq!(LocalScheme::<f64>::doo_sabin(5).unwrap().catmull_clark_parameters(), None);
-    /// ```
-    pub fn catmull_clark_parameters(&self) -> Option<(usize, f64)> {
-        match self {
-            LocalScheme::CatmullClark { valence } => Some((*valence, 0.5)),
-            LocalScheme::AdjustableCc { valence, c } => Some((*valence, *c)),
-            _ => None,
-        }
-    }
-}
-
 impl<T: Scalar> LocalScheme<T> {
     /// NURDS with these ratios.
     pub fn nurds(ratios: EdgeRatios<T>) -> Self {

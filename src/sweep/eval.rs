@@ -293,9 +293,9 @@ impl SpectralEvaluator {
                 };
                 full_spectrum(scheme.valence(), face, &mut scratch.spectrum);
                 &scratch.spectrum[..]
-            } else if let Some((n, c)) = scheme.catmull_clark_parameters() {
+            } else if let Some(c) = scheme.shape_parameter() {
                 // the closed-form Fourier blocks of the (2n+1) one-ring matrix
-                scratch.spectrum = fourier::spectrum(n, c)?;
+                scratch.spectrum = fourier::spectrum(scheme.valence(), c)?;
                 &scratch.spectrum[..]
             } else {
                 scratch.spectrum = spectral::structured::structured_spectrum(scheme)?;

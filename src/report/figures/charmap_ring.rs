@@ -28,7 +28,7 @@ use crate::charmap::figure::RingPlot;
 use crate::charmap::ring::PatchKind;
 use crate::charmap::{plot_data, CharmapReport};
 use crate::report::backend::Area;
-use crate::report::config::{resolve_all, ConfigSpec, Configuration};
+use crate::report::config::{require_doo_sabin_family, resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::plot::{draw_err, mix_white, series_color, titled, Theme};
 use crate::report::spec::{Common, FigureSpec};
@@ -71,6 +71,7 @@ struct Charmap {
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
     let configs = resolve_all(fs, &p.configs, Some(MAX_PANELS))?;
+    require_doo_sabin_family(fs, &p.configs, &configs, "the biquadratic ring plot")?;
     let count = configs.len();
     let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 3)?;
     let samples = bounded(fs, &p.samples, "samples", 2, MAX_SAMPLES, 6)?;

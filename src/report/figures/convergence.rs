@@ -18,7 +18,7 @@
 use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::contraction::{measure, MeasureOptions};
 use crate::report::backend::Area;
-use crate::report::config::{resolve_all, ConfigSpec, Configuration};
+use crate::report::config::{require_doo_sabin_family, resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::plot::{
     dash, draw_err, series_color, side_legend, titled, LegendGlyph, Marker, Theme,
@@ -59,6 +59,7 @@ struct Convergence {
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
     let configs = resolve_all(fs, &p.configs, None)?;
+    require_doo_sabin_family(fs, &p.configs, &configs, "the face contraction (Theorem 1)")?;
     let steps = bounded(fs, &p.steps, "steps", 1, MAX_STEPS, DEFAULT_STEPS)?;
     Ok(Box::new(Convergence { configs, steps }))
 }
