@@ -116,25 +116,68 @@ fn bad_charmap_specs_name_the_key() {
 }
 
 #[test]
-fn doo_sabin_only_figures_reject_catmull_clark_configs_at_parse_time() {
+fn convergence_figure_rejects_catmull_clark_configs_at_parse_time() {
     // Regression: a convergence figure with a Catmull-Clark configuration used
     // to panic inside the contraction measurement (no face weights).
-    for kind in ["charmap", "convergence"] {
-        let text = format!(
-            "name = \"x\"\n[[figure]]\nkind = \"{kind}\"\nconfigs = [{{ scheme = \"doo-sabin\", valence = 4 }}, {{ scheme = \"catmull-clark\", valence = 5 }}]\n"
-        );
+    let text = "name = \"x\"\n[[figure]]\nkind = \"convergence\"\nconfigs = [{ scheme = \"doo-sabin\", valence = 4 }, { scheme = \"catmull-clark\", valence = 5 }]\n";
+    let e = ReportSpec::parse(text).map(|_| ()).unwrap_err().to_string();
+    assert!(
+        e.contains("line 4") && e.contains("configs[1].scheme") && e.contains("Doo-Sabin family"),
+        "{e}"
+    );
+    let cc = subdiv_lab::schemes::LocalScheme::<f64>::adjustable_cc(5, 0.3).unwrap();
+    let e = subdiv_lab::contraction::measure(&cc, &Default::default()).unwrap_err();
+    assert!(e.to_string().contains("Doo-Sabin-family"), "{e}");
+    // the shape parameter is validated where it is written
+    for (bad, want) in [
+        (
+            "{ scheme = \"adjustable-cc\", valence = 5 }",
+            "configs[0].c",
+        ),
+        (
+            "{ scheme = \"adjustable-cc\", valence = 5, c = 1.5 }",
+            "configs[0].c",
+        ),
+        (
+            "{ scheme = \"catmull-clark\", valence = 5, c = 0.5 }",
+            "configs[0].c",
+        ),
+    ] {
+        let text = format!("name = \"x\"\n[[figure]]\nkind = \"charmap\"\nconfigs = [{bad}]\n");
         let e = ReportSpec::parse(&text)
             .map(|_| ())
             .unwrap_err()
             .to_string();
-        assert!(
-            e.contains("line 4")
-                && e.contains("configs[1].scheme")
-                && e.contains("Doo-Sabin family"),
-            "{kind}: {e}"
-        );
+        assert!(e.contains(want), "{bad}: {e}");
     }
-    let cc = subdiv_lab::schemes::LocalScheme::<f64>::adjustable_cc(5, 0.3).unwrap();
-    let e = subdiv_lab::contraction::measure(&cc, &Default::default()).unwrap_err();
-    assert!(e.to_string().contains("Doo-Sabin-family"), "{e}");
+}
+
+#[test]
+fn catmull_clark_family_rings_are_plotted_with_their_verdicts() {
+    use subdiv_lab::charmap::catmull_clark::check;
+    let text = "name = \"x\"\n[[figure]]\nkind = \"charmap\"\nid = \"cc\"\nwidth = 600\nheight = 400\nlevels = 2\nsamples = 4\nconfigs = [{ scheme = \"catmull-clark\", valence = 5 }, { scheme = \"adjustable-cc\", valence = 6, c = 0.25 }, { scheme = \"adjustable-cc\", valence = 4, c = 0.0 }]\n";
+    let spec = ReportSpec::parse(text).unwrap();
+    let r = generate(&spec, &RunInfo::default(), &NoProgress).unwrap();
+    let verdicts = csv(&r, "cc-verdict.csv");
+    assert_eq!(verdicts.len(), 3);
+    assert_eq!(verdicts[0][6], check(5, 0.5).unwrap().verdict.to_string());
+    assert_eq!(verdicts[1][6], check(6, 0.25).unwrap().verdict.to_string());
+    assert!(
+        verdicts[2][6].starts_with("no characteristic map"),
+        "{:?}",
+        verdicts[2]
+    );
+    // every sampled Jacobian of the two C1 rings has the ring's orientation
+    let signs = csv(&r, "cc-jacobian.csv");
+    assert!(signs.len() > 100);
+    assert!(signs.iter().all(|row| row[5] == "1"), "a wrong-sign sample");
+    // outlines: 3n cells per level, labelled Omega_m
+    let outline = csv(&r, "cc.csv");
+    let cells: std::collections::BTreeSet<(String, String, String)> = outline
+        .iter()
+        .filter(|row| row[0] == "0")
+        .map(|row| (row[2].clone(), row[3].clone(), row[4].clone()))
+        .collect();
+    assert_eq!(cells.len(), 2 * 15);
+    assert!(cells.iter().all(|c| c.2.starts_with("Omega")));
 }

@@ -941,6 +941,144 @@ pub fn check_ring(ring: &CcRing, delta: f64, cert: Certificate) -> CharmapReport
     assemble_report(reg, winding, inner, delta, Eigenstructure::Standard)
 }
 
+/// One refinement of a grid of `m x m` points (`g[a][b]`) with the rule in
+/// both directions: `2m - 3` points per direction (every edge point, the
+/// vertex points of interior vertices), covering the same cells.
+fn refine_grid(rule: &UnivariateRule, g: &[Vec<[f64; 2]>]) -> Vec<Vec<[f64; 2]>> {
+    let line = |pts: &[[f64; 2]]| -> Vec<[f64; 2]> {
+        let m = pts.len();
+        let mut out = Vec::with_capacity(2 * m - 3);
+        for i in 0..m - 1 {
+            out.push([
+                0.5 * (pts[i][0] + pts[i + 1][0]),
+                0.5 * (pts[i][1] + pts[i + 1][1]),
+            ]);
+            if i + 2 < m {
+                let (a, b, d) = (pts[i], pts[i + 1], pts[i + 2]);
+                out.push([
+                    rule.side * a[0] + rule.centre * b[0] + rule.side * d[0],
+                    rule.side * a[1] + rule.centre * b[1] + rule.side * d[1],
+                ]);
+            }
+        }
+        out
+    };
+    let rows: Vec<Vec<[f64; 2]>> = g.iter().map(|r| line(r)).collect();
+    let cols = rows[0].len();
+    let refined_cols: Vec<Vec<[f64; 2]>> = (0..cols)
+        .map(|b| line(&rows.iter().map(|r| r[b]).collect::<Vec<_>>()))
+        .collect();
+    (0..refined_cols[0].len())
+        .map(|a| refined_cols.iter().map(|c| c[a]).collect())
+        .collect()
+}
+
+/// Plot data of the ring of the adjustable scheme at `(n, c)` (classified as
+/// `sub`) and `levels - 1` further rings, in the format of the Doo-Sabin
+/// family ([`super::figure::RingPlot`]): each cell's window is refined with
+/// the rule until its side has at least `per_side - 1` spans (at most 6
+/// levels), the limit points of the grid vertices (limit stencil) give the
+/// outline, and the vertex Jacobians (central differences with the limit
+/// stencil) the sign samples. `None` for the plot when there is no map.
+pub fn plot_data(
+    n: usize,
+    c: f64,
+    sub: &Subdominant,
+    levels: usize,
+    per_side: usize,
+) -> Result<(
+    CharmapReport<super::AnyPatchId>,
+    Option<super::figure::RingPlot>,
+)> {
+    use super::figure::{advance, sign, PatchPlot, RingPlot};
+    use super::AnyPatchId;
+    let cert = if c == 0.5 {
+        Certificate::Bicubic
+    } else {
+        Certificate::Cone
+    };
+    let report = check_classified(n, c, sub, cert)?;
+    let prep = match (&report.regularity, c > 0.0) {
+        (Some(_), true) => {
+            let lambda = sub.lambda1.re;
+            let (l, _) = subdominant_mode(n, c, lambda)?;
+            prepare_ring(n, c, l, sub.gap.min(1.0 - sub.lambda1.norm()))?
+        }
+        _ => return Ok((report.map_patches(AnyPatchId::CatmullClark), None)),
+    };
+    let orientation = report.regularity.as_ref().map_or(1, |r| r.orientation);
+    let sigma = f64::from(orientation);
+    let rule = *prep.ring.rule();
+    let [al, be, _] = rule.limit_weights();
+    let mut depth = 0;
+    while (1usize << depth) + 1 < per_side.max(2) && depth < 6 {
+        depth += 1;
+    }
+    let mut patches = Vec::new();
+    for (id, w) in prep.ring.cells() {
+        let mut g: Vec<Vec<[f64; 2]>> = w.iter().map(|r| r.to_vec()).collect();
+        for _ in 0..depth {
+            g = refine_grid(&rule, &g);
+        }
+        let m = g.len(); // 2^depth + 3; the cell spans indices 1..=m-2
+        let lim = |a: usize, b: usize| {
+            let mut p = [0.0; 2];
+            for (da, wa) in [(0, al), (1, be), (2, al)] {
+                for (db, wb) in [(0, al), (1, be), (2, al)] {
+                    for k in 0..2 {
+                        p[k] += wa * wb * g[a + da - 1][b + db - 1][k];
+                    }
+                }
+            }
+            p
+        };
+        let jac = |a: usize, b: usize| {
+            let (e, wv, no, so) = (lim(a + 1, b), lim(a - 1, b), lim(a, b + 1), lim(a, b - 1));
+            sigma * det([e[0] - wv[0], e[1] - wv[1]], [no[0] - so[0], no[1] - so[1]])
+        };
+        let (lo, hi) = (1, m - 2);
+        let mut ring_outline = Vec::with_capacity(4 * (hi - lo) + 1);
+        for a in lo..=hi {
+            ring_outline.push(lim(a, lo));
+        }
+        for b in lo + 1..=hi {
+            ring_outline.push(lim(hi, b));
+        }
+        for a in (lo..hi).rev() {
+            ring_outline.push(lim(a, hi));
+        }
+        for b in (lo..hi).rev() {
+            ring_outline.push(lim(lo, b));
+        }
+        // sign samples on the interior vertices whose 3x3 neighbours exist
+        let mut ring_samples = Vec::new();
+        let step = ((hi - lo) / per_side.max(2)).max(1);
+        for a in (lo..=hi).step_by(step) {
+            for b in (lo..=hi).step_by(step) {
+                if a >= 2 && b >= 2 && a + 2 < m && b + 2 < m {
+                    ring_samples.push((lim(a, b), sign(jac(a, b))));
+                }
+            }
+        }
+        for level in 0..levels.max(1) {
+            let map = |p: [f64; 2]| advance(p, prep.basis.restriction, level);
+            patches.push(PatchPlot {
+                level,
+                patch: AnyPatchId::CatmullClark(*id),
+                outline: ring_outline.iter().map(|p| map(*p)).collect(),
+                samples: ring_samples.iter().map(|(p, s)| (map(*p), *s)).collect(),
+            });
+        }
+    }
+    Ok((
+        report.map_patches(AnyPatchId::CatmullClark),
+        Some(RingPlot {
+            patches,
+            orientation,
+        }),
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

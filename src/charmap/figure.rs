@@ -6,7 +6,8 @@
 //! outline polyline, plus a grid of sample points per patch with the sign of
 //! the Jacobian (relative to the ring's orientation) for a sign overlay.
 
-use super::ring::{Ring, RingPatchId};
+use super::ring::Ring;
+use super::AnyPatchId;
 use serde::Serialize;
 
 /// One patch of one level, sampled.
@@ -14,8 +15,8 @@ use serde::Serialize;
 pub struct PatchPlot {
     /// Level (0 = the ring itself).
     pub level: usize,
-    /// The patch.
-    pub patch: RingPatchId,
+    /// The patch (a Doo-Sabin ring patch or a Catmull-Clark ring cell).
+    pub patch: AnyPatchId,
     /// Closed outline (first point repeated at the end).
     pub outline: Vec<[f64; 2]>,
     /// Sample points `(x, y, sign of sigma J)` on a regular grid of the patch domain.
@@ -31,6 +32,31 @@ pub struct RingPlot {
     pub orientation: i8,
 }
 
+/// `p` mapped to the ring `k` levels further: `M^T` applied `k` times
+/// (`restriction` = `M`, row-major).
+pub fn advance(p: [f64; 2], restriction: [[f64; 2]; 2], k: usize) -> [f64; 2] {
+    let m = restriction;
+    let mut q = p;
+    for _ in 0..k {
+        q = [
+            m[0][0] * q[0] + m[1][0] * q[1],
+            m[0][1] * q[0] + m[1][1] * q[1],
+        ];
+    }
+    q
+}
+
+/// The sign of `v` as `-1, 0, 1`.
+pub(crate) fn sign(v: f64) -> i8 {
+    if v > 0.0 {
+        1
+    } else if v < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
 /// Samples `ring` (oriented by `orientation`) and `levels - 1` further rings
 /// obtained with `restriction` (`M`, row-major); `per_side` points per patch side.
 pub fn ring_plot(
@@ -41,17 +67,7 @@ pub fn ring_plot(
     per_side: usize,
 ) -> RingPlot {
     let per_side = per_side.max(2);
-    let m = restriction;
-    let apply = |p: [f64; 2], k: usize| {
-        let mut q = p;
-        for _ in 0..k {
-            q = [
-                m[0][0] * q[0] + m[1][0] * q[1],
-                m[0][1] * q[0] + m[1][1] * q[1],
-            ];
-        }
-        q
-    };
+    let apply = |p: [f64; 2], k: usize| advance(p, restriction, k);
     let sigma = f64::from(orientation);
     let mut patches = Vec::new();
     for level in 0..levels.max(1) {
@@ -79,21 +95,12 @@ pub fn ring_plot(
                         (j as f64 + 0.5) / per_side as f64,
                     );
                     let v = sigma * b.jacobian_at(s, t);
-                    samples.push((
-                        apply(b.eval(s, t), level),
-                        if v > 0.0 {
-                            1
-                        } else if v < 0.0 {
-                            -1
-                        } else {
-                            0
-                        },
-                    ));
+                    samples.push((apply(b.eval(s, t), level), sign(v)));
                 }
             }
             patches.push(PatchPlot {
                 level,
-                patch: p.id,
+                patch: AnyPatchId::DooSabin(p.id),
                 outline,
                 samples,
             });

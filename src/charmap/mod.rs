@@ -439,6 +439,37 @@ pub enum AnyPatchId {
     CatmullClark(catmull_clark::CcPatchId),
 }
 
+impl AnyPatchId {
+    /// The sector (edge or corner index) the patch belongs to.
+    pub fn sector(&self) -> usize {
+        match self {
+            AnyPatchId::DooSabin(p) => p.index,
+            AnyPatchId::CatmullClark(p) => p.sector,
+        }
+    }
+
+    /// Position `0..3` of the patch within its sector (`A, B, C` or
+    /// `Omega_1, Omega_2, Omega_3`).
+    pub fn slot(&self) -> usize {
+        match self {
+            AnyPatchId::DooSabin(p) => match p.kind {
+                ring::PatchKind::A => 0,
+                ring::PatchKind::B => 1,
+                ring::PatchKind::C => 2,
+            },
+            AnyPatchId::CatmullClark(p) => p.sub.index() - 1,
+        }
+    }
+
+    /// The patch kind as text (`A`, `B`, `C`, `Omega1`, `Omega2`, `Omega3`).
+    pub fn kind_name(&self) -> String {
+        match self {
+            AnyPatchId::DooSabin(_) => ["A", "B", "C"][self.slot()].to_owned(),
+            AnyPatchId::CatmullClark(_) => format!("Omega{}", self.slot() + 1),
+        }
+    }
+}
+
 impl fmt::Display for AnyPatchId {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -728,10 +759,13 @@ pub fn plot_data(
     scheme: &LocalScheme<f64>,
     levels: usize,
     per_side: usize,
-) -> Result<(CharmapReport, Option<figure::RingPlot>)> {
+) -> Result<(CharmapReport<AnyPatchId>, Option<figure::RingPlot>)> {
     let sub = crate::spectral::classify_scheme(scheme)?;
+    if let Some(c) = scheme.shape_parameter() {
+        return catmull_clark::plot_data(scheme.valence(), c, &sub, levels, per_side);
+    }
     let (ext, basis) = match prepare(scheme, &sub)? {
-        Prepared::NoMap(r) => return Ok((r, None)),
+        Prepared::NoMap(r) => return Ok((r.map_patches(AnyPatchId::DooSabin), None)),
         Prepared::Basis(e, b) => (e, b),
     };
     let structure = basis.structure;
@@ -739,5 +773,5 @@ pub fn plot_data(
     let report = check_ring(&ring, point_error(&ext, &basis), structure);
     let orientation = report.regularity.as_ref().map_or(1, |r| r.orientation);
     let plot = figure::ring_plot(&ring, basis.restriction, orientation, levels, per_side);
-    Ok((report, Some(plot)))
+    Ok((report.map_patches(AnyPatchId::DooSabin), Some(plot)))
 }

@@ -29,7 +29,7 @@ pub const MAX_VALENCE: usize = 256;
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ConfigSpec {
-    /// Scheme name (`nurds`, `doo-sabin`, `cc-variant`).
+    /// Scheme name (`nurds`, `doo-sabin`, `cc-variant`, `catmull-clark`, `adjustable-cc`).
     pub scheme: Spanned<String>,
     /// Valence (inferred from `ratios`/`knots` when omitted).
     pub valence: Option<Spanned<usize>>,
@@ -39,6 +39,8 @@ pub struct ConfigSpec {
     pub knots: Option<Spanned<Vec<[f64; 2]>>>,
     /// Random knot intervals, log-uniform in [1, value].
     pub random_knots: Option<Spanned<f64>>,
+    /// Shape parameter `c` in [0, 1] (`adjustable-cc` only).
+    pub c: Option<Spanned<f64>>,
     /// Legend label (default: generated from the parameters).
     pub label: Option<String>,
 }
@@ -167,8 +169,30 @@ impl ConfigSpec {
                 ))
             }
         };
-        let scheme = LocalScheme::from_kind(kind, valence, ratios.clone())
-            .map_err(|e| fs.error_at(&self.scheme, key, e.to_string()))?;
+        let c =
+            match (&self.c, kind.takes_c()) {
+                (Some(c), false) => return Err(fs.error_at(
+                    c,
+                    &format!("{key}.c"),
+                    format!(
+                        "scheme {kind} takes no shape parameter; use scheme = \"adjustable-cc\""
+                    ),
+                )),
+                (None, true) => {
+                    return Err(fs.error_at(
+                        &self.scheme,
+                        &format!("{key}.c"),
+                        "scheme adjustable-cc needs the shape parameter c in [0, 1]",
+                    ))
+                }
+                (c, _) => c.as_ref().map(|c| *c.get_ref()),
+            };
+        let scheme = LocalScheme::from_kind_with_c(kind, valence, ratios.clone(), c).map_err(
+            |e| match &self.c {
+                Some(cv) => fs.error_at(cv, &format!("{key}.c"), e.to_string()),
+                None => fs.error_at(&self.scheme, key, e.to_string()),
+            },
+        )?;
         let label = match &self.label {
             Some(l) => l.clone(),
             None => default_label(&scheme, &suffix),
@@ -187,6 +211,7 @@ pub fn default_label(scheme: &LocalScheme<f64>, suffix: &str) -> String {
         }
         LocalScheme::Nurds(_) if suffix.is_empty() => format!("NURDS n={n}, non-uniform"),
         LocalScheme::Nurds(_) => format!("NURDS n={n}{suffix}"),
+        LocalScheme::AdjustableCc { c, .. } => format!("adjustable-cc n={n}, c={c}"),
         other => format!("{} n={n}", other.kind()),
     }
 }

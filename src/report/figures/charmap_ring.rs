@@ -25,10 +25,10 @@
 
 use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::charmap::figure::RingPlot;
-use crate::charmap::ring::PatchKind;
+use crate::charmap::AnyPatchId;
 use crate::charmap::{plot_data, CharmapReport};
 use crate::report::backend::Area;
-use crate::report::config::{require_doo_sabin_family, resolve_all, ConfigSpec, Configuration};
+use crate::report::config::{resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::plot::{draw_err, mix_white, series_color, titled, Theme};
 use crate::report::spec::{Common, FigureSpec};
@@ -71,7 +71,6 @@ struct Charmap {
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
     let configs = resolve_all(fs, &p.configs, Some(MAX_PANELS))?;
-    require_doo_sabin_family(fs, &p.configs, &configs, "the biquadratic ring plot")?;
     let count = configs.len();
     let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 3)?;
     let samples = bounded(fs, &p.samples, "samples", 2, MAX_SAMPLES, 6)?;
@@ -113,21 +112,13 @@ impl Figure for Charmap {
 
 struct Panel {
     config: Configuration,
-    report: CharmapReport,
+    report: CharmapReport<AnyPatchId>,
     plot: Option<RingPlot>,
 }
 
 struct Output {
     panels: Vec<Panel>,
     columns: usize,
-}
-
-fn kind_name(k: PatchKind) -> &'static str {
-    match k {
-        PatchKind::A => "A",
-        PatchKind::B => "B",
-        PatchKind::C => "C",
-    }
 }
 
 impl FigureOutput for Output {
@@ -175,8 +166,8 @@ impl FigureOutput for Output {
                         p.config.label.clone(),
                         pp.level.to_string(),
                         pp.patch.to_string(),
-                        kind_name(pp.patch.kind).to_owned(),
-                        pp.patch.index.to_string(),
+                        pp.patch.kind_name(),
+                        pp.patch.sector().to_string(),
                         k.to_string(),
                         num(q[0]),
                         num(q[1]),
@@ -251,18 +242,13 @@ fn draw_panel(area: &Area<'_>, p: &Panel, th: &Theme) -> Result<(), ReportError>
     let n = plot
         .patches
         .iter()
-        .map(|q| q.patch.index)
+        .map(|q| q.patch.sector())
         .max()
         .unwrap_or(0)
         + 1;
     for pp in plot.patches.iter().rev() {
         // colour by position around the face: A, B, C of sector i get neighbouring hues
-        let slot = 3 * pp.patch.index
-            + match pp.patch.kind {
-                PatchKind::A => 0,
-                PatchKind::B => 1,
-                PatchKind::C => 2,
-            };
+        let slot = 3 * pp.patch.sector() + pp.patch.slot();
         let base = series_color(slot, 3 * n);
         let fill = mix_white(base, 0.35 + 0.5 * (pp.level as f64 / 6.0).min(0.6));
         let pts: Vec<(f64, f64)> = pp.outline.iter().map(|q| (q[0], q[1])).collect();
@@ -309,7 +295,7 @@ fn draw_panel(area: &Area<'_>, p: &Panel, th: &Theme) -> Result<(), ReportError>
 }
 
 /// The verdict, shortened to fit under a panel (the CSV has the full text).
-fn short_verdict(r: &CharmapReport) -> String {
+fn short_verdict(r: &CharmapReport<AnyPatchId>) -> String {
     use crate::charmap::Verdict;
     let w = r
         .winding_number
