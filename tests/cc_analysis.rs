@@ -306,3 +306,39 @@ mod study {
         }
     }
 }
+
+/// Regression (found by the proptest above): faer returned zero eigenvector
+/// columns at the exactly double subdominant eigenvalue of the adjustable
+/// scheme (n = 9, c = 0.10944...). Zero columns have residual 0 and used to
+/// pass as eigenvectors, giving infinite condition numbers and a wrong
+/// `not_separated`. Now they are refined, and double eigenvalues get the
+/// condition number of their spectral projector.
+#[test]
+fn double_eigenvalue_vectors_are_unit_and_well_conditioned() {
+    use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};
+    for (n, c) in [(9, 0.1094457555588049), (7, 0.3), (12, 0.9)] {
+        let s = LocalScheme::<f64>::adjustable_cc(n, c).unwrap();
+        let m = s.matrix().unwrap().into_matrix();
+        let e = Eigen::new(&m, EigenOptions::BOTH).unwrap();
+        for vecs in [e.right().unwrap(), e.left().unwrap()] {
+            for k in 0..vecs.ncols() {
+                assert!(
+                    (vecs.column(k).norm() - 1.0).abs() < 1e-12,
+                    "n = {n}, column {k}"
+                );
+            }
+        }
+        let kappa = e.condition_numbers().unwrap();
+        assert!(
+            kappa[1] < 10.0 && kappa[2] < 10.0,
+            "n = {n}: {:?}",
+            &kappa[..3]
+        );
+        let full = analyze(&s, &full()).unwrap();
+        assert_eq!(
+            full.subdominant.class.name(),
+            "standard",
+            "n = {n}, c = {c}"
+        );
+    }
+}

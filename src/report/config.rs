@@ -169,24 +169,25 @@ impl ConfigSpec {
                 ))
             }
         };
-        let c =
-            match (&self.c, kind.takes_c()) {
-                (Some(c), false) => return Err(fs.error_at(
+        let c = match (&self.c, kind.takes_c()) {
+            (Some(c), false) => {
+                return Err(fs.error_at(
                     c,
                     &format!("{key}.c"),
                     format!(
                         "scheme {kind} takes no shape parameter; use scheme = \"adjustable-cc\""
                     ),
-                )),
-                (None, true) => {
-                    return Err(fs.error_at(
-                        &self.scheme,
-                        &format!("{key}.c"),
-                        "scheme adjustable-cc needs the shape parameter c in [0, 1]",
-                    ))
-                }
-                (c, _) => c.as_ref().map(|c| *c.get_ref()),
-            };
+                ))
+            }
+            (None, true) => {
+                return Err(fs.error_at(
+                    &self.scheme,
+                    &format!("{key}.c"),
+                    "scheme adjustable-cc needs the shape parameter c in [0, 1]",
+                ))
+            }
+            (c, _) => c.as_ref().map(|c| *c.get_ref()),
+        };
         let scheme = LocalScheme::from_kind_with_c(kind, valence, ratios.clone(), c).map_err(
             |e| match &self.c {
                 Some(cv) => fs.error_at(cv, &format!("{key}.c"), e.to_string()),

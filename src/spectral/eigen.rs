@@ -65,6 +65,67 @@ pub const REFINE_CLUSTER: f64 = 1e-6;
 /// non-converged QR block leaves `O(||S||)` residuals.
 pub const RESIDUAL_FAIL_FACTOR: f64 = 1e3;
 
+/// Two computed eigenvalues closer than `PAIR_CLUSTER * max(1, ||S||_F)` are
+/// treated as one double eigenvalue by [`pair_conditions`]. A semisimple double
+/// eigenvalue is computed to `O(kappa eps ||S||)`, far below this; a defective
+/// one splits by `O(sqrt(eps ||S||))` (about 1e-8), also below it, and is then
+/// caught by the ill-conditioning of `Y^H X` instead.
+pub const PAIR_CLUSTER: f64 = 1e-6;
+
+/// Condition numbers of double eigenvalues from the pair's spectral projector
+/// **\[derived\]**. At a double eigenvalue the computed left and right vectors
+/// of each copy are arbitrary members of the 2-D eigenspaces, so the
+/// individual `1 / |u_k^H v_k|` can be huge (even infinite) although the
+/// eigenvalue is perfectly conditioned. For a semisimple double eigenvalue
+/// with right basis `X = [v_i v_j]` and left basis `Y = [u_i u_j]` (unit
+/// columns), first-order perturbation theory (Stewart and Sun, *Matrix
+/// Perturbation Theory*, IV.2) moves both copies by at most
+/// `||P|| ||E||`, `P = X (Y^H X)^{-1} Y^H`, and
+/// `||P||_2 <= ||X||_2 ||Y||_2 / sigma_min(Y^H X) <= 2 / sigma_min(Y^H X)`.
+/// Each copy's condition number becomes the smaller of the two bounds (both
+/// are valid); a defective pair has `sigma_min(Y^H X) ~ 0` and keeps a huge
+/// value. Clusters of three or more are left alone.
+fn pair_conditions(
+    values: &[Complex64],
+    v: &DMatrix<Complex64>,
+    u: &DMatrix<Complex64>,
+    frobenius: f64,
+    kappa: &mut [f64],
+) {
+    let n = values.len();
+    let tol = PAIR_CLUSTER * frobenius.max(1.0);
+    for i in 0..n {
+        let near: Vec<usize> = (0..n)
+            .filter(|&j| j != i && (values[j] - values[i]).norm() <= tol)
+            .collect();
+        if near.len() != 1 {
+            continue;
+        }
+        let j = near[0];
+        // G = Y^H X (2 x 2), sigma_min from the eigenvalues of G^H G
+        let g = [
+            [
+                u.column(i).dotc(&v.column(i)),
+                u.column(i).dotc(&v.column(j)),
+            ],
+            [
+                u.column(j).dotc(&v.column(i)),
+                u.column(j).dotc(&v.column(j)),
+            ],
+        ];
+        let fro2: f64 = g.iter().flatten().map(|z| z.norm_sqr()).sum();
+        let det = (g[0][0] * g[1][1] - g[0][1] * g[1][0]).norm();
+        // sigma_min^2 = (fro2 - sqrt(fro2^2 - 4 det^2)) / 2, computed stably
+        let disc = (fro2 * fro2 - 4.0 * det * det).max(0.0).sqrt();
+        let smax2 = 0.5 * (fro2 + disc);
+        let smin = if smax2 > 0.0 { det / smax2.sqrt() } else { 0.0 };
+        if smin > 0.0 {
+            let cluster = (2.0 / smin).max(1.0);
+            kappa[i] = kappa[i].min(cluster);
+        }
+    }
+}
+
 /// Which eigenvectors to compute.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct EigenOptions {
@@ -314,11 +375,21 @@ impl Eigen {
         let right = ur.as_ref().map(|u| permute(to_complex(u)));
         let left = ul.as_ref().map(|u| permute(to_complex(u)));
         let sc = s.map(|x| Complex64::new(x, 0.0));
+        // A residual only means something for a unit vector: faer can return
+        // zero columns at exactly repeated eigenvalues (residual 0!), which
+        // must go to refinement, not pass as eigenvectors.
+        let unit = |norm: f64, r: f64| {
+            if (norm - 1.0).abs() <= 1e-6 {
+                r
+            } else {
+                f64::INFINITY
+            }
+        };
         let residuals = right.as_ref().map(|v| {
             (0..n)
                 .map(|k| {
                     let col = v.column(k);
-                    (&sc * col - col * values[k]).norm()
+                    unit(col.norm(), (&sc * col - col * values[k]).norm())
                 })
                 .collect::<Vec<f64>>()
         });
@@ -328,7 +399,7 @@ impl Eigen {
                     let col = u.column(k);
                     // u^H S - lambda u^H  <=>  S^T conj(u) - lambda conj(u)
                     let cu = col.map(|z| z.conj());
-                    (sc.transpose() * &cu - cu * values[k]).norm()
+                    unit(col.norm(), (sc.transpose() * &cu - cu * values[k]).norm())
                 })
                 .collect::<Vec<f64>>()
         });
@@ -362,8 +433,8 @@ impl Eigen {
             }
         }
         let conditions = match (&right, &left) {
-            (Some(v), Some(u)) => Some(
-                (0..n)
+            (Some(v), Some(u)) => {
+                let mut kappa: Vec<f64> = (0..n)
                     .map(|k| {
                         let d = u.column(k).dotc(&v.column(k)).norm();
                         if d > 0.0 {
@@ -372,8 +443,10 @@ impl Eigen {
                             f64::INFINITY
                         }
                     })
-                    .collect(),
-            ),
+                    .collect();
+                pair_conditions(&values, v, u, frobenius, &mut kappa);
+                Some(kappa)
+            }
             _ => None,
         };
         Ok(Self {
