@@ -821,6 +821,19 @@ pub enum Certificate {
     Bicubic,
 }
 
+impl Certificate {
+    /// The default for `c`: the bicubic Bezier certificate the literature
+    /// uses for Catmull-Clark proper (`c = 1/2`), the cone certificate for
+    /// every other `c` (non-polynomial cells).
+    pub fn for_c(c: f64) -> Self {
+        if c == 0.5 {
+            Certificate::Bicubic
+        } else {
+            Certificate::Cone
+        }
+    }
+}
+
 /// The characteristic-map check of the adjustable scheme at `(n, c)`,
 /// classification included (common engine on the one-ring matrix), with the
 /// cone test. Eigenstructures other than `standard` have no map here (for
@@ -992,12 +1005,7 @@ pub fn plot_data(
 )> {
     use super::figure::{advance, sign, PatchPlot, RingPlot};
     use super::AnyPatchId;
-    let cert = if c == 0.5 {
-        Certificate::Bicubic
-    } else {
-        Certificate::Cone
-    };
-    let report = check_classified(n, c, sub, cert)?;
+    let report = check_classified(n, c, sub, Certificate::for_c(c))?;
     let prep = match (&report.regularity, c > 0.0) {
         (Some(_), true) => {
             let lambda = sub.lambda1.re;

@@ -693,15 +693,8 @@ pub fn check_classified(
     scheme: &LocalScheme<f64>,
     sub: &Subdominant,
 ) -> Result<CharmapReport<AnyPatchId>> {
-    // Catmull-Clark proper (c = 1/2) gets the bicubic Bezier certificate the
-    // literature uses; other c the cone certificate (non-polynomial cells).
     let cc = |n: usize, c: f64| {
-        let cert = if c == 0.5 {
-            catmull_clark::Certificate::Bicubic
-        } else {
-            catmull_clark::Certificate::Cone
-        };
-        catmull_clark::check_classified(n, c, sub, cert)
+        catmull_clark::check_classified(n, c, sub, catmull_clark::Certificate::for_c(c))
             .map(|r| r.map_patches(AnyPatchId::CatmullClark))
     };
     match scheme.shape_parameter() {
