@@ -73,7 +73,12 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         println!("{text}");
     } else {
         print!("{}", summary(&result));
-        print!("{}", charmap_summary(&charmap));
+        // which certificate the coefficients belong to (charmap::check_classified's choice)
+        let cone = resolved.f64.shape_parameter().is_some_and(|c| {
+            charmap::catmull_clark::Certificate::for_c(c)
+                == charmap::catmull_clark::Certificate::Cone
+        });
+        print!("{}", charmap_summary(&charmap, cone));
     }
     Ok(())
 }
@@ -92,7 +97,10 @@ fn charmap_json(
 }
 
 /// Human-readable characteristic-map lines.
-fn charmap_summary(c: &subdiv_lab::Result<charmap::CharmapReport<charmap::AnyPatchId>>) -> String {
+fn charmap_summary(
+    c: &subdiv_lab::Result<charmap::CharmapReport<charmap::AnyPatchId>>,
+    cone: bool,
+) -> String {
     let r = match c {
         Ok(r) => r,
         Err(e) => return format!("characteristic map: not computed ({e})\n"),
@@ -100,8 +108,13 @@ fn charmap_summary(c: &subdiv_lab::Result<charmap::CharmapReport<charmap::AnyPat
     let mut out = format!("characteristic map: {}\n", r.verdict);
     if let Some(g) = &r.regularity {
         out += &format!(
-            "  Jacobian: {} (min coefficient {:.6e} relative to max |c|, at {} s={:.3} t={:.3}; error bound {:.1e}; {} pieces, depth {})\n",
+            "  Jacobian: {} (min {} {:.6e} relative to the largest, at {} s={:.3} t={:.3}; error bound {:.1e}; {} pieces, depth {})\n",
             g.verdict.as_str(),
+            if cone {
+                "derivative-cone determinant"
+            } else {
+                "Bezier coefficient"
+            },
             g.min_coeff,
             g.min_location.patch,
             g.min_location.s,
