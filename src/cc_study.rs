@@ -33,7 +33,8 @@
 //! assert_eq!(iv.len(), 1);
 //! assert!(iv[0].hi == 1.0 && iv[0].lo < 1e-3);
 //! let c1 = c1_intervals(5, 20, 1e-6).unwrap();
-//! assert!(c1[0].lo <= iv[0].lo + 1e-6 || c1[0].lo >= iv[0].lo);
+//! // C1 needs a standard eigenstructure, so the C1 interval lies inside the standard one
+//! assert!(c1[0].lo >= iv[0].lo && c1[0].hi == 1.0);
 //! ```
 
 use crate::charmap;

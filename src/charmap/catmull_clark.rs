@@ -1198,15 +1198,4 @@ mod tests {
             assert_eq!(cone.inner_winding_number, Some(1));
         }
     }
-
-    #[test]
-    fn mode_two_ring_winds_twice() {
-        // deliberately build the ring of Fourier mode 2: regular or not, it cannot be injective
-        let prep = prepare_ring(7, 0.5, 2, 0.05).unwrap();
-        let rep = check_ring(&prep.ring, prep.point_error, Certificate::Cone);
-        assert_ne!(rep.verdict, Verdict::C1Standard);
-        if rep.regular() == Some(true) {
-            assert_eq!(rep.winding_number.map(i64::abs), Some(2));
-        }
-    }
 }
