@@ -4,6 +4,12 @@
 //!
 //! * `structured`: [`classify_scheme`] (face block, allocation-free kernel,
 //!   condition numbers of lambda_1..3, classification) from random edge ratios;
+//! * `structured_pairs`: the same through [`classify_schemes_pair`], two
+//!   configurations per call (the sweep driver's path; items = configurations);
+//! * `kernel_single` / `kernel_pair`: the eigenvalues of deflated face blocks
+//!   (dimension `n - 1`) by [`KernelWorkspace::eigenvalues`] one at a time and
+//!   by [`KernelWorkspace::eigenvalues_pair`] (items = matrices), the measurement
+//!   behind [`PAIR_MAX_DIM`](subdiv_lab::spectral::kernel::PAIR_MAX_DIM);
 //! * `full_values`: assemble `S_n` (4n x 4n) and all its eigenvalues with faer;
 //! * `full_analyze`: the complete [`analyze`] (vectors, residuals, condition
 //!   numbers, Theorem 1 certificate and 60-level measurement), small `n` only.
@@ -14,7 +20,10 @@ use subdiv_lab::contraction::SplitMix64;
 use subdiv_lab::knots::EdgeRatios;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};
-use subdiv_lab::spectral::{analyze, classify_scheme, AnalyzeOptions};
+use subdiv_lab::spectral::kernel::KernelWorkspace;
+use subdiv_lab::spectral::{
+    analyze, classify_scheme, classify_schemes_pair, AnalyzeOptions, StructuredWorkspace,
+};
 
 fn main() {
     divan::main();
@@ -38,6 +47,59 @@ fn structured(bencher: Bencher, n: usize) {
         k = (k + 1) % POOL;
         let s = LocalScheme::nurds(EdgeRatios::new(ratios[k].clone()).unwrap());
         divan::black_box(classify_scheme(&s).unwrap())
+    });
+}
+
+#[divan::bench(args = SIZES, threads = 1)]
+fn structured_pairs(bencher: Bencher, n: usize) {
+    let ratios = pool(n);
+    let (mut w0, mut w1) = (StructuredWorkspace::new(), StructuredWorkspace::new());
+    let mut k = 0;
+    bencher.counter(ItemsCount::new(2usize)).bench_local(|| {
+        k = (k + 2) % POOL;
+        let a = LocalScheme::nurds(EdgeRatios::new(ratios[k].clone()).unwrap());
+        let b = LocalScheme::nurds(EdgeRatios::new(ratios[k + 1].clone()).unwrap());
+        divan::black_box(classify_schemes_pair([&mut w0, &mut w1], [&a, &b]))
+    });
+}
+
+/// Deflated face blocks (column major, dimension `n - 1`) of random NURDS configurations.
+fn face_blocks(n: usize) -> Vec<Vec<f64>> {
+    let mut ws = StructuredWorkspace::new();
+    pool(n)
+        .into_iter()
+        .map(|r| {
+            ws.face_nonunit(&LocalScheme::nurds(EdgeRatios::new(r).unwrap()))
+                .unwrap();
+            ws.deflated_matrix().to_vec()
+        })
+        .collect()
+}
+
+const KERNEL_SIZES: &[usize] = &[5, 8, 12, 16, 20, 24, 26, 28, 32];
+
+#[divan::bench(args = KERNEL_SIZES, threads = 1)]
+fn kernel_single(bencher: Bencher, n: usize) {
+    let blocks = face_blocks(n);
+    let mut ws = KernelWorkspace::new();
+    let mut k = 0;
+    bencher.counter(ItemsCount::new(1usize)).bench_local(|| {
+        k = (k + 1) % POOL;
+        ws.input(n - 1).copy_from_slice(&blocks[k]);
+        divan::black_box(ws.eigenvalues().unwrap().0[0])
+    });
+}
+
+#[divan::bench(args = KERNEL_SIZES, threads = 1)]
+fn kernel_pair(bencher: Bencher, n: usize) {
+    let blocks = face_blocks(n);
+    let (mut w0, mut w1) = (KernelWorkspace::new(), KernelWorkspace::new());
+    let mut k = 0;
+    bencher.counter(ItemsCount::new(2usize)).bench_local(|| {
+        k = (k + 2) % POOL;
+        w0.input(n - 1).copy_from_slice(&blocks[k]);
+        w1.input(n - 1).copy_from_slice(&blocks[k + 1]);
+        divan::black_box(KernelWorkspace::eigenvalues_pair([&mut w0, &mut w1]))
     });
 }
 

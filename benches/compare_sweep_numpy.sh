@@ -15,13 +15,17 @@
 #     (scheme nurds, space ratios [0.01, 0.99], sampler random, default columns:
 #     class, lambda1, lambda2, |lambda3|, gap, ratio / rho / theta, contraction
 #     rate), writing the full CSV to a temporary file,
+#   * `subdiv-lab sweep` with --threads 1 on the same spec with only the
+#     classification columns (`gap = false`, `contraction = false`: class,
+#     lambda1, lambda2, |lambda3|, numpy's content),
 # and prints a markdown table: wall-clock configurations per second, the same per
 # CPU-second (user + sys time of the process, numpy's interpreter start-up
-# subtracted), the speed-up per core (CPU rates), and the thread scaling
-# (2 threads / 1 thread wall rate, and CPU time 1 thread / 2 threads: 1.0 = no
-# parallel overhead).
-# Our numbers include enumeration, CSV formatting and writing; numpy's do not
-# include any output.
+# subtracted), the speed-up per core (CPU rates) for both column sets, and the
+# thread scaling (2 threads / 1 thread wall rate, and CPU time 1 thread /
+# 2 threads: 1.0 = no parallel overhead).
+# Our numbers include enumeration, CSV formatting (shortest round-trip digits
+# of every coordinate and result) and writing; numpy's do not include any
+# output.
 #
 # SWEEP_BIN=/path/to/subdiv-lab runs that binary instead of building this
 # checkout (before/after comparisons).
@@ -66,8 +70,8 @@ echo "Wall-clock rates depend on what else runs on the machine; the CPU-time rat
 echo "(configurations per CPU-second of the process, numpy's interpreter start-up"
 echo "subtracted) measure the per-core cost even on a busy machine."
 echo
-echo "| n | configs | numpy configs/s (wall) | sweep 1 thread (wall) | numpy configs/CPU-s | sweep configs/CPU-s | speed-up per core (CPU) | sweep 2 threads (wall) | 2-thread wall scaling | CPU-s 1 thread / 2 threads |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| n | configs | numpy configs/s (wall) | sweep 1 thread (wall) | numpy configs/CPU-s | sweep configs/CPU-s | speed-up per core (CPU) | classification columns only: configs/CPU-s | speed-up | sweep 2 threads (wall) | 2-thread wall scaling | CPU-s 1 thread / 2 threads |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for n in 3 5 8 16 64; do
   case "$n" in 3|5) base=200000;; 8) base=100000;; 16) base=40000;; *) base=2000;; esac
   count=$(python3 -c "print(max(1, int($base * $SCALE)))")
@@ -93,14 +97,18 @@ SPEC
   }
   read -r one one_cpu <<< "$(run_sweep 1)"
   read -r two two_cpu <<< "$(run_sweep 2)"
-  python3 - "$n" "$count" "$np" "$np_cpu" "$numpy_startup" "$one" "$one_cpu" "$two" "$two_cpu" <<'PY'
+  printf '[columns]\ngap = false\ncontraction = false\n' >> "$TMP/spec.toml"
+  read -r _ cls_cpu <<< "$(run_sweep 1)"
+  python3 - "$n" "$count" "$np" "$np_cpu" "$numpy_startup" "$one" "$one_cpu" "$two" "$two_cpu" "$cls_cpu" <<'PY'
 import sys
-n, count, np_wall, np_cpu, np_start, one, one_cpu, two, two_cpu = sys.argv[1:]
+n, count, np_wall, np_cpu, np_start, one, one_cpu, two, two_cpu, cls_cpu = sys.argv[1:]
 count = int(count)
 np_rate_cpu = count / max(float(np_cpu) - float(np_start), 1e-9)
 sw_rate_cpu = count / max(float(one_cpu), 1e-9)
+cls_rate_cpu = count / max(float(cls_cpu), 1e-9)
 print(f"| {n} | {count} | {float(np_wall):.0f} | {float(one):.0f} | {np_rate_cpu:.0f} | {sw_rate_cpu:.0f} | "
-      f"{sw_rate_cpu / np_rate_cpu:.1f}x | {float(two):.0f} | {float(two) / float(one):.2f}x | "
+      f"{sw_rate_cpu / np_rate_cpu:.1f}x | {cls_rate_cpu:.0f} | {cls_rate_cpu / np_rate_cpu:.1f}x | "
+      f"{float(two):.0f} | {float(two) / float(one):.2f}x | "
       f"{float(one_cpu) / max(float(two_cpu), 1e-9):.2f} |")
 PY
 done

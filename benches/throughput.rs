@@ -4,7 +4,8 @@
 //!
 //! Same work as the numpy script: random ratios uniform in `[0.01, 0.99)`,
 //! the spectrum of the local matrix and the subdominant classification, one
-//! thread. Prints one line in the numpy script's format so that
+//! thread (the structured path classifies configurations in pairs with
+//! [`classify_schemes_pair`], as the sweep driver does). Prints one line in the numpy script's format so that
 //! `benches/compare_numpy.sh` can tabulate both.
 
 use std::time::Instant;
@@ -12,7 +13,9 @@ use subdiv_lab::contraction::SplitMix64;
 use subdiv_lab::knots::EdgeRatios;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};
-use subdiv_lab::spectral::{classify_scheme, SubdominantClass};
+use subdiv_lab::spectral::{
+    classify_scheme_with, classify_schemes_pair, StructuredWorkspace, SubdominantClass,
+};
 
 fn arg(args: &[String], name: &str, default: &str) -> String {
     args.iter()
@@ -30,30 +33,47 @@ fn main() {
     let path = arg(&args, "--path", "structured");
     let mut rng = SplitMix64::new(seed);
     let mut counts = [0usize; 4]; // complex, double, real_distinct, other
-    let t0 = Instant::now();
-    for _ in 0..count {
+    let mut tally = |class: &SubdominantClass| match class {
+        SubdominantClass::ComplexPair => counts[0] += 1,
+        SubdominantClass::Standard | SubdominantClass::Defective => counts[1] += 1,
+        SubdominantClass::RealDistinct => counts[2] += 1,
+        _ => counts[3] += 1,
+    };
+    let mut next = || {
         let r: Vec<f64> = (0..n).map(|_| rng.uniform(0.01, 0.99)).collect();
-        let s = LocalScheme::nurds(EdgeRatios::new(r).expect("ratios in (0, 1)"));
-        let class = if path == "full" {
-            let m = s.matrix().expect("assembly").into_matrix();
+        LocalScheme::nurds(EdgeRatios::new(r).expect("ratios in (0, 1)"))
+    };
+    let (mut w0, mut w1) = (StructuredWorkspace::new(), StructuredWorkspace::new());
+    let t0 = Instant::now();
+    if path == "full" {
+        for _ in 0..count {
+            let m = next().matrix().expect("assembly").into_matrix();
             let e = Eigen::new(&m, EigenOptions::VALUES).expect("eigenvalues");
             let v = e.values();
             // numpy's classification: complex if |Im l1| > 1e-9, double if |l1 - l2| <= 1e-9.
-            if v[1].im.abs() > 1e-9 {
+            tally(&if v[1].im.abs() > 1e-9 {
                 SubdominantClass::ComplexPair
             } else if (v[1] - v[2]).norm() <= 1e-9 {
                 SubdominantClass::Standard
             } else {
                 SubdominantClass::RealDistinct
+            });
+        }
+    } else {
+        // The structured path classifies configurations in pairs (two QR
+        // iterations interleaved), as the sweep driver does.
+        for _ in 0..count / 2 {
+            let (a, b) = (next(), next());
+            for s in classify_schemes_pair([&mut w0, &mut w1], [&a, &b]) {
+                tally(&s.expect("classification").class);
             }
-        } else {
-            classify_scheme(&s).expect("classification").class
-        };
-        match class {
-            SubdominantClass::ComplexPair => counts[0] += 1,
-            SubdominantClass::Standard | SubdominantClass::Defective => counts[1] += 1,
-            SubdominantClass::RealDistinct => counts[2] += 1,
-            _ => counts[3] += 1,
+        }
+        if count % 2 == 1 {
+            tally(
+                &classify_scheme_with(&mut w0, &next())
+                    .expect("classification")
+                    .class,
+            );
         }
     }
     let dt = t0.elapsed().as_secs_f64();

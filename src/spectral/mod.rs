@@ -437,6 +437,39 @@ fn fourier_deviation(a: &[[f64; 2]], b: &[Complex64]) -> f64 {
     worst
 }
 
+/// Condition numbers of the `wanted` entries of `values` (the others are
+/// left 0) by one call of `compute` (the kernel's interleaved inverse
+/// iterations). A wanted value that is the conjugate of the wanted value
+/// before it shares that value's number: for a real matrix the computation
+/// for `conj(z)` is the conjugate of the one for `z`, bit for bit.
+fn condition_numbers_of(
+    values: &[Complex64; 4],
+    wanted: [bool; 4],
+    compute: impl FnOnce(&[Complex64], &mut [f64]),
+) -> [f64; 4] {
+    let mut shifts = [Complex64::new(0.0, 0.0); 4];
+    let mut slot = [usize::MAX; 4];
+    let mut count = 0;
+    let mut last: Option<usize> = None;
+    for k in 0..4 {
+        if !wanted[k] {
+            continue;
+        }
+        match last {
+            Some(p) if values[p] == values[k].conj() => slot[k] = slot[p],
+            _ => {
+                shifts[count] = values[k];
+                slot[k] = count;
+                count += 1;
+            }
+        }
+        last = Some(k);
+    }
+    let mut kappa = [0.0f64; 4];
+    compute(&shifts[..count], &mut kappa[..count]);
+    std::array::from_fn(|k| if wanted[k] { kappa[slot[k]] } else { 0.0 })
+}
+
 thread_local! {
     static WORKSPACE: RefCell<StructuredWorkspace> = RefCell::new(StructuredWorkspace::new());
 }
@@ -465,8 +498,51 @@ pub fn classify_scheme_with(
     if scheme.kind().is_catmull_clark_family() {
         return classify_matrix(scheme.matrix()?.matrix());
     }
-    let n = scheme.valence();
-    let face_len = ws.face_nonunit(scheme)?.len();
+    ws.face_nonunit(scheme)?;
+    classify_face(ws, scheme.valence())
+}
+
+/// [`classify_scheme_with`] for two schemes in two workspaces at once: the
+/// face spectra come from [`StructuredWorkspace::face_nonunit_pair`] (two QR
+/// iterations interleaved), so the results equal, bit for bit, those of two
+/// `classify_scheme_with` calls, at a higher throughput (the sweep driver and
+/// `benches/throughput.rs` classify configurations in pairs).
+///
+/// ```
+/// use subdiv_lab::knots::EdgeRatios;
+/// use subdiv_lab::schemes::LocalScheme;
+/// use subdiv_lab::spectral::{classify_scheme, classify_schemes_pair, StructuredWorkspace};
+/// let a = LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.5]).unwrap());
+/// let b = LocalScheme::nurds(EdgeRatios::uniform(8).unwrap());
+/// let (mut wa, mut wb) = (StructuredWorkspace::new(), StructuredWorkspace::new());
+/// let [sa, sb] = classify_schemes_pair([&mut wa, &mut wb], [&a, &b]);
+/// assert_eq!(sa.unwrap(), classify_scheme(&a).unwrap());
+/// assert_eq!(sb.unwrap(), classify_scheme(&b).unwrap());
+/// ```
+pub fn classify_schemes_pair(
+    ws: [&mut StructuredWorkspace; 2],
+    schemes: [&LocalScheme<f64>; 2],
+) -> [Result<Subdominant>; 2] {
+    let [w0, w1] = ws;
+    if !(schemes[0].kind().is_doo_sabin_family() && schemes[1].kind().is_doo_sabin_family()) {
+        return [
+            classify_scheme_with(w0, schemes[0]),
+            classify_scheme_with(w1, schemes[1]),
+        ];
+    }
+    let [f0, f1] = StructuredWorkspace::face_nonunit_pair([&mut *w0, &mut *w1], schemes);
+    [
+        f0.map_err(Into::into)
+            .and_then(|()| classify_face(w0, schemes[0].valence())),
+        f1.map_err(Into::into)
+            .and_then(|()| classify_face(w1, schemes[1].valence())),
+    ]
+}
+
+/// The classification of a valence-`n` Doo-Sabin-family scheme whose face
+/// spectrum `ws` holds.
+fn classify_face(ws: &mut StructuredWorkspace, n: usize) -> Result<Subdominant> {
+    let face_len = ws.face_nonunit_cached().len();
     let m = ws.deflated_dim();
     let eta = BACKWARD_ERROR_FACTOR * m.max(1) as f64 * f64::EPSILON * ws.frobenius_norm();
     // Merge the top of the face spectrum with the known 1/4 (n copies).
@@ -490,16 +566,17 @@ pub fn classify_scheme_with(
         }
     }
     // Condition numbers for face eigenvalues among lambda_1..lambda_3.
-    let mut last: Option<(Complex64, f64)> = None;
-    for slot in top.iter_mut().skip(1) {
-        if slot.2 != usize::MAX {
-            let z = slot.0;
-            let kappa = match last {
-                Some((w, kw)) if w == z.conj() => kw,
-                _ => ws.condition_number(z),
-            };
-            last = Some((z, kappa));
-            slot.1 = radius(kappa, eta);
+    let wanted = [
+        false,
+        top[1].2 != usize::MAX,
+        top[2].2 != usize::MAX,
+        top[3].2 != usize::MAX,
+    ];
+    let values4 = [top[0].0, top[1].0, top[2].0, top[3].0];
+    let kappa = condition_numbers_of(&values4, wanted, |z, k| ws.condition_numbers(z, k));
+    for (k, slot) in top.iter_mut().enumerate() {
+        if wanted[k] {
+            slot.1 = radius(kappa[k], eta);
         }
     }
     let values = [top[0].0, top[1].0, top[2].0, top[3].0];
@@ -554,18 +631,15 @@ pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
         values.extend(re.iter().zip(im).map(|(&a, &b)| Complex64::new(a, b)));
         values.sort_by(spectral_order);
         let eta = BACKWARD_ERROR_FACTOR * n.max(1) as f64 * f64::EPSILON * s.norm();
-        let mut radii = [0.0f64; 4];
-        let mut last: Option<(Complex64, f64)> = None;
-        for k in 0..n.min(4) {
-            let z = values[k];
-            let kappa = match last {
-                Some((w, kw)) if w == z.conj() => kw,
-                _ => ws.condition_number(z),
-            };
-            last = Some((z, kappa));
-            radii[k] = radius(kappa, eta);
-        }
         let top: Vec<Complex64> = values.iter().take(4).copied().collect();
+        let mut values4 = [Complex64::new(0.0, 0.0); 4];
+        values4[..top.len()].copy_from_slice(&top);
+        let wanted: [bool; 4] = std::array::from_fn(|k| k < top.len());
+        let kappa = condition_numbers_of(&values4, wanted, |z, k| ws.condition_numbers(z, k));
+        let mut radii = [0.0f64; 4];
+        for k in 0..top.len() {
+            radii[k] = radius(kappa[k], eta);
+        }
         Ok(classify(
             &Evidence {
                 values: &top,

@@ -37,6 +37,8 @@ pub const KNOWN_EIGENVALUES: [f64; 3] = [0.25, 0.125, 0.0625];
 pub struct StructuredWorkspace {
     kernel: KernelWorkspace,
     f: Vec<f64>,
+    /// Scratch of the deflation.
+    wz: Vec<f64>,
     face: Vec<Complex64>,
     frobenius: f64,
 }
@@ -53,6 +55,49 @@ impl StructuredWorkspace {
         &mut self,
         scheme: &LocalScheme<f64>,
     ) -> Result<&[Complex64], SpectralError> {
+        self.load(scheme)?;
+        self.kernel.eigenvalues()?;
+        self.collect();
+        Ok(&self.face)
+    }
+
+    /// [`face_nonunit`](Self::face_nonunit) for two schemes in two workspaces
+    /// at once, through [`KernelWorkspace::eigenvalues_pair`]: the results are
+    /// bit for bit those of two `face_nonunit` calls, at up to 1.3x the
+    /// throughput for small valences. Read them with
+    /// [`face_nonunit_cached`](Self::face_nonunit_cached).
+    ///
+    /// ```
+    /// use subdiv_lab::knots::EdgeRatios;
+    /// use subdiv_lab::schemes::LocalScheme;
+    /// use subdiv_lab::spectral::StructuredWorkspace;
+    /// let a = LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.5]).unwrap());
+    /// let b = LocalScheme::nurds(EdgeRatios::uniform(6).unwrap());
+    /// let (mut wa, mut wb) = (StructuredWorkspace::new(), StructuredWorkspace::new());
+    /// let [ra, rb] = StructuredWorkspace::face_nonunit_pair([&mut wa, &mut wb], [&a, &b]);
+    /// assert!(ra.is_ok() && rb.is_ok());
+    /// let mut single = StructuredWorkspace::new();
+    /// assert_eq!(wa.face_nonunit_cached(), single.face_nonunit(&a).unwrap());
+    /// assert_eq!(wb.face_nonunit_cached(), single.face_nonunit(&b).unwrap());
+    /// ```
+    pub fn face_nonunit_pair(
+        ws: [&mut Self; 2],
+        schemes: [&LocalScheme<f64>; 2],
+    ) -> [Result<(), SpectralError>; 2] {
+        let [w0, w1] = ws;
+        let (l0, l1) = (w0.load(schemes[0]), w1.load(schemes[1]));
+        let [r0, r1] = match (l0, l1) {
+            (Ok(()), Ok(())) => KernelWorkspace::eigenvalues_pair([&mut w0.kernel, &mut w1.kernel]),
+            (l0, l1) => [
+                l0.and_then(|()| w0.kernel.eigenvalues().map(|_| ())),
+                l1.and_then(|()| w1.kernel.eigenvalues().map(|_| ())),
+            ],
+        };
+        [r0.map(|()| w0.collect()), r1.map(|()| w1.collect())]
+    }
+
+    /// Builds the deflated block `B` of `scheme` as the kernel's input.
+    fn load(&mut self, scheme: &LocalScheme<f64>) -> Result<(), SpectralError> {
         let n = scheme.valence();
         if !scheme.kind().is_doo_sabin_family() {
             return Err(SpectralError::NotDooSabinFamily {
@@ -64,14 +109,18 @@ impl StructuredWorkspace {
         fill_face_like(scheme, n, &mut self.f)?;
         let m = n - 1;
         let b = self.kernel.input(m);
-        deflate_ones(n, &self.f, b);
+        deflate_ones(n, &self.f, b, &mut self.wz);
         self.frobenius = b.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let (re, im) = self.kernel.eigenvalues()?;
+        Ok(())
+    }
+
+    /// Sorts the kernel's eigenvalues into `face`.
+    fn collect(&mut self) {
+        let (re, im) = self.kernel.last_eigenvalues();
         self.face.clear();
         self.face
             .extend(re.iter().zip(im).map(|(&r, &i)| Complex64::new(r, i)));
         self.face.sort_by(spectral_order);
-        Ok(&self.face)
     }
 
     /// The result of the last [`face_nonunit`](Self::face_nonunit) call.
@@ -83,6 +132,13 @@ impl StructuredWorkspace {
     /// computed by [`face_nonunit`](Self::face_nonunit) (`O(n^2)`).
     pub fn condition_number(&mut self, lambda: Complex64) -> f64 {
         self.kernel.condition_number(lambda)
+    }
+
+    /// [`condition_number`](Self::condition_number) of several eigenvalues at
+    /// once ([`KernelWorkspace::condition_numbers`]: the inverse iterations
+    /// run interleaved).
+    pub fn condition_numbers(&mut self, lambdas: &[Complex64], out: &mut [f64]) {
+        self.kernel.condition_numbers(lambdas, out)
     }
 
     /// QR sweeps of the last kernel call (diagnostics).
@@ -127,8 +183,7 @@ fn fill_face_like(scheme: &LocalScheme<f64>, n: usize, f: &mut [f64]) -> Result<
         LocalScheme::CcVariant { .. } => {
             // Uniform ratios 1/2 (no allocation): diagonal 1/2, neighbours 1/8.
             for i in 0..n {
-                let prev = (i + n - 1) % n;
-                let next = (i + 1) % n;
+                let (prev, next) = neighbours(i, n);
                 f[i + i * n] = 0.25 * 2.0;
                 f[i + prev * n] += 0.125;
                 f[i + next * n] += 0.125;
@@ -144,11 +199,18 @@ fn fill_face_like(scheme: &LocalScheme<f64>, n: usize, f: &mut [f64]) -> Result<
     Ok(())
 }
 
+/// The cyclic neighbours `(i - 1, i + 1) mod n` of `i < n` (no integer division).
+#[inline(always)]
+fn neighbours(i: usize, n: usize) -> (usize, usize) {
+    let prev = if i == 0 { n - 1 } else { i - 1 };
+    let next = if i + 1 == n { 0 } else { i + 1 };
+    (prev, next)
+}
+
 /// `M = (I + R)/4`: diagonal `(1 + s_{i-1} + r_i)/4`, sub `r_{i-1}/4`, super `s_i/4`.
 fn fill_m(n: usize, r: &[f64], s: &[f64], f: &mut [f64]) {
     for i in 0..n {
-        let prev = (i + n - 1) % n;
-        let next = (i + 1) % n;
+        let (prev, next) = neighbours(i, n);
         f[i + i * n] = 0.25 * (1.0 + s[prev] + r[i]);
         f[i + prev * n] += 0.25 * r[prev];
         f[i + next * n] += 0.25 * s[i];
@@ -158,40 +220,40 @@ fn fill_m(n: usize, r: &[f64], s: &[f64], f: &mut [f64]) {
 /// Trailing `(n-1) x (n-1)` block of `H F H`, `H = I - beta v v^T`,
 /// `v = 1 + sqrt(n) e_0` (so `H 1 = -sqrt(n) e_0`), for `F` with constant row
 /// sums. With `w^T = v^T F` and `z = H F v`: `G_ij = F_ij - beta w_j - beta z_i`
-/// for `i, j >= 1`.
-fn deflate_ones(n: usize, f: &[f64], b: &mut [f64]) {
+/// for `i, j >= 1`. `wz` is scratch storage (resized to `2n`).
+fn deflate_ones(n: usize, f: &[f64], b: &mut [f64], wz: &mut Vec<f64>) {
     let sq = (n as f64).sqrt();
     let beta = 1.0 / (n as f64 + sq);
     let m = n - 1;
+    wz.clear();
+    wz.resize(2 * n, 0.0);
+    let (w, z) = wz.split_at_mut(n);
     // w_j = sum_i v_i F_ij
     let mut wv = 0.0;
-    let w = |j: usize| -> f64 {
-        let mut s = sq * f[j * n];
-        for i in 0..n {
-            s += f[i + j * n];
+    for (j, wj) in w.iter_mut().enumerate() {
+        let col = &f[j * n..(j + 1) * n];
+        let mut s = sq * col[0];
+        for x in col {
+            s += x;
         }
-        s
-    };
-    // w_j is recomputed in the second loop (O(n^2) either way, no allocation).
-    for j in 0..n {
+        *wj = s;
         let v_j = if j == 0 { 1.0 + sq } else { 1.0 };
-        wv += w(j) * v_j;
+        wv += s * v_j;
     }
-    for j in 1..n {
-        let wj = w(j);
-        for i in 1..n {
-            b[(i - 1) + (j - 1) * m] = f[i + j * n] - beta * wj;
-        }
-    }
-    for i in 1..n {
-        // z_i = rowsum_i + sqrt(n) F_i0 - beta (w . v)
+    // z_i = rowsum_i + sqrt(n) F_i0 - beta (w . v)
+    for (i, zi) in z.iter_mut().enumerate().skip(1) {
         let mut rs = sq * f[i];
         for j in 0..n {
             rs += f[i + j * n];
         }
-        let z = rs - beta * wv;
-        for j in 1..n {
-            b[(i - 1) + (j - 1) * m] -= beta * z;
+        *zi = rs - beta * wv;
+    }
+    for j in 1..n {
+        let bw = beta * w[j];
+        let col = &f[j * n + 1..(j + 1) * n];
+        let out = &mut b[(j - 1) * m..j * m];
+        for ((o, x), zi) in out.iter_mut().zip(col).zip(&z[1..]) {
+            *o = (x - bw) - beta * zi;
         }
     }
 }

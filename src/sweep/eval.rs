@@ -26,7 +26,7 @@ use crate::charmap;
 use crate::schemes::catmull_clark::fourier;
 use crate::schemes::LocalScheme;
 use crate::spectral::structured::StructuredWorkspace;
-use crate::spectral::{self, SubdominantClass};
+use crate::spectral::{self, Subdominant, SubdominantClass};
 use num_complex::Complex64;
 use std::cell::RefCell;
 
@@ -158,6 +158,24 @@ pub trait Evaluate: Sync {
         }
         Ok(())
     }
+
+    /// [`write_results`](Self::write_results) for two configurations at once
+    /// (the sweep driver evaluates consecutive configurations in pairs); the
+    /// cells must equal those of two `write_results` calls. The default makes
+    /// those two calls; the spectral evaluator overrides it to run the two QR
+    /// iterations interleaved ([`spectral::classify_schemes_pair`]).
+    fn write_results_pair(
+        &self,
+        plan: &Plan,
+        items: [(&Configuration, &LocalScheme<f64>); 2],
+        out: [&mut dyn CellSink; 2],
+    ) -> [crate::Result<()>; 2] {
+        let [o0, o1] = out;
+        [
+            self.write_results(plan, items[0].0, items[0].1, o0),
+            self.write_results(plan, items[1].0, items[1].1, o1),
+        ]
+    }
 }
 
 /// The evaluator of the `sweep` command: the project's spectral engine.
@@ -183,7 +201,8 @@ struct Scratch {
 }
 
 thread_local! {
-    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
+    /// Two scratches: one per configuration of a pair.
+    static SCRATCH: RefCell<[Scratch; 2]> = RefCell::new(Default::default());
 }
 
 /// The full spectrum of `S_n` from the face spectrum in `ws`, in the order of
@@ -223,37 +242,86 @@ impl Evaluate for SpectralEvaluator {
     ) -> crate::Result<()> {
         SCRATCH.with(|cell| {
             let mut guard = cell.borrow_mut();
-            self.write_with(&mut guard, plan, c, scheme, out)
+            let scratch = &mut guard[0];
+            let sub = self.subdominant(scratch, scheme)?;
+            self.write_with(scratch, plan, c, scheme, sub, out)
+        })
+    }
+
+    fn write_results_pair(
+        &self,
+        plan: &Plan,
+        items: [(&Configuration, &LocalScheme<f64>); 2],
+        out: [&mut dyn CellSink; 2],
+    ) -> [crate::Result<()>; 2] {
+        let [(c0, s0), (c1, s1)] = items;
+        let [o0, o1] = out;
+        SCRATCH.with(|cell| {
+            let mut guard = cell.borrow_mut();
+            let [w0, w1] = &mut *guard;
+            let [sub0, sub1] = if self.needs_subdominant()
+                && s0.kind().is_doo_sabin_family()
+                && s1.kind().is_doo_sabin_family()
+            {
+                let [a, b] = spectral::classify_schemes_pair([&mut w0.ws, &mut w1.ws], [s0, s1]);
+                [a.map(Some), b.map(Some)]
+            } else {
+                [self.subdominant(w0, s0), self.subdominant(w1, s1)]
+            };
+            [
+                sub0.and_then(|sub| self.write_with(w0, plan, c0, s0, sub, o0)),
+                sub1.and_then(|sub| self.write_with(w1, plan, c1, s1, sub, o1)),
+            ]
         })
     }
 }
 
 impl SpectralEvaluator {
+    /// Whether any requested column needs the subdominant classification.
+    fn needs_subdominant(&self) -> bool {
+        let cols = &self.columns;
+        cols.classification
+            || cols.gap
+            || cols.contraction
+            || cols.exact_certificate
+            || cols.charmap
+    }
+
+    /// The classification of `scheme` if a column needs it. The Doo-Sabin
+    /// family (every scheme a sweep spec names but the Catmull-Clark family)
+    /// goes through the structured path with the per-thread workspace;
+    /// anything else through the general classifier.
+    fn subdominant(
+        &self,
+        scratch: &mut Scratch,
+        scheme: &LocalScheme<f64>,
+    ) -> crate::Result<Option<Subdominant>> {
+        if !self.needs_subdominant() {
+            Ok(None)
+        } else if scheme.kind().is_doo_sabin_family() {
+            Ok(Some(spectral::classify_scheme_with(
+                &mut scratch.ws,
+                scheme,
+            )?))
+        } else {
+            Ok(Some(spectral::classify_scheme(scheme)?))
+        }
+    }
+
+    /// Writes the cells of `c` given its classification `sub` (from
+    /// [`subdominant`](Self::subdominant) or a paired classification; for the
+    /// Doo-Sabin family `scratch.ws` holds the face spectrum it computed).
     fn write_with(
         &self,
         scratch: &mut Scratch,
         plan: &Plan,
         c: &Configuration,
         scheme: &LocalScheme<f64>,
+        sub: Option<Subdominant>,
         out: &mut dyn CellSink,
     ) -> crate::Result<()> {
         let cols = &self.columns;
-        let needs_sub = cols.classification
-            || cols.gap
-            || cols.contraction
-            || cols.exact_certificate
-            || cols.charmap;
-        // The Doo-Sabin family (every scheme a sweep spec names) goes through the
-        // structured path with the per-thread workspace; anything else through
-        // the general classifier.
         let structured = scheme.kind().is_doo_sabin_family();
-        let sub = if !needs_sub {
-            None
-        } else if structured {
-            Some(spectral::classify_scheme_with(&mut scratch.ws, scheme)?)
-        } else {
-            Some(spectral::classify_scheme(scheme)?)
-        };
         if let Some(sub) = &sub {
             if cols.classification {
                 match &sub.class {

@@ -328,19 +328,20 @@ impl CellSink for Stage {
     }
 }
 
-/// Reusable per-task storage of the sweep driver.
-struct Scratch {
+/// One configuration of the sweep driver between evaluation and formatting.
+struct Staged {
     config: Configuration,
     sampler: Vec<f64>,
     stage: Stage,
     /// Coordinate cells of the current row (by column).
     coordinates: Vec<Option<f64>>,
-    digits: zmij::Buffer,
+    error: Option<String>,
+    valence: usize,
 }
 
-impl Scratch {
+impl Staged {
     fn new() -> Self {
-        Scratch {
+        Staged {
             config: Configuration {
                 id: 0,
                 valence: 0,
@@ -349,6 +350,23 @@ impl Scratch {
             sampler: Vec::new(),
             stage: Stage::default(),
             coordinates: Vec::new(),
+            error: None,
+            valence: 0,
+        }
+    }
+}
+
+/// Reusable per-task storage of the sweep driver: two staged rows (the driver
+/// evaluates configurations in pairs, [`Evaluate::write_results_pair`]).
+struct Scratch {
+    rows: [Staged; 2],
+    digits: zmij::Buffer,
+}
+
+impl Scratch {
+    fn new() -> Self {
+        Scratch {
+            rows: [Staged::new(), Staged::new()],
             digits: zmij::Buffer::new(),
         }
     }
@@ -368,53 +386,130 @@ impl Layout {
         text: &mut String,
         part: &mut PartialSummary,
     ) {
-        let n_results = self.names.len() - self.coordinates;
-        sc.stage.clear();
-        sc.coordinates.clear();
-        sc.coordinates.resize(self.coordinates, None);
-        let mut error: Option<String> = None;
-        let valence = match plan.configuration_into(id, &mut sc.config, &mut sc.sampler) {
+        let row = &mut sc.rows[0];
+        if let Some(scheme) = self.load(plan, id, row) {
+            let r = eval.write_results(plan, &row.config, &scheme, &mut row.stage);
+            self.check_results(row, r);
+        }
+        self.emit(id, row, &mut sc.digits, text, part);
+    }
+
+    /// [`append_row`](Self::append_row) for two configurations, evaluated
+    /// together by [`Evaluate::write_results_pair`]; the lines are those of two
+    /// `append_row` calls (evaluators must give equal cells either way).
+    fn append_pair<E: Evaluate + ?Sized>(
+        &self,
+        plan: &Plan,
+        eval: &E,
+        ids: [u64; 2],
+        sc: &mut Scratch,
+        text: &mut String,
+        part: &mut PartialSummary,
+    ) {
+        let [r0, r1] = &mut sc.rows;
+        match (self.load(plan, ids[0], r0), self.load(plan, ids[1], r1)) {
+            (Some(s0), Some(s1)) => {
+                let [e0, e1] = eval.write_results_pair(
+                    plan,
+                    [(&r0.config, &s0), (&r1.config, &s1)],
+                    [&mut r0.stage, &mut r1.stage],
+                );
+                self.check_results(r0, e0);
+                self.check_results(r1, e1);
+            }
+            (s0, s1) => {
+                for (row, s) in [(&mut *r0, s0), (&mut *r1, s1)] {
+                    if let Some(s) = s {
+                        let r = eval.write_results(plan, &row.config, &s, &mut row.stage);
+                        self.check_results(row, r);
+                    }
+                }
+            }
+        }
+        self.emit(ids[0], r0, &mut sc.digits, text, part);
+        self.emit(ids[1], r1, &mut sc.digits, text, part);
+    }
+
+    /// Enumerates configuration `id` into `row` (coordinates by column) and
+    /// builds its scheme; on an error, records it in `row` and returns `None`.
+    fn load(
+        &self,
+        plan: &Plan,
+        id: u64,
+        row: &mut Staged,
+    ) -> Option<crate::schemes::LocalScheme<f64>> {
+        row.stage.clear();
+        row.coordinates.clear();
+        row.coordinates.resize(self.coordinates, None);
+        row.error = None;
+        match plan.configuration_into(id, &mut row.config, &mut row.sampler) {
             Ok(()) => {
-                let c = &sc.config;
+                let c = &row.config;
+                row.valence = c.valence;
                 for (k, x) in c.coordinates.iter().enumerate() {
-                    sc.coordinates[plan.coordinate_column(c.valence, k)] = Some(*x);
+                    row.coordinates[plan.coordinate_column(c.valence, k)] = Some(*x);
                 }
-                match plan
-                    .scheme(c)
-                    .and_then(|s| eval.write_results(plan, c, &s, &mut sc.stage))
-                {
-                    Ok(()) if sc.stage.slots.len() == n_results => {}
-                    Ok(()) => {
-                        error = Some(format!(
-                            "internal: evaluator returned {} cells for {n_results} result columns",
-                            sc.stage.slots.len()
-                        ));
-                        sc.stage.clear();
-                    }
+                match plan.scheme(c) {
+                    Ok(s) => Some(s),
                     Err(e) => {
-                        error = Some(e.to_string());
-                        sc.stage.clear();
+                        row.error = Some(e.to_string());
+                        None
                     }
                 }
-                c.valence
             }
             Err(e) => {
-                error = Some(e.to_string());
-                sc.coordinates.clear();
-                sc.coordinates.resize(self.coordinates, None);
-                0
+                row.error = Some(e.to_string());
+                row.coordinates.clear();
+                row.coordinates.resize(self.coordinates, None);
+                row.valence = 0;
+                None
             }
-        };
+        }
+    }
+
+    /// Records the outcome of an evaluation into `row`: a wrong cell count or
+    /// an error empties the stage and becomes the row's error.
+    fn check_results(&self, row: &mut Staged, result: crate::Result<()>) {
+        let n_results = self.names.len() - self.coordinates;
+        match result {
+            Ok(()) if row.stage.slots.len() == n_results => {}
+            Ok(()) => {
+                row.error = Some(format!(
+                    "internal: evaluator returned {} cells for {n_results} result columns",
+                    row.stage.slots.len()
+                ));
+                row.stage.clear();
+            }
+            Err(e) => {
+                row.error = Some(e.to_string());
+                row.stage.clear();
+            }
+        }
+    }
+
+    /// Appends the CSV line of the staged `row` (configuration `id`) to `text`
+    /// and adds it to `part`.
+    fn emit(
+        &self,
+        id: u64,
+        row: &Staged,
+        digits: &mut zmij::Buffer,
+        text: &mut String,
+        part: &mut PartialSummary,
+    ) {
+        let n_results = self.names.len() - self.coordinates;
+        let valence = row.valence;
+        let error = &row.error;
         let mut ibuf = itoa_buf();
         text.push_str(small_uint(id, &mut ibuf));
         text.push(',');
         text.push_str(small_uint(valence as u64, &mut ibuf));
         let mut numeric = 0usize;
-        for (pos, x) in sc.coordinates.iter().enumerate() {
+        for (pos, x) in row.coordinates.iter().enumerate() {
             text.push(',');
             let is_num = self.kinds[pos] == Kind::Numeric;
             if let Some(x) = x {
-                push_number(text, &mut sc.digits, *x);
+                push_number(text, digits, *x);
                 if is_num {
                     part.push(numeric, *x, id);
                 }
@@ -424,25 +519,25 @@ impl Layout {
             }
         }
         let mut class: Option<&str> = None;
-        if sc.stage.slots.is_empty() {
+        if row.stage.slots.is_empty() {
             for _ in 0..n_results {
                 text.push(',');
             }
         } else {
-            for (k, slot) in sc.stage.slots.iter().enumerate() {
+            for (k, slot) in row.stage.slots.iter().enumerate() {
                 let pos = self.coordinates + k;
                 text.push(',');
                 let is_num = self.kinds[pos] == Kind::Numeric;
                 match *slot {
                     Slot::Empty => {}
                     Slot::Num(x) => {
-                        push_number(text, &mut sc.digits, x);
+                        push_number(text, digits, x);
                         if is_num {
                             part.push(numeric, x, id);
                         }
                     }
                     Slot::Text(a, b) => {
-                        let t = &sc.stage.text[a..b];
+                        let t = &row.stage.text[a..b];
                         push_text(text, t);
                         if self.class == Some(pos) {
                             class = Some(t);
@@ -681,7 +776,11 @@ fn evaluate_chunk<E: Evaluate + ?Sized>(
             let mut text = String::with_capacity(ids.len() * (32 + 24 * layout.cells()));
             let mut part = PartialSummary::new(numeric);
             let mut scratch = Scratch::new();
-            for &id in ids {
+            let mut pairs = ids.chunks_exact(2);
+            for p in &mut pairs {
+                layout.append_pair(plan, eval, [p[0], p[1]], &mut scratch, &mut text, &mut part);
+            }
+            for &id in pairs.remainder() {
                 layout.append_row(plan, eval, id, &mut scratch, &mut text, &mut part);
             }
             (text, part)
@@ -949,6 +1048,33 @@ mod tests {
         got_summary.absorb_partial(&part);
         assert_eq!(got, want);
         assert_eq!(got_summary, want_summary);
+        // The paired path (the driver's) gives the same lines, whatever the
+        // phase of the pairing (one lone first row shifts every pair).
+        for skip in [0, 1] {
+            let mut got = String::new();
+            let mut part = PartialSummary::new(layout.numeric.len());
+            for &id in &ids[..skip] {
+                layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
+            }
+            let mut pairs = ids[skip..].chunks_exact(2);
+            for p in &mut pairs {
+                layout.append_pair(
+                    &plan,
+                    &eval,
+                    [p[0], p[1]],
+                    &mut scratch,
+                    &mut got,
+                    &mut part,
+                );
+            }
+            for &id in pairs.remainder() {
+                layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
+            }
+            let mut got_summary = Summary::new(&plan, &layout, Shard::ALL, None);
+            got_summary.absorb_partial(&part);
+            assert_eq!(got, want, "pairs from row {skip}");
+            assert_eq!(got_summary, want_summary);
+        }
         for threads in [1, 2, 3] {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
