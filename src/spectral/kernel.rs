@@ -372,13 +372,14 @@ fn inverse_iteration_kappa<T: Field, const K: usize>(
 ) -> [f64; K] {
     let zero = T::from_f64(0.0);
     st.lu.clear();
-    st.lu.reserve(n * n * K);
-    for j in 0..n {
-        for i in 0..n {
-            let h = T::from_f64(hess[i + j * n]);
-            for &z in &lam {
-                st.lu.push(if i == j { h - z } else { h });
-            }
+    st.lu.resize(n * n * K, zero);
+    for (e, &h) in st.lu.chunks_exact_mut(K).zip(hess) {
+        e.fill(T::from_f64(h));
+    }
+    for i in 0..n {
+        let d = &mut st.lu[(i + i * n) * K..(i + i * n + 1) * K];
+        for (x, &z) in d.iter_mut().zip(&lam) {
+            *x = *x - z;
         }
     }
     st.dinv.clear();
