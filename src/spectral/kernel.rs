@@ -379,7 +379,7 @@ fn inverse_iteration_kappa<T: Field, const K: usize>(
     for i in 0..n {
         let d = &mut st.lu[(i + i * n) * K..(i + i * n + 1) * K];
         for (x, &z) in d.iter_mut().zip(&lam) {
-            *x = *x - z;
+            *x -= z;
         }
     }
     st.dinv.clear();
@@ -628,6 +628,29 @@ fn row2(c: &mut [f64], q: f64, x: f64, y: f64) {
     c[0] -= pp * x;
 }
 
+/// Unchecked read of entry `(i, j)` of the column-major `n x n` matrix `a`
+/// in the QR iteration: every index there is `< n` by the loop invariants
+/// (`l <= k <= nu < n`, and the guards on `k + 2` / `m - 1`), checked in
+/// debug builds.
+macro_rules! g {
+    ($a:ident, $n:ident, $i:expr, $j:expr) => {{
+        let (i, j) = ($i, $j);
+        debug_assert!(i < $n && j < $n && $a.len() >= $n * $n);
+        // SAFETY: i, j < n and a.len() >= n * n.
+        unsafe { *$a.get_unchecked(i + j * $n) }
+    }};
+}
+
+/// Unchecked mutable access to entry `(i, j)`; see `g!`.
+macro_rules! m {
+    ($a:ident, $n:ident, $i:expr, $j:expr) => {{
+        let (i, j) = ($i, $j);
+        debug_assert!(i < $n && j < $n && $a.len() >= $n * $n);
+        // SAFETY: i, j < n and a.len() >= n * n.
+        unsafe { $a.get_unchecked_mut(i + j * $n) }
+    }};
+}
+
 /// Francis double-shift QR on an upper Hessenberg matrix (EISPACK `hqr`,
 /// eigenvalues only), with bounded iterations: [`Hqr::step`] until done.
 pub(crate) fn hqr(
@@ -739,24 +762,6 @@ impl Hqr {
     ) -> Result<bool, SpectralError> {
         let n = self.n;
         debug_assert!(a.len() >= n * n && wr.len() >= n && wi.len() >= n);
-        // Unchecked access: every index below is < n by the loop invariants
-        // (l <= k <= nu < n, and the guards on k + 2 / m - 1), checked in debug builds.
-        macro_rules! g {
-            ($i:expr, $j:expr) => {{
-                let (i, j) = ($i, $j);
-                debug_assert!(i < n && j < n);
-                // SAFETY: i, j < n and a.len() >= n * n.
-                unsafe { *a.get_unchecked(i + j * n) }
-            }};
-        }
-        macro_rules! m {
-            ($i:expr, $j:expr) => {{
-                let (i, j) = ($i, $j);
-                debug_assert!(i < n && j < n);
-                // SAFETY: i, j < n and a.len() >= n * n.
-                unsafe { a.get_unchecked_mut(i + j * n) }
-            }};
-        }
         if self.chasing {
             let (l, m, k, nu) = (self.l, self.l, self.k, self.nu);
             reflector(a, n, l, m, k, nu, self.p, self.q, self.r);
@@ -774,18 +779,18 @@ impl Hqr {
         // Look for a small subdiagonal element.
         let mut l = nu;
         while l >= 1 {
-            let mut s = g!(l - 1, l - 1).abs() + g!(l, l).abs();
+            let mut s = g!(a, n, l - 1, l - 1).abs() + g!(a, n, l, l).abs();
             if s == 0.0 {
                 s = self.anorm;
             }
-            if g!(l, l - 1).abs() <= eps * s {
-                *m!(l, l - 1) = 0.0;
+            if g!(a, n, l, l - 1).abs() <= eps * s {
+                *m!(a, n, l, l - 1) = 0.0;
                 break;
             }
             l -= 1;
         }
         let t = self.t;
-        let mut x = g!(nu, nu);
+        let mut x = g!(a, n, nu, nu);
         if l == nu {
             // One root found.
             wr[nu] = x + t;
@@ -794,8 +799,8 @@ impl Hqr {
             self.its = 0;
             return Ok(self.nn < 0);
         }
-        let mut y = g!(nu - 1, nu - 1);
-        let mut w = g!(nu, nu - 1) * g!(nu - 1, nu);
+        let mut y = g!(a, n, nu - 1, nu - 1);
+        let mut w = g!(a, n, nu, nu - 1) * g!(a, n, nu - 1, nu);
         if l + 1 == nu {
             // Two roots found.
             let p = 0.5 * (y - x);
@@ -830,9 +835,9 @@ impl Hqr {
             // Exceptional shift (EISPACK hqr; dlahqr's constants 0.75 and -0.4375).
             self.t += x;
             for i in 0..=nu {
-                *m!(i, i) -= x;
+                *m!(a, n, i, i) -= x;
             }
-            let s = g!(nu, nu - 1).abs() + g!(nu - 1, nu - 2).abs();
+            let s = g!(a, n, nu, nu - 1).abs() + g!(a, n, nu - 1, nu - 2).abs();
             x = 0.75 * s;
             y = x;
             w = -0.4375 * s * s;
@@ -863,20 +868,20 @@ impl Hqr {
         // search for two consecutive small subdiagonal entries, to start
         // lower, rarely pays at small n).
         let m = l;
-        let z = g!(m, m);
+        let z = g!(a, n, m, m);
         let rr = x - z;
         let ss = y - z;
-        let p = (rr * ss - w) / g!(m + 1, m) + g!(m, m + 1);
-        let q = g!(m + 1, m + 1) - z - rr - ss;
-        let r = g!(m + 2, m + 1);
+        let p = (rr * ss - w) / g!(a, n, m + 1, m) + g!(a, n, m, m + 1);
+        let q = g!(a, n, m + 1, m + 1) - z - rr - ss;
+        let r = g!(a, n, m + 2, m + 1);
         let s = p.abs() + q.abs() + r.abs();
         self.p = p / s;
         self.q = q / s;
         self.r = r / s;
         for i in m + 2..=nu {
-            *m!(i, i - 2) = 0.0;
+            *m!(a, n, i, i - 2) = 0.0;
             if i != m + 2 {
-                *m!(i, i - 3) = 0.0;
+                *m!(a, n, i, i - 3) = 0.0;
             }
         }
         self.l = l;
@@ -903,29 +908,13 @@ fn reflector(
     mut q: f64,
     mut r: f64,
 ) {
-    macro_rules! g {
-        ($i:expr, $j:expr) => {{
-            let (i, j) = ($i, $j);
-            debug_assert!(i < n && j < n);
-            // SAFETY: i, j < n and a.len() >= n * n.
-            unsafe { *a.get_unchecked(i + j * n) }
-        }};
-    }
-    macro_rules! m {
-        ($i:expr, $j:expr) => {{
-            let (i, j) = ($i, $j);
-            debug_assert!(i < n && j < n);
-            // SAFETY: i, j < n and a.len() >= n * n.
-            unsafe { a.get_unchecked_mut(i + j * n) }
-        }};
-    }
     // The last reflector of a sweep acts on two rows/columns only.
     let three = k != nu - 1;
     let mut x = 0.0;
     if k != m {
-        p = g!(k, k - 1);
-        q = g!(k + 1, k - 1);
-        r = if three { g!(k + 2, k - 1) } else { 0.0 };
+        p = g!(a, n, k, k - 1);
+        q = g!(a, n, k + 1, k - 1);
+        r = if three { g!(a, n, k + 2, k - 1) } else { 0.0 };
         // EISPACK scales (p, q, r) by x = |p| + |q| + |r| against
         // over/underflow in p^2 + q^2 + r^2; inside the safe range
         // the scaling changes nothing but rounding, so it is skipped
@@ -946,10 +935,10 @@ fn reflector(
     }
     if k == m {
         if l != m {
-            *m!(k, k - 1) = -g!(k, k - 1);
+            *m!(a, n, k, k - 1) = -g!(a, n, k, k - 1);
         }
     } else {
-        *m!(k, k - 1) = -s * x;
+        *m!(a, n, k, k - 1) = -s * x;
     }
     p += s;
     let is = 1.0 / s;
