@@ -131,7 +131,7 @@ impl KernelWorkspace {
     /// imaginary part first).
     pub fn eigenvalues(&mut self) -> Result<(&[f64], &[f64]), SpectralError> {
         self.reduce()?;
-        self.sweeps = hqr(self.n, &mut self.h, &mut self.wr, &mut self.wi)?;
+        self.iterate()?;
         Ok((&self.wr, &self.wi))
     }
 
@@ -156,10 +156,16 @@ impl KernelWorkspace {
                 [s0.map(|s| w0.sweeps = s), s1.map(|s| w1.sweeps = s)]
             }
             (r0, r1) => [
-                r0.and_then(|()| w0.eigenvalues().map(|_| ())),
-                r1.and_then(|()| w1.eigenvalues().map(|_| ())),
+                r0.and_then(|()| w0.iterate()),
+                r1.and_then(|()| w1.iterate()),
             ],
         }
+    }
+
+    /// The QR iteration on the reduced input (after [`reduce`](Self::reduce)).
+    fn iterate(&mut self) -> Result<(), SpectralError> {
+        self.sweeps = hqr(self.n, &mut self.h, &mut self.wr, &mut self.wi)?;
+        Ok(())
     }
 
     /// The eigenvalues `(re, im)` computed by the last successful
