@@ -66,10 +66,11 @@ pub const REFINE_CLUSTER: f64 = 1e-6;
 pub const RESIDUAL_FAIL_FACTOR: f64 = 1e3;
 
 /// Two computed eigenvalues closer than `PAIR_CLUSTER * max(1, ||S||_F)` are
-/// treated as one double eigenvalue by [`pair_conditions`]. A semisimple double
-/// eigenvalue is computed to `O(kappa eps ||S||)`, far below this; a defective
-/// one splits by `O(sqrt(eps ||S||))` (about 1e-8), also below it, and is then
-/// caught by the ill-conditioning of `Y^H X` instead.
+/// treated as one double eigenvalue by the decomposition's pair check
+/// (`pair_conditions`). A semisimple double eigenvalue is computed to
+/// `O(kappa eps ||S||)`, far below this; a defective one splits by
+/// `O(sqrt(eps ||S||))` (about 1e-8), also below it, and is then caught by
+/// the ill-conditioning of `Y^H X` instead.
 pub const PAIR_CLUSTER: f64 = 1e-6;
 
 /// Condition numbers of double eigenvalues from the pair's spectral projector

@@ -57,7 +57,7 @@ pub const EXCEPTIONAL_SHIFT_PERIOD: usize = 10;
 pub const PAIR_MAX_DIM: usize = 20;
 
 /// Upper end (`2^500`) of the range of `x = |p| + |q| + |r|` in which the QR
-/// sweep of [`hqr`] forms `p^2 + q^2 + r^2` without EISPACK's rescaling by `x`:
+/// sweep (`hqr`) forms `p^2 + q^2 + r^2` without EISPACK's rescaling by `x`:
 /// that sum lies in `[x^2 / 3, x^2]`, so for `2^-500 <= x <= 2^500` it is a
 /// normal number (`>= 2^-1002`, `<= 2^1000`) and can neither overflow nor lose
 /// precision to underflow; outside the range the sweep rescales as EISPACK does.
