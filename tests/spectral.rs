@@ -13,7 +13,8 @@ use subdiv_lab::spectral::exact::{exact_verdict, TopPair};
 use subdiv_lab::spectral::kernel::KernelWorkspace;
 use subdiv_lab::spectral::structured::structured_spectrum;
 use subdiv_lab::spectral::{
-    analyze, classify_scheme, AnalyzeOptions, ClassName, SpectrumPath, SubdominantClass,
+    analyze, classify_scheme, classify_schemes_pair, AnalyzeOptions, ClassName, SpectrumPath,
+    StructuredWorkspace, SubdominantClass,
 };
 
 fn full_values(s: &LocalScheme<f64>) -> Vec<Complex64> {
@@ -387,6 +388,49 @@ fn exact_detects_defective_double_root() {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The paired path (two QR iterations interleaved, three inverse
+    /// iterations as lanes) gives exactly the single path's classification,
+    /// for pairs of any valences (either side of `PAIR_MAX_DIM`), ratios down
+    /// to 1e-6 from 0 and 1, and the knot-free members of the family.
+    #[test]
+    fn paired_classification_equals_single(
+        na in 3usize..27,
+        nb in 3usize..27,
+        seed in any::<u64>(),
+        extreme in 0.0f64..0.3,
+        kind in 0usize..4,
+    ) {
+        let mut rng = SplitMix64::new(seed);
+        let mut ratios = |n: usize| -> Vec<f64> {
+            (0..n)
+                .map(|_| {
+                    let u = rng.uniform(0.0, 1.0);
+                    if u < extreme / 2.0 {
+                        1e-6
+                    } else if u < extreme {
+                        1.0 - 1e-6
+                    } else {
+                        rng.uniform(0.01, 0.99)
+                    }
+                })
+                .collect()
+        };
+        let a = LocalScheme::nurds(EdgeRatios::new(ratios(na)).unwrap());
+        let b = match kind {
+            1 => LocalScheme::doo_sabin(nb).unwrap(),
+            2 => LocalScheme::cc_variant(nb).unwrap(),
+            _ => LocalScheme::nurds(EdgeRatios::new(ratios(nb)).unwrap()),
+        };
+        let (mut w0, mut w1) = (StructuredWorkspace::new(), StructuredWorkspace::new());
+        let [pa, pb] = classify_schemes_pair([&mut w0, &mut w1], [&a, &b]);
+        prop_assert_eq!(pa.unwrap(), classify_scheme(&a).unwrap());
+        prop_assert_eq!(pb.unwrap(), classify_scheme(&b).unwrap());
+        // and each workspace holds the face spectrum of its own scheme
+        let mut single = StructuredWorkspace::new();
+        prop_assert_eq!(w0.face_nonunit_cached(), single.face_nonunit(&a).unwrap());
+        prop_assert_eq!(w1.face_nonunit_cached(), single.face_nonunit(&b).unwrap());
+    }
 
     #[test]
     fn trace_residuals_and_bound(n in 3usize..20, seed in any::<u64>()) {
