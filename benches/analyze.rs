@@ -4,12 +4,13 @@
 //!
 //! * `structured`: [`classify_scheme`] (face block, allocation-free kernel,
 //!   condition numbers of lambda_1..3, classification) from random edge ratios;
-//! * `structured_pairs`: the same through [`classify_schemes_pair`], two
-//!   configurations per call (the sweep driver's path; items = configurations);
-//! * `kernel_single` / `kernel_pair`: the eigenvalues of deflated face blocks
+//! * `structured_batches`: the same through [`classify_schemes_batch`],
+//!   [`BATCH`] configurations per call (the sweep driver's path; items =
+//!   configurations);
+//! * `kernel_single` / `kernel_batch`: the eigenvalues of deflated face blocks
 //!   (dimension `n - 1`) by [`KernelWorkspace::eigenvalues`] one at a time and
-//!   by [`KernelWorkspace::eigenvalues_pair`] (items = matrices), the measurement
-//!   behind [`PAIR_MAX_DIM`](subdiv_lab::spectral::kernel::PAIR_MAX_DIM);
+//!   by [`KernelWorkspace::eigenvalues_batch`] in lock step (items =
+//!   matrices);
 //! * `full_values`: assemble `S_n` (4n x 4n) and all its eigenvalues with faer;
 //! * `full_analyze`: the complete [`analyze`] (vectors, residuals, condition
 //!   numbers, Theorem 1 certificate and 60-level measurement), small `n` only.
@@ -20,9 +21,9 @@ use subdiv_lab::contraction::SplitMix64;
 use subdiv_lab::knots::EdgeRatios;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};
-use subdiv_lab::spectral::kernel::KernelWorkspace;
+use subdiv_lab::spectral::kernel::{KernelWorkspace, BATCH};
 use subdiv_lab::spectral::{
-    analyze, classify_scheme, classify_schemes_pair, AnalyzeOptions, StructuredWorkspace,
+    analyze, classify_scheme, classify_schemes_batch, AnalyzeOptions, StructuredWorkspace,
 };
 
 fn main() {
@@ -51,15 +52,16 @@ fn structured(bencher: Bencher, n: usize) {
 }
 
 #[divan::bench(args = SIZES, threads = 1)]
-fn structured_pairs(bencher: Bencher, n: usize) {
+fn structured_batches(bencher: Bencher, n: usize) {
     let ratios = pool(n);
-    let (mut w0, mut w1) = (StructuredWorkspace::new(), StructuredWorkspace::new());
+    let mut ws: [StructuredWorkspace; BATCH] = Default::default();
     let mut k = 0;
-    bencher.counter(ItemsCount::new(2usize)).bench_local(|| {
-        k = (k + 2) % POOL;
-        let a = LocalScheme::nurds(EdgeRatios::new(ratios[k].clone()).unwrap());
-        let b = LocalScheme::nurds(EdgeRatios::new(ratios[k + 1].clone()).unwrap());
-        divan::black_box(classify_schemes_pair([&mut w0, &mut w1], [&a, &b]))
+    bencher.counter(ItemsCount::new(BATCH)).bench_local(|| {
+        k = (k + BATCH) % POOL;
+        let schemes: [LocalScheme<f64>; BATCH] = std::array::from_fn(|i| {
+            LocalScheme::nurds(EdgeRatios::new(ratios[k + i].clone()).unwrap())
+        });
+        divan::black_box(classify_schemes_batch(ws.each_mut(), schemes.each_ref()))
     });
 }
 
@@ -91,15 +93,16 @@ fn kernel_single(bencher: Bencher, n: usize) {
 }
 
 #[divan::bench(args = KERNEL_SIZES, threads = 1)]
-fn kernel_pair(bencher: Bencher, n: usize) {
+fn kernel_batch(bencher: Bencher, n: usize) {
     let blocks = face_blocks(n);
-    let (mut w0, mut w1) = (KernelWorkspace::new(), KernelWorkspace::new());
+    let mut ws: [KernelWorkspace; BATCH] = Default::default();
     let mut k = 0;
-    bencher.counter(ItemsCount::new(2usize)).bench_local(|| {
-        k = (k + 2) % POOL;
-        w0.input(n - 1).copy_from_slice(&blocks[k]);
-        w1.input(n - 1).copy_from_slice(&blocks[k + 1]);
-        divan::black_box(KernelWorkspace::eigenvalues_pair([&mut w0, &mut w1]))
+    bencher.counter(ItemsCount::new(BATCH)).bench_local(|| {
+        k = (k + BATCH) % POOL;
+        for (i, w) in ws.iter_mut().enumerate() {
+            w.input(n - 1).copy_from_slice(&blocks[k + i]);
+        }
+        divan::black_box(KernelWorkspace::eigenvalues_batch(ws.each_mut()))
     });
 }
 

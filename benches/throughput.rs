@@ -4,8 +4,8 @@
 //!
 //! Same work as the numpy script: random ratios uniform in `[0.01, 0.99)`,
 //! the spectrum of the local matrix and the subdominant classification, one
-//! thread (the structured path classifies configurations in pairs with
-//! [`classify_schemes_pair`], as the sweep driver does). Prints one line in the numpy script's format so that
+//! thread (the structured path classifies configurations in batches with
+//! [`classify_schemes_batch`], as the sweep driver does). Prints one line in the numpy script's format so that
 //! `benches/compare_numpy.sh` can tabulate both.
 
 use std::time::Instant;
@@ -13,8 +13,9 @@ use subdiv_lab::contraction::SplitMix64;
 use subdiv_lab::knots::EdgeRatios;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};
+use subdiv_lab::spectral::kernel::BATCH;
 use subdiv_lab::spectral::{
-    classify_scheme_with, classify_schemes_pair, StructuredWorkspace, SubdominantClass,
+    classify_scheme_with, classify_schemes_batch, StructuredWorkspace, SubdominantClass,
 };
 
 fn arg(args: &[String], name: &str, default: &str) -> String {
@@ -43,7 +44,7 @@ fn main() {
         let r: Vec<f64> = (0..n).map(|_| rng.uniform(0.01, 0.99)).collect();
         LocalScheme::nurds(EdgeRatios::new(r).expect("ratios in (0, 1)"))
     };
-    let (mut w0, mut w1) = (StructuredWorkspace::new(), StructuredWorkspace::new());
+    let mut ws: [StructuredWorkspace; BATCH] = Default::default();
     let t0 = Instant::now();
     if path == "full" {
         for _ in 0..count {
@@ -60,17 +61,17 @@ fn main() {
             });
         }
     } else {
-        // The structured path classifies configurations in pairs (two QR
-        // iterations interleaved), as the sweep driver does.
-        for _ in 0..count / 2 {
-            let (a, b) = (next(), next());
-            for s in classify_schemes_pair([&mut w0, &mut w1], [&a, &b]) {
+        // The structured path classifies configurations in batches (the QR
+        // iterations in lock step), as the sweep driver does.
+        for _ in 0..count / BATCH {
+            let schemes: [LocalScheme<f64>; BATCH] = std::array::from_fn(|_| next());
+            for s in classify_schemes_batch(ws.each_mut(), schemes.each_ref()) {
                 tally(&s.expect("classification").class);
             }
         }
-        if count % 2 == 1 {
+        for _ in 0..count % BATCH {
             tally(
-                &classify_scheme_with(&mut w0, &next())
+                &classify_scheme_with(&mut ws[0], &next())
                     .expect("classification")
                     .class,
             );

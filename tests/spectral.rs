@@ -10,10 +10,10 @@ use subdiv_lab::scalar::{Rational, Scalar};
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};
 use subdiv_lab::spectral::exact::{exact_verdict, TopPair};
-use subdiv_lab::spectral::kernel::KernelWorkspace;
+use subdiv_lab::spectral::kernel::{KernelWorkspace, BATCH};
 use subdiv_lab::spectral::structured::structured_spectrum;
 use subdiv_lab::spectral::{
-    analyze, classify_scheme, classify_schemes_pair, AnalyzeOptions, ClassName, SpectrumPath,
+    analyze, classify_scheme, classify_schemes_batch, AnalyzeOptions, ClassName, SpectrumPath,
     StructuredWorkspace, SubdominantClass,
 };
 
@@ -389,14 +389,16 @@ fn exact_detects_defective_double_root() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
-    /// The paired path (two QR iterations interleaved, three inverse
-    /// iterations as lanes) gives exactly the single path's classification,
-    /// for pairs of any valences (either side of `PAIR_MAX_DIM`), ratios down
-    /// to 1e-6 from 0 and 1, and the knot-free members of the family.
+    /// The batched path (the QR iterations in lock step, one per SIMD lane;
+    /// three inverse iterations as lanes) gives exactly the single path's
+    /// classification, for batches of equal valences (the lock-step path) and
+    /// of mixed ones (the one-at-a-time fallback), ratios down to 1e-6 from 0
+    /// and 1, and the knot-free members of the family.
     #[test]
-    fn paired_classification_equals_single(
+    fn batched_classification_equals_single(
         na in 3usize..27,
         nb in 3usize..27,
+        mixed in any::<bool>(),
         seed in any::<u64>(),
         extreme in 0.0f64..0.3,
         kind in 0usize..4,
@@ -416,20 +418,24 @@ proptest! {
                 })
                 .collect()
         };
-        let a = LocalScheme::nurds(EdgeRatios::new(ratios(na)).unwrap());
-        let b = match kind {
-            1 => LocalScheme::doo_sabin(nb).unwrap(),
-            2 => LocalScheme::cc_variant(nb).unwrap(),
-            _ => LocalScheme::nurds(EdgeRatios::new(ratios(nb)).unwrap()),
-        };
-        let (mut w0, mut w1) = (StructuredWorkspace::new(), StructuredWorkspace::new());
-        let [pa, pb] = classify_schemes_pair([&mut w0, &mut w1], [&a, &b]);
-        prop_assert_eq!(pa.unwrap(), classify_scheme(&a).unwrap());
-        prop_assert_eq!(pb.unwrap(), classify_scheme(&b).unwrap());
-        // and each workspace holds the face spectrum of its own scheme
+        let schemes: Vec<LocalScheme<f64>> = (0..BATCH)
+            .map(|l| {
+                let n = if mixed && l % 2 == 1 { nb } else { na };
+                match (l, kind) {
+                    (3, 1) => LocalScheme::doo_sabin(n).unwrap(),
+                    (3, 2) => LocalScheme::cc_variant(n).unwrap(),
+                    _ => LocalScheme::nurds(EdgeRatios::new(ratios(n)).unwrap()),
+                }
+            })
+            .collect();
+        let mut ws: [StructuredWorkspace; BATCH] = Default::default();
+        let got = classify_schemes_batch(ws.each_mut(), std::array::from_fn(|l| &schemes[l]));
         let mut single = StructuredWorkspace::new();
-        prop_assert_eq!(w0.face_nonunit_cached(), single.face_nonunit(&a).unwrap());
-        prop_assert_eq!(w1.face_nonunit_cached(), single.face_nonunit(&b).unwrap());
+        for ((g, s), w) in got.into_iter().zip(&schemes).zip(&ws) {
+            prop_assert_eq!(g.unwrap(), classify_scheme(s).unwrap());
+            // and each workspace holds the face spectrum of its own scheme
+            prop_assert_eq!(w.face_nonunit_cached(), single.face_nonunit(s).unwrap());
+        }
     }
 
     #[test]

@@ -34,6 +34,30 @@
 use super::SpectralError;
 use num_complex::Complex64;
 
+/// Unchecked read of `a[k]` in the kernel's inner loops, where every index
+/// is bounded by the loop invariants (checked in debug builds).
+macro_rules! u {
+    ($a:ident[$k:expr]) => {{
+        let k = $k;
+        debug_assert!(k < $a.len());
+        // SAFETY: k < a.len() by the caller's loop bounds (checked in debug).
+        unsafe { *$a.get_unchecked(k) }
+    }};
+}
+
+/// Unchecked mutable `a[k]`; see `u!`.
+macro_rules! um {
+    ($a:ident[$k:expr]) => {{
+        let k = $k;
+        debug_assert!(k < $a.len());
+        // SAFETY: as in `u!`.
+        unsafe { $a.get_unchecked_mut(k) }
+    }};
+}
+
+mod lockstep;
+pub use lockstep::BATCH;
+
 /// QR sweeps allowed before one eigenvalue (or a 2x2 block) deflates.
 ///
 /// LAPACK allows 30 per eigenvalue with exceptional shifts at 10 and 20; we
@@ -45,16 +69,6 @@ pub const MAX_SWEEPS_PER_DIMENSION: usize = 30;
 
 /// An exceptional (ad hoc) shift is used every this many sweeps without deflation.
 pub const EXCEPTIONAL_SHIFT_PERIOD: usize = 10;
-
-/// Largest dimension at which [`KernelWorkspace::eigenvalues_pair`] interleaves
-/// the two QR iterations. Measured by `cargo bench --bench analyze -- kernel_`
-/// (deflated NURDS face blocks, Hessenberg reduction included, median
-/// throughput pair / single) on the 2-core AMD EPYC (Zen 4) of the project:
-/// 1.32x at dimension 4, 1.31x at 7, 1.24x at 11, 1.13x at 15, 1.05x at 19,
-/// then 0.98x at 23 and 0.92x at 31, where one reflector's own row and
-/// column updates already keep the out-of-order window busy and two matrices
-/// compete for the L1 cache.
-pub const PAIR_MAX_DIM: usize = 20;
 
 /// Upper end (`2^500`) of the range of `x = |p| + |q| + |r|` in which the QR
 /// sweep (`hqr`) forms `p^2 + q^2 + r^2` without EISPACK's rescaling by `x`:
@@ -87,6 +101,10 @@ pub struct KernelWorkspace {
     wr: Vec<f64>,
     wi: Vec<f64>,
     sweeps: usize,
+    /// Lane-interleaved storage of [`eigenvalues_batch`](Self::eigenvalues_batch)
+    /// (used in the first workspace of a batch): matrices, Householder vector,
+    /// scratch.
+    batch: [Vec<lockstep::Lanes>; 3],
 }
 
 impl KernelWorkspace {
@@ -135,31 +153,101 @@ impl KernelWorkspace {
         Ok((&self.wr, &self.wi))
     }
 
-    /// [`eigenvalues`](Self::eigenvalues) of the inputs of two workspaces at
-    /// once: the same arithmetic, bit for bit, but the two QR iterations run
-    /// interleaved (one step of each in turn) when both dimensions are at most
-    /// [`PAIR_MAX_DIM`], so that the processor overlaps the latency-bound
-    /// reflector chain of one matrix with the other's (1.3x the throughput at
-    /// dimensions 4 to 7, 1.13x at 15; see [`PAIR_MAX_DIM`]).
-    /// Read the results with [`last_eigenvalues`](Self::last_eigenvalues).
-    pub fn eigenvalues_pair(pair: [&mut Self; 2]) -> [Result<(), SpectralError>; 2] {
-        let [w0, w1] = pair;
-        let (r0, r1) = (w0.reduce(), w1.reduce());
-        match (r0, r1) {
-            (Ok(()), Ok(())) if w0.n.max(w1.n) <= PAIR_MAX_DIM => {
-                let [s0, s1] = hqr_pair(
-                    [w0.n, w1.n],
-                    [&mut w0.h, &mut w1.h],
-                    [&mut w0.wr, &mut w1.wr],
-                    [&mut w0.wi, &mut w1.wi],
-                );
-                [s0.map(|s| w0.sweeps = s), s1.map(|s| w1.sweeps = s)]
-            }
-            (r0, r1) => [
-                r0.and_then(|()| w0.iterate()),
-                r1.and_then(|()| w1.iterate()),
-            ],
+    /// [`eigenvalues`](Self::eigenvalues) of the inputs of [`BATCH`]
+    /// workspaces at once: the same arithmetic, bit for bit, but when all
+    /// inputs have the same dimension, at most [`LOCKSTEP_MAX_DIM`], the
+    /// Hessenberg reductions and the QR iterations run in lock step, one
+    /// matrix per lane of a SIMD vector (256-bit AVX2 where the processor
+    /// has it). Read the results with
+    /// [`last_eigenvalues`](Self::last_eigenvalues).
+    ///
+    /// ```
+    /// use subdiv_lab::spectral::kernel::{KernelWorkspace, BATCH};
+    /// let mut ws: Vec<KernelWorkspace> = (0..BATCH).map(|_| KernelWorkspace::new()).collect();
+    /// for (i, w) in ws.iter_mut().enumerate() {
+    ///     // diag(1, 2, 3) + i times the cyclic shift
+    ///     let a = w.input(3);
+    ///     a.copy_from_slice(&[1.0, i as f64, 0.0, 0.0, 2.0, i as f64, i as f64, 0.0, 3.0]);
+    /// }
+    /// let mut lone = ws.clone();
+    /// let lanes: &mut [KernelWorkspace; BATCH] = (&mut ws[..]).try_into().unwrap();
+    /// let res = KernelWorkspace::eigenvalues_batch(lanes.each_mut());
+    /// for (w, (l, r)) in ws.iter().zip(lone.iter_mut().zip(res)) {
+    ///     r.unwrap();
+    ///     let (re, im) = l.eigenvalues().unwrap();
+    ///     assert_eq!(w.last_eigenvalues(), (re, im)); // bit for bit
+    /// }
+    /// ```
+    pub fn eigenvalues_batch(ws: [&mut Self; BATCH]) -> [Result<(), SpectralError>; BATCH] {
+        Self::eigenvalues_lanes(ws.map(Some)).map(|r| r.unwrap_or(Ok(())))
+    }
+
+    /// [`eigenvalues_batch`](Self::eigenvalues_batch) with unused lanes
+    /// (`None`, whose result is `None`).
+    pub(crate) fn eigenvalues_lanes(
+        ws: [Option<&mut Self>; BATCH],
+    ) -> [Option<Result<(), SpectralError>>; BATCH] {
+        let mut dims = ws.iter().flatten().map(|w| w.n);
+        let n = dims.next().unwrap_or(0);
+        if n > LOCKSTEP_MAX_DIM || dims.any(|m| m != n) {
+            return ws.map(|w| w.map(|w| w.eigenvalues().map(|_| ())));
         }
+        let mut ws = ws;
+        let mut out: [Option<Result<(), SpectralError>>; BATCH] =
+            std::array::from_fn(|l| ws[l].as_ref().map(|w| w.check()));
+        // The interleaved storage lives in the first workspace of the batch.
+        let Some(home) = ws.iter().position(Option::is_some) else {
+            return out;
+        };
+        let [mut h, mut v, mut w] = std::mem::take(&mut ws[home].as_mut().expect("some").batch);
+        h.clear();
+        h.resize(lockstep::storage_len(n), [0.0; BATCH]);
+        v.clear();
+        v.resize(n, [0.0; BATCH]);
+        w.clear();
+        w.resize(n, [0.0; BATCH]);
+        let mut dims = [0; BATCH];
+        // Unused and failed lanes keep dimension 0 (finished at once) and a
+        // zero matrix.
+        let mut hess: [Vec<f64>; BATCH] = Default::default();
+        let mut wr: [Vec<f64>; BATCH] = Default::default();
+        let mut wi: [Vec<f64>; BATCH] = Default::default();
+        for (lane, x) in ws.iter_mut().enumerate() {
+            if let (Some(x), Some(Ok(()))) = (x, &out[lane]) {
+                dims[lane] = n;
+                for (e, &y) in h.iter_mut().zip(&x.a[..n * n]) {
+                    e[lane] = y;
+                }
+                // Borrow the lane's output buffers for the run.
+                hess[lane] = std::mem::take(&mut x.hess);
+                wr[lane] = std::mem::take(&mut x.wr);
+                wr[lane].clear();
+                wr[lane].resize(n, 0.0);
+                wi[lane] = std::mem::take(&mut x.wi);
+                wi[lane].clear();
+                wi[lane].resize(n, 0.0);
+            }
+        }
+        let sweeps = lockstep_run(
+            dims,
+            &mut h,
+            &mut v,
+            &mut w,
+            hess.each_mut(),
+            wr.each_mut().map(Vec::as_mut_slice),
+            wi.each_mut().map(Vec::as_mut_slice),
+        );
+        ws[home].as_mut().expect("some").batch = [h, v, w];
+        for (lane, (x, s)) in ws.into_iter().zip(sweeps).enumerate() {
+            if let (Some(x), Some(Ok(()))) = (x, &out[lane]) {
+                x.hess = std::mem::take(&mut hess[lane]);
+                x.wr = std::mem::take(&mut wr[lane]);
+                x.wi = std::mem::take(&mut wi[lane]);
+                x.hess_norm = x.hess[..n * n].iter().map(|x| x * x).sum::<f64>().sqrt();
+                out[lane] = Some(s.map(|s| x.sweeps = s));
+            }
+        }
+        out
     }
 
     /// The QR iteration on the reduced input (after [`reduce`](Self::reduce)).
@@ -170,7 +258,7 @@ impl KernelWorkspace {
 
     /// The eigenvalues `(re, im)` computed by the last successful
     /// [`eigenvalues`](Self::eigenvalues) or
-    /// [`eigenvalues_pair`](Self::eigenvalues_pair) call.
+    /// [`eigenvalues_batch`](Self::eigenvalues_batch) call.
     pub fn last_eigenvalues(&self) -> (&[f64], &[f64]) {
         (&self.wr[..self.n], &self.wi[..self.n])
     }
@@ -178,13 +266,8 @@ impl KernelWorkspace {
     /// Checks the input, reduces a copy to Hessenberg form (kept for the
     /// condition numbers) and prepares the QR iteration's storage.
     fn reduce(&mut self) -> Result<(), SpectralError> {
+        self.check()?;
         let n = self.n;
-        if let Some(k) = self.a[..n * n].iter().position(|x| !x.is_finite()) {
-            return Err(SpectralError::NonFinite {
-                row: k % n,
-                col: k / n,
-            });
-        }
         self.h.clear();
         self.h.extend_from_slice(&self.a[..n * n]);
         self.v.clear();
@@ -200,6 +283,18 @@ impl KernelWorkspace {
         self.hess.extend_from_slice(&self.h);
         self.hess_norm = self.hess.iter().map(|x| x * x).sum::<f64>().sqrt();
         Ok(())
+    }
+
+    /// Checks that every input entry is finite.
+    fn check(&self) -> Result<(), SpectralError> {
+        let n = self.n;
+        match self.a[..n * n].iter().position(|x| !x.is_finite()) {
+            Some(k) => Err(SpectralError::NonFinite {
+                row: k % n,
+                col: k / n,
+            }),
+            None => Ok(()),
+        }
     }
 
     /// The eigenvalue condition number `kappa = ||x|| ||y|| / |y^H x|` of the
@@ -267,6 +362,65 @@ impl KernelWorkspace {
         lanes(n, hess, &real[..nr], tiny, &mut self.real, out);
         lanes(n, hess, &complex[..nc], tiny, &mut self.complex, out);
     }
+}
+
+/// Largest dimension at which [`KernelWorkspace::eigenvalues_batch`] runs
+/// the lock-step kernel (larger batches run one matrix at a time).
+pub const LOCKSTEP_MAX_DIM: usize = 64;
+
+/// Lock-step Hessenberg reduction and QR iteration of the interleaved
+/// matrices `h` (lane `l` of dimension `dims[l]`, all equal or 0 for an
+/// unused lane), the Hessenberg forms copied out to `hess`; on x86-64
+/// processors with AVX2, compiled for AVX2 (one 256-bit vector per entry).
+#[allow(clippy::too_many_arguments)]
+fn lockstep_run(
+    dims: [usize; BATCH],
+    h: &mut [lockstep::Lanes],
+    v: &mut [lockstep::Lanes],
+    w: &mut [lockstep::Lanes],
+    hess: [&mut Vec<f64>; BATCH],
+    wr: [&mut [f64]; BATCH],
+    wi: [&mut [f64]; BATCH],
+) -> [Result<usize, SpectralError>; BATCH] {
+    #[inline(always)]
+    fn body(
+        dims: [usize; BATCH],
+        h: &mut [lockstep::Lanes],
+        v: &mut [lockstep::Lanes],
+        w: &mut [lockstep::Lanes],
+        hess: [&mut Vec<f64>; BATCH],
+        wr: [&mut [f64]; BATCH],
+        wi: [&mut [f64]; BATCH],
+    ) -> [Result<usize, SpectralError>; BATCH] {
+        let n = dims.iter().copied().max().unwrap_or(0);
+        lockstep::hessenberg(n, h, v, w);
+        for (lane, x) in hess.into_iter().enumerate() {
+            x.clear();
+            x.extend(h[..n * n].iter().map(|e| e[lane]));
+        }
+        lockstep::hqr(dims, n, h, wr, wi)
+    }
+    #[cfg(target_arch = "x86_64")]
+    {
+        #[target_feature(enable = "avx2")]
+        #[allow(clippy::too_many_arguments)]
+        unsafe fn avx2(
+            dims: [usize; BATCH],
+            h: &mut [lockstep::Lanes],
+            v: &mut [lockstep::Lanes],
+            w: &mut [lockstep::Lanes],
+            hess: [&mut Vec<f64>; BATCH],
+            wr: [&mut [f64]; BATCH],
+            wi: [&mut [f64]; BATCH],
+        ) -> [Result<usize, SpectralError>; BATCH] {
+            body(dims, h, v, w, hess, wr, wi)
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2 (checked just above).
+            return unsafe { avx2(dims, h, v, w, hess, wr, wi) };
+        }
+    }
+    body(dims, h, v, w, hess, wr, wi)
 }
 
 /// Most inverse iterations [`KernelWorkspace::condition_numbers`] interleaves.
@@ -446,44 +600,45 @@ fn hessenberg_lu<T: Field, const K: usize>(
     dinv: &mut [T],
     tiny: f64,
 ) {
+    debug_assert!(a.len() >= n * n * K && piv.len() >= n * K && dinv.len() >= n * K);
     let at = |i: usize, j: usize| (i + j * n) * K;
     for k in 0..n {
         if k + 1 < n {
             // Adjacent-row pivoting, branch-free (the choice is data-dependent
             // and unpredictable; a select per entry costs less than a mispredict).
-            let mut swap = [false; K];
-            for (l, s) in swap.iter_mut().enumerate() {
-                *s = a[at(k + 1, k) + l].l1() > a[at(k, k) + l].l1();
+            let swap: [bool; K] =
+                std::array::from_fn(|l| u!(a[at(k + 1, k) + l]).l1() > u!(a[at(k, k) + l]).l1());
+            for (l, &s) in swap.iter().enumerate() {
+                *um!(piv[k * K + l]) = s;
             }
-            piv[k * K..(k + 1) * K].copy_from_slice(&swap);
             for j in k..n {
                 let (p, q) = (at(k, j), at(k + 1, j));
                 for (l, &s) in swap.iter().enumerate() {
-                    let (u, v) = (a[p + l], a[q + l]);
-                    a[p + l] = if s { v } else { u };
-                    a[q + l] = if s { u } else { v };
+                    let (u, v) = (u!(a[p + l]), u!(a[q + l]));
+                    *um!(a[p + l]) = if s { v } else { u };
+                    *um!(a[q + l]) = if s { u } else { v };
                 }
             }
         }
         let mut mult = [T::from_f64(0.0); K];
-        for l in 0..K {
+        for (l, ml) in mult.iter_mut().enumerate() {
             let p = at(k, k) + l;
-            if a[p].l1() <= tiny {
-                a[p] = T::from_f64(tiny);
+            if u!(a[p]).l1() <= tiny {
+                *um!(a[p]) = T::from_f64(tiny);
             }
-            let inv = T::from_f64(1.0) / a[p];
-            dinv[k * K + l] = inv;
+            let inv = T::from_f64(1.0) / u!(a[p]);
+            *um!(dinv[k * K + l]) = inv;
             if k + 1 < n {
-                mult[l] = a[at(k + 1, k) + l] * inv;
-                a[at(k + 1, k) + l] = mult[l];
+                *ml = u!(a[at(k + 1, k) + l]) * inv;
+                *um!(a[at(k + 1, k) + l]) = *ml;
             }
         }
         if k + 1 < n {
             for j in k + 1..n {
                 let (p, q) = (at(k, j), at(k + 1, j));
-                for l in 0..K {
-                    let u = a[p + l];
-                    a[q + l] -= mult[l] * u;
+                for (l, &m) in mult.iter().enumerate() {
+                    let u = u!(a[p + l]);
+                    *um!(a[q + l]) -= m * u;
                 }
             }
         }
@@ -498,24 +653,25 @@ fn hessenberg_solve<T: Field, const K: usize>(
     dinv: &[T],
     b: &mut [T],
 ) {
+    debug_assert!(lu.len() >= n * n * K && piv.len() >= n * K && dinv.len() >= n * K);
+    debug_assert!(b.len() >= n * K);
     for k in 0..n.saturating_sub(1) {
         for l in 0..K {
-            let (u, v) = (b[k * K + l], b[(k + 1) * K + l]);
-            let (bk, bk1) = if piv[k * K + l] { (v, u) } else { (u, v) };
-            b[k * K + l] = bk;
-            b[(k + 1) * K + l] = bk1 - lu[(k + 1 + k * n) * K + l] * bk;
+            let (u, v) = (u!(b[k * K + l]), u!(b[(k + 1) * K + l]));
+            let (bk, bk1) = if u!(piv[k * K + l]) { (v, u) } else { (u, v) };
+            *um!(b[k * K + l]) = bk;
+            *um!(b[(k + 1) * K + l]) = bk1 - u!(lu[(k + 1 + k * n) * K + l]) * bk;
         }
     }
     for j in (0..n).rev() {
-        let mut bj = [T::from_f64(0.0); K];
-        for l in 0..K {
-            bj[l] = b[j * K + l] * dinv[j * K + l];
-            b[j * K + l] = bj[l];
+        let bj: [T; K] = std::array::from_fn(|l| u!(b[j * K + l]) * u!(dinv[j * K + l]));
+        for (l, &x) in bj.iter().enumerate() {
+            *um!(b[j * K + l]) = x;
         }
-        let col = &lu[j * n * K..(j * n + j) * K];
-        for (bi, ls) in b[..j * K].chunks_exact_mut(K).zip(col.chunks_exact(K)) {
-            for l in 0..K {
-                bi[l] -= ls[l] * bj[l];
+        for i in 0..j {
+            for (l, &x) in bj.iter().enumerate() {
+                let ls = u!(lu[(i + j * n) * K + l]);
+                *um!(b[i * K + l]) -= ls * x;
             }
         }
     }
@@ -530,26 +686,27 @@ fn hessenberg_solve_adjoint<T: Field, const K: usize>(
     dinv: &[T],
     b: &mut [T],
 ) {
+    debug_assert!(lu.len() >= n * n * K && piv.len() >= n * K && dinv.len() >= n * K);
+    debug_assert!(b.len() >= n * K);
     for j in 0..n {
-        let mut s: [T; K] = std::array::from_fn(|l| b[j * K + l]);
-        let col = &lu[j * n * K..(j * n + j) * K];
-        for (bi, ls) in b[..j * K].chunks_exact(K).zip(col.chunks_exact(K)) {
-            for l in 0..K {
-                s[l] -= ls[l].conj() * bi[l];
+        let mut s: [T; K] = std::array::from_fn(|l| u!(b[j * K + l]));
+        for i in 0..j {
+            for (l, sl) in s.iter_mut().enumerate() {
+                *sl -= u!(lu[(i + j * n) * K + l]).conj() * u!(b[i * K + l]);
             }
         }
-        for l in 0..K {
-            b[j * K + l] = s[l] * dinv[j * K + l].conj();
+        for (l, &sl) in s.iter().enumerate() {
+            *um!(b[j * K + l]) = sl * u!(dinv[j * K + l]).conj();
         }
     }
     for k in (0..n.saturating_sub(1)).rev() {
         for l in 0..K {
-            let m = lu[(k + 1 + k * n) * K + l];
-            let t = b[(k + 1) * K + l];
-            let u = b[k * K + l] - m.conj() * t;
-            let (bk, bk1) = if piv[k * K + l] { (t, u) } else { (u, t) };
-            b[k * K + l] = bk;
-            b[(k + 1) * K + l] = bk1;
+            let m = u!(lu[(k + 1 + k * n) * K + l]);
+            let t = u!(b[(k + 1) * K + l]);
+            let u = u!(b[k * K + l]) - m.conj() * t;
+            let (bk, bk1) = if u!(piv[k * K + l]) { (t, u) } else { (u, t) };
+            *um!(b[k * K + l]) = bk;
+            *um!(b[(k + 1) * K + l]) = bk1;
         }
     }
 }
@@ -657,6 +814,35 @@ macro_rules! m {
     }};
 }
 
+/// Entry access of the QR iteration's bookkeeping ([`Hqr::search`]): the
+/// same code runs on a column-major matrix ([`ColMajor`]) and on one lane of
+/// the lane-interleaved storage of [`lockstep`].
+trait HqrMatrix {
+    /// Entry `(i, j)`.
+    fn at(&self, i: usize, j: usize) -> f64;
+    /// Mutable entry `(i, j)`.
+    fn at_mut(&mut self, i: usize, j: usize) -> &mut f64;
+}
+
+/// A column-major `n x n` matrix (entry `(i, j)` at `i + j n`).
+struct ColMajor<'a> {
+    a: &'a mut [f64],
+    n: usize,
+}
+
+impl HqrMatrix for ColMajor<'_> {
+    #[inline(always)]
+    fn at(&self, i: usize, j: usize) -> f64 {
+        let (a, n) = (&self.a, self.n);
+        g!(a, n, i, j)
+    }
+    #[inline(always)]
+    fn at_mut(&mut self, i: usize, j: usize) -> &mut f64 {
+        let (a, n) = (&mut self.a, self.n);
+        m!(a, n, i, j)
+    }
+}
+
 /// Francis double-shift QR on an upper Hessenberg matrix (EISPACK `hqr`,
 /// eigenvalues only), with bounded iterations: [`Hqr::step`] until done.
 pub(crate) fn hqr(
@@ -665,40 +851,9 @@ pub(crate) fn hqr(
     wr: &mut [f64],
     wi: &mut [f64],
 ) -> Result<usize, SpectralError> {
-    let mut s = Hqr::new(n, a);
+    let mut s = Hqr::new(n, &ColMajor { a, n });
     while !s.step(a, wr, wi)? {}
     Ok(s.total)
-}
-
-/// [`hqr`] on two independent matrices at once, one step of each in turn.
-///
-/// The arithmetic of each matrix is exactly that of [`hqr`] (the results are
-/// bit-identical); interleaving the two only lets the processor overlap the
-/// latency-bound chain of one matrix's reflectors (square root, reciprocal,
-/// dependent updates) with the other's.
-pub(crate) fn hqr_pair(
-    n: [usize; 2],
-    a: [&mut [f64]; 2],
-    wr: [&mut [f64]; 2],
-    wi: [&mut [f64]; 2],
-) -> [Result<usize, SpectralError>; 2] {
-    let [a0, a1] = a;
-    let [wr0, wr1] = wr;
-    let [wi0, wi1] = wi;
-    let mut s0 = Hqr::new(n[0], a0);
-    let mut s1 = Hqr::new(n[1], a1);
-    let (mut d0, mut d1) = (Ok(false), Ok(false));
-    while matches!(d0, Ok(false)) && matches!(d1, Ok(false)) {
-        d0 = s0.step(a0, wr0, wi0);
-        d1 = s1.step(a1, wr1, wi1);
-    }
-    while matches!(d0, Ok(false)) {
-        d0 = s0.step(a0, wr0, wi0);
-    }
-    while matches!(d1, Ok(false)) {
-        d1 = s1.step(a1, wr1, wi1);
-    }
-    [d0.map(|_| s0.total), d1.map(|_| s1.total)]
 }
 
 /// The state of one [`hqr`] run between two [`Hqr::step`]s: either between
@@ -729,12 +884,11 @@ struct Hqr {
 
 impl Hqr {
     #[inline(always)]
-    fn new(n: usize, a: &[f64]) -> Self {
-        debug_assert!(a.len() >= n * n);
+    fn new<A: HqrMatrix>(n: usize, a: &A) -> Self {
         let mut anorm = 0.0;
         for j in 0..n {
             for i in 0..n.min(j + 2) {
-                anorm += a[i + j * n].abs();
+                anorm += a.at(i, j).abs();
             }
         }
         Hqr {
@@ -777,26 +931,51 @@ impl Hqr {
             }
             return Ok(false);
         }
+        self.search(&mut ColMajor { a, n }, wr, wi)
+    }
+
+    /// The step between sweeps: looks for a negligible subdiagonal entry,
+    /// deflates one or two eigenvalues into `wr`, `wi`, or sets up the next
+    /// sweep's shift (then `chasing` is set). `Ok(true)` once every eigenvalue
+    /// is found. Generic over the storage so that the lock-step iteration of
+    /// several matrices ([`lockstep`]) runs exactly this code on each lane.
+    #[inline(always)]
+    fn search<A: HqrMatrix>(
+        &mut self,
+        a: &mut A,
+        wr: &mut [f64],
+        wi: &mut [f64],
+    ) -> Result<bool, SpectralError> {
         if self.nn < 0 {
             return Ok(true);
         }
-        let eps = f64::EPSILON;
         let nu = self.nn as usize;
         // Look for a small subdiagonal element.
         let mut l = nu;
         while l >= 1 {
-            let mut s = g!(a, n, l - 1, l - 1).abs() + g!(a, n, l, l).abs();
-            if s == 0.0 {
-                s = self.anorm;
-            }
-            if g!(a, n, l, l - 1).abs() <= eps * s {
-                *m!(a, n, l, l - 1) = 0.0;
+            if negligible(a.at(l, l - 1), a.at(l - 1, l - 1), a.at(l, l), self.anorm) {
+                *a.at_mut(l, l - 1) = 0.0;
                 break;
             }
             l -= 1;
         }
+        self.split_at(l, a, wr, wi)
+    }
+
+    /// The rest of [`search`](Self::search) once the active block `l..=nu`
+    /// is known (entry `(l, l - 1)` negligible and zeroed, or `l = 0`).
+    #[inline(always)]
+    fn split_at<A: HqrMatrix>(
+        &mut self,
+        l: usize,
+        a: &mut A,
+        wr: &mut [f64],
+        wi: &mut [f64],
+    ) -> Result<bool, SpectralError> {
+        let n = self.n;
+        let nu = self.nn as usize;
         let t = self.t;
-        let mut x = g!(a, n, nu, nu);
+        let mut x = a.at(nu, nu);
         if l == nu {
             // One root found.
             wr[nu] = x + t;
@@ -805,8 +984,8 @@ impl Hqr {
             self.its = 0;
             return Ok(self.nn < 0);
         }
-        let mut y = g!(a, n, nu - 1, nu - 1);
-        let mut w = g!(a, n, nu, nu - 1) * g!(a, n, nu - 1, nu);
+        let mut y = a.at(nu - 1, nu - 1);
+        let mut w = a.at(nu, nu - 1) * a.at(nu - 1, nu);
         if l + 1 == nu {
             // Two roots found.
             let p = 0.5 * (y - x);
@@ -841,9 +1020,9 @@ impl Hqr {
             // Exceptional shift (EISPACK hqr; dlahqr's constants 0.75 and -0.4375).
             self.t += x;
             for i in 0..=nu {
-                *m!(a, n, i, i) -= x;
+                *a.at_mut(i, i) -= x;
             }
-            let s = g!(a, n, nu, nu - 1).abs() + g!(a, n, nu - 1, nu - 2).abs();
+            let s = a.at(nu, nu - 1).abs() + a.at(nu - 1, nu - 2).abs();
             x = 0.75 * s;
             y = x;
             w = -0.4375 * s * s;
@@ -874,20 +1053,20 @@ impl Hqr {
         // search for two consecutive small subdiagonal entries, to start
         // lower, rarely pays at small n).
         let m = l;
-        let z = g!(a, n, m, m);
+        let z = a.at(m, m);
         let rr = x - z;
         let ss = y - z;
-        let p = (rr * ss - w) / g!(a, n, m + 1, m) + g!(a, n, m, m + 1);
-        let q = g!(a, n, m + 1, m + 1) - z - rr - ss;
-        let r = g!(a, n, m + 2, m + 1);
+        let p = (rr * ss - w) / a.at(m + 1, m) + a.at(m, m + 1);
+        let q = a.at(m + 1, m + 1) - z - rr - ss;
+        let r = a.at(m + 2, m + 1);
         let s = p.abs() + q.abs() + r.abs();
         self.p = p / s;
         self.q = q / s;
         self.r = r / s;
         for i in m + 2..=nu {
-            *m!(a, n, i, i - 2) = 0.0;
+            *a.at_mut(i, i - 2) = 0.0;
             if i != m + 2 {
-                *m!(a, n, i, i - 3) = 0.0;
+                *a.at_mut(i, i - 3) = 0.0;
             }
         }
         self.l = l;
@@ -896,6 +1075,18 @@ impl Hqr {
         self.chasing = true;
         Ok(false)
     }
+}
+
+/// The deflation criterion of [`Hqr::search`]: the subdiagonal entry `sub`
+/// between the diagonal entries `d0`, `d1` is negligible when
+/// `|sub| <= eps (|d0| + |d1|)` (`eps ||A||_1` when both are zero).
+#[inline(always)]
+fn negligible(sub: f64, d0: f64, d1: f64, anorm: f64) -> bool {
+    let mut s = d0.abs() + d1.abs();
+    if s == 0.0 {
+        s = anorm;
+    }
+    sub.abs() <= f64::EPSILON * s
 }
 
 /// One reflector of a double-shift QR sweep on the active block `l..=nu`
@@ -1138,46 +1329,105 @@ mod tests {
         assert!(mixed > 10, "{mixed}");
     }
 
+    /// Bit patterns of the lone results: eigenvalues, sweeps, Hessenberg form.
+    fn lone_bits(lone: &mut KernelWorkspace, a: &[f64], n: usize) -> Option<Vec<u64>> {
+        lone.input(n).copy_from_slice(a);
+        lone.eigenvalues().ok()?;
+        let (re, im) = lone.last_eigenvalues();
+        let mut bits: Vec<u64> = re.iter().chain(im).map(|x| x.to_bits()).collect();
+        bits.push(lone.last_sweeps() as u64);
+        bits.extend(lone.hessenberg_form().iter().map(|x| x.to_bits()));
+        bits.push(lone.hess_norm.to_bits());
+        Some(bits)
+    }
+
+    /// Matrices that exercise every branch of the lock-step kernel.
+    fn lockstep_cases(
+        rng: &mut crate::contraction::SplitMix64,
+        n: usize,
+        trial: usize,
+    ) -> Vec<f64> {
+        let mut a = random_matrix(rng, n);
+        match trial % 8 {
+            // sparse: exact zeros, whole zero columns (Hessenberg steps skipped
+            // in some lanes only), signed zeros
+            0 => a.iter_mut().enumerate().for_each(|(i, x)| {
+                if (i * 7 + trial) % 3 != 0 {
+                    *x = if i % 2 == 0 { 0.0 } else { -0.0 };
+                }
+            }),
+            // cyclic permutation (exceptional shifts)
+            1 => {
+                a.iter_mut().for_each(|x| *x = 0.0);
+                for j in 0..n {
+                    a[(j + 1) % n + j * n] = 1.0;
+                }
+            }
+            // scaled out of the no-rescaling range of the reflectors
+            2 => a.iter_mut().for_each(|x| *x *= 2f64.powi(520)),
+            3 => a.iter_mut().for_each(|x| *x *= 2f64.powi(-520)),
+            // the zero matrix
+            4 => a.iter_mut().for_each(|x| *x = 0.0),
+            // symmetric (real spectrum, many real deflations)
+            5 => {
+                for j in 0..n {
+                    for i in 0..j {
+                        a[i + j * n] = a[j + i * n];
+                    }
+                }
+            }
+            _ => {}
+        }
+        a
+    }
+
     #[test]
-    fn paired_qr_iterations_equal_lone_ones_bit_for_bit() {
-        let mut rng = crate::contraction::SplitMix64::new(12);
-        let (mut w0, mut w1, mut lone) = (
-            KernelWorkspace::new(),
-            KernelWorkspace::new(),
-            KernelWorkspace::new(),
-        );
-        for trial in 0..60 {
-            // dimensions on both sides of PAIR_MAX_DIM, equal and unequal
-            let n0 = 1 + trial % 30;
-            let n1 = 1 + (trial * 7) % 30;
-            let a0 = random_matrix(&mut rng, n0);
-            let a1 = random_matrix(&mut rng, n1);
-            w0.input(n0).copy_from_slice(&a0);
-            w1.input(n1).copy_from_slice(&a1);
-            let [r0, r1] = KernelWorkspace::eigenvalues_pair([&mut w0, &mut w1]);
-            r0.unwrap();
-            r1.unwrap();
-            for (w, a, n) in [(&w0, &a0, n0), (&w1, &a1, n1)] {
-                lone.input(n).copy_from_slice(a);
-                let (re, im) = lone.eigenvalues().unwrap();
-                let (pre, pim) = w.last_eigenvalues();
-                assert_eq!((re, im), (pre, pim), "n = {n}");
-                assert_eq!(lone.last_sweeps(), w.last_sweeps());
+    fn lockstep_batches_equal_lone_calls_bit_for_bit() {
+        let mut rng = crate::contraction::SplitMix64::new(77);
+        let mut ws: Vec<KernelWorkspace> = (0..BATCH).map(|_| KernelWorkspace::new()).collect();
+        let mut lone = KernelWorkspace::new();
+        let mut batches = 0;
+        for trial in 0..160 {
+            let n = 1 + trial % 24;
+            let mut inputs = Vec::new();
+            for (lane, w) in ws.iter_mut().enumerate() {
+                // mostly equal dimensions (the lock-step path), some unequal
+                // (the one-at-a-time fallback)
+                let m = if trial % 10 == 9 && lane == 2 {
+                    n + 1
+                } else {
+                    n
+                };
+                let mut a = lockstep_cases(&mut rng, m, trial + lane * (trial % 3));
+                if trial % 13 == 5 && lane == 1 {
+                    a[m * m - 1] = f64::NAN;
+                }
+                w.input(m).copy_from_slice(&a);
+                inputs.push((a, m));
+            }
+            let lanes: &mut [KernelWorkspace; BATCH] = (&mut ws[..]).try_into().unwrap();
+            let res = KernelWorkspace::eigenvalues_batch(lanes.each_mut());
+            batches += 1;
+            for ((w, r), (a, m)) in ws.iter().zip(res).zip(&inputs) {
+                let want = lone_bits(&mut lone, a, *m);
+                match (r, want) {
+                    (Ok(()), Some(want)) => {
+                        let (re, im) = w.last_eigenvalues();
+                        let mut got: Vec<u64> = re.iter().chain(im).map(|x| x.to_bits()).collect();
+                        got.push(w.last_sweeps() as u64);
+                        got.extend(w.hessenberg_form().iter().map(|x| x.to_bits()));
+                        got.push(w.hess_norm.to_bits());
+                        assert_eq!(got, want, "trial {trial}, n = {m}");
+                    }
+                    (Err(e), None) => {
+                        lone.input(*m).copy_from_slice(a);
+                        assert_eq!(Some(e), lone.eigenvalues().err(), "trial {trial}");
+                    }
+                    (r, w) => panic!("trial {trial}: batch {r:?}, lone ok = {}", w.is_some()),
+                }
             }
         }
-        // a non-finite input fails alone; its partner still succeeds
-        w0.input(3)
-            .copy_from_slice(&[1.0, f64::NAN, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]);
-        w1.input(2).copy_from_slice(&[0.0, 1.0, 1.0, 0.0]);
-        let [r0, r1] = KernelWorkspace::eigenvalues_pair([&mut w0, &mut w1]);
-        assert!(matches!(
-            r0,
-            Err(SpectralError::NonFinite { row: 1, col: 0 })
-        ));
-        r1.unwrap();
-        let mut v = w1.last_eigenvalues().0.to_vec();
-        v.sort_by(f64::total_cmp);
-        assert_eq!(v, [-1.0, 1.0]);
+        assert_eq!(batches, 160);
     }
 
     #[test]

@@ -502,41 +502,42 @@ pub fn classify_scheme_with(
     classify_face(ws, scheme.valence())
 }
 
-/// [`classify_scheme_with`] for two schemes in two workspaces at once: the
-/// face spectra come from [`StructuredWorkspace::face_nonunit_pair`] (two QR
-/// iterations interleaved), so the results equal, bit for bit, those of two
+/// [`classify_scheme_with`] for [`BATCH`](kernel::BATCH) schemes in as many
+/// workspaces at once: the face spectra come from
+/// [`StructuredWorkspace::face_nonunit_batch`] (the QR iterations in lock
+/// step, one per SIMD lane), so the results equal, bit for bit, those of
 /// `classify_scheme_with` calls, at a higher throughput (the sweep driver and
-/// `benches/throughput.rs` classify configurations in pairs).
+/// `benches/throughput.rs` classify configurations in batches).
 ///
 /// ```
 /// use subdiv_lab::knots::EdgeRatios;
 /// use subdiv_lab::schemes::LocalScheme;
-/// use subdiv_lab::spectral::{classify_scheme, classify_schemes_pair, StructuredWorkspace};
-/// let a = LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.5]).unwrap());
-/// let b = LocalScheme::nurds(EdgeRatios::uniform(8).unwrap());
-/// let (mut wa, mut wb) = (StructuredWorkspace::new(), StructuredWorkspace::new());
-/// let [sa, sb] = classify_schemes_pair([&mut wa, &mut wb], [&a, &b]);
-/// assert_eq!(sa.unwrap(), classify_scheme(&a).unwrap());
-/// assert_eq!(sb.unwrap(), classify_scheme(&b).unwrap());
+/// use subdiv_lab::spectral::kernel::BATCH;
+/// use subdiv_lab::spectral::{classify_scheme, classify_schemes_batch, StructuredWorkspace};
+/// let schemes: Vec<LocalScheme<f64>> = (0..BATCH)
+///     .map(|i| LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.5, 0.05 + 0.05 * i as f64]).unwrap()))
+///     .collect();
+/// let mut ws: [StructuredWorkspace; BATCH] = Default::default();
+/// let res = classify_schemes_batch(ws.each_mut(), std::array::from_fn(|i| &schemes[i]));
+/// for (r, s) in res.into_iter().zip(&schemes) {
+///     assert_eq!(r.unwrap(), classify_scheme(s).unwrap());
+/// }
 /// ```
-pub fn classify_schemes_pair(
-    ws: [&mut StructuredWorkspace; 2],
-    schemes: [&LocalScheme<f64>; 2],
-) -> [Result<Subdominant>; 2] {
-    let [w0, w1] = ws;
-    if !(schemes[0].kind().is_doo_sabin_family() && schemes[1].kind().is_doo_sabin_family()) {
-        return [
-            classify_scheme_with(w0, schemes[0]),
-            classify_scheme_with(w1, schemes[1]),
-        ];
+pub fn classify_schemes_batch(
+    ws: [&mut StructuredWorkspace; kernel::BATCH],
+    schemes: [&LocalScheme<f64>; kernel::BATCH],
+) -> [Result<Subdominant>; kernel::BATCH] {
+    let mut ws = ws;
+    if !schemes.iter().all(|s| s.kind().is_doo_sabin_family()) {
+        return std::array::from_fn(|l| classify_scheme_with(ws[l], schemes[l]));
     }
-    let [f0, f1] = StructuredWorkspace::face_nonunit_pair([&mut *w0, &mut *w1], schemes);
-    [
-        f0.map_err(Into::into)
-            .and_then(|()| classify_face(w0, schemes[0].valence())),
-        f1.map_err(Into::into)
-            .and_then(|()| classify_face(w1, schemes[1].valence())),
-    ]
+    let faces = StructuredWorkspace::face_nonunit_batch(ws.each_mut().map(|w| &mut **w), schemes);
+    let mut faces = faces.into_iter();
+    std::array::from_fn(|l| {
+        let f = faces.next().expect("one result per lane");
+        f.map_err(Into::into)
+            .and_then(|()| classify_face(ws[l], schemes[l].valence()))
+    })
 }
 
 /// The classification of a valence-`n` Doo-Sabin-family scheme whose face

@@ -23,7 +23,7 @@
 //! [`SchemeKind::is_doo_sabin_family`]: crate::schemes::SchemeKind::is_doo_sabin_family
 
 use super::eigen::spectral_order;
-use super::kernel::KernelWorkspace;
+use super::kernel::{KernelWorkspace, BATCH};
 use super::SpectralError;
 use crate::schemes::LocalScheme;
 use num_complex::Complex64;
@@ -61,39 +61,51 @@ impl StructuredWorkspace {
         Ok(&self.face)
     }
 
-    /// [`face_nonunit`](Self::face_nonunit) for two schemes in two workspaces
-    /// at once, through [`KernelWorkspace::eigenvalues_pair`]: the results are
-    /// bit for bit those of two `face_nonunit` calls, at up to 1.3x the
-    /// throughput for small valences. Read them with
-    /// [`face_nonunit_cached`](Self::face_nonunit_cached).
+    /// [`face_nonunit`](Self::face_nonunit) for [`BATCH`] schemes in as many
+    /// workspaces at once, through [`KernelWorkspace::eigenvalues_batch`]
+    /// (the QR iterations in lock step, one per SIMD lane): the results are
+    /// bit for bit those of `face_nonunit` calls, at a higher throughput.
+    /// Read them with [`face_nonunit_cached`](Self::face_nonunit_cached).
     ///
     /// ```
     /// use subdiv_lab::knots::EdgeRatios;
     /// use subdiv_lab::schemes::LocalScheme;
+    /// use subdiv_lab::spectral::kernel::BATCH;
     /// use subdiv_lab::spectral::StructuredWorkspace;
-    /// let a = LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.5]).unwrap());
-    /// let b = LocalScheme::nurds(EdgeRatios::uniform(6).unwrap());
-    /// let (mut wa, mut wb) = (StructuredWorkspace::new(), StructuredWorkspace::new());
-    /// let [ra, rb] = StructuredWorkspace::face_nonunit_pair([&mut wa, &mut wb], [&a, &b]);
-    /// assert!(ra.is_ok() && rb.is_ok());
+    /// let schemes: Vec<LocalScheme<f64>> = (0..BATCH)
+    ///     .map(|i| LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.05 + 0.05 * i as f64]).unwrap()))
+    ///     .collect();
+    /// let mut ws: [StructuredWorkspace; BATCH] = Default::default();
+    /// let res = StructuredWorkspace::face_nonunit_batch(ws.each_mut(), std::array::from_fn(|i| &schemes[i]));
     /// let mut single = StructuredWorkspace::new();
-    /// assert_eq!(wa.face_nonunit_cached(), single.face_nonunit(&a).unwrap());
-    /// assert_eq!(wb.face_nonunit_cached(), single.face_nonunit(&b).unwrap());
+    /// for ((w, r), s) in ws.iter().zip(res).zip(&schemes) {
+    ///     r.unwrap();
+    ///     assert_eq!(w.face_nonunit_cached(), single.face_nonunit(s).unwrap());
+    /// }
     /// ```
-    pub fn face_nonunit_pair(
-        ws: [&mut Self; 2],
-        schemes: [&LocalScheme<f64>; 2],
-    ) -> [Result<(), SpectralError>; 2] {
-        let [w0, w1] = ws;
-        let (l0, l1) = (w0.load(schemes[0]), w1.load(schemes[1]));
-        let [r0, r1] = match (l0, l1) {
-            (Ok(()), Ok(())) => KernelWorkspace::eigenvalues_pair([&mut w0.kernel, &mut w1.kernel]),
-            (l0, l1) => [
-                l0.and_then(|()| w0.kernel.eigenvalues().map(|_| ())),
-                l1.and_then(|()| w1.kernel.eigenvalues().map(|_| ())),
-            ],
+    pub fn face_nonunit_batch(
+        ws: [&mut Self; BATCH],
+        schemes: [&LocalScheme<f64>; BATCH],
+    ) -> [Result<(), SpectralError>; BATCH] {
+        let mut ws = ws;
+        let loaded: [Result<(), SpectralError>; BATCH] =
+            std::array::from_fn(|l| ws[l].load(schemes[l]));
+        let lanes: [Option<&mut KernelWorkspace>; BATCH] = {
+            let mut i = 0;
+            ws.each_mut().map(|w| {
+                let ok = loaded[i].is_ok();
+                i += 1;
+                ok.then_some(&mut w.kernel)
+            })
         };
-        [r0.map(|()| w0.collect()), r1.map(|()| w1.collect())]
+        let run = KernelWorkspace::eigenvalues_lanes(lanes);
+        let mut out = loaded;
+        for ((o, r), w) in out.iter_mut().zip(run).zip(ws) {
+            if let Some(r) = r {
+                *o = r.map(|()| w.collect());
+            }
+        }
+        out
     }
 
     /// Builds the deflated block `B` of `scheme` as the kernel's input.

@@ -25,6 +25,7 @@ use super::spec::Columns;
 use crate::charmap;
 use crate::schemes::catmull_clark::fourier;
 use crate::schemes::LocalScheme;
+use crate::spectral::kernel::BATCH;
 use crate::spectral::structured::StructuredWorkspace;
 use crate::spectral::{self, Subdominant, SubdominantClass};
 use num_complex::Complex64;
@@ -159,22 +160,17 @@ pub trait Evaluate: Sync {
         Ok(())
     }
 
-    /// [`write_results`](Self::write_results) for two configurations at once
-    /// (the sweep driver evaluates consecutive configurations in pairs); the
-    /// cells must equal those of two `write_results` calls. The default makes
-    /// those two calls; the spectral evaluator overrides it to run the two QR
-    /// iterations interleaved ([`spectral::classify_schemes_pair`]).
-    fn write_results_pair(
+    /// [`write_results`](Self::write_results) for [`BATCH`] configurations at
+    /// once (the sweep driver evaluates consecutive configurations in
+    /// batches); the cells must equal those of `write_results` calls. The
+    /// default makes those calls; the spectral evaluator overrides it to run
+    /// the QR iterations in lock step ([`spectral::classify_schemes_batch`]).
+    fn write_results_batch(
         &self,
         plan: &Plan,
-        items: [(&Configuration, &LocalScheme<f64>); 2],
-        out: [&mut dyn CellSink; 2],
-    ) -> [crate::Result<()>; 2] {
-        let [o0, o1] = out;
-        [
-            self.write_results(plan, items[0].0, items[0].1, o0),
-            self.write_results(plan, items[1].0, items[1].1, o1),
-        ]
+        items: [(&Configuration, &LocalScheme<f64>, &mut dyn CellSink); BATCH],
+    ) -> [crate::Result<()>; BATCH] {
+        items.map(|(c, s, out)| self.write_results(plan, c, s, out))
     }
 }
 
@@ -201,8 +197,8 @@ struct Scratch {
 }
 
 thread_local! {
-    /// Two scratches: one per configuration of a pair.
-    static SCRATCH: RefCell<[Scratch; 2]> = RefCell::new(Default::default());
+    /// One scratch per configuration of a batch.
+    static SCRATCH: RefCell<[Scratch; BATCH]> = RefCell::new(Default::default());
 }
 
 /// The full spectrum of `S_n` from the face spectrum in `ws`, in the order of
@@ -248,30 +244,28 @@ impl Evaluate for SpectralEvaluator {
         })
     }
 
-    fn write_results_pair(
+    fn write_results_batch(
         &self,
         plan: &Plan,
-        items: [(&Configuration, &LocalScheme<f64>); 2],
-        out: [&mut dyn CellSink; 2],
-    ) -> [crate::Result<()>; 2] {
-        let [(c0, s0), (c1, s1)] = items;
-        let [o0, o1] = out;
+        items: [(&Configuration, &LocalScheme<f64>, &mut dyn CellSink); BATCH],
+    ) -> [crate::Result<()>; BATCH] {
         SCRATCH.with(|cell| {
             let mut guard = cell.borrow_mut();
-            let [w0, w1] = &mut *guard;
-            let [sub0, sub1] = if self.needs_subdominant()
-                && s0.kind().is_doo_sabin_family()
-                && s1.kind().is_doo_sabin_family()
+            let scratch = &mut *guard;
+            let schemes = items.each_ref().map(|(_, s, _)| *s);
+            let subs: [crate::Result<Option<Subdominant>>; BATCH] = if self.needs_subdominant()
+                && schemes.iter().all(|s| s.kind().is_doo_sabin_family())
             {
-                let [a, b] = spectral::classify_schemes_pair([&mut w0.ws, &mut w1.ws], [s0, s1]);
-                [a.map(Some), b.map(Some)]
+                spectral::classify_schemes_batch(scratch.each_mut().map(|w| &mut w.ws), schemes)
+                    .map(|r| r.map(Some))
             } else {
-                [self.subdominant(w0, s0), self.subdominant(w1, s1)]
+                std::array::from_fn(|l| self.subdominant(&mut scratch[l], schemes[l]))
             };
-            [
-                sub0.and_then(|sub| self.write_with(w0, plan, c0, s0, sub, o0)),
-                sub1.and_then(|sub| self.write_with(w1, plan, c1, s1, sub, o1)),
-            ]
+            let mut lanes = scratch.iter_mut().zip(subs);
+            items.map(|(c, s, out)| {
+                let (w, sub) = lanes.next().expect("one scratch per lane");
+                sub.and_then(|sub| self.write_with(w, plan, c, s, sub, out))
+            })
         })
     }
 }

@@ -19,6 +19,7 @@ use super::eval::{result_columns, Cell, CellSink, Evaluate};
 use super::plan::{Configuration, Plan};
 use super::summary::{PartialSummary, Summary};
 use super::SweepError;
+use crate::spectral::kernel::BATCH;
 use rayon::prelude::*;
 use std::collections::BinaryHeap;
 use std::io::Write;
@@ -356,17 +357,17 @@ impl Staged {
     }
 }
 
-/// Reusable per-task storage of the sweep driver: two staged rows (the driver
-/// evaluates configurations in pairs, [`Evaluate::write_results_pair`]).
+/// Reusable per-task storage of the sweep driver: [`BATCH`] staged rows (the
+/// driver evaluates configurations in batches, [`Evaluate::write_results_batch`]).
 struct Scratch {
-    rows: [Staged; 2],
+    rows: [Staged; BATCH],
     digits: zmij::Buffer,
 }
 
 impl Scratch {
     fn new() -> Self {
         Scratch {
-            rows: [Staged::new(), Staged::new()],
+            rows: std::array::from_fn(|_| Staged::new()),
             digits: zmij::Buffer::new(),
         }
     }
@@ -394,40 +395,47 @@ impl Layout {
         self.emit(id, row, &mut sc.digits, text, part);
     }
 
-    /// [`append_row`](Self::append_row) for two configurations, evaluated
-    /// together by [`Evaluate::write_results_pair`]; the lines are those of two
+    /// [`append_row`](Self::append_row) for [`BATCH`] configurations, evaluated
+    /// together by [`Evaluate::write_results_batch`]; the lines are those of
     /// `append_row` calls (evaluators must give equal cells either way).
-    fn append_pair<E: Evaluate + ?Sized>(
+    fn append_batch<E: Evaluate + ?Sized>(
         &self,
         plan: &Plan,
         eval: &E,
-        ids: [u64; 2],
+        ids: [u64; BATCH],
         sc: &mut Scratch,
         text: &mut String,
         part: &mut PartialSummary,
     ) {
-        let [r0, r1] = &mut sc.rows;
-        match (self.load(plan, ids[0], r0), self.load(plan, ids[1], r1)) {
-            (Some(s0), Some(s1)) => {
-                let [e0, e1] = eval.write_results_pair(
-                    plan,
-                    [(&r0.config, &s0), (&r1.config, &s1)],
-                    [&mut r0.stage, &mut r1.stage],
-                );
-                self.check_results(r0, e0);
-                self.check_results(r1, e1);
+        let rows = &mut sc.rows;
+        let schemes: [Option<_>; BATCH] =
+            std::array::from_fn(|l| self.load(plan, ids[l], &mut rows[l]));
+        if schemes.iter().all(Option::is_some) {
+            let schemes = schemes.map(|s| s.expect("all loaded"));
+            let mut it = rows.iter_mut();
+            let items = std::array::from_fn(|l| {
+                let row = it.next().expect("one row per lane");
+                (
+                    &row.config,
+                    &schemes[l],
+                    &mut row.stage as &mut dyn CellSink,
+                )
+            });
+            let res = eval.write_results_batch(plan, items);
+            for (row, r) in rows.iter_mut().zip(res) {
+                self.check_results(row, r);
             }
-            (s0, s1) => {
-                for (row, s) in [(&mut *r0, s0), (&mut *r1, s1)] {
-                    if let Some(s) = s {
-                        let r = eval.write_results(plan, &row.config, &s, &mut row.stage);
-                        self.check_results(row, r);
-                    }
+        } else {
+            for (row, s) in rows.iter_mut().zip(schemes) {
+                if let Some(s) = s {
+                    let r = eval.write_results(plan, &row.config, &s, &mut row.stage);
+                    self.check_results(row, r);
                 }
             }
         }
-        self.emit(ids[0], r0, &mut sc.digits, text, part);
-        self.emit(ids[1], r1, &mut sc.digits, text, part);
+        for (row, &id) in rows.iter_mut().zip(&ids) {
+            self.emit(id, row, &mut sc.digits, text, part);
+        }
     }
 
     /// Enumerates configuration `id` into `row` (coordinates by column) and
@@ -776,11 +784,12 @@ fn evaluate_chunk<E: Evaluate + ?Sized>(
             let mut text = String::with_capacity(ids.len() * (32 + 24 * layout.cells()));
             let mut part = PartialSummary::new(numeric);
             let mut scratch = Scratch::new();
-            let mut pairs = ids.chunks_exact(2);
-            for p in &mut pairs {
-                layout.append_pair(plan, eval, [p[0], p[1]], &mut scratch, &mut text, &mut part);
+            let mut batches = ids.chunks_exact(BATCH);
+            for b in &mut batches {
+                let b: [u64; BATCH] = b.try_into().expect("chunks of BATCH");
+                layout.append_batch(plan, eval, b, &mut scratch, &mut text, &mut part);
             }
-            for &id in pairs.remainder() {
+            for &id in batches.remainder() {
                 layout.append_row(plan, eval, id, &mut scratch, &mut text, &mut part);
             }
             (text, part)
@@ -1048,31 +1057,26 @@ mod tests {
         got_summary.absorb_partial(&part);
         assert_eq!(got, want);
         assert_eq!(got_summary, want_summary);
-        // The paired path (the driver's) gives the same lines, whatever the
-        // phase of the pairing (one lone first row shifts every pair).
-        for skip in [0, 1] {
+        // The batched path (the driver's) gives the same lines, whatever the
+        // phase of the batches (lone first rows shift every batch).
+        for skip in [0, 1, BATCH / 2 + 1, BATCH - 1] {
+            let skip = skip.min(ids.len());
             let mut got = String::new();
             let mut part = PartialSummary::new(layout.numeric.len());
             for &id in &ids[..skip] {
                 layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
             }
-            let mut pairs = ids[skip..].chunks_exact(2);
-            for p in &mut pairs {
-                layout.append_pair(
-                    &plan,
-                    &eval,
-                    [p[0], p[1]],
-                    &mut scratch,
-                    &mut got,
-                    &mut part,
-                );
+            let mut batches = ids[skip..].chunks_exact(BATCH);
+            for b in &mut batches {
+                let b: [u64; BATCH] = b.try_into().unwrap();
+                layout.append_batch(&plan, &eval, b, &mut scratch, &mut got, &mut part);
             }
-            for &id in pairs.remainder() {
+            for &id in batches.remainder() {
                 layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
             }
             let mut got_summary = Summary::new(&plan, &layout, Shard::ALL, None);
             got_summary.absorb_partial(&part);
-            assert_eq!(got, want, "pairs from row {skip}");
+            assert_eq!(got, want, "batches from row {skip}");
             assert_eq!(got_summary, want_summary);
         }
         for threads in [1, 2, 3] {
@@ -1120,7 +1124,7 @@ mod tests {
             spectral,
         );
         assert_fast_path_matches(
-            "scheme = \"cc-variant\"\nvalences = { from = 3, to = 9 }\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\neigenvalues = 2\n",
+            "scheme = \"cc-variant\"\nvalences = { from = 3, to = 40 }\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\neigenvalues = 2\n",
             spectral,
         );
         assert_fast_path_matches(
