@@ -29,7 +29,11 @@
 //! divisions of each 3x3 reflector dominates): reflectors use one reciprocal
 //! instead of several divisions, skip EISPACK's rescaling of `(p, q, r)` where
 //! it cannot matter ([`SAFE_MIN`]..[`SAFE_MAX`]), and the last reflector of
-//! a sweep has its own two-row loops.
+//! a sweep has its own two-row loops. Many matrices of one dimension (a
+//! sweep) go through [`KernelWorkspace::eigenvalues_batch`]: [`BATCH`] of
+//! them in lock step, one per SIMD lane, with the same arithmetic bit for bit
+//! (module `lockstep`; 2.1x to 2.4x the throughput of one at a time at
+//! valences 5 to 16).
 
 use super::SpectralError;
 use num_complex::Complex64;
@@ -371,7 +375,8 @@ pub const LOCKSTEP_MAX_DIM: usize = 64;
 /// Lock-step Hessenberg reduction and QR iteration of the interleaved
 /// matrices `h` (lane `l` of dimension `dims[l]`, all equal or 0 for an
 /// unused lane), the Hessenberg forms copied out to `hess`; on x86-64
-/// processors with AVX2, compiled for AVX2 (one 256-bit vector per entry).
+/// processors with AVX2, compiled for AVX2 (a runtime check; the portable
+/// build runs the same code with SSE2).
 #[allow(clippy::too_many_arguments)]
 fn lockstep_run(
     dims: [usize; BATCH],
