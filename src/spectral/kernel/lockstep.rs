@@ -38,8 +38,8 @@
 //! | 5 | 650 ns | 407 ns | 340 ns | 308 ns | 914 ns |
 //! | 8 | 2.24 us | 1.27 us | 1.02 us | 0.94 us | 3.46 us |
 //! | 16 | 10.2 us | 5.83 us | 5.16 us | 4.39 us | 20.5 us |
-//! | 32 | | | 29.4 us | 25.8 us | 126 us |
-//! | 64 | | | 241 us | 184 us | |
+//! | 32 | 50.0 us | | 29.4 us | 25.8 us | 126 us |
+//! | 64 | 285 us | | 241 us | 184 us | |
 //!
 //! With 16 lanes each operation is four 256-bit instructions, which the
 //! processor overlaps (more independent chains per reflector); at 32 lanes
