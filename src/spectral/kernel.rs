@@ -232,15 +232,15 @@ impl KernelWorkspace {
                 wi[lane].resize(n, 0.0);
             }
         }
-        let sweeps = lockstep_run(
+        let sweeps = lockstep_run(LockstepRun {
             dims,
-            &mut h,
-            &mut v,
-            &mut w,
-            hess.each_mut(),
-            wr.each_mut().map(Vec::as_mut_slice),
-            wi.each_mut().map(Vec::as_mut_slice),
-        );
+            h: &mut h,
+            v: &mut v,
+            w: &mut w,
+            hess: hess.each_mut(),
+            wr: wr.each_mut().map(Vec::as_mut_slice),
+            wi: wi.each_mut().map(Vec::as_mut_slice),
+        });
         ws[home].as_mut().expect("some").batch = [h, v, w];
         for (lane, (x, s)) in ws.into_iter().zip(sweeps).enumerate() {
             if let (Some(x), Some(Ok(()))) = (x, &out[lane]) {
@@ -382,31 +382,39 @@ pub const LOCKSTEP_MIN_DIM: usize = 3;
 /// time (about 200 us against 285 us per matrix; see the `lockstep` module).
 pub const LOCKSTEP_MAX_DIM: usize = 64;
 
-/// Lock-step Hessenberg reduction and QR iteration of the interleaved
-/// matrices `h` (lane `l` of dimension `dims[l]`, all equal or 0 for an
-/// unused lane), the Hessenberg forms copied out to `hess`; on x86-64
-/// processors with AVX2, compiled for AVX2 (a runtime check; the portable
-/// build runs the same code with SSE2).
-#[allow(clippy::too_many_arguments)]
-fn lockstep_run(
+/// The storage of one [`lockstep_run`]: the interleaved matrices `h` (lane
+/// `l` of dimension `dims[l]`, all equal or 0 for an unused lane), the
+/// Householder vector and scratch `v`, `w`, and each lane's outputs (its
+/// Hessenberg form and eigenvalues).
+struct LockstepRun<'a> {
     dims: [usize; BATCH],
-    h: &mut [lockstep::Lanes],
-    v: &mut [lockstep::Lanes],
-    w: &mut [lockstep::Lanes],
-    hess: [&mut Vec<f64>; BATCH],
-    wr: [&mut [f64]; BATCH],
-    wi: [&mut [f64]; BATCH],
-) -> [Result<usize, SpectralError>; BATCH] {
+    h: &'a mut [lockstep::Lanes],
+    v: &'a mut [lockstep::Lanes],
+    w: &'a mut [lockstep::Lanes],
+    hess: [&'a mut Vec<f64>; BATCH],
+    wr: [&'a mut [f64]; BATCH],
+    wi: [&'a mut [f64]; BATCH],
+}
+
+/// Each lane's sweep count or error.
+type LaneResults = [Result<usize, SpectralError>; BATCH];
+
+/// Lock-step Hessenberg reduction and QR iteration of the interleaved
+/// matrices, the Hessenberg forms copied out; on x86-64 processors with
+/// AVX2, compiled for AVX2 (a runtime check; the portable build runs the same
+/// code with SSE2).
+fn lockstep_run(run: LockstepRun<'_>) -> LaneResults {
     #[inline(always)]
-    fn body(
-        dims: [usize; BATCH],
-        h: &mut [lockstep::Lanes],
-        v: &mut [lockstep::Lanes],
-        w: &mut [lockstep::Lanes],
-        hess: [&mut Vec<f64>; BATCH],
-        wr: [&mut [f64]; BATCH],
-        wi: [&mut [f64]; BATCH],
-    ) -> [Result<usize, SpectralError>; BATCH] {
+    fn body(run: LockstepRun<'_>) -> LaneResults {
+        let LockstepRun {
+            dims,
+            h,
+            v,
+            w,
+            hess,
+            wr,
+            wi,
+        } = run;
         let n = dims.iter().copied().max().unwrap_or(0);
         lockstep::hessenberg(n, h, v, w);
         for (lane, x) in hess.into_iter().enumerate() {
@@ -418,24 +426,15 @@ fn lockstep_run(
     #[cfg(target_arch = "x86_64")]
     {
         #[target_feature(enable = "avx2")]
-        #[allow(clippy::too_many_arguments)]
-        unsafe fn avx2(
-            dims: [usize; BATCH],
-            h: &mut [lockstep::Lanes],
-            v: &mut [lockstep::Lanes],
-            w: &mut [lockstep::Lanes],
-            hess: [&mut Vec<f64>; BATCH],
-            wr: [&mut [f64]; BATCH],
-            wi: [&mut [f64]; BATCH],
-        ) -> [Result<usize, SpectralError>; BATCH] {
-            body(dims, h, v, w, hess, wr, wi)
+        unsafe fn avx2(run: LockstepRun<'_>) -> LaneResults {
+            body(run)
         }
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the processor supports AVX2 (checked just above).
-            return unsafe { avx2(dims, h, v, w, hess, wr, wi) };
+            return unsafe { avx2(run) };
         }
     }
-    body(dims, h, v, w, hess, wr, wi)
+    body(run)
 }
 
 /// Most inverse iterations [`KernelWorkspace::condition_numbers`] interleaves.
