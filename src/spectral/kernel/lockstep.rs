@@ -87,15 +87,16 @@ impl HqrMatrix for Lane<'_> {
     }
 }
 
-/// `if m { x } else { y }`, lane by lane.
+/// Whether any lane of `m` is set.
 #[inline(always)]
-fn select(m: [bool; BATCH], x: Lanes, y: Lanes) -> Lanes {
-    std::array::from_fn(|l| if m[l] { x[l] } else { y[l] })
+fn any(m: Mask) -> bool {
+    m.iter().any(|&b| b != 0)
 }
 
+/// `m` as a [`Mask`].
 #[inline(always)]
-fn any(m: [bool; BATCH]) -> bool {
-    m.iter().any(|&b| b)
+fn mask(m: [bool; BATCH]) -> Mask {
+    m.map(|b| -(b as i64))
 }
 
 /// The scalar [`hessenberg`](super::hessenberg) on all lanes of the
@@ -112,7 +113,7 @@ pub(super) fn hessenberg(n: usize, h: &mut [Lanes], v: &mut [Lanes], w: &mut [La
             let x = u!(h[i + k * n]);
             scale = std::array::from_fn(|l| scale[l].max(x[l].abs()));
         }
-        let mut live: [bool; BATCH] = std::array::from_fn(|l| scale[l] != 0.0);
+        let mut live: Mask = std::array::from_fn(|l| -((scale[l] != 0.0) as i64));
         if !any(live) {
             continue;
         }
@@ -129,7 +130,7 @@ pub(super) fn hessenberg(n: usize, h: &mut [Lanes], v: &mut [Lanes], w: &mut [La
         let v0: Lanes = std::array::from_fn(|l| x0[l] - alpha[l]);
         *um!(v[k + 1]) = v0;
         let vtv: Lanes = std::array::from_fn(|l| norm2[l] - x0[l] * x0[l] + v0[l] * v0[l]);
-        live = std::array::from_fn(|l| live[l] && vtv[l] != 0.0);
+        live = std::array::from_fn(|l| live[l] & -((vtv[l] != 0.0) as i64));
         if !any(live) {
             continue;
         }
@@ -146,14 +147,14 @@ pub(super) fn hessenberg(n: usize, h: &mut [Lanes], v: &mut [Lanes], w: &mut [La
             for i in k + 1..n {
                 let (x, y) = (u!(h[i + j * n]), u!(v[i]));
                 let new = std::array::from_fn(|l| x[l] - s[l] * y[l]);
-                *um!(h[i + j * n]) = select(live, new, x);
+                *um!(h[i + j * n]) = pick(live, new, x);
             }
         }
         let sub = u!(h[k + 1 + k * n]);
-        *um!(h[k + 1 + k * n]) = select(live, std::array::from_fn(|l| alpha[l] * scale[l]), sub);
+        *um!(h[k + 1 + k * n]) = pick(live, std::array::from_fn(|l| alpha[l] * scale[l]), sub);
         for i in k + 2..n {
             let x = u!(h[i + k * n]);
-            *um!(h[i + k * n]) = select(live, [0.0; BATCH], x);
+            *um!(h[i + k * n]) = pick(live, [0.0; BATCH], x);
         }
         // Right: all rows, columns k+1..n: w = H v, H -= beta w v^T.
         for i in 0..n {
@@ -172,7 +173,7 @@ pub(super) fn hessenberg(n: usize, h: &mut [Lanes], v: &mut [Lanes], w: &mut [La
             for i in 0..n {
                 let (wi, x) = (u!(w[i]), u!(h[i + j * n]));
                 let new = std::array::from_fn(|l| x[l] - wi[l] * f[l]);
-                *um!(h[i + j * n]) = select(live, new, x);
+                *um!(h[i + j * n]) = pick(live, new, x);
             }
         }
     }
@@ -262,7 +263,7 @@ pub(super) fn hqr(
                 }
             }
         }
-        if !any(chasing) {
+        if !any(mask(chasing)) {
             break;
         }
         sweep(a, stride, &st, chasing);
@@ -272,7 +273,9 @@ pub(super) fn hqr(
             }
         }
     }
-    out.map(|r| r.unwrap_or(Ok(0)))
+    // The loop ends only when no lane is left chasing, i.e. every lane has
+    // finished or failed.
+    out.map(|r| r.expect("every lane has finished"))
 }
 
 /// A lane mask: all ones (true) or zero (false) per lane, as `i64` so that
@@ -367,7 +370,7 @@ fn sweep(a: &mut [Lanes], s: usize, st: &[Hqr; BATCH], chasing: [bool; BATCH]) {
                 .copysign(p[l])
         });
         let act: Mask = std::array::from_fn(|l| act[l] & -((sg[l] != 0.0) as i64));
-        if act.iter().all(|&m| m == 0) {
+        if !any(act) {
             continue;
         }
         if k > 0 {
