@@ -1,0 +1,328 @@
+//! The hostile-input table: every command and every spec key has rows here.
+//!
+//! Each row runs the release binary in a fresh scratch directory (after
+//! writing the row's set-up files into it) and checks:
+//!
+//! * the exit code (2 for bad input, 1 for a failure while running);
+//! * stderr is exactly one line and contains the row's `needle`, which names
+//!   the problem (the offending value, key or path);
+//! * nothing panicked (no "panicked" in stderr, no exit 101 or signal);
+//! * no file in the scratch directory was created, changed or removed
+//!   (unless the row says `changes_allowed`);
+//! * the run ended within [`TIME_LIMIT`] (refusing heavy work must be fast).
+//!
+//! Paths in the arguments: `{M}` is the shipped `analysis/meshes` directory,
+//! `{A}` the shipped `analysis` directory; relative paths resolve inside the
+//! scratch directory, which is the working directory of the run.
+//!
+//! Rows are grouped in sections by area; add rows to the section they belong
+//! to (one section per area keeps parallel edits apart).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// A run that takes longer than this fails the row: refusals must be quick.
+const TIME_LIMIT: Duration = Duration::from_secs(20);
+
+/// Where stdout goes.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Stdout {
+    /// Captured (the normal case).
+    Pipe,
+    /// `/dev/full`: every write fails with ENOSPC.
+    Full,
+}
+
+/// One row of the table.
+struct Case {
+    /// A short unique name, printed when the row fails.
+    name: &'static str,
+    /// Arguments after the binary name (with `{M}`, `{A}` substituted).
+    args: &'static [&'static str],
+    /// Files written into the scratch directory before the run: (relative path, contents).
+    files: &'static [(&'static str, &'static str)],
+    /// Expected exit code.
+    code: i32,
+    /// A substring the single stderr line must contain (case-sensitive).
+    needle: &'static str,
+    /// Where stdout goes.
+    stdout: Stdout,
+}
+
+/// A row with the usual defaults: exit 2, no set-up files, stdout captured.
+const fn bad(name: &'static str, args: &'static [&'static str], needle: &'static str) -> Case {
+    Case {
+        name,
+        args,
+        files: &[],
+        code: 2,
+        needle,
+        stdout: Stdout::Pipe,
+    }
+}
+
+/// A row with set-up files.
+const fn bad_with(
+    name: &'static str,
+    args: &'static [&'static str],
+    files: &'static [(&'static str, &'static str)],
+    needle: &'static str,
+) -> Case {
+    Case {
+        name,
+        args,
+        files,
+        code: 2,
+        needle,
+        stdout: Stdout::Pipe,
+    }
+}
+
+/// A row whose stdout is `/dev/full`: exit 1, a message naming the write error.
+const fn full(name: &'static str, args: &'static [&'static str]) -> Case {
+    Case {
+        name,
+        args,
+        files: &[],
+        code: 1,
+        needle: "stdout",
+        stdout: Stdout::Full,
+    }
+}
+
+fn cases() -> Vec<Case> {
+    let mut v = Vec::new();
+
+    // ===================================================================
+    // SECTION knots-and-numerics: knot files, ratios, intervals, --exact,
+    // overflow and underflow of derived quantities, verdicts.
+    // ===================================================================
+    v.extend([bad(
+        "ratios-out-of-range",
+        &["analyze", "--ratios", "0.5,1.5,0.5"],
+        "1.5",
+    )]);
+    // (end of section knots-and-numerics)
+    //
+    //
+    //
+
+    // ===================================================================
+    // SECTION cli-io: report output directories, stdout write errors,
+    // conflicting outputs, exit codes, messages.
+    // ===================================================================
+    v.extend([bad(
+        "unknown-scheme",
+        &["analyze", "--scheme", "bogus", "--valence", "4"],
+        "bogus",
+    )]);
+    // (end of section cli-io)
+    //
+    //
+    //
+
+    // ===================================================================
+    // SECTION bounded-work: estimates and refusals of heavy work, --threads.
+    // ===================================================================
+    v.extend([bad(
+        "valence-zero",
+        &["analyze", "--uniform", "--valence", "0"],
+        "0",
+    )]);
+    // (end of section bounded-work)
+    //
+    //
+    //
+
+    // ===================================================================
+    // SECTION sweep-resume-merge: sweep specs, resume, merge, shards.
+    // ===================================================================
+    v.extend([bad_with(
+        "sweep-spec-not-toml",
+        &["sweep", "s.toml", "--out", "o.csv"],
+        &[("s.toml", "this is = = not toml\n")],
+        "s.toml",
+    )]);
+    // (end of section sweep-resume-merge)
+    //
+    //
+    //
+
+    // ===================================================================
+    // SECTION mesh: subdivide, OBJ input, knot files.
+    // ===================================================================
+    v.extend([bad_with(
+        "mesh-empty-obj",
+        &["subdivide", "e.obj", "--scheme", "nurds", "-o", "x.obj"],
+        &[("e.obj", "")],
+        "e.obj",
+    )]);
+    // (end of section mesh)
+
+    let _ = full; // used by the cli-io section
+    v
+}
+
+/// Every regular file under `dir` with its contents.
+fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    let mut out = BTreeMap::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).expect("scratch dir readable") {
+            let entry = entry.expect("dir entry");
+            let p = entry.path();
+            let ft = entry.file_type().expect("file type");
+            if ft.is_dir() {
+                out.insert(p.strip_prefix(dir).unwrap().join(""), Vec::new());
+                stack.push(p);
+            } else {
+                out.insert(
+                    p.strip_prefix(dir).unwrap().to_path_buf(),
+                    std::fs::read(&p).unwrap_or_default(),
+                );
+            }
+        }
+    }
+    out
+}
+
+fn substitute(arg: &str) -> String {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    arg.replace("{M}", root.join("analysis/meshes").to_str().unwrap())
+        .replace("{A}", root.join("analysis").to_str().unwrap())
+}
+
+/// Runs one row; returns a description of what went wrong, if anything.
+fn check(case: &Case) -> Option<String> {
+    let scratch = tempfile::tempdir().expect("tempdir");
+    for (rel, contents) in case.files {
+        let p = scratch.path().join(rel);
+        if let Some(parent) = p.parent() {
+            std::fs::create_dir_all(parent).unwrap();
+        }
+        std::fs::write(&p, contents).unwrap();
+    }
+    let before = snapshot(scratch.path());
+    let args: Vec<String> = case.args.iter().map(|a| substitute(a)).collect();
+    let stdout = match case.stdout {
+        Stdout::Pipe => Stdio::piped(),
+        Stdout::Full => Stdio::from(
+            std::fs::OpenOptions::new()
+                .write(true)
+                .open("/dev/full")
+                .expect("/dev/full"),
+        ),
+    };
+    let mut child = Command::new(env!("CARGO_BIN_EXE_subdiv-lab"))
+        .args(&args)
+        .current_dir(scratch.path())
+        .stdin(Stdio::null())
+        .stdout(stdout)
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("binary starts");
+    let start = Instant::now();
+    // Read stderr on a thread so a chatty child cannot block on a full pipe.
+    let mut err_pipe = child.stderr.take().unwrap();
+    let err_reader = std::thread::spawn(move || {
+        let mut s = String::new();
+        std::io::Read::read_to_string(&mut err_pipe, &mut s).ok();
+        s
+    });
+    let mut out_pipe = child.stdout.take();
+    let out_reader = std::thread::spawn(move || {
+        let mut s = Vec::new();
+        if let Some(p) = out_pipe.as_mut() {
+            std::io::Read::read_to_end(p, &mut s).ok();
+        }
+        s
+    });
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            break status;
+        }
+        if start.elapsed() > TIME_LIMIT {
+            child.kill().ok();
+            child.wait().ok();
+            return Some(format!("did not finish within {TIME_LIMIT:?}"));
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    let stderr = err_reader.join().unwrap();
+    let _stdout = out_reader.join().unwrap();
+    let mut problems = Vec::new();
+    match status.code() {
+        Some(c) if c == case.code => {}
+        Some(c) => problems.push(format!("exit {c}, expected {}", case.code)),
+        None => problems.push("killed by a signal".to_string()),
+    }
+    if stderr.contains("panicked") {
+        problems.push("panicked".to_string());
+    }
+    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+    if lines.len() != 1 {
+        problems.push(format!("{} stderr lines, expected 1", lines.len()));
+    }
+    if !stderr.contains(case.needle) {
+        problems.push(format!("stderr does not name {:?}", case.needle));
+    }
+    let after = snapshot(scratch.path());
+    if before != after {
+        let added: Vec<_> = after.keys().filter(|k| !before.contains_key(*k)).collect();
+        let removed: Vec<_> = before.keys().filter(|k| !after.contains_key(*k)).collect();
+        let changed: Vec<_> = before
+            .iter()
+            .filter(|(k, v)| after.get(*k).is_some_and(|w| w != *v))
+            .map(|(k, _)| k)
+            .collect();
+        problems.push(format!(
+            "files touched: added {added:?}, removed {removed:?}, changed {changed:?}"
+        ));
+    }
+    if problems.is_empty() {
+        None
+    } else {
+        Some(format!(
+            "{} | stderr: {}",
+            problems.join("; "),
+            stderr.trim()
+        ))
+    }
+}
+
+#[test]
+fn hostile_input_table() {
+    let cases = cases();
+    let mut names = std::collections::HashSet::new();
+    for c in &cases {
+        assert!(names.insert(c.name), "duplicate row name {}", c.name);
+    }
+    // Rows are independent; run them on a few threads.
+    let failures: Vec<String> = std::thread::scope(|s| {
+        let chunks: Vec<&[Case]> = cases.chunks(cases.len().div_ceil(4).max(1)).collect();
+        let handles: Vec<_> = chunks
+            .into_iter()
+            .map(|chunk| {
+                s.spawn(move || {
+                    chunk
+                        .iter()
+                        .filter_map(|c| check(c).map(|p| format!("{} ({:?}): {p}", c.name, c.args)))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap())
+            .collect()
+    });
+    assert!(
+        failures.is_empty(),
+        "{} of {} hostile-input rows failed:\n{}",
+        failures.len(),
+        cases.len(),
+        failures.join("\n")
+    );
+}
