@@ -36,6 +36,14 @@ pub trait Scalar:
     /// rounding (every finite `f64` is a dyadic rational). NaN and infinities
     /// map to zero for rationals; callers validate finiteness first.
     fn from_f64_lossless(x: f64) -> Self;
+    /// The edge ratio `r = b / (a + b)` and `s = a / (a + b)` of two positive
+    /// intervals (math doc section 2). Exact for rationals; for `f64` computed
+    /// with unbounded exponents, so `a + b` never overflows (each result is
+    /// accurate to 2 ulps, or rounds to 0 when it lies below the `f64` range).
+    fn edge_ratio(a: &Self, b: &Self) -> (Self, Self) {
+        let sum = a.clone() + b.clone();
+        (b.clone() / sum.clone(), a.clone() / sum)
+    }
     /// Face-point weight kernel (see [`crate::knots::face_weights`]); `f64`
     /// overrides it with an overflow-free extended-exponent evaluation.
     #[doc(hidden)]
@@ -60,6 +68,15 @@ impl Scalar for f64 {
     }
     fn face_weights_kernel(r: &[Self], s: &[Self]) -> Vec<Self> {
         crate::knots::face_weights::f64_kernel(r, s)
+    }
+    fn edge_ratio(a: &Self, b: &Self) -> (Self, Self) {
+        if !(*a > 0.0 && *b > 0.0 && a.is_finite() && b.is_finite()) {
+            // Not an interval pair; the plain formula (callers validate).
+            let sum = a + b;
+            return (b / sum, a / sum);
+        }
+        let (r, s) = crate::knots::face_weights::edge_ratio_ext(*a, *b);
+        (r.to_f64(), s.to_f64())
     }
     fn from_f64_lossless(x: f64) -> Self {
         x
