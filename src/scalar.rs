@@ -190,6 +190,38 @@ pub fn parse_exact(text: &str) -> Option<Rational> {
     Some(value)
 }
 
+/// A rational as text for messages: `a/b` when that is at most 40
+/// characters, otherwise a 7-digit scientific approximation `~d.dddddde[+-]x`
+/// (exact values of `1e400/3`-like inputs are hundreds of digits long).
+///
+/// ```
+/// use subdiv_lab::scalar::{parse_exact, short_text};
+/// assert_eq!(short_text(&parse_exact("13/10").unwrap()), "13/10");
+/// assert_eq!(short_text(&parse_exact("1e400/3").unwrap()), "~3.333333e399");
+/// assert_eq!(short_text(&parse_exact("-3e-400").unwrap()), "~-3.000000e-400");
+/// ```
+pub fn short_text(q: &Rational) -> String {
+    let t = q.to_text();
+    if t.len() <= 40 {
+        return t;
+    }
+    // log10 |q| from the leading digits of numerator and denominator.
+    let log10 = |x: &BigInt| -> f64 {
+        let d = x.abs().to_string();
+        let head: f64 = d[..d.len().min(17)].parse().unwrap_or(1.0);
+        head.log10() + (d.len() - d.len().min(17)) as f64
+    };
+    let l = log10(q.numer()) - log10(q.denom());
+    let mut exp = l.floor();
+    let mut mant = 10f64.powf(l - exp);
+    if mant >= 9.9999995 {
+        mant /= 10.0;
+        exp += 1.0;
+    }
+    let sign = if q.is_negative() { "-" } else { "" };
+    format!("~{sign}{mant:.6}e{exp}")
+}
+
 /// The exact rational value of a finite `f64` (every finite double is a dyadic rational).
 pub fn f64_to_rational(x: f64) -> Option<Rational> {
     Rational::from_float(x)

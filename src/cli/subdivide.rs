@@ -289,10 +289,13 @@ fn run_cc(args: SubdivideArgs, scheme: SchemeKind) -> CliResult {
                 "--scheme adjustable-cc needs --c C in [0, 1]"
             )))
         }
-        (_, Some(t)) => subdiv_lab::scalar::parse_exact(t)
-            .map(|r| subdiv_lab::scalar::Scalar::to_f64(&r))
-            .filter(|x| (0.0..=1.0).contains(x))
-            .ok_or_else(|| CliError::usage(anyhow!("--c: {t:?} is not a number in [0, 1]")))?,
+        (_, Some(t)) => {
+            let (_, x) = super::scheme_args::parse_c(t)?;
+            if !(0.0..=1.0).contains(&x) {
+                return Err(CliError::usage(anyhow!("--c: {t:?} is not a number in [0, 1]")));
+            }
+            x
+        }
     };
     if args.knots.is_some() || args.knots_out.is_some() || args.stats {
         return Err(CliError::usage(anyhow!(

@@ -312,6 +312,39 @@ impl<T: Scalar> EdgeRatios<T> {
     }
 }
 
+impl EdgeRatios<crate::scalar::Rational> {
+    /// The nearest `f64` ratios (each `r_i` and `s_i` rounded once), or
+    /// [`Error::RatioNotRepresentable`] naming the first edge whose `r_i` or
+    /// `s_i` lies below the `f64` range (so that it would round to 0 or 1).
+    ///
+    /// ```
+    /// use subdiv_lab::knots::CornerIntervals;
+    /// use subdiv_lab::scalar::parse_exact;
+    /// let big = parse_exact("1e400/3").unwrap();
+    /// let one = parse_exact("1").unwrap();
+    /// // equal huge intervals: ratios 1/2, computed exactly
+    /// let k = CornerIntervals::new(vec![big.clone(); 3], vec![big.clone(); 3]).unwrap();
+    /// assert_eq!(k.ratios().unwrap().to_f64_checked().unwrap().as_slice(), &[0.5; 3]);
+    /// // r_0 = 1 / (1e400/3 + 1) is below the f64 range
+    /// let k = CornerIntervals::new(vec![big, one.clone(), one.clone()], vec![one; 3]).unwrap();
+    /// let e = k.ratios().unwrap().to_f64_checked().unwrap_err().to_string();
+    /// assert!(e.contains("r_0") && e.contains("e-400"), "{e}");
+    /// ```
+    pub fn to_f64_checked(&self) -> Result<EdgeRatios<f64>> {
+        let out = self.to_f64();
+        for (i, (r, s)) in out.r.iter().zip(&out.s).enumerate() {
+            if !(*r > 0.0 && *s > 0.0) {
+                return Err(Error::RatioNotRepresentable {
+                    index: i,
+                    value: crate::scalar::short_text(&self.r[i]),
+                    rounded: if *r > 0.0 { "1" } else { "0" },
+                });
+            }
+        }
+        Ok(out)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
