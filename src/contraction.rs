@@ -75,7 +75,10 @@ impl<T: Scalar> Certificate<T> {
     /// weights summing to 3/4 per row, `F` invariant, and the assembled face
     /// block equal to the one the weights describe.
     pub fn holds(&self) -> bool {
-        self.nonnegative && self.sums_three_quarters && self.face_point_invariant && self.matches_assembly
+        self.nonnegative
+            && self.sums_three_quarters
+            && self.face_point_invariant
+            && self.matches_assembly
     }
     /// The largest `|row sum - 3/4|` as `f64`.
     pub fn max_sum_defect(&self) -> f64 {
@@ -194,7 +197,11 @@ pub fn certificate<T: Scalar>(scheme: &LocalScheme<T>) -> Result<Certificate<T>>
 /// bad[(0, 0)] = 0.75;
 /// assert!(!certify_face_block(&(bad.map(|x| x + 1.0 / 12.0)), &c, bad).unwrap().nonnegative);
 /// ```
-pub fn certify_face_block<T: Scalar>(a: &DMatrix<T>, c: &[T], w: DMatrix<T>) -> Result<Certificate<T>> {
+pub fn certify_face_block<T: Scalar>(
+    a: &DMatrix<T>,
+    c: &[T],
+    w: DMatrix<T>,
+) -> Result<Certificate<T>> {
     let n = a.nrows();
     if a.ncols() != n || w.nrows() != n || w.ncols() != n || c.len() != n {
         return Err(crate::error::Error::CountMismatch {

@@ -1,8 +1,8 @@
 //! Theorem 1 (math doc section 5): certificate (exact and f64), measured
 //! contraction, spectral bound.
 
-use proptest::prelude::*;
 use nalgebra::DMatrix;
+use proptest::prelude::*;
 use subdiv_lab::contraction::{
     certificate, certify_face_block, measure, theorem_weights, MeasureOptions, SplitMix64,
 };
@@ -167,8 +167,14 @@ fn certificate_weights_come_from_the_formula() {
     }
     // f64: the analysis reports the smallest positive weight.
     let s = LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.5, 0.3]).unwrap());
-    let c = analyze(&s, &AnalyzeOptions::default()).unwrap().contraction.unwrap();
-    assert!((c.certificate_min_weight - 0.1 / 4.0).abs() < 1e-15, "{c:?}");
+    let c = analyze(&s, &AnalyzeOptions::default())
+        .unwrap()
+        .contraction
+        .unwrap();
+    assert!(
+        (c.certificate_min_weight - 0.1 / 4.0).abs() < 1e-15,
+        "{c:?}"
+    );
     // Original Doo-Sabin: the derived weights (n + 4)/(4n), (2 + 2 cos)/(4n).
     let w = theorem_weights(&LocalScheme::<Rational>::doo_sabin(4).unwrap()).unwrap();
     assert_eq!(w[(0, 0)], Rational::frac(8, 16));

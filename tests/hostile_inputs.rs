@@ -163,7 +163,12 @@ fn cases() -> Vec<Case> {
         ),
         bad(
             "analyze-ratio-rounds-to-one-exact",
-            &["analyze", "--exact", "--ratios", "0.5,0.9999999999999999999999,0.5"],
+            &[
+                "analyze",
+                "--exact",
+                "--ratios",
+                "0.5,0.9999999999999999999999,0.5",
+            ],
             "edge ratio r_1 = 0.9999999999999999999999 is not representable in f64",
         ),
         bad(
@@ -173,7 +178,15 @@ fn cases() -> Vec<Case> {
         ),
         bad(
             "analyze-c-rounds-to-zero",
-            &["analyze", "--scheme", "adjustable-cc", "--valence", "5", "--c", "1e-400"],
+            &[
+                "analyze",
+                "--scheme",
+                "adjustable-cc",
+                "--valence",
+                "5",
+                "--c",
+                "1e-400",
+            ],
             "--c = 1e-400 is not representable in f64: it rounds to 0",
         ),
         bad(

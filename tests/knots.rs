@@ -253,22 +253,50 @@ fn subdivide_takes_extreme_intervals() {
     let out = run_bin(
         &d,
         &[
-            "subdivide", &cube, "--scheme", "nurds", "--knots", "k.knots",
-            "--default-interval", "1e300", "-o", "x.obj",
+            "subdivide",
+            &cube,
+            "--scheme",
+            "nurds",
+            "--knots",
+            "k.knots",
+            "--default-interval",
+            "1e300",
+            "-o",
+            "x.obj",
         ],
     );
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = std::fs::read_to_string(d.join("x.obj")).unwrap();
     assert!(!text.contains("NaN") && !text.contains("inf"));
-    for (big, name) in [("9e307", "big.obj"), ("1", "one.obj"), ("1.7976931348623157e308", "max.obj")] {
+    for (big, name) in [
+        ("9e307", "big.obj"),
+        ("1", "one.obj"),
+        ("1.7976931348623157e308", "max.obj"),
+    ] {
         let out = run_bin(
             &d,
             &[
-                "subdivide", &cube, "--scheme", "nurds", "--default-interval", big,
-                "--levels", "2", "-o", name,
+                "subdivide",
+                &cube,
+                "--scheme",
+                "nurds",
+                "--default-interval",
+                big,
+                "--levels",
+                "2",
+                "-o",
+                name,
             ],
         );
-        assert!(out.status.success(), "{big}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{big}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
     }
     let one = std::fs::read(d.join("one.obj")).unwrap();
     assert_eq!(std::fs::read(d.join("big.obj")).unwrap(), one);
@@ -288,8 +316,15 @@ fn ratios_of_extreme_intervals() {
     assert_eq!(r.as_slice()[0], 0.5);
     let k = CornerIntervals::new(vec![1e300; 3], vec![1.0, 1e-300, 1.0]).unwrap();
     match k.ratios() {
-        Err(Error::RatioNotRepresentable { index: 0, rounded: "0", value }) => {
-            assert!(value.contains("1e-300") && value.contains("1e300"), "{value}")
+        Err(Error::RatioNotRepresentable {
+            index: 0,
+            rounded: "0",
+            value,
+        }) => {
+            assert!(
+                value.contains("1e-300") && value.contains("1e300"),
+                "{value}"
+            )
         }
         other => panic!("{other:?}"),
     }
@@ -308,15 +343,39 @@ fn ratios_of_extreme_intervals() {
 fn analyze_reads_extreme_knots() {
     let d = scratch("analyze");
     for args in [
-        &["analyze", "--knots", "9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307"][..],
-        &["analyze", "--exact", "--knots", "9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307"][..],
-        &["analyze", "--exact", "--knots", "1e400/3:1e400/3,1e400/3:1e400/3,1e400/3:1e400/3,1e400/3:1e400/3,1e400/3:1e400/3"][..],
+        &[
+            "analyze",
+            "--knots",
+            "9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307",
+        ][..],
+        &[
+            "analyze",
+            "--exact",
+            "--knots",
+            "9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307",
+        ][..],
+        &[
+            "analyze",
+            "--exact",
+            "--knots",
+            "1e400/3:1e400/3,1e400/3:1e400/3,1e400/3:1e400/3,1e400/3:1e400/3,1e400/3:1e400/3",
+        ][..],
     ] {
         let out = run_bin(&d, args);
         let text = String::from_utf8_lossy(&out.stdout);
-        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-        assert!(text.contains("subdominant class: standard"), "{args:?}: {text}");
-        assert!(text.contains("0.5772542486"), "{args:?}: lambda_1 of uniform n = 5: {text}");
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(
+            text.contains("subdominant class: standard"),
+            "{args:?}: {text}"
+        );
+        assert!(
+            text.contains("0.5772542486"),
+            "{args:?}: lambda_1 of uniform n = 5: {text}"
+        );
         if args.contains(&"--exact") {
             assert!(text.contains("exact: class standard"), "{text}");
         }

@@ -736,9 +736,7 @@ fn quad_with_one_opposite_pair_summing_to_one_is_defective() {
 /// indeterminate with the exact class among its two candidates.
 fn float_consistent_with(f: &SubdominantClass, exact: ClassName) -> bool {
     match f {
-        SubdominantClass::Indeterminate { between, .. } => {
-            between.0 == exact || between.1 == exact
-        }
+        SubdominantClass::Indeterminate { between, .. } => between.0 == exact || between.1 == exact,
         other => other.class_name() == Some(exact),
     }
 }
@@ -767,7 +765,10 @@ fn check_float_against_exact(rq: EdgeRatios<Rational>, expected: ClassName) -> &
         full.class
     );
     // agrees_with_float is decided exactly when the float verdict is decided
-    assert_eq!(v.agrees_with_float, f.class.class_name().map(|c| c == expected));
+    assert_eq!(
+        v.agrees_with_float,
+        f.class.class_name().map(|c| c == expected)
+    );
     // Theorem 1's spectral side: never a false alarm
     let c = a.contraction.unwrap();
     assert!(c.spectral_bound_ok, "{label}: {c:?}");
@@ -789,12 +790,17 @@ fn defective_line_is_never_a_definite_wrong_class() {
         } else {
             ClassName::Defective
         };
-        *counts.entry(check_float_against_exact(rq, expected)).or_insert(0) += 1;
+        *counts
+            .entry(check_float_against_exact(rq, expected))
+            .or_insert(0) += 1;
     }
     assert_eq!(counts.get("standard"), Some(&1), "{counts:?}");
     assert_eq!(counts.get("not_separated"), None, "{counts:?}");
     // most rows are certified defective in floating point already
-    assert!(counts.get("defective").copied().unwrap_or(0) >= 80, "{counts:?}");
+    assert!(
+        counts.get("defective").copied().unwrap_or(0) >= 80,
+        "{counts:?}"
+    );
 }
 
 /// Issue #22 "rank threshold": several exactly defective families (not one
@@ -853,7 +859,10 @@ fn exactly_defective_families_agree_with_exact() {
         let r = EdgeRatios::new(vec![x.clone(), y.clone(), one.clone() - x, one - y]).unwrap();
         check_float_against_exact(r, ClassName::Standard);
     }
-    assert!(defective * 2 > total, "{defective} of {total} certified in float");
+    assert!(
+        defective * 2 > total,
+        "{defective} of {total} certified in float"
+    );
 }
 
 /// Issue #16 item 13: at n = 32 with ratios in {1e-9, 1 - 1e-9, 1/2}
@@ -866,7 +875,9 @@ fn spectral_bound_near_three_quarters_is_not_a_false_alarm() {
     let mut rng = SplitMix64::new(1);
     let mut near = 0;
     for _ in 0..12 {
-        let r: Vec<f64> = (0..32).map(|_| vals[(rng.next_u64() % 3) as usize]).collect();
+        let r: Vec<f64> = (0..32)
+            .map(|_| vals[(rng.next_u64() % 3) as usize])
+            .collect();
         let s = LocalScheme::nurds(EdgeRatios::new(r).unwrap());
         let a = analyze(&s, &AnalyzeOptions::default()).unwrap();
         let c = a.contraction.unwrap();
@@ -881,9 +892,18 @@ fn spectral_bound_near_three_quarters_is_not_a_false_alarm() {
     assert!(near > 0, "the family comes within rounding of 3/4");
     // A well-separated bound holds; BoundCheck itself decides all three ways.
     let s = LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9]).unwrap());
-    let c = analyze(&s, &AnalyzeOptions::default()).unwrap().contraction.unwrap();
+    let c = analyze(&s, &AnalyzeOptions::default())
+        .unwrap()
+        .contraction
+        .unwrap();
     assert_eq!(c.spectral_bound_check, BoundCheck::Holds);
-    assert_eq!(BoundCheck::of(0.75 + 1e-9, 1e-15, 0.75), BoundCheck::Violated);
-    assert_eq!(BoundCheck::of(0.75 + 1e-15, 1e-15, 0.75), BoundCheck::Indeterminate);
+    assert_eq!(
+        BoundCheck::of(0.75 + 1e-9, 1e-15, 0.75),
+        BoundCheck::Violated
+    );
+    assert_eq!(
+        BoundCheck::of(0.75 + 1e-15, 1e-15, 0.75),
+        BoundCheck::Indeterminate
+    );
     assert_eq!(BoundCheck::of(0.75 - 1e-9, 1e-15, 0.75), BoundCheck::Holds);
 }

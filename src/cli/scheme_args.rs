@@ -167,11 +167,26 @@ impl SchemeArgs {
                 for (i, item) in texts.iter().enumerate() {
                     let (p, q) = item.split_once(':').unwrap_or((item, item));
                     let hint = "; --exact computes the ratios from the exact intervals";
-                    check_float(&format!("knot interval p_{i}"), p, (&pq[i], pf[i]), false, hint)?;
-                    check_float(&format!("knot interval q_{i}"), q, (&qq[i], qf[i]), false, hint)?;
+                    check_float(
+                        &format!("knot interval p_{i}"),
+                        p,
+                        (&pq[i], pf[i]),
+                        false,
+                        hint,
+                    )?;
+                    check_float(
+                        &format!("knot interval q_{i}"),
+                        q,
+                        (&qq[i], qf[i]),
+                        false,
+                        hint,
+                    )?;
                 }
                 let kf = CornerIntervals::new(pf, qf).map_err(lib_err)?;
-                (Some(kq.ratios().map_err(lib_err)?), Some(kf.ratios().map_err(lib_err)?))
+                (
+                    Some(kq.ratios().map_err(lib_err)?),
+                    Some(kf.ratios().map_err(lib_err)?),
+                )
             }
         } else if let Some(text) = &self.ratios {
             let mut vq = Vec::new();

@@ -292,7 +292,9 @@ fn run_cc(args: SubdivideArgs, scheme: SchemeKind) -> CliResult {
         (_, Some(t)) => {
             let (_, x) = super::scheme_args::parse_c(t)?;
             if !(0.0..=1.0).contains(&x) {
-                return Err(CliError::usage(anyhow!("--c: {t:?} is not a number in [0, 1]")));
+                return Err(CliError::usage(anyhow!(
+                    "--c: {t:?} is not a number in [0, 1]"
+                )));
             }
             x
         }

@@ -205,7 +205,11 @@ pub(crate) fn f64_kernel(r: &[f64], s: &[f64]) -> Vec<f64> {
 pub(crate) fn interval_kernel(a: &[f64], b: &[f64]) -> (Vec<f64>, Vec<(f64, f64)>) {
     let (re, se): (Vec<ExtFloat>, Vec<ExtFloat>) =
         a.iter().zip(b).map(|(&x, &y)| edge_ratio_ext(x, y)).unzip();
-    let rs = re.iter().zip(&se).map(|(r, s)| (r.to_f64(), s.to_f64())).collect();
+    let rs = re
+        .iter()
+        .zip(&se)
+        .map(|(r, s)| (r.to_f64(), s.to_f64()))
+        .collect();
     (ext_kernel(&re, &se), rs)
 }
 
@@ -289,6 +293,7 @@ mod tests {
     use super::*;
     use crate::knots::CornerIntervals;
     use crate::scalar::{f64_to_rational, Rational};
+    use num_bigint::BigInt;
 
     #[test]
     fn ext_float_basics() {
@@ -305,7 +310,10 @@ mod tests {
         for x in [1.0, 3.0e-300, 5e-324, 2.5e-320, 1.7e308, f64::MAX] {
             let e = ExtFloat::new(x);
             assert_eq!(e.to_f64(), x);
-            assert_eq!(e.mul(ExtFloat::new(0.5)).mul(ExtFloat::new(2.0)).to_f64(), x);
+            assert_eq!(
+                e.mul(ExtFloat::new(0.5)).mul(ExtFloat::new(2.0)).to_f64(),
+                x
+            );
         }
         let a = ExtFloat::new(3.0).mul(ExtFloat::new(0.25));
         assert_eq!(a.ratio(ExtFloat::ONE), 0.75);
@@ -325,7 +333,10 @@ mod tests {
         let cases: [(&[f64], &[f64]); 4] = [
             (&[9e307, 9e307, 9e307, 9e307], &[9e307, 9e307, 9e307, 9e307]),
             (&[1e300, 1e300, 1e300], &[1e-300, 1e300, 1e300]),
-            (&[f64::MAX, 5e-324, 1.0, 2.0], &[5e-324, f64::MAX, 3.0, 1e-310]),
+            (
+                &[f64::MAX, 5e-324, 1.0, 2.0],
+                &[5e-324, f64::MAX, 3.0, 1e-310],
+            ),
             (&[1e-320, 3e-321, 1e-300], &[7e-322, 1e-320, 2e-310]),
         ];
         for (a, b) in cases {
@@ -344,8 +355,10 @@ mod tests {
             }
             for (i, (r, s)) in rs.iter().enumerate() {
                 let (rq, sq) = (exact.as_slice()[i].to_f64(), exact.complement()[i].to_f64());
-                assert!((r - rq).abs() <= 4.0 * f64::EPSILON * rq, "r_{i}: {r} vs {rq}");
-                assert!((s - sq).abs() <= 4.0 * f64::EPSILON * sq, "s_{i}: {s} vs {sq}");
+                // 2 ulps relative, or 2 subnormal steps where the ratio is subnormal
+                let tol = |x: f64| 4.0 * f64::EPSILON * x + 2.0 * f64::from_bits(1);
+                assert!((r - rq).abs() <= tol(rq), "r_{i}: {r:e} vs {rq:e}");
+                assert!((s - sq).abs() <= tol(sq), "s_{i}: {s:e} vs {sq:e}");
             }
         }
     }
@@ -387,18 +400,60 @@ mod tests {
         let k = CornerIntervals::new(p.clone(), q.clone()).unwrap();
         let c = face_weights(&k.ratios().unwrap());
         assert!(c.iter().all(|x| x.is_finite() && *x > 0.0));
-        // exact reference on all 256 corners: the rational closed form of
-        // the same (exactly representable) intervals, rounded at the end
+        // Exact reference on all 256 corners, from the exact knots. The
+        // rational closed form over ratios takes minutes at n = 256 (every
+        // step reduces huge fractions), so the paper's form over intervals is
+        // used: T_m(j) times the common factor prod_i (p_i + q_{i+1}) is
+        // prod_{i=j}^{j+m-1} q_{i+1} * prod_{i=j+m}^{j+n-1} p_i, and with
+        // every (dyadic) interval scaled by 2^60 to an integer this is exact
+        // integer arithmetic.
         let kq = CornerIntervals::<Rational>::new(
             p.iter().map(|&x| f64_to_rational(x).unwrap()).collect(),
             q.iter().map(|&x| f64_to_rational(x).unwrap()).collect(),
         )
         .unwrap();
-        let cq = face_weights(&kq.ratios().unwrap());
-        assert_eq!(cq.len(), n);
-        for (j, (a, b)) in c.iter().zip(&cq).enumerate() {
-            let b = b.to_f64();
-            assert!(b > 0.0 && ((a - b) / b).abs() < 1e-12, "c_{j}: {a} vs {b}");
+        let two60 = Rational::from_integer(BigInt::from(1u64 << 60));
+        let int = |x: &Rational| {
+            let y = x * &two60;
+            assert!(y.is_integer(), "{x} is not a multiple of 2^-60");
+            y.to_integer()
+        };
+        let a: Vec<BigInt> = kq.p().iter().map(int).collect();
+        let b: Vec<BigInt> = (0..n).map(|i| int(&kq.q()[(i + 1) % n])).collect();
+        // 2 alpha_j (up to the common factor): w_0 = w_n = 1/2 become 1, the rest 2
+        let mut alpha2 = Vec::with_capacity(n);
+        let mut suffix = vec![BigInt::from(1); n + 1];
+        for j in 0..n {
+            for m in (0..n).rev() {
+                suffix[m] = &suffix[m + 1] * &a[(j + m) % n];
+            }
+            let mut prefix = BigInt::from(1);
+            let mut total = suffix[0].clone();
+            for m in 1..=n {
+                prefix *= &b[(j + m - 1) % n];
+                let term = &prefix * &suffix[m];
+                total += if m == n { term } else { term * 2 };
+            }
+            alpha2.push(total);
+        }
+        let sum: BigInt = alpha2.iter().sum();
+        for (j, (x, al)) in c.iter().zip(alpha2).enumerate() {
+            let y = Rational::new(al, sum.clone()).to_f64();
+            assert!(
+                y > 0.0 && ((x - y) / y).abs() < 1e-12,
+                "c_{j}: {x} vs exact {y}"
+            );
+        }
+        // and the exact rational closed form on a 24-corner face of the same knots
+        let m = 24;
+        let k_small = CornerIntervals::new(p[..m].to_vec(), q[..m].to_vec()).unwrap();
+        let kq_small =
+            CornerIntervals::<Rational>::new(kq.p()[..m].to_vec(), kq.q()[..m].to_vec()).unwrap();
+        let c64 = face_weights(&k_small.ratios().unwrap());
+        let cq = face_weights(&kq_small.ratios().unwrap());
+        for (x, y) in c64.iter().zip(&cq) {
+            let y = y.to_f64();
+            assert!(((x - y) / y).abs() < 1e-13, "{x} vs {y}");
         }
         // the large case against GTH
         let g = stationary_distribution(&k.ratios().unwrap());
