@@ -278,7 +278,7 @@ pub fn classify(
     // "Consistent with zero" with a radius beyond the linear regime is no
     // evidence of equality: grey instead (see [`equality_limit`]).
     let decide_eq = |d: f64, e: f64| match decide(d, e) {
-        Decision::Zero if !(e <= limit) => Decision::Grey,
+        Decision::Zero if e.is_nan() || e > limit => Decision::Grey,
         other => other,
     };
     let (l0, e0) = get(0);
@@ -318,7 +318,7 @@ pub fn classify(
         let sigma = rank(lam)?;
         let scale = RANK_FACTOR * (e12 + ev.eta);
         Ok(match decide(sigma, scale) {
-            Decision::Zero if !(scale <= limit) => (
+            Decision::Zero if scale.is_nan() || scale > limit => (
                 SubdominantClass::Indeterminate {
                     between: (ClassName::Standard, ClassName::Defective),
                     reason: format!(
