@@ -11,13 +11,15 @@
 //!
 //! Three independent pieces of evidence are produced here:
 //!
-//! 1. [`certificate`]: the weight matrix `W = A - 1 c^T / 4` read off the
-//!    *assembled* face block (`P'_i = (P_i + E_{i-1} + E_i + F)/4`, so removing
-//!    the `F/4` term leaves the weights of the differences `P_j - F`); checks
-//!    `W >= 0`, every row sum `= 3/4` and `c^T A = c^T`, exactly for rational
-//!    input. For NURDS `W = (I + R)/4` (the formula above); for original
-//!    Doo-Sabin `W_ij = (2 + 2 cos(2 pi (i-j)/n)) / (4n)`, `W_ii = (n+4)/(4n)`
-//!    **\[derived\]**, so the theorem holds for the whole family.
+//! 1. [`certificate`]: the weight matrix `W` derived from the knots by the
+//!    theorem's own formula ([`theorem_weights`]: for NURDS `W = (I + R)/4`,
+//!    the formula above; for original Doo-Sabin
+//!    `W_ij = (2 + 2 cos(2 pi (i-j)/n)) / (4n)`, `W_ii = (n+4)/(4n)`
+//!    **\[derived\]**, so the theorem holds for the whole family), compared
+//!    with the *assembled* face block (`A = W + 1 c^T / 4`, since
+//!    `P'_i = (P_i + E_{i-1} + E_i + F)/4`); checks `W >= 0`, every row sum
+//!    `= 3/4` and `c^T A = c^T`, exactly for rational input.
+//!    [`certify_face_block`] runs the same checks on any block.
 //! 2. [`measure`]: iterate `S_n` on random control points (deterministic
 //!    [`SplitMix64`]) and record `m_k = max_i |P^k_i - F|` for `k = 0..levels`,
 //!    the per-step ratios `m_{k+1} / m_k` and the fitted asymptotic rate.
@@ -42,26 +44,41 @@ pub const CERTIFICATE_TOL: f64 = 1e-13;
 /// Theorem 1 certificate for one configuration.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Certificate<T> {
-    /// `W = A - 1 c^T / 4`: row `i` holds the weights of `P_j - F` in `P'_i - F`.
+    /// The weights `W`: row `i` holds the weights of `P_j - F` in `P'_i - F`,
+    /// derived from the knots by the theorem's formula ([`theorem_weights`]),
+    /// not read back from the assembled block.
     pub weights: DMatrix<T>,
     /// Row sums of `W` (exactly 3/4).
     pub row_sums: Vec<T>,
-    /// Smallest weight.
+    /// Smallest weight (structural zeros included: 0 for every `n >= 4`).
     pub min_weight: T,
+    /// Smallest *positive* weight (0 if there is none): how far the
+    /// non-zero weights are from losing their sign.
+    pub min_positive_weight: T,
     /// `max_j |(c^T A - c^T)_j|` (zero: `F` is invariant).
     pub invariance_defect: T,
+    /// `max_ij |A_ij - (W_ij + c_j / 4)|`: the assembled face block `A` is the
+    /// theorem's `W + 1 c^T / 4` (zero).
+    pub assembly_defect: T,
     /// All weights `>= 0` (exactly for rationals, `>= -CERTIFICATE_TOL` for `f64`).
     pub nonnegative: bool,
     /// Every row sum equals 3/4 (exactly for rationals, to `CERTIFICATE_TOL` for `f64`).
     pub sums_three_quarters: bool,
     /// `c^T A = c^T` (exactly for rationals, to `CERTIFICATE_TOL` for `f64`).
     pub face_point_invariant: bool,
+    /// `A = W + 1 c^T / 4` (exactly for rationals, to `CERTIFICATE_TOL` for `f64`).
+    pub matches_assembly: bool,
 }
 
 impl<T: Scalar> Certificate<T> {
-    /// Whether the certificate proves the 3/4 contraction.
+    /// Whether the certificate proves the 3/4 contraction: non-negative
+    /// weights summing to 3/4 per row, `F` invariant, and the assembled face
+    /// block equal to the one the weights describe.
     pub fn holds(&self) -> bool {
-        self.nonnegative && self.sums_three_quarters && self.face_point_invariant
+        self.nonnegative
+            && self.sums_three_quarters
+            && self.face_point_invariant
+            && self.matches_assembly
     }
     /// The largest `|row sum - 3/4|` as `f64`.
     pub fn max_sum_defect(&self) -> f64 {
@@ -73,7 +90,68 @@ impl<T: Scalar> Certificate<T> {
     }
 }
 
-/// Builds and checks the Theorem 1 certificate (exact for `T = Rational`).
+/// The weights `W` of Theorem 1 from the scheme's parameters (math doc
+/// section 5), independent of the matrix assembly:
+///
+/// * NURDS (and the Catmull-Clark variant, `r_i = 1/2`):
+///   `W_ii = (2 + r_i - r_{i-1}) / 4`, `W_{i,i-1} = r_{i-1} / 4`,
+///   `W_{i,i+1} = (1 - r_i) / 4`, 0 elsewhere;
+/// * original Doo-Sabin **\[derived\]**: `W_ii = (n + 4) / (4n)`,
+///   `W_ij = (2 + 2 cos(2 pi (i - j) / n)) / (4n)`.
+///
+/// Errors for the Catmull-Clark family (no face block) and for an exact
+/// Doo-Sabin valence with an irrational cosine.
+pub fn theorem_weights<T: Scalar>(scheme: &LocalScheme<T>) -> Result<DMatrix<T>> {
+    let n = scheme.valence();
+    match scheme {
+        LocalScheme::DooSabin { .. } => {
+            let den = T::frac(4 * n as i64, 1);
+            let mut w = DMatrix::from_element(n, n, T::zero());
+            for i in 0..n {
+                for j in 0..n {
+                    let k = (i + n - j) % n;
+                    w[(i, j)] = if k == 0 {
+                        T::frac(n as i64 + 4, 1) / den.clone()
+                    } else {
+                        let cos = crate::schemes::doo_sabin::cos_2pi::<T>(k, n).ok_or(
+                            crate::error::Error::InvalidParameter {
+                                name: "valence",
+                                value: n.to_string(),
+                                reason: "original Doo-Sabin weights are irrational for this valence; use f64",
+                            },
+                        )?;
+                        (T::frac(2, 1) + T::frac(2, 1) * cos) / den.clone()
+                    };
+                }
+            }
+            Ok(w)
+        }
+        LocalScheme::Nurds(_) | LocalScheme::CcVariant { .. } => {
+            let ratios = scheme.ratios();
+            let r = ratios.as_slice();
+            let s = ratios.complement();
+            let q = T::frac(1, 4);
+            let mut w = DMatrix::from_element(n, n, T::zero());
+            for i in 0..n {
+                let prev = (i + n - 1) % n;
+                let next = (i + 1) % n;
+                w[(i, i)] = q.clone() * (T::one() + s[prev].clone() + r[i].clone());
+                w[(i, prev)] = w[(i, prev)].clone() + q.clone() * r[prev].clone();
+                w[(i, next)] = w[(i, next)].clone() + q.clone() * s[i].clone();
+            }
+            Ok(w)
+        }
+        _ => Err(crate::error::Error::NotApplicable {
+            scheme: scheme.kind().name(),
+            operation: "the face contraction of Theorem 1 (a Doo-Sabin-family notion)",
+        }),
+    }
+}
+
+/// Builds and checks the Theorem 1 certificate (exact for `T = Rational`):
+/// the weights from the knots by the theorem's formula ([`theorem_weights`]),
+/// the assembled face block and the face weights `c`, checked by
+/// [`certify_face_block`].
 ///
 /// ```
 /// use subdiv_lab::contraction::certificate;
@@ -84,27 +162,78 @@ impl<T: Scalar> Certificate<T> {
 /// let cert = certificate(&LocalScheme::nurds(EdgeRatios::new(r).unwrap())).unwrap();
 /// assert!(cert.holds());
 /// assert_eq!(cert.row_sums[0], Rational::new(3.into(), 4.into()));
+/// // smallest positive weight: r_3 / 4 = 1/80 (the zeros of a quad are structural)
+/// assert_eq!(cert.min_positive_weight, Rational::new(1.into(), 80.into()));
 /// ```
 pub fn certificate<T: Scalar>(scheme: &LocalScheme<T>) -> Result<Certificate<T>> {
+    let w = theorem_weights(scheme)?;
     let a = scheme.face_block()?;
     let c = scheme.face_weights();
+    certify_face_block(&a, &c, w)
+}
+
+/// Checks the Theorem 1 certificate for an arbitrary face block `a` (the
+/// assembled `P'_i = sum_j a_ij P_j`), face-point weights `c` and claimed
+/// weights `w` (math doc section 5):
+///
+/// * `w >= 0`, every row of `w` sums to 3/4;
+/// * `a = w + 1 c^T / 4`, i.e. `P'_i - F = sum_j w_ij (P_j - F)` with `F = c^T P`;
+/// * `c^T a = c^T` (`F` is invariant).
+///
+/// Exact for rationals; to [`CERTIFICATE_TOL`] for `f64`. Errors if the
+/// dimensions disagree.
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use subdiv_lab::contraction::certify_face_block;
+/// // n = 3, uniform knots: w = (I + R)/4 has 1/2 on the diagonal, 1/8 elsewhere
+/// let w = DMatrix::from_fn(3, 3, |i, j| if i == j { 0.5 } else { 0.125 });
+/// let a = w.map(|x| x + 1.0 / 12.0);
+/// let c = vec![1.0 / 3.0; 3];
+/// assert!(certify_face_block(&a, &c, w.clone()).unwrap().holds());
+/// // a negative weight (rows still sum to 3/4) is rejected
+/// let mut bad = w.clone();
+/// bad[(0, 1)] = -0.125;
+/// bad[(0, 0)] = 0.75;
+/// assert!(!certify_face_block(&(bad.map(|x| x + 1.0 / 12.0)), &c, bad).unwrap().nonnegative);
+/// ```
+pub fn certify_face_block<T: Scalar>(
+    a: &DMatrix<T>,
+    c: &[T],
+    w: DMatrix<T>,
+) -> Result<Certificate<T>> {
     let n = a.nrows();
+    if a.ncols() != n || w.nrows() != n || w.ncols() != n || c.len() != n {
+        return Err(crate::error::Error::CountMismatch {
+            what: "Theorem 1 certificate: face block, weights and face-point weights must be n x n, n x n and n",
+            expected: n,
+            got: if c.len() != n { c.len() } else { w.nrows() },
+        });
+    }
     let quarter = T::frac(1, 4);
-    let w = DMatrix::from_fn(n, n, |i, j| {
-        a[(i, j)].clone() - quarter.clone() * c[j].clone()
-    });
     let row_sums: Vec<T> = w
         .row_iter()
         .map(|row| row.iter().cloned().fold(T::zero(), |s, x| s + x))
         .collect();
-    let min_weight = w
-        .iter()
-        .cloned()
-        .fold(None::<T>, |m, x| match m {
-            Some(m) if m <= x => Some(m),
-            _ => Some(x),
-        })
-        .unwrap_or_else(T::zero);
+    let mut min_weight: Option<T> = None;
+    let mut min_positive: Option<T> = None;
+    for x in w.iter() {
+        if min_weight.as_ref().is_none_or(|m| x < m) {
+            min_weight = Some(x.clone());
+        }
+        if *x > T::zero() && min_positive.as_ref().is_none_or(|m| x < m) {
+            min_positive = Some(x.clone());
+        }
+    }
+    let mut assembly_defect = T::zero();
+    for i in 0..n {
+        for j in 0..n {
+            let d = (a[(i, j)].clone() - w[(i, j)].clone() - quarter.clone() * c[j].clone()).abs();
+            if d > assembly_defect {
+                assembly_defect = d;
+            }
+        }
+    }
     let mut invariance_defect = T::zero();
     for j in 0..n {
         let mut s = T::zero() - c[j].clone();
@@ -125,19 +254,24 @@ pub fn certificate<T: Scalar>(scheme: &LocalScheme<T>) -> Result<Certificate<T>>
             T::from_f64_lossless(CERTIFICATE_TOL),
         )
     };
+    let min_weight = min_weight.unwrap_or_else(T::zero);
     let nonnegative = min_weight >= tol_neg;
     let sums_three_quarters = row_sums
         .iter()
         .all(|s| (s.clone() - q.clone()).abs() <= tol);
     let face_point_invariant = invariance_defect <= tol;
+    let matches_assembly = assembly_defect <= tol;
     Ok(Certificate {
         weights: w,
         row_sums,
         min_weight,
+        min_positive_weight: min_positive.unwrap_or_else(T::zero),
         invariance_defect,
+        assembly_defect,
         nonnegative,
         sums_three_quarters,
         face_point_invariant,
+        matches_assembly,
     })
 }
 

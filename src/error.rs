@@ -37,6 +37,18 @@ pub enum Error {
         /// The rejected value, as text.
         value: String,
     },
+    /// An edge ratio that lies strictly inside (0, 1) but rounds to 0 or 1 in
+    /// `f64` (an interval quotient beyond the `f64` range, or a ratio closer
+    /// to 0 or 1 than `f64` resolves).
+    #[error("edge ratio r_{index} = {value} is not representable in f64: it rounds to {rounded}")]
+    RatioNotRepresentable {
+        /// Edge index.
+        index: usize,
+        /// The exact value or the expression it comes from, as text.
+        value: String,
+        /// What `f64` makes of it (`0` or `1`).
+        rounded: &'static str,
+    },
     /// Two lists that must have the same length (or a given length) do not.
     #[error("{what}: expected {expected} values, got {got}")]
     CountMismatch {

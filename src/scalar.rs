@@ -36,6 +36,14 @@ pub trait Scalar:
     /// rounding (every finite `f64` is a dyadic rational). NaN and infinities
     /// map to zero for rationals; callers validate finiteness first.
     fn from_f64_lossless(x: f64) -> Self;
+    /// The edge ratio `r = b / (a + b)` and `s = a / (a + b)` of two positive
+    /// intervals (math doc section 2). Exact for rationals; for `f64` computed
+    /// with unbounded exponents, so `a + b` never overflows (each result is
+    /// accurate to 2 ulps, or rounds to 0 when it lies below the `f64` range).
+    fn edge_ratio(a: &Self, b: &Self) -> (Self, Self) {
+        let sum = a.clone() + b.clone();
+        (b.clone() / sum.clone(), a.clone() / sum)
+    }
     /// Face-point weight kernel (see [`crate::knots::face_weights`]); `f64`
     /// overrides it with an overflow-free extended-exponent evaluation.
     #[doc(hidden)]
@@ -60,6 +68,15 @@ impl Scalar for f64 {
     }
     fn face_weights_kernel(r: &[Self], s: &[Self]) -> Vec<Self> {
         crate::knots::face_weights::f64_kernel(r, s)
+    }
+    fn edge_ratio(a: &Self, b: &Self) -> (Self, Self) {
+        if !(*a > 0.0 && *b > 0.0 && a.is_finite() && b.is_finite()) {
+            // Not an interval pair; the plain formula (callers validate).
+            let sum = a + b;
+            return (b / sum, a / sum);
+        }
+        let (r, s) = crate::knots::face_weights::edge_ratio_ext(*a, *b);
+        (r.to_f64(), s.to_f64())
     }
     fn from_f64_lossless(x: f64) -> Self {
         x
@@ -171,6 +188,38 @@ pub fn parse_exact(text: &str) -> Option<Rational> {
         Rational::new(numer, num_traits::pow(ten, (-scale) as usize))
     };
     Some(value)
+}
+
+/// A rational as text for messages: `a/b` when that is at most 40
+/// characters, otherwise a 7-digit scientific approximation `~d.dddddde[+-]x`
+/// (exact values of `1e400/3`-like inputs are hundreds of digits long).
+///
+/// ```
+/// use subdiv_lab::scalar::{parse_exact, short_text};
+/// assert_eq!(short_text(&parse_exact("13/10").unwrap()), "13/10");
+/// assert_eq!(short_text(&parse_exact("1e400/3").unwrap()), "~3.333333e399");
+/// assert_eq!(short_text(&parse_exact("-3e-400").unwrap()), "~-3.000000e-400");
+/// ```
+pub fn short_text(q: &Rational) -> String {
+    let t = q.to_text();
+    if t.len() <= 40 {
+        return t;
+    }
+    // log10 |q| from the leading digits of numerator and denominator.
+    let log10 = |x: &BigInt| -> f64 {
+        let d = x.abs().to_string();
+        let head: f64 = d[..d.len().min(17)].parse().unwrap_or(1.0);
+        head.log10() + (d.len() - d.len().min(17)) as f64
+    };
+    let l = log10(q.numer()) - log10(q.denom());
+    let mut exp = l.floor();
+    let mut mant = 10f64.powf(l - exp);
+    if mant >= 9.9999995 {
+        mant /= 10.0;
+        exp += 1.0;
+    }
+    let sign = if q.is_negative() { "-" } else { "" };
+    format!("~{sign}{mant:.6}e{exp}")
 }
 
 /// The exact rational value of a finite `f64` (every finite double is a dyadic rational).

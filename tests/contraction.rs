@@ -1,8 +1,11 @@
 //! Theorem 1 (math doc section 5): certificate (exact and f64), measured
 //! contraction, spectral bound.
 
+use nalgebra::DMatrix;
 use proptest::prelude::*;
-use subdiv_lab::contraction::{certificate, measure, MeasureOptions, SplitMix64};
+use subdiv_lab::contraction::{
+    certificate, certify_face_block, measure, theorem_weights, MeasureOptions, SplitMix64,
+};
 use subdiv_lab::knots::EdgeRatios;
 use subdiv_lab::scalar::{Rational, Scalar};
 use subdiv_lab::schemes::LocalScheme;
@@ -64,17 +67,121 @@ fn exact_certificate_for_original_doo_sabin_and_cc_variant() {
     }
 }
 
-#[test]
-fn certificate_detects_a_broken_face_block() {
-    // A face block whose rows still sum to 1 but with a negative weight fails.
+/// A genuine face block of valence 5 (exact), its face weights and the
+/// theorem's weights.
+fn genuine_block() -> (DMatrix<Rational>, Vec<Rational>, DMatrix<Rational>) {
     let mut rng = SplitMix64::new(1);
     let s = LocalScheme::nurds(rational_ratios(&mut rng, 5, 10));
-    let c = certificate(&s).unwrap();
-    assert!(c.holds());
-    let mut w = c.weights.clone();
-    w[(0, 2)] = w[(0, 2)].clone() - Rational::frac(1, 100);
-    w[(0, 0)] = w[(0, 0)].clone() + Rational::frac(1, 100);
-    assert!(w.iter().any(|x| *x < Rational::frac(0, 1)));
+    let w = theorem_weights(&s).unwrap();
+    (s.face_block().unwrap(), s.face_weights(), w)
+}
+
+/// `A = W + 1 c^T / 4`: the block a set of weights describes.
+fn block_of(w: &DMatrix<Rational>, c: &[Rational]) -> DMatrix<Rational> {
+    DMatrix::from_fn(w.nrows(), w.ncols(), |i, j| {
+        w[(i, j)].clone() + Rational::frac(1, 4) * c[j].clone()
+    })
+}
+
+/// Issue #22: broken blocks are passed to the certificate itself, one
+/// defect at a time (each other check still passes, so `holds()` must look
+/// at the broken one).
+#[test]
+fn certificate_detects_a_broken_face_block() {
+    let (a, c, w) = genuine_block();
+    let ok = certify_face_block(&a, &c, w.clone()).unwrap();
+    assert!(ok.holds() && ok.matches_assembly && ok.nonnegative);
+    let eps = Rational::frac(1, 1000);
+    let ratio = c[0].clone() / c[1].clone();
+
+    // A negative weight: rows still sum to 3/4, c^T W unchanged (F invariant).
+    let mut neg = w.clone();
+    neg[(0, 0)] = neg[(0, 0)].clone() + eps.clone();
+    neg[(0, 2)] = neg[(0, 2)].clone() - eps.clone(); // a structural zero for n = 5
+    neg[(1, 0)] = neg[(1, 0)].clone() - eps.clone() * ratio.clone();
+    neg[(1, 2)] = neg[(1, 2)].clone() + eps.clone() * ratio.clone();
+    let cert = certify_face_block(&block_of(&neg, &c), &c, neg).unwrap();
+    assert!(!cert.nonnegative, "{:?}", cert.min_weight);
+    assert!(cert.sums_three_quarters && cert.face_point_invariant && cert.matches_assembly);
+    assert!(!cert.holds());
+
+    // A wrong row sum: W_00 grows, compensated in row 1 so c^T W is unchanged.
+    let mut sum = w.clone();
+    sum[(0, 0)] = sum[(0, 0)].clone() + eps.clone();
+    sum[(1, 0)] = sum[(1, 0)].clone() - eps.clone() * ratio;
+    let cert = certify_face_block(&block_of(&sum, &c), &c, sum).unwrap();
+    assert!(!cert.sums_three_quarters);
+    assert!(cert.nonnegative && cert.face_point_invariant && cert.matches_assembly);
+    assert!(!cert.holds());
+
+    // A face point that is not invariant: uniform c' instead of c (the block
+    // is W + 1 c'^T / 4, consistent with the weights, but c'^T A != c'^T).
+    let uniform = vec![Rational::frac(1, 5); 5];
+    let cert = certify_face_block(&block_of(&w, &uniform), &uniform, w.clone()).unwrap();
+    assert!(!cert.face_point_invariant, "{:?}", cert.invariance_defect);
+    assert!(cert.nonnegative && cert.sums_three_quarters && cert.matches_assembly);
+    assert!(!cert.holds());
+
+    // An assembled block that is not the one the weights describe.
+    let mut off = a.clone();
+    off[(2, 3)] = off[(2, 3)].clone() + eps.clone();
+    off[(2, 2)] = off[(2, 2)].clone() - eps;
+    let cert = certify_face_block(&off, &c, w).unwrap();
+    assert!(!cert.matches_assembly);
+    assert!(!cert.holds());
+
+    // Dimension mismatch is an error, not a panic.
+    assert!(certify_face_block(&a, &c[..4], DMatrix::zeros(5, 5)).is_err());
+}
+
+/// Issue #16 item 14: the weights come from the knots by the theorem's
+/// formula, equal the assembled rows, and the reported minimum is the
+/// smallest positive weight (structural zeros excluded: it used to be 0 for
+/// every n >= 4).
+#[test]
+fn certificate_weights_come_from_the_formula() {
+    let mut rng = SplitMix64::new(9);
+    for n in 3..=9 {
+        let s = LocalScheme::nurds(rational_ratios(&mut rng, n, 97));
+        let cert = certificate(&s).unwrap();
+        assert!(cert.holds() && cert.matches_assembly, "n = {n}");
+        assert_eq!(cert.assembly_defect, Rational::frac(0, 1));
+        let r = s.ratios();
+        let smallest = (0..n)
+            .flat_map(|i| {
+                let prev = (i + n - 1) % n;
+                let (ri, rp) = (r.as_slice()[i].clone(), r.as_slice()[prev].clone());
+                [
+                    Rational::frac(1, 4) * (Rational::frac(2, 1) + ri.clone() - rp.clone()),
+                    Rational::frac(1, 4) * rp,
+                    Rational::frac(1, 4) * (Rational::frac(1, 1) - ri),
+                ]
+            })
+            .min()
+            .unwrap();
+        assert_eq!(cert.min_positive_weight, smallest, "n = {n}");
+        assert!(cert.min_positive_weight > Rational::frac(0, 1));
+        if n >= 4 {
+            assert_eq!(cert.min_weight, Rational::frac(0, 1), "structural zeros");
+        }
+    }
+    // f64: the analysis reports the smallest positive weight.
+    let s = LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.5, 0.3]).unwrap());
+    let c = analyze(&s, &AnalyzeOptions::default())
+        .unwrap()
+        .contraction
+        .unwrap();
+    assert!(
+        (c.certificate_min_weight - 0.1 / 4.0).abs() < 1e-15,
+        "{c:?}"
+    );
+    // Original Doo-Sabin: the derived weights (n + 4)/(4n), (2 + 2 cos)/(4n).
+    let w = theorem_weights(&LocalScheme::<Rational>::doo_sabin(4).unwrap()).unwrap();
+    assert_eq!(w[(0, 0)], Rational::frac(8, 16));
+    assert_eq!(w[(0, 1)], Rational::frac(2, 16));
+    assert_eq!(w[(0, 2)], Rational::frac(0, 1));
+    // The Catmull-Clark family has no face block.
+    assert!(theorem_weights(&LocalScheme::<f64>::catmull_clark(5).unwrap()).is_err());
 }
 
 #[test]

@@ -104,6 +104,112 @@ fn cases() -> Vec<Case> {
         &["analyze", "--ratios", "0.5,1.5,0.5"],
         "1.5",
     )]);
+    // Issue #16 item 1: a mesh interval refinement cannot halve exactly
+    // (5e-324 / 2 rounds to 0) names the edge instead of recursing in frexp.
+    v.extend([
+        bad(
+            "subdivide-interval-not-halvable",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "nurds",
+                "--default-interval",
+                "5e-324",
+                "-o",
+                "x.obj",
+            ],
+            "cannot be halved exactly",
+        ),
+        bad_with(
+            "subdivide-knot-file-interval-not-halvable",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "nurds",
+                "--knots",
+                "k.knots",
+                "-o",
+                "x.obj",
+            ],
+            &[("k.knots", "1 2 1.5e-323\n")],
+            "d(0->1) (OBJ 1->2) = 1.5e-323",
+        ),
+    ]);
+    // Issue #16 item 1: a ratio below the f64 range names the edge ratio.
+    v.extend([bad(
+        "analyze-knots-ratio-below-f64",
+        &["analyze", "--knots", "1e300:1e300,1e300:1e-300,1e300:1e300"],
+        "r_0 = 1e-300 / (1e300 + 1e-300) is not representable in f64",
+    )]);
+    // Issue #16 item 15: values that do not fit in f64 are named as such on
+    // the float path (not "got inf", "got 1.0", or silently 0).
+    v.extend([
+        bad(
+            "analyze-knot-overflows-f64",
+            &["analyze", "--knots", "1e400/3:1,1:1,1:1"],
+            "knot interval p_0 = 1e400/3 is not representable in f64: it overflows",
+        ),
+        bad(
+            "analyze-knot-underflows-f64",
+            &["analyze", "--knots", "1:1,1:1e-400,1:1"],
+            "knot interval q_1 = 1e-400 is not representable in f64: it rounds to 0",
+        ),
+        bad(
+            "analyze-ratio-rounds-to-one",
+            &["analyze", "--ratios", "0.9999999999999999999999,0.5,0.5"],
+            "edge ratio r_0 = 0.9999999999999999999999 is not representable in f64: it rounds to 1",
+        ),
+        bad(
+            "analyze-ratio-rounds-to-one-exact",
+            &[
+                "analyze",
+                "--exact",
+                "--ratios",
+                "0.5,0.9999999999999999999999,0.5",
+            ],
+            "edge ratio r_1 = 0.9999999999999999999999 is not representable in f64",
+        ),
+        bad(
+            "analyze-ratio-rounds-to-zero",
+            &["analyze", "--ratios", "0.5,0.5,1e-400"],
+            "edge ratio r_2 = 1e-400 is not representable in f64: it rounds to 0",
+        ),
+        bad(
+            "analyze-c-rounds-to-zero",
+            &[
+                "analyze",
+                "--scheme",
+                "adjustable-cc",
+                "--valence",
+                "5",
+                "--c",
+                "1e-400",
+            ],
+            "--c = 1e-400 is not representable in f64: it rounds to 0",
+        ),
+        bad(
+            "subdivide-c-rounds-to-zero",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "adjustable-cc",
+                "--c",
+                "1e-400",
+                "-o",
+                "x.obj",
+            ],
+            "--c = 1e-400 is not representable in f64: it rounds to 0",
+        ),
+        // --exact: the ratios are exact, but one below the f64 range is named
+        bad(
+            "analyze-exact-ratio-below-f64",
+            &["analyze", "--exact", "--knots", "1e400/3:1,1:1,1:1"],
+            "edge ratio r_0 = ~3.000000e-400 is not representable in f64: it rounds to 0",
+        ),
+    ]);
     // (end of section knots-and-numerics)
     //
     //

@@ -219,3 +219,166 @@ fn rotation_rotates_weights() {
         assert!((c2[i] - c[(i + 2) % 5]).abs() < 1e-15);
     }
 }
+
+/// Runs the release binary in a fresh scratch directory.
+fn run_bin(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_subdiv-lab"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("subdiv-knots-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn cube() -> String {
+    format!("{}/analysis/meshes/cube.obj", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Issue #16 item 1: `subdivide --knots k.knots --default-interval 1e300`
+/// with `1 3 1e-300` (a ratio of about 1e-600) and `--default-interval
+/// 9e307` (sums overflow) aborted with a stack overflow (exit 134) in
+/// `frexp(0.0)`. Any finite positive intervals are accepted; the output only
+/// depends on ratios, so uniform 9e307 gives exactly the output of uniform 1.
+#[test]
+fn subdivide_takes_extreme_intervals() {
+    let d = scratch("subdivide");
+    std::fs::write(d.join("k.knots"), "1 3 1e-300\n").unwrap();
+    let cube = cube();
+    let out = run_bin(
+        &d,
+        &[
+            "subdivide",
+            &cube,
+            "--scheme",
+            "nurds",
+            "--knots",
+            "k.knots",
+            "--default-interval",
+            "1e300",
+            "-o",
+            "x.obj",
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(d.join("x.obj")).unwrap();
+    assert!(!text.contains("NaN") && !text.contains("inf"));
+    for (big, name) in [
+        ("9e307", "big.obj"),
+        ("1", "one.obj"),
+        ("1.7976931348623157e308", "max.obj"),
+    ] {
+        let out = run_bin(
+            &d,
+            &[
+                "subdivide",
+                &cube,
+                "--scheme",
+                "nurds",
+                "--default-interval",
+                big,
+                "--levels",
+                "2",
+                "-o",
+                name,
+            ],
+        );
+        assert!(
+            out.status.success(),
+            "{big}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let one = std::fs::read(d.join("one.obj")).unwrap();
+    assert_eq!(std::fs::read(d.join("big.obj")).unwrap(), one);
+    assert_eq!(std::fs::read(d.join("max.obj")).unwrap(), one);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Issue #16 items 1 and 15 through the library: interval sums that
+/// overflow give the exact ratios; a ratio below the f64 range names the edge.
+#[test]
+fn ratios_of_extreme_intervals() {
+    let k = CornerIntervals::new(vec![9e307; 4], vec![9e307; 4]).unwrap();
+    assert!(k.ratios().unwrap().is_uniform());
+    let k = CornerIntervals::new(vec![f64::MAX, 1.0, 1.0], vec![1.0, f64::MAX, 1.0]).unwrap();
+    let r = k.ratios().unwrap();
+    // r_0 = q_1 / (p_0 + q_1) = 1/2 exactly with p_0 = q_1 = MAX
+    assert_eq!(r.as_slice()[0], 0.5);
+    let k = CornerIntervals::new(vec![1e300; 3], vec![1.0, 1e-300, 1.0]).unwrap();
+    match k.ratios() {
+        Err(Error::RatioNotRepresentable {
+            index: 0,
+            rounded: "0",
+            value,
+        }) => {
+            assert!(
+                value.contains("1e-300") && value.contains("1e300"),
+                "{value}"
+            )
+        }
+        other => panic!("{other:?}"),
+    }
+    // The exact path: any size, ratios exact, rounded once to f64.
+    let big = subdiv_lab::scalar::parse_exact("1e400/3").unwrap();
+    let kq = CornerIntervals::new(vec![big.clone(); 3], vec![big; 3]).unwrap();
+    let rf = kq.ratios().unwrap().to_f64_checked().unwrap();
+    assert!(rf.is_uniform());
+}
+
+/// Issue #16 item 15 through the CLI: the README promises numbers are read
+/// exactly. Uniform 9e307 knots (which failed with "got 0.0", also with
+/// --exact) and, with --exact, knots of 1e400/3 (which failed with "got inf")
+/// are the uniform configuration.
+#[test]
+fn analyze_reads_extreme_knots() {
+    let d = scratch("analyze");
+    for args in [
+        &[
+            "analyze",
+            "--knots",
+            "9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307",
+        ][..],
+        &[
+            "analyze",
+            "--exact",
+            "--knots",
+            "9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307,9e307:9e307",
+        ][..],
+        &[
+            "analyze",
+            "--exact",
+            "--knots",
+            "1e400/3:1e400/3,1e400/3:1e400/3,1e400/3:1e400/3,1e400/3:1e400/3,1e400/3:1e400/3",
+        ][..],
+    ] {
+        let out = run_bin(&d, args);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(
+            text.contains("subdominant class: standard"),
+            "{args:?}: {text}"
+        );
+        assert!(
+            text.contains("0.5772542486"),
+            "{args:?}: lambda_1 of uniform n = 5: {text}"
+        );
+        if args.contains(&"--exact") {
+            assert!(text.contains("exact: class standard"), "{text}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -731,3 +731,179 @@ fn quad_with_one_opposite_pair_summing_to_one_is_defective() {
         assert_eq!(v.class, Some(ClassName::Standard), "n = {n}: {v:?}");
     }
 }
+
+/// Whether a float verdict is consistent with the exact class: equal, or
+/// indeterminate with the exact class among its two candidates.
+fn float_consistent_with(f: &SubdominantClass, exact: ClassName) -> bool {
+    match f {
+        SubdominantClass::Indeterminate { between, .. } => between.0 == exact || between.1 == exact,
+        other => other.class_name() == Some(exact),
+    }
+}
+
+/// Classifies one exactly-given configuration in floating point (structured
+/// and full path) and exactly; asserts the exact class is `expected` and
+/// that neither float verdict is a definite wrong class. Returns the
+/// structured float verdict's name.
+fn check_float_against_exact(rq: EdgeRatios<Rational>, expected: ClassName) -> &'static str {
+    let rf = rq.to_f64();
+    let label = format!("{:?}", rf.as_slice());
+    let s = LocalScheme::nurds(rf);
+    let f = classify_scheme(&s).unwrap();
+    let a = analyze(&s, &AnalyzeOptions::default()).unwrap();
+    let full = a.subdominant_full.clone().unwrap();
+    let v = exact_verdict(&LocalScheme::nurds(rq), Some(&f)).unwrap();
+    assert_eq!(v.class, Some(expected), "{label}: exact {v:?}");
+    assert!(
+        float_consistent_with(&f.class, expected),
+        "{label}: structured float {:?} vs exact {expected:?}",
+        f.class
+    );
+    assert!(
+        float_consistent_with(&full.class, expected),
+        "{label}: full float {:?} vs exact {expected:?}",
+        full.class
+    );
+    // agrees_with_float is decided exactly when the float verdict is decided
+    assert_eq!(
+        v.agrees_with_float,
+        f.class.class_name().map(|c| c == expected)
+    );
+    // Theorem 1's spectral side: never a false alarm
+    let c = a.contraction.unwrap();
+    assert!(c.spectral_bound_ok, "{label}: {c:?}");
+    f.class.name()
+}
+
+/// Issue #16 item 12: along `r_0 = r_2 = 1/2, r_1 = k/100` every row is
+/// exactly defective (standard at k = 50). Before the fix 12 of the 99 rows
+/// were a definite `not_separated` (a huge first-order radius made the rank
+/// test "zero" and 3/8 "not certainly positive"). Every row is checked.
+#[test]
+fn defective_line_is_never_a_definite_wrong_class() {
+    let q = |a: i64, b: i64| Rational::frac(a, b);
+    let mut counts = std::collections::BTreeMap::new();
+    for k in 1..=99 {
+        let rq = EdgeRatios::new(vec![q(1, 2), q(k, 100), q(1, 2)]).unwrap();
+        let expected = if k == 50 {
+            ClassName::Standard
+        } else {
+            ClassName::Defective
+        };
+        *counts
+            .entry(check_float_against_exact(rq, expected))
+            .or_insert(0) += 1;
+    }
+    assert_eq!(counts.get("standard"), Some(&1), "{counts:?}");
+    assert_eq!(counts.get("not_separated"), None, "{counts:?}");
+    // most rows are certified defective in floating point already
+    assert!(
+        counts.get("defective").copied().unwrap_or(0) >= 80,
+        "{counts:?}"
+    );
+}
+
+/// Issue #22 "rank threshold": several exactly defective families (not one
+/// matrix) guard the defective/standard threshold; exact and float agree or
+/// float says indeterminate (with defective as a candidate).
+#[test]
+fn exactly_defective_families_agree_with_exact() {
+    let q = |a: i64, b: i64| Rational::frac(a, b);
+    let mut defective = 0;
+    let mut total = 0;
+    // n = 3: the line r_0 = r_2 = 1/2 (any r_1 but 1/2) and two isolated
+    // defective points off it (found by sweep, certified exactly), in every
+    // rotation.
+    let triples = [
+        (q(1, 2), q(1, 3)),
+        (q(1, 2), q(77, 100)),
+        (q(1, 2), q(1, 1000)),
+        (q(1, 2), q(999, 1000)),
+        (q(3, 10), q(3, 5)),
+        (q(7, 10), q(2, 5)),
+    ];
+    for (x, y) in triples {
+        for rot in 0..3 {
+            let r = EdgeRatios::new(vec![x.clone(), y.clone(), x.clone()]).unwrap();
+            let name = check_float_against_exact(r.rotated(rot), ClassName::Defective);
+            defective += usize::from(name == "defective");
+            total += 1;
+        }
+    }
+    // n = 4 with r_0 + r_2 = 1 and r_1 + r_3 != 1 (double 1/2, defective), both rotations.
+    for (a, b, d) in [
+        ((75, 100), (95, 100), (78, 100)),
+        ((69, 250), (529, 1000), (37, 50)),
+        ((1, 3), (1, 5), (1, 2)),
+        ((1, 100), (1, 2), (99, 100)),
+        ((999, 1000), (1, 10), (3, 10)),
+    ] {
+        let x = q(a.0, a.1);
+        for rot in 0..4 {
+            let r = EdgeRatios::new(vec![
+                x.clone(),
+                q(b.0, b.1),
+                Rational::frac(1, 1) - x.clone(),
+                q(d.0, d.1),
+            ])
+            .unwrap();
+            let name = check_float_against_exact(r.rotated(rot), ClassName::Defective);
+            defective += usize::from(name == "defective");
+            total += 1;
+        }
+    }
+    // and the tensor-product neighbours (both pairs sum to 1) are standard
+    for (a, b) in [((3, 10), (1, 5)), ((75, 100), (95, 100))] {
+        let (x, y) = (q(a.0, a.1), q(b.0, b.1));
+        let one = Rational::frac(1, 1);
+        let r = EdgeRatios::new(vec![x.clone(), y.clone(), one.clone() - x, one - y]).unwrap();
+        check_float_against_exact(r, ClassName::Standard);
+    }
+    assert!(
+        defective * 2 > total,
+        "{defective} of {total} certified in float"
+    );
+}
+
+/// Issue #16 item 13: at n = 32 with ratios in {1e-9, 1 - 1e-9, 1/2}
+/// `|lambda_1|` lies within rounding of 3/4 (computed 0.7500000000000018
+/// before): never `violated` inside the error radius.
+#[test]
+fn spectral_bound_near_three_quarters_is_not_a_false_alarm() {
+    use subdiv_lab::spectral::BoundCheck;
+    let vals = [1e-9, 1.0 - 1e-9, 0.5];
+    let mut rng = SplitMix64::new(1);
+    let mut near = 0;
+    for _ in 0..12 {
+        let r: Vec<f64> = (0..32)
+            .map(|_| vals[(rng.next_u64() % 3) as usize])
+            .collect();
+        let s = LocalScheme::nurds(EdgeRatios::new(r).unwrap());
+        let a = analyze(&s, &AnalyzeOptions::default()).unwrap();
+        let c = a.contraction.unwrap();
+        assert_ne!(c.spectral_bound_check, BoundCheck::Violated, "{c:?}");
+        assert!(c.spectral_bound_ok);
+        assert!(c.spectral_bound_radius > 0.0);
+        if c.spectral_bound_check == BoundCheck::Indeterminate {
+            near += 1;
+            assert!((c.spectral_bound - 0.75).abs() <= 100.0 * c.spectral_bound_radius);
+        }
+    }
+    assert!(near > 0, "the family comes within rounding of 3/4");
+    // A well-separated bound holds; BoundCheck itself decides all three ways.
+    let s = LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9]).unwrap());
+    let c = analyze(&s, &AnalyzeOptions::default())
+        .unwrap()
+        .contraction
+        .unwrap();
+    assert_eq!(c.spectral_bound_check, BoundCheck::Holds);
+    assert_eq!(
+        BoundCheck::of(0.75 + 1e-9, 1e-15, 0.75),
+        BoundCheck::Violated
+    );
+    assert_eq!(
+        BoundCheck::of(0.75 + 1e-15, 1e-15, 0.75),
+        BoundCheck::Indeterminate
+    );
+    assert_eq!(BoundCheck::of(0.75 - 1e-9, 1e-15, 0.75), BoundCheck::Holds);
+}

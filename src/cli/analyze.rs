@@ -7,7 +7,7 @@ use clap::{Args, ValueEnum};
 use subdiv_lab::charmap;
 use subdiv_lab::contraction::MeasureOptions;
 use subdiv_lab::spectral::{
-    analyze, AnalyzeOptions, LocalAnalysis, SpectrumPath, SubdominantClass,
+    analyze, AnalyzeOptions, BoundCheck, LocalAnalysis, SpectrumPath, SubdominantClass,
 };
 
 #[derive(Args, Debug)]
@@ -241,13 +241,18 @@ fn summary(a: &LocalAnalysis) -> String {
     }
     if let Some(c) = &a.contraction {
         out += &format!(
-        "Theorem 1: certificate {} (weights >= 0: {}, min {:.3e}; row sums 3/4 to {:.1e}); spectral bound |lambda1| = {:.10} {} 3/4\n",
+        "Theorem 1: certificate {} (weights from the knots >= 0: {}, smallest positive {:.3e}; row sums 3/4 to {:.1e}); spectral bound |lambda1| = {} (error radius {:.1e}): {}\n",
         if c.certificate_holds { "holds" } else { "FAILS" },
         c.certificate_nonnegative,
         c.certificate_min_weight,
         c.certificate_sum_defect,
         c.spectral_bound,
-        if c.spectral_bound_ok { "<=" } else { ">" }
+        c.spectral_bound_radius,
+        match c.spectral_bound_check {
+            BoundCheck::Holds => "< 3/4",
+            BoundCheck::Indeterminate => "indeterminate against 3/4 (within its error radius)",
+            BoundCheck::Violated => "> 3/4 (violated)",
+        }
     );
         out += &format!(
         "  measured over {} levels: max per-step ratio {:.6}, fitted rate {:.6} (|lambda1| = {:.6}, bound 0.75)\n",
@@ -273,6 +278,26 @@ fn summary(a: &LocalAnalysis) -> String {
         );
         if let Some(agree) = x.agrees_with_float {
             out += &format!("; agrees with float: {agree}");
+        } else if let (Some(e), SubdominantClass::Indeterminate { between, .. }) =
+            (x.class, &a.subdominant.class)
+        {
+            // The float verdict was indeterminate: the exact class settles it
+            // when it is one of the two candidates.
+            if e == between.0 || e == between.1 {
+                out += &format!(
+                    "; float indeterminate between {} and {}: certified {} exactly",
+                    between.0.as_str(),
+                    between.1.as_str(),
+                    e.as_str()
+                );
+            } else {
+                out += &format!(
+                    "; float indeterminate between {} and {}, exact {} is neither",
+                    between.0.as_str(),
+                    between.1.as_str(),
+                    e.as_str()
+                );
+            }
         }
         out.push('\n');
     }

@@ -38,6 +38,9 @@ pub(crate) struct Resolved {
 }
 
 /// One number from the command line, exactly and as the nearest f64.
+///
+/// The nearest f64 may be infinite or 0 for a finite non-zero number
+/// (`1e400/3`, `1e-400`): see [`float_problem`].
 fn parse_number(what: &str, text: &str) -> CliResult<(Rational, f64)> {
     let t = text.trim();
     match parse_exact(t) {
@@ -54,12 +57,50 @@ fn parse_number(what: &str, text: &str) -> CliResult<(Rational, f64)> {
     }
 }
 
-/// The shape parameter `c`, exactly and as the nearest f64 (range checked by the library).
-fn parse_c(text: &str) -> CliResult<(Rational, f64)> {
+/// Why the nearest f64 `x` of the exact value `q` does not stand for it on
+/// the float path: it overflows, or it rounds to 0 where `q` is not, or (for
+/// a value in the unit range, `unit_range`) to 1 where `q` is not: 0 and 1
+/// are the ends of the ratio and shape-parameter ranges, where a rounded
+/// value changes the configuration. `None` when `x` is usable.
+fn float_problem(q: &Rational, x: f64, unit_range: bool) -> Option<&'static str> {
+    let zero = Rational::from_integer(0.into());
+    let one = Rational::from_integer(1.into());
+    if !x.is_finite() {
+        Some("overflows to infinity")
+    } else if x == 0.0 && *q != zero {
+        Some("rounds to 0")
+    } else if unit_range && x == 1.0 && *q != one {
+        Some("rounds to 1")
+    } else {
+        None
+    }
+}
+
+/// [`float_problem`] as a usage error naming the value.
+fn check_float(
+    what: &str,
+    text: &str,
+    (q, x): (&Rational, f64),
+    unit_range: bool,
+    hint: &str,
+) -> CliResult {
+    match float_problem(q, x, unit_range) {
+        Some(why) => Err(CliError::usage(anyhow!(
+            "{what} = {} is not representable in f64: it {why}{hint}",
+            text.trim()
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// The shape parameter `c`, exactly and as the nearest f64 (range checked by
+/// the library; a value the f64 cannot represent is an error naming it).
+pub(crate) fn parse_c(text: &str) -> CliResult<(Rational, f64)> {
     let t = text.trim();
     let q = parse_exact(t)
         .ok_or_else(|| CliError::usage(anyhow!("--c: {t:?} is not a finite number in [0, 1]")))?;
     let x = t.parse::<f64>().unwrap_or_else(|_| q.to_f64());
+    check_float("--c", t, (&q, x), true, "")?;
     Ok((q, x))
 }
 
@@ -113,12 +154,40 @@ impl SchemeArgs {
                 qf.push(d);
             }
             self.check_count("--knots", pf.len())?;
-            let kf = CornerIntervals::new(pf, qf).map_err(lib_err)?;
-            let kq = CornerIntervals::new(pq, qq).map_err(lib_err)?;
-            (
-                Some(kq.ratios().map_err(lib_err)?),
-                Some(kf.ratios().map_err(lib_err)?),
-            )
+            let kq = CornerIntervals::new(pq.clone(), qq.clone()).map_err(lib_err)?;
+            if exact {
+                // The exact path: ratios computed exactly from the exact
+                // intervals (any size), the float analysis uses their nearest
+                // f64 values (an error names a ratio below the f64 range).
+                let rq = kq.ratios().map_err(lib_err)?;
+                let rf = rq.to_f64_checked().map_err(lib_err)?;
+                (Some(rq), Some(rf))
+            } else {
+                let texts = split_list("--knots", text)?;
+                for (i, item) in texts.iter().enumerate() {
+                    let (p, q) = item.split_once(':').unwrap_or((item, item));
+                    let hint = "; --exact computes the ratios from the exact intervals";
+                    check_float(
+                        &format!("knot interval p_{i}"),
+                        p,
+                        (&pq[i], pf[i]),
+                        false,
+                        hint,
+                    )?;
+                    check_float(
+                        &format!("knot interval q_{i}"),
+                        q,
+                        (&qq[i], qf[i]),
+                        false,
+                        hint,
+                    )?;
+                }
+                let kf = CornerIntervals::new(pf, qf).map_err(lib_err)?;
+                (
+                    Some(kq.ratios().map_err(lib_err)?),
+                    Some(kf.ratios().map_err(lib_err)?),
+                )
+            }
         } else if let Some(text) = &self.ratios {
             let mut vq = Vec::new();
             let mut vf = Vec::new();
@@ -131,6 +200,7 @@ impl SchemeArgs {
                         )))
                     }
                 };
+                check_float(&format!("edge ratio r_{i}"), item, (&a, b), true, "")?;
                 vq.push(a);
                 vf.push(b);
             }

@@ -12,7 +12,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use subdiv_lab::mesh::limit::{level_stats, limit_mesh, LevelStats};
 use subdiv_lab::mesh::refine::{half_edges_after, refine};
-use subdiv_lab::mesh::{knot_file, obj, MAX_HALF_EDGES};
+use subdiv_lab::mesh::{knot_file, obj, MeshError, MAX_HALF_EDGES};
 use subdiv_lab::schemes::SchemeKind;
 
 #[derive(Args, Debug)]
@@ -124,7 +124,7 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     let mut refine_secs = 0.0;
     for level in 1..=args.levels {
         let t = std::time::Instant::now();
-        mesh = refine(&mesh, scheme).map_err(CliError::failure)?;
+        mesh = refine(&mesh, scheme).map_err(refine_error)?;
         refine_secs += t.elapsed().as_secs_f64();
         if args.stats {
             let s = level_stats(&mesh, scheme, level, stats.last());
@@ -148,7 +148,7 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     if let Some(path) = &args.output {
         let mut buf = Vec::new();
         if args.limit {
-            let lm = limit_mesh(&mesh, scheme).map_err(CliError::failure)?;
+            let lm = limit_mesh(&mesh, scheme).map_err(refine_error)?;
             obj::write_obj(&lm, &mut buf).map_err(CliError::failure)?;
         } else {
             obj::write_obj(&mesh, &mut buf).map_err(CliError::failure)?;
@@ -175,6 +175,16 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
         out.write_all(&buf).map_err(CliError::failure)?;
     }
     Ok(())
+}
+
+/// A refinement error: an interval the refinement cannot halve comes from
+/// the input (exit 2); anything else is a failure while running (exit 1).
+fn refine_error(e: MeshError) -> CliError {
+    if matches!(e, MeshError::KnotNotHalvable { .. }) {
+        CliError::usage(e)
+    } else {
+        CliError::failure(e)
+    }
 }
 
 fn print_stats(
@@ -279,10 +289,15 @@ fn run_cc(args: SubdivideArgs, scheme: SchemeKind) -> CliResult {
                 "--scheme adjustable-cc needs --c C in [0, 1]"
             )))
         }
-        (_, Some(t)) => subdiv_lab::scalar::parse_exact(t)
-            .map(|r| subdiv_lab::scalar::Scalar::to_f64(&r))
-            .filter(|x| (0.0..=1.0).contains(x))
-            .ok_or_else(|| CliError::usage(anyhow!("--c: {t:?} is not a number in [0, 1]")))?,
+        (_, Some(t)) => {
+            let (_, x) = super::scheme_args::parse_c(t)?;
+            if !(0.0..=1.0).contains(&x) {
+                return Err(CliError::usage(anyhow!(
+                    "--c: {t:?} is not a number in [0, 1]"
+                )));
+            }
+            x
+        }
     };
     if args.knots.is_some() || args.knots_out.is_some() || args.stats {
         return Err(CliError::usage(anyhow!(

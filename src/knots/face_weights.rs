@@ -78,14 +78,16 @@ pub(crate) struct ExtFloat {
 impl ExtFloat {
     const ONE: ExtFloat = ExtFloat { m: 0.5, e: 1 };
 
-    /// `x > 0`, finite (subnormals are handled).
-    fn new(x: f64) -> Self {
+    /// `x > 0`, finite (subnormals are handled). Callers validate `x`; a zero
+    /// or non-finite `x` gives a value whose mantissa is not in `[0.5, 1)`
+    /// (never a hang or a panic).
+    pub(crate) fn new(x: f64) -> Self {
         debug_assert!(x > 0.0 && x.is_finite());
         let (m, e) = frexp(x);
         ExtFloat { m, e }
     }
 
-    fn mul(self, o: ExtFloat) -> Self {
+    pub(crate) fn mul(self, o: ExtFloat) -> Self {
         let (m, e) = frexp(self.m * o.m);
         ExtFloat {
             m,
@@ -93,7 +95,16 @@ impl ExtFloat {
         }
     }
 
-    fn add(self, o: ExtFloat) -> Self {
+    /// `self / o` (both positive): `m_1 / m_2 in (0.5, 2)`, renormalised.
+    pub(crate) fn div(self, o: ExtFloat) -> Self {
+        let (m, e) = frexp(self.m / o.m);
+        ExtFloat {
+            m,
+            e: e + self.e - o.e,
+        }
+    }
+
+    pub(crate) fn add(self, o: ExtFloat) -> Self {
         let (big, small) = if self.e >= o.e { (self, o) } else { (o, self) };
         let shift = big.e - small.e;
         if shift > 1100 {
@@ -114,6 +125,36 @@ impl ExtFloat {
     fn ratio(self, o: ExtFloat) -> f64 {
         (self.m / o.m) * exp2i(self.e - o.e)
     }
+
+    /// The nearest `f64` (0 below the subnormal range, infinity above `f64::MAX`).
+    ///
+    /// Scales in two steps so that a subnormal result is rounded once.
+    pub(crate) fn to_f64(self) -> f64 {
+        if self.e > 1024 {
+            f64::INFINITY
+        } else if self.e < -1100 {
+            0.0
+        } else if self.e > 1000 {
+            // m 2^(e - 1000) is exact; the product overflows only if the value does.
+            (self.m * exp2i(self.e - 1000)) * exp2i(1000)
+        } else if self.e >= -1021 {
+            self.m * exp2i(self.e)
+        } else {
+            // 2^e = 2^-1000 * 2^(e + 1000), both factors normal; the product
+            // is the only rounding step.
+            (self.m * exp2i(self.e + 1000)) * exp2i(-1000)
+        }
+    }
+}
+
+/// The edge ratio `r = b / (a + b)` and its complement `s = a / (a + b)` of two
+/// finite positive knot intervals, with unbounded exponents: `a + b` never
+/// overflows and `r`, `s` never underflow, whatever `a / b` is (math doc
+/// section 2). Each has a relative error of at most 2 ulps.
+pub(crate) fn edge_ratio_ext(a: f64, b: f64) -> (ExtFloat, ExtFloat) {
+    let (xa, xb) = (ExtFloat::new(a), ExtFloat::new(b));
+    let sum = xa.add(xb);
+    (xb.div(sum), xa.div(sum))
 }
 
 /// `2^k` for any integer `k`, saturating to 0 or infinity.
@@ -130,23 +171,51 @@ fn exp2i(k: i64) -> f64 {
 }
 
 /// `x = m * 2^e` with `m in [0.5, 1)` for finite `x > 0`.
+///
+/// Like C's `frexp`, zero, infinities and NaN come back unchanged with `e = 0`
+/// (callers validate positivity first; this never recurses or loops).
 fn frexp(x: f64) -> (f64, i64) {
+    if x == 0.0 || !x.is_finite() {
+        return (x, 0);
+    }
+    let (x, bias_shift) = if x.abs() < f64::MIN_POSITIVE {
+        // Subnormal: 2^64 times it is normal (x >= 2^-1074), exactly.
+        (x * exp2i(64), 64)
+    } else {
+        (x, 0)
+    };
     let bits = x.to_bits();
     let biased = ((bits >> 52) & 0x7ff) as i64;
-    if biased == 0 {
-        // Subnormal: scale into the normal range first.
-        let (m, e) = frexp(x * exp2i(64));
-        return (m, e - 64);
-    }
     let m = f64::from_bits((bits & !(0x7ffu64 << 52)) | (1022u64 << 52));
-    (m, biased - 1022)
+    (m, biased - 1022 - bias_shift)
 }
 
 /// Closed form with extended exponents; `O(n^2)` operations.
 pub(crate) fn f64_kernel(r: &[f64], s: &[f64]) -> Vec<f64> {
-    let n = r.len();
     let re: Vec<ExtFloat> = r.iter().map(|&x| ExtFloat::new(x)).collect();
     let se: Vec<ExtFloat> = s.iter().map(|&x| ExtFloat::new(x)).collect();
+    ext_kernel(&re, &se)
+}
+
+/// Face weights straight from the knot intervals of each edge, `a_i = p_i`
+/// and `b_i = q_{i+1}` (finite, positive): the ratios are kept with unbounded
+/// exponents ([`edge_ratio_ext`]), so no interval quotient is too extreme.
+/// Also returns the ratios `(r_i, s_i)` rounded to `f64` (a ratio below the
+/// `f64` range rounds to 0; the weights are unaffected).
+pub(crate) fn interval_kernel(a: &[f64], b: &[f64]) -> (Vec<f64>, Vec<(f64, f64)>) {
+    let (re, se): (Vec<ExtFloat>, Vec<ExtFloat>) =
+        a.iter().zip(b).map(|(&x, &y)| edge_ratio_ext(x, y)).unzip();
+    let rs = re
+        .iter()
+        .zip(&se)
+        .map(|(r, s)| (r.to_f64(), s.to_f64()))
+        .collect();
+    (ext_kernel(&re, &se), rs)
+}
+
+/// The closed form over extended-exponent ratios.
+fn ext_kernel(re: &[ExtFloat], se: &[ExtFloat]) -> Vec<f64> {
+    let n = re.len();
     let mut suffix = vec![ExtFloat::ONE; n + 1];
     let mut alpha = Vec::with_capacity(n);
     for j in 0..n {
@@ -224,6 +293,7 @@ mod tests {
     use super::*;
     use crate::knots::CornerIntervals;
     use crate::scalar::{f64_to_rational, Rational};
+    use num_bigint::BigInt;
 
     #[test]
     fn ext_float_basics() {
@@ -231,6 +301,19 @@ mod tests {
             let (m, e) = frexp(x);
             assert!((0.5..1.0).contains(&m));
             assert_eq!(m * exp2i(e.min(1023)) * exp2i((e - 1023).max(0)), x);
+        }
+        // zero and non-finite values come back unchanged, without recursion
+        assert_eq!(frexp(0.0), (0.0, 0));
+        assert!(frexp(f64::NAN).0.is_nan());
+        assert_eq!(frexp(f64::INFINITY), (f64::INFINITY, 0));
+        assert_eq!(frexp(f64::from_bits(1)), (0.5, -1073));
+        for x in [1.0, 3.0e-300, 5e-324, 2.5e-320, 1.7e308, f64::MAX] {
+            let e = ExtFloat::new(x);
+            assert_eq!(e.to_f64(), x);
+            assert_eq!(
+                e.mul(ExtFloat::new(0.5)).mul(ExtFloat::new(2.0)).to_f64(),
+                x
+            );
         }
         let a = ExtFloat::new(3.0).mul(ExtFloat::new(0.25));
         assert_eq!(a.ratio(ExtFloat::ONE), 0.75);
@@ -240,6 +323,44 @@ mod tests {
                 .ratio(ExtFloat::ONE),
             1.75
         );
+    }
+
+    /// Issue #16: intervals whose sums overflow or whose ratios underflow
+    /// `f64` (`1e-300` against `1e300`, `9e307 + 9e307`). The weights come from
+    /// the extended-exponent ratios and match the exact closed form.
+    #[test]
+    fn interval_kernel_takes_any_finite_positive_intervals() {
+        let cases: [(&[f64], &[f64]); 4] = [
+            (&[9e307, 9e307, 9e307, 9e307], &[9e307, 9e307, 9e307, 9e307]),
+            (&[1e300, 1e300, 1e300], &[1e-300, 1e300, 1e300]),
+            (
+                &[f64::MAX, 5e-324, 1.0, 2.0],
+                &[5e-324, f64::MAX, 3.0, 1e-310],
+            ),
+            (&[1e-320, 3e-321, 1e-300], &[7e-322, 1e-320, 2e-310]),
+        ];
+        for (a, b) in cases {
+            let (c, rs) = interval_kernel(a, b);
+            let aq: Vec<Rational> = a.iter().map(|&x| f64_to_rational(x).unwrap()).collect();
+            let bq: Vec<Rational> = b.iter().map(|&x| f64_to_rational(x).unwrap()).collect();
+            let exact = EdgeRatios::<Rational>::from_edge_pairs(&aq, &bq).unwrap();
+            let cq = face_weights(&exact);
+            for (j, (x, y)) in c.iter().zip(&cq).enumerate() {
+                let y = y.to_f64();
+                // a weight below the f64 range rounds to 0 (absolute error < 1e-300)
+                assert!(
+                    (x - y).abs() <= 1e-14 * y.abs() || (x - y).abs() < 1e-300,
+                    "{a:?} {b:?}: c_{j} = {x} vs {y}"
+                );
+            }
+            for (i, (r, s)) in rs.iter().enumerate() {
+                let (rq, sq) = (exact.as_slice()[i].to_f64(), exact.complement()[i].to_f64());
+                // 2 ulps relative, or 2 subnormal steps where the ratio is subnormal
+                let tol = |x: f64| 4.0 * f64::EPSILON * x + 2.0 * f64::from_bits(1);
+                assert!((r - rq).abs() <= tol(rq), "r_{i}: {r:e} vs {rq:e}");
+                assert!((s - sq).abs() <= tol(sq), "s_{i}: {s:e} vs {sq:e}");
+            }
+        }
     }
 
     /// Math doc fact 2: tensor-product quad knots.
@@ -279,31 +400,60 @@ mod tests {
         let k = CornerIntervals::new(p.clone(), q.clone()).unwrap();
         let c = face_weights(&k.ratios().unwrap());
         assert!(c.iter().all(|x| x.is_finite() && *x > 0.0));
-        let kq = CornerIntervals::new(
+        // Exact reference on all 256 corners, from the exact knots. The
+        // rational closed form over ratios takes minutes at n = 256 (every
+        // step reduces huge fractions), so the paper's form over intervals is
+        // used: T_m(j) times the common factor prod_i (p_i + q_{i+1}) is
+        // prod_{i=j}^{j+m-1} q_{i+1} * prod_{i=j+m}^{j+n-1} p_i, and with
+        // every (dyadic) interval scaled by 2^60 to an integer this is exact
+        // integer arithmetic.
+        let kq = CornerIntervals::<Rational>::new(
             p.iter().map(|&x| f64_to_rational(x).unwrap()).collect(),
             q.iter().map(|&x| f64_to_rational(x).unwrap()).collect(),
         )
         .unwrap();
-        // exact reference, on a shorter face to keep the big-integer test fast
-        let _ = kq;
-        let m = 48;
+        let two60 = Rational::from_integer(BigInt::from(1u64 << 60));
+        let int = |x: &Rational| {
+            let y = x * &two60;
+            assert!(y.is_integer(), "{x} is not a multiple of 2^-60");
+            y.to_integer()
+        };
+        let a: Vec<BigInt> = kq.p().iter().map(int).collect();
+        let b: Vec<BigInt> = (0..n).map(|i| int(&kq.q()[(i + 1) % n])).collect();
+        // 2 alpha_j (up to the common factor): w_0 = w_n = 1/2 become 1, the rest 2
+        let mut alpha2 = Vec::with_capacity(n);
+        let mut suffix = vec![BigInt::from(1); n + 1];
+        for j in 0..n {
+            for m in (0..n).rev() {
+                suffix[m] = &suffix[m + 1] * &a[(j + m) % n];
+            }
+            let mut prefix = BigInt::from(1);
+            let mut total = suffix[0].clone();
+            for m in 1..=n {
+                prefix *= &b[(j + m - 1) % n];
+                let term = &prefix * &suffix[m];
+                total += if m == n { term } else { term * 2 };
+            }
+            alpha2.push(total);
+        }
+        let sum: BigInt = alpha2.iter().sum();
+        for (j, (x, al)) in c.iter().zip(alpha2).enumerate() {
+            let y = Rational::new(al, sum.clone()).to_f64();
+            assert!(
+                y > 0.0 && ((x - y) / y).abs() < 1e-12,
+                "c_{j}: {x} vs exact {y}"
+            );
+        }
+        // and the exact rational closed form on a 24-corner face of the same knots
+        let m = 24;
         let k_small = CornerIntervals::new(p[..m].to_vec(), q[..m].to_vec()).unwrap();
-        let kq_small = CornerIntervals::<Rational>::new(
-            p[..m]
-                .iter()
-                .map(|&x| f64_to_rational(x).unwrap())
-                .collect(),
-            q[..m]
-                .iter()
-                .map(|&x| f64_to_rational(x).unwrap())
-                .collect(),
-        )
-        .unwrap();
+        let kq_small =
+            CornerIntervals::<Rational>::new(kq.p()[..m].to_vec(), kq.q()[..m].to_vec()).unwrap();
         let c64 = face_weights(&k_small.ratios().unwrap());
         let cq = face_weights(&kq_small.ratios().unwrap());
-        for (a, b) in c64.iter().zip(&cq) {
-            let b = b.to_f64();
-            assert!(((a - b) / b).abs() < 1e-13, "{a} vs {b}");
+        for (x, y) in c64.iter().zip(&cq) {
+            let y = y.to_f64();
+            assert!(((x - y) / y).abs() < 1e-13, "{x} vs {y}");
         }
         // the large case against GTH
         let g = stationary_distribution(&k.ratios().unwrap());

@@ -122,8 +122,20 @@ impl<T: Scalar> CornerIntervals<T> {
 
     /// Edge ratios `r_i = q_{i+1} / (p_i + q_{i+1})`.
     ///
-    /// Fails only if an interval quotient is so extreme (beyond ~1e300) that a
-    /// ratio rounds to 0 in `f64`.
+    /// Any finite positive intervals are accepted (`a + b` may overflow `f64`:
+    /// the ratios are computed with unbounded exponents). Fails only if a
+    /// ratio itself lies beyond the `f64` range (an interval quotient beyond
+    /// about `1e308`, e.g. `1e-300` against `1e300`):
+    /// [`Error::RatioNotRepresentable`] names the edge.
+    ///
+    /// ```
+    /// use subdiv_lab::knots::CornerIntervals;
+    /// let k = CornerIntervals::new(vec![9e307; 3], vec![9e307; 3]).unwrap();
+    /// assert_eq!(k.ratios().unwrap().as_slice(), &[0.5, 0.5, 0.5]);
+    /// let k = CornerIntervals::new(vec![1e300; 3], vec![1.0, 1e-300, 1.0]).unwrap();
+    /// let e = k.ratios().unwrap_err().to_string();
+    /// assert!(e.contains("r_0") && e.contains("1e-300"), "{e}");
+    /// ```
     pub fn ratios(&self) -> Result<EdgeRatios<T>> {
         let n = self.valence();
         let q_next: Vec<T> = (0..n).map(|i| self.q[(i + 1) % n].clone()).collect();
@@ -176,19 +188,22 @@ impl<T: Scalar> EdgeRatios<T> {
     }
 
     /// Ratios from the two intervals of each edge: `r_i = b_i / (a_i + b_i)`,
-    /// `s_i = a_i / (a_i + b_i)`; both computed directly, so each keeps full
-    /// relative accuracy even when `a_i / b_i` is extreme.
-    fn from_edge_pairs(a: &[T], b: &[T]) -> Result<Self> {
+    /// `s_i = a_i / (a_i + b_i)`; both computed directly ([`Scalar::edge_ratio`]:
+    /// exact for rationals, with unbounded exponents for `f64`), so each keeps
+    /// full relative accuracy even when `a_i / b_i` is extreme and `a_i + b_i`
+    /// overflows. A ratio below the `f64` range is an error naming the edge.
+    pub(crate) fn from_edge_pairs(a: &[T], b: &[T]) -> Result<Self> {
         let mut r = Vec::with_capacity(a.len());
         let mut s = Vec::with_capacity(a.len());
         for (i, (x, y)) in a.iter().zip(b).enumerate() {
-            let sum = x.clone() + y.clone();
-            let ri = y.clone() / sum.clone();
-            let si = x.clone() / sum;
+            let (ri, si) = T::edge_ratio(x, y);
             if !(ri > T::zero() && si > T::zero()) {
-                return Err(Error::InvalidRatio {
+                // Both intervals are finite and positive (validated by the
+                // callers), so the ratio is inside (0, 1): it only rounded.
+                return Err(Error::RatioNotRepresentable {
                     index: i,
-                    value: ri.to_text(),
+                    value: format!("{} / ({} + {})", y.to_text(), x.to_text(), y.to_text()),
+                    rounded: if ri > T::zero() { "1" } else { "0" },
                 });
             }
             r.push(ri);
@@ -294,6 +309,39 @@ impl<T: Scalar> EdgeRatios<T> {
             r: self.r.iter().map(Scalar::to_f64).collect(),
             s: self.s.iter().map(Scalar::to_f64).collect(),
         }
+    }
+}
+
+impl EdgeRatios<crate::scalar::Rational> {
+    /// The nearest `f64` ratios (each `r_i` and `s_i` rounded once), or
+    /// [`Error::RatioNotRepresentable`] naming the first edge whose `r_i` or
+    /// `s_i` lies below the `f64` range (so that it would round to 0 or 1).
+    ///
+    /// ```
+    /// use subdiv_lab::knots::CornerIntervals;
+    /// use subdiv_lab::scalar::parse_exact;
+    /// let big = parse_exact("1e400/3").unwrap();
+    /// let one = parse_exact("1").unwrap();
+    /// // equal huge intervals: ratios 1/2, computed exactly
+    /// let k = CornerIntervals::new(vec![big.clone(); 3], vec![big.clone(); 3]).unwrap();
+    /// assert_eq!(k.ratios().unwrap().to_f64_checked().unwrap().as_slice(), &[0.5; 3]);
+    /// // r_0 = 1 / (1e400/3 + 1) is below the f64 range
+    /// let k = CornerIntervals::new(vec![big, one.clone(), one.clone()], vec![one; 3]).unwrap();
+    /// let e = k.ratios().unwrap().to_f64_checked().unwrap_err().to_string();
+    /// assert!(e.contains("r_0") && e.contains("e-400"), "{e}");
+    /// ```
+    pub fn to_f64_checked(&self) -> Result<EdgeRatios<f64>> {
+        let out = self.to_f64();
+        for (i, (r, s)) in out.r.iter().zip(&out.s).enumerate() {
+            if !(*r > 0.0 && *s > 0.0) {
+                return Err(Error::RatioNotRepresentable {
+                    index: i,
+                    value: crate::scalar::short_text(&self.r[i]),
+                    rounded: if *r > 0.0 { "1" } else { "0" },
+                });
+            }
+        }
+        Ok(out)
     }
 }
 

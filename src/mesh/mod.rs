@@ -221,6 +221,18 @@ pub enum MeshError {
         /// The value, as text.
         value: String,
     },
+    /// A knot interval that refinement cannot halve exactly in `f64` (a
+    /// subnormal interval with an odd last bit, or the smallest subnormal):
+    /// halving it would change the edge ratios or give 0.
+    #[error("knot interval d({u}->{v}) (OBJ {}->{}) = {value} cannot be halved exactly in f64 (refinement halves every interval); scale all intervals up", u + 1, v + 1)]
+    KnotNotHalvable {
+        /// Start vertex.
+        u: usize,
+        /// End vertex.
+        v: usize,
+        /// The value, as text.
+        value: String,
+    },
     /// The refined mesh would exceed the 32-bit index range.
     #[error("the refined mesh would have {half_edges} half-edges, more than the supported {max}")]
     TooLarge {

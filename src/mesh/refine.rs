@@ -40,7 +40,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::{Mesh, MeshError, MAX_HALF_EDGES};
-use crate::knots::face_weights::f64_kernel;
+use crate::knots::face_weights::interval_kernel;
 use crate::schemes::SchemeKind;
 
 /// Per-valence weight tables for original Doo-Sabin, built on demand.
@@ -112,26 +112,55 @@ pub fn face_point(mesh: &Mesh, f: usize, scheme: SchemeKind) -> [f64; 3] {
     out
 }
 
-/// Edge ratios `(r_i, s_i = 1 - r_i)` of the face starting at corner `start`.
-fn face_ratios(mesh: &Mesh, start: usize, n: usize, r: &mut Vec<f64>, s: &mut Vec<f64>) {
+/// Face weights and edge ratios `(r_i, s_i = 1 - r_i)` of the face starting at
+/// corner `start`, from the intervals `p_i` and `q_{i+1}` of each edge with
+/// unbounded exponents ([`interval_kernel`]): any finite positive intervals
+/// are accepted (`p_i + q_{i+1}` may overflow `f64`, `r_i` may lie below it;
+/// such an `r_i` rounds to 0 in the edge point, an error below `1e-308` of
+/// the edge length).
+fn face_ratios(
+    mesh: &Mesh,
+    start: usize,
+    n: usize,
+    r: &mut Vec<f64>,
+    s: &mut Vec<f64>,
+) -> Vec<f64> {
+    let a: Vec<f64> = (0..n).map(|i| mesh.knots[start + i]).collect();
+    let b: Vec<f64> = (0..n)
+        .map(|i| mesh.knots[mesh.rotate(start + (i + 1) % n)])
+        .collect();
+    let (c, rs) = interval_kernel(&a, &b);
     r.clear();
     s.clear();
-    for i in 0..n {
-        let h = start + i;
-        let hn = start + (i + 1) % n;
-        let p_i = mesh.knots[h];
-        let q_next = mesh.knots[mesh.rotate(hn)];
-        let sum = p_i + q_next;
-        r.push(q_next / sum);
-        s.push(p_i / sum);
+    for (ri, si) in rs {
+        r.push(ri);
+        s.push(si);
     }
+    c
 }
 
 /// NURDS face weights of the face starting at corner `start`.
 pub(crate) fn nurds_face_weights(mesh: &Mesh, start: usize, n: usize) -> Vec<f64> {
     let (mut r, mut s) = (Vec::with_capacity(n), Vec::with_capacity(n));
-    face_ratios(mesh, start, n, &mut r, &mut s);
-    f64_kernel(&r, &s)
+    face_ratios(mesh, start, n, &mut r, &mut s)
+}
+
+/// Checks that every knot interval halves exactly (the refined mesh carries
+/// `d / 2`): true for every normal `f64`, and for a subnormal one with an even
+/// last bit. An inexact half would silently change the edge ratios (or give
+/// 0); [`MeshError::KnotNotHalvable`] names the edge instead.
+fn check_halvable(mesh: &Mesh) -> Result<(), MeshError> {
+    for (h, &d) in mesh.knots.iter().enumerate() {
+        let half = 0.5 * d;
+        if !(half > 0.0 && half * 2.0 == d) {
+            return Err(MeshError::KnotNotHalvable {
+                u: mesh.origin(h),
+                v: mesh.target(h),
+                value: format!("{d:?}"),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// One subdivision step of `scheme` (NURDS, original Doo-Sabin or the
@@ -144,6 +173,7 @@ pub fn refine(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
     if !scheme.is_doo_sabin_family() {
         return Err(MeshError::UnsupportedScheme(scheme.name().to_owned()));
     }
+    check_halvable(mesh)?;
     let h_count = mesh.half_edge_count();
     let new_h = 4 * h_count as u64;
     if new_h > MAX_HALF_EDGES {
@@ -184,8 +214,7 @@ pub fn refine(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
                 let nurds = matches!(scheme, SchemeKind::Nurds);
                 let mut fp = [0.0; 3];
                 if nurds {
-                    face_ratios(mesh, start, n, &mut sc.r, &mut sc.s);
-                    let c = f64_kernel(&sc.r, &sc.s);
+                    let c = face_ratios(mesh, start, n, &mut sc.r, &mut sc.s);
                     for (cj, p) in c.iter().zip(&sc.p) {
                         for k in 0..3 {
                             fp[k] += cj * p[k];

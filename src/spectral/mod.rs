@@ -149,13 +149,25 @@ pub struct ContractionSummary {
     pub certificate_sum_defect: f64,
     /// All certificate weights are non-negative.
     pub certificate_nonnegative: bool,
-    /// Smallest certificate weight.
+    /// Smallest *positive* certificate weight (the weights derived from the
+    /// knots by Theorem 1's formula; structural zeros excluded).
     pub certificate_min_weight: f64,
     /// The certificate holds (non-negative, sums 3/4, `F` invariant).
     pub certificate_holds: bool,
     /// Largest non-unit eigenvalue modulus (`|lambda_1|`).
     pub spectral_bound: f64,
-    /// `spectral_bound <= 3/4`.
+    /// Error radius of `spectral_bound`: the classification's radius of
+    /// `lambda_1` (see [`classify`](mod@classify): `max(kappa, 1) eta`), capped
+    /// by the perturbation bound of a defective double eigenvalue
+    /// (`sqrt((||A||_F + 1) eta)` for the face block `A`), plus the distance
+    /// between the reported `|lambda_1|` and the classified one (they come
+    /// from different paths on the full path).
+    pub spectral_bound_radius: f64,
+    /// [`BoundCheck`] of `|lambda_1| <= 3/4` at that radius.
+    pub spectral_bound_check: BoundCheck,
+    /// No certain violation of `|lambda_1| <= 3/4`: `spectral_bound_check`
+    /// is `holds` or `indeterminate` (a value within its error radius of 3/4
+    /// is not a violation; only `violated` makes this false).
     pub spectral_bound_ok: bool,
     /// Fitted asymptotic rate of `max_i |P^k_i - F|`.
     pub measured_rate: f64,
@@ -165,6 +177,52 @@ pub struct ContractionSummary {
     pub measured_distances: Vec<f64>,
     /// Per-step ratios.
     pub measured_ratios: Vec<f64>,
+}
+
+/// A floating-point check of `|lambda_1| <= 3/4` (Theorem 1's spectral side).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BoundCheck {
+    /// `|lambda_1| < 3/4` certainly: `3/4 - |lambda_1| > SEPARATION_FACTOR * radius`.
+    Holds,
+    /// `|lambda_1|` is within `SEPARATION_FACTOR` error radii of 3/4 (or the
+    /// radius is not finite): the computation cannot say on which side it lies.
+    Indeterminate,
+    /// `|lambda_1| > 3/4` certainly: `|lambda_1| - 3/4 > SEPARATION_FACTOR * radius`.
+    Violated,
+}
+
+impl BoundCheck {
+    /// Decides `value <= bound` for a value with error radius `radius`, by
+    /// [`classify::decide`] on `|value - bound|` (the same grey zone as the
+    /// classification).
+    ///
+    /// ```
+    /// use subdiv_lab::spectral::BoundCheck;
+    /// assert_eq!(BoundCheck::of(0.7, 1e-15, 0.75), BoundCheck::Holds);
+    /// assert_eq!(BoundCheck::of(0.7500000000000018, 1e-14, 0.75), BoundCheck::Indeterminate);
+    /// assert_eq!(BoundCheck::of(0.76, 1e-14, 0.75), BoundCheck::Violated);
+    /// assert_eq!(BoundCheck::of(0.7, f64::INFINITY, 0.75), BoundCheck::Indeterminate);
+    /// ```
+    pub fn of(value: f64, radius: f64, bound: f64) -> Self {
+        if value.is_nan() {
+            return BoundCheck::Indeterminate;
+        }
+        match classify::decide((value - bound).abs(), radius) {
+            classify::Decision::NonZero if value < bound => BoundCheck::Holds,
+            classify::Decision::NonZero => BoundCheck::Violated,
+            _ => BoundCheck::Indeterminate,
+        }
+    }
+
+    /// `"holds"`, `"indeterminate"` or `"violated"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            BoundCheck::Holds => "holds",
+            BoundCheck::Indeterminate => "indeterminate",
+            BoundCheck::Violated => "violated",
+        }
+    }
 }
 
 /// Everything `subdiv-lab analyze --json` prints.
@@ -224,6 +282,24 @@ impl LocalAnalysis {
         self.exact = Some(exact::exact_verdict(scheme, Some(&self.subdominant))?);
         Ok(())
     }
+}
+
+/// Error radius of `|lambda_1|` for the spectral-bound check of a
+/// Doo-Sabin-family scheme: the first-order radius `e` of the classification,
+/// capped by the perturbation bound of a defective double eigenvalue (a
+/// Jordan block of size 2, where first-order radii blow up: see
+/// [`classify::equality_limit`]): a backward error `eta` moves its
+/// eigenvalues by about `sqrt(||N|| eta)` with the nilpotent part
+/// `||N|| <= ||A - lambda I|| <= ||A||_F + 1`, so the cap is
+/// `sqrt((||A||_F + 1) eta)` with `eta = BACKWARD_ERROR_FACTOR n eps ||A||_F`
+/// for the face block `A`. (The classification meets no larger Jordan
+/// blocks; a block of size `k` would move by `eta^(1/k)`.)
+fn modulus_radius(scheme: &LocalScheme<f64>, e: f64) -> Result<f64> {
+    let a = scheme.face_block()?;
+    let norm = a.norm();
+    let eta = BACKWARD_ERROR_FACTOR * a.nrows() as f64 * f64::EPSILON * norm;
+    let cap = ((norm + 1.0) * eta).sqrt();
+    Ok(if e.is_nan() { cap } else { e.min(cap) })
 }
 
 /// Error radius `max(kappa, 1) * eta` (0 when `eta = 0`, i.e. the zero matrix,
@@ -345,14 +421,19 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
     let contraction = if scheme.kind().is_doo_sabin_family() {
         let cert = contraction::certificate(scheme)?;
         let measured = contraction::measure(scheme, &options.measure)?;
+        let bound_radius = modulus_radius(scheme, subdominant.radii[1])?
+            + (spectral_bound - subdominant.lambda1.norm()).abs();
+        let bound_check = BoundCheck::of(spectral_bound, bound_radius, 0.75);
         Some(ContractionSummary {
             certificate_sum: cert.row_sums.iter().copied().fold(0.0, f64::max),
             certificate_sum_defect: cert.max_sum_defect(),
             certificate_nonnegative: cert.nonnegative,
-            certificate_min_weight: cert.min_weight,
+            certificate_min_weight: cert.min_positive_weight,
             certificate_holds: cert.holds(),
             spectral_bound,
-            spectral_bound_ok: spectral_bound <= 0.75,
+            spectral_bound_radius: bound_radius,
+            spectral_bound_check: bound_check,
+            spectral_bound_ok: bound_check != BoundCheck::Violated,
             measured_rate: measured.fitted_rate,
             measured_max_ratio: measured.max_ratio,
             measured_distances: measured.distances,
