@@ -63,6 +63,14 @@ pub(crate) fn check_distinct(outputs: &[(&str, &Path)], inputs: &[(&str, &Path)]
         .filter(|(_, p)| p.as_os_str() != "-")
         .collect();
     for (i, (flag, p)) in outputs.iter().enumerate() {
+        let dir = parent_dir(p);
+        if !dir.is_dir() {
+            return Err(CliError::usage(anyhow!(
+                "{flag} {}: directory {} does not exist",
+                p.display(),
+                dir.display()
+            )));
+        }
         if p.is_dir() {
             return Err(CliError::usage(anyhow!(
                 "{flag} {} is a directory; give a file path",
@@ -81,7 +89,7 @@ pub(crate) fn check_distinct(outputs: &[(&str, &Path)], inputs: &[(&str, &Path)]
         for (flag2, q) in inputs {
             if same_target(p, q) {
                 return Err(CliError::usage(anyhow!(
-                    "{flag} {} is the input file {flag2} {}; write the output elsewhere",
+                    "{flag} {} is also {flag2} {}; write the output elsewhere",
                     p.display(),
                     q.display()
                 )));

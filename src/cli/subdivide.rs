@@ -66,7 +66,7 @@ fn check_outputs(args: &SubdivideArgs) -> CliResult {
     if let Some(p) = &args.knots_out {
         outputs.push(("--knots-out", p.as_path()));
     }
-    let mut inputs = vec![("input", args.input.as_path())];
+    let mut inputs = vec![("the input", args.input.as_path())];
     if let Some(p) = &args.knots {
         inputs.push(("--knots", p.as_path()));
     }
