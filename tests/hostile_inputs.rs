@@ -169,6 +169,20 @@ fn cases() -> Vec<Case> {
             "full-subdivide-stdout",
             &["subdivide", "{M}/cube.obj", "--scheme", "nurds", "-o", "-"],
         ),
+        // Stats to a full stdout with -o: exit 1 and no x.obj left behind
+        // (outputs are staged and renamed only after stdout succeeded).
+        full(
+            "full-subdivide-stats-with-output-file",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "nurds",
+                "--stats",
+                "-o",
+                "x.obj",
+            ],
+        ),
         full(
             "full-subdivide-cc-stdout",
             &[
