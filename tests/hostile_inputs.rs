@@ -231,7 +231,7 @@ fn cases() -> Vec<Case> {
                 "--valence",
                 "5",
             ],
-            "catmull-clark",
+            "--exact is not available for --scheme catmull-clark",
         ),
         bad(
             "face-block-catmull-clark",

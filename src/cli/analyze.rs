@@ -59,7 +59,15 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     };
     let mut result = analyze(&resolved.f64, &options).map_err(CliError::lib)?;
     if let Some(exact) = &resolved.exact {
-        result.add_exact(exact).map_err(CliError::lib)?;
+        result
+            .add_exact(exact)
+            .map_err(|e| match CliError::lib(e) {
+                usage @ CliError::Usage(_) => usage.context(format!(
+                    "--exact is not available for --scheme {}",
+                    args.scheme.scheme
+                )),
+                failure => failure,
+            })?;
     }
     // Characteristic map (math doc section 7); a numerical failure there is
     // reported inside the "charmap" object, not as a failure of the analysis.

@@ -81,6 +81,13 @@ impl CliError {
     pub(crate) fn report(e: subdiv_lab::report::ReportError) -> Self {
         CliError::lib(Box::new(e))
     }
+    /// The same error (same exit code) with `context` in front of its message.
+    pub(crate) fn context(self, context: impl std::fmt::Display + Send + Sync + 'static) -> Self {
+        match self {
+            CliError::Usage(e) => CliError::Usage(e.context(context)),
+            CliError::Failure(e) => CliError::Failure(e.context(context)),
+        }
+    }
     /// A failed write to standard output (exit 1).
     pub(crate) fn stdout(e: std::io::Error) -> Self {
         CliError::Failure(anyhow::anyhow!("cannot write to stdout: {e}"))

@@ -207,10 +207,7 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
     } else {
         generate(&spec, &run, &NoProgress)
     }
-    .map_err(|e| match CliError::report(e) {
-        CliError::Usage(e) => CliError::Usage(e.context(spec_name.clone())),
-        CliError::Failure(e) => CliError::Failure(e.context(spec_name.clone())),
-    })?;
+    .map_err(|e| CliError::report(e).context(spec_name.clone()))?;
     match target {
         Target::New => write_new_dir(&out, &report.files)?,
         Target::Existing { previous } => write_into_dir(&out, &report.files, &previous)?,
