@@ -32,15 +32,17 @@ fn watch(p: &Path) {
 
 fn main() {
     let dir = PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").unwrap_or_else(|| ".".into()));
-    // Rebuild the value when the checked-out commit or the tracked files change.
+    // Recompute when the checked-out commit or the sources change (a source
+    // edit rebuilds the crate anyway; `-dirty` follows it).
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=src");
     println!("cargo:rerun-if-changed=Cargo.toml");
     println!("cargo:rerun-if-changed=analysis/default.toml");
     if let Some(git_dir) = git(&dir, &["rev-parse", "--absolute-git-dir"]) {
         let git_dir = PathBuf::from(git_dir);
+        // HEAD and the branch ref (a commit or checkout); not the index, so a
+        // mere `git add` does not rebuild the crate.
         watch(&git_dir.join("HEAD"));
-        watch(&git_dir.join("index"));
         if let Some(common) = git(&dir, &["rev-parse", "--git-common-dir"]) {
             let common = dir.join(common);
             watch(&common.join("packed-refs"));
