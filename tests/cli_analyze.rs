@@ -88,8 +88,8 @@ fn bad_input_is_a_usage_error() {
         assert_eq!(code, 2, "{args:?}: {err}");
         assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
     }
-    // Valid input that the exact mode cannot represent (irrational weights),
-    // as for `matrix --exact`: a failure (exit 1) with a one-line message.
+    // Input that the exact mode cannot represent (irrational weights): an
+    // input error (exit 2, issue #16 item 7) with a one-line message.
     let (code, _, err) = run(&[
         "analyze",
         "--scheme",
@@ -98,7 +98,7 @@ fn bad_input_is_a_usage_error() {
         "5",
         "--exact",
     ]);
-    assert_eq!(code, 1, "{err}");
+    assert_eq!(code, 2, "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("irrational"), "{err}");
 }

@@ -224,6 +224,332 @@ fn cases() -> Vec<Case> {
         &["analyze", "--scheme", "bogus", "--valence", "4"],
         "bogus",
     )]);
+    // A write error on stdout (/dev/full) is exit 1 with one line naming
+    // stdout, never a panic (issue #16, item 3).
+    v.extend([
+        full("full-analyze", &["analyze", "--uniform", "--valence", "3"]),
+        full(
+            "full-analyze-json",
+            &["analyze", "--uniform", "--valence", "3", "--json"],
+        ),
+        full("full-matrix", &["matrix", "--uniform", "--valence", "3"]),
+        full(
+            "full-matrix-exact-csv",
+            &[
+                "matrix",
+                "--uniform",
+                "--valence",
+                "4",
+                "--exact",
+                "--format",
+                "csv",
+            ],
+        ),
+        full(
+            "full-cc-study-intervals",
+            &["cc-study", "--n-min", "3", "--n-max", "3", "--samples", "2"],
+        ),
+        full(
+            "full-cc-study-curves",
+            &[
+                "cc-study",
+                "--n-min",
+                "3",
+                "--n-max",
+                "3",
+                "--samples",
+                "2",
+                "--curves",
+            ],
+        ),
+        full(
+            "full-ccss-bound",
+            &["ccss-bound", "--valence", "3", "--levels", "1"],
+        ),
+        full(
+            "full-ccss-bound-json",
+            &["ccss-bound", "--valence", "3", "--levels", "1", "--json"],
+        ),
+        full("full-help", &["--help"]),
+        full(
+            "full-subdivide-stdout",
+            &["subdivide", "{M}/cube.obj", "--scheme", "nurds", "-o", "-"],
+        ),
+        // Stats to a full stdout with -o: exit 1 and no x.obj left behind
+        // (outputs are staged and renamed only after stdout succeeded).
+        full(
+            "full-subdivide-stats-with-output-file",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "nurds",
+                "--stats",
+                "-o",
+                "x.obj",
+            ],
+        ),
+        full(
+            "full-subdivide-cc-stdout",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "catmull-clark",
+                "-o",
+                "-",
+            ],
+        ),
+    ]);
+    // Input errors are exit 2 everywhere (item 7).
+    v.extend([
+        bad(
+            "exact-doo-sabin-irrational-valence",
+            &[
+                "analyze",
+                "--exact",
+                "--scheme",
+                "doo-sabin",
+                "--valence",
+                "5",
+            ],
+            "valence = 5",
+        ),
+        bad(
+            "exact-matrix-doo-sabin-irrational-valence",
+            &[
+                "matrix",
+                "--exact",
+                "--scheme",
+                "doo-sabin",
+                "--valence",
+                "5",
+            ],
+            "valence = 5",
+        ),
+        bad(
+            "exact-catmull-clark",
+            &[
+                "analyze",
+                "--exact",
+                "--scheme",
+                "catmull-clark",
+                "--valence",
+                "5",
+            ],
+            "--exact is not available for --scheme catmull-clark",
+        ),
+        bad(
+            "face-block-catmull-clark",
+            &[
+                "matrix",
+                "--scheme",
+                "catmull-clark",
+                "--valence",
+                "5",
+                "--block",
+                "face",
+            ],
+            "catmull-clark",
+        ),
+        bad(
+            "cc-limit-of-non-quad-mesh",
+            &[
+                "subdivide",
+                "{M}/tetrahedron.obj",
+                "--scheme",
+                "catmull-clark",
+                "--levels",
+                "0",
+                "--limit",
+                "-o",
+                "out.obj",
+            ],
+            "all-quad",
+        ),
+    ]);
+    // Messages name the problem on one line (item 8); clap's errors too.
+    v.extend([
+        bad(
+            "ccss-bound-epsilon-without-net",
+            &["ccss-bound", "--valence", "5", "--epsilon", "0.01"],
+            "--net",
+        ),
+        bad("no-command", &[], "no command given"),
+        bad("unknown-flag", &["analyze", "--bogus-flag"], "--bogus-flag"),
+        bad(
+            "valence-not-a-number",
+            &["analyze", "--uniform", "--valence", "three"],
+            "three",
+        ),
+        bad(
+            "unknown-command",
+            &["analyse", "--uniform", "--valence", "3"],
+            "analyse",
+        ),
+        bad_with(
+            "sweep-count-not-an-integer",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[(
+                "s.toml",
+                "name = \"x\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"random\"\ncount = 5.5\nseed = 1\n",
+            )],
+            "sampler.count: invalid type: floating point `5.5`, expected i64 (line 9)",
+        ),
+        bad_with(
+            "sweep-missing-sampler",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[(
+                "s.toml",
+                "name = \"x\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n",
+            )],
+            "sampler: missing [sampler] table",
+        ),
+        bad_with(
+            "sweep-missing-key-in-table",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[(
+                "s.toml",
+                "name = \"x\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"random\"\ncount = 5\n",
+            )],
+            "space.kind: missing (required key) (line 4)",
+        ),
+        bad_with(
+            "report-spec-float-valence",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme = \"nurds\", valence = 4.5 }]\n",
+            )],
+            "line 4, column 42: figure[0].configs[0].valence",
+        ),
+        bad_with(
+            "report-spec-missing-kind",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nid = \"a\"\n")],
+            "figure[0].kind: missing",
+        ),
+    ]);
+    // `report --out`: never delete or rename a file the tool did not create
+    // (item 2). Refusals come before any work and touch nothing.
+    v.extend([
+        bad_with(
+            "report-out-foreign-nonempty-dir",
+            &["report", "d/s.toml", "--out", "d"],
+            &[
+                ("d/keep.txt", "x\n"),
+                (
+                    "d/s.toml",
+                    "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme = \"cc-variant\", valence = 4 }]\n",
+                ),
+            ],
+            "--out d is not empty",
+        ),
+        bad_with(
+            "report-out-foreign-dir-force",
+            &["report", "--out", "d", "--force"],
+            &[("d/keep.txt", "x\n")],
+            "holds no previous subdiv-lab report",
+        ),
+        bad_with(
+            "report-out-is-a-file",
+            &["report", "--out", "f"],
+            &[("f", "user data\n")],
+            "--out f exists and is not a directory",
+        ),
+        bad_with(
+            "report-out-previous-report-without-force",
+            &["report", "--out", "r"],
+            &[
+                (
+                    "r/manifest.json",
+                    "{\"tool\": \"subdiv-lab\", \"files\": [\"index.html\", \"manifest.json\"]}",
+                ),
+                ("r/index.html", "<html></html>\n"),
+            ],
+            "pass --force",
+        ),
+        bad_with(
+            "report-out-foreign-manifest",
+            &["report", "--out", "r", "--force"],
+            &[("r/manifest.json", "{\"tool\": \"other\"}")],
+            "holds no previous subdiv-lab report",
+        ),
+    ]);
+    // Conflicting outputs are refused before anything is written (item 9).
+    v.extend([
+        bad(
+            "subdivide-same-output-twice",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "nurds",
+                "-o",
+                "x",
+                "--knots-out",
+                "x",
+            ],
+            "name the same file",
+        ),
+        bad_with(
+            "subdivide-same-output-twice-spelled-differently",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "nurds",
+                "-o",
+                "x",
+                "--knots-out",
+                "./sub/../x",
+            ],
+            &[("sub/keep.txt", "x\n")],
+            "name the same file",
+        ),
+        bad_with(
+            "subdivide-output-is-input",
+            &["subdivide", "m.obj", "--scheme", "nurds", "-o", "./m.obj"],
+            &[(
+                "m.obj",
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n",
+            )],
+            "is also the input",
+        ),
+        bad_with(
+            "subdivide-knots-out-is-knots-input",
+            &[
+                "subdivide",
+                "{M}/tetrahedron.obj",
+                "--scheme",
+                "nurds",
+                "--knots",
+                "k.txt",
+                "--knots-out",
+                "k.txt",
+            ],
+            &[("k.txt", "1 2 1.5\n")],
+            "is also --knots",
+        ),
+        bad_with(
+            "subdivide-output-is-a-directory",
+            &["subdivide", "{M}/cube.obj", "--scheme", "nurds", "-o", "d"],
+            &[("d/keep.txt", "x\n")],
+            "is a directory",
+        ),
+        bad(
+            "subdivide-output-dir-missing",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "nurds",
+                "-o",
+                "nodir/x.obj",
+            ],
+            "nodir",
+        ),
+    ]);
     // (end of section cli-io)
     //
     //

@@ -141,7 +141,9 @@ fn errors_leave_no_output() {
         "--knots-out",
         s(&kout),
     ]);
-    assert_eq!(code, 1, "{stderr}");
+    // Refused before anything is written (exit 2, the directory named).
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("does not exist"), "{stderr}");
     assert!(
         !kout.exists(),
         "no partial output when one of two writes fails"

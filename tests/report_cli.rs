@@ -211,20 +211,229 @@ fn small_spec_writes_complete_report() {
     );
 }
 
+const TINY_SPEC: &str = "name = \"t\"\n[[figure]]\nkind = \"table\"\nid = \"a\"\nconfigs = [{ scheme = \"cc-variant\", valence = 4 }]\n";
+
+/// Every file under `dir` (relative path -> contents).
+fn tree(dir: &Path) -> std::collections::BTreeMap<PathBuf, Vec<u8>> {
+    let mut out = std::collections::BTreeMap::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                out.insert(
+                    p.strip_prefix(dir).unwrap().to_path_buf(),
+                    std::fs::read(&p).unwrap(),
+                );
+            }
+        }
+    }
+    out
+}
+
+fn run_in(cwd: &Path, args: &[&str]) -> std::process::Output {
+    bin().args(args).current_dir(cwd).output().unwrap()
+}
+
+fn stderr_line(o: &std::process::Output) -> String {
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(err.trim().lines().count(), 1, "one stderr line: {err:?}");
+    err
+}
+
+/// Issue #16 item 2: `--out` naming a directory with the user's files (the
+/// spec among them) is refused with exit 2 and nothing is touched.
 #[test]
-fn rerun_replaces_existing_report() {
+fn out_dir_with_foreign_files_is_refused_and_untouched() {
     let tmp = tempfile::tempdir().unwrap();
-    let spec = write_spec(
-        tmp.path(),
-        "name = \"t\"\n[[figure]]\nkind = \"table\"\nid = \"a\"\nconfigs = [{ scheme = \"cc-variant\", valence = 4 }]\n",
-    );
+    let d = tmp.path().join("d");
+    std::fs::create_dir(&d).unwrap();
+    std::fs::write(d.join("keep.txt"), "x\n").unwrap();
+    std::fs::copy(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/analysis/default.toml"),
+        d.join("s.toml"),
+    )
+    .unwrap();
+    let before = tree(tmp.path());
+    for force in [false, true] {
+        let mut args = vec!["report", "d/s.toml", "--out", "d", "--quiet"];
+        if force {
+            args.push("--force");
+        }
+        let o = run_in(tmp.path(), &args);
+        assert_eq!(o.status.code(), Some(2), "--force {force}");
+        let err = stderr_line(&o);
+        assert!(
+            err.contains("--out d") && err.contains("not empty"),
+            "{err}"
+        );
+        assert_eq!(tree(tmp.path()), before, "--force {force}: files touched");
+    }
+}
+
+/// Item 2: `--out` naming an existing regular file is exit 2, the file untouched.
+#[test]
+fn out_naming_a_file_is_refused_and_untouched() {
+    let tmp = tempfile::tempdir().unwrap();
+    write_spec(tmp.path(), TINY_SPEC);
+    std::fs::write(tmp.path().join("f"), "user data\n").unwrap();
+    let before = tree(tmp.path());
+    for force in [false, true] {
+        let mut args = vec!["report", "spec.toml", "--out", "f", "--quiet"];
+        if force {
+            args.push("--force");
+        }
+        let o = run_in(tmp.path(), &args);
+        assert_eq!(o.status.code(), Some(2), "--force {force}");
+        assert!(stderr_line(&o).contains("not a directory"));
+        assert_eq!(tree(tmp.path()), before, "--force {force}: files touched");
+    }
+}
+
+/// Item 2: a previous report is replaced only with --force, and then only the
+/// files its manifest lists: the user's files in the directory survive, stale
+/// outputs of the old report are removed, no temporaries remain.
+#[test]
+fn force_replaces_only_the_previous_reports_files() {
+    let tmp = tempfile::tempdir().unwrap();
+    let spec = write_spec(tmp.path(), TINY_SPEC);
     let out = tmp.path().join("out");
+    // An existing empty directory is filled without --force.
     std::fs::create_dir(&out).unwrap();
-    std::fs::write(out.join("stale.txt"), "old").unwrap();
     let o = run_report(&spec, &out);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(!out.join("stale.txt").exists());
     assert!(out.join("a.csv").exists());
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+
+    // Without --force: exit 2, nothing touched.
+    let before = tree(tmp.path());
+    let o = run_report(&spec, &out);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr_line(&o).contains("--force"));
+    assert_eq!(tree(tmp.path()), before);
+
+    // With --force and a spec whose figure has another id: a.csv (listed by
+    // the old manifest) goes, b.csv comes, notes.txt stays.
+    let spec2 = tmp.path().join("spec2.toml");
+    std::fs::write(&spec2, TINY_SPEC.replace("id = \"a\"", "id = \"b\"")).unwrap();
+    let o = bin()
+        .args([
+            "report",
+            spec2.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--force",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let names: BTreeSet<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    let expected: BTreeSet<String> = [
+        "b.csv",
+        "b-eigenvalues.csv",
+        "index.html",
+        "manifest.json",
+        "notes.txt",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    assert_eq!(names, expected);
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "mine"
+    );
+    let manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("manifest.json")).unwrap()).unwrap();
+    let listed: BTreeSet<&str> = manifest["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        listed,
+        ["b.csv", "b-eigenvalues.csv", "index.html", "manifest.json"]
+            .into_iter()
+            .collect()
+    );
+    // No temporaries beside or inside the output.
+    let siblings = std::fs::read_dir(tmp.path()).unwrap().count();
+    assert_eq!(siblings, 3, "spec.toml, spec2.toml, out");
+
+    // A user's file with the name of a new output is never overwritten, even
+    // with --force: exit 2, nothing touched.
+    std::fs::write(out.join("a.csv"), "user's a.csv").unwrap();
+    let before = tree(tmp.path());
+    let o = bin()
+        .args([
+            "report",
+            spec.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--force",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr_line(&o).contains("a.csv"));
+    assert_eq!(tree(tmp.path()), before);
+}
+
+/// Item 17: the default report works from any directory (the spec is built
+/// into the binary; its meshes are generated in code) and records the
+/// version and the build-time git revision.
+#[test]
+fn default_report_runs_from_another_directory() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = run_in(tmp.path(), &["report", "--out", "r", "--quiet"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(tmp.path().join("r/manifest.json")).unwrap())
+            .unwrap();
+    assert_eq!(manifest["name"], "default");
+    assert_eq!(manifest["spec_builtin"], true);
+    assert_eq!(manifest["version"], env!("CARGO_PKG_VERSION"));
+    assert_eq!(
+        manifest["spec"].as_str().unwrap(),
+        std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/analysis/default.toml"
+        ))
+        .unwrap()
+    );
+    // Built from a git checkout (as the tests are), the revision is known.
+    let head = Command::new("git")
+        .args(["rev-parse", "--short=12", "HEAD"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_owned());
+    if let Some(head) = head {
+        let rev = manifest["git_revision"].as_str().unwrap_or("null");
+        assert!(
+            rev.starts_with(&head),
+            "manifest revision {rev}, HEAD {head}"
+        );
+    }
+    let html = std::fs::read_to_string(tmp.path().join("r/index.html")).unwrap();
+    assert!(
+        html.contains("built in"),
+        "index.html names the built-in spec"
+    );
+    let files = manifest["files"].as_array().unwrap();
+    assert_eq!(
+        files.len(),
+        std::fs::read_dir(tmp.path().join("r")).unwrap().count()
+    );
 }
 
 /// (spec text, substrings the error must contain).

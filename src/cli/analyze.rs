@@ -2,7 +2,7 @@
 //! characteristic-map verdict for one configuration.
 
 use super::scheme_args::SchemeArgs;
-use super::{CliError, CliResult};
+use super::{write_stdout, CliError, CliResult};
 use clap::{Args, ValueEnum};
 use subdiv_lab::charmap;
 use subdiv_lab::contraction::MeasureOptions;
@@ -57,9 +57,17 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
             ..MeasureOptions::default()
         },
     };
-    let mut result = analyze(&resolved.f64, &options).map_err(CliError::failure)?;
+    let mut result = analyze(&resolved.f64, &options).map_err(CliError::lib)?;
     if let Some(exact) = &resolved.exact {
-        result.add_exact(exact).map_err(CliError::failure)?;
+        result
+            .add_exact(exact)
+            .map_err(|e| match CliError::lib(e) {
+                usage @ CliError::Usage(_) => usage.context(format!(
+                    "--exact is not available for --scheme {}",
+                    args.scheme.scheme
+                )),
+                failure => failure,
+            })?;
     }
     // Characteristic map (math doc section 7); a numerical failure there is
     // reported inside the "charmap" object, not as a failure of the analysis.
@@ -69,16 +77,17 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         if let serde_json::Value::Object(map) = &mut value {
             map.insert("charmap".to_owned(), charmap_json(&charmap));
         }
-        let text = serde_json::to_string_pretty(&value).map_err(CliError::failure)?;
-        println!("{text}");
+        let text = serde_json::to_string_pretty(&value).map_err(CliError::failure)? + "\n";
+        write_stdout(text.as_bytes())?;
     } else {
-        print!("{}", summary(&result));
+        let mut text = summary(&result);
         // which certificate the coefficients belong to (charmap::check_classified's choice)
         let cone = resolved.f64.shape_parameter().is_some_and(|c| {
             charmap::catmull_clark::Certificate::for_c(c)
                 == charmap::catmull_clark::Certificate::Cone
         });
-        print!("{}", charmap_summary(&charmap, cone));
+        text += &charmap_summary(&charmap, cone);
+        write_stdout(text.as_bytes())?;
     }
     Ok(())
 }

@@ -6,6 +6,7 @@
 use super::{CliError, CliResult};
 use anyhow::anyhow;
 use clap::Args;
+use std::io::Write as _;
 use subdiv_lab::cc_study::{intervals, study_curve, Criterion};
 
 #[derive(Args, Debug)]
@@ -50,13 +51,20 @@ pub(crate) fn run(args: CcStudyArgs) -> CliResult {
             "need 1 <= --samples <= 100000 and 0 < --tol < 1"
         )));
     }
+    // Rows are written as they are computed (the intervals take a while per
+    // valence); a write error on stdout is a failure (exit 1), not a panic.
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::new(stdout.lock());
     if args.curves {
-        println!(
+        writeln!(
+            out,
             "n,c,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,class,fourier_subdominant,charmap"
-        );
+        )
+        .map_err(CliError::stdout)?;
         for n in args.n_min..=args.n_max {
-            for p in study_curve(n, args.samples).map_err(CliError::failure)? {
-                println!(
+            for p in study_curve(n, args.samples).map_err(CliError::lib)? {
+                writeln!(
+                    out,
                     "{},{},{:e},{:e},{:e},{:e},{:e},{},{:e},{}",
                     n,
                     p.c,
@@ -68,7 +76,8 @@ pub(crate) fn run(args: CcStudyArgs) -> CliResult {
                     p.class,
                     p.fourier_subdominant,
                     p.charmap
-                );
+                )
+                .map_err(CliError::stdout)?;
             }
         }
     } else {
@@ -76,16 +85,25 @@ pub(crate) fn run(args: CcStudyArgs) -> CliResult {
             CriterionArg::C1 => Criterion::C1,
             CriterionArg::Standard => Criterion::Standard,
         };
-        println!("n,interval,c_lo,c_hi,c_lo_outside,c_hi_outside,below,above");
+        writeln!(
+            out,
+            "n,interval,c_lo,c_hi,c_lo_outside,c_hi_outside,below,above"
+        )
+        .map_err(CliError::stdout)?;
         for n in args.n_min..=args.n_max {
-            let iv = intervals(n, args.samples, args.tol, criterion).map_err(CliError::failure)?;
+            let iv = intervals(n, args.samples, args.tol, criterion).map_err(CliError::lib)?;
             for (k, i) in iv.iter().enumerate() {
-                println!(
+                writeln!(
+                    out,
                     "{n},{k},{:.9e},{:.9e},{:.9e},{:.9e},{},{}",
                     i.lo, i.hi, i.lo_outside, i.hi_outside, i.below, i.above
-                );
+                )
+                .map_err(CliError::stdout)?;
             }
+            // One valence at a time reaches the reader (a long study shows progress).
+            out.flush().map_err(CliError::stdout)?;
         }
     }
+    out.flush().map_err(CliError::stdout)?;
     Ok(())
 }

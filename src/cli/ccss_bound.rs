@@ -1,9 +1,10 @@
 //! `subdiv-lab ccss-bound`: the distance bound beta(n) between an
 //! extraordinary Catmull-Clark patch and its limit face.
 
-use super::{CliError, CliResult};
+use super::{write_stdout, CliError, CliResult};
 use anyhow::anyhow;
 use clap::Args;
+use std::fmt::Write as _;
 use subdiv_lab::ccss_bound::bound::{beta_table, bound, write_beta_csv, DEFAULT_LEVELS};
 use subdiv_lab::ccss_bound::patch::ExtraordinaryPatch;
 use subdiv_lab::ccss_bound::{
@@ -89,11 +90,10 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
                 "--table-to must be >= 3, got {max}"
             )));
         }
-        let rows = beta_table(3..=max, args.levels).map_err(CliError::failure)?;
+        let rows = beta_table(3..=max, args.levels).map_err(CliError::lib)?;
         let mut out = Vec::new();
         write_beta_csv(&rows, &mut out).map_err(CliError::failure)?;
-        print!("{}", String::from_utf8_lossy(&out));
-        return Ok(());
+        return write_stdout(&out);
     }
     let n = args
         .valence
@@ -103,18 +103,18 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
             "valence must be at least 3, got {n}"
         )));
     }
-    let r = bound(n, args.levels).map_err(CliError::failure)?;
+    let r = bound(n, args.levels).map_err(CliError::lib)?;
     let c12 = r
         .omega_1_2()
         .map(|s| s.c)
         .ok_or_else(|| CliError::failure(anyhow!("no Omega^1_2 bound computed")))?;
-    let patch = ExtraordinaryPatch::new(n).map_err(CliError::failure)?;
-    let family = default_family(n).map_err(CliError::failure)?;
-    let rate = contraction_with(&patch, &family, r.full_max).map_err(CliError::failure)?;
+    let patch = ExtraordinaryPatch::new(n).map_err(CliError::lib)?;
+    let family = default_family(n).map_err(CliError::lib)?;
+    let rate = contraction_with(&patch, &family, r.full_max).map_err(CliError::lib)?;
     let steps = match (&args.net, args.epsilon) {
         (Some(path), Some(eps)) => {
             let net = read_net(path)?;
-            Some(steps_needed(&patch, &family, r.full_max, &net, eps).map_err(CliError::usage)?)
+            Some(steps_needed(&patch, &family, r.full_max, &net, eps).map_err(CliError::lib)?)
         }
         _ => None,
     };
@@ -136,28 +136,31 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
             "contraction": rate,
             "steps": steps,
         });
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&doc).map_err(CliError::failure)?
-        );
+        let text = serde_json::to_string_pretty(&doc).map_err(CliError::failure)? + "\n";
+        write_stdout(text.as_bytes())
     } else {
-        println!(
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
             "valence n = {n}: {} second-order differences",
             r.family_size
         );
-        println!(
+        let _ = writeln!(
+            s,
             "beta(n) = {:.9}  at t = {:.6} (sub-patch Omega^{}_2)",
             r.beta, r.t_max, r.level_of_max
         );
-        println!(
+        let _ = writeln!(
+            s,
             "max of B over all sub-patches (sampled) = {:.9} on Omega^{}_{}",
             r.full_max,
             r.full_max_domain.level,
             r.full_max_domain.part.index()
         );
-        println!("c_ij on Omega^1_2 (i along u):");
+        let _ = writeln!(s, "c_ij on Omega^1_2 (i along u):");
         for row in c12 {
-            println!(
+            let _ = writeln!(
+                s,
                 "  {}",
                 row.iter()
                     .map(|x| format!("{x:.9}"))
@@ -165,7 +168,8 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
                     .join("  ")
             );
         }
-        println!(
+        let _ = writeln!(
+            s,
             "per-level max D on Omega^k_2: {}",
             r.level_maxima
                 .iter()
@@ -173,19 +177,22 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
                 .collect::<Vec<_>>()
                 .join(", ")
         );
-        println!(
+        let _ = writeln!(
+            s,
             "LP status: optimal (all {} LPs); max equality residual {:.1e}; max |c_ij - c_ji| {:.1e}; Omega_1/Omega_3 mirror defect {:.1e}",
             16 * r.sub_patches.len(),
             r.max_residual,
             r.max_asymmetry,
             r.mirror_defect
         );
-        println!(
+        let _ = writeln!(
+            s,
             "per-step factor of M: extraordinary family r_ev = {:.6}, new regular nets r_sub = {:.6}, rho = {:.6}; distance after k steps <= {:.6} rho^k M_0",
             rate.r_ev, rate.r_sub, rate.rho, rate.constant
         );
         if let Some(st) = &steps {
-            println!(
+            let _ = writeln!(
+            s,
                 "control net: M_0 = {:.6e}; {} subdivision step(s) bring the limit mesh within {:.3e} (bound {:.6e})",
                 st.m_ev[0],
                 st.steps,
@@ -193,6 +200,6 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
                 st.bound
             );
         }
+        write_stdout(s.as_bytes())
     }
-    Ok(())
 }

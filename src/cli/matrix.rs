@@ -1,7 +1,7 @@
 //! `subdiv-lab matrix`: print a local subdivision matrix.
 
 use super::scheme_args::SchemeArgs;
-use super::{CliError, CliResult};
+use super::{write_stdout, CliError, CliResult};
 use clap::{Args, ValueEnum};
 use nalgebra::DMatrix;
 use subdiv_lab::scalar::Scalar;
@@ -41,16 +41,15 @@ pub(crate) fn run(args: MatrixArgs) -> CliResult {
         Some(exact) => render(exact, &args)?,
         None => render(&resolved.f64, &args)?,
     };
-    print!("{out}");
-    Ok(())
+    write_stdout(out.as_bytes())
 }
 
 fn render<T: Scalar>(scheme: &LocalScheme<T>, args: &MatrixArgs) -> CliResult<String> {
-    let full: LocalMatrix<T> = scheme.matrix().map_err(CliError::failure)?;
+    let full: LocalMatrix<T> = scheme.matrix().map_err(CliError::lib)?;
     let n = scheme.valence();
     if matches!(args.block, Block::Face) {
         // Typed error for schemes without a face block (the Catmull-Clark family).
-        scheme.face_block().map_err(CliError::usage)?;
+        scheme.face_block().map_err(CliError::lib)?;
     }
     let (labels, m): (Vec<PointLabel>, DMatrix<T>) = match args.block {
         Block::Full => (full.rows().to_vec(), full.matrix().clone()),

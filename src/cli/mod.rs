@@ -6,6 +6,7 @@ mod analyze;
 mod cc_study;
 mod ccss_bound;
 mod matrix;
+mod outfiles;
 mod report;
 mod scheme_args;
 mod subdivide;
@@ -66,9 +67,129 @@ impl CliError {
     pub(crate) fn failure(e: impl Into<anyhow::Error>) -> Self {
         CliError::Failure(e.into())
     }
+    /// A library error, mapped by its kind: invalid input (exit 2) or a
+    /// failure while running (exit 1); see [`is_input_error`].
+    pub(crate) fn lib(e: impl Into<subdiv_lab::Error>) -> Self {
+        let e = e.into();
+        if is_input_error(&e) {
+            CliError::Usage(e.into())
+        } else {
+            CliError::Failure(e.into())
+        }
+    }
+    /// A report error, mapped like [`CliError::lib`].
+    pub(crate) fn report(e: subdiv_lab::report::ReportError) -> Self {
+        CliError::lib(Box::new(e))
+    }
+    /// The same error (same exit code) with `context` in front of its message.
+    pub(crate) fn context(self, context: impl std::fmt::Display + Send + Sync + 'static) -> Self {
+        match self {
+            CliError::Usage(e) => CliError::Usage(e.context(context)),
+            CliError::Failure(e) => CliError::Failure(e.context(context)),
+        }
+    }
+    /// A failed write to standard output (exit 1).
+    pub(crate) fn stdout(e: std::io::Error) -> Self {
+        CliError::Failure(anyhow::anyhow!("cannot write to stdout: {e}"))
+    }
+}
+
+/// Whether a library error is about the user's input (exit 2) rather than a
+/// failure while running valid input (exit 1).
+///
+/// Input: invalid values (valence, knots, ratios, parameters, counts), an
+/// operation the chosen scheme does not have (`NotApplicable`, e.g. exact
+/// arithmetic or the face block where they are not defined), every mesh error
+/// (the OBJ file, the knot file, a mesh the operation does not accept, a
+/// result too large), spec errors of reports and sweeps. Failure: numerical
+/// non-convergence, residual checks, LP failures, I/O while writing.
+pub(crate) fn is_input_error(e: &subdiv_lab::Error) -> bool {
+    use subdiv_lab::ccss_bound::CcssBoundError as C;
+    use subdiv_lab::report::ReportError as R;
+    use subdiv_lab::spectral::SpectralError as S;
+    use subdiv_lab::sweep::SweepError as W;
+    use subdiv_lab::Error as E;
+    match e {
+        E::ValenceTooSmall { .. }
+        | E::InvalidInterval { .. }
+        | E::InvalidRatio { .. }
+        | E::CountMismatch { .. }
+        | E::InvalidParameter { .. }
+        | E::NotApplicable { .. }
+        | E::Mesh(_) => true,
+        E::Numerical { .. } => false,
+        E::CcssBound(c) => matches!(c, C::InvalidTolerance(_) | C::NonFinitePoint { .. }),
+        E::Spectral(s) => matches!(s, S::NotDooSabinFamily { .. }),
+        E::Sweep(w) => !matches!(w, W::Io(_)),
+        E::Report(r) => match r.as_ref() {
+            R::Spec { .. } => true,
+            R::Analysis { source, .. } => is_input_error(source),
+            _ => false,
+        },
+        _ => false,
+    }
 }
 
 pub(crate) type CliResult<T = ()> = Result<T, CliError>;
+
+/// Writes `text` to standard output (locked, flushed); a write error (a full
+/// disk, `/dev/full`, a closed descriptor) is a one-line failure, never a
+/// panic. A closed pipe (`| head`) ends the process quietly through the
+/// default SIGPIPE action restored in `main`.
+pub(crate) fn write_stdout(text: &[u8]) -> CliResult {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    out.write_all(text)
+        .and_then(|()| out.flush())
+        .map_err(CliError::stdout)
+}
+
+/// Writes one line to standard error, ignoring a failure (there is nowhere
+/// left to report it; `eprintln!` would panic).
+pub(crate) fn write_stderr(line: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
+
+/// One line from clap's error text: the message and its details (e.g. the
+/// missing arguments, a tip) without the usage block and the "For more
+/// information" line, whitespace collapsed, followed by "(see --help)".
+fn one_line_clap_error(e: &clap::Error) -> String {
+    use clap::error::ErrorKind;
+    if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+        let names: Vec<String> = <Cli as clap::CommandFactory>::command()
+            .get_subcommands()
+            .filter(|c| !c.is_hide_set())
+            .map(|c| c.get_name().to_owned())
+            .collect();
+        return format!(
+            "error: no command given; one of: {} (see --help)",
+            names.join(", ")
+        );
+    }
+    let text = e.render().to_string();
+    let mut parts: Vec<String> = Vec::new();
+    let mut in_usage = false;
+    for line in text.lines() {
+        let t = line.trim();
+        if t.is_empty() {
+            in_usage = false;
+            continue;
+        }
+        if t.starts_with("Usage:") {
+            in_usage = true;
+            continue;
+        }
+        if in_usage || t.starts_with("For more information") {
+            continue;
+        }
+        parts.push(t.split_whitespace().collect::<Vec<_>>().join(" "));
+    }
+    if parts.is_empty() {
+        parts.push("error: invalid arguments".to_owned());
+    }
+    format!("{} (see --help)", parts.join(" "))
+}
 
 /// Parses the command line, runs the command, maps errors to exit codes.
 pub fn main() -> ExitCode {
@@ -77,16 +198,13 @@ pub fn main() -> ExitCode {
         Err(e) => {
             use clap::error::ErrorKind;
             if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
-                print!("{e}");
-                return ExitCode::SUCCESS;
+                // Help and version go to stdout, exit 0 (1 if stdout fails).
+                return match write_stdout(e.render().to_string().as_bytes()) {
+                    Ok(()) => ExitCode::SUCCESS,
+                    Err(err) => report_error(&err),
+                };
             }
-            // One line: clap's first line names the problem.
-            let text = e.render().to_string();
-            let first = text
-                .lines()
-                .find(|l| !l.trim().is_empty())
-                .unwrap_or("invalid arguments");
-            eprintln!("{} (see --help)", first.trim_end());
+            write_stderr(&one_line_clap_error(&e));
             return ExitCode::from(EXIT_USAGE);
         }
     };
@@ -102,13 +220,24 @@ pub fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(CliError::Usage(e)) => {
-            eprintln!("error: {e:#}");
-            ExitCode::from(EXIT_USAGE)
-        }
-        Err(CliError::Failure(e)) => {
-            eprintln!("error: {e:#}");
-            ExitCode::from(EXIT_FAILURE)
-        }
+        Err(e) => report_error(&e),
     }
+}
+
+/// Prints the one-line message of `e` and returns its exit code.
+fn report_error(e: &CliError) -> ExitCode {
+    let (err, code) = match e {
+        CliError::Usage(e) => (e, EXIT_USAGE),
+        CliError::Failure(e) => (e, EXIT_FAILURE),
+    };
+    // `{:#}` joins the context chain with ": "; a message with line breaks
+    // (e.g. from a dependency) is folded onto one line.
+    let text = format!("{err:#}");
+    let line: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
+    write_stderr(&format!("error: {}", line.join(" ")));
+    ExitCode::from(code)
 }

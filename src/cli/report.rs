@@ -1,35 +1,58 @@
-//! `subdiv-lab report [SPEC.toml] [--out DIR] [--quiet]`: run a report spec
-//! and write the report directory atomically.
+//! `subdiv-lab report [SPEC.toml] [--out DIR] [--force] [--quiet]`: run a
+//! report spec and write the report directory.
 //!
-//! The library renders everything in memory; this module reads the spec,
-//! shows progress, and writes the files into a temporary sibling directory
-//! that is renamed into place at the end, so the output directory appears
-//! complete or not at all (and an old report of the same name is replaced
-//! only once the new one is complete).
+//! The library renders everything in memory; this module reads the spec (or
+//! takes the default spec built into the binary), shows progress, and writes
+//! the files. The tool never deletes or renames anything it did not create:
+//!
+//! * `--out` naming a file, or a non-empty directory that holds no previous
+//!   report (recognised by its `manifest.json`), is refused (exit 2) before
+//!   any work, and nothing is touched;
+//! * a new directory is written as a temporary sibling and renamed into place
+//!   (it appears complete or not at all); an existing empty directory is
+//!   filled;
+//! * a previous report is replaced only with `--force`, and then only the
+//!   files its manifest lists are overwritten or removed; every other file in
+//!   the directory is kept, and a new file that would overwrite one of them is
+//!   refused (exit 2).
 
-use super::{CliError, CliResult};
+use super::outfiles::{create_temp_dir, parent_dir, Staged};
+use super::{write_stdout, CliError, CliResult};
 use anyhow::{anyhow, Context as _};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use std::collections::BTreeSet;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use subdiv_lab::report::figures::{NoProgress, Progress};
-use subdiv_lab::report::{generate, total_work, ReportSpec, RunInfo};
+use subdiv_lab::report::{generate, total_work, OutputFile, ReportSpec, RunInfo};
 
-/// Default spec path.
-const DEFAULT_SPEC: &str = "analysis/default.toml";
+/// Where the built-in default spec comes from (shown in the manifest).
+const DEFAULT_SPEC_PATH: &str = "analysis/default.toml";
+/// The default spec, built into the binary so `subdiv-lab report` works from
+/// any directory (its meshes are generated in code, nothing else is read).
+const DEFAULT_SPEC_TEXT: &str = include_str!("../../analysis/default.toml");
 /// Directory under which `reports/<name>/` is written by default.
 const DEFAULT_ROOT: &str = "reports";
+/// The git revision of the source the binary was built from (see build.rs).
+const GIT_REVISION: &str = env!("SUBDIV_LAB_GIT_REVISION");
 
 #[derive(Args, Debug)]
 pub(crate) struct ReportArgs {
-    /// Report spec (TOML).
-    #[arg(default_value = DEFAULT_SPEC)]
-    spec: PathBuf,
-    /// Output directory (default: reports/<name>/ with the spec's name).
+    /// Report spec (TOML). Default: the spec built into the binary
+    /// (analysis/default.toml of this version), usable from any directory.
+    spec: Option<PathBuf>,
+    /// Output directory (default: reports/<name>/ with the spec's name). A new
+    /// or empty directory is written; a previous report (recognised by its
+    /// manifest.json) is replaced only with --force; a file or any other
+    /// non-empty directory is refused (exit 2).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Replace the previous report in --out. Only the files its manifest.json
+    /// lists are overwritten or removed; other files in the directory are kept.
+    #[arg(long)]
+    force: bool,
     /// No progress bar and no summary line.
     #[arg(long)]
     quiet: bool,
@@ -43,46 +66,129 @@ impl Progress for Bar {
     }
 }
 
-/// The git revision of the working directory, with `-dirty` for uncommitted changes.
-fn git_revision() -> Option<String> {
-    let out = std::process::Command::new("git")
-        .args(["rev-parse", "--short=12", "HEAD"])
-        .stderr(std::process::Stdio::null())
-        .output()
-        .ok()?;
-    if !out.status.success() {
+/// What `--out` is now.
+enum Target {
+    /// Does not exist: written as a temporary sibling, renamed into place.
+    New,
+    /// An existing directory: empty, or a previous report (with `--force`);
+    /// `previous` are the files its manifest lists that exist.
+    Existing { previous: BTreeSet<String> },
+}
+
+/// A plain file name inside the report directory (no separators, not `.`/`..`).
+fn plain_name(s: &str) -> bool {
+    !s.is_empty() && s != "." && s != ".." && !s.contains(['/', '\\']) && !s.contains('\0')
+}
+
+/// The files a previous report's `manifest.json` lists, if `dir` holds one
+/// written by this tool (`"tool": "subdiv-lab"`). Older manifests without a
+/// `files` list are read from their figures (SVG, PNG, CSV) plus `index.html`
+/// and `manifest.json`.
+fn previous_report_files(dir: &Path) -> Option<BTreeSet<String>> {
+    let bytes = std::fs::read(dir.join("manifest.json")).ok()?;
+    let m: serde_json::Value = serde_json::from_slice(&bytes).ok()?;
+    if m.get("tool")?.as_str()? != "subdiv-lab" {
         return None;
     }
-    let mut rev = String::from_utf8(out.stdout).ok()?.trim().to_owned();
-    if rev.is_empty() {
-        return None;
+    let mut files = BTreeSet::new();
+    if let Some(list) = m.get("files").and_then(|f| f.as_array()) {
+        files.extend(list.iter().filter_map(|v| v.as_str()).map(str::to_owned));
+    } else {
+        for f in m.get("figures")?.as_array()? {
+            for key in ["svg", "png"] {
+                if let Some(name) = f.get(key).and_then(|v| v.as_str()) {
+                    files.insert(name.to_owned());
+                }
+            }
+            if let Some(csv) = f.get("csv").and_then(|v| v.as_array()) {
+                files.extend(csv.iter().filter_map(|v| v.as_str()).map(str::to_owned));
+            }
+        }
+        files.insert("index.html".to_owned());
     }
-    let dirty = std::process::Command::new("git")
-        .args(["status", "--porcelain", "--untracked-files=no"])
-        .stderr(std::process::Stdio::null())
-        .output()
-        .ok()
-        .is_some_and(|o| o.status.success() && !o.stdout.is_empty());
-    if dirty {
-        rev.push_str("-dirty");
+    files.insert("manifest.json".to_owned());
+    files.retain(|f| plain_name(f));
+    Some(files)
+}
+
+/// Checks `--out` before any work: exit 2 for a file, a foreign non-empty
+/// directory, or a previous report without `--force`.
+fn check_target(out: &Path, force: bool) -> CliResult<Target> {
+    let meta = match std::fs::metadata(out) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            if std::fs::symlink_metadata(out).is_ok() {
+                return Err(CliError::usage(anyhow!(
+                    "--out {} is a dangling symbolic link; remove it or choose another directory",
+                    out.display()
+                )));
+            }
+            return Ok(Target::New);
+        }
+        Err(e) => {
+            return Err(CliError::usage(anyhow!(
+                "--out {}: cannot inspect it: {e}",
+                out.display()
+            )))
+        }
+    };
+    if !meta.is_dir() {
+        return Err(CliError::usage(anyhow!(
+            "--out {} exists and is not a directory; give a new or empty directory",
+            out.display()
+        )));
     }
-    Some(rev)
+    let mut entries = std::fs::read_dir(out)
+        .with_context(|| format!("--out {}: cannot list it", out.display()))
+        .map_err(CliError::usage)?;
+    if entries.next().is_none() {
+        return Ok(Target::Existing {
+            previous: BTreeSet::new(),
+        });
+    }
+    let Some(listed) = previous_report_files(out) else {
+        return Err(CliError::usage(anyhow!(
+            "--out {} is not empty and holds no previous subdiv-lab report (no manifest.json of this tool); give a new or empty directory",
+            out.display()
+        )));
+    };
+    if !force {
+        return Err(CliError::usage(anyhow!(
+            "--out {} holds a previous report; pass --force to replace it (only the files its manifest.json lists are replaced)",
+            out.display()
+        )));
+    }
+    let previous = listed
+        .into_iter()
+        .filter(|f| std::fs::symlink_metadata(out.join(f)).is_ok_and(|m| m.file_type().is_file()))
+        .collect();
+    Ok(Target::Existing { previous })
 }
 
 pub(crate) fn run(args: ReportArgs) -> CliResult {
     let start = Instant::now();
-    let text = std::fs::read_to_string(&args.spec)
-        .map_err(|e| CliError::usage(anyhow!("cannot read spec {}: {e}", args.spec.display())))?;
-    let spec = ReportSpec::parse(&text)
-        .map_err(|e| CliError::usage(anyhow!("{}: {e}", args.spec.display())))?;
+    let (text, spec_name) = match &args.spec {
+        Some(path) => (
+            std::fs::read_to_string(path).map_err(|e| {
+                CliError::usage(anyhow!("cannot read spec {}: {e}", path.display()))
+            })?,
+            path.display().to_string(),
+        ),
+        None => (DEFAULT_SPEC_TEXT.to_owned(), DEFAULT_SPEC_PATH.to_owned()),
+    };
+    let spec =
+        ReportSpec::parse(&text).map_err(|e| CliError::usage(anyhow!("{spec_name}: {e}")))?;
     let out = args
         .out
         .clone()
         .unwrap_or_else(|| Path::new(DEFAULT_ROOT).join(&spec.name));
+    // Refuse a bad --out before the (long) generation.
+    let target = check_target(&out, args.force)?;
     let run = RunInfo {
         version: Some(env!("CARGO_PKG_VERSION").to_owned()),
-        git_revision: git_revision(),
-        spec_path: Some(args.spec.display().to_string()),
+        git_revision: (GIT_REVISION != "unknown").then(|| GIT_REVISION.to_owned()),
+        spec_path: Some(spec_name.clone()),
+        spec_builtin: args.spec.is_none(),
     };
     let show = !args.quiet && std::io::stderr().is_terminal();
     let report = if show {
@@ -101,63 +207,90 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
     } else {
         generate(&spec, &run, &NoProgress)
     }
-    .map_err(|e| CliError::failure(anyhow!("{}: {e}", args.spec.display())))?;
-    write_atomically(&out, &report.files).map_err(CliError::failure)?;
+    .map_err(|e| CliError::report(e).context(spec_name.clone()))?;
+    match target {
+        Target::New => write_new_dir(&out, &report.files)?,
+        Target::Existing { previous } => write_into_dir(&out, &report.files, &previous)?,
+    }
     if !args.quiet {
-        println!(
-            "wrote {} files to {} in {:.1} s; open {}",
+        let line = format!(
+            "wrote {} files to {} in {:.1} s; open {}\n",
             report.files.len(),
             out.display(),
             start.elapsed().as_secs_f64(),
             out.join("index.html").display()
         );
+        write_stdout(line.as_bytes())?;
     }
     Ok(())
 }
 
-/// Writes `files` into a temporary sibling of `out`, then renames it into place.
-fn write_atomically(out: &Path, files: &[subdiv_lab::report::OutputFile]) -> anyhow::Result<()> {
+/// Writes `files` into a new temporary sibling of `out` (created by this
+/// run), then renames it to `out`; on failure the temporary is removed.
+fn write_new_dir(out: &Path, files: &[OutputFile]) -> CliResult {
     let name = out
         .file_name()
-        .ok_or_else(|| anyhow!("output path {} has no directory name", out.display()))?
+        .ok_or_else(|| CliError::usage(anyhow!("--out {} has no directory name", out.display())))?
         .to_string_lossy()
         .into_owned();
-    let parent = match out.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
+    let parent = parent_dir(out);
     std::fs::create_dir_all(&parent)
-        .with_context(|| format!("cannot create {}", parent.display()))?;
-    let pid = std::process::id();
-    let tmp = parent.join(format!(".{name}.tmp-{pid}"));
-    let old = parent.join(format!(".{name}.old-{pid}"));
+        .with_context(|| format!("cannot create {}", parent.display()))
+        .map_err(CliError::failure)?;
+    let tmp = create_temp_dir(&parent, &name)
+        .with_context(|| format!("cannot create a directory in {}", parent.display()))
+        .map_err(CliError::failure)?;
     let result = (|| -> anyhow::Result<()> {
-        std::fs::create_dir(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
         for f in files {
             let p = tmp.join(&f.path);
             std::fs::write(&p, &f.bytes)
                 .with_context(|| format!("cannot write {}", p.display()))?;
         }
-        let replaced = out.exists();
-        if replaced {
-            std::fs::rename(out, &old)
-                .with_context(|| format!("cannot move the old {} aside", out.display()))?;
-        }
-        if let Err(e) = std::fs::rename(&tmp, out) {
-            if replaced {
-                // Put the old report back; the new one stays in tmp until cleanup below.
-                let _ = std::fs::rename(&old, out);
-            }
-            return Err(anyhow!(e).context(format!("cannot rename into {}", out.display())));
-        }
-        if replaced {
-            std::fs::remove_dir_all(&old)
-                .with_context(|| format!("cannot remove the old report {}", old.display()))?;
-        }
-        Ok(())
+        // rename(2) onto an existing non-empty directory fails, so a directory
+        // that appeared meanwhile is never replaced.
+        std::fs::rename(&tmp, out).with_context(|| format!("cannot create {}", out.display()))
     })();
-    if result.is_err() && tmp.exists() {
+    if result.is_err() {
         let _ = std::fs::remove_dir_all(&tmp);
     }
-    result
+    result.map_err(CliError::failure)
+}
+
+/// Writes `files` into the existing directory `out`: each to a temporary file
+/// of this run, renamed into place (manifest.json last); then removes the
+/// files of the `previous` report that the new one no longer has. A new file
+/// whose name is taken by a file not in `previous` is refused (exit 2).
+fn write_into_dir(out: &Path, files: &[OutputFile], previous: &BTreeSet<String>) -> CliResult {
+    for f in files {
+        let p = out.join(&f.path);
+        let taken = std::fs::symlink_metadata(&p).is_ok();
+        if taken && !previous.contains(&f.path) {
+            return Err(CliError::usage(anyhow!(
+                "{} exists and is not part of the previous report; move it away or choose another --out",
+                p.display()
+            )));
+        }
+    }
+    let mut ordered: Vec<(PathBuf, Vec<u8>)> = files
+        .iter()
+        .filter(|f| f.path != "manifest.json")
+        .map(|f| (out.join(&f.path), f.bytes.clone()))
+        .collect();
+    ordered.extend(
+        files
+            .iter()
+            .filter(|f| f.path == "manifest.json")
+            .map(|f| (out.join(&f.path), f.bytes.clone())),
+    );
+    Staged::write(&ordered)?.commit()?;
+    let new: BTreeSet<&str> = files.iter().map(|f| f.path.as_str()).collect();
+    for old in previous {
+        if !new.contains(old.as_str()) {
+            let p = out.join(old);
+            std::fs::remove_file(&p)
+                .with_context(|| format!("cannot remove the old report file {}", p.display()))
+                .map_err(CliError::failure)?;
+        }
+    }
+    Ok(())
 }

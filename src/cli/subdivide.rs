@@ -1,18 +1,21 @@
 //! `subdiv-lab subdivide`: refine a closed OBJ mesh with NURDS, original
 //! Doo-Sabin or the Catmull-Clark variant.
 //!
-//! All outputs are produced in memory first and then written atomically (a
-//! temporary file in the target directory, renamed over the target), so an
-//! error never leaves a partial output file.
+//! Conflicting outputs (`-o X --knots-out X`, an output naming the input) are
+//! refused before anything is written. All outputs are produced in memory
+//! first, written to temporary files the tool creates in the target
+//! directories, and renamed into place only once every output (and standard
+//! output) is written, so a failed run leaves no new or partial file.
 
-use super::{CliError, CliResult};
+use super::outfiles::{check_distinct, Staged};
+use super::{write_stderr, write_stdout, CliError, CliResult};
 use anyhow::{anyhow, Context};
 use clap::Args;
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use subdiv_lab::mesh::limit::{level_stats, limit_mesh, LevelStats};
 use subdiv_lab::mesh::refine::{half_edges_after, refine};
-use subdiv_lab::mesh::{knot_file, obj, MeshError, MAX_HALF_EDGES};
+use subdiv_lab::mesh::{knot_file, obj, MAX_HALF_EDGES};
 use subdiv_lab::schemes::SchemeKind;
 
 #[derive(Args, Debug)]
@@ -54,8 +57,25 @@ pub(crate) struct SubdivideArgs {
     timing: bool,
 }
 
+/// Refuses outputs that name each other, the input OBJ or the knot file.
+fn check_outputs(args: &SubdivideArgs) -> CliResult {
+    let mut outputs = Vec::new();
+    if let Some(p) = &args.output {
+        outputs.push(("-o", p.as_path()));
+    }
+    if let Some(p) = &args.knots_out {
+        outputs.push(("--knots-out", p.as_path()));
+    }
+    let mut inputs = vec![("the input", args.input.as_path())];
+    if let Some(p) = &args.knots {
+        inputs.push(("--knots", p.as_path()));
+    }
+    check_distinct(&outputs, &inputs)
+}
+
 pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     let scheme: SchemeKind = args.scheme.parse().map_err(CliError::usage)?;
+    check_outputs(&args)?;
     if scheme.is_catmull_clark_family() {
         return run_cc(args, scheme);
     }
@@ -86,13 +106,14 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     let (mut mesh, info) = obj::parse_obj(&text)
         .with_context(|| format!("{}", args.input.display()))
         .map_err(CliError::usage)?;
-    if info.ignored_statements > 0 {
-        eprintln!(
+    // Printed only when the run succeeds: an error stays a single stderr line.
+    let note = (info.ignored_statements > 0).then(|| {
+        format!(
             "note: ignored {} OBJ statements ({})",
             info.ignored_statements,
             info.ignored_keywords.join(", ")
-        );
-    }
+        )
+    });
     let knot_text = match &args.knots {
         Some(path) => Some(
             std::fs::read_to_string(path)
@@ -124,7 +145,7 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     let mut refine_secs = 0.0;
     for level in 1..=args.levels {
         let t = std::time::Instant::now();
-        mesh = refine(&mesh, scheme).map_err(refine_error)?;
+        mesh = refine(&mesh, scheme).map_err(CliError::lib)?;
         refine_secs += t.elapsed().as_secs_f64();
         if args.stats {
             let s = level_stats(&mesh, scheme, level, stats.last());
@@ -132,14 +153,14 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
         }
     }
     if args.timing {
-        eprintln!(
+        write_stderr(&format!(
             "refinement: {} levels, {} faces, {} vertices, {:.6} s, {:.0} output faces/s",
             args.levels,
             mesh.face_count(),
             mesh.vertex_count(),
             refine_secs,
             mesh.face_count() as f64 / refine_secs.max(1e-9)
-        );
+        ));
     }
 
     // Build every output in memory before touching the file system.
@@ -148,7 +169,7 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     if let Some(path) = &args.output {
         let mut buf = Vec::new();
         if args.limit {
-            let lm = limit_mesh(&mesh, scheme).map_err(refine_error)?;
+            let lm = limit_mesh(&mesh, scheme).map_err(CliError::lib)?;
             obj::write_obj(&lm, &mut buf).map_err(CliError::failure)?;
         } else {
             obj::write_obj(&mesh, &mut buf).map_err(CliError::failure)?;
@@ -164,29 +185,28 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
         knot_file::write_knots(&mesh, &mut buf).map_err(CliError::failure)?;
         outputs.push((path.clone(), buf));
     }
-    write_all_atomically(&outputs)?;
-
-    let stdout = std::io::stdout();
-    let mut out = stdout.lock();
+    // Files to temporaries, then standard output, then the renames: a
+    // failure anywhere before the renames leaves no new file.
+    let staged = Staged::write(&outputs)?;
+    let mut text = Vec::new();
     if args.stats {
-        print_stats(&mut out, scheme, &stats).map_err(CliError::failure)?;
+        print_stats(&mut text, scheme, &stats).map_err(CliError::failure)?;
     }
     if let Some(buf) = to_stdout {
-        out.write_all(&buf).map_err(CliError::failure)?;
+        text.extend_from_slice(&buf);
+    }
+    if !text.is_empty() {
+        write_stdout(&text)?;
+    }
+    staged.commit()?;
+    if let Some(note) = note {
+        write_stderr(&note);
     }
     Ok(())
 }
 
 /// A refinement error: an interval the refinement cannot halve comes from
 /// the input (exit 2); anything else is a failure while running (exit 1).
-fn refine_error(e: MeshError) -> CliError {
-    if matches!(e, MeshError::KnotNotHalvable { .. }) {
-        CliError::usage(e)
-    } else {
-        CliError::failure(e)
-    }
-}
-
 fn print_stats(
     out: &mut impl Write,
     scheme: SchemeKind,
@@ -218,61 +238,6 @@ fn print_stats(
         }
     }
     Ok(())
-}
-
-/// Writes each buffer to a temporary file next to its target, then renames all
-/// of them into place; on any error the temporary files are removed and no
-/// target is touched.
-fn write_all_atomically(outputs: &[(PathBuf, Vec<u8>)]) -> CliResult {
-    let mut temps: Vec<(PathBuf, &Path)> = Vec::new();
-    let cleanup = |temps: &[(PathBuf, &Path)]| {
-        for (t, _) in temps {
-            let _ = std::fs::remove_file(t);
-        }
-    };
-    for (target, data) in outputs {
-        match write_temp(target, data) {
-            Ok(tmp) => temps.push((tmp, target.as_path())),
-            Err(e) => {
-                cleanup(&temps);
-                return Err(CliError::failure(e));
-            }
-        }
-    }
-    for (i, (tmp, target)) in temps.iter().enumerate() {
-        if let Err(e) = std::fs::rename(tmp, target) {
-            cleanup(&temps[i..]);
-            return Err(CliError::failure(
-                anyhow!(e).context(format!("cannot write {}", target.display())),
-            ));
-        }
-    }
-    Ok(())
-}
-
-fn write_temp(target: &Path, data: &[u8]) -> anyhow::Result<PathBuf> {
-    let dir = match target.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = target
-        .file_name()
-        .ok_or_else(|| anyhow!("{} is not a file path", target.display()))?
-        .to_string_lossy()
-        .into_owned();
-    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-    let result = (|| -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(data)?;
-        f.sync_all()
-    })();
-    match result {
-        Ok(()) => Ok(tmp),
-        Err(e) => {
-            let _ = std::fs::remove_file(&tmp);
-            Err(anyhow!(e).context(format!("cannot write {}", target.display())))
-        }
-    }
 }
 
 /// `subdivide` for the Catmull-Clark family (`--scheme catmull-clark|adjustable-cc [--c C]`).
@@ -333,33 +298,29 @@ fn cc_refine_and_write(args: &SubdivideArgs, c: f64, path: Option<PathBuf>) -> C
     }
     let t = std::time::Instant::now();
     for _ in 0..args.levels {
-        mesh = refine_cc(&mesh, c).map_err(CliError::failure)?;
+        mesh = refine_cc(&mesh, c).map_err(CliError::lib)?;
     }
     let secs = t.elapsed().as_secs_f64();
     if args.timing {
-        eprintln!(
+        write_stderr(&format!(
             "refinement: {} levels, {} faces, {} vertices, {:.6} s",
             args.levels,
             mesh.face_count(),
             mesh.vertex_count(),
             secs
-        );
+        ));
     }
     let Some(path) = path else { return Ok(()) };
     let out_mesh = if args.limit {
-        limit_mesh_cc(&mesh, c).map_err(CliError::failure)?
+        limit_mesh_cc(&mesh, c).map_err(CliError::lib)?
     } else {
         mesh
     };
     let mut buf = Vec::new();
     obj::write_obj(&out_mesh, &mut buf).map_err(CliError::failure)?;
     if path.as_os_str() == "-" {
-        std::io::stdout()
-            .lock()
-            .write_all(&buf)
-            .map_err(CliError::failure)?;
-        Ok(())
+        write_stdout(&buf)
     } else {
-        write_all_atomically(&[(path, buf)])
+        Staged::write(&[(path, buf)])?.commit()
     }
 }

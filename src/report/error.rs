@@ -23,6 +23,49 @@ impl Location {
     }
 }
 
+/// The dotted key path (`sampler.count`, `space.fixed.r2`, `valences[1]`) of
+/// the deepest key or value whose span contains `offset`, from the parsed
+/// TOML tree (exact, where a text scan would guess); `None` if the text does not
+/// parse or nothing contains the offset.
+pub(crate) fn key_path_in_tree(text: &str, offset: usize) -> Option<String> {
+    use toml::de::{DeTable, DeValue};
+    fn find(v: &DeValue<'_>, offset: usize, path: &mut String) -> bool {
+        match v {
+            DeValue::Table(t) => {
+                for (k, v) in t.iter() {
+                    let mark = path.len();
+                    if !path.is_empty() {
+                        path.push('.');
+                    }
+                    path.push_str(k.get_ref());
+                    let here = k.span().contains(&offset) || v.span().contains(&offset);
+                    if find(v.get_ref(), offset, path) || here {
+                        return true;
+                    }
+                    path.truncate(mark);
+                }
+                false
+            }
+            DeValue::Array(a) => {
+                for (i, v) in a.iter().enumerate() {
+                    let mark = path.len();
+                    path.push_str(&format!("[{i}]"));
+                    if find(v.get_ref(), offset, path) || v.span().contains(&offset) {
+                        return true;
+                    }
+                    path.truncate(mark);
+                }
+                false
+            }
+            _ => false,
+        }
+    }
+    let root = DeTable::parse(text).ok()?;
+    let mut path = String::new();
+    (find(&DeValue::Table(root.into_inner()), offset, &mut path) && !path.is_empty())
+        .then_some(path)
+}
+
 fn floor_char_boundary(s: &str, mut i: usize) -> usize {
     while i > 0 && !s.is_char_boundary(i) {
         i -= 1;

@@ -60,6 +60,9 @@ pub struct RunInfo {
     pub git_revision: Option<String>,
     /// Path of the spec file as given.
     pub spec_path: Option<String>,
+    /// The spec is the one built into the binary (`analysis/default.toml` at
+    /// build time), not a file read at run time.
+    pub spec_builtin: bool,
 }
 
 /// One generated file: path relative to the report directory, and contents.
@@ -109,6 +112,12 @@ pub struct Manifest {
     pub git_revision: Option<String>,
     /// Spec path as given.
     pub spec_path: Option<String>,
+    /// The spec is the one built into the binary (see [`RunInfo::spec_builtin`]).
+    pub spec_builtin: bool,
+    /// Every file of the report (plain names, `index.html` and
+    /// `manifest.json` included): what a later run replacing this report
+    /// may remove, and nothing else.
+    pub files: Vec<String>,
     /// Report name.
     pub name: String,
     /// Base seed.
@@ -211,6 +220,12 @@ pub fn generate(
             .unwrap_or_else(|| env!("CARGO_PKG_VERSION").to_owned()),
         git_revision: run.git_revision.clone(),
         spec_path: run.spec_path.clone(),
+        spec_builtin: run.spec_builtin,
+        files: files
+            .iter()
+            .map(|f| f.path.clone())
+            .chain(["index.html".to_owned(), "manifest.json".to_owned()])
+            .collect(),
         name: spec.name.clone(),
         seed: spec.seed,
         spec: spec.source.clone(),

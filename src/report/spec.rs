@@ -170,11 +170,27 @@ impl<'a> FigureSpec<'a> {
     }
 }
 
+/// A spec error from the TOML deserializer. The key is the exact dotted path
+/// at the error's span (e.g. `figure[0].configs[0].valence`) when the text
+/// parses, else `key`; a missing key is named by its table's path and name.
 fn toml_error(src: &str, e: toml::de::Error, key: Option<String>) -> ReportError {
+    let span = e.span().filter(|s| s.end > 0);
+    let message = e.message().trim().to_owned();
+    let found = span
+        .as_ref()
+        .and_then(|s| super::error::key_path_in_tree(src, s.start));
+    let missing = message
+        .strip_prefix("missing field `")
+        .and_then(|m| m.strip_suffix('`'));
+    let (key, message) = match (missing, found.or(key)) {
+        (Some(field), Some(table)) => (Some(format!("{table}.{field}")), "missing".to_owned()),
+        (Some(field), None) => (Some(field.to_owned()), "missing".to_owned()),
+        (None, k) => (k, message),
+    };
     ReportError::Spec {
-        at: e.span().map(|s| Location::of(src, s.start)),
+        at: span.map(|s| Location::of(src, s.start)),
         key,
-        message: e.message().trim().to_owned(),
+        message,
     }
 }
 

@@ -348,6 +348,44 @@ fn key_path_at(text: &str, offset: usize) -> Option<String> {
     })
 }
 
+/// A spec error from the TOML deserializer, naming the key path and line: the
+/// key at the error's span; for a missing key, the table it is missing from
+/// (the span is that table's header, or the empty span of the document)
+/// joined with the missing key's name.
+fn deserialize_error(text: &str, e: &toml::de::Error) -> SweepError {
+    let span = e.span().filter(|s| s.end > 0);
+    let message = e.message().trim().to_owned();
+    let missing = message
+        .strip_prefix("missing field `")
+        .and_then(|m| m.strip_suffix('`'));
+    let at = span.as_ref().and_then(|s| {
+        crate::report::error::key_path_in_tree(text, s.start).or_else(|| key_path_at(text, s.start))
+    });
+    let (key, message) = match missing {
+        Some(field) => {
+            let key = match &at {
+                Some(table) => format!("{table}.{field}"),
+                None => field.to_owned(),
+            };
+            let what = if key == "space" || key == "sampler" {
+                format!("missing [{key}] table")
+            } else {
+                "missing (required key)".to_owned()
+            };
+            (key.clone(), format!("{key}: {what}"))
+        }
+        None => {
+            let key = at.unwrap_or_else(|| "spec".to_owned());
+            (key.clone(), format!("{key}: {message}"))
+        }
+    };
+    SweepError::Spec {
+        line: span.map(|s| line_of(text, s.start)),
+        message,
+        key,
+    }
+}
+
 struct Ctx<'a> {
     text: &'a str,
 }
@@ -570,19 +608,7 @@ impl SweepSpec {
     /// assert!(spec.to_string().starts_with("sampler.points_per_axis must be >= 1, got 0"));
     /// ```
     pub fn from_toml(text: &str) -> Result<SweepSpec, SweepError> {
-        let raw: RawSpec = toml::from_str(text).map_err(|e| {
-            let span = e.span();
-            let key = span
-                .as_ref()
-                .and_then(|s| key_path_at(text, s.start))
-                .unwrap_or_else(|| "spec".to_owned());
-            let message = e.message().trim().to_owned();
-            SweepError::Spec {
-                line: span.map(|s| line_of(text, s.start)),
-                message: format!("{key}: {message}"),
-                key,
-            }
-        })?;
+        let raw: RawSpec = toml::from_str(text).map_err(|e| deserialize_error(text, &e))?;
         let ctx = Ctx { text };
         let scheme: SchemeKind = match raw.scheme.get_ref().parse() {
             Ok(k) => k,

@@ -1,0 +1,210 @@
+//! Output files of the CLI: conflict checks and atomic writes.
+//!
+//! The rule: **the tool never deletes or renames anything it did not create.**
+//! Outputs are written to temporary files that the tool creates itself
+//! (`create_new`, so an existing file of the same name is never truncated) in
+//! the target's directory; only when every output and standard output are
+//! written are the temporaries renamed into place. A failed run leaves no new
+//! file.
+
+use super::{CliError, CliResult};
+use anyhow::{anyhow, Context as _};
+use std::fs::{self, File, OpenOptions};
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+/// How many temporary names are tried before giving up.
+const TEMP_ATTEMPTS: u32 = 1000;
+
+/// The directory part of `p` (`.` for a bare file name).
+pub(crate) fn parent_dir(p: &Path) -> PathBuf {
+    match p.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
+/// A comparable form of a path that may not exist yet: the canonical path if
+/// it exists, else the canonical parent joined with the file name, else the
+/// path made absolute lexically.
+fn comparable(p: &Path) -> PathBuf {
+    if let Ok(c) = fs::canonicalize(p) {
+        return c;
+    }
+    if let (Some(name), Ok(dir)) = (p.file_name(), fs::canonicalize(parent_dir(p))) {
+        return dir.join(name);
+    }
+    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
+}
+
+/// Whether two paths name the same file (same canonical path, or, for two
+/// existing files on Unix, the same device and inode: hard links).
+fn same_target(a: &Path, b: &Path) -> bool {
+    if comparable(a) == comparable(b) {
+        return true;
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt as _;
+        if let (Ok(x), Ok(y)) = (fs::metadata(a), fs::metadata(b)) {
+            return x.dev() == y.dev() && x.ino() == y.ino();
+        }
+    }
+    false
+}
+
+/// Refuses (exit 2) before anything is written when two outputs name the same
+/// file, an output names an input, or an output is an existing directory.
+/// `outputs` and `inputs` are `(flag, path)` pairs; `-` (standard output) is
+/// skipped.
+pub(crate) fn check_distinct(outputs: &[(&str, &Path)], inputs: &[(&str, &Path)]) -> CliResult {
+    let outputs: Vec<&(&str, &Path)> = outputs
+        .iter()
+        .filter(|(_, p)| p.as_os_str() != "-")
+        .collect();
+    for (i, (flag, p)) in outputs.iter().enumerate() {
+        let dir = parent_dir(p);
+        if !dir.is_dir() {
+            return Err(CliError::usage(anyhow!(
+                "{flag} {}: directory {} does not exist",
+                p.display(),
+                dir.display()
+            )));
+        }
+        if p.is_dir() {
+            return Err(CliError::usage(anyhow!(
+                "{flag} {} is a directory; give a file path",
+                p.display()
+            )));
+        }
+        for (flag2, q) in &outputs[..i] {
+            if same_target(p, q) {
+                return Err(CliError::usage(anyhow!(
+                    "{flag2} {} and {flag} {} name the same file; give two different paths",
+                    q.display(),
+                    p.display()
+                )));
+            }
+        }
+        for (flag2, q) in inputs {
+            if same_target(p, q) {
+                return Err(CliError::usage(anyhow!(
+                    "{flag} {} is also {flag2} {}; write the output elsewhere",
+                    p.display(),
+                    q.display()
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Creates a new file `dir/.{name}.tmp-{pid}[-k]` that did not exist before
+/// (so no existing file is ever truncated); returns it and its path.
+pub(crate) fn create_temp_file(dir: &Path, name: &str) -> std::io::Result<(File, PathBuf)> {
+    let pid = std::process::id();
+    let mut last = None;
+    for k in 0..TEMP_ATTEMPTS {
+        let tmp = if k == 0 {
+            dir.join(format!(".{name}.tmp-{pid}"))
+        } else {
+            dir.join(format!(".{name}.tmp-{pid}-{k}"))
+        };
+        match OpenOptions::new().write(true).create_new(true).open(&tmp) {
+            Ok(f) => return Ok((f, tmp)),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
+            Err(e) => return Err(e),
+        }
+    }
+    Err(last.unwrap_or_else(|| std::io::Error::other("no free temporary name")))
+}
+
+/// Creates a new directory `dir/.{name}.tmp-{pid}[-k]` that did not exist before.
+pub(crate) fn create_temp_dir(dir: &Path, name: &str) -> std::io::Result<PathBuf> {
+    let pid = std::process::id();
+    let mut last = None;
+    for k in 0..TEMP_ATTEMPTS {
+        let tmp = if k == 0 {
+            dir.join(format!(".{name}.tmp-{pid}"))
+        } else {
+            dir.join(format!(".{name}.tmp-{pid}-{k}"))
+        };
+        match fs::create_dir(&tmp) {
+            Ok(()) => return Ok(tmp),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
+            Err(e) => return Err(e),
+        }
+    }
+    Err(last.unwrap_or_else(|| std::io::Error::other("no free temporary name")))
+}
+
+/// Output files written to temporaries, not yet in place. Dropping it without
+/// [`Staged::commit`] removes the temporaries (which the tool created).
+pub(crate) struct Staged {
+    /// (temporary, target, the target existed before).
+    files: Vec<(PathBuf, PathBuf, bool)>,
+}
+
+impl Staged {
+    /// Writes every `(target, bytes)` to a temporary file next to its target.
+    pub(crate) fn write(outputs: &[(PathBuf, Vec<u8>)]) -> CliResult<Staged> {
+        let mut staged = Staged { files: Vec::new() };
+        for (target, data) in outputs {
+            let name = target
+                .file_name()
+                .ok_or_else(|| CliError::usage(anyhow!("{} is not a file path", target.display())))?
+                .to_string_lossy()
+                .into_owned();
+            let existed = fs::symlink_metadata(target).is_ok();
+            let (mut f, tmp) = create_temp_file(&parent_dir(target), &name)
+                .with_context(|| format!("cannot write {}", target.display()))
+                .map_err(CliError::failure)?;
+            staged.files.push((tmp, target.clone(), existed));
+            f.write_all(data)
+                .and_then(|()| f.sync_all())
+                .with_context(|| format!("cannot write {}", target.display()))
+                .map_err(CliError::failure)?;
+        }
+        Ok(staged)
+    }
+
+    /// Renames every temporary into place. If a rename fails, the targets
+    /// already renamed that did not exist before are removed again (they are
+    /// the tool's own); a target that existed before and was already replaced
+    /// stays replaced (reported in the error).
+    pub(crate) fn commit(mut self) -> CliResult {
+        let files = std::mem::take(&mut self.files);
+        for (i, (tmp, target, _)) in files.iter().enumerate() {
+            if let Err(e) = fs::rename(tmp, target) {
+                let mut replaced = Vec::new();
+                for (_, done, existed) in &files[..i] {
+                    if *existed {
+                        replaced.push(done.display().to_string());
+                    } else {
+                        let _ = fs::remove_file(done);
+                    }
+                }
+                for (t, _, _) in &files[i..] {
+                    let _ = fs::remove_file(t);
+                }
+                let also = if replaced.is_empty() {
+                    String::new()
+                } else {
+                    format!(" (already replaced: {})", replaced.join(", "))
+                };
+                return Err(CliError::failure(
+                    anyhow!(e).context(format!("cannot write {}{also}", target.display())),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        for (tmp, _, _) in &self.files {
+            let _ = fs::remove_file(tmp);
+        }
+    }
+}
