@@ -38,6 +38,7 @@ pub mod exact;
 pub mod kernel;
 pub mod poly;
 pub mod structured;
+pub mod svd;
 
 pub use classify::{ClassName, Subdominant, SubdominantClass};
 pub use eigen::{Eigen, EigenOptions};
@@ -242,16 +243,16 @@ fn c64(z: Complex64) -> [f64; 2] {
     [z.re, z.im]
 }
 
-/// Second smallest singular value of `x - lambda I`.
+/// Second smallest singular value of `x - lambda I` ([`svd::singular_values`]:
+/// faer's SVD, the one-sided Jacobi SVD when that does not converge).
 fn second_smallest_sigma(x: &DMatrix<f64>, lambda: f64) -> Result<f64, SpectralError> {
     let n = x.nrows();
     if n < 2 {
         return Ok(f64::INFINITY);
     }
-    let m = faer::Mat::<f64>::from_fn(n, n, |i, j| x[(i, j)] - if i == j { lambda } else { 0.0 });
-    let s = m
-        .singular_values()
-        .map_err(|_| SpectralError::SvdNoConvergence { size: n })?;
+    let m = DMatrix::from_fn(n, n, |i, j| x[(i, j)] - if i == j { lambda } else { 0.0 });
+    // faer's SVD, with the one-sided Jacobi SVD as the fallback route (issue 16)
+    let s = svd::singular_values(&m)?;
     // Sorted non-increasing.
     Ok(s[n - 2])
 }
