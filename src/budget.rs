@@ -92,6 +92,19 @@ pub const SUBDIVIDE_BYTES_PER_HALF_EDGE: f64 = 128.0;
 /// OBJ formatting). Measured about 1e-7.
 pub const SUBDIVIDE_SECONDS_PER_HALF_EDGE: f64 = 2.0e-7;
 
+/// Seconds of the cheapest sweep configuration (structured classification
+/// of a small valence; the kernel adds about `4e-9 n^3`). Measured 2.6e-6 to
+/// 5e-6 per configuration and thread.
+pub const SWEEP_SECONDS_BASE: f64 = 5e-6;
+
+/// Seconds per `n^5` of the exact certificate of one sweep configuration
+/// (exact characteristic polynomial and Sturm/Schur-Cohn counts over the
+/// rationals). Measured with `analyze --exact` on the Catmull-Clark variant:
+/// 0.38 s at `n = 8`, 13 s at `n = 16`, 79 s at `n = 24`; `n = 3` sweeps run
+/// at about 80 configurations/s on 2 cores. To be re-measured whenever the
+/// exact path changes.
+pub const SWEEP_EXACT_SECONDS_PER_N5: f64 = 1.5e-5;
+
 /// An estimate of one heavy step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Estimate {
@@ -234,7 +247,10 @@ pub fn cc_study(n_min: usize, n_max: usize, samples: usize, curves: bool) -> Est
     Estimate {
         bytes: ANALYZE_BYTES_PER_ENTRY_CC * d * d + 1e6,
         seconds,
-        what: format!("{} x {points} study points", n_max + 1 - n_min.min(n_max + 1)),
+        what: format!(
+            "{} x {points} study points",
+            n_max + 1 - n_min.min(n_max + 1)
+        ),
     }
 }
 
@@ -256,7 +272,7 @@ fn sweep_seconds_per_configuration(plan: &Plan, n: usize) -> f64 {
     let c = plan.spec().columns;
     let cc = plan.spec().scheme.is_catmull_clark_family();
     let nf = n as f64;
-    let mut s = 2e-6 + 4e-9 * nf * nf * nf;
+    let mut s = SWEEP_SECONDS_BASE + 4e-9 * nf * nf * nf;
     if cc {
         s += ANALYZE_SECONDS_PER_N3_CC * nf * nf * nf;
     }
@@ -271,7 +287,7 @@ fn sweep_seconds_per_configuration(plan: &Plan, n: usize) -> f64 {
                 * nf;
     }
     if c.exact_certificate {
-        s += 1e-4 * nf.powi(4);
+        s += SWEEP_EXACT_SECONDS_PER_N5 * nf.powi(5);
     }
     s
 }
@@ -329,8 +345,9 @@ mod tests {
                 assert!(small.within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
             }
             assert!(matrix(kind, 100_000, false, false).bytes > MEMORY_LIMIT_BYTES);
-            assert!(matrix(kind, 64, false, true)
-                .within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
+            assert!(
+                matrix(kind, 64, false, true).within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES)
+            );
         }
         // the CC one-ring at n = 100000 is the 320 GB matrix
         let cc = analyze(SchemeKind::CatmullClark, 100_000, false);

@@ -628,7 +628,13 @@ pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
         let mut guard = cell.borrow_mut();
         let (ws, values) = &mut *guard;
         ws.input(n).copy_from_slice(s.as_slice());
-        let (re, im) = ws.eigenvalues()?;
+        let (re, im) = match ws.eigenvalues() {
+            Ok(v) => v,
+            // fallback route: the general eigen-decomposition (faer), as on
+            // the full path of `analyze`
+            Err(SpectralError::NoConvergence { .. }) => return classify_general(s),
+            Err(e) => return Err(e.into()),
+        };
         values.clear();
         values.extend(re.iter().zip(im).map(|(&a, &b)| Complex64::new(a, b)));
         values.sort_by(spectral_order);
@@ -651,4 +657,27 @@ pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
             &mut |lam| second_smallest_sigma(s, lam),
         )?)
     })
+}
+
+/// Classification of any square matrix from its general eigen-decomposition
+/// with condition numbers ([`Eigen`], the full path of [`analyze`]): the
+/// fallback of [`classify_matrix`] when the small-matrix kernel's QR
+/// iteration does not converge within its bound.
+fn classify_general(s: &DMatrix<f64>) -> Result<Subdominant> {
+    let e = Eigen::new(s, EigenOptions::BOTH)?;
+    let eta = BACKWARD_ERROR_FACTOR * e.dim() as f64 * f64::EPSILON * e.frobenius_norm();
+    let radii: Vec<f64> = e
+        .condition_numbers()
+        .unwrap_or(&[])
+        .iter()
+        .map(|&k| radius(k, eta))
+        .collect();
+    Ok(classify(
+        &Evidence {
+            values: e.values(),
+            radii: &radii,
+            eta,
+        },
+        &mut |lam| second_smallest_sigma(s, lam),
+    )?)
 }

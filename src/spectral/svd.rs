@@ -149,14 +149,19 @@ mod tests {
         for (n, seed) in [(1usize, 1u64), (2, 2), (5, 3), (7, 4), (20, 5), (33, 6)] {
             let mut x = seed;
             let a = DMatrix::from_fn(n, n, |_, _| {
-                x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
                 ((x >> 11) as f64 / (1u64 << 53) as f64) - 0.5
             });
             let (s, v) = jacobi_svd(&a, true).unwrap();
             let f = faer_sigma(&a);
             let scale = s[0].max(1e-300);
             for (x, y) in s.iter().zip(&f) {
-                assert!((x - y).abs() <= 64.0 * n as f64 * f64::EPSILON * scale, "{x} vs {y}");
+                assert!(
+                    (x - y).abs() <= 64.0 * n as f64 * f64::EPSILON * scale,
+                    "{x} vs {y}"
+                );
             }
             let v = v.unwrap();
             let vtv = v.transpose() * &v;
@@ -180,7 +185,10 @@ mod tests {
             jacobi_svd(&b, false),
             Err(SpectralError::NonFinite { row: 1, col: 2 })
         ));
-        assert_eq!(singular_values(&DMatrix::<f64>::zeros(2, 4)).unwrap().len(), 2);
+        assert_eq!(
+            singular_values(&DMatrix::<f64>::zeros(2, 4)).unwrap().len(),
+            2
+        );
     }
 
     /// The 7 x 7 matrix of issue 16 on which faer's SVD reports no
