@@ -85,12 +85,14 @@ pub const CCSS_SECONDS_PER_N_2_5: f64 = 8.0e-5;
 /// Peak bytes per half-edge of the refined mesh of `subdivide`: the mesh
 /// (about 28 bytes: three `u32` and one `f64` per half-edge, positions per
 /// vertex), the previous level (a quarter of that), the OBJ text built in
-/// memory (about 25 bytes) and the limit mesh. Measured about 90.
+/// memory (about 25 bytes) and the limit mesh. Measured 54 (NURDS) and 98
+/// (Catmull-Clark with `--limit`) at 1.6 million half-edges.
 pub const SUBDIVIDE_BYTES_PER_HALF_EDGE: f64 = 128.0;
 
-/// Seconds per half-edge of the refined mesh of `subdivide` (refinement and
-/// OBJ formatting). Measured about 1e-7.
-pub const SUBDIVIDE_SECONDS_PER_HALF_EDGE: f64 = 2.0e-7;
+/// Seconds per half-edge of the refined mesh of `subdivide` (refinement,
+/// OBJ formatting and writing). Measured 0.9e-6 (NURDS) and 1.5e-6
+/// (Catmull-Clark with `--limit`) at 1.6 million half-edges.
+pub const SUBDIVIDE_SECONDS_PER_HALF_EDGE: f64 = 2.0e-6;
 
 /// Seconds of the cheapest sweep configuration (structured classification
 /// of a small valence; the kernel adds about `4e-9 n^3`). Measured 2.6e-6 to
@@ -311,10 +313,15 @@ pub fn sweep_rows(plan: &Plan, rows: u64, shard_count: u64, threads: usize) -> E
         seconds += take as f64 * sweep_seconds_per_configuration(plan, n);
     }
     let d = local_dimension(plan.spec().scheme, max_n);
+    // the characteristic map works on S_n (d x d); the classification alone
+    // on the n x n face block (Doo-Sabin family) or the one-ring (d x d)
+    let nf = max_n as f64;
     let per_thread = if plan.spec().columns.charmap {
         ANALYZE_BYTES_PER_ENTRY_DS * d * d
-    } else {
+    } else if plan.spec().scheme.is_catmull_clark_family() {
         64.0 * d * d
+    } else {
+        64.0 * nf * nf
     };
     Estimate {
         bytes: threads as f64 * per_thread + 64e6,

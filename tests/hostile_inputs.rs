@@ -279,20 +279,20 @@ fn cases() -> Vec<Case> {
         ),
         bad(
             "subdivide-levels-over-limit",
-            &["subdivide", "{M}/cube.obj", "--scheme", "nurds", "--levels", "10", "-o", "x.obj"],
-            "subdivide: --levels 10",
+            &["subdivide", "{M}/cube.obj", "--scheme", "nurds", "--levels", "11", "-o", "x.obj"],
+            "subdivide: --levels 11 needs ~",
         ),
         bad(
             "subdivide-cc-levels-over-limit",
-            &["subdivide", "{M}/cube.obj", "--scheme", "catmull-clark", "--levels", "10", "--timing"],
-            "use --force to run anyway",
+            &["subdivide", "{M}/cube.obj", "--scheme", "catmull-clark", "--levels", "11", "--timing"],
+            "subdivide: --levels 11 needs ~",
         ),
         bad_with(
             "sweep-10-to-the-12",
             &["sweep", "s.toml", "--out", "o.csv"],
             &[(
                 "s.toml",
-                "name = \"huge\"\nscheme = \"nurds\"\nvalences = [12]\n[space]\nkind = \"ratios\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 10\n",
+                "name = \"huge\"\nscheme = \"nurds\"\nvalences = [12]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 10\n",
             )],
             "1000000000000 configurations",
         ),
