@@ -14,7 +14,8 @@
 //! |a_p . a_q| <= JACOBI_TOLERANCE * ||a_p|| ||a_q||   for all p < q,
 //! ```
 //!
-//! after which `A V = U Sigma` with `sigma_j = ||a_j||`. Each rotation is
+//! (a column of norm below `eps ||A||_F` is left alone: it is rounding
+//! noise), after which `A V = U Sigma` with `sigma_j = ||a_j||`. Each rotation is
 //! backward stable, so the singular values are computed to the same
 //! `c m eps ||A||` absolute accuracy as the first route (the error model the
 //! callers use, e.g. [`crate::charmap::SVD_ERROR_FACTOR`]). It converges
@@ -80,6 +81,10 @@ pub fn jacobi_svd(
         return jacobi_svd(&a.transpose(), false);
     }
     let mut w = a.clone();
+    // Columns of norm below eps ||A||_F are at the rounding level of A (their
+    // singular values are within the error model already) and are not rotated:
+    // noise against noise would never meet the relative test.
+    let negligible = (f64::EPSILON * a.norm()).powi(2);
     let mut v = want_v.then(|| DMatrix::<f64>::identity(cols, cols));
     let mut converged = cols < 2;
     for _ in 0..JACOBI_MAX_SWEEPS {
@@ -96,7 +101,11 @@ pub fn jacobi_svd(
                     beta += y * y;
                     gamma += x * y;
                 }
-                if gamma == 0.0 || gamma.abs() <= JACOBI_TOLERANCE * (alpha * beta).sqrt() {
+                if gamma == 0.0
+                    || alpha <= negligible
+                    || beta <= negligible
+                    || gamma.abs() <= JACOBI_TOLERANCE * (alpha * beta).sqrt()
+                {
                     continue;
                 }
                 rotated = true;
