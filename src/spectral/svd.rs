@@ -176,8 +176,8 @@ mod tests {
             let vtv = v.transpose() * &v;
             assert!((vtv - DMatrix::identity(n, n)).amax() < 1e-13);
             let av = &a * &v;
-            for j in 0..n {
-                assert!((av.column(j).norm() - s[j]).abs() <= 1e-13 * scale);
+            for (j, sj) in s.iter().enumerate() {
+                assert!((av.column(j).norm() - sj).abs() <= 1e-13 * scale);
             }
         }
     }
