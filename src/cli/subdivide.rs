@@ -332,7 +332,7 @@ fn cc_refine_and_write(args: &SubdivideArgs, c: f64, path: Option<PathBuf>) -> C
             args.levels
         )));
     }
-    check_budget(&args, needed)?;
+    check_budget(args, needed)?;
     let t = std::time::Instant::now();
     for _ in 0..args.levels {
         mesh = refine_cc(&mesh, c).map_err(CliError::failure)?;
