@@ -94,16 +94,33 @@ pub enum Criterion {
 
 /// The verdict of `(n, c)` under `criterion`: `Ok("")` when it holds,
 /// otherwise a short reason (the class, or `charmap:<verdict code>`).
+///
+/// A numerical failure at `(n, c)` counts as "not certified", with the
+/// reason `error:<message>` (commas replaced so the reason stays one CSV
+/// cell): the intervals stay inner bounds and the study goes on.
 fn verdict(n: usize, c: f64, criterion: Criterion) -> Result<String> {
     let s = LocalScheme::<f64>::adjustable_cc(n, c)?;
-    let sub = classify_scheme(&s)?;
+    match certify(&s, criterion) {
+        Ok(v) => Ok(v),
+        Err(e) => Ok(format!("error:{}", csv_cell(&e.to_string()))),
+    }
+}
+
+/// `text` with the CSV separators (`,`, line breaks) replaced by `;` and spaces.
+pub fn csv_cell(text: &str) -> String {
+    text.replace(',', ";").replace(['\n', '\r'], " ")
+}
+
+/// The verdict of a valid scheme (see [`verdict`]).
+fn certify(s: &LocalScheme<f64>, criterion: Criterion) -> Result<String> {
+    let sub = classify_scheme(s)?;
     if !matches!(sub.class, SubdominantClass::Standard) {
         return Ok(sub.class.name().to_owned());
     }
     if criterion == Criterion::Standard {
         return Ok(String::new());
     }
-    let map = charmap::check_classified(&s, &sub)?;
+    let map = charmap::check_classified(s, &sub)?;
     Ok(match map.verdict {
         charmap::Verdict::C1Standard => String::new(),
         v => format!("charmap:{}", v.code()),
@@ -115,6 +132,19 @@ pub fn study_curve(n: usize, samples: usize) -> Result<Vec<StudyPoint>> {
     let m = samples.max(1);
     (0..=m)
         .map(|k| study_point(n, k as f64 / m as f64))
+        .collect()
+}
+
+/// `samples + 1` equally spaced values of `c` in `[0, 1]` for one valence,
+/// each with its own result: a point whose computation fails keeps its
+/// error and the others are still computed (the `cc-study --curves` rows).
+pub fn study_curve_rows(n: usize, samples: usize) -> Vec<(f64, Result<StudyPoint>)> {
+    let m = samples.max(1);
+    (0..=m)
+        .map(|k| {
+            let c = k as f64 / m as f64;
+            (c, study_point(n, c))
+        })
         .collect()
 }
 

@@ -11,6 +11,7 @@
 //!
 //! Modules, one concept each:
 //!
+//! * [`budget`]: memory and time estimates of the heavy steps (checked before they start);
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
 //! * [`schemes`]: local subdivision matrices through one assembly path;
@@ -38,6 +39,7 @@
 
 pub mod bezier;
 pub mod bspline;
+pub mod budget;
 pub mod cc_study;
 pub mod ccss_bound;
 pub mod charmap;

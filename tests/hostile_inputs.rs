@@ -563,6 +563,182 @@ fn cases() -> Vec<Case> {
         &["analyze", "--uniform", "--valence", "0"],
         "0",
     )]);
+    // Issue 16 item 4: sizes whose matrices do not fit in memory are refused
+    // from the estimate, before any allocation (they used to abort).
+    v.extend([
+        bad(
+            "analyze-cc-valence-100000",
+            &[
+                "analyze",
+                "--scheme",
+                "catmull-clark",
+                "--valence",
+                "100000",
+            ],
+            "valence 100000 needs ~",
+        ),
+        bad(
+            "analyze-nurds-valence-100000",
+            &["analyze", "--uniform", "--valence", "100000"],
+            "400000 x 400000",
+        ),
+        bad(
+            "analyze-doo-sabin-valence-100000",
+            &["analyze", "--scheme", "doo-sabin", "--valence", "100000"],
+            "valence 100000 needs ~",
+        ),
+        bad(
+            "analyze-cc-variant-valence-100000",
+            &["analyze", "--scheme", "cc-variant", "--valence", "100000"],
+            "valence 100000 needs ~",
+        ),
+        bad(
+            "analyze-adjustable-valence-100000",
+            &[
+                "analyze",
+                "--scheme",
+                "adjustable-cc",
+                "--c",
+                "0.3",
+                "--valence",
+                "100000",
+            ],
+            "200001 x 200001",
+        ),
+        bad(
+            "analyze-structured-nurds-20000",
+            &[
+                "analyze",
+                "--uniform",
+                "--valence",
+                "20000",
+                "--path",
+                "structured",
+            ],
+            "valence 20000 needs ~",
+        ),
+        bad(
+            "analyze-structured-cc-20000",
+            &[
+                "analyze",
+                "--scheme",
+                "catmull-clark",
+                "--valence",
+                "20000",
+                "--path",
+                "structured",
+            ],
+            "valence 20000 needs ~",
+        ),
+        bad(
+            "analyze-force-still-refuses-beyond-memory",
+            &[
+                "analyze",
+                "--scheme",
+                "catmull-clark",
+                "--valence",
+                "100000",
+                "--force",
+            ],
+            "refused even with --force",
+        ),
+        bad(
+            "matrix-cc-valence-100000",
+            &["matrix", "--scheme", "catmull-clark", "--valence", "100000"],
+            "matrix: valence 100000 needs ~",
+        ),
+        bad(
+            "matrix-nurds-valence-100000-csv",
+            &[
+                "matrix",
+                "--uniform",
+                "--valence",
+                "100000",
+                "--format",
+                "csv",
+            ],
+            "matrix: valence 100000 needs ~",
+        ),
+        bad(
+            "matrix-nurds-valence-2000",
+            &[
+                "matrix",
+                "--uniform",
+                "--valence",
+                "2000",
+                "--format",
+                "csv",
+            ],
+            "use --force to run anyway",
+        ),
+        bad(
+            "ccss-bound-valence-100000",
+            &["ccss-bound", "--valence", "100000"],
+            "ccss-bound: valence 100000 needs ~",
+        ),
+    ]);
+    // Issue 16 item 5: runs of minutes are refused with their estimate.
+    v.extend([
+        bad(
+            "analyze-valence-1000-uniform",
+            &["analyze", "--valence", "1000", "--uniform"],
+            "analyze: valence 1000 takes ~",
+        ),
+        bad(
+            "analyze-valence-1000-structured",
+            &["analyze", "--valence", "1000", "--uniform", "--path", "structured"],
+            "use --force to run anyway",
+        ),
+        bad(
+            "ccss-bound-valence-1000",
+            &["ccss-bound", "--valence", "1000"],
+            "use --force to run anyway",
+        ),
+        bad(
+            "ccss-bound-table-to-1000",
+            &["ccss-bound", "--table-to", "1000"],
+            "--table-to 1000",
+        ),
+        bad(
+            "cc-study-huge",
+            &["cc-study", "--n-max", "256", "--samples", "100000", "--curves"],
+            "cc-study: valences 3..256",
+        ),
+        bad(
+            "subdivide-levels-beyond-memory",
+            &["subdivide", "{M}/cube.obj", "--scheme", "catmull-clark", "--levels", "13", "-o", "x.obj"],
+            "subdivide: --levels 13 needs ~",
+        ),
+        bad(
+            "subdivide-levels-over-limit",
+            &["subdivide", "{M}/cube.obj", "--scheme", "nurds", "--levels", "11", "-o", "x.obj"],
+            "subdivide: --levels 11 needs ~",
+        ),
+        bad(
+            "subdivide-cc-levels-over-limit",
+            &["subdivide", "{M}/cube.obj", "--scheme", "catmull-clark", "--levels", "11", "--timing"],
+            "subdivide: --levels 11 needs ~",
+        ),
+        bad_with(
+            "sweep-10-to-the-12",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[(
+                "s.toml",
+                "name = \"huge\"\nscheme = \"nurds\"\nvalences = [12]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 10\n",
+            )],
+            "1000000000000 configurations",
+        ),
+        bad(
+            "sweep-threads-10000",
+            &["sweep", "{A}/sweep-n3-slice.toml", "--threads", "10000"],
+            "--threads must be between 1 and",
+        ),
+        bad(
+            "sweep-threads-zero",
+            &["sweep", "{A}/sweep-n3-slice.toml", "--threads", "0"],
+            "got 0",
+        ),
+    ]);
     // (end of section bounded-work)
     //
     //

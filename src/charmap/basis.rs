@@ -203,12 +203,24 @@ pub fn subdominant_basis(
         }
         v - tr * a[(i, j)] + if i == j { det } else { 0.0 }
     });
-    let svd = q.svd().map_err(|_| Error::Numerical {
-        routine: "subdominant subspace (SVD)",
-        reason: format!("no convergence for n = {n}"),
-    })?;
-    let v = svd.V();
-    let wa: Vec<[f64; 2]> = (0..n).map(|i| [v[(i, n - 2)], v[(i, n - 1)]]).collect();
+    let wa: Vec<[f64; 2]> = match q.svd() {
+        Ok(svd) => {
+            let v = svd.V();
+            (0..n).map(|i| [v[(i, n - 2)], v[(i, n - 1)]]).collect()
+        }
+        // fallback route: the one-sided Jacobi SVD with vectors
+        Err(_) => {
+            let qd = DMatrix::from_fn(n, n, |i, j| q[(i, j)]);
+            let v = crate::spectral::svd::jacobi_svd(&qd, true)
+                .ok()
+                .and_then(|(_, v)| v)
+                .ok_or_else(|| Error::Numerical {
+                    routine: "subdominant subspace (SVD)",
+                    reason: format!("no convergence for n = {n}"),
+                })?;
+            (0..n).map(|i| [v[(i, n - 2)], v[(i, n - 1)]]).collect()
+        }
+    };
     let mut m = [[0.0; 2]; 2];
     for (r, mr) in m.iter_mut().enumerate() {
         for (c, mrc) in mr.iter_mut().enumerate() {

@@ -314,10 +314,19 @@ pub fn subspace_bound(s: &DMatrix<f64>, w1: &[f64], w2: &[f64]) -> Result<(f64, 
         }
     }
     let kf = kf.sqrt();
-    let sv = k.singular_values().map_err(|_| Error::Numerical {
-        routine: "subspace separation (SVD)",
-        reason: format!("no convergence for a {0} x {0} Kronecker matrix", 2 * m),
-    })?;
+    let sv = match k.singular_values() {
+        Ok(sv) => sv,
+        // fallback route: the one-sided Jacobi SVD (same error model)
+        Err(_) => {
+            let kd = DMatrix::from_fn(2 * m, 2 * m, |r, c| k[(r, c)]);
+            crate::spectral::svd::jacobi_svd(&kd, false)
+                .map_err(|_| Error::Numerical {
+                    routine: "subspace separation (SVD)",
+                    reason: format!("no convergence for a {0} x {0} Kronecker matrix", 2 * m),
+                })?
+                .0
+        }
+    };
     let smin = sv.last().copied().unwrap_or(0.0);
     // sep of the exact T: the computed K is off by the rounding of Q^T S Q too
     let sep = smin - SVD_ERROR_FACTOR * (2 * m) as f64 * f64::EPSILON * kf - 2.0 * round;

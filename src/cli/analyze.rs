@@ -30,6 +30,9 @@ pub(crate) struct AnalyzeArgs {
     /// Seed of the random control points of the measured contraction.
     #[arg(long, default_value_t = 0x5EED)]
     seed: u64,
+    /// Run even when the estimated memory or time exceeds the limits (see README).
+    #[arg(long)]
+    force: bool,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -46,6 +49,19 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         )));
     }
     let resolved = args.scheme.resolve(args.exact)?;
+    let n = resolved.f64.valence();
+    let estimate = subdiv_lab::budget::analyze(
+        resolved.f64.kind(),
+        n,
+        matches!(args.path, Path::Structured),
+    );
+    super::budget::check(
+        "analyze",
+        &format!("valence {n}"),
+        &estimate,
+        subdiv_lab::budget::TIME_LIMIT_SECONDS,
+        args.force,
+    )?;
     let options = AnalyzeOptions {
         path: match args.path {
             Path::Full => SpectrumPath::Full,

@@ -7,7 +7,7 @@ use super::{CliError, CliResult};
 use anyhow::anyhow;
 use clap::Args;
 use std::io::Write as _;
-use subdiv_lab::cc_study::{intervals, study_curve, Criterion};
+use subdiv_lab::cc_study::{csv_cell, intervals, study_curve_rows, Criterion};
 
 #[derive(Args, Debug)]
 pub(crate) struct CcStudyArgs {
@@ -30,6 +30,9 @@ pub(crate) struct CcStudyArgs {
     /// and injective) or `standard` (the spectral part only).
     #[arg(long, value_enum, default_value_t = CriterionArg::C1)]
     criterion: CriterionArg,
+    /// Run even when the estimated time or memory exceeds the limits (see README).
+    #[arg(long)]
+    force: bool,
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -51,32 +54,44 @@ pub(crate) fn run(args: CcStudyArgs) -> CliResult {
             "need 1 <= --samples <= 100000 and 0 < --tol < 1"
         )));
     }
+    super::budget::check(
+        "cc-study",
+        &format!("valences {}..{}", args.n_min, args.n_max),
+        &subdiv_lab::budget::cc_study(args.n_min, args.n_max, args.samples, args.curves),
+        subdiv_lab::budget::TIME_LIMIT_SECONDS,
+        args.force,
+    )?;
     // Rows are written as they are computed (the intervals take a while per
     // valence); a write error on stdout is a failure (exit 1), not a panic.
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     if args.curves {
+        // A point whose computation fails becomes a row with class and
+        // charmap "error" and the message in the last column; the run goes on.
         writeln!(
             out,
-            "n,c,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,class,fourier_subdominant,charmap"
+            "n,c,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,class,fourier_subdominant,charmap,error"
         )
         .map_err(CliError::stdout)?;
         for n in args.n_min..=args.n_max {
-            for p in study_curve(n, args.samples).map_err(CliError::lib)? {
-                writeln!(
-                    out,
-                    "{},{},{:e},{:e},{:e},{:e},{:e},{},{:e},{}",
-                    n,
-                    p.c,
-                    p.lambda1[0],
-                    p.lambda1[1],
-                    p.lambda2[0],
-                    p.lambda2[1],
-                    p.abs_lambda3,
-                    p.class,
-                    p.fourier_subdominant,
-                    p.charmap
-                )
+            for (c, row) in study_curve_rows(n, args.samples) {
+                match row {
+                    Ok(p) => writeln!(
+                        out,
+                        "{},{},{:e},{:e},{:e},{:e},{:e},{},{:e},{},",
+                        n,
+                        p.c,
+                        p.lambda1[0],
+                        p.lambda1[1],
+                        p.lambda2[0],
+                        p.lambda2[1],
+                        p.abs_lambda3,
+                        p.class,
+                        p.fourier_subdominant,
+                        p.charmap
+                    ),
+                    Err(e) => writeln!(out, "{n},{c},,,,,,error,,error,{}", csv_cell(&e.to_string())),
+                }
                 .map_err(CliError::stdout)?;
             }
         }

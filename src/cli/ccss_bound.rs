@@ -35,6 +35,9 @@ pub(crate) struct CcssBoundArgs {
     /// Tolerance for --net.
     #[arg(long, requires = "net", allow_hyphen_values = true)]
     epsilon: Option<f64>,
+    /// Run even when the estimated memory or time exceeds the limits (see README).
+    #[arg(long)]
+    force: bool,
 }
 
 /// Reads a control net: one point per line.
@@ -90,6 +93,13 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
                 "--table-to must be >= 3, got {max}"
             )));
         }
+        super::budget::check(
+            "ccss-bound",
+            &format!("--table-to {max}"),
+            &subdiv_lab::budget::ccss_table(max, args.levels),
+            subdiv_lab::budget::TIME_LIMIT_SECONDS,
+            args.force,
+        )?;
         let rows = beta_table(3..=max, args.levels).map_err(CliError::lib)?;
         let mut out = Vec::new();
         write_beta_csv(&rows, &mut out).map_err(CliError::failure)?;
@@ -103,6 +113,13 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
             "valence must be at least 3, got {n}"
         )));
     }
+    super::budget::check(
+        "ccss-bound",
+        &format!("valence {n}"),
+        &subdiv_lab::budget::ccss_bound(n, args.levels),
+        subdiv_lab::budget::TIME_LIMIT_SECONDS,
+        args.force,
+    )?;
     let r = bound(n, args.levels).map_err(CliError::lib)?;
     let c12 = r
         .omega_1_2()

@@ -20,6 +20,9 @@ pub(crate) struct MatrixArgs {
     /// Exact rational entries (a/b) computed from the exact value of the input.
     #[arg(long)]
     exact: bool,
+    /// Run even when the estimated memory or time exceeds the limits (see README).
+    #[arg(long)]
+    force: bool,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -37,6 +40,20 @@ enum Format {
 
 pub(crate) fn run(args: MatrixArgs) -> CliResult {
     let resolved = args.scheme.resolve(args.exact)?;
+    let n = resolved.f64.valence();
+    let estimate = subdiv_lab::budget::matrix(
+        resolved.f64.kind(),
+        n,
+        matches!(args.block, Block::Face),
+        args.exact,
+    );
+    super::budget::check(
+        "matrix",
+        &format!("valence {n}"),
+        &estimate,
+        subdiv_lab::budget::TIME_LIMIT_SECONDS,
+        args.force,
+    )?;
     let out = match &resolved.exact {
         Some(exact) => render(exact, &args)?,
         None => render(&resolved.f64, &args)?,

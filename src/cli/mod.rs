@@ -3,6 +3,7 @@
 //! library, and formats the result. No numerics here.
 
 mod analyze;
+mod budget;
 mod cc_study;
 mod ccss_bound;
 mod matrix;

@@ -55,6 +55,21 @@ pub(crate) struct SubdivideArgs {
     /// Print the refinement wall time (excluding reading and writing) to standard error.
     #[arg(long)]
     timing: bool,
+    /// Run even when the estimated memory or time exceeds the limits (see README).
+    #[arg(long)]
+    force: bool,
+}
+
+/// Refuses a refinement whose output (`half_edges` half-edges) exceeds the
+/// memory or time limit (before any level is refined).
+fn check_budget(args: &SubdivideArgs, half_edges: u64) -> CliResult {
+    super::budget::check(
+        "subdivide",
+        &format!("--levels {}", args.levels),
+        &subdiv_lab::budget::subdivide(half_edges),
+        subdiv_lab::budget::TIME_LIMIT_SECONDS,
+        args.force,
+    )
 }
 
 /// Refuses outputs that name each other, the input OBJ or the knot file.
@@ -137,6 +152,7 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
             args.levels
         )));
     }
+    check_budget(&args, needed)?;
 
     let mut stats: Vec<LevelStats> = Vec::new();
     if args.stats {
@@ -296,6 +312,7 @@ fn cc_refine_and_write(args: &SubdivideArgs, c: f64, path: Option<PathBuf>) -> C
             args.levels
         )));
     }
+    check_budget(args, needed)?;
     let t = std::time::Instant::now();
     for _ in 0..args.levels {
         mesh = refine_cc(&mesh, c).map_err(CliError::lib)?;

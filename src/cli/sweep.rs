@@ -37,6 +37,9 @@ pub(crate) struct SweepArgs {
     /// Stop after the first K configurations of the shard (a prefix of the full run).
     #[arg(long)]
     limit: Option<u64>,
+    /// Run even when the estimated time or memory exceeds the limits (see README).
+    #[arg(long)]
+    force: bool,
 }
 
 #[derive(Args, Debug)]
@@ -161,8 +164,8 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         .map_err(CliError::usage)?;
     let spec = SweepSpec::from_toml(&text)
         .map_err(|e| CliError::usage(anyhow!("{}: {e}", args.spec.display())))?;
-    if args.threads == Some(0) {
-        return Err(CliError::usage(anyhow!("--threads must be >= 1, got 0")));
+    if let Some(t) = args.threads {
+        super::budget::check_threads(t)?;
     }
     if args.resume && args.out.is_none() {
         return Err(CliError::usage(anyhow!("--resume needs --out FILE.csv")));
@@ -176,6 +179,23 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    // Work estimate of this shard's rows (before --resume skips any: a
+    // conservative bound), checked before any file is opened.
+    let estimate = subdiv_lab::budget::sweep_rows(&plan, expected, shard.count, threads);
+    super::budget::check(
+        "sweep",
+        &format!("{}", args.spec.display()),
+        &estimate,
+        subdiv_lab::budget::SWEEP_TIME_LIMIT_SECONDS,
+        args.force,
+    )?;
+    if estimate.seconds > subdiv_lab::budget::TIME_LIMIT_SECONDS {
+        eprintln!(
+            "sweep: {} estimated at ~{}",
+            estimate.what,
+            subdiv_lab::budget::format_seconds(estimate.seconds)
+        );
+    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()

@@ -38,6 +38,7 @@ pub mod exact;
 pub mod kernel;
 pub mod poly;
 pub mod structured;
+pub mod svd;
 
 pub use classify::{ClassName, Subdominant, SubdominantClass};
 pub use eigen::{Eigen, EigenOptions};
@@ -318,16 +319,16 @@ fn c64(z: Complex64) -> [f64; 2] {
     [z.re, z.im]
 }
 
-/// Second smallest singular value of `x - lambda I`.
+/// Second smallest singular value of `x - lambda I` ([`svd::singular_values`]:
+/// faer's SVD, the one-sided Jacobi SVD when that does not converge).
 fn second_smallest_sigma(x: &DMatrix<f64>, lambda: f64) -> Result<f64, SpectralError> {
     let n = x.nrows();
     if n < 2 {
         return Ok(f64::INFINITY);
     }
-    let m = faer::Mat::<f64>::from_fn(n, n, |i, j| x[(i, j)] - if i == j { lambda } else { 0.0 });
-    let s = m
-        .singular_values()
-        .map_err(|_| SpectralError::SvdNoConvergence { size: n })?;
+    let m = DMatrix::from_fn(n, n, |i, j| x[(i, j)] - if i == j { lambda } else { 0.0 });
+    // faer's SVD, with the one-sided Jacobi SVD as the fallback route (issue 16)
+    let s = svd::singular_values(&m)?;
     // Sorted non-increasing.
     Ok(s[n - 2])
 }
@@ -708,7 +709,13 @@ pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
         let mut guard = cell.borrow_mut();
         let (ws, values) = &mut *guard;
         ws.input(n).copy_from_slice(s.as_slice());
-        let (re, im) = ws.eigenvalues()?;
+        let (re, im) = match ws.eigenvalues() {
+            Ok(v) => v,
+            // fallback route: the general eigen-decomposition (faer), as on
+            // the full path of `analyze`
+            Err(SpectralError::NoConvergence { .. }) => return classify_general(s),
+            Err(e) => return Err(e.into()),
+        };
         values.clear();
         values.extend(re.iter().zip(im).map(|(&a, &b)| Complex64::new(a, b)));
         values.sort_by(spectral_order);
@@ -731,4 +738,27 @@ pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
             &mut |lam| second_smallest_sigma(s, lam),
         )?)
     })
+}
+
+/// Classification of any square matrix from its general eigen-decomposition
+/// with condition numbers ([`Eigen`], the full path of [`analyze`]): the
+/// fallback of [`classify_matrix`] when the small-matrix kernel's QR
+/// iteration does not converge within its bound.
+fn classify_general(s: &DMatrix<f64>) -> Result<Subdominant> {
+    let e = Eigen::new(s, EigenOptions::BOTH)?;
+    let eta = BACKWARD_ERROR_FACTOR * e.dim() as f64 * f64::EPSILON * e.frobenius_norm();
+    let radii: Vec<f64> = e
+        .condition_numbers()
+        .unwrap_or(&[])
+        .iter()
+        .map(|&k| radius(k, eta))
+        .collect();
+    Ok(classify(
+        &Evidence {
+            values: e.values(),
+            radii: &radii,
+            eta,
+        },
+        &mut |lam| second_smallest_sigma(s, lam),
+    )?)
 }

@@ -1,0 +1,382 @@
+//! Work estimates: memory and time of the heavy steps, computed from the
+//! sizes alone before any of the work (or its allocations) starts (issue 16).
+//!
+//! Each function returns an [`Estimate`] (peak bytes, seconds on the
+//! reference machine, and what the memory is for). The command-line tool
+//! compares it with [`MEMORY_LIMIT_BYTES`] and [`TIME_LIMIT_SECONDS`]
+//! ([`SWEEP_TIME_LIMIT_SECONDS`] for sweeps) and refuses above them unless
+//! `--force` is given; above the machine's physical memory it refuses even
+//! with `--force` (an allocation failure would abort the process).
+//!
+//! The models are dense-linear-algebra counts (`d^2` storage, `d^3` work for
+//! a `d x d` decomposition) with constants **measured** on the reference
+//! machine: 2 cores (shared), 24 GB of memory, release build, peak resident
+//! set from `/usr/bin/time -f %M`. They are rounded *up* (the estimates
+//! are meant to be conservative by up to a factor of about 2) and are only
+//! used to refuse work, never to decide a verdict.
+//!
+//! ```
+//! use subdiv_lab::budget::{self, MEMORY_LIMIT_BYTES, TIME_LIMIT_SECONDS};
+//! use subdiv_lab::schemes::SchemeKind;
+//! let e = budget::analyze(SchemeKind::CatmullClark, 100_000, false);
+//! assert!(e.bytes > 300e9 && e.bytes > MEMORY_LIMIT_BYTES);
+//! let small = budget::analyze(SchemeKind::Nurds, 5, false);
+//! assert!(small.within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
+//! ```
+
+use crate::schemes::SchemeKind;
+use crate::sweep::Plan;
+
+/// Memory a single command may use without `--force`: 4 GB (a sixth of the
+/// 24 GB reference machine, so that several runs fit side by side).
+pub const MEMORY_LIMIT_BYTES: f64 = 4e9;
+
+/// Time a single `analyze`, `matrix`, `ccss-bound`, `cc-study` or
+/// `subdivide` may take without `--force`: one minute on the reference
+/// machine. Interactive commands that take longer are almost always a typo
+/// in a size (`--valence 100000`).
+pub const TIME_LIMIT_SECONDS: f64 = 60.0;
+
+/// Time a `sweep` (one shard, after `--limit`, spread over its threads) may
+/// take without `--force`: one hour. Sweeps stream their rows and resume
+/// after an interruption, so long runs are legitimate, but a spec of `10^12`
+/// configurations is a mistake; shard it (`--shard I/N`) or pass `--force`.
+pub const SWEEP_TIME_LIMIT_SECONDS: f64 = 3600.0;
+
+/// Peak bytes per entry `d^2` of the `d x d` matrix of `analyze`, Doo-Sabin
+/// family (`d = 4n`): the eigenvectors (complex, both sides) and the
+/// `2(d-2)`-square Kronecker matrix of the characteristic map's subspace
+/// bound dominate. Measured 162-173 bytes at `n = 200..400`.
+pub const ANALYZE_BYTES_PER_ENTRY_DS: f64 = 200.0;
+
+/// The same for the Catmull-Clark family (`d = 2n + 1`). Measured 128-190
+/// bytes at `n = 200..400`.
+pub const ANALYZE_BYTES_PER_ENTRY_CC: f64 = 200.0;
+
+/// Seconds per `n^3` of `analyze`, Doo-Sabin family, full path (the
+/// `4n x 4n` eigen-decomposition with vectors, the rank tests, the
+/// characteristic map's `(8n)`-square separation SVD). Measured
+/// 1.6e-6 at `n = 200, 300`.
+pub const ANALYZE_SECONDS_PER_N3_DS_FULL: f64 = 2.0e-6;
+
+/// Seconds per `n^3` of `analyze`, Doo-Sabin family, structured path (the
+/// characteristic map's subspace bound on `S_n` remains). Measured 2.9e-7 to
+/// 3.8e-7 at `n = 200, 400`.
+pub const ANALYZE_SECONDS_PER_N3_DS_STRUCTURED: f64 = 5.0e-7;
+
+/// Seconds per `n^3` of `analyze`, Catmull-Clark family (either path).
+/// Measured 1.9e-7 to 2.1e-7 at `n = 200, 400`.
+pub const ANALYZE_SECONDS_PER_N3_CC: f64 = 2.5e-7;
+
+/// Bytes per printed matrix entry of `matrix` (the entry, its text and the
+/// per-cell `String` of the text/JSON renderers); exact rationals need about
+/// twice as much.
+pub const MATRIX_BYTES_PER_ENTRY: f64 = 96.0;
+
+/// Seconds per printed matrix entry of `matrix` (formatting; exact
+/// rationals: reduced fractions). About 5e-8 measured in f64.
+pub const MATRIX_SECONDS_PER_ENTRY: f64 = 2.0e-7;
+
+/// Seconds per `n^(5/2)` of `ccss-bound` at the default 4 levels (the family
+/// of `2n + 10` second differences times `O(n)` control points per linear
+/// program). Measured 4.4e-5 to 6.9e-5 at `n = 50..200`.
+pub const CCSS_SECONDS_PER_N_2_5: f64 = 8.0e-5;
+
+/// Peak bytes per half-edge of the refined mesh of `subdivide`: the mesh
+/// (about 28 bytes: three `u32` and one `f64` per half-edge, positions per
+/// vertex), the previous level (a quarter of that), the OBJ text built in
+/// memory (about 25 bytes) and the limit mesh. Measured 54 (NURDS) and 98
+/// (Catmull-Clark with `--limit`) at 1.6 million half-edges.
+pub const SUBDIVIDE_BYTES_PER_HALF_EDGE: f64 = 128.0;
+
+/// Seconds per half-edge of the refined mesh of `subdivide` (refinement,
+/// OBJ formatting and writing). Measured 0.9e-6 (NURDS) and 1.5e-6
+/// (Catmull-Clark with `--limit`) at 1.6 million half-edges.
+pub const SUBDIVIDE_SECONDS_PER_HALF_EDGE: f64 = 2.0e-6;
+
+/// Seconds of the cheapest sweep configuration (structured classification
+/// of a small valence; the kernel adds about `4e-9 n^3`). Measured 2.6e-6 to
+/// 5e-6 per configuration and thread.
+pub const SWEEP_SECONDS_BASE: f64 = 5e-6;
+
+/// Seconds per `n^5` of the exact certificate of one sweep configuration
+/// (exact characteristic polynomial and Sturm/Schur-Cohn counts over the
+/// rationals). Measured with `analyze --exact` on the Catmull-Clark variant:
+/// 0.38 s at `n = 8`, 13 s at `n = 16`, 79 s at `n = 24`; `n = 3` sweeps run
+/// at about 80 configurations/s on 2 cores. To be re-measured whenever the
+/// exact path changes.
+pub const SWEEP_EXACT_SECONDS_PER_N5: f64 = 1.5e-5;
+
+/// An estimate of one heavy step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Estimate {
+    /// Peak memory, bytes.
+    pub bytes: f64,
+    /// Wall time on the reference machine, seconds.
+    pub seconds: f64,
+    /// What the memory and time are for (e.g. "the 400 x 400 matrix and its decompositions").
+    pub what: String,
+}
+
+impl Estimate {
+    /// Whether both the time and the memory are within the given limits.
+    pub fn within_limits(&self, seconds: f64, bytes: f64) -> bool {
+        self.seconds <= seconds && self.bytes <= bytes
+    }
+}
+
+/// `12.3 GB`, `850 MB`, `3 kB` (decimal units).
+pub fn format_bytes(b: f64) -> String {
+    let units = [("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)];
+    for (name, size) in units {
+        if b >= size {
+            return format!("{} {name}", round_2(b / size));
+        }
+    }
+    format!("{} bytes", b.round())
+}
+
+/// `45 s`, `12 min`, `3.5 h`, `40 d`.
+pub fn format_seconds(s: f64) -> String {
+    if s < 120.0 {
+        format!("{} s", round_2(s.max(0.0)))
+    } else if s < 3600.0 {
+        format!("{} min", round_2(s / 60.0))
+    } else if s < 86400.0 {
+        format!("{} h", round_2(s / 3600.0))
+    } else if s < 86400.0 * 365.0 * 100.0 {
+        format!("{} d", round_2(s / 86400.0))
+    } else {
+        format!("{:.1e} years", s / (86400.0 * 365.0))
+    }
+}
+
+/// Two significant digits (no exponent below 10^15).
+fn round_2(x: f64) -> String {
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    if x >= 10.0 {
+        format!("{:.0}", x)
+    } else {
+        format!("{:.1}", x)
+    }
+}
+
+/// Dimension of the local matrix of `kind` at valence `n`: `4n` (Doo-Sabin
+/// family), `2n + 1` (Catmull-Clark family).
+pub fn local_dimension(kind: SchemeKind, n: usize) -> f64 {
+    let n = n as f64;
+    if kind.is_catmull_clark_family() {
+        2.0 * n + 1.0
+    } else {
+        4.0 * n
+    }
+}
+
+/// `subdiv-lab analyze` of `kind` at valence `n` (`structured`: the
+/// structured path). Without `--exact`; the exact verdicts have their own
+/// bounds.
+pub fn analyze(kind: SchemeKind, n: usize, structured: bool) -> Estimate {
+    let d = local_dimension(kind, n);
+    let nf = n as f64;
+    let (per_entry, per_n3) = if kind.is_catmull_clark_family() {
+        (ANALYZE_BYTES_PER_ENTRY_CC, ANALYZE_SECONDS_PER_N3_CC)
+    } else if structured {
+        (
+            ANALYZE_BYTES_PER_ENTRY_DS,
+            ANALYZE_SECONDS_PER_N3_DS_STRUCTURED,
+        )
+    } else {
+        (ANALYZE_BYTES_PER_ENTRY_DS, ANALYZE_SECONDS_PER_N3_DS_FULL)
+    };
+    Estimate {
+        bytes: per_entry * d * d,
+        seconds: per_n3 * nf * nf * nf,
+        what: format!("the {d} x {d} matrix and its decompositions"),
+    }
+}
+
+/// `subdiv-lab matrix` of `kind` at valence `n` (`face`: the `n x n` face
+/// block only; the full matrix is still assembled).
+pub fn matrix(kind: SchemeKind, n: usize, face: bool, exact: bool) -> Estimate {
+    let d = local_dimension(kind, n);
+    let printed = if face { (n as f64).powi(2) } else { d * d };
+    let factor = if exact { 2.0 } else { 1.0 };
+    Estimate {
+        bytes: 8.0 * factor * d * d + MATRIX_BYTES_PER_ENTRY * factor * printed,
+        seconds: MATRIX_SECONDS_PER_ENTRY * factor * printed,
+        what: format!("the {d} x {d} matrix and its text"),
+    }
+}
+
+/// `subdiv-lab ccss-bound --valence n --levels levels` (a `--table-to N` is
+/// the sum over `n = 3..N`).
+pub fn ccss_bound(n: usize, levels: u32) -> Estimate {
+    let nf = n as f64;
+    let seconds = CCSS_SECONDS_PER_N_2_5 * nf.powf(2.5) * f64::from(levels.max(1)) / 4.0;
+    Estimate {
+        // dense tables of the 2n + 10 differences over the 2n + 8 control
+        // points; measured 17 MB at n = 200
+        bytes: 512.0 * nf * nf + 8e6,
+        seconds,
+        what: format!("{} linear programs of {} unknowns", 16 * levels, 2 * n + 10),
+    }
+}
+
+/// `subdiv-lab ccss-bound --table-to max --levels levels`.
+pub fn ccss_table(max: usize, levels: u32) -> Estimate {
+    let mut e = ccss_bound(max, levels);
+    e.seconds = (3..=max.max(3))
+        .map(|n| ccss_bound(n, levels).seconds)
+        .sum();
+    e.what = format!("{} valences", max.saturating_sub(2));
+    e
+}
+
+/// `subdiv-lab cc-study` (one classification and characteristic-map check of
+/// the `(2n+1)` one-ring per sample; the intervals add about 25 bisection
+/// steps per interval end).
+pub fn cc_study(n_min: usize, n_max: usize, samples: usize, curves: bool) -> Estimate {
+    let per_valence = |n: usize| {
+        let d = 2.0 * n as f64 + 1.0;
+        // measured ~0.4 ms at n = 3 and ~40 ms at n = 64 per point
+        4e-4 + 1.5e-7 * d * d * d
+    };
+    let points = samples as f64 + 1.0 + if curves { 0.0 } else { 100.0 };
+    let seconds = (n_min..=n_max).map(|n| points * per_valence(n)).sum();
+    let d = 2.0 * n_max as f64 + 1.0;
+    Estimate {
+        bytes: ANALYZE_BYTES_PER_ENTRY_CC * d * d + 1e6,
+        seconds,
+        what: format!(
+            "{} x {points} study points",
+            n_max + 1 - n_min.min(n_max + 1)
+        ),
+    }
+}
+
+/// `subdiv-lab subdivide` producing a mesh of `half_edges` half-edges.
+pub fn subdivide(half_edges: u64) -> Estimate {
+    let h = half_edges as f64;
+    Estimate {
+        bytes: SUBDIVIDE_BYTES_PER_HALF_EDGE * h,
+        seconds: SUBDIVIDE_SECONDS_PER_HALF_EDGE * h,
+        what: format!("a refined mesh of {} faces", (h / 4.0).round()),
+    }
+}
+
+/// Seconds of one sweep configuration at valence `n` with the columns of
+/// `plan` (structured classification `O(n^3)` with a small constant; the
+/// characteristic map like `analyze --path structured`; the exact
+/// certificate grows fastest, modelled as `n^4`).
+fn sweep_seconds_per_configuration(plan: &Plan, n: usize) -> f64 {
+    let c = plan.spec().columns;
+    let cc = plan.spec().scheme.is_catmull_clark_family();
+    let nf = n as f64;
+    let mut s = SWEEP_SECONDS_BASE + 4e-9 * nf * nf * nf;
+    if cc {
+        s += ANALYZE_SECONDS_PER_N3_CC * nf * nf * nf;
+    }
+    if c.charmap {
+        s += 1e-3
+            + if cc {
+                ANALYZE_SECONDS_PER_N3_CC
+            } else {
+                ANALYZE_SECONDS_PER_N3_DS_STRUCTURED
+            } * nf
+                * nf
+                * nf;
+    }
+    if c.exact_certificate {
+        s += SWEEP_EXACT_SECONDS_PER_N5 * nf.powi(5);
+    }
+    s
+}
+
+/// `subdiv-lab sweep`: the per-configuration cost summed over a shard's first
+/// `rows` configurations, computed per valence block without visiting each id
+/// (`count_for(n)` configurations of valence `n`, in the order of the spec,
+/// a shard taking every `shard_count`-th).
+pub fn sweep_rows(plan: &Plan, rows: u64, shard_count: u64, threads: usize) -> Estimate {
+    let mut left = rows;
+    let mut seconds = 0.0;
+    let mut max_n = 3;
+    for &n in &plan.spec().valences {
+        if left == 0 {
+            break;
+        }
+        let block = plan.spec().count_for(n).div_ceil(shard_count.max(1));
+        let take = block.min(left);
+        left -= take;
+        max_n = max_n.max(n);
+        seconds += take as f64 * sweep_seconds_per_configuration(plan, n);
+    }
+    let d = local_dimension(plan.spec().scheme, max_n);
+    // the characteristic map works on S_n (d x d); the classification alone
+    // on the n x n face block (Doo-Sabin family) or the one-ring (d x d)
+    let nf = max_n as f64;
+    let per_thread = if plan.spec().columns.charmap {
+        ANALYZE_BYTES_PER_ENTRY_DS * d * d
+    } else if plan.spec().scheme.is_catmull_clark_family() {
+        64.0 * d * d
+    } else {
+        64.0 * nf * nf
+    };
+    Estimate {
+        bytes: threads as f64 * per_thread + 64e6,
+        seconds: seconds / threads.max(1) as f64,
+        what: format!("{rows} configurations on {threads} threads"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn issue_16_sizes_exceed_the_limits_and_small_ones_do_not() {
+        for kind in [
+            SchemeKind::Nurds,
+            SchemeKind::DooSabin,
+            SchemeKind::CcVariant,
+            SchemeKind::CatmullClark,
+            SchemeKind::AdjustableCc,
+        ] {
+            for structured in [false, true] {
+                let big = analyze(kind, 100_000, structured);
+                assert!(big.bytes > MEMORY_LIMIT_BYTES, "{kind}");
+                assert!(analyze(kind, 20_000, structured).bytes > MEMORY_LIMIT_BYTES);
+                assert!(analyze(kind, 1000, structured).seconds > TIME_LIMIT_SECONDS);
+                let small = analyze(kind, 64, structured);
+                assert!(small.within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
+            }
+            assert!(matrix(kind, 100_000, false, false).bytes > MEMORY_LIMIT_BYTES);
+            assert!(
+                matrix(kind, 64, false, true).within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES)
+            );
+        }
+        // the CC one-ring at n = 100000 is the issue's 320 GB matrix
+        let cc = analyze(SchemeKind::CatmullClark, 100_000, false);
+        assert!(cc.bytes >= 8.0 * 200_001f64.powi(2));
+        assert!(cc.what.contains("200001 x 200001"));
+        assert!(ccss_bound(1000, 4).seconds > TIME_LIMIT_SECONDS);
+        assert!(ccss_bound(50, 4).seconds < 10.0);
+        assert!(ccss_bound(100_000, 4).bytes > MEMORY_LIMIT_BYTES);
+        // 720k quads, 5 levels
+        assert!(subdivide(4 * 720_000 * 1024).bytes > MEMORY_LIMIT_BYTES);
+        assert!(subdivide(4 * 720_000).within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
+    }
+
+    #[test]
+    fn formatting() {
+        assert_eq!(format_bytes(320e9), "320 GB");
+        assert_eq!(format_bytes(MEMORY_LIMIT_BYTES), "4.0 GB");
+        assert_eq!(format_bytes(12.0), "12 bytes");
+        assert_eq!(format_seconds(30.0), "30 s");
+        assert_eq!(format_seconds(200.0), "3.3 min");
+        assert_eq!(format_seconds(60.0), "60 s");
+        assert_eq!(format_seconds(7200.0), "2.0 h");
+        assert!(format_seconds(1e12).contains("years"));
+    }
+}

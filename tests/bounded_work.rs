@@ -1,0 +1,162 @@
+//! Issue 16: bounded work. Every spec shipped in `analysis/` runs (at its
+//! full size, or with the `--limit` documented here and in the README), and
+//! the structured path no longer fails on the 7 x 7 matrix whose SVD did not
+//! converge. Refusals of heavy work are rows of `tests/hostile_inputs.rs`
+//! (section bounded-work).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn bin() -> &'static str {
+    env!("CARGO_BIN_EXE_subdiv-lab")
+}
+
+fn analysis() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("analysis")
+}
+
+fn run(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(bin())
+        .args(args)
+        .output()
+        .expect("binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// The test-time `--limit` of each shipped sweep spec (`None`: full size).
+/// Full sizes (2-core reference machine): n3-grid 0.2 s, vertex-ep-sobol
+/// 0.1 s, random 5 s, cc-shape 5 s, n3-slice about 30 s (so limited here to
+/// keep the suite cheap); bench-large is a benchmark of 5 000 000 rows meant
+/// to be sharded; uniform-valences runs the exact certificate up to n = 64,
+/// hours with the current exact path, so its test covers n = 3..10.
+const SWEEP_LIMITS: &[(&str, Option<u64>)] = &[
+    ("sweep-bench-large.toml", Some(20_000)),
+    ("sweep-cc-shape.toml", Some(600)),
+    ("sweep-n3-grid.toml", None),
+    ("sweep-n3-slice.toml", Some(200)),
+    ("sweep-random.toml", Some(20_000)),
+    ("sweep-uniform-valences.toml", Some(8)),
+    ("sweep-vertex-ep-sobol.toml", None),
+];
+
+/// Report specs shipped in `analysis/`, run at full size (default 8 s,
+/// charmap 0.1 s, ccss-bound 13 s).
+const REPORTS: &[&str] = &["default.toml", "charmap.toml", "ccss-bound.toml"];
+
+/// Shipped specs NOT run here, with the reason: `cc-study.toml` takes about
+/// 120 s (the C1 intervals for n = 3..64 by bisection), above the 60 s target
+/// and too slow for the suite; it is an open item of issue 16.
+const NOT_RUN: &[&str] = &["cc-study.toml"];
+
+#[test]
+fn every_shipped_spec_is_listed() {
+    for entry in std::fs::read_dir(analysis()).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        if !name.ends_with(".toml") {
+            continue;
+        }
+        let known = SWEEP_LIMITS.iter().any(|(s, _)| *s == name)
+            || REPORTS.contains(&name.as_str())
+            || NOT_RUN.contains(&name.as_str());
+        assert!(known, "{name} is shipped but not run by this test");
+    }
+}
+
+#[test]
+fn shipped_sweep_specs_run() {
+    let dir = tempfile::tempdir().unwrap();
+    for (spec, limit) in SWEEP_LIMITS {
+        let path = analysis().join(spec);
+        let out = dir.path().join(format!("{spec}.csv"));
+        let mut args = vec![
+            "sweep".to_owned(),
+            path.to_string_lossy().into_owned(),
+            "--out".to_owned(),
+            out.to_string_lossy().into_owned(),
+        ];
+        if let Some(k) = limit {
+            args.push("--limit".to_owned());
+            args.push(k.to_string());
+        }
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, _, err) = run(&args);
+        assert_eq!(code, 0, "{spec}: {err}");
+        let text = std::fs::read_to_string(&out).unwrap();
+        let rows = text.lines().count() - 1;
+        assert!(rows > 0, "{spec}: no rows");
+        if let Some(k) = limit {
+            assert_eq!(rows as u64, *k, "{spec}");
+        }
+    }
+}
+
+#[test]
+fn shipped_report_specs_run() {
+    let dir = tempfile::tempdir().unwrap();
+    for spec in REPORTS {
+        let out = dir.path().join(spec);
+        let path = analysis().join(spec);
+        let (code, _, err) = run(&[
+            "report",
+            path.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ]);
+        assert_eq!(code, 0, "{spec}: {err}");
+    }
+}
+
+/// Issue 16 item 6: faer's SVD did not converge on the 7 x 7 matrix of the
+/// rank test; the Jacobi fallback gives the same verdict as the full path.
+#[test]
+fn structured_path_survives_the_svd_failure() {
+    let base = [
+        "analyze",
+        "--scheme",
+        "adjustable-cc",
+        "--valence",
+        "3",
+        "--c",
+        "0.22986",
+    ];
+    let mut structured = base.to_vec();
+    structured.extend(["--path", "structured"]);
+    let (code, out, err) = run(&structured);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("subdominant class: standard"), "{out}");
+    let (code, full, err) = run(&base);
+    assert_eq!(code, 0, "{err}");
+    let verdict = |s: &str| {
+        s.lines()
+            .find(|l| l.starts_with("characteristic map:"))
+            .map(str::to_owned)
+    };
+    assert_eq!(verdict(&out), verdict(&full));
+    assert!(verdict(&out).is_some());
+}
+
+/// cc-study curves over a grid containing the point above finish and write
+/// one row per point (a failing point would be an `error` row, not the end).
+#[test]
+fn cc_study_curves_write_every_row() {
+    let (code, out, err) = run(&[
+        "cc-study",
+        "--n-min",
+        "3",
+        "--n-max",
+        "3",
+        "--samples",
+        "200",
+        "--curves",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert!(lines[0].ends_with(",charmap,error"));
+    assert_eq!(lines.len(), 1 + 201);
+    assert!(lines[1..].iter().all(|l| l.ends_with(',')), "an error row");
+}
