@@ -465,33 +465,81 @@ fn resume_verifies_every_row_in_full() {
     let good = dir.path().join("good.csv");
     ok(&["sweep", s(&spec), "--out", s(&good), "--limit", "20"]);
     let p = dir.path().join("g.csv");
-    let resume = ["sweep", s(&spec), "--out", s(&p), "--resume", "--limit", "30"];
+    let resume = [
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&p),
+        "--resume",
+        "--limit",
+        "30",
+    ];
     let cases: [(&str, &str, &str); 7] = [
-        ("class", "0.123456789", "line 13: class = \"0.123456789\" is not a value"),
+        (
+            "class",
+            "0.123456789",
+            "line 13: class = \"0.123456789\" is not a value",
+        ),
         ("class", "bogus", "class = \"bogus\" is not a value"),
-        ("lambda1_re", "0.5", "line 13: configuration 10 differs from a fresh evaluation: lambda1_re"),
+        (
+            "lambda1_re",
+            "0.5",
+            "line 13: configuration 10 differs from a fresh evaluation: lambda1_re",
+        ),
         ("lambda1_im", "x", "lambda1_im = \"x\" is not a number"),
-        ("abs_lambda3", "-0.25", "abs_lambda3 = -0.25 is out of range"),
-        ("r0", "0.5", "configuration 10 has r0 = \"0.5\" where the spec gives"),
-        ("error", "boom", "configuration 10 has an error and a result"),
+        (
+            "abs_lambda3",
+            "-0.25",
+            "abs_lambda3 = -0.25 is out of range",
+        ),
+        (
+            "r0",
+            "0.5",
+            "configuration 10 has r0 = \"0.5\" where the spec gives",
+        ),
+        (
+            "error",
+            "boom",
+            "configuration 10 has an error and a result",
+        ),
     ];
     for (k, value, needle) in cases {
         fs::copy(&good, &p).unwrap();
         edit_field(&p, 10, k, value);
         let before = fs::read(&p).unwrap();
         refused(&resume, needle);
-        assert_eq!(fs::read(&p).unwrap(), before, "a refused resume leaves the file");
+        assert_eq!(
+            fs::read(&p).unwrap(),
+            before,
+            "a refused resume leaves the file"
+        );
     }
     // A field too many, and a valid but different class.
     fs::copy(&good, &p).unwrap();
-    let text = fs::read_to_string(&p).unwrap().replacen("\n10,", "\n10,3,", 1);
+    let text = fs::read_to_string(&p)
+        .unwrap()
+        .replacen("\n10,", "\n10,3,", 1);
     fs::write(&p, text).unwrap();
     refused(&resume, "line 13: expected 24 fields, found 25");
     fs::copy(&good, &p).unwrap();
-    let row10: Vec<String> = fs::read_to_string(&p).unwrap().lines().nth(12).unwrap().split(',').map(str::to_owned).collect();
-    let other = if row10[6] == "complex_pair" { "real_distinct" } else { "complex_pair" };
+    let row10: Vec<String> = fs::read_to_string(&p)
+        .unwrap()
+        .lines()
+        .nth(12)
+        .unwrap()
+        .split(',')
+        .map(str::to_owned)
+        .collect();
+    let other = if row10[6] == "complex_pair" {
+        "real_distinct"
+    } else {
+        "complex_pair"
+    };
     edit_field(&p, 10, "class", other);
-    refused(&resume, "line 13: configuration 10 differs from a fresh evaluation: class");
+    refused(
+        &resume,
+        "line 13: configuration 10 differs from a fresh evaluation: class",
+    );
     // The untouched file resumes.
     fs::copy(&good, &p).unwrap();
     ok(&resume);
@@ -501,26 +549,70 @@ fn resume_verifies_every_row_in_full() {
 fn foreign_files_and_shard_counts_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let spec = write_spec(dir.path(), "r.toml", "name = \"r\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"corner-intervals\"\ninterval_range = [0.1, 10.0]\n[sampler]\nkind = \"random\"\ncount = 40\nseed = 1\n");
-    let other = write_spec(dir.path(), "o.toml", &fs::read_to_string(&spec).unwrap().replace("seed = 1", "seed = 2"));
+    let other = write_spec(
+        dir.path(),
+        "o.toml",
+        &fs::read_to_string(&spec)
+            .unwrap()
+            .replace("seed = 1", "seed = 2"),
+    );
     let d = dir.path();
     for i in 0..2 {
         let sh = format!("{i}/2");
-        ok(&["sweep", s(&spec), "--out", s(&d.join(format!("a-{i}.csv"))), "--shard", &sh]);
-        ok(&["sweep", s(&other), "--out", s(&d.join(format!("b-{i}.csv"))), "--shard", &sh]);
+        ok(&[
+            "sweep",
+            s(&spec),
+            "--out",
+            s(&d.join(format!("a-{i}.csv"))),
+            "--shard",
+            &sh,
+        ]);
+        ok(&[
+            "sweep",
+            s(&other),
+            "--out",
+            s(&d.join(format!("b-{i}.csv"))),
+            "--shard",
+            &sh,
+        ]);
     }
     let out = d.join("m.csv");
-    ok(&["merge", "--spec", s(&spec), s(&d.join("a-0.csv")), s(&d.join("a-1.csv")), "--out", s(&out)]);
+    ok(&[
+        "merge",
+        "--spec",
+        s(&spec),
+        s(&d.join("a-0.csv")),
+        s(&d.join("a-1.csv")),
+        "--out",
+        s(&out),
+    ]);
     // A shard of the other seed beside this spec's summary.
     fs::copy(d.join("b-1.csv"), d.join("x-1.csv")).unwrap();
     fs::copy(d.join("a-1.summary.json"), d.join("x-1.summary.json")).unwrap();
     let bad = d.join("bad.csv");
     refused(
-        &["merge", "--spec", s(&spec), s(&d.join("a-0.csv")), s(&d.join("x-1.csv")), "--out", s(&bad)],
+        &[
+            "merge",
+            "--spec",
+            s(&spec),
+            s(&d.join("a-0.csv")),
+            s(&d.join("x-1.csv")),
+            "--out",
+            s(&bad),
+        ],
         "x-1.csv: line 1: written by another spec",
     );
     // Its own summary with it: the summary is refused first.
     refused(
-        &["merge", "--spec", s(&spec), s(&d.join("a-0.csv")), s(&d.join("b-1.csv")), "--out", s(&bad)],
+        &[
+            "merge",
+            "--spec",
+            s(&spec),
+            s(&d.join("a-0.csv")),
+            s(&d.join("b-1.csv")),
+            "--out",
+            s(&bad),
+        ],
         "b-1.summary.json: the summary of another spec",
     );
     // A bogus class in a shard.
@@ -528,7 +620,15 @@ fn foreign_files_and_shard_counts_are_refused() {
     fs::copy(d.join("a-1.summary.json"), d.join("y-1.summary.json")).unwrap();
     edit_field(&d.join("y-1.csv"), 3, "class", "bogus");
     refused(
-        &["merge", "--spec", s(&spec), s(&d.join("a-0.csv")), s(&d.join("y-1.csv")), "--out", s(&bad)],
+        &[
+            "merge",
+            "--spec",
+            s(&spec),
+            s(&d.join("a-0.csv")),
+            s(&d.join("y-1.csv")),
+            "--out",
+            s(&bad),
+        ],
         "y-1.csv: line 6: class = \"bogus\"",
     );
     // An edited summary.
@@ -538,7 +638,15 @@ fn foreign_files_and_shard_counts_are_refused() {
     assert_ne!(edited, sm);
     fs::write(d.join("z-1.summary.json"), edited).unwrap();
     refused(
-        &["merge", "--spec", s(&spec), s(&d.join("a-0.csv")), s(&d.join("z-1.csv")), "--out", s(&bad)],
+        &[
+            "merge",
+            "--spec",
+            s(&spec),
+            s(&d.join("a-0.csv")),
+            s(&d.join("z-1.csv")),
+            "--out",
+            s(&bad),
+        ],
         "z-1.summary.json: the summary does not match the rows",
     );
     assert!(!bad.exists());
@@ -548,7 +656,15 @@ fn foreign_files_and_shard_counts_are_refused() {
         "written as shard 1/2 of 2 shards, but this run is shard 1/3 of 3: the shard count must be the same",
     );
     refused(
-        &["sweep", s(&spec), "--out", s(&d.join("a-1.csv")), "--resume", "--shard", "0/2"],
+        &[
+            "sweep",
+            s(&spec),
+            "--out",
+            s(&d.join("a-1.csv")),
+            "--resume",
+            "--shard",
+            "0/2",
+        ],
         "written as shard 1/2, but this run is shard 0/2",
     );
 }
@@ -564,17 +680,41 @@ fn resume_limit_boundaries() {
     // 11 rows resumed with --limit 10: refused, file untouched.
     let before = fs::read(&eleven).unwrap();
     refused(
-        &["sweep", s(&spec), "--out", s(&eleven), "--resume", "--limit", "10"],
+        &[
+            "sweep",
+            s(&spec),
+            "--out",
+            s(&eleven),
+            "--resume",
+            "--limit",
+            "10",
+        ],
         "has more rows than this run expects (10)",
     );
     assert_eq!(fs::read(&eleven).unwrap(), before);
     // 10 then 10: nothing to do, file unchanged.
     let ten_bytes = fs::read(&ten).unwrap();
-    ok(&["sweep", s(&spec), "--out", s(&ten), "--resume", "--limit", "10"]);
+    ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&ten),
+        "--resume",
+        "--limit",
+        "10",
+    ]);
     assert_eq!(fs::read(&ten).unwrap(), ten_bytes);
     assert_eq!(summary(&ten)["rows"], 10);
     // 10 then 11: continues to the 11-row file.
-    ok(&["sweep", s(&spec), "--out", s(&ten), "--resume", "--limit", "11"]);
+    ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&ten),
+        "--resume",
+        "--limit",
+        "11",
+    ]);
     assert_eq!(fs::read(&ten).unwrap(), before);
     assert_eq!(summary(&ten), summary(&eleven));
 }
@@ -585,15 +725,34 @@ fn progress_lines_without_a_terminal_and_quiet() {
     let spec = write_spec(dir.path(), "g.toml", SPEC);
     let p = dir.path().join("g.csv");
     // stderr is a pipe here (not a terminal): progress lines, then the closing line.
-    let o = ok(&["sweep", s(&spec), "--out", s(&p), "--progress-every", "0.01"]);
+    let o = ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&p),
+        "--progress-every",
+        "0.01",
+    ]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        err.lines().any(|l| l.starts_with("sweep: ") && l.contains("/7290 rows (") && l.contains("ETA")),
+        err.lines()
+            .any(|l| l.starts_with("sweep: ") && l.contains("/7290 rows (") && l.contains("ETA")),
         "{err}"
     );
-    assert!(err.lines().last().unwrap().starts_with("sweep: 7290 rows"), "{err}");
+    assert!(
+        err.lines().last().unwrap().starts_with("sweep: 7290 rows"),
+        "{err}"
+    );
     let q = dir.path().join("q.csv");
-    let o = ok(&["sweep", s(&spec), "--out", s(&q), "--progress-every", "0.01", "--quiet"]);
+    let o = ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&q),
+        "--progress-every",
+        "0.01",
+        "--quiet",
+    ]);
     assert_eq!(String::from_utf8_lossy(&o.stderr), "");
     assert_eq!(fs::read(&q).unwrap(), fs::read(&p).unwrap());
 }

@@ -199,9 +199,7 @@ fn scan_existing(
         good += n as u64;
     }
     flush(&mut verifier, &mut block, &mut block_start)?;
-    verifier
-        .recheck(eval)
-        .map_err(|(l, m)| mismatch(l, m))?;
+    verifier.recheck(eval).map_err(|(l, m)| mismatch(l, m))?;
     verifier.add_to(summary);
     if lineno < 2 {
         // Empty, or torn inside the fingerprint or header line: start afresh.
@@ -331,74 +329,78 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         .map_err(CliError::failure)?;
 
     // Open the output (only now: a bad spec or flag creates no file).
-    let (mut sink, done, summary_file): (Box<dyn Write + Send>, u64, Option<PathBuf>) =
-        match &args.out {
-            None => {
-                let mut w = BufWriter::with_capacity(1 << 20, std::io::stdout());
-                w.write_all(output::fingerprint_line(&plan, shard).as_bytes())
-                    .map_err(CliError::failure)?;
-                layout.write_header(&mut w).map_err(CliError::failure)?;
-                (Box::new(w), 0, None)
+    let (mut sink, done, summary_file): (Box<dyn Write + Send>, u64, Option<PathBuf>) = match &args
+        .out
+    {
+        None => {
+            let mut w = BufWriter::with_capacity(1 << 20, std::io::stdout());
+            w.write_all(output::fingerprint_line(&plan, shard).as_bytes())
+                .map_err(CliError::failure)?;
+            layout.write_header(&mut w).map_err(CliError::failure)?;
+            (Box::new(w), 0, None)
+        }
+        Some(path) => {
+            let spath = summary_path(path);
+            let exists = path.exists();
+            if exists && !args.resume {
+                return Err(CliError::usage(anyhow!(
+                    "{} exists; pass --resume to continue it, or remove it",
+                    path.display()
+                )));
             }
-            Some(path) => {
-                let spath = summary_path(path);
-                let exists = path.exists();
-                if exists && !args.resume {
-                    return Err(CliError::usage(anyhow!(
-                        "{} exists; pass --resume to continue it, or remove it",
-                        path.display()
-                    )));
-                }
-                let (done, good, preamble, torn) = if exists {
-                    pool.install(|| scan_existing(path, &plan, &layout, &eval, shard, &mut summary))?
-                } else {
-                    (0, 0, true, false)
-                };
-                let mut file = OpenOptions::new()
-                    .create(true)
-                    .truncate(false)
-                    .write(true)
-                    .open(path)
-                    .with_context(|| format!("opening {}", path.display()))
+            let (done, good, preamble, torn) = if exists {
+                pool.install(|| scan_existing(path, &plan, &layout, &eval, shard, &mut summary))?
+            } else {
+                (0, 0, true, false)
+            };
+            let mut file = OpenOptions::new()
+                .create(true)
+                .truncate(false)
+                .write(true)
+                .open(path)
+                .with_context(|| format!("opening {}", path.display()))
+                .map_err(CliError::failure)?;
+            if exists {
+                file.set_len(good)
+                    .and_then(|_| file.seek(SeekFrom::End(0)).map(|_| ()))
+                    .with_context(|| format!("truncating {}", path.display()))
                     .map_err(CliError::failure)?;
-                if exists {
-                    file.set_len(good)
-                        .and_then(|_| file.seek(SeekFrom::End(0)).map(|_| ()))
-                        .with_context(|| format!("truncating {}", path.display()))
-                        .map_err(CliError::failure)?;
-                    if (done > 0 || good > 0 || torn) && !args.quiet {
-                        eprintln!(
-                            "sweep: resuming {} at row {done} of {expected}{}",
-                            path.display(),
-                            if torn { " (dropped a torn last line)" } else { "" }
-                        );
-                    }
+                if (done > 0 || good > 0 || torn) && !args.quiet {
+                    eprintln!(
+                        "sweep: resuming {} at row {done} of {expected}{}",
+                        path.display(),
+                        if torn {
+                            " (dropped a torn last line)"
+                        } else {
+                            ""
+                        }
+                    );
                 }
-                if preamble {
-                    file.write_all(output::fingerprint_line(&plan, shard).as_bytes())
-                        .map_err(CliError::failure)?;
-                    layout.write_header(&mut file).map_err(CliError::failure)?;
-                }
-                write_summary(&spath, &summary)?;
-                (
-                    Box::new(BufWriter::with_capacity(1 << 20, file)),
-                    done,
-                    Some(spath),
-                )
             }
-        };
+            if preamble {
+                file.write_all(output::fingerprint_line(&plan, shard).as_bytes())
+                    .map_err(CliError::failure)?;
+                layout.write_header(&mut file).map_err(CliError::failure)?;
+            }
+            write_summary(&spath, &summary)?;
+            (
+                Box::new(BufWriter::with_capacity(1 << 20, file)),
+                done,
+                Some(spath),
+            )
+        }
+    };
 
     // A progress bar on a terminal; progress lines every few seconds otherwise
     // (batch jobs: the Slurm log shows the run is alive and how far it got).
     let terminal = std::io::stderr().is_terminal();
     let counter = std::sync::Arc::new(std::sync::atomic::AtomicU64::new(0));
-    let reporter = (!terminal && !args.quiet && expected > done)
-        .then(|| {
-            let every = std::time::Duration::try_from_secs_f64(args.progress_every)
-                .unwrap_or(PROGRESS_EVERY)
-                .max(std::time::Duration::from_millis(1));
-            Reporter::start(counter.clone(), done, expected, every)
-        });
+    let reporter = (!terminal && !args.quiet && expected > done).then(|| {
+        let every = std::time::Duration::try_from_secs_f64(args.progress_every)
+            .unwrap_or(PROGRESS_EVERY)
+            .max(std::time::Duration::from_millis(1));
+        Reporter::start(counter.clone(), done, expected, every)
+    });
     let bar = if terminal && !args.quiet && expected > done {
         let pb = indicatif::ProgressBar::new(expected);
         if let Ok(style) = indicatif::ProgressStyle::with_template(
@@ -623,7 +625,11 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
                 s.shard
             )));
         }
-        if src.shard.count != sources.first().map_or(src.shard.count, |f: &MergeSource<LineIter>| f.shard.count) {
+        if src.shard.count
+            != sources
+                .first()
+                .map_or(src.shard.count, |f: &MergeSource<LineIter>| f.shard.count)
+        {
             return Err(CliError::usage(anyhow!(
                 "{}: shard {} of {} shards, but {} is shard {} of {}: shards of one run have the same count",
                 p.display(),
@@ -653,12 +659,11 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
         w.write_all(output::fingerprint_line(&plan, Shard::ALL).as_bytes())
             .map_err(CliError::failure)?;
         layout.write_header(&mut w).map_err(CliError::failure)?;
-        let parts = output::merge(&plan, &layout, &eval, sources, &mut w, salt()).map_err(
-            |e| match e {
+        let parts =
+            output::merge(&plan, &layout, &eval, sources, &mut w, salt()).map_err(|e| match e {
                 SweepError::Io(_) => CliError::failure(e),
                 other => CliError::usage(other),
-            },
-        )?;
+            })?;
         w.flush().map_err(CliError::failure)?;
         Ok(parts)
     })();
@@ -669,7 +674,13 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
             return Err(e);
         }
     };
-    for (((p, s), c), part) in args.inputs.iter().zip(&summaries).zip(&counters).zip(&parts) {
+    for (((p, s), c), part) in args
+        .inputs
+        .iter()
+        .zip(&summaries)
+        .zip(&counters)
+        .zip(&parts)
+    {
         let problem = if s.rows != c.get() {
             Some(format!(
                 "{}: the summary counts {} rows but the CSV has {}; finish that shard with `sweep --resume`",

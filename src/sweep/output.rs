@@ -864,13 +864,13 @@ where
             Some(line) => {
                 let line = line?;
                 let expected = src.shard.id(ver.rows());
-                let id = ver
-                    .check(lineno, &line, expected)
-                    .map_err(|message| SweepError::Mismatch {
-                        source_name: src.name.clone(),
-                        line: lineno,
-                        message,
-                    })?;
+                let id =
+                    ver.check(lineno, &line, expected)
+                        .map_err(|message| SweepError::Mismatch {
+                            source_name: src.name.clone(),
+                            line: lineno,
+                            message,
+                        })?;
                 Ok(Some((id, Head { line, lineno })))
             }
         }
@@ -1192,7 +1192,16 @@ mod tests {
         let layout = Layout::new(&plan);
         let eval = SpectralEvaluator::new(plan.spec().columns);
         let mut all = Vec::new();
-        run(&plan, &layout, &eval, 0..8, &mut all, &mut Summary::new(&plan, &layout, Shard::ALL, None), &mut |_| {}).unwrap();
+        run(
+            &plan,
+            &layout,
+            &eval,
+            0..8,
+            &mut all,
+            &mut Summary::new(&plan, &layout, Shard::ALL, None),
+            &mut |_| {},
+        )
+        .unwrap();
         let all = String::from_utf8(all).unwrap();
         let l: Vec<&str> = all.lines().collect();
         let s0: Shard = "0/2".parse().unwrap();
@@ -1200,32 +1209,69 @@ mod tests {
         let evens = [l[0], l[2], l[4], l[6]];
         let odds = [l[1], l[3], l[5], l[7]];
         let mut out = Vec::new();
-        let parts = merge(&plan, &layout, &eval, vec![src("a", s0, &evens), src("b", s1, &odds)], &mut out, 1).unwrap();
+        let parts = merge(
+            &plan,
+            &layout,
+            &eval,
+            vec![src("a", s0, &evens), src("b", s1, &odds)],
+            &mut out,
+            1,
+        )
+        .unwrap();
         assert_eq!(String::from_utf8(out).unwrap(), all);
         assert_eq!(parts.iter().map(|p| p.rows).collect::<Vec<_>>(), vec![4, 4]);
-        let go = |srcs: Vec<MergeSource<Lines>>| merge(&plan, &layout, &eval, srcs, &mut Vec::new(), 1).unwrap_err().to_string();
+        let go = |srcs: Vec<MergeSource<Lines>>| {
+            merge(&plan, &layout, &eval, srcs, &mut Vec::new(), 1)
+                .unwrap_err()
+                .to_string()
+        };
         let e = go(vec![src("a", s0, &evens), src("b", s1, &odds[..3])]);
         assert!(e.contains("configuration id 7 is missing"), "{e}");
-        let e = go(vec![src("a", s0, &evens), src("b", s1, &odds), src("c", s0, &evens[..1])]);
+        let e = go(vec![
+            src("a", s0, &evens),
+            src("b", s1, &odds),
+            src("c", s0, &evens[..1]),
+        ]);
         assert!(e.contains("configuration id 0 appears twice"), "{e}");
         let e = go(vec![src("a", s0, &[l[0], l[1]])]);
-        assert!(e.contains("a: line 4: configuration id 1 where 2 was expected"), "{e}");
+        assert!(
+            e.contains("a: line 4: configuration id 1 where 2 was expected"),
+            "{e}"
+        );
         // A bogus class, an edited number, an edited parameter.
-        let bogus = l[2].replacen(",standard,", ",bogus,", 1).replacen(",real_distinct,", ",bogus,", 1).replacen(",complex_pair,", ",bogus,", 1);
+        let bogus = l[2]
+            .replacen(",standard,", ",bogus,", 1)
+            .replacen(",real_distinct,", ",bogus,", 1)
+            .replacen(",complex_pair,", ",bogus,", 1);
         assert_ne!(bogus, l[2]);
-        let e = go(vec![src("a", s0, &[l[0], &bogus, l[4], l[6]]), src("b", s1, &odds)]);
+        let e = go(vec![
+            src("a", s0, &[l[0], &bogus, l[4], l[6]]),
+            src("b", s1, &odds),
+        ]);
         assert!(e.contains("a: line 4: class = \"bogus\""), "{e}");
         let f: Vec<&str> = l[4].split(',').collect();
         let mut g = f.clone();
         let lam = format!("{}", f[6].parse::<f64>().unwrap() + 0.25);
         g[6] = &lam;
         let edited = g.join(",");
-        let e = go(vec![src("a", s0, &[l[0], l[2], &edited, l[6]]), src("b", s1, &odds)]);
-        assert!(e.contains("a: line 5: configuration 4 differs from a fresh evaluation: lambda1_re"), "{e}");
+        let e = go(vec![
+            src("a", s0, &[l[0], l[2], &edited, l[6]]),
+            src("b", s1, &odds),
+        ]);
+        assert!(
+            e.contains("a: line 5: configuration 4 differs from a fresh evaluation: lambda1_re"),
+            "{e}"
+        );
         let mut g = f.clone();
         g[2] = "0.5";
         let edited = g.join(",");
-        let e = go(vec![src("a", s0, &[l[0], l[2], &edited, l[6]]), src("b", s1, &odds)]);
-        assert!(e.contains("configuration 4 has r0 = \"0.5\" where the spec gives"), "{e}");
+        let e = go(vec![
+            src("a", s0, &[l[0], l[2], &edited, l[6]]),
+            src("b", s1, &odds),
+        ]);
+        assert!(
+            e.contains("configuration 4 has r0 = \"0.5\" where the spec gives"),
+            "{e}"
+        );
     }
 }

@@ -249,7 +249,7 @@ impl<'a> Verifier<'a> {
             coordinates: Vec::new(),
             part: PartialSummary::new(layout.numeric.len()),
             kept: Vec::new(),
-            salt: mix64(salt ^ 0x5eed_0f_5ee9),
+            salt: mix64(salt ^ 0x005e_ed0f_5ee9),
             rows: 0,
         }
     }
