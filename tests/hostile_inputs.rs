@@ -753,6 +753,123 @@ fn cases() -> Vec<Case> {
         &[("s.toml", "this is = = not toml\n")],
         "s.toml",
     )]);
+    // Resume and merge trust nothing: every row verified, files tied to their
+    // spec and shard by the fingerprint line (the set-up files are left as they were).
+    v.extend([
+        Case {
+            name: "sweep-resume-edited-class",
+            args: &["sweep", "h.toml", "--out", "o.csv", "--resume"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,0.123456789,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+            ],
+            code: 2,
+            needle: "class = \"0.123456789\"",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "sweep-resume-edited-lambda",
+            args: &["sweep", "h.toml", "--out", "o.csv", "--resume"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.46,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+            ],
+            code: 2,
+            needle: "lambda1_re is \"0.46\" in the file",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "sweep-resume-shard-count-mismatch",
+            args: &["sweep", "h.toml", "--out", "o.csv", "--resume", "--shard", "1/4"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 1/2, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n"),
+            ],
+            code: 2,
+            needle: "the shard count must be the same",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "sweep-resume-foreign-spec",
+            args: &["sweep", "h.toml", "--out", "o.csv", "--resume"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe6, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+            ],
+            code: 2,
+            needle: "written by another spec",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "sweep-resume-no-fingerprint",
+            args: &["sweep", "h.toml", "--out", "o.csv", "--resume"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("o.csv", "id,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+            ],
+            code: 2,
+            needle: "no fingerprint line",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "sweep-resume-limit-too-small",
+            args: &["sweep", "h.toml", "--out", "o.csv", "--resume", "--limit", "7"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+            ],
+            code: 2,
+            needle: "more rows than this run expects (7)",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "merge-bogus-class",
+            args: &["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("a.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,bogus,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("a.summary.json", "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe5\",\"total_configurations\":8,\"shard\":{\"index\":0,\"count\":1},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}"),
+            ],
+            code: 2,
+            needle: "class = \"bogus\"",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "merge-foreign-shard",
+            args: &["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("a.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe6, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("a.summary.json", "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe5\",\"total_configurations\":8,\"shard\":{\"index\":0,\"count\":1},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}"),
+            ],
+            code: 2,
+            needle: "a.csv: line 1: written by another spec",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "merge-missing-summary",
+            args: &["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("a.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+            ],
+            code: 2,
+            needle: "a.summary.json",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "merge-summary-of-another-spec",
+            args: &["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("a.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("a.summary.json", "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe6\",\"total_configurations\":8,\"shard\":{\"index\":0,\"count\":1},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}"),
+            ],
+            code: 2,
+            needle: "summary of another spec",
+            stdout: Stdout::Pipe,
+        },
+    ]);
     // (end of section sweep-resume-merge)
     //
     //

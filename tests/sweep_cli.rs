@@ -62,7 +62,8 @@ fn summary(p: &Path) -> serde_json::Value {
     v
 }
 
-/// Cuts the file in the middle of data row `row` (0-based), as a kill mid-write would.
+/// Cuts the file in the middle of data row `row` (0-based; after the fingerprint
+/// and header lines), as a kill mid-write would.
 fn truncate_mid_line(path: &Path, row: usize) {
     let bytes = fs::read(path).unwrap();
     let starts: Vec<usize> = std::iter::once(0)
@@ -74,7 +75,7 @@ fn truncate_mid_line(path: &Path, row: usize) {
                 .map(|(i, _)| i + 1),
         )
         .collect();
-    let (a, b) = (starts[row + 1], starts[row + 2]);
+    let (a, b) = (starts[row + 2], starts[row + 3]);
     let cut = a + (b - a) / 2;
     assert!(cut > a && cut < b - 1);
     fs::write(path, &bytes[..cut]).unwrap();
@@ -88,9 +89,11 @@ fn full_run_shape_and_summary() {
     ok(&["sweep", s(&spec), "--out", s(&out)]);
     let text = fs::read_to_string(&out).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines.len(), 1 + 729 + 6561);
-    assert!(lines[0].starts_with("id,valence,r0,r1,r2,r3,class,"));
-    for (j, l) in lines[1..].iter().enumerate() {
+    assert_eq!(lines.len(), 2 + 729 + 6561);
+    assert!(lines[0].starts_with("# subdiv-lab sweep: digest "));
+    assert!(lines[0].contains(", shard 0/1, 7290 configurations, spec \"test-grid\""));
+    assert!(lines[1].starts_with("id,valence,r0,r1,r2,r3,class,"));
+    for (j, l) in lines[2..].iter().enumerate() {
         assert!(l.starts_with(&format!("{j},")), "{l}");
         assert!(l.ends_with(','), "row {j} has an error: {l}");
     }
@@ -152,7 +155,7 @@ fn shards_partition_the_sweep_and_merge_back() {
             "--shard",
             &format!("{i}/{n}"),
         ]);
-        for l in fs::read_to_string(&p).unwrap().lines().skip(1) {
+        for l in fs::read_to_string(&p).unwrap().lines().skip(2) {
             let id: u64 = l.split(',').next().unwrap().parse().unwrap();
             assert_eq!(id % n, i);
             assert!(seen.insert(id), "id {id} in two shards");
@@ -162,7 +165,7 @@ fn shards_partition_the_sweep_and_merge_back() {
     assert_eq!(seen.len(), 7290);
     assert_eq!(*seen.iter().next_back().unwrap(), 7289);
     let merged = dir.path().join("merged.csv");
-    let mut args = vec!["merge"];
+    let mut args = vec!["merge", "--spec", s(&spec)];
     args.extend(shards.iter().map(|p| s(p)));
     args.extend(["--out", s(&merged)]);
     ok(&args);
@@ -171,7 +174,15 @@ fn shards_partition_the_sweep_and_merge_back() {
 
     // A missing shard: the error names the first missing id, and no output appears.
     let bad = dir.path().join("bad.csv");
-    let o = run(&["merge", s(&shards[0]), s(&shards[2]), "--out", s(&bad)]);
+    let o = run(&[
+        "merge",
+        "--spec",
+        s(&spec),
+        s(&shards[0]),
+        s(&shards[2]),
+        "--out",
+        s(&bad),
+    ]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("configuration id 1 is missing"), "{err}");
@@ -179,6 +190,8 @@ fn shards_partition_the_sweep_and_merge_back() {
     // A duplicated shard.
     let o = run(&[
         "merge",
+        "--spec",
+        s(&spec),
         s(&shards[0]),
         s(&shards[1]),
         s(&shards[2]),
@@ -244,7 +257,7 @@ fn resume_after_torn_write_is_byte_identical() {
         "10",
     ]);
     let ten = fs::read_to_string(&p).unwrap();
-    assert_eq!(ten.lines().count(), 11);
+    assert_eq!(ten.lines().count(), 12);
     assert!(String::from_utf8_lossy(&expected).starts_with(&ten));
     ok(&[
         "sweep",
@@ -270,7 +283,7 @@ fn resume_refuses_a_changed_spec() {
     let o = run(&["sweep", s(&other), "--out", s(&p), "--resume"]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("other parameters than the spec"), "{err}");
+    assert!(err.contains("line 1: written by another spec"), "{err}");
     // And a row with a wrong id is named with its line.
     let text = fs::read_to_string(&p).unwrap().replacen("\n5,", "\n6,", 1);
     fs::write(&p, text).unwrap();
@@ -278,7 +291,7 @@ fn resume_refuses_a_changed_spec() {
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        err.contains("line 7: configuration id 6 where 5 was expected"),
+        err.contains("line 8: configuration id 6 where 5 was expected"),
         "{err}"
     );
 }
@@ -423,4 +436,323 @@ count = 60000
     ok(&["sweep", s(&spec), "--out", s(&p), "--resume"]);
     assert_eq!(fs::read(&p).unwrap(), want);
     assert_eq!(summary(&p), summary(&full));
+}
+
+/// Replaces column `col` of data row `row` (0-based) of the CSV at `p`.
+fn edit_field(p: &Path, row: usize, col: &str, value: &str) {
+    let text = fs::read_to_string(p).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let k = lines[1].split(',').position(|c| c == col).unwrap();
+    let mut f: Vec<&str> = lines[row + 2].split(',').collect();
+    assert_ne!(f[k], value);
+    f[k] = value;
+    lines[row + 2] = f.join(",");
+    fs::write(p, lines.join("\n") + "\n").unwrap();
+}
+
+fn refused(args: &[&str], needle: &str) {
+    let o = run(args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.contains(needle), "{args:?}: wanted {needle:?} in {err}");
+}
+
+#[test]
+fn resume_verifies_every_row_in_full() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "g.toml", SPEC);
+    let good = dir.path().join("good.csv");
+    ok(&["sweep", s(&spec), "--out", s(&good), "--limit", "20"]);
+    let p = dir.path().join("g.csv");
+    let resume = [
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&p),
+        "--resume",
+        "--limit",
+        "30",
+    ];
+    let cases: [(&str, &str, &str); 7] = [
+        (
+            "class",
+            "0.123456789",
+            "line 13: class = \"0.123456789\" is not a value",
+        ),
+        ("class", "bogus", "class = \"bogus\" is not a value"),
+        (
+            "lambda1_re",
+            "0.5",
+            "line 13: configuration 10 differs from a fresh evaluation: lambda1_re",
+        ),
+        ("lambda1_im", "x", "lambda1_im = \"x\" is not a number"),
+        (
+            "abs_lambda3",
+            "-0.25",
+            "abs_lambda3 = -0.25 is out of range",
+        ),
+        (
+            "r0",
+            "0.5",
+            "configuration 10 has r0 = \"0.5\" where the spec gives",
+        ),
+        (
+            "error",
+            "boom",
+            "configuration 10 has an error and a result",
+        ),
+    ];
+    for (k, value, needle) in cases {
+        fs::copy(&good, &p).unwrap();
+        edit_field(&p, 10, k, value);
+        let before = fs::read(&p).unwrap();
+        refused(&resume, needle);
+        assert_eq!(
+            fs::read(&p).unwrap(),
+            before,
+            "a refused resume leaves the file"
+        );
+    }
+    // A field too many, and a valid but different class.
+    fs::copy(&good, &p).unwrap();
+    let text = fs::read_to_string(&p)
+        .unwrap()
+        .replacen("\n10,", "\n10,3,", 1);
+    fs::write(&p, text).unwrap();
+    refused(&resume, "line 13: expected 24 fields, found 25");
+    fs::copy(&good, &p).unwrap();
+    let row10: Vec<String> = fs::read_to_string(&p)
+        .unwrap()
+        .lines()
+        .nth(12)
+        .unwrap()
+        .split(',')
+        .map(str::to_owned)
+        .collect();
+    let other = if row10[6] == "complex_pair" {
+        "real_distinct"
+    } else {
+        "complex_pair"
+    };
+    edit_field(&p, 10, "class", other);
+    refused(
+        &resume,
+        "line 13: configuration 10 differs from a fresh evaluation: class",
+    );
+    // The untouched file resumes.
+    fs::copy(&good, &p).unwrap();
+    ok(&resume);
+}
+
+#[test]
+fn foreign_files_and_shard_counts_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "r.toml", "name = \"r\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"corner-intervals\"\ninterval_range = [0.1, 10.0]\n[sampler]\nkind = \"random\"\ncount = 40\nseed = 1\n");
+    let other = write_spec(
+        dir.path(),
+        "o.toml",
+        &fs::read_to_string(&spec)
+            .unwrap()
+            .replace("seed = 1", "seed = 2"),
+    );
+    let d = dir.path();
+    for i in 0..2 {
+        let sh = format!("{i}/2");
+        ok(&[
+            "sweep",
+            s(&spec),
+            "--out",
+            s(&d.join(format!("a-{i}.csv"))),
+            "--shard",
+            &sh,
+        ]);
+        ok(&[
+            "sweep",
+            s(&other),
+            "--out",
+            s(&d.join(format!("b-{i}.csv"))),
+            "--shard",
+            &sh,
+        ]);
+    }
+    let out = d.join("m.csv");
+    ok(&[
+        "merge",
+        "--spec",
+        s(&spec),
+        s(&d.join("a-0.csv")),
+        s(&d.join("a-1.csv")),
+        "--out",
+        s(&out),
+    ]);
+    // A shard of the other seed beside this spec's summary.
+    fs::copy(d.join("b-1.csv"), d.join("x-1.csv")).unwrap();
+    fs::copy(d.join("a-1.summary.json"), d.join("x-1.summary.json")).unwrap();
+    let bad = d.join("bad.csv");
+    refused(
+        &[
+            "merge",
+            "--spec",
+            s(&spec),
+            s(&d.join("a-0.csv")),
+            s(&d.join("x-1.csv")),
+            "--out",
+            s(&bad),
+        ],
+        "x-1.csv: line 1: written by another spec",
+    );
+    // Its own summary with it: the summary is refused first.
+    refused(
+        &[
+            "merge",
+            "--spec",
+            s(&spec),
+            s(&d.join("a-0.csv")),
+            s(&d.join("b-1.csv")),
+            "--out",
+            s(&bad),
+        ],
+        "b-1.summary.json: the summary of another spec",
+    );
+    // A bogus class in a shard.
+    fs::copy(d.join("a-1.csv"), d.join("y-1.csv")).unwrap();
+    fs::copy(d.join("a-1.summary.json"), d.join("y-1.summary.json")).unwrap();
+    edit_field(&d.join("y-1.csv"), 3, "class", "bogus");
+    refused(
+        &[
+            "merge",
+            "--spec",
+            s(&spec),
+            s(&d.join("a-0.csv")),
+            s(&d.join("y-1.csv")),
+            "--out",
+            s(&bad),
+        ],
+        "y-1.csv: line 6: class = \"bogus\"",
+    );
+    // An edited summary.
+    fs::copy(d.join("a-1.csv"), d.join("z-1.csv")).unwrap();
+    let sm = fs::read_to_string(d.join("a-1.summary.json")).unwrap();
+    let edited = sm.replacen("\"errors\": 0", "\"errors\": 1", 1);
+    assert_ne!(edited, sm);
+    fs::write(d.join("z-1.summary.json"), edited).unwrap();
+    refused(
+        &[
+            "merge",
+            "--spec",
+            s(&spec),
+            s(&d.join("a-0.csv")),
+            s(&d.join("z-1.csv")),
+            "--out",
+            s(&bad),
+        ],
+        "z-1.summary.json: the summary does not match the rows",
+    );
+    assert!(!bad.exists());
+    // Resuming shard 1 of 2 as shard 1 of 3.
+    refused(
+        &["sweep", s(&spec), "--out", s(&d.join("a-1.csv")), "--resume", "--shard", "1/3"],
+        "written as shard 1/2 of 2 shards, but this run is shard 1/3 of 3: the shard count must be the same",
+    );
+    refused(
+        &[
+            "sweep",
+            s(&spec),
+            "--out",
+            s(&d.join("a-1.csv")),
+            "--resume",
+            "--shard",
+            "0/2",
+        ],
+        "written as shard 1/2, but this run is shard 0/2",
+    );
+}
+
+#[test]
+fn resume_limit_boundaries() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "g.toml", SPEC);
+    let eleven = dir.path().join("eleven.csv");
+    ok(&["sweep", s(&spec), "--out", s(&eleven), "--limit", "11"]);
+    let ten = dir.path().join("ten.csv");
+    ok(&["sweep", s(&spec), "--out", s(&ten), "--limit", "10"]);
+    // 11 rows resumed with --limit 10: refused, file untouched.
+    let before = fs::read(&eleven).unwrap();
+    refused(
+        &[
+            "sweep",
+            s(&spec),
+            "--out",
+            s(&eleven),
+            "--resume",
+            "--limit",
+            "10",
+        ],
+        "has more rows than this run expects (10)",
+    );
+    assert_eq!(fs::read(&eleven).unwrap(), before);
+    // 10 then 10: nothing to do, file unchanged.
+    let ten_bytes = fs::read(&ten).unwrap();
+    ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&ten),
+        "--resume",
+        "--limit",
+        "10",
+    ]);
+    assert_eq!(fs::read(&ten).unwrap(), ten_bytes);
+    assert_eq!(summary(&ten)["rows"], 10);
+    // 10 then 11: continues to the 11-row file.
+    ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&ten),
+        "--resume",
+        "--limit",
+        "11",
+    ]);
+    assert_eq!(fs::read(&ten).unwrap(), before);
+    assert_eq!(summary(&ten), summary(&eleven));
+}
+
+#[test]
+fn progress_lines_without_a_terminal_and_quiet() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "g.toml", SPEC);
+    let p = dir.path().join("g.csv");
+    // stderr is a pipe here (not a terminal): progress lines, then the closing line.
+    let o = ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&p),
+        "--progress-every",
+        "0.01",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.lines()
+            .any(|l| l.starts_with("sweep: ") && l.contains("/7290 rows (") && l.contains("ETA")),
+        "{err}"
+    );
+    assert!(
+        err.lines().last().unwrap().starts_with("sweep: 7290 rows"),
+        "{err}"
+    );
+    let q = dir.path().join("q.csv");
+    let o = ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&q),
+        "--progress-every",
+        "0.01",
+        "--quiet",
+    ]);
+    assert_eq!(String::from_utf8_lossy(&o.stderr), "");
+    assert_eq!(fs::read(&q).unwrap(), fs::read(&p).unwrap());
 }

@@ -76,13 +76,18 @@ proptest! {
         let sources = parts
             .iter()
             .enumerate()
-            .map(|(i, (_, lines))| MergeSource {
+            .map(|(i, (s, lines))| MergeSource {
                 name: format!("part{i}"),
+                shard: s.shard,
                 lines: lines.clone().into_iter().map(Ok),
             })
             .collect();
         let mut out = Vec::new();
-        prop_assert_eq!(output::merge(plan.total(), sources, &mut out).unwrap(), plan.total());
+        let eval = subdiv_lab::sweep::SpectralEvaluator::new(plan.spec().columns);
+        let rebuilt = output::merge(&plan, &layout, &eval, sources, &mut out, order_seed).unwrap();
+        for ((s, _), r) in parts.iter().zip(&rebuilt) {
+            prop_assert_eq!(r.without_throughput(), s.without_throughput());
+        }
         let want: String = all.iter().map(|r| layout.format(r)).collect();
         prop_assert_eq!(String::from_utf8(out).unwrap(), want);
     }

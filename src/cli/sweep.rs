@@ -13,7 +13,7 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{BufRead, BufReader, BufWriter, IsTerminal, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use subdiv_lab::sweep::output::{self, MergeSource};
+use subdiv_lab::sweep::output::{self, MergeSource, Verifier};
 use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, Summary, SweepError, SweepSpec};
 
 #[derive(Args, Debug)]
@@ -40,6 +40,13 @@ pub(crate) struct SweepArgs {
     /// Run even when the estimated time or memory exceeds the limits (see README).
     #[arg(long)]
     force: bool,
+    /// No progress output (neither the bar on a terminal nor the periodic
+    /// progress lines otherwise) and no closing line; errors are still reported.
+    #[arg(long)]
+    quiet: bool,
+    /// Seconds between progress lines when stderr is not a terminal (testing).
+    #[arg(long, hide = true, default_value_t = PROGRESS_EVERY.as_secs_f64())]
+    progress_every: f64,
 }
 
 #[derive(Args, Debug)]
@@ -51,6 +58,9 @@ pub(crate) struct MergeArgs {
     /// Merged CSV (its summary goes beside it).
     #[arg(long)]
     out: PathBuf,
+    /// The sweep spec the shards were run with: every row is verified against it.
+    #[arg(long)]
+    spec: PathBuf,
 }
 
 fn parse_shard(s: &str) -> Result<Shard, String> {
@@ -86,16 +96,30 @@ fn write_summary(path: &Path, summary: &Summary) -> CliResult {
     write_atomic(path, json.as_bytes()).map_err(CliError::failure)
 }
 
-/// Reads an existing CSV for `--resume`: checks the header, verifies every
-/// complete line against the spec (adding it to `summary`), and returns the number
-/// of rows and the byte length of the good prefix (a torn last line excluded).
+/// A salt for the verifier's re-evaluated sample: which lines are re-evaluated
+/// must not be predictable.
+fn salt() -> u64 {
+    let t = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos() as u64);
+    t ^ (u64::from(std::process::id()) << 32)
+}
+
+/// Reads an existing CSV for `--resume`: checks the fingerprint line (same spec,
+/// same shard) and the header, verifies every complete line in full against the
+/// spec ([`Verifier`]: ids, parameters re-derived from the id, results well
+/// formed, a random sample re-evaluated), adds the rows to `summary`, and
+/// returns the number of rows, the byte length of the good prefix (a torn last
+/// line excluded; 0 when the fingerprint or header line is torn) and whether
+/// the preamble must be (re)written.
 fn scan_existing(
     path: &Path,
     plan: &Plan,
     layout: &Layout,
+    eval: &SpectralEvaluator,
     shard: Shard,
     summary: &mut Summary,
-) -> CliResult<(u64, u64, bool)> {
+) -> CliResult<(u64, u64, bool, bool)> {
     let file = File::open(path)
         .with_context(|| format!("opening {}", path.display()))
         .map_err(CliError::failure)?;
@@ -103,10 +127,31 @@ fn scan_existing(
     let name = path.display().to_string();
     let mut line = Vec::new();
     let mut good: u64 = 0;
-    let mut rows: u64 = 0;
     let mut lineno: u64 = 0;
     let mut torn = false;
     let header = layout.header();
+    let mut verifier = Verifier::new(plan, layout, salt());
+    let mismatch = |line: u64, message: String| {
+        CliError::usage(SweepError::Mismatch {
+            source_name: name.clone(),
+            line,
+            message,
+        })
+    };
+    // Data lines are verified by blocks, each in parallel on the current pool.
+    const BLOCK_BYTES: usize = 8 << 20;
+    let mut block = String::new();
+    let mut block_start = 0u64;
+    let mut rows = 0u64;
+    let expected_id = |j: u64| shard.id(j);
+    let flush = |v: &mut Verifier, block: &mut String, start: &mut u64| -> CliResult {
+        if block.is_empty() {
+            return Ok(());
+        }
+        let r = v.check_block(*start, block, &expected_id);
+        block.clear();
+        r.map_err(|(l, m)| mismatch(l, m))
+    };
     loop {
         line.clear();
         let n = reader
@@ -128,6 +173,9 @@ fn scan_existing(
             ))
         })?;
         if lineno == 1 {
+            output::check_fingerprint(plan, shard, text)
+                .map_err(|m| mismatch(1, format!("{m}; cannot resume")))?;
+        } else if lineno == 2 {
             if text != header {
                 return Err(CliError::usage(anyhow!(
                     "{name}: the header does not match this spec's columns; cannot resume (expected {:?})",
@@ -136,26 +184,125 @@ fn scan_existing(
             }
         } else {
             if rows >= summary.expected_rows {
+                flush(&mut verifier, &mut block, &mut block_start)?;
                 return Err(CliError::usage(anyhow!(
-                    "{name}: has more rows than this run expects ({}); was it written with another --shard or --limit?",
+                    "{name}: has more rows than this run expects ({}); was it written with another --limit?",
                     summary.expected_rows
                 )));
             }
-            let row = layout
-                .verify(plan, shard.id(rows), text.trim_end_matches('\n'))
-                .map_err(|message| {
-                    CliError::usage(SweepError::Mismatch {
-                        source_name: name.clone(),
-                        line: lineno,
-                        message,
-                    })
-                })?;
-            summary.add(layout, &row);
+            if block.is_empty() {
+                block_start = lineno;
+            }
+            block.push_str(text);
             rows += 1;
+            if block.len() >= BLOCK_BYTES {
+                flush(&mut verifier, &mut block, &mut block_start)?;
+            }
         }
         good += n as u64;
     }
-    Ok((rows, good, torn || lineno == 0))
+    flush(&mut verifier, &mut block, &mut block_start)?;
+    verifier.recheck(eval).map_err(|(l, m)| mismatch(l, m))?;
+    verifier.add_to(summary);
+    if lineno < 2 {
+        // Empty, or torn inside the fingerprint or header line: start afresh.
+        return Ok((0, 0, true, torn && good > 0));
+    }
+    Ok((verifier.rows(), good, false, torn))
+}
+
+/// Progress lines for batch jobs (stderr not a terminal, e.g. a Slurm log): a
+/// thread that prints `sweep: K/N rows (P%), R configurations/s, elapsed E,
+/// ETA T` when the run starts, then every [`PROGRESS_EVERY`] during the first
+/// minute and every [`PROGRESS_EVERY_LATER`] after it (a long job's log stays
+/// short).
+struct Reporter {
+    stop: std::sync::Arc<(std::sync::Mutex<bool>, std::sync::Condvar)>,
+    handle: Option<std::thread::JoinHandle<()>>,
+}
+
+/// Interval of the progress lines during the first minute.
+const PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_secs(5);
+/// Interval of the progress lines after the first minute.
+const PROGRESS_EVERY_LATER: std::time::Duration = std::time::Duration::from_secs(30);
+
+impl Reporter {
+    fn start(
+        counter: std::sync::Arc<std::sync::atomic::AtomicU64>,
+        done: u64,
+        expected: u64,
+        first: std::time::Duration,
+    ) -> Reporter {
+        let stop = std::sync::Arc::new((std::sync::Mutex::new(false), std::sync::Condvar::new()));
+        let stop2 = stop.clone();
+        let handle = std::thread::spawn(move || {
+            let start = Instant::now();
+            let (lock, cv) = &*stop2;
+            let Ok(mut stopped) = lock.lock() else { return };
+            let mut deadline = Instant::now();
+            loop {
+                while !*stopped {
+                    let left = deadline.saturating_duration_since(Instant::now());
+                    if left.is_zero() {
+                        break;
+                    }
+                    match cv.wait_timeout(stopped, left) {
+                        Ok((g, _)) => stopped = g,
+                        Err(_) => return,
+                    }
+                }
+                if *stopped {
+                    return;
+                }
+                deadline += if start.elapsed() < std::time::Duration::from_secs(60) {
+                    first
+                } else {
+                    PROGRESS_EVERY_LATER.max(first)
+                };
+                let k = counter.load(std::sync::atomic::Ordering::Relaxed);
+                let secs = start.elapsed().as_secs_f64();
+                let rate = k as f64 / secs.max(1e-9);
+                let pos = (done + k).min(expected);
+                let eta = if rate > 0.0 {
+                    format_duration((expected - pos) as f64 / rate)
+                } else {
+                    "unknown".into()
+                };
+                eprintln!(
+                    "sweep: {pos}/{expected} rows ({:.1}%), {rate:.1} configurations/s, elapsed {}, ETA {eta}",
+                    100.0 * pos as f64 / expected.max(1) as f64,
+                    format_duration(secs)
+                );
+            }
+        });
+        Reporter {
+            stop,
+            handle: Some(handle),
+        }
+    }
+
+    fn finish(mut self) {
+        if let Ok(mut g) = self.stop.0.lock() {
+            *g = true;
+            self.stop.1.notify_all();
+        }
+        if let Some(h) = self.handle.take() {
+            let _ = h.join();
+        }
+    }
+}
+
+/// `1h02m03s`, `4m05s`, `6s`.
+fn format_duration(secs: f64) -> String {
+    let s = secs.max(0.0).round() as u64;
+    let (h, m, s) = (s / 3600, (s / 60) % 60, s % 60);
+    if h > 0 {
+        format!("{h}h{m:02}m{s:02}s")
+    } else if m > 0 {
+        format!("{m}m{s:02}s")
+    } else {
+        format!("{s}s")
+    }
 }
 
 pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
@@ -202,68 +349,79 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         .map_err(CliError::failure)?;
 
     // Open the output (only now: a bad spec or flag creates no file).
-    let (mut sink, done, summary_file): (Box<dyn Write + Send>, u64, Option<PathBuf>) =
-        match &args.out {
-            None => {
-                let mut w = BufWriter::with_capacity(1 << 20, std::io::stdout());
-                layout.write_header(&mut w).map_err(CliError::failure)?;
-                (Box::new(w), 0, None)
+    let (mut sink, done, summary_file): (Box<dyn Write + Send>, u64, Option<PathBuf>) = match &args
+        .out
+    {
+        None => {
+            let mut w = BufWriter::with_capacity(1 << 20, std::io::stdout());
+            w.write_all(output::fingerprint_line(&plan, shard).as_bytes())
+                .map_err(CliError::failure)?;
+            layout.write_header(&mut w).map_err(CliError::failure)?;
+            (Box::new(w), 0, None)
+        }
+        Some(path) => {
+            let spath = summary_path(path);
+            let exists = path.exists();
+            if exists && !args.resume {
+                return Err(CliError::usage(anyhow!(
+                    "{} exists; pass --resume to continue it, or remove it",
+                    path.display()
+                )));
             }
-            Some(path) => {
-                let spath = summary_path(path);
-                let exists = path.exists();
-                if exists && !args.resume {
-                    return Err(CliError::usage(anyhow!(
-                        "{} exists; pass --resume to continue it, or remove it",
-                        path.display()
-                    )));
-                }
-                let (done, good, rewrite) = if exists {
-                    scan_existing(path, &plan, &layout, shard, &mut summary)?
-                } else {
-                    (0, 0, true)
-                };
-                let mut file = OpenOptions::new()
-                    .create(true)
-                    .truncate(false)
-                    .write(true)
-                    .open(path)
-                    .with_context(|| format!("opening {}", path.display()))
+            let (done, good, preamble, torn) = if exists {
+                pool.install(|| scan_existing(path, &plan, &layout, &eval, shard, &mut summary))?
+            } else {
+                (0, 0, true, false)
+            };
+            let mut file = OpenOptions::new()
+                .create(true)
+                .truncate(false)
+                .write(true)
+                .open(path)
+                .with_context(|| format!("opening {}", path.display()))
+                .map_err(CliError::failure)?;
+            if exists {
+                file.set_len(good)
+                    .and_then(|_| file.seek(SeekFrom::End(0)).map(|_| ()))
+                    .with_context(|| format!("truncating {}", path.display()))
                     .map_err(CliError::failure)?;
-                if exists {
-                    file.set_len(good)
-                        .and_then(|_| file.seek(SeekFrom::End(0)).map(|_| ()))
-                        .with_context(|| format!("truncating {}", path.display()))
-                        .map_err(CliError::failure)?;
-                    if rewrite && good == 0 {
-                        // Empty or torn inside the header.
-                        layout.write_header(&mut file).map_err(CliError::failure)?;
-                    }
-                    if done > 0 || good > 0 {
-                        eprintln!(
-                            "sweep: resuming {} at row {done} of {expected}{}",
-                            path.display(),
-                            if rewrite && good > 0 {
-                                " (dropped a torn last line)"
-                            } else {
-                                ""
-                            }
-                        );
-                    }
-                } else {
-                    layout.write_header(&mut file).map_err(CliError::failure)?;
+                if (done > 0 || good > 0 || torn) && !args.quiet {
+                    eprintln!(
+                        "sweep: resuming {} at row {done} of {expected}{}",
+                        path.display(),
+                        if torn {
+                            " (dropped a torn last line)"
+                        } else {
+                            ""
+                        }
+                    );
                 }
-                write_summary(&spath, &summary)?;
-                (
-                    Box::new(BufWriter::with_capacity(1 << 20, file)),
-                    done,
-                    Some(spath),
-                )
             }
-        };
+            if preamble {
+                file.write_all(output::fingerprint_line(&plan, shard).as_bytes())
+                    .map_err(CliError::failure)?;
+                layout.write_header(&mut file).map_err(CliError::failure)?;
+            }
+            write_summary(&spath, &summary)?;
+            (
+                Box::new(BufWriter::with_capacity(1 << 20, file)),
+                done,
+                Some(spath),
+            )
+        }
+    };
 
-    // Progress bar on a terminal only.
-    let bar = if std::io::stderr().is_terminal() && expected > done {
+    // A progress bar on a terminal; progress lines every few seconds otherwise
+    // (batch jobs: the Slurm log shows the run is alive and how far it got).
+    let terminal = std::io::stderr().is_terminal();
+    let counter = std::sync::Arc::new(std::sync::atomic::AtomicU64::new(0));
+    let reporter = (!terminal && !args.quiet && expected > done).then(|| {
+        let every = std::time::Duration::try_from_secs_f64(args.progress_every)
+            .unwrap_or(PROGRESS_EVERY)
+            .max(std::time::Duration::from_millis(1));
+        Reporter::start(counter.clone(), done, expected, every)
+    });
+    let bar = if terminal && !args.quiet && expected > done {
         let pb = indicatif::ProgressBar::new(expected);
         if let Ok(style) = indicatif::ProgressStyle::with_template(
             "{spinner} [{elapsed_precise}] {wide_bar} {pos}/{len} {rate} ETA {eta}",
@@ -284,7 +442,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     let start = Instant::now();
     let ids = (done..expected).map(|j| shard.id(j));
     let result = pool.install(|| {
-        output::run(
+        output::run_counting(
             &plan,
             &layout,
             &eval,
@@ -296,8 +454,12 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
                     pb.set_position(done + k);
                 }
             },
+            &counter,
         )
     });
+    if let Some(r) = reporter {
+        r.finish();
+    }
     if let Some(pb) = &bar {
         pb.finish_and_clear();
     }
@@ -314,6 +476,9 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     } else {
         0.0
     };
+    if args.quiet {
+        return Ok(());
+    }
     eprintln!(
         "sweep: {} rows ({evaluated} evaluated in {seconds:.2} s, {rate:.0} configurations/s, {threads} threads){}{}",
         summary.rows,
@@ -333,10 +498,13 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
 /// Data lines of one shard CSV.
 type LineIter = Box<dyn Iterator<Item = Result<String, SweepError>>>;
 
-/// Lines of a data file after its header, as a [`MergeSource`].
+/// The data lines of one shard CSV, after its fingerprint line (checked against
+/// `plan`; it gives the shard) and its header (checked against `layout`), as a
+/// [`MergeSource`].
 fn data_lines(
     path: &Path,
-    header: &mut Option<String>,
+    plan: &Plan,
+    layout: &Layout,
     rows: std::rc::Rc<std::cell::Cell<u64>>,
 ) -> CliResult<MergeSource<LineIter>> {
     let name = path.display().to_string();
@@ -345,21 +513,36 @@ fn data_lines(
         .map_err(CliError::usage)?;
     let mut reader = BufReader::with_capacity(1 << 20, file);
     let mut first = String::new();
+    let mut header = String::new();
     reader
         .read_line(&mut first)
+        .and_then(|_| reader.read_line(&mut header))
         .with_context(|| format!("reading {name}"))
-        .map_err(CliError::failure)?;
-    match header {
-        None => *header = Some(first),
-        Some(h) if *h == first => {}
-        Some(_) => {
-            return Err(CliError::usage(anyhow!(
-                "{name}: header differs from the first input's; not shards of one sweep"
-            )))
-        }
+        .map_err(CliError::usage)?;
+    let mismatch = |line: u64, message: String| {
+        CliError::usage(SweepError::Mismatch {
+            source_name: name.clone(),
+            line,
+            message,
+        })
+    };
+    let shard = output::fingerprint_shard(&first).ok_or_else(|| {
+        mismatch(
+            1,
+            output::check_fingerprint(plan, Shard::ALL, &first)
+                .err()
+                .unwrap_or_else(|| "the fingerprint line names no shard".into()),
+        )
+    })?;
+    output::check_fingerprint(plan, shard, &first).map_err(|m| mismatch(1, m))?;
+    if header != layout.header() {
+        return Err(mismatch(
+            2,
+            "the header does not match the spec's columns".into(),
+        ));
     }
     let n2 = name.clone();
-    let mut lineno = 1u64;
+    let mut lineno = 2u64;
     let mut buf = Vec::new();
     let iter = std::iter::from_fn(move || {
         buf.clear();
@@ -390,45 +573,21 @@ fn data_lines(
     });
     Ok(MergeSource {
         name,
+        shard,
         lines: Box::new(iter),
     })
 }
 
 pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
-    // Summaries first: they name the sweep (digest, total).
-    let mut summaries = Vec::new();
-    for p in &args.inputs {
-        let sp = summary_path(p);
-        let mut text = String::new();
-        File::open(&sp)
-            .and_then(|mut f| f.read_to_string(&mut text))
-            .with_context(|| {
-                format!(
-                    "reading {} (the summary `sweep` writes beside {})",
-                    sp.display(),
-                    p.display()
-                )
-            })
-            .map_err(CliError::usage)?;
-        let s: Summary = serde_json::from_str(&text)
-            .with_context(|| format!("parsing {}", sp.display()))
-            .map_err(CliError::usage)?;
-        summaries.push(s);
-    }
-    let mut merged = summaries[0].clone();
-    for s in &summaries[1..] {
-        merged.merge(s).map_err(CliError::usage)?;
-    }
-    let total = summaries[0].total_configurations;
-    let mut header = None;
-    let mut sources = Vec::new();
-    let mut counters = Vec::new();
-    for p in &args.inputs {
-        let c = std::rc::Rc::new(std::cell::Cell::new(0u64));
-        sources.push(data_lines(p, &mut header, c.clone())?);
-        counters.push(c);
-    }
-    let header = header.unwrap_or_default();
+    let text = fs::read_to_string(&args.spec)
+        .with_context(|| format!("reading spec {}", args.spec.display()))
+        .map_err(CliError::usage)?;
+    let spec = SweepSpec::from_toml(&text)
+        .map_err(|e| CliError::usage(anyhow!("{}: {e}", args.spec.display())))?;
+    let plan = Plan::new(spec);
+    let layout = Layout::new(&plan);
+    let eval = SpectralEvaluator::new(plan.spec().columns);
+    let digest = plan.spec().digest();
     if args
         .inputs
         .iter()
@@ -439,6 +598,71 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
             args.out.display()
         )));
     }
+    // Summaries first: each must be of this spec (they give the throughput, and
+    // are compared with the rows).
+    let mut summaries = Vec::new();
+    for p in &args.inputs {
+        let sp = summary_path(p);
+        let mut text = String::new();
+        File::open(&sp)
+            .and_then(|mut f| f.read_to_string(&mut text))
+            .with_context(|| {
+                format!(
+                    "reading {} (the summary `sweep` writes beside {}; merge needs it)",
+                    sp.display(),
+                    p.display()
+                )
+            })
+            .map_err(CliError::usage)?;
+        let s: Summary = serde_json::from_str(&text)
+            .with_context(|| format!("parsing {}", sp.display()))
+            .map_err(CliError::usage)?;
+        if s.spec_digest != digest {
+            return Err(CliError::usage(anyhow!(
+                "{}: the summary of another spec (digest {}; {} has digest {digest})",
+                sp.display(),
+                s.spec_digest,
+                args.spec.display()
+            )));
+        }
+        summaries.push(s);
+    }
+    let mut json = summaries[0].clone();
+    for s in &summaries[1..] {
+        json.merge(s).map_err(CliError::usage)?;
+    }
+    let mut sources = Vec::new();
+    let mut counters = Vec::new();
+    for (p, s) in args.inputs.iter().zip(&summaries) {
+        let c = std::rc::Rc::new(std::cell::Cell::new(0u64));
+        let src = data_lines(p, &plan, &layout, c.clone())?;
+        if src.shard != s.shard {
+            return Err(CliError::usage(anyhow!(
+                "{}: holds shard {} but its summary {} says shard {}",
+                p.display(),
+                src.shard,
+                summary_path(p).display(),
+                s.shard
+            )));
+        }
+        if src.shard.count
+            != sources
+                .first()
+                .map_or(src.shard.count, |f: &MergeSource<LineIter>| f.shard.count)
+        {
+            return Err(CliError::usage(anyhow!(
+                "{}: shard {} of {} shards, but {} is shard {} of {}: shards of one run have the same count",
+                p.display(),
+                src.shard,
+                src.shard.count,
+                sources[0].name,
+                sources[0].shard,
+                sources[0].shard.count
+            )));
+        }
+        sources.push(src);
+        counters.push(c);
+    }
     // Write to a temporary file; rename only when every check passed.
     let tmp = args.out.with_file_name(format!(
         ".{}.partial",
@@ -447,43 +671,73 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default()
     ));
-    let result = (|| -> CliResult<u64> {
+    let result = (|| -> CliResult<Vec<Summary>> {
         let file = File::create(&tmp)
             .with_context(|| format!("creating {}", tmp.display()))
             .map_err(CliError::failure)?;
         let mut w = BufWriter::with_capacity(1 << 20, file);
-        w.write_all(header.as_bytes()).map_err(CliError::failure)?;
-        let n = output::merge(total, sources, &mut w).map_err(|e| match e {
-            SweepError::Io(_) => CliError::failure(e),
-            other => CliError::usage(other),
-        })?;
+        w.write_all(output::fingerprint_line(&plan, Shard::ALL).as_bytes())
+            .map_err(CliError::failure)?;
+        layout.write_header(&mut w).map_err(CliError::failure)?;
+        let parts =
+            output::merge(&plan, &layout, &eval, sources, &mut w, salt()).map_err(|e| match e {
+                SweepError::Io(_) => CliError::failure(e),
+                other => CliError::usage(other),
+            })?;
         w.flush().map_err(CliError::failure)?;
-        Ok(n)
+        Ok(parts)
     })();
-    let n = match result {
+    let parts = match result {
         Ok(n) => n,
         Err(e) => {
             let _ = fs::remove_file(&tmp);
             return Err(e);
         }
     };
-    for ((p, s), c) in args.inputs.iter().zip(&summaries).zip(&counters) {
-        if s.rows != c.get() {
-            let _ = fs::remove_file(&tmp);
-            return Err(CliError::usage(anyhow!(
+    for (((p, s), c), part) in args
+        .inputs
+        .iter()
+        .zip(&summaries)
+        .zip(&counters)
+        .zip(&parts)
+    {
+        let problem = if s.rows != c.get() {
+            Some(format!(
                 "{}: the summary counts {} rows but the CSV has {}; finish that shard with `sweep --resume`",
                 p.display(),
                 s.rows,
                 c.get()
-            )));
+            ))
+        } else if s.errors != part.errors || s.classes != part.classes || s.columns != part.columns
+        {
+            Some(format!(
+                "{}: the summary does not match the rows of {} (was one of them edited?)",
+                summary_path(p).display(),
+                p.display()
+            ))
+        } else {
+            None
+        };
+        if let Some(m) = problem {
+            let _ = fs::remove_file(&tmp);
+            return Err(CliError::usage(anyhow!(m)));
         }
     }
+    // The merged summary is rebuilt from the verified rows; only the throughput
+    // comes from the shards' summaries.
+    let mut merged = parts[0].clone();
+    for p in &parts[1..] {
+        merged.merge(p).map_err(CliError::usage)?;
+    }
+    merged.throughput = json.throughput.clone();
+    let n = merged.rows;
     fs::rename(&tmp, &args.out)
         .with_context(|| format!("renaming {} to {}", tmp.display(), args.out.display()))
         .map_err(CliError::failure)?;
     write_summary(&summary_path(&args.out), &merged)?;
+    let total = plan.total();
     eprintln!(
-        "merge: {n} rows from {} shards into {}; every configuration 0..{total} present once",
+        "merge: {n} rows from {} shards into {}; every configuration 0..{total} present once and verified",
         args.inputs.len(),
         args.out.display()
     );

@@ -16,13 +16,19 @@
 //! write.
 
 use super::eval::{result_columns, Cell, CellSink, Evaluate};
-use super::plan::{Configuration, Plan};
+use super::plan::{Configuration, Plan, Shard};
 use super::summary::{PartialSummary, Summary};
 use super::SweepError;
 use crate::spectral::kernel::BATCH;
 use rayon::prelude::*;
 use std::collections::BinaryHeap;
 use std::io::Write;
+
+mod verify;
+pub use verify::{
+    check_fingerprint, fingerprint_digest, fingerprint_line, fingerprint_shard, Verifier,
+    RECHECK_SAMPLE,
+};
 
 /// Largest number of configurations evaluated in parallel as one chunk (fewer
 /// when rows are long, so that a chunk's text stays within about 8 MB). At most
@@ -215,32 +221,6 @@ impl Layout {
             cells,
             error: (!e.is_empty()).then(|| e.clone()),
         })
-    }
-
-    /// Checks an existing line of a resumed CSV: it must parse, format back to
-    /// itself, carry `expected_id`, and hold exactly the coordinates `plan` gives
-    /// that id. Returns the row (to rebuild the summary).
-    pub fn verify(&self, plan: &Plan, expected_id: u64, line: &str) -> Result<Row, String> {
-        let row = self.parse(line)?;
-        if row.id != expected_id {
-            return Err(format!(
-                "configuration id {} where {} was expected",
-                row.id, expected_id
-            ));
-        }
-        let mut round = self.format(&row);
-        round.pop();
-        if round != line {
-            return Err("the line is not in the form this sweep writes".into());
-        }
-        let c = plan.configuration(expected_id).map_err(|e| e.to_string())?;
-        let fresh = self.coordinate_row(plan, &c);
-        if row.valence != c.valence || row.cells[..self.coordinates] != fresh[..] {
-            return Err(format!(
-                "configuration {expected_id} has other parameters than the spec gives it (was the spec changed?)"
-            ));
-        }
-        Ok(row)
     }
 
     fn coordinate_row(&self, plan: &Plan, c: &super::Configuration) -> Vec<Cell> {
@@ -711,6 +691,38 @@ where
     W: Write,
     I: IntoIterator<Item = u64>,
 {
+    run_counting(
+        plan,
+        layout,
+        eval,
+        ids,
+        out,
+        summary,
+        progress,
+        &std::sync::atomic::AtomicU64::new(0),
+    )
+}
+
+/// [`run`], also adding to `evaluated` the configurations evaluated so far (by
+/// groups of at most [`SUB_CHUNK`], as the workers finish them, before they
+/// are written): another thread can read it for a progress report that moves
+/// even when a chunk takes minutes (slow columns such as `charmap`).
+#[allow(clippy::too_many_arguments)]
+pub fn run_counting<E, W, I>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    ids: I,
+    out: &mut W,
+    summary: &mut Summary,
+    progress: &mut dyn FnMut(u64),
+    evaluated: &std::sync::atomic::AtomicU64,
+) -> Result<u64, SweepError>
+where
+    E: Evaluate + ?Sized,
+    W: Write,
+    I: IntoIterator<Item = u64>,
+{
     let mut ids = ids.into_iter();
     let threads = rayon::current_num_threads().max(1);
     let numeric = layout.numeric.len();
@@ -725,14 +737,14 @@ where
         if next.is_empty() && pending.is_empty() {
             break;
         }
-        let mut evaluated: Vec<(String, PartialSummary)> = Vec::new();
+        let mut fresh: Vec<(String, PartialSummary)> = Vec::new();
         let mut wrote: Result<u64, SweepError> = Ok(0);
         rayon::in_place_scope(|scope| {
             if !next.is_empty() {
                 let chunk = &next;
-                let slot = &mut evaluated;
+                let slot = &mut fresh;
                 scope.spawn(move |_| {
-                    *slot = evaluate_chunk(plan, layout, eval, chunk, threads, numeric);
+                    *slot = evaluate_chunk(plan, layout, eval, chunk, threads, numeric, evaluated);
                 });
             }
             // Meanwhile, on this thread: write the previous chunk in order.
@@ -754,7 +766,7 @@ where
             written += rows;
             progress(written);
         }
-        pending = evaluated;
+        pending = fresh;
     }
     Ok(written)
 }
@@ -776,6 +788,7 @@ fn evaluate_chunk<E: Evaluate + ?Sized>(
     chunk: &[u64],
     threads: usize,
     numeric: usize,
+    evaluated: &std::sync::atomic::AtomicU64,
 ) -> Vec<(String, PartialSummary)> {
     let sub = (chunk.len() / (8 * threads)).clamp(1, SUB_CHUNK);
     chunk
@@ -792,57 +805,78 @@ fn evaluate_chunk<E: Evaluate + ?Sized>(
             for &id in batches.remainder() {
                 layout.append_row(plan, eval, id, &mut scratch, &mut text, &mut part);
             }
+            evaluated.fetch_add(ids.len() as u64, std::sync::atomic::Ordering::Relaxed);
             (text, part)
         })
         .collect()
 }
 
-/// A source of CSV data lines (header already checked) for [`merge`]: a name
-/// (for messages) and its lines without `\n`, in file order.
+/// A source of CSV data lines for [`merge`] (fingerprint and header already
+/// checked): a name (for messages), the shard its fingerprint names, and its
+/// data lines without `\n`, in file order (the first is line 3 of the file).
 pub struct MergeSource<I> {
     /// File name.
     pub name: String,
+    /// The shard the file holds (from its fingerprint line).
+    pub shard: Shard,
     /// Data lines.
     pub lines: I,
 }
 
-fn line_id(line: &str) -> Option<u64> {
-    line.split(',').next()?.parse().ok()
-}
-
-/// Merges shard CSVs (each sorted by id, as `sweep` writes them) into one CSV in
-/// id order, checking that the ids are exactly `0..total`: an error names the
-/// first missing or duplicated id and where it was found. Memory is one line per
-/// source. Returns the number of rows written.
-pub fn merge<W, I>(total: u64, sources: Vec<MergeSource<I>>, out: &mut W) -> Result<u64, SweepError>
+/// Merges shard CSVs (each in id order, as `sweep` writes them) into one CSV in
+/// id order. Every line is verified in full against `plan` ([`Verifier`]: the
+/// id is the shard's next one, parameters re-derived from it, results well
+/// formed, a random sample re-evaluated with `eval`), and the ids must be
+/// exactly `0..total`: an error names the first missing or duplicated id and
+/// where it was found. Memory is one line per source. Returns, per source, the
+/// summary of its rows (rebuilt from the verified lines, to compare with the
+/// summary file written beside it).
+pub fn merge<W, I, E>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    sources: Vec<MergeSource<I>>,
+    out: &mut W,
+    salt: u64,
+) -> Result<Vec<Summary>, SweepError>
 where
     W: Write,
     I: Iterator<Item = Result<String, SweepError>>,
+    E: Evaluate + ?Sized,
 {
     struct Head {
         line: String,
         lineno: u64,
     }
+    let total = plan.total();
     let mut sources = sources;
+    let mut verifiers: Vec<Verifier> = (0..sources.len())
+        .map(|k| Verifier::new(plan, layout, salt ^ k as u64))
+        .collect();
     let mut heads: Vec<Option<Head>> = Vec::with_capacity(sources.len());
     let mut heap = BinaryHeap::new();
-    let advance =
-        |src: &mut MergeSource<I>, lineno: u64| -> Result<Option<(u64, Head)>, SweepError> {
-            match src.lines.next() {
-                None => Ok(None),
-                Some(line) => {
-                    let line = line?;
-                    let id = line_id(&line).ok_or_else(|| SweepError::Mismatch {
-                        source_name: src.name.clone(),
-                        line: lineno,
-                        message: "no configuration id in the first field".into(),
-                    })?;
-                    Ok(Some((id, Head { line, lineno })))
-                }
+    let advance = |src: &mut MergeSource<I>,
+                   ver: &mut Verifier,
+                   lineno: u64|
+     -> Result<Option<(u64, Head)>, SweepError> {
+        match src.lines.next() {
+            None => Ok(None),
+            Some(line) => {
+                let line = line?;
+                let expected = src.shard.id(ver.rows());
+                let id =
+                    ver.check(lineno, &line, expected)
+                        .map_err(|message| SweepError::Mismatch {
+                            source_name: src.name.clone(),
+                            line: lineno,
+                            message,
+                        })?;
+                Ok(Some((id, Head { line, lineno })))
             }
-        };
-    for (k, src) in sources.iter_mut().enumerate() {
-        match advance(src, 2)? {
+        }
+    };
+    for (k, (src, ver)) in sources.iter_mut().zip(&mut verifiers).enumerate() {
+        match advance(src, ver, 3)? {
             Some((id, h)) => {
                 heap.push(std::cmp::Reverse((id, k)));
                 heads.push(Some(h));
@@ -884,16 +918,7 @@ where
         }
         last = Some((id, k, head.lineno));
         expected += 1;
-        if let Some((nid, h)) = advance(&mut sources[k], head.lineno + 1)? {
-            if nid <= id {
-                return Err(SweepError::Mismatch {
-                    source_name: sources[k].name.clone(),
-                    line: h.lineno,
-                    message: format!(
-                        "configuration id {nid} after {id}: the file is not in id order"
-                    ),
-                });
-            }
+        if let Some((nid, h)) = advance(&mut sources[k], &mut verifiers[k], head.lineno + 1)? {
             heap.push(std::cmp::Reverse((nid, k)));
             heads[k] = Some(h);
         }
@@ -905,7 +930,19 @@ where
             "configuration id {expected} is missing (the shards end there; the sweep has {total} configurations)"
         )));
     }
-    Ok(expected)
+    let mut parts = Vec::with_capacity(sources.len());
+    for (src, ver) in sources.iter().zip(&verifiers) {
+        ver.recheck(eval)
+            .map_err(|(line, message)| SweepError::Mismatch {
+                source_name: src.name.clone(),
+                line,
+                message,
+            })?;
+        let mut s = Summary::new(plan, layout, src.shard, None);
+        ver.add_to(&mut s);
+        parts.push(s);
+    }
+    Ok(parts)
 }
 
 #[cfg(test)]
@@ -1133,51 +1170,108 @@ mod tests {
         );
     }
 
-    fn src(name: &str, ids: &[u64]) -> MergeSource<std::vec::IntoIter<Result<String, SweepError>>> {
+    const EIGHT: &str = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n";
+
+    type Lines = std::vec::IntoIter<Result<String, SweepError>>;
+
+    fn src(name: &str, shard: Shard, lines: &[&str]) -> MergeSource<Lines> {
         MergeSource {
             name: name.into(),
-            lines: ids
+            shard,
+            lines: lines
                 .iter()
-                .map(|i| Ok(format!("{i},x")))
+                .map(|l| Ok(l.to_string()))
                 .collect::<Vec<_>>()
                 .into_iter(),
         }
     }
 
     #[test]
-    fn merge_checks_ids() {
+    fn merge_checks_ids_and_rows() {
+        let plan = Plan::new(super::super::SweepSpec::from_toml(EIGHT).unwrap());
+        let layout = Layout::new(&plan);
+        let eval = SpectralEvaluator::new(plan.spec().columns);
+        let mut all = Vec::new();
+        run(
+            &plan,
+            &layout,
+            &eval,
+            0..8,
+            &mut all,
+            &mut Summary::new(&plan, &layout, Shard::ALL, None),
+            &mut |_| {},
+        )
+        .unwrap();
+        let all = String::from_utf8(all).unwrap();
+        let l: Vec<&str> = all.lines().collect();
+        let s0: Shard = "0/2".parse().unwrap();
+        let s1: Shard = "1/2".parse().unwrap();
+        let evens = [l[0], l[2], l[4], l[6]];
+        let odds = [l[1], l[3], l[5], l[7]];
         let mut out = Vec::new();
-        assert_eq!(
-            merge(5, vec![src("a", &[0, 2, 4]), src("b", &[1, 3])], &mut out).unwrap(),
-            5
-        );
-        assert_eq!(String::from_utf8(out).unwrap(), "0,x\n1,x\n2,x\n3,x\n4,x\n");
-        let e = merge(
-            5,
-            vec![src("a", &[0, 2, 4]), src("b", &[1])],
-            &mut Vec::new(),
+        let parts = merge(
+            &plan,
+            &layout,
+            &eval,
+            vec![src("a", s0, &evens), src("b", s1, &odds)],
+            &mut out,
+            1,
         )
-        .unwrap_err();
+        .unwrap();
+        assert_eq!(String::from_utf8(out).unwrap(), all);
+        assert_eq!(parts.iter().map(|p| p.rows).collect::<Vec<_>>(), vec![4, 4]);
+        let go = |srcs: Vec<MergeSource<Lines>>| {
+            merge(&plan, &layout, &eval, srcs, &mut Vec::new(), 1)
+                .unwrap_err()
+                .to_string()
+        };
+        let e = go(vec![src("a", s0, &evens), src("b", s1, &odds[..3])]);
+        assert!(e.contains("configuration id 7 is missing"), "{e}");
+        let e = go(vec![
+            src("a", s0, &evens),
+            src("b", s1, &odds),
+            src("c", s0, &evens[..1]),
+        ]);
+        assert!(e.contains("configuration id 0 appears twice"), "{e}");
+        let e = go(vec![src("a", s0, &[l[0], l[1]])]);
         assert!(
-            e.to_string().contains("configuration id 3 is missing"),
+            e.contains("a: line 4: configuration id 1 where 2 was expected"),
             "{e}"
         );
-        let e = merge(
-            5,
-            vec![src("a", &[0, 2, 4]), src("b", &[1, 3]), src("c", &[2])],
-            &mut Vec::new(),
-        )
-        .unwrap_err();
+        // A bogus class, an edited number, an edited parameter.
+        let bogus = l[2]
+            .replacen(",standard,", ",bogus,", 1)
+            .replacen(",real_distinct,", ",bogus,", 1)
+            .replacen(",complex_pair,", ",bogus,", 1);
+        assert_ne!(bogus, l[2]);
+        let e = go(vec![
+            src("a", s0, &[l[0], &bogus, l[4], l[6]]),
+            src("b", s1, &odds),
+        ]);
+        assert!(e.contains("a: line 4: class = \"bogus\""), "{e}");
+        let f: Vec<&str> = l[4].split(',').collect();
+        let mut g = f.clone();
+        let lam = format!("{}", f[6].parse::<f64>().unwrap() + 0.25);
+        g[6] = &lam;
+        let edited = g.join(",");
+        let e = go(vec![
+            src("a", s0, &[l[0], l[2], &edited, l[6]]),
+            src("b", s1, &odds),
+        ]);
         assert!(
-            e.to_string().contains("configuration id 2 appears twice"),
+            e.contains("a: line 5: configuration 4 differs from a fresh evaluation: lambda1_re"),
             "{e}"
         );
-        let e = merge(3, vec![src("a", &[0, 1])], &mut Vec::new()).unwrap_err();
+        let mut g = f.clone();
+        g[2] = "0.5";
+        let edited = g.join(",");
+        let e = go(vec![
+            src("a", s0, &[l[0], l[2], &edited, l[6]]),
+            src("b", s1, &odds),
+        ]);
         assert!(
-            e.to_string().contains("configuration id 2 is missing"),
+            e.contains("configuration 4 has r0 = \"0.5\" where the spec gives"),
             "{e}"
         );
-        let e = merge(2, vec![src("a", &[0, 1, 2])], &mut Vec::new()).unwrap_err();
-        assert!(e.to_string().contains("beyond"), "{e}");
     }
 }

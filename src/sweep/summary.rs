@@ -147,6 +147,37 @@ impl PartialSummary {
         }
     }
 
+    /// Adds the rows of `other` (same columns); the order does not matter
+    /// (counts add up, extremes fold with the smaller-id tie rule).
+    pub(crate) fn absorb(&mut self, other: &PartialSummary) {
+        self.rows += other.rows;
+        self.errors += other.errors;
+        for (v, c, k) in &other.classes {
+            match self
+                .classes
+                .iter_mut()
+                .find(|(v2, c2, _)| v2 == v && c2 == c)
+            {
+                Some((_, _, x)) => *x += k,
+                None => self.classes.push((*v, c.clone(), *k)),
+            }
+        }
+        for (a, b) in self.columns.iter_mut().zip(&other.columns) {
+            a.count += b.count;
+            a.non_finite += b.non_finite;
+            if let Some((x, id)) = b.min {
+                if !matches!(a.min, Some((m, mid)) if !(x < m || (x == m && id < mid))) {
+                    a.min = Some((x, id));
+                }
+            }
+            if let Some((x, id)) = b.max {
+                if !matches!(a.max, Some((m, mid)) if !(x > m || (x == m && id < mid))) {
+                    a.max = Some((x, id));
+                }
+            }
+        }
+    }
+
     /// Rows counted.
     pub(crate) fn rows(&self) -> u64 {
         self.rows

@@ -1,0 +1,543 @@
+//! Verification of existing sweep CSVs (resume and merge): the fingerprint
+//! line, and every data line in full.
+//!
+//! A [`Verifier`] trusts nothing in a line:
+//!
+//! * the field count is the layout's;
+//! * the id is the one expected at that position (resume: `shard.id(row)`;
+//!   merge: the shard's next id);
+//! * the valence and every coordinate are re-derived from the id
+//!   ([`Plan::configuration`]) and must be written exactly as the sweep writes
+//!   them (the same bytes), the coordinate cells beyond the valence empty;
+//! * a row with an error has every result cell empty;
+//! * a text result is one of the values the sweep writes (`class`: the five
+//!   class names or `indeterminate:A/B`; `charmap_verdict`: the verdict codes;
+//!   `exact_class`: the class names or `undecided`), and is present;
+//! * a number parses as an `f64`, is written in the sweep's shortest round-trip
+//!   form (so that a summary rebuilt from the file equals the one accumulated
+//!   while writing), and lies in its column's range where the column has one
+//!   (`abs_lambda3`, `contraction_rate` >= 0, `exact_agrees` 0 or 1,
+//!   `charmap_winding` an integer).
+//!
+//! Edited *results* that stay plausible (a `lambda1_re` changed to another
+//! number, another valid class, an error text edited) cannot be told apart by
+//! their form; the verifier therefore also keeps a uniform random sample of
+//! [`RECHECK_SAMPLE`] lines (the smallest hashes of the ids, salted by the
+//! caller so that which lines are re-evaluated cannot be predicted) and
+//! [`recheck`](Verifier::recheck) re-evaluates them, requiring the same bytes.
+//! A file of at most [`RECHECK_SAMPLE`] rows is thus re-evaluated in full; in a
+//! larger file, `e` edited rows out of `r` escape detection with probability
+//! about `(1 - e/r)^RECHECK_SAMPLE`.
+
+use super::{push_number, small_uint, split_csv_line, Kind, Layout, Scratch};
+use crate::sweep::eval::Evaluate;
+use crate::sweep::plan::{Configuration, Plan, Shard};
+use crate::sweep::sampler::mix64;
+use crate::sweep::summary::{PartialSummary, Summary};
+
+/// Lines re-evaluated by [`Verifier::recheck`] (every line of a file this
+/// short or shorter). 32 re-evaluations cost well under a second even with the
+/// slowest columns (the characteristic map and the exact certificate), and
+/// catch a corruption of 10% of the rows with probability `1 - 0.9^32 > 0.96`.
+pub const RECHECK_SAMPLE: usize = 32;
+
+/// The first line of a sweep CSV (with `\n`): ties the file to its spec (by
+/// [`SweepSpec::digest`](crate::sweep::SweepSpec::digest)) and its shard.
+/// Readers skip it: `pandas.read_csv(path, skiprows=1)` (or `comment="#"`).
+///
+/// ```
+/// use subdiv_lab::sweep::{output, Plan, Shard, SweepSpec};
+/// let spec = SweepSpec::from_toml("name = \"s\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n").unwrap();
+/// let plan = Plan::new(spec);
+/// let line = output::fingerprint_line(&plan, Shard::ALL);
+/// assert!(line.starts_with("# subdiv-lab sweep: digest "));
+/// assert_eq!(output::fingerprint_shard(&line), Some(Shard::ALL));
+/// ```
+pub fn fingerprint_line(plan: &Plan, shard: Shard) -> String {
+    format!(
+        "{FINGERPRINT_PREFIX}{}, shard {shard}, {} configurations, spec {:?}\n",
+        plan.spec().digest(),
+        plan.total(),
+        plan.spec().name
+    )
+}
+
+const FINGERPRINT_PREFIX: &str = "# subdiv-lab sweep: digest ";
+
+/// The digest named by a fingerprint line, if `line` is one.
+pub fn fingerprint_digest(line: &str) -> Option<&str> {
+    let rest = line.strip_prefix(FINGERPRINT_PREFIX)?;
+    rest.split(',').next()
+}
+
+/// The shard named by a fingerprint line, if `line` is one.
+pub fn fingerprint_shard(line: &str) -> Option<Shard> {
+    let rest = line.strip_prefix(FINGERPRINT_PREFIX)?;
+    let after = rest.split_once(", shard ")?.1;
+    after.split(',').next()?.parse().ok()
+}
+
+/// Checks the fingerprint line of an existing file against `plan` and `shard`
+/// (the file's own shard for merge, the run's for resume). The message names
+/// what differs: not a sweep CSV, another spec, or another shard (count).
+pub fn check_fingerprint(plan: &Plan, shard: Shard, line: &str) -> Result<(), String> {
+    let Some(digest) = fingerprint_digest(line) else {
+        return Err(
+            "no fingerprint line (`# subdiv-lab sweep: digest ...`): not a sweep CSV, or written by an older subdiv-lab"
+                .into(),
+        );
+    };
+    let want = plan.spec().digest();
+    if digest != want {
+        return Err(format!(
+            "written by another spec (digest {digest}; this spec's is {want})"
+        ));
+    }
+    match fingerprint_shard(line) {
+        Some(s) if s == shard => {}
+        Some(s) if s.count != shard.count => {
+            return Err(format!(
+                "written as shard {s} of {} shards, but this run is shard {shard} of {}: the shard count must be the same",
+                s.count, shard.count
+            ))
+        }
+        Some(s) => {
+            return Err(format!(
+                "written as shard {s}, but this run is shard {shard}"
+            ))
+        }
+        None => return Err("the fingerprint line names no shard".into()),
+    }
+    if line.trim_end_matches('\n') != fingerprint_line(plan, shard).trim_end_matches('\n') {
+        return Err("the fingerprint line is not the one this spec writes".into());
+    }
+    Ok(())
+}
+
+/// What a text column may hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum TextRule {
+    Class,
+    Verdict,
+    ExactClass,
+    Any,
+}
+
+/// What a numeric result column may hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum NumRule {
+    Any,
+    NonNegative,
+    ZeroOne,
+    Integer,
+}
+
+/// The names [`ClassName::as_str`](crate::spectral::ClassName) writes.
+const CLASSES: [&str; 5] = [
+    "standard",
+    "real_distinct",
+    "complex_pair",
+    "defective",
+    "not_separated",
+];
+
+/// The codes [`Verdict::code`](crate::charmap::Verdict::code) writes.
+const VERDICTS: [&str; 8] = [
+    "c1",
+    "tpc_real_distinct",
+    "tpc_complex_pair",
+    "tpc",
+    "not_regular",
+    "not_injective",
+    "indeterminate",
+    "no_charmap",
+];
+
+fn text_ok(rule: TextRule, t: &str) -> bool {
+    match rule {
+        TextRule::Class => {
+            CLASSES.contains(&t)
+                || t.strip_prefix("indeterminate:")
+                    .and_then(|p| p.split_once('/'))
+                    .is_some_and(|(a, b)| CLASSES.contains(&a) && CLASSES.contains(&b))
+        }
+        TextRule::Verdict => VERDICTS.contains(&t),
+        TextRule::ExactClass => t == "undecided" || CLASSES.contains(&t),
+        TextRule::Any => true,
+    }
+}
+
+fn text_rule(name: &str) -> TextRule {
+    match name {
+        "class" => TextRule::Class,
+        "charmap_verdict" => TextRule::Verdict,
+        "exact_class" => TextRule::ExactClass,
+        _ => TextRule::Any,
+    }
+}
+
+fn num_rule(name: &str) -> NumRule {
+    match name {
+        "abs_lambda3" | "contraction_rate" => NumRule::NonNegative,
+        "exact_agrees" => NumRule::ZeroOne,
+        "charmap_winding" => NumRule::Integer,
+        _ => NumRule::Any,
+    }
+}
+
+fn num_ok(rule: NumRule, x: f64) -> bool {
+    match rule {
+        NumRule::Any => true,
+        NumRule::NonNegative => x >= 0.0,
+        NumRule::ZeroOne => x == 0.0 || x == 1.0,
+        NumRule::Integer => x.is_finite() && x.fract() == 0.0,
+    }
+}
+
+/// A line kept for [`Verifier::recheck`].
+#[derive(Clone, Debug)]
+struct Kept {
+    hash: u64,
+    id: u64,
+    lineno: u64,
+    line: String,
+}
+
+/// Verifies the data lines of one existing sweep CSV, in file order, and
+/// accumulates their summary (see the module documentation for the checks).
+pub struct Verifier<'a> {
+    plan: &'a Plan,
+    layout: &'a Layout,
+    text_rules: Vec<TextRule>,
+    num_rules: Vec<NumRule>,
+    /// Field ranges of the current line (in `line` or in `unquoted`).
+    fields: Vec<(usize, usize)>,
+    unquoted: String,
+    number: String,
+    digits: zmij::Buffer,
+    config: Configuration,
+    sampler: Vec<f64>,
+    /// Expected coordinate per coordinate cell.
+    coordinates: Vec<Option<f64>>,
+    part: PartialSummary,
+    kept: Vec<Kept>,
+    salt: u64,
+    rows: u64,
+}
+
+impl<'a> Verifier<'a> {
+    /// A verifier for lines of `plan`'s CSV. `salt` chooses the lines kept for
+    /// [`recheck`](Self::recheck) (pass something unpredictable, e.g. the time).
+    pub fn new(plan: &'a Plan, layout: &'a Layout, salt: u64) -> Self {
+        let text_rules = layout.names.iter().map(|n| text_rule(n)).collect();
+        let num_rules = layout.names.iter().map(|n| num_rule(n)).collect();
+        Verifier {
+            plan,
+            layout,
+            text_rules,
+            num_rules,
+            fields: Vec::with_capacity(layout.names.len() + 3),
+            unquoted: String::new(),
+            number: String::new(),
+            digits: zmij::Buffer::new(),
+            config: Configuration {
+                id: 0,
+                valence: 0,
+                coordinates: Vec::new(),
+            },
+            sampler: Vec::new(),
+            coordinates: Vec::new(),
+            part: PartialSummary::new(layout.numeric.len()),
+            kept: Vec::new(),
+            salt: mix64(salt ^ 0x005e_ed0f_5ee9),
+            rows: 0,
+        }
+    }
+
+    fn kept_max(&self) -> u64 {
+        self.kept.iter().map(|k| k.hash).max().unwrap_or(u64::MAX)
+    }
+
+    fn keep(&mut self, k: Kept) {
+        if self.kept.len() < RECHECK_SAMPLE {
+            self.kept.push(k);
+        } else if let Some(worst) = self
+            .kept
+            .iter_mut()
+            .max_by_key(|k| k.hash)
+            .filter(|w| w.hash > k.hash)
+        {
+            *worst = k;
+        }
+    }
+
+    /// Verifies a block of complete lines (each ending in `\n`; the first is
+    /// line `first_lineno` of the file) in parallel on the current rayon pool.
+    /// Row `j` of the file (counting from 0 over all calls) must carry id
+    /// `expected(j)`. The error is that of the first bad line: `(line number,
+    /// message)`. Same result as [`check`](Self::check) on each line in turn.
+    pub fn check_block(
+        &mut self,
+        first_lineno: u64,
+        block: &str,
+        expected: &(dyn Fn(u64) -> u64 + Sync),
+    ) -> Result<(), (u64, String)> {
+        use rayon::prelude::*;
+        let lines: Vec<&str> = block.split_terminator('\n').collect();
+        let base = self.rows;
+        let (plan, layout, salt) = (self.plan, self.layout, self.salt);
+        const PIECE: usize = 2048;
+        let pieces: Vec<Result<Verifier, (u64, String)>> = lines
+            .par_chunks(PIECE)
+            .enumerate()
+            .map(|(p, chunk)| {
+                let mut v = Verifier::new(plan, layout, 0);
+                v.salt = salt;
+                for (i, line) in chunk.iter().enumerate() {
+                    let k = (p * PIECE + i) as u64;
+                    let lineno = first_lineno + k;
+                    v.check(lineno, line, expected(base + k))
+                        .map_err(|m| (lineno, m))?;
+                }
+                Ok(v)
+            })
+            .collect();
+        for piece in pieces {
+            let v = piece?;
+            self.rows += v.rows;
+            self.part.absorb(&v.part);
+            for k in v.kept {
+                if self.kept.len() < RECHECK_SAMPLE || k.hash < self.kept_max() {
+                    self.keep(k);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Rows verified so far.
+    pub fn rows(&self) -> u64 {
+        self.rows
+    }
+
+    /// Verifies one data line (`lineno` 1-based in the file, for [`recheck`]'s
+    /// messages; `line` without `\n`). `expected_id`: the id this position must
+    /// carry. Returns the line's id; the message of an error names the problem
+    /// (the caller adds the file and line).
+    ///
+    /// [`recheck`]: Self::recheck
+    pub fn check(&mut self, lineno: u64, line: &str, expected_id: u64) -> Result<u64, String> {
+        self.fields.clear();
+        let quoted = memchr::memchr(b'"', line.as_bytes()).is_some();
+        if quoted {
+            // Only error texts are ever quoted: the slow path is rare.
+            self.unquoted.clear();
+            for f in split_csv_line(line)? {
+                let a = self.unquoted.len();
+                self.unquoted.push_str(&f);
+                self.fields.push((a, self.unquoted.len()));
+            }
+        } else {
+            let mut a = 0;
+            for i in memchr::memchr_iter(b',', line.as_bytes()) {
+                self.fields.push((a, i));
+                a = i + 1;
+            }
+            self.fields.push((a, line.len()));
+        }
+        let unquoted = std::mem::take(&mut self.unquoted);
+        let src: &str = if quoted { &unquoted } else { line };
+        let r = self.check_fields(src, expected_id);
+        self.unquoted = unquoted;
+        let id = r?;
+        self.rows += 1;
+        // Bottom-k sampling: keep the RECHECK_SAMPLE lines of smallest salted
+        // hash of their id (a uniform sample, independent of the order and of
+        // how the lines were split between verifiers).
+        let h = mix64(self.salt ^ id);
+        if self.kept.len() < RECHECK_SAMPLE || h < self.kept_max() {
+            let kept = Kept {
+                hash: h,
+                id,
+                lineno,
+                line: line.to_owned(),
+            };
+            self.keep(kept);
+        }
+        Ok(id)
+    }
+
+    fn check_fields(&mut self, src: &str, expected_id: u64) -> Result<u64, String> {
+        let layout = self.layout;
+        let plan = self.plan;
+        let cells = layout.names.len();
+        if self.fields.len() != cells + 3 {
+            return Err(format!(
+                "expected {} fields, found {}",
+                cells + 3,
+                self.fields.len()
+            ));
+        }
+        let field = |k: usize| -> &str {
+            let (a, b) = self.fields[k];
+            &src[a..b]
+        };
+        let id_text = field(0);
+        let id: u64 = id_text
+            .parse()
+            .map_err(|_| format!("id {id_text:?} is not an integer"))?;
+        if id != expected_id {
+            return Err(format!(
+                "configuration id {id} where {expected_id} was expected"
+            ));
+        }
+        plan.configuration_into(id, &mut self.config, &mut self.sampler)
+            .map_err(|e| e.to_string())?;
+        let mut ibuf = [0u8; 20];
+        let valence = self.config.valence;
+        if field(1) != small_uint(valence as u64, &mut ibuf) {
+            return Err(format!(
+                "configuration {id} has valence {:?} where the spec gives {valence} (was the spec changed?)",
+                field(1)
+            ));
+        }
+        self.coordinates.clear();
+        self.coordinates.resize(layout.coordinates, None);
+        for (k, x) in self.config.coordinates.iter().enumerate() {
+            self.coordinates[plan.coordinate_column(valence, k)] = Some(*x);
+        }
+        let mut numeric = 0usize;
+        for pos in 0..layout.coordinates {
+            let f = field(2 + pos);
+            let ok = match self.coordinates[pos] {
+                None => f.is_empty(),
+                Some(x) => {
+                    self.number.clear();
+                    push_number(&mut self.number, &mut self.digits, x);
+                    f == self.number
+                }
+            };
+            if !ok {
+                self.number.clear();
+                if let Some(x) = self.coordinates[pos] {
+                    push_number(&mut self.number, &mut self.digits, x);
+                }
+                return Err(format!(
+                    "configuration {id} has {} = {f:?} where the spec gives {:?} (was the spec changed?)",
+                    layout.names[pos], self.number
+                ));
+            }
+            if let Some(x) = self.coordinates[pos] {
+                self.part.push(numeric, x, id);
+            }
+            numeric += 1;
+        }
+        let errored = !field(cells + 2).is_empty();
+        let mut class: Option<(usize, usize)> = None;
+        for pos in layout.coordinates..cells {
+            let f = field(2 + pos);
+            let name = &layout.names[pos];
+            let is_num = layout.kinds[pos] == Kind::Numeric;
+            if errored {
+                if !f.is_empty() {
+                    return Err(format!(
+                        "configuration {id} has an error and a result ({name} = {f:?}); a failed row has no results"
+                    ));
+                }
+            } else if is_num {
+                if !f.is_empty() {
+                    let x: f64 = f
+                        .parse()
+                        .map_err(|_| format!("{name} = {f:?} is not a number"))?;
+                    self.number.clear();
+                    push_number(&mut self.number, &mut self.digits, x);
+                    if f != self.number {
+                        return Err(format!(
+                            "{name} = {f:?} is not written as this sweep writes numbers ({:?})",
+                            self.number
+                        ));
+                    }
+                    if !num_ok(self.num_rules[pos], x) {
+                        return Err(format!("{name} = {f} is out of range for that column"));
+                    }
+                    self.part.push(numeric, x, id);
+                }
+            } else {
+                let rule = self.text_rules[pos];
+                if f.is_empty() || !text_ok(rule, f) {
+                    return Err(format!(
+                        "{name} = {f:?} is not a value this sweep writes{}",
+                        match rule {
+                            TextRule::Class => " (a class name: standard, real_distinct, complex_pair, defective, not_separated or indeterminate:A/B)",
+                            TextRule::Verdict => " (a characteristic-map verdict code)",
+                            TextRule::ExactClass => " (a class name or undecided)",
+                            TextRule::Any => "",
+                        }
+                    ));
+                }
+                if layout.class == Some(pos) {
+                    class = Some(self.fields[2 + pos]);
+                }
+            }
+            if is_num {
+                numeric += 1;
+            }
+        }
+        let class = match class {
+            Some((a, b)) => &src[a..b],
+            None if errored => "error",
+            None => "all",
+        };
+        self.part.count_row(valence, class, errored);
+        Ok(id)
+    }
+
+    /// Re-evaluates the kept lines (every line of a short file, a random sample
+    /// of [`RECHECK_SAMPLE`] otherwise) and requires the same bytes. The error
+    /// is `(line number, message)`.
+    pub fn recheck<E: Evaluate + ?Sized>(&self, eval: &E) -> Result<(), (u64, String)> {
+        let mut scratch = Scratch::new();
+        let mut part = PartialSummary::new(self.layout.numeric.len());
+        let mut text = String::new();
+        let mut kept: Vec<&Kept> = self.kept.iter().collect();
+        kept.sort_by_key(|k| k.lineno);
+        for k in kept {
+            text.clear();
+            self.layout
+                .append_row(self.plan, eval, k.id, &mut scratch, &mut text, &mut part);
+            let fresh = text.trim_end_matches('\n');
+            if fresh != k.line {
+                let what = match (split_csv_line(fresh), split_csv_line(&k.line)) {
+                    (Ok(a), Ok(b)) => {
+                        let mut names = vec!["id".to_owned(), "valence".to_owned()];
+                        names.extend(self.layout.names.iter().cloned());
+                        names.push("error".into());
+                        a.iter()
+                            .zip(&b)
+                            .zip(&names)
+                            .find(|((x, y), _)| x != y)
+                            .map(|((x, y), n)| {
+                                format!(": {n} is {y:?} in the file, {x:?} when evaluated")
+                            })
+                            .unwrap_or_default()
+                    }
+                    _ => String::new(),
+                };
+                return Err((
+                    k.lineno,
+                    format!(
+                        "configuration {} differs from a fresh evaluation{what}; the file was edited or written by another build",
+                        k.id
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds the verified rows to `summary` (same result as adding each row with
+    /// [`Summary::add`]).
+    pub fn add_to(&self, summary: &mut Summary) {
+        summary.absorb_partial(&self.part);
+    }
+}
