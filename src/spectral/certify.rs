@@ -666,6 +666,131 @@ pub(crate) fn annihilates(a: &DMatrix<Rational>, fe: &Poly) -> bool {
     true
 }
 
+/// Characteristic polynomial modulo `p` of the matrix with entries `a`
+/// (row-major `m x m`): Hessenberg reduction by Gaussian similarity, then the
+/// Hessenberg determinant recurrence (as [`super::exact::charpoly`]).
+fn charpoly_mod(mut h: Vec<u64>, m: usize, p: u64) -> Vec<u64> {
+    let at = |i: usize, j: usize| i * m + j;
+    for k in 0..m.saturating_sub(2) {
+        let Some(piv_row) = (k + 1..m).find(|&i| h[at(i, k)] != 0) else {
+            continue;
+        };
+        if piv_row != k + 1 {
+            for j in 0..m {
+                h.swap(at(piv_row, j), at(k + 1, j));
+            }
+            for i in 0..m {
+                h.swap(at(i, piv_row), at(i, k + 1));
+            }
+        }
+        let inv = invmod(h[at(k + 1, k)], p);
+        for i in k + 2..m {
+            let f = mulmod(h[at(i, k)], inv, p);
+            if f == 0 {
+                continue;
+            }
+            for j in 0..m {
+                let t = mulmod(f, h[at(k + 1, j)], p);
+                h[at(i, j)] = (h[at(i, j)] + p - t) % p;
+            }
+            for r in 0..m {
+                let t = mulmod(f, h[at(r, i)], p);
+                h[at(r, k + 1)] = (h[at(r, k + 1)] + t) % p;
+            }
+        }
+    }
+    // p_k = (x - h_kk) p_(k-1) - sum_(i<k) h_ik (prod_(j=i+1..k) h_(j,j-1)) p_(i-1).
+    let mut ps: Vec<Vec<u64>> = vec![vec![1]];
+    for k in 0..m {
+        let prev = &ps[k];
+        let mut pk = vec![0u64; k + 2];
+        for (d, &c) in prev.iter().enumerate() {
+            pk[d + 1] = (pk[d + 1] + c) % p;
+            pk[d] = (pk[d] + p - mulmod(h[at(k, k)], c, p)) % p;
+        }
+        let mut prod = 1u64;
+        for i in (0..k).rev() {
+            prod = mulmod(prod, h[at(i + 1, i)], p);
+            if prod == 0 {
+                break;
+            }
+            let coef = mulmod(h[at(i, k)], prod, p);
+            if coef != 0 {
+                for (d, &c) in ps[i].iter().enumerate() {
+                    pk[d] = (pk[d] + p - mulmod(coef, c, p)) % p;
+                }
+            }
+        }
+        ps.push(pk);
+    }
+    ps.pop().unwrap_or_else(|| vec![1])
+}
+
+/// `det(x I - A)` of a rational matrix by the Chinese remainder theorem: with
+/// `d_i` the common denominator of row `i` and `N = diag(d) A` (integer),
+/// `G(x) = det(x diag(d) - N) = (prod d_i) det(x I - A)` has integer
+/// coefficients bounded by `H = prod_i (d_i + |N_i|_2)` (expand the rows and
+/// apply Hadamard's inequality to each minor), so its residues modulo primes
+/// (none dividing a `d_i`) whose product exceeds `2 H` determine it.
+pub(crate) fn charpoly_multimodular(a: &DMatrix<Rational>) -> Poly {
+    let m = a.nrows();
+    let mut d = Vec::with_capacity(m);
+    let mut bound = BigInt::one();
+    for i in 0..m {
+        let mut di = BigInt::one();
+        for j in 0..m {
+            di = di.lcm(a[(i, j)].denom());
+        }
+        let mut s2 = BigInt::zero();
+        for j in 0..m {
+            let v = a[(i, j)].numer() * (&di / a[(i, j)].denom());
+            s2 += &v * &v;
+        }
+        bound *= &di + s2.sqrt() + 1u32;
+        d.push(di);
+    }
+    let dprod: BigInt = d.iter().product();
+    let need: BigInt = bound * 2u32 + 1u32;
+    // Residue CRT: x = sum over primes, kept as (value, modulus).
+    let mut value: Vec<BigInt> = vec![BigInt::zero(); m + 1];
+    let mut modulus = BigInt::one();
+    let mut n = (1u64 << 62) - 1;
+    while modulus < need {
+        while !is_prime(n) || d.iter().any(|di| modp(di, n) == 0) {
+            n -= 2;
+        }
+        let p = n;
+        n -= 2;
+        let entries: Vec<u64> = (0..m * m)
+            .map(|k| {
+                let x = &a[(k / m, k % m)];
+                mulmod(modp(x.numer(), p), invmod(modp(x.denom(), p), p), p)
+            })
+            .collect();
+        let cp = charpoly_mod(entries, m, p);
+        let dp = modp(&dprod, p);
+        let mp = modp(&modulus, p);
+        let minv = invmod(mp, p);
+        for (k, v) in value.iter_mut().enumerate() {
+            let r = mulmod(cp[k], dp, p);
+            let cur = modp(v, p);
+            let t = mulmod((r + p - cur) % p, minv, p);
+            *v += &modulus * BigInt::from(t);
+        }
+        modulus *= BigInt::from(p);
+    }
+    let half = &modulus >> 1u32;
+    Poly::new(
+        value
+            .into_iter()
+            .map(|v| {
+                let v = if v > half { v - &modulus } else { v };
+                Rational::new(v, dprod.clone())
+            })
+            .collect(),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -700,6 +825,28 @@ mod tests {
             };
             assert_eq!(ip.sign_at(&x), s, "at {x}");
         }
+    }
+
+    #[test]
+    fn multimodular_charpoly_matches_rational_hessenberg() {
+        let mut rng = crate::contraction::SplitMix64::new(3);
+        for m in [1usize, 2, 3, 6, 9] {
+            let a = DMatrix::from_fn(m, m, |_, _| {
+                let num = (rng.next_u64() % 41) as i64 - 20;
+                let den = 1 + (rng.next_u64() % 97) as i64;
+                Rational::new(num.into(), den.into())
+            });
+            assert_eq!(
+                charpoly_multimodular(&a),
+                super::super::exact::charpoly(&a),
+                "m = {m}"
+            );
+        }
+        // A zero sub-diagonal (block triangular) and a zero matrix.
+        let mut a = DMatrix::from_element(4, 4, Rational::zero());
+        a[(0, 1)] = q(3);
+        a[(2, 3)] = Rational::new(1.into(), 7.into());
+        assert_eq!(charpoly_multimodular(&a), super::super::exact::charpoly(&a));
     }
 
     #[test]

@@ -164,6 +164,27 @@ pub fn charpoly(a: &DMatrix<Rational>) -> Poly {
     ps.pop().unwrap_or_else(|| Poly::constant(Rational::one()))
 }
 
+/// The deflation of a matrix whose rows all sum to 1 (`A 1 = 1`): with
+/// `T = [1, e_2, .., e_n]`, `T^-1 A T = [[1, *], [0, A']]` and
+/// `A'_(ij) = A_(ij) - A_(0j)` (`i, j >= 1`), so `det(x I - A) = (x - 1)
+/// det(x I - A')`. For a face block `A = 1/4 (I + R + 1 c^T)` (math doc
+/// section 4) the rank-one part cancels exactly in `A'`: the entries keep the
+/// small denominators of the ratios instead of the face weights' large common
+/// denominator. `None` when a row sum differs from 1.
+pub fn deflate_unit_rows(a: &DMatrix<Rational>) -> Option<DMatrix<Rational>> {
+    let n = a.nrows();
+    if n == 0 || a.ncols() != n {
+        return None;
+    }
+    let one = Rational::one();
+    if (0..n).any(|i| a.row(i).iter().fold(Rational::zero(), |s, x| s + x) != one) {
+        return None;
+    }
+    Some(DMatrix::from_fn(n - 1, n - 1, |i, j| {
+        &a[(i + 1, j + 1)] - &a[(0, j + 1)]
+    }))
+}
+
 /// Rank of `A - lambda I` where `lambda` is the unique root of the square-free
 /// `f` in the isolating interval `(lo, hi]`, computed exactly in `Q[x]/(f)`
 /// with dynamic splitting of `f` (see the module docs).
@@ -494,8 +515,19 @@ fn verdict(
 ) -> Result<ExactVerdict> {
     let n = scheme.valence();
     let a = scheme.face_block()?;
-    let p = charpoly(&a);
-    let (q, r) = p.divrem(&Poly::linear(Rational::one()));
+    let deflated = if fast { deflate_unit_rows(&a) } else { None };
+    let (p, (q, r)) = match deflated {
+        // Rows sum to 1: p = (x - 1) charpoly(A'), remainder 0.
+        Some(d) => {
+            let q = certify::charpoly_multimodular(&d);
+            (Poly::linear(Rational::one()).mul(&q), (q, Poly::zero()))
+        }
+        None => {
+            let p = charpoly(&a);
+            let qr = p.divrem(&Poly::linear(Rational::one()));
+            (p, qr)
+        }
+    };
     if !r.is_zero() {
         return Err(SpectralError::Exact(format!(
             "1 is not an eigenvalue of the face block (p(1) = {})",
@@ -684,4 +716,101 @@ fn verdict(
         theorem1_certificate: cert.holds(),
         agrees_with_float,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contraction::SplitMix64;
+    use crate::knots::{CornerIntervals, EdgeRatios};
+
+    fn q(a: i64, b: i64) -> Rational {
+        Rational::new(a.into(), b.into())
+    }
+
+    /// Random rational knot intervals a/b, a and b in 1..12.
+    fn random_knots(rng: &mut SplitMix64, n: usize) -> LocalScheme<Rational> {
+        let mut draw = || {
+            q(
+                1 + (rng.next_u64() % 12) as i64,
+                1 + (rng.next_u64() % 12) as i64,
+            )
+        };
+        let p: Vec<Rational> = (0..n).map(|_| draw()).collect();
+        let qq: Vec<Rational> = (0..n).map(|_| draw()).collect();
+        LocalScheme::nurds(CornerIntervals::new(p, qq).unwrap().ratios().unwrap())
+    }
+
+    fn same(s: &LocalScheme<Rational>) -> ExactVerdict {
+        let fast = exact_verdict(s, None).unwrap();
+        let reference = exact_verdict_reference(s, None).unwrap();
+        assert_eq!(fast, reference, "valence {}", s.valence());
+        fast
+    }
+
+    #[test]
+    fn fast_path_matches_reference_on_random_rationals() {
+        let mut rng = SplitMix64::new(16);
+        let mut classes = std::collections::HashSet::new();
+        for trial in 0..36 {
+            let n = 3 + trial % 6;
+            let v = same(&random_knots(&mut rng, n));
+            assert!(!v.real_roots.is_empty() || n == 3, "{v:?}");
+            classes.insert(v.class);
+        }
+        // Both non-standard generic classes occur, so both branches ran.
+        assert!(
+            classes.contains(&Some(ClassName::RealDistinct))
+                && classes.contains(&Some(ClassName::ComplexPair)),
+            "{classes:?}"
+        );
+    }
+
+    #[test]
+    fn fast_path_matches_reference_on_multiple_roots() {
+        // Uniform: double roots, the semisimple rank through (f e)(A) = 0.
+        for n in 3..=10 {
+            let v = same(&LocalScheme::nurds(
+                EdgeRatios::<Rational>::uniform(n).unwrap(),
+            ));
+            assert_eq!(
+                v.top_pair,
+                TopPair::RealDouble { semisimple: true },
+                "n = {n}"
+            );
+            assert!(v.real_roots.iter().any(|r| r.multiplicity == 2), "n = {n}");
+        }
+        // A defective double root (the fast rank test must decline).
+        let d = EdgeRatios::new(vec![q(69, 250), q(529, 1000), q(181, 250), q(37, 50)]).unwrap();
+        let v = same(&LocalScheme::nurds(d));
+        assert_eq!(v.top_pair, TopPair::RealDouble { semisimple: false });
+        // Tensor-product knots and the original Doo-Sabin weights.
+        let t = EdgeRatios::new(vec![q(3, 10), q(1, 5), q(7, 10), q(4, 5)]).unwrap();
+        assert_eq!(
+            same(&LocalScheme::nurds(t)).class,
+            Some(ClassName::Standard)
+        );
+        for n in [3, 4, 6] {
+            same(&LocalScheme::<Rational>::doo_sabin(n).unwrap());
+        }
+    }
+
+    #[test]
+    fn deflation_keeps_the_characteristic_polynomial() {
+        let mut rng = SplitMix64::new(5);
+        for n in [3, 5, 8] {
+            let a = random_knots(&mut rng, n).face_block().unwrap();
+            let d = deflate_unit_rows(&a).unwrap();
+            assert_eq!(
+                Poly::linear(Rational::one()).mul(&charpoly(&d)),
+                charpoly(&a),
+                "n = {n}"
+            );
+        }
+        // Rows not summing to 1: no deflation.
+        let mut a = DMatrix::from_element(2, 2, q(1, 2));
+        assert!(deflate_unit_rows(&a).is_some());
+        a[(0, 0)] = q(1, 3);
+        assert!(deflate_unit_rows(&a).is_none());
+    }
 }
