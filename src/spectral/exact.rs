@@ -34,6 +34,16 @@
 //! 4. the spectral bound `|lambda| < 3/4` for every non-unit eigenvalue (the
 //!    Schur-Cohn count at `t = 3/4` is zero);
 //! 5. the Theorem 1 certificate in exact arithmetic ([`crate::contraction::certificate`]).
+//!
+//! Speed: the steps above are the *reference* algorithms. [`exact_verdict`]
+//! answers the same questions first by the certified root structure of
+//! `spectral::certify` (the characteristic polynomial of the deflated face
+//! block [`deflate_unit_rows`] by CRT; Gerschgorin inclusion disks computed
+//! exactly; residues proving square-freeness, a regular Schur-Cohn recursion
+//! and semisimplicity) and falls back to the reference algorithm for any
+//! question a fast certificate does not settle, so the verdict, the
+//! polynomials, the isolating intervals and the reasons are the same; the
+//! unit tests compare both paths field by field.
 
 use super::certify::{self, IntPoly, RootStructure};
 use super::classify::{ClassName, Subdominant};
@@ -445,14 +455,25 @@ impl Roots {
 /// [`super::certify`]; any values are safe: a bad guess only means the
 /// reference algorithms run).
 fn approx_eigenvalues(a: &DMatrix<Rational>) -> Option<Vec<num_complex::Complex64>> {
-    let f = a.map(|x| rational_to_f64(&x));
-    if f.iter().any(|x| !x.is_finite()) {
+    let n = a.nrows();
+    let mut ws = super::kernel::KernelWorkspace::new();
+    let input = ws.input(n);
+    for j in 0..n {
+        for i in 0..n {
+            input[i + j * n] = rational_to_f64(&a[(i, j)]);
+        }
+    }
+    if input.iter().any(|x| !x.is_finite()) {
         return None;
     }
-    let ev = f.complex_eigenvalues();
-    ev.iter()
-        .all(|z| z.re.is_finite() && z.im.is_finite())
-        .then(|| ev.iter().copied().collect())
+    // The project's bounded kernel (no unbounded eigen-solver).
+    let (wr, wi) = ws.eigenvalues().ok()?;
+    Some(
+        wr.iter()
+            .zip(wi)
+            .map(|(&re, &im)| num_complex::Complex64::new(re, im))
+            .collect(),
+    )
 }
 
 /// The floating-point classification of the same configuration (for thresholds).
