@@ -775,9 +775,7 @@ mod tests {
         let mut classes = std::collections::HashSet::new();
         for trial in 0..36 {
             let n = 3 + trial % 6;
-            let v = same(&random_knots(&mut rng, n));
-            assert_eq!(v.real_roots.len(), v.real_root_count);
-            classes.insert(v.class);
+            classes.insert(same(&random_knots(&mut rng, n)).class);
         }
         // Both non-standard generic classes occur, so both branches ran.
         assert!(
