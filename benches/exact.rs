@@ -26,7 +26,7 @@ fn lcg_knots(n: usize) -> (Vec<Rational>, Vec<Rational>) {
     let mut x: u64 = 1;
     let mut draw = || {
         x = (1664525 * x + 1013904223) % (1 << 32);
-        1 + (x * 12 >> 32) as i64
+        1 + ((x * 12) >> 32) as i64
     };
     let (mut p, mut q) = (Vec::new(), Vec::new());
     for _ in 0..n {
