@@ -34,7 +34,18 @@
 //! 4. the spectral bound `|lambda| < 3/4` for every non-unit eigenvalue (the
 //!    Schur-Cohn count at `t = 3/4` is zero);
 //! 5. the Theorem 1 certificate in exact arithmetic ([`crate::contraction::certificate`]).
+//!
+//! Speed: the steps above are the *reference* algorithms. [`exact_verdict`]
+//! answers the same questions first by the certified root structure of
+//! `spectral::certify` (the characteristic polynomial of the deflated face
+//! block [`deflate_unit_rows`] by CRT; Gerschgorin inclusion disks computed
+//! exactly; residues proving square-freeness, a regular Schur-Cohn recursion
+//! and semisimplicity) and falls back to the reference algorithm for any
+//! question a fast certificate does not settle, so the verdict, the
+//! polynomials, the isolating intervals and the reasons are the same; the
+//! unit tests compare both paths field by field.
 
+use super::certify::{self, IntPoly, RootStructure};
 use super::classify::{ClassName, Subdominant};
 use super::poly::{isolate_real_roots, roots_outside, Poly, Sturm};
 use super::SpectralError;
@@ -163,6 +174,27 @@ pub fn charpoly(a: &DMatrix<Rational>) -> Poly {
     ps.pop().unwrap_or_else(|| Poly::constant(Rational::one()))
 }
 
+/// The deflation of a matrix whose rows all sum to 1 (`A 1 = 1`): with
+/// `T = [1, e_2, .., e_n]`, `T^-1 A T = [[1, *], [0, A']]` and
+/// `A'_(ij) = A_(ij) - A_(0j)` (`i, j >= 1`), so `det(x I - A) = (x - 1)
+/// det(x I - A')`. For a face block `A = 1/4 (I + R + 1 c^T)` (math doc
+/// section 4) the rank-one part cancels exactly in `A'`: the entries keep the
+/// small denominators of the ratios instead of the face weights' large common
+/// denominator. `None` when a row sum differs from 1.
+pub fn deflate_unit_rows(a: &DMatrix<Rational>) -> Option<DMatrix<Rational>> {
+    let n = a.nrows();
+    if n == 0 || a.ncols() != n {
+        return None;
+    }
+    let one = Rational::one();
+    if (0..n).any(|i| a.row(i).iter().fold(Rational::zero(), |s, x| s + x) != one) {
+        return None;
+    }
+    Some(DMatrix::from_fn(n - 1, n - 1, |i, j| {
+        &a[(i + 1, j + 1)] - &a[(0, j + 1)]
+    }))
+}
+
 /// Rank of `A - lambda I` where `lambda` is the unique root of the square-free
 /// `f` in the isolating interval `(lo, hi]`, computed exactly in `Q[x]/(f)`
 /// with dynamic splitting of `f` (see the module docs).
@@ -241,6 +273,209 @@ pub fn rank_at_root(a: &DMatrix<Rational>, f: &Poly, lo: &Rational, hi: &Rationa
     rank
 }
 
+/// The root questions of [`exact_verdict`] about `q = p / (x - 1)`, answered
+/// by the certified root structure of [`super::certify`] when it applies and by
+/// the reference algorithms (Sturm sequences, rational Schur-Cohn recursion,
+/// rank over `Q[x]/(f)`) otherwise; both give the same answers (see the
+/// module docs of [`super::certify`]).
+struct Roots {
+    q: Poly,
+    /// The square-free part of `q` (monic).
+    sf: Poly,
+    /// `squarefree(gcd^k(q))` for `k = 1, 2, ..` (the roots of multiplicity `> k`).
+    chain: Vec<Poly>,
+    fast: Option<RootStructure>,
+    q_int: IntPoly,
+    sturm_sf: Option<Sturm>,
+    sturm_chain: Option<Vec<Sturm>>,
+}
+
+impl Roots {
+    /// `approx`: floating-point eigenvalues of the face block (`None`: the
+    /// reference algorithms only).
+    fn new(q: &Poly, approx: Option<Vec<num_complex::Complex64>>) -> Self {
+        let q_int = IntPoly::from_poly(q);
+        let proven_squarefree = approx.is_some() && certify::squarefree_mod_p(&q_int) == Some(true);
+        let (sf, chain) = if q.degree().unwrap_or(0) == 0 {
+            (q.squarefree(), Vec::new())
+        } else if proven_squarefree {
+            // gcd(q, q') = 1: the reference computes sf = q / 1 made monic and an empty chain.
+            (q.monic(), Vec::new())
+        } else {
+            let mut chain = Vec::new();
+            let mut g = q.clone();
+            loop {
+                let d = g.gcd(&g.derivative());
+                if d.degree().unwrap_or(0) == 0 {
+                    break;
+                }
+                chain.push(d.squarefree());
+                g = d;
+            }
+            (q.squarefree(), chain)
+        };
+        let fast = match approx {
+            Some(mut z) if q.degree().unwrap_or(0) > 0 => {
+                // q = p / (x - 1): drop the approximation nearest to 1.
+                let one = num_complex::Complex64::new(1.0, 0.0);
+                if let Some(k) = (0..z.len())
+                    .min_by(|&i, &j| (z[i] - one).norm().total_cmp(&(z[j] - one).norm()))
+                {
+                    z.remove(k);
+                }
+                // Square-free factors a_k = s_(k-1) / s_k (s_0 = sf, s_k = chain[k-1]).
+                let mut factors = Vec::new();
+                let mut prev = sf.clone();
+                for s in chain
+                    .iter()
+                    .chain(std::iter::once(&Poly::constant(Rational::one())))
+                {
+                    factors.push(prev.divrem(s).0);
+                    prev = s.clone();
+                }
+                RootStructure::certify(&factors, &sf, &z)
+            }
+            _ => None,
+        };
+        Roots {
+            q: q.clone(),
+            sf,
+            chain,
+            fast,
+            q_int,
+            sturm_sf: None,
+            sturm_chain: None,
+        }
+    }
+
+    fn sturm_sf(&mut self) -> &Sturm {
+        self.sturm_sf.get_or_insert_with(|| Sturm::new(&self.sf))
+    }
+
+    /// Isolating intervals of the real roots of `q` with multiplicities.
+    fn real_roots(&mut self, width: &Rational) -> Vec<(Rational, Rational, usize)> {
+        if self.q.degree().unwrap_or(0) == 0 {
+            return Vec::new();
+        }
+        if let Some(f) = &mut self.fast {
+            let b = self.sf.root_bound();
+            return f
+                .isolate(&b, width)
+                .into_iter()
+                .map(|(lo, hi, k)| {
+                    let m = f.real_mult(k);
+                    (lo, hi, m)
+                })
+                .collect();
+        }
+        let intervals = isolate_real_roots(&self.sf, width);
+        let chain: &Vec<Sturm> = self
+            .sturm_chain
+            .get_or_insert_with(|| self.chain.iter().map(Sturm::new).collect());
+        intervals
+            .into_iter()
+            .map(|(lo, hi)| {
+                let m = 1 + chain.iter().filter(|s| s.count(&lo, &hi) > 0).count();
+                (lo, hi, m)
+            })
+            .collect()
+    }
+
+    /// Roots of `q` (with multiplicity) of modulus `> t` ([`roots_outside`]).
+    fn outside(&self, t: &Rational) -> Option<usize> {
+        if self.q.degree().unwrap_or(0) == 0 {
+            return Some(0);
+        }
+        if let Some(c) = self.fast.as_ref().and_then(|f| f.count_outside(t)) {
+            if certify::schur_cohn_regular(&self.q_int, t) {
+                return Some(c);
+            }
+        }
+        roots_outside(&self.q, t)
+    }
+
+    /// Distinct real roots in `(a, +infinity)`.
+    fn count_above(&mut self, a: &Rational) -> usize {
+        match &mut self.fast {
+            Some(f) => f.count_above(a),
+            None => self.sturm_sf().count_above(a),
+        }
+    }
+
+    /// Distinct real roots in `(-infinity, b]`.
+    fn count_below(&mut self, b: &Rational) -> usize {
+        match &mut self.fast {
+            Some(f) => f.count_below(b),
+            None => self.sturm_sf().count_below(b),
+        }
+    }
+
+    /// Distinct real roots in `(a, b]`.
+    fn count(&mut self, a: &Rational, b: &Rational) -> usize {
+        match &mut self.fast {
+            Some(f) => f.count(a, b),
+            None => self.sturm_sf().count(a, b),
+        }
+    }
+
+    /// `rank(A - lambda I)` for the root `lambda` of the square-free
+    /// polynomial of the multiple roots isolated in `(lo, hi]`
+    /// ([`rank_at_root`]); `p` is the face block's characteristic polynomial.
+    fn rank(&mut self, a: &DMatrix<Rational>, p: &Poly, lo: &Rational, hi: &Rational) -> usize {
+        let multi = match self.chain.first() {
+            Some(m) => m.clone(),
+            None => self.q.gcd(&self.q.derivative()).squarefree(),
+        };
+        if let Some(f) = &mut self.fast {
+            // All roots of `multi` semisimple => rank = n - (multiplicity of lambda in p).
+            let mut e = p.clone();
+            loop {
+                let g = e.gcd(&multi);
+                if g.degree().unwrap_or(0) == 0 {
+                    break;
+                }
+                e = e.divrem(&g).0;
+            }
+            let k = (0..f.real_count()).find(|&k| !f.le(k, lo) && f.le(k, hi));
+            if let Some(k) = k {
+                if certify::annihilates(a, &multi.mul(&e)) {
+                    // (lo, hi] holds one root of q: it is 1 iff q(1) = 0 and 1 is in it.
+                    let one = Rational::one();
+                    let at_one = lo < &one && &one <= hi && self.q.eval(&one).is_zero();
+                    let m = f.real_mult(k) + usize::from(at_one);
+                    return a.nrows().saturating_sub(m);
+                }
+            }
+        }
+        rank_at_root(a, &multi, lo, hi)
+    }
+}
+
+/// Floating-point eigenvalues of the face block (root approximations for
+/// [`super::certify`]; any values are safe: a bad guess only means the
+/// reference algorithms run).
+fn approx_eigenvalues(a: &DMatrix<Rational>) -> Option<Vec<num_complex::Complex64>> {
+    let n = a.nrows();
+    let mut ws = super::kernel::KernelWorkspace::new();
+    let input = ws.input(n);
+    for j in 0..n {
+        for i in 0..n {
+            input[i + j * n] = rational_to_f64(&a[(i, j)]);
+        }
+    }
+    if input.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    // The project's bounded kernel (no unbounded eigen-solver).
+    let (wr, wi) = ws.eigenvalues().ok()?;
+    Some(
+        wr.iter()
+            .zip(wi)
+            .map(|(&re, &im)| num_complex::Complex64::new(re, im))
+            .collect(),
+    )
+}
+
 /// The floating-point classification of the same configuration (for thresholds).
 fn float_guide(scheme: &LocalScheme<Rational>) -> Option<Subdominant> {
     let f = match scheme {
@@ -280,10 +515,40 @@ pub fn exact_verdict(
     scheme: &LocalScheme<Rational>,
     float: Option<&Subdominant>,
 ) -> Result<ExactVerdict> {
+    verdict(scheme, float, true)
+}
+
+/// [`exact_verdict`] by the reference algorithms alone (Sturm sequences,
+/// rational Schur-Cohn recursion, rank over `Q[x]/(f)`): the cross-check of the
+/// certified fast path.
+#[cfg(test)]
+pub(crate) fn exact_verdict_reference(
+    scheme: &LocalScheme<Rational>,
+    float: Option<&Subdominant>,
+) -> Result<ExactVerdict> {
+    verdict(scheme, float, false)
+}
+
+fn verdict(
+    scheme: &LocalScheme<Rational>,
+    float: Option<&Subdominant>,
+    fast: bool,
+) -> Result<ExactVerdict> {
     let n = scheme.valence();
     let a = scheme.face_block()?;
-    let p = charpoly(&a);
-    let (q, r) = p.divrem(&Poly::linear(Rational::one()));
+    let deflated = if fast { deflate_unit_rows(&a) } else { None };
+    let (p, (q, r)) = match deflated {
+        // Rows sum to 1: p = (x - 1) charpoly(A'), remainder 0.
+        Some(d) => {
+            let q = certify::charpoly_multimodular(&d);
+            (Poly::linear(Rational::one()).mul(&q), (q, Poly::zero()))
+        }
+        None => {
+            let p = charpoly(&a);
+            let qr = p.divrem(&Poly::linear(Rational::one()));
+            (p, qr)
+        }
+    };
     if !r.is_zero() {
         return Err(SpectralError::Exact(format!(
             "1 is not an eigenvalue of the face block (p(1) = {})",
@@ -292,29 +557,19 @@ pub fn exact_verdict(
         .into());
     }
     let one_is_simple = !q.eval(&Rational::one()).is_zero();
+    let mut roots = Roots::new(&q, if fast { approx_eigenvalues(&a) } else { None });
     // Real roots with multiplicities.
-    let sf = q.squarefree();
     let width = rat(ISOLATION_WIDTH).max(Rational::new(1.into(), BigInt::from(1u64 << 40)));
-    let intervals = if q.degree().unwrap_or(0) > 0 {
-        isolate_real_roots(&sf, &width)
-    } else {
-        Vec::new()
-    };
-    let mut chain = Vec::new();
-    let mut g = q.clone();
-    loop {
-        let d = g.gcd(&g.derivative());
-        if d.degree().unwrap_or(0) == 0 {
-            break;
-        }
-        chain.push(Sturm::new(&d.squarefree()));
-        g = d;
-    }
-    let real_roots: Vec<RealRoot> = intervals
+    let isolated = roots.real_roots(&width);
+    let intervals: Vec<(Rational, Rational)> = isolated
         .iter()
-        .map(|(lo, hi)| RealRoot {
+        .map(|(lo, hi, _)| (lo.clone(), hi.clone()))
+        .collect();
+    let real_roots: Vec<RealRoot> = isolated
+        .iter()
+        .map(|(lo, hi, m)| RealRoot {
             interval: [rational_to_f64(lo), rational_to_f64(hi)],
-            multiplicity: 1 + chain.iter().filter(|s| s.count(lo, hi) > 0).count(),
+            multiplicity: *m,
         })
         .collect();
     // Spectral bound |z| < 3/4.
@@ -322,17 +577,15 @@ pub fn exact_verdict(
         Some(true)
     } else {
         // Zero roots outside and a non-singular count => none on the circle either.
-        roots_outside(&q, &Rational::new(3.into(), 4.into())).map(|c| c == 0)
+        roots
+            .outside(&Rational::new(3.into(), 4.into()))
+            .map(|c| c == 0)
     };
     let cert = contraction::certificate(scheme)?;
     let quarter = Rational::new(1.into(), 4.into());
     // Count of all non-unit eigenvalues of S_n with modulus > t.
-    let count_full = |t: &Rational| -> Option<usize> {
-        let cq = if q.degree().unwrap_or(0) == 0 {
-            0
-        } else {
-            roots_outside(&q, t)?
-        };
+    let count_full = |roots: &Roots, t: &Rational| -> Option<usize> {
+        let cq = roots.outside(t)?;
         let mut extra = 0;
         for (v, m) in [(1i64, 4i64), (1, 8), (1, 16)] {
             let e = Rational::new(v.into(), m.into());
@@ -345,7 +598,6 @@ pub fn exact_verdict(
         }
         Some(cq + extra)
     };
-    let sturm_sf = Sturm::new(&sf);
     let mut top_pair = TopPair::Undecided {
         reason: "no threshold separated |lambda_2| from |lambda_3|".into(),
     };
@@ -372,18 +624,18 @@ pub fn exact_verdict(
         if t <= &Rational::zero() {
             continue;
         }
-        if let Some(c) = count_full(t) {
+        if let Some(c) = count_full(&roots, t) {
             if c == 2 {
                 found = true;
                 separated = Some(true);
                 // Real roots of q with |x| > t (extras are below t: c == 2 < n).
-                let real = sturm_sf.count_above(t) + sturm_sf.count_below(&(-t.clone()));
+                let real = roots.count_above(t) + roots.count_below(&(-t.clone()));
                 top_pair = match real {
                     0 => TopPair::ComplexPair,
                     2 => TopPair::RealDistinct,
                     1 => {
                         // The double real root: its isolating interval, cut at +-t.
-                        let positive = sturm_sf.count_above(t) == 1;
+                        let positive = roots.count_above(t) == 1;
                         double_positive = Some(positive);
                         let neg_t = -t.clone();
                         let iv = intervals.iter().find_map(|(lo, hi)| {
@@ -399,13 +651,11 @@ pub fn exact_verdict(
                                     },
                                 )
                             };
-                            (lo < hi && sturm_sf.count(&lo, &hi) == 1).then_some((lo, hi))
+                            (lo < hi && roots.count(&lo, &hi) == 1).then_some((lo, hi))
                         });
                         match iv {
                             Some((lo, hi)) => {
-                                // Square-free polynomial of the multiple roots of q.
-                                let multi = q.gcd(&q.derivative()).squarefree();
-                                let rank = rank_at_root(&a, &multi, &lo, &hi);
+                                let rank = roots.rank(&a, &p, &lo, &hi);
                                 TopPair::RealDouble {
                                     semisimple: rank + 2 == n,
                                 }
@@ -431,11 +681,7 @@ pub fn exact_verdict(
     if !found {
         // Not separated when at most one root of q lies outside |z| = 1/4:
         // then lambda_2 = lambda_3 = 1/4 (n >= 3 copies from the E blocks).
-        let cq = if q.degree().unwrap_or(0) == 0 {
-            Some(0)
-        } else {
-            roots_outside(&q, &quarter)
-        };
+        let cq = roots.outside(&quarter);
         if let Some(c) = cq {
             if c <= 1 {
                 separated = Some(false);
@@ -491,4 +737,99 @@ pub fn exact_verdict(
         theorem1_certificate: cert.holds(),
         agrees_with_float,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contraction::SplitMix64;
+    use crate::knots::{CornerIntervals, EdgeRatios};
+
+    fn q(a: i64, b: i64) -> Rational {
+        Rational::new(a.into(), b.into())
+    }
+
+    /// Random rational knot intervals a/b, a and b in 1..12.
+    fn random_knots(rng: &mut SplitMix64, n: usize) -> LocalScheme<Rational> {
+        let mut draw = || {
+            q(
+                1 + (rng.next_u64() % 12) as i64,
+                1 + (rng.next_u64() % 12) as i64,
+            )
+        };
+        let p: Vec<Rational> = (0..n).map(|_| draw()).collect();
+        let qq: Vec<Rational> = (0..n).map(|_| draw()).collect();
+        LocalScheme::nurds(CornerIntervals::new(p, qq).unwrap().ratios().unwrap())
+    }
+
+    fn same(s: &LocalScheme<Rational>) -> ExactVerdict {
+        let fast = exact_verdict(s, None).unwrap();
+        let reference = exact_verdict_reference(s, None).unwrap();
+        assert_eq!(fast, reference, "valence {}", s.valence());
+        fast
+    }
+
+    #[test]
+    fn fast_path_matches_reference_on_random_rationals() {
+        let mut rng = SplitMix64::new(16);
+        let mut classes = std::collections::HashSet::new();
+        for trial in 0..36 {
+            let n = 3 + trial % 6;
+            classes.insert(same(&random_knots(&mut rng, n)).class);
+        }
+        // Both non-standard generic classes occur, so both branches ran.
+        assert!(
+            classes.contains(&Some(ClassName::RealDistinct))
+                && classes.contains(&Some(ClassName::ComplexPair)),
+            "{classes:?}"
+        );
+    }
+
+    #[test]
+    fn fast_path_matches_reference_on_multiple_roots() {
+        // Uniform: double roots, the semisimple rank through (f e)(A) = 0.
+        for n in 3..=10 {
+            let v = same(&LocalScheme::nurds(
+                EdgeRatios::<Rational>::uniform(n).unwrap(),
+            ));
+            assert_eq!(
+                v.top_pair,
+                TopPair::RealDouble { semisimple: true },
+                "n = {n}"
+            );
+            assert!(v.real_roots.iter().any(|r| r.multiplicity == 2), "n = {n}");
+        }
+        // A defective double root (the fast rank test must decline).
+        let d = EdgeRatios::new(vec![q(69, 250), q(529, 1000), q(181, 250), q(37, 50)]).unwrap();
+        let v = same(&LocalScheme::nurds(d));
+        assert_eq!(v.top_pair, TopPair::RealDouble { semisimple: false });
+        // Tensor-product knots and the original Doo-Sabin weights.
+        let t = EdgeRatios::new(vec![q(3, 10), q(1, 5), q(7, 10), q(4, 5)]).unwrap();
+        assert_eq!(
+            same(&LocalScheme::nurds(t)).class,
+            Some(ClassName::Standard)
+        );
+        for n in [3, 4, 6] {
+            same(&LocalScheme::<Rational>::doo_sabin(n).unwrap());
+        }
+    }
+
+    #[test]
+    fn deflation_keeps_the_characteristic_polynomial() {
+        let mut rng = SplitMix64::new(5);
+        for n in [3, 5, 8] {
+            let a = random_knots(&mut rng, n).face_block().unwrap();
+            let d = deflate_unit_rows(&a).unwrap();
+            assert_eq!(
+                Poly::linear(Rational::one()).mul(&charpoly(&d)),
+                charpoly(&a),
+                "n = {n}"
+            );
+        }
+        // Rows not summing to 1: no deflation.
+        let mut a = DMatrix::from_element(2, 2, q(1, 2));
+        assert!(deflate_unit_rows(&a).is_some());
+        a[(0, 0)] = q(1, 3);
+        assert!(deflate_unit_rows(&a).is_none());
+    }
 }

@@ -32,6 +32,7 @@
 //! assert!(!matches!(a.subdominant.class, SubdominantClass::Standard));
 //! ```
 
+pub(crate) mod certify;
 pub mod classify;
 pub mod eigen;
 pub mod exact;
