@@ -7,8 +7,9 @@ use num_complex::Complex64;
 use proptest::prelude::*;
 use subdiv_lab::bezier::BezierCurve;
 use subdiv_lab::charmap::extended::{ExtLayout, ExtendedMatrix};
-use subdiv_lab::charmap::regularity::RegularityVerdict;
+use subdiv_lab::charmap::regularity::{check_regularity, RegularityVerdict};
 use subdiv_lab::charmap::ring::{PatchKind, Ring, RingPatchId};
+use subdiv_lab::charmap::winding::winding_number;
 use subdiv_lab::charmap::{
     check, check_basis, CharmapReport, Eigenstructure, PlanarBasis, Verdict,
 };
@@ -825,5 +826,122 @@ fn eigenstructures_without_a_planar_map_are_reported_with_a_reason() {
         assert!(text.contains(code) && text.contains(needle), "{text}");
         assert!(r.regularity.is_none() && r.winding_number.is_none());
         assert_eq!(r.to_json()["regular"], serde_json::Value::Null);
+    }
+}
+
+// ---------------------------------------------------------------- certificate error bound and orientation (issue 22)
+
+/// A regular ring of the Doo-Sabin family, its control-point error bound, and
+/// the ring turned so that its Jacobian is positive.
+fn oriented_ring(scheme: &LocalScheme<f64>) -> (Ring, f64) {
+    let basis = basis_of(scheme);
+    let ext = ExtendedMatrix::new(scheme).unwrap();
+    let ring = ring_of(scheme, &basis);
+    let delta = subdiv_lab::charmap::point_error(&ext, &basis);
+    let reg = check_regularity(&ring, delta);
+    assert_eq!(reg.verdict, RegularityVerdict::Regular, "{reg:?}");
+    if reg.orientation < 0 {
+        (ring.mirrored(), delta)
+    } else {
+        (ring, delta)
+    }
+}
+
+#[test]
+fn an_error_bound_beyond_the_data_leaves_the_bezier_jacobian_sign_indeterminate() {
+    // The Bezier certificate accepts a piece only when its smallest coefficient
+    // exceeds the error bound. With a bound far above every coordinate (and so
+    // every Jacobian coefficient) nothing can be certified, whatever the signs
+    // of the computed coefficients: the verdict must be `indeterminate`, never
+    // `regular`.
+    for scheme in [
+        LocalScheme::<f64>::doo_sabin(5).unwrap(),
+        LocalScheme::<f64>::cc_variant(7).unwrap(),
+    ] {
+        let (ring, delta) = oriented_ring(&scheme);
+        // the same ring with its honest bound is certified (so the data are fine)
+        let honest = check_regularity(&ring, delta);
+        assert_eq!(honest.verdict, RegularityVerdict::Regular);
+        assert!(honest.min_coeff > honest.relative_error_bound);
+        for big in [10.0 * ring.max_abs(), 1e3 * ring.max_abs()] {
+            let reg = check_regularity(&ring, big);
+            assert_eq!(
+                reg.verdict,
+                RegularityVerdict::Indeterminate,
+                "{} n={}, delta {big}: {reg:?}",
+                scheme.kind(),
+                scheme.valence()
+            );
+            assert!(reg.witness.is_none(), "no witness from noise: {reg:?}");
+            assert!(reg.undecided.is_some());
+            // every computed coefficient is positive: only the bound stops the certificate
+            assert!(
+                reg.min_coeff > 0.0 && reg.relative_error_bound > 1.0,
+                "{reg:?}"
+            );
+            // and the whole report says so
+            let rep = subdiv_lab::charmap::check_ring(&ring, big, Eigenstructure::Standard);
+            assert!(
+                matches!(rep.verdict, Verdict::Indeterminate { .. }),
+                "{rep:?}"
+            );
+            assert_eq!(
+                rep.regularity.unwrap().verdict,
+                RegularityVerdict::Indeterminate
+            );
+        }
+    }
+}
+
+#[test]
+fn a_mirrored_doo_sabin_ring_winds_negatively_and_the_report_turns_it_back() {
+    for scheme in [
+        LocalScheme::<f64>::doo_sabin(3).unwrap(),
+        LocalScheme::<f64>::doo_sabin(6).unwrap(),
+        LocalScheme::<f64>::cc_variant(5).unwrap(),
+    ] {
+        let what = format!("{} n={}", scheme.kind(), scheme.valence());
+        let (ring, delta) = oriented_ring(&scheme);
+        let mirror = ring.mirrored();
+        // positively oriented ring: both boundaries wind once counter-clockwise
+        assert_eq!(
+            winding_number(&ring.outer_boundary(), delta),
+            Some(1),
+            "{what}"
+        );
+        assert_eq!(
+            winding_number(&ring.inner_boundary(), delta),
+            Some(1),
+            "{what}"
+        );
+        // its mirror image: clockwise, winding number -1
+        assert_eq!(
+            winding_number(&mirror.outer_boundary(), delta),
+            Some(-1),
+            "{what}"
+        );
+        assert_eq!(
+            winding_number(&mirror.inner_boundary(), delta),
+            Some(-1),
+            "{what}"
+        );
+        // the regularity check sees the reversed orientation and still certifies
+        let (r, m) = (
+            check_regularity(&ring, delta),
+            check_regularity(&mirror, delta),
+        );
+        assert_eq!((r.orientation, m.orientation), (1, -1), "{what}");
+        assert_eq!(m.verdict, RegularityVerdict::Regular, "{what}");
+        assert!((r.min_coeff - m.min_coeff).abs() < 1e-12, "{what}");
+        // the report orients the ring before counting: both give winding +1
+        for g in [&ring, &mirror] {
+            let rep = subdiv_lab::charmap::check_ring(g, delta, Eigenstructure::Standard);
+            assert_eq!(rep.verdict, Verdict::C1Standard, "{what}: {rep:?}");
+            assert_eq!(
+                (rep.winding_number, rep.inner_winding_number),
+                (Some(1), Some(1)),
+                "{what}"
+            );
+        }
     }
 }
