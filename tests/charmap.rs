@@ -6,9 +6,13 @@ use faer::{Mat, Par};
 use num_complex::Complex64;
 use proptest::prelude::*;
 use subdiv_lab::bezier::BezierCurve;
+use subdiv_lab::bezier::{PlanarPatch, TensorBezier};
 use subdiv_lab::charmap::extended::{ExtLayout, ExtendedMatrix};
-use subdiv_lab::charmap::regularity::RegularityVerdict;
+use subdiv_lab::charmap::regularity::{
+    check_bezier_patches, check_regularity, RegularityVerdict, MAX_DEPTH,
+};
 use subdiv_lab::charmap::ring::{PatchKind, Ring, RingPatchId};
+use subdiv_lab::charmap::winding::winding_number;
 use subdiv_lab::charmap::{
     check, check_basis, CharmapReport, Eigenstructure, PlanarBasis, Verdict,
 };
@@ -826,4 +830,187 @@ fn eigenstructures_without_a_planar_map_are_reported_with_a_reason() {
         assert!(r.regularity.is_none() && r.winding_number.is_none());
         assert_eq!(r.to_json()["regular"], serde_json::Value::Null);
     }
+}
+
+// ---------------------------------------------------------------- certificate error bound and orientation (issue 22)
+
+/// A regular ring of the Doo-Sabin family, its control-point error bound, and
+/// the ring turned so that its Jacobian is positive.
+fn oriented_ring(scheme: &LocalScheme<f64>) -> (Ring, f64) {
+    let basis = basis_of(scheme);
+    let ext = ExtendedMatrix::new(scheme).unwrap();
+    let ring = ring_of(scheme, &basis);
+    let delta = subdiv_lab::charmap::point_error(&ext, &basis);
+    let reg = check_regularity(&ring, delta);
+    assert_eq!(reg.verdict, RegularityVerdict::Regular, "{reg:?}");
+    if reg.orientation < 0 {
+        (ring.mirrored(), delta)
+    } else {
+        (ring, delta)
+    }
+}
+
+#[test]
+fn an_error_bound_beyond_the_data_leaves_the_bezier_jacobian_sign_indeterminate() {
+    // The Bezier certificate accepts a piece only when its smallest coefficient
+    // exceeds the error bound. With a bound far above every coordinate (and so
+    // every Jacobian coefficient) nothing can be certified, whatever the signs
+    // of the computed coefficients: the verdict must be `indeterminate`, never
+    // `regular`.
+    for scheme in [
+        LocalScheme::<f64>::doo_sabin(5).unwrap(),
+        LocalScheme::<f64>::cc_variant(7).unwrap(),
+    ] {
+        let (ring, delta) = oriented_ring(&scheme);
+        // the same ring with its honest bound is certified (so the data are fine)
+        let honest = check_regularity(&ring, delta);
+        assert_eq!(honest.verdict, RegularityVerdict::Regular);
+        assert!(honest.min_coeff > honest.relative_error_bound);
+        for big in [10.0 * ring.max_abs(), 1e3 * ring.max_abs()] {
+            let reg = check_regularity(&ring, big);
+            assert_eq!(
+                reg.verdict,
+                RegularityVerdict::Indeterminate,
+                "{} n={}, delta {big}: {reg:?}",
+                scheme.kind(),
+                scheme.valence()
+            );
+            assert!(reg.witness.is_none(), "no witness from noise: {reg:?}");
+            assert!(reg.undecided.is_some());
+            // hopeless at once: no piece is split (the bound exceeds every coefficient)
+            assert_eq!(reg.max_depth, 0, "{reg:?}");
+            assert_eq!(reg.pieces, ring.patches().len(), "{reg:?}");
+            // every computed coefficient is positive: only the bound stops the certificate
+            assert!(
+                reg.min_coeff > 0.0 && reg.relative_error_bound > 1.0,
+                "{reg:?}"
+            );
+            // and the whole report says so
+            let rep = subdiv_lab::charmap::check_ring(&ring, big, Eigenstructure::Standard);
+            assert!(
+                matches!(rep.verdict, Verdict::Indeterminate { .. }),
+                "{rep:?}"
+            );
+            assert_eq!(
+                rep.regularity.unwrap().verdict,
+                RegularityVerdict::Indeterminate
+            );
+        }
+    }
+}
+
+#[test]
+fn a_mirrored_doo_sabin_ring_winds_negatively_and_the_report_turns_it_back() {
+    for scheme in [
+        LocalScheme::<f64>::doo_sabin(3).unwrap(),
+        LocalScheme::<f64>::doo_sabin(6).unwrap(),
+        LocalScheme::<f64>::cc_variant(5).unwrap(),
+    ] {
+        let what = format!("{} n={}", scheme.kind(), scheme.valence());
+        let (ring, delta) = oriented_ring(&scheme);
+        let mirror = ring.mirrored();
+        // positively oriented ring: both boundaries wind once counter-clockwise
+        assert_eq!(
+            winding_number(&ring.outer_boundary(), delta),
+            Some(1),
+            "{what}"
+        );
+        assert_eq!(
+            winding_number(&ring.inner_boundary(), delta),
+            Some(1),
+            "{what}"
+        );
+        // its mirror image: clockwise, winding number -1
+        assert_eq!(
+            winding_number(&mirror.outer_boundary(), delta),
+            Some(-1),
+            "{what}"
+        );
+        assert_eq!(
+            winding_number(&mirror.inner_boundary(), delta),
+            Some(-1),
+            "{what}"
+        );
+        // the regularity check sees the reversed orientation and still certifies
+        let (r, m) = (
+            check_regularity(&ring, delta),
+            check_regularity(&mirror, delta),
+        );
+        assert_eq!((r.orientation, m.orientation), (1, -1), "{what}");
+        assert_eq!(m.verdict, RegularityVerdict::Regular, "{what}");
+        assert!((r.min_coeff - m.min_coeff).abs() < 1e-12, "{what}");
+        // the report orients the ring before counting: both give winding +1
+        for g in [&ring, &mirror] {
+            let rep = subdiv_lab::charmap::check_ring(g, delta, Eigenstructure::Standard);
+            assert_eq!(rep.verdict, Verdict::C1Standard, "{what}: {rep:?}");
+            assert_eq!(
+                (rep.winding_number, rep.inner_winding_number),
+                (Some(1), Some(1)),
+                "{what}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_jacobian_that_touches_zero_is_indeterminate_not_a_false_witness() {
+    // x = s, y = (t - 1/2)^3: J = x_s y_t - x_t y_s = 3 (t - 1/2)^2 >= 0, zero
+    // on the line t = 1/2 (the centre of the patch). No piece along that line
+    // can be certified and no point has J < 0: the verdict is `indeterminate`
+    // (a zero within rounding is neither a proof of regularity nor a witness).
+    let x = TensorBezier::from_fn(3, 3, |a, _| a as f64 / 3.0);
+    let yc = [-0.125, 0.125, -0.125, 0.125];
+    let y = TensorBezier::from_fn(3, 3, |_, b| yc[b]);
+    let patch = PlanarPatch { x, y };
+    assert_eq!(patch.jacobian_at(0.5, 0.5), 0.0);
+    assert!((patch.jacobian_at(0.3, 0.0) - 0.75).abs() < 1e-15);
+    let reg = check_bezier_patches(&[(0usize, &patch)], 0.0).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::Indeterminate, "{reg:?}");
+    assert_eq!(reg.orientation, 1);
+    assert!(reg.witness.is_none(), "{reg:?}");
+    // the undecided piece lies on the line t = 1/2 (as its lower or upper edge)
+    let at = reg.undecided.unwrap();
+    assert!((at.t - 0.5).abs() <= 1.0 / 1024.0 + 1e-15, "{at:?}");
+    // the search went down to the depth limit along the line
+    assert_eq!(reg.max_depth, MAX_DEPTH);
+    // mirrored (y -> -y): the same verdict with orientation -1
+    let flipped = PlanarPatch {
+        x: patch.x.clone(),
+        y: TensorBezier::from_fn(3, 3, |_, b| -yc[b]),
+    };
+    let reg = check_bezier_patches(&[(0usize, &flipped)], 0.0).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::Indeterminate, "{reg:?}");
+    assert_eq!(reg.orientation, -1);
+    assert!(reg.witness.is_none(), "{reg:?}");
+    // y = (t - 1/2)^3 - (t - 1/2)/8 bends back: J < 0 near t = 1/2, a witness exists
+    let bent = PlanarPatch {
+        x: patch.x.clone(),
+        y: TensorBezier::from_fn(3, 3, |_, b| yc[b] - (b as f64 / 3.0 - 0.5) / 8.0),
+    };
+    let reg = check_bezier_patches(&[(0usize, &bent)], 0.0).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::NotRegular, "{reg:?}");
+    let (p, v) = reg.witness.unwrap();
+    assert!(v < 0.0 && bent.jacobian_at(p.s, p.t) * f64::from(reg.orientation) < 0.0);
+}
+
+#[test]
+fn a_negative_jacobian_at_a_corner_is_reported_at_that_corner() {
+    // x = s, y = t^2 - t/4: J = y_t = 2t - 1/4, negative for t < 1/8 and
+    // positive at the centre. The corner coefficient (0, 0) is the exact value
+    // J(0, 0) = -1/4: the first piece yields the witness at that corner, before
+    // any subdivision (a centre found after splitting would have t > 0).
+    let x = TensorBezier::from_fn(3, 3, |a, _| a as f64 / 3.0);
+    let yc = [0.0, -1.0 / 12.0, 1.0 / 6.0, 0.75];
+    let y = TensorBezier::from_fn(3, 3, |_, b| yc[b]);
+    let patch = PlanarPatch { x, y };
+    assert!((patch.jacobian_at(0.0, 0.0) + 0.25).abs() < 1e-15);
+    assert!(patch.jacobian_at(0.5, 0.5) > 0.0);
+    let reg = check_bezier_patches(&[(7usize, &patch)], 1e-15).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::NotRegular, "{reg:?}");
+    assert_eq!(reg.orientation, 1);
+    let (p, v) = reg.witness.unwrap();
+    assert_eq!((p.patch, p.s, p.t), (7, 0.0, 0.0), "{reg:?}");
+    assert_eq!((reg.pieces, reg.max_depth), (1, 0), "{reg:?}");
+    // relative to the largest Jacobian coefficient (7/4 at t = 1)
+    assert!((v + 0.25 / 1.75).abs() < 1e-12, "{v}");
 }

@@ -7,6 +7,7 @@ use subdiv_lab::charmap::catmull_clark::{
     check, check_bicubic, check_ring, prepare_ring, CcRing, Certificate, UnivariateRule, Window,
 };
 use subdiv_lab::charmap::regularity::RegularityVerdict;
+use subdiv_lab::charmap::winding::winding_number;
 use subdiv_lab::charmap::Verdict;
 use subdiv_lab::schemes::catmull_clark::{fourier, patch_matrix};
 
@@ -316,5 +317,122 @@ proptest! {
         let o0 = base.regularity.unwrap().orientation;
         let o1 = rep.regularity.unwrap().orientation;
         prop_assert_eq!(o1, o0 * if d > 0.0 { 1 } else { -1 });
+    }
+}
+
+/// Largest coordinate magnitude of a ring's window points.
+fn window_max_abs(ring: &CcRing) -> f64 {
+    ring.cells()
+        .iter()
+        .flat_map(|(_, w)| w.iter().flatten().flatten())
+        .fold(0.0f64, |a, x| a.max(x.abs()))
+}
+
+#[test]
+fn an_error_bound_beyond_the_data_leaves_the_bicubic_jacobian_sign_indeterminate() {
+    // The bicubic Bezier certificate (Catmull-Clark, c = 1/2) accepts a piece
+    // only when its smallest Jacobian coefficient exceeds the error bound; with
+    // a bound far above every window coordinate nothing is certified, whatever
+    // the signs of the computed coefficients. The regularity verdict itself
+    // (not only the report, whose winding number also fails) is `indeterminate`.
+    for n in [3, 5, 8] {
+        let prep = prepare_ring(n, 0.5, 1, 0.05).unwrap();
+        let honest = check_ring(&prep.ring, prep.point_error, Certificate::Bicubic);
+        assert_eq!(honest.verdict, Verdict::C1Standard, "n = {n}: {honest:?}");
+        let scale = window_max_abs(&prep.ring);
+        for big in [10.0 * scale, 1e3 * scale] {
+            let rep = check_ring(&prep.ring, big, Certificate::Bicubic);
+            assert!(
+                matches!(rep.verdict, Verdict::Indeterminate { .. }),
+                "n = {n}: {rep:?}"
+            );
+            let reg = rep.regularity.unwrap();
+            assert_eq!(
+                reg.verdict,
+                RegularityVerdict::Indeterminate,
+                "n = {n}, delta {big}: {reg:?}"
+            );
+            assert!(reg.witness.is_none() && reg.undecided.is_some(), "{reg:?}");
+            // every computed coefficient is positive: only the bound stops it
+            assert!(
+                reg.min_coeff > 0.0 && reg.relative_error_bound > 1.0,
+                "{reg:?}"
+            );
+            // the cone certificate agrees (its own regularity verdict, too)
+            let cone = check_ring(&prep.ring, big, Certificate::Cone);
+            assert_eq!(
+                cone.regularity.unwrap().verdict,
+                RegularityVerdict::Indeterminate,
+                "cone, n = {n}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_mirrored_catmull_clark_ring_winds_negatively_and_the_report_turns_it_back() {
+    for (n, c) in [(3, 0.5), (5, 0.5), (6, 0.3), (9, 0.7)] {
+        let prep = prepare_ring(n, c, 1, 0.05).unwrap();
+        let delta = prep.point_error;
+        let cert = Certificate::for_c(c);
+        let orientation = check_ring(&prep.ring, delta, cert)
+            .regularity
+            .unwrap()
+            .orientation;
+        let ring = if orientation < 0 {
+            prep.ring.mirrored()
+        } else {
+            prep.ring.clone()
+        };
+        let mirror = ring.mirrored();
+        // positively oriented ring: both boundaries wind once counter-clockwise
+        assert_eq!(
+            winding_number(&ring.outer_boundary(), delta),
+            Some(1),
+            "n = {n}, c = {c}"
+        );
+        assert_eq!(
+            winding_number(&ring.inner_boundary(), delta),
+            Some(1),
+            "n = {n}, c = {c}"
+        );
+        // the mirror image winds clockwise
+        assert_eq!(
+            winding_number(&mirror.outer_boundary(), delta),
+            Some(-1),
+            "n = {n}, c = {c}"
+        );
+        assert_eq!(
+            winding_number(&mirror.inner_boundary(), delta),
+            Some(-1),
+            "n = {n}, c = {c}"
+        );
+        for certificate in [Certificate::Cone, cert] {
+            let (r, m) = (
+                check_ring(&ring, delta, certificate),
+                check_ring(&mirror, delta, certificate),
+            );
+            let (rr, mr) = (
+                r.regularity.as_ref().unwrap(),
+                m.regularity.as_ref().unwrap(),
+            );
+            assert_eq!(
+                (rr.orientation, mr.orientation),
+                (1, -1),
+                "n = {n}, c = {c}"
+            );
+            // the report orients the ring before counting: both give +1
+            for rep in [&r, &m] {
+                assert_eq!(
+                    rep.verdict,
+                    Verdict::C1Standard,
+                    "n = {n}, c = {c}: {rep:?}"
+                );
+                assert_eq!(
+                    (rep.winding_number, rep.inner_winding_number),
+                    (Some(1), Some(1))
+                );
+            }
+        }
     }
 }
