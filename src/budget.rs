@@ -240,8 +240,11 @@ pub fn ccss_table(max: usize, levels: u32) -> Estimate {
 pub fn cc_study(n_min: usize, n_max: usize, samples: usize, curves: bool) -> Estimate {
     let per_valence = |n: usize| {
         let d = 2.0 * n as f64 + 1.0;
-        // measured ~0.4 ms at n = 3 and ~40 ms at n = 64 per point
-        4e-4 + 1.5e-7 * d * d * d
+        // Measured per point on an idle reference machine (`--curves
+        // --samples 100 --n-min n --n-max n`): 0.3 ms at n = 3, 8.9 ms at
+        // n = 40, 29 ms at n = 64, i.e. 1.4e-8 to 1.7e-8 s per d^3;
+        // rounded up to 3e-8 for a loaded machine.
+        4e-4 + 3e-8 * d * d * d
     };
     let points = samples as f64 + 1.0 + if curves { 0.0 } else { 100.0 };
     let seconds = (n_min..=n_max).map(|n| points * per_valence(n)).sum();

@@ -241,7 +241,8 @@ fn cli_analyze_json_for_the_catmull_clark_family() {
     assert_eq!(code, 0);
     assert!(out.contains("Fourier blocks"));
     assert!(out.contains("standard"));
-    // Exact verdicts are a Doo-Sabin-family feature: a clear error, not a panic.
+    // Exact verdicts are a Doo-Sabin-family feature: refused as an input
+    // combination (exit 2), not a panic.
     let (code, _, err) = run(&[
         "analyze",
         "--scheme",
@@ -250,7 +251,7 @@ fn cli_analyze_json_for_the_catmull_clark_family() {
         "4",
         "--exact",
     ]);
-    assert_eq!(code, 1);
+    assert_eq!(code, 2);
     assert!(err.contains("face block"), "{err}");
 }
 

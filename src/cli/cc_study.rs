@@ -90,7 +90,11 @@ pub(crate) fn run(args: CcStudyArgs) -> CliResult {
                         p.fourier_subdominant,
                         p.charmap
                     ),
-                    Err(e) => writeln!(out, "{n},{c},,,,,,error,,error,{}", csv_cell(&e.to_string())),
+                    Err(e) => writeln!(
+                        out,
+                        "{n},{c},,,,,,error,,error,{}",
+                        csv_cell(&e.to_string())
+                    ),
                 }
                 .map_err(CliError::stdout)?;
             }
