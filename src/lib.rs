@@ -6,7 +6,7 @@
 //! about them.
 //!
 //! The mathematics is restated in the project's math document
-//! (`shared/docs/math.md`, cited below as "math doc section N"); items it marks
+//! (`docs/math.md`, cited below as "math doc section N"); items it marks
 //! **\[derived\]** or **\[reconstructed\]** are marked the same way here.
 //!
 //! Modules, one concept each:

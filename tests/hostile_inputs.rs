@@ -446,8 +446,8 @@ fn cases() -> Vec<Case> {
             "--out d is not empty",
         ),
         bad_with(
-            "report-out-foreign-dir-force",
-            &["report", "--out", "d", "--force"],
+            "report-out-foreign-dir",
+            &["report", "--out", "d"],
             &[("d/keep.txt", "x\n")],
             "holds no previous subdiv-lab report",
         ),
@@ -458,20 +458,25 @@ fn cases() -> Vec<Case> {
             "--out f exists and is not a directory",
         ),
         bad_with(
-            "report-out-previous-report-without-force",
+            "report-previous-report-new-output-over-a-user-file",
             &["report", "--out", "r"],
             &[
                 (
                     "r/manifest.json",
-                    "{\"tool\": \"subdiv-lab\", \"files\": [\"index.html\", \"manifest.json\"]}",
+                    "{\"tool\": \"subdiv-lab\", \"files\": [\"manifest.json\"]}",
                 ),
-                ("r/index.html", "<html></html>\n"),
+                ("r/index.html", "<html>the user's page</html>\n"),
             ],
-            "pass --force",
+            "index.html",
+        ),
+        bad(
+            "report-force-is-not-a-report-option",
+            &["report", "--force"],
+            "--force",
         ),
         bad_with(
             "report-out-foreign-manifest",
-            &["report", "--out", "r", "--force"],
+            &["report", "--out", "r"],
             &[("r/manifest.json", "{\"tool\": \"other\"}")],
             "holds no previous subdiv-lab report",
         ),

@@ -257,20 +257,14 @@ fn out_dir_with_foreign_files_is_refused_and_untouched() {
     )
     .unwrap();
     let before = tree(tmp.path());
-    for force in [false, true] {
-        let mut args = vec!["report", "d/s.toml", "--out", "d", "--quiet"];
-        if force {
-            args.push("--force");
-        }
-        let o = run_in(tmp.path(), &args);
-        assert_eq!(o.status.code(), Some(2), "--force {force}");
-        let err = stderr_line(&o);
-        assert!(
-            err.contains("--out d") && err.contains("not empty"),
-            "{err}"
-        );
-        assert_eq!(tree(tmp.path()), before, "--force {force}: files touched");
-    }
+    let o = run_in(tmp.path(), &["report", "d/s.toml", "--out", "d", "--quiet"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr_line(&o);
+    assert!(
+        err.contains("--out d") && err.contains("not empty"),
+        "{err}"
+    );
+    assert_eq!(tree(tmp.path()), before, "files touched");
 }
 
 /// Item 2: `--out` naming an existing regular file is exit 2, the file untouched.
@@ -280,42 +274,41 @@ fn out_naming_a_file_is_refused_and_untouched() {
     write_spec(tmp.path(), TINY_SPEC);
     std::fs::write(tmp.path().join("f"), "user data\n").unwrap();
     let before = tree(tmp.path());
-    for force in [false, true] {
-        let mut args = vec!["report", "spec.toml", "--out", "f", "--quiet"];
-        if force {
-            args.push("--force");
-        }
-        let o = run_in(tmp.path(), &args);
-        assert_eq!(o.status.code(), Some(2), "--force {force}");
-        assert!(stderr_line(&o).contains("not a directory"));
-        assert_eq!(tree(tmp.path()), before, "--force {force}: files touched");
-    }
+    let o = run_in(
+        tmp.path(),
+        &["report", "spec.toml", "--out", "f", "--quiet"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr_line(&o).contains("not a directory"));
+    assert_eq!(tree(tmp.path()), before, "files touched");
 }
 
-/// Item 2: a previous report is replaced only with --force, and then only the
-/// files its manifest lists: the user's files in the directory survive, stale
-/// outputs of the old report are removed, no temporaries remain.
+/// Item 2: a previous report is replaced by default (so the main job can be
+/// run again), touching only the files its manifest lists: the user's files
+/// in the directory survive, stale outputs of the old report are removed, no
+/// temporaries remain.
 #[test]
-fn force_replaces_only_the_previous_reports_files() {
+fn rerun_replaces_only_the_previous_reports_files() {
     let tmp = tempfile::tempdir().unwrap();
     let spec = write_spec(tmp.path(), TINY_SPEC);
     let out = tmp.path().join("out");
-    // An existing empty directory is filled without --force.
+    // An existing empty directory is filled.
     std::fs::create_dir(&out).unwrap();
     let o = run_report(&spec, &out);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(out.join("a.csv").exists());
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
 
-    // Without --force: exit 2, nothing touched.
-    let before = tree(tmp.path());
+    // The same spec again: the report is rewritten, notes.txt stays.
     let o = run_report(&spec, &out);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr_line(&o).contains("--force"));
-    assert_eq!(tree(tmp.path()), before);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "mine"
+    );
 
-    // With --force and a spec whose figure has another id: a.csv (listed by
-    // the old manifest) goes, b.csv comes, notes.txt stays.
+    // A spec whose figure has another id: a.csv (listed by the old manifest)
+    // goes, b.csv comes, notes.txt stays.
     let spec2 = tmp.path().join("spec2.toml");
     std::fs::write(&spec2, TINY_SPEC.replace("id = \"a\"", "id = \"b\"")).unwrap();
     let o = bin()
@@ -325,7 +318,6 @@ fn force_replaces_only_the_previous_reports_files() {
             "--out",
             out.to_str().unwrap(),
             "--quiet",
-            "--force",
         ])
         .output()
         .unwrap();
@@ -367,8 +359,8 @@ fn force_replaces_only_the_previous_reports_files() {
     let siblings = std::fs::read_dir(tmp.path()).unwrap().count();
     assert_eq!(siblings, 3, "spec.toml, spec2.toml, out");
 
-    // A user's file with the name of a new output is never overwritten, even
-    // with --force: exit 2, nothing touched.
+    // A user's file with the name of a new output is never overwritten:
+    // exit 2, nothing touched.
     std::fs::write(out.join("a.csv"), "user's a.csv").unwrap();
     let before = tree(tmp.path());
     let o = bin()
@@ -378,7 +370,6 @@ fn force_replaces_only_the_previous_reports_files() {
             "--out",
             out.to_str().unwrap(),
             "--quiet",
-            "--force",
         ])
         .output()
         .unwrap();

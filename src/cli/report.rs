@@ -1,4 +1,4 @@
-//! `subdiv-lab report [SPEC.toml] [--out DIR] [--force] [--quiet]`: run a
+//! `subdiv-lab report [SPEC.toml] [--out DIR] [--quiet]`: run a
 //! report spec and write the report directory.
 //!
 //! The library renders everything in memory; this module reads the spec (or
@@ -11,10 +11,11 @@
 //! * a new directory is written as a temporary sibling and renamed into place
 //!   (it appears complete or not at all); an existing empty directory is
 //!   filled;
-//! * a previous report is replaced only with `--force`, and then only the
-//!   files its manifest lists are overwritten or removed; every other file in
-//!   the directory is kept, and a new file that would overwrite one of them is
-//!   refused (exit 2).
+//! * a previous report (recognised by its manifest) is replaced, which is the
+//!   documented default so that the main job can simply be run again: only
+//!   the files its manifest lists are overwritten or removed; every other file
+//!   in the directory is kept, and a new file that would overwrite one of them
+//!   is refused (exit 2).
 
 use super::outfiles::{create_temp_dir, parent_dir, Staged};
 use super::{write_stdout, CliError, CliResult};
@@ -45,14 +46,11 @@ pub(crate) struct ReportArgs {
     spec: Option<PathBuf>,
     /// Output directory (default: reports/<name>/ with the spec's name). A new
     /// or empty directory is written; a previous report (recognised by its
-    /// manifest.json) is replaced only with --force; a file or any other
-    /// non-empty directory is refused (exit 2).
+    /// manifest.json) is replaced, touching only the files its manifest lists
+    /// (other files in the directory are kept); a file or any other non-empty
+    /// directory is refused (exit 2).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Replace the previous report in --out. Only the files its manifest.json
-    /// lists are overwritten or removed; other files in the directory are kept.
-    #[arg(long)]
-    force: bool,
     /// No progress bar and no summary line.
     #[arg(long)]
     quiet: bool,
@@ -70,7 +68,7 @@ impl Progress for Bar {
 enum Target {
     /// Does not exist: written as a temporary sibling, renamed into place.
     New,
-    /// An existing directory: empty, or a previous report (with `--force`);
+    /// An existing directory: empty, or a previous report;
     /// `previous` are the files its manifest lists that exist.
     Existing { previous: BTreeSet<String> },
 }
@@ -111,9 +109,9 @@ fn previous_report_files(dir: &Path) -> Option<BTreeSet<String>> {
     Some(files)
 }
 
-/// Checks `--out` before any work: exit 2 for a file, a foreign non-empty
-/// directory, or a previous report without `--force`.
-fn check_target(out: &Path, force: bool) -> CliResult<Target> {
+/// Checks `--out` before any work: exit 2 for a file or a non-empty
+/// directory that holds no previous report of this tool.
+fn check_target(out: &Path) -> CliResult<Target> {
     let meta = match std::fs::metadata(out) {
         Ok(m) => m,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
@@ -152,12 +150,6 @@ fn check_target(out: &Path, force: bool) -> CliResult<Target> {
             out.display()
         )));
     };
-    if !force {
-        return Err(CliError::usage(anyhow!(
-            "--out {} holds a previous report; pass --force to replace it (only the files its manifest.json lists are replaced)",
-            out.display()
-        )));
-    }
     let previous = listed
         .into_iter()
         .filter(|f| std::fs::symlink_metadata(out.join(f)).is_ok_and(|m| m.file_type().is_file()))
@@ -183,7 +175,7 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
         .clone()
         .unwrap_or_else(|| Path::new(DEFAULT_ROOT).join(&spec.name));
     // Refuse a bad --out before the (long) generation.
-    let target = check_target(&out, args.force)?;
+    let target = check_target(&out)?;
     let run = RunInfo {
         version: Some(env!("CARGO_PKG_VERSION").to_owned()),
         git_revision: (GIT_REVISION != "unknown").then(|| GIT_REVISION.to_owned()),

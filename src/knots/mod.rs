@@ -1,6 +1,6 @@
 //! Knot intervals on a face and the edge ratios derived from them.
 //!
-//! Math doc (`shared/docs/math.md`) sections 2 and 3. On a counter-clockwise
+//! Math doc (`docs/math.md`) sections 2 and 3. On a counter-clockwise
 //! face `P_0..P_{n-1}` the corner `P_i` carries two knot intervals
 //!
 //! ```text
