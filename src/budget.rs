@@ -99,13 +99,18 @@ pub const SUBDIVIDE_SECONDS_PER_HALF_EDGE: f64 = 2.0e-6;
 /// 5e-6 per configuration and thread.
 pub const SWEEP_SECONDS_BASE: f64 = 5e-6;
 
-/// Seconds per `n^5` of the exact certificate of one sweep configuration
-/// (exact characteristic polynomial and Sturm/Schur-Cohn counts over the
-/// rationals). Measured with `analyze --exact` on the Catmull-Clark variant:
-/// 0.38 s at `n = 8`, 13 s at `n = 16`, 79 s at `n = 24`; `n = 3` sweeps run
-/// at about 80 configurations/s on 2 cores. To be re-measured whenever the
-/// exact path changes.
-pub const SWEEP_EXACT_SECONDS_PER_N5: f64 = 1.5e-5;
+/// Seconds per `n^3` of the exact certificate of one sweep configuration
+/// whose knots are sampled floating-point numbers (53-bit mantissas: the
+/// characteristic polynomial has coefficients of thousands of bits). Measured
+/// on an idle reference machine, one thread, random corner intervals in
+/// `[0.01, 100]`: 0.18 s at `n = 16`, 1.4 s at `n = 32`, 4.9 s at `n = 48`,
+/// 12.2 s at `n = 64` (4.4e-5 to 4.7e-5 per `n^3`); rounded up for a loaded
+/// machine. To be re-measured whenever the exact path changes.
+pub const SWEEP_EXACT_SECONDS_PER_N3: f64 = 6e-5;
+
+/// The same for uniform knots (all ratios 1/2, small rationals): 0.63 s at
+/// `n = 64`, 0.19 s at `n = 48` (2.4e-6 per `n^3`), rounded up.
+pub const SWEEP_EXACT_UNIFORM_SECONDS_PER_N3: f64 = 4e-6;
 
 /// An estimate of one heavy step.
 #[derive(Clone, Debug, PartialEq)]
@@ -197,6 +202,31 @@ pub fn analyze(kind: SchemeKind, n: usize, structured: bool) -> Estimate {
     }
 }
 
+/// `subdiv-lab analyze --exact` at valence `n` (the exact verdict only; the
+/// floating-point analysis is [`analyze`]), for edge ratios whose numerator
+/// and denominator need at most `ratio_bits` bits together.
+///
+/// Small rationals (`ratio_bits <= 64`: uniform knots, `1/3`, `77/100`) cost
+/// [`SWEEP_EXACT_UNIFORM_SECONDS_PER_N3`]; ratios of sampled `f64` knots
+/// (about 106 bits) [`SWEEP_EXACT_SECONDS_PER_N3`]. Beyond that the constant
+/// is scaled by `(ratio_bits / 106)^2` (the cost of multiplying the longer
+/// coefficients): an extrapolation, not a measurement, and meant to be
+/// pessimistic.
+pub fn analyze_exact(n: usize, ratio_bits: u64) -> Estimate {
+    let nf = n as f64;
+    let per_n3 = if ratio_bits <= 64 {
+        SWEEP_EXACT_UNIFORM_SECONDS_PER_N3
+    } else {
+        SWEEP_EXACT_SECONDS_PER_N3 * (ratio_bits as f64 / 106.0).max(1.0).powi(2)
+    };
+    Estimate {
+        // The rational n x n face block and its characteristic polynomial.
+        bytes: nf * nf * (ratio_bits as f64 * nf / 8.0 + 64.0),
+        seconds: per_n3 * nf * nf * nf,
+        what: format!("the exact verdict of the {n} x {n} face block"),
+    }
+}
+
 /// `subdiv-lab matrix` of `kind` at valence `n` (`face`: the `n x n` face
 /// block only; the full matrix is still assembled).
 pub fn matrix(kind: SchemeKind, n: usize, face: bool, exact: bool) -> Estimate {
@@ -272,7 +302,8 @@ pub fn subdivide(half_edges: u64) -> Estimate {
 /// Seconds of one sweep configuration at valence `n` with the columns of
 /// `plan` (structured classification `O(n^3)` with a small constant; the
 /// characteristic map like `analyze --path structured`; the exact
-/// certificate grows fastest, modelled as `n^4`).
+/// certificate grows fastest, `n^3` with a larger constant for floating-point
+/// knots).
 fn sweep_seconds_per_configuration(plan: &Plan, n: usize) -> f64 {
     let c = plan.spec().columns;
     let cc = plan.spec().scheme.is_catmull_clark_family();
@@ -292,7 +323,12 @@ fn sweep_seconds_per_configuration(plan: &Plan, n: usize) -> f64 {
                 * nf;
     }
     if c.exact_certificate {
-        s += SWEEP_EXACT_SECONDS_PER_N5 * nf.powi(5);
+        let per_n3 = if plan.spec().space.kind == crate::sweep::SpaceKind::Uniform {
+            SWEEP_EXACT_UNIFORM_SECONDS_PER_N3
+        } else {
+            SWEEP_EXACT_SECONDS_PER_N3
+        };
+        s += per_n3 * nf * nf * nf;
     }
     s
 }

@@ -225,10 +225,11 @@ pub fn certify_face_block<T: Scalar>(
             min_positive = Some(x.clone());
         }
     }
+    let c4: Vec<T> = c.iter().map(|x| quarter.clone() * x.clone()).collect();
     let mut assembly_defect = T::zero();
     for i in 0..n {
         for j in 0..n {
-            let d = (a[(i, j)].clone() - w[(i, j)].clone() - quarter.clone() * c[j].clone()).abs();
+            let d = (a[(i, j)].clone() - w[(i, j)].clone() - c4[j].clone()).abs();
             if d > assembly_defect {
                 assembly_defect = d;
             }

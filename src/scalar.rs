@@ -97,6 +97,9 @@ impl Scalar for Rational {
     fn from_f64_lossless(x: f64) -> Self {
         Rational::from_float(x).unwrap_or_else(Rational::zero)
     }
+    fn face_weights_kernel(r: &[Self], s: &[Self]) -> Vec<Self> {
+        crate::knots::face_weights::rational_kernel(r, s)
+    }
     fn to_text(&self) -> String {
         if self.denom().is_one() {
             self.numer().to_string()

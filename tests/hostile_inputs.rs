@@ -695,6 +695,19 @@ fn cases() -> Vec<Case> {
             "use --force to run anyway",
         ),
         bad(
+            "analyze-exact-valence-300-structured",
+            &[
+                "analyze",
+                "--valence",
+                "300",
+                "--uniform",
+                "--path",
+                "structured",
+                "--exact",
+            ],
+            "analyze --exact: valence 300 takes ~",
+        ),
+        bad(
             "ccss-bound-valence-1000",
             &["ccss-bound", "--valence", "1000"],
             "use --force to run anyway",

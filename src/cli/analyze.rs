@@ -62,6 +62,24 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         subdiv_lab::budget::TIME_LIMIT_SECONDS,
         args.force,
     )?;
+    if let Some(exact) = &resolved.exact {
+        let ratio_bits = match exact {
+            subdiv_lab::schemes::LocalScheme::Nurds(r) => r
+                .as_slice()
+                .iter()
+                .map(|x| x.numer().bits() + x.denom().bits())
+                .max()
+                .unwrap_or(0),
+            _ => 0,
+        };
+        super::budget::check(
+            "analyze --exact",
+            &format!("valence {n}"),
+            &subdiv_lab::budget::analyze_exact(n, ratio_bits),
+            subdiv_lab::budget::TIME_LIMIT_SECONDS,
+            args.force,
+        )?;
+    }
     let options = AnalyzeOptions {
         path: match args.path {
             Path::Full => SpectrumPath::Full,

@@ -68,6 +68,66 @@ pub(crate) fn generic_kernel<T: Scalar>(r: &[T], s: &[T]) -> Vec<T> {
     alpha.into_iter().map(|a| a / sum.clone()).collect()
 }
 
+/// The same closed form for rationals, fraction-free (the kernel of
+/// [`face_weights`] for `Rational`).
+///
+/// With `D_i` the common denominator of `r_i` and `s_i` and the integers
+/// `a_i = r_i D_i`, `b_i = s_i D_i`, every term `T_m(j)` is a product over
+/// each index `i` of exactly one of `r_i, s_i`, so
+/// `T_m(j) = (prod_{i=j}^{j+m-1} a_i)(prod_{i=j+m}^{j+n-1} b_i) / prod_i D_i`:
+/// the denominator is the same for all `j` and `m` and cancels in
+/// `c_j = alpha_j / sum_k alpha_k`. Doubling the weights (`1, 2, .., 2, 1`)
+/// keeps everything in integers, so the products need no gcd; only the `n`
+/// final quotients are reduced. Identical values to [`generic_kernel`], which
+/// reduces after every operation (and was the bottleneck of `--exact` with
+/// `f64` knots, whose 53-bit mantissas give products of thousands of bits).
+pub(crate) fn rational_kernel(
+    r: &[crate::scalar::Rational],
+    s: &[crate::scalar::Rational],
+) -> Vec<crate::scalar::Rational> {
+    use crate::scalar::Rational;
+    use num_bigint::BigInt;
+    use num_integer::Integer as _;
+    use num_traits::{One as _, Zero as _};
+    let n = r.len();
+    let (a, b): (Vec<BigInt>, Vec<BigInt>) = r
+        .iter()
+        .zip(s)
+        .map(|(ri, si)| {
+            let d = ri.denom().lcm(si.denom());
+            (
+                ri.numer() * (&d / ri.denom()),
+                si.numer() * (&d / si.denom()),
+            )
+        })
+        .unzip();
+    let mut alpha = Vec::with_capacity(n);
+    for j in 0..n {
+        // suffix[m] = prod_{i=j+m}^{j+n-1} b_i
+        let mut suffix = vec![BigInt::one(); n + 1];
+        for m in (0..n).rev() {
+            suffix[m] = &suffix[m + 1] * &b[(j + m) % n];
+        }
+        let mut prefix = BigInt::one();
+        let mut total = suffix[0].clone();
+        for m in 1..=n {
+            prefix *= &a[(j + m - 1) % n];
+            let term = &prefix * &suffix[m];
+            if m == n {
+                total += term;
+            } else {
+                total += term << 1u32;
+            }
+        }
+        alpha.push(total);
+    }
+    let sum = alpha.iter().fold(BigInt::zero(), |acc, x| acc + x);
+    alpha
+        .into_iter()
+        .map(|x| Rational::new(x, sum.clone()))
+        .collect()
+}
+
 /// A positive number `m * 2^e` with `m in [0.5, 1)` and an unbounded exponent.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ExtFloat {
@@ -361,6 +421,49 @@ mod tests {
                 assert!((s - sq).abs() <= tol(sq), "s_{i}: {s:e} vs {sq:e}");
             }
         }
+    }
+
+    /// The fraction-free rational kernel equals the reducing one exactly,
+    /// for ratios with unrelated denominators and for `f64`-valued ratios
+    /// (53-bit mantissas, the case it exists for), at several valences.
+    #[test]
+    fn fraction_free_kernel_matches_reducing_kernel() {
+        let q = |a: i64, b: i64| Rational::new(BigInt::from(a), BigInt::from(b));
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for n in [3, 4, 7, 16] {
+            for float in [false, true] {
+                let r: Vec<Rational> = (0..n)
+                    .map(|_| {
+                        if float {
+                            let x = (next() % 1_000_000 + 1) as f64 / 1_000_001.0;
+                            f64_to_rational(x).unwrap()
+                        } else {
+                            let den = (next() % 97 + 2) as i64;
+                            q((next() % (den as u64 - 1) + 1) as i64, den)
+                        }
+                    })
+                    .collect();
+                let s: Vec<Rational> = r
+                    .iter()
+                    .map(|x| Rational::from_integer(1.into()) - x)
+                    .collect();
+                let fast = rational_kernel(&r, &s);
+                let slow = generic_kernel(&r, &s);
+                assert_eq!(fast, slow, "n = {n}, float = {float}");
+                let total = fast.iter().fold(q(0, 1), |a, b| a + b);
+                assert_eq!(total, q(1, 1));
+            }
+        }
+        // r_i and s_i with different denominators (not complements).
+        let r = vec![q(1, 3), q(2, 5), q(3, 7)];
+        let s = vec![q(1, 2), q(4, 9), q(1, 11)];
+        assert_eq!(rational_kernel(&r, &s), generic_kernel(&r, &s));
     }
 
     /// Math doc fact 2: tensor-product quad knots.

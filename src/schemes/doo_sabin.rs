@@ -94,16 +94,20 @@ pub(crate) fn face_block_from<T: Scalar>(ratios: &EdgeRatios<T>, c: &[T]) -> DMa
     let r = ratios.as_slice();
     let s = ratios.complement();
     let quarter = T::frac(1, 4);
-    let mut a = DMatrix::from_fn(n, n, |_, j| c[j].clone());
+    // c_j / 4 once per column (exact c_j can have thousands of bits; scaling
+    // each of the n^2 entries was the bulk of an exact assembly).
+    let c4: Vec<T> = c.iter().map(|x| x.clone() * quarter.clone()).collect();
+    let mut a = DMatrix::from_fn(n, n, |_, j| c4[j].clone());
     for i in 0..n {
         let prev = (i + n - 1) % n;
         let next = (i + 1) % n;
-        // I + R: diagonal 1 + (1 - r_{i-1}) + r_i, sub r_{i-1}, super 1 - r_i.
-        a[(i, i)] = a[(i, i)].clone() + T::one() + s[prev].clone() + r[i].clone();
-        a[(i, prev)] = a[(i, prev)].clone() + r[prev].clone();
-        a[(i, next)] = a[(i, next)].clone() + s[i].clone();
+        // (I + R) / 4: diagonal 1 + (1 - r_{i-1}) + r_i, sub r_{i-1}, super 1 - r_i.
+        a[(i, i)] =
+            a[(i, i)].clone() + (T::one() + s[prev].clone() + r[i].clone()) * quarter.clone();
+        a[(i, prev)] = a[(i, prev)].clone() + r[prev].clone() * quarter.clone();
+        a[(i, next)] = a[(i, next)].clone() + s[i].clone() * quarter.clone();
     }
-    a.map(|x| x * quarter.clone())
+    a
 }
 
 /// `cos(2 pi k / n)` exactly when it is rational (denominator of `k/n` in

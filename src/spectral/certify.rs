@@ -25,7 +25,11 @@
 //!    all square-free factors are pairwise disjoint, each holds exactly one
 //!    root of the square-free part, a disk centred on the real axis holds a
 //!    real root (its conjugate is in the same disk) and a disk missing the real
-//!    axis a non-real one;
+//!    axis a non-real one. When the disks around the `f64` approximations
+//!    overlap (close roots, whose `f64` values are only accurate to about
+//!    `eps^(1/k)`), the points are first moved by exact Weierstrass
+//!    (Durand-Kerner) steps `z_i <- z_i - w_i`, quadratically convergent near
+//!    simple roots, on a grid of 60, 120, .., 960 bits ([`REFINE_ROUNDS`]);
 //! 3. real roots are refined by exact sign evaluation of the square-free part
 //!    (a simple root changes sign), which reproduces the reference bisection
 //!    tree of [`super::poly::isolate_real_roots`] cell by cell;
@@ -64,6 +68,14 @@ const GRID_BITS: u32 = 60;
 /// `~sqrt(eps) ~ 1e-8` in `f64`). Only a guess: a wrong grouping makes the
 /// disk certificate fail and the reference algorithm runs.
 const CLUSTER_TOL: f64 = 1e-6;
+
+/// Weierstrass refinement steps tried when the disks around the
+/// floating-point approximations overlap (close roots: the `f64` eigenvalues
+/// of a cluster are only accurate to about `eps^(1/k)`). Each step doubles the
+/// grid bits (60, 120, ..., 960 after 4 steps); a failure after the last one
+/// falls back to the reference algorithms, so the rounds cost time, never
+/// correctness.
+const REFINE_ROUNDS: usize = 4;
 
 /// A polynomial with integer coefficients (ascending), a positive rational
 /// multiple of a [`Poly`].
@@ -317,6 +329,13 @@ pub(crate) struct RootStructure {
     sf: IntPoly,
 }
 
+/// A Gaussian integer `(re, im)`.
+type Gaussian = (BigInt, BigInt);
+
+/// One square-free factor, its grid points (one per root) and its
+/// multiplicity in `q`.
+type FactorPoints = (IntPoly, Vec<Gaussian>, usize);
+
 fn gauss_mul(a: &(BigInt, BigInt), b: &(BigInt, BigInt)) -> (BigInt, BigInt) {
     (&a.0 * &b.0 - &a.1 * &b.1, &a.0 * &b.1 + &a.1 * &b.0)
 }
@@ -334,12 +353,14 @@ fn grid(x: f64) -> Option<BigInt> {
 }
 
 /// Pairs `(x, y)` of grid integers: conjugate-symmetric, real ones with
-/// `y = 0` exactly.
-fn symmetric(centres: &[Complex64]) -> Option<Vec<(BigInt, BigInt)>> {
+/// `y = 0` exactly. An approximation is taken as real when its imaginary part
+/// is at most `real_tol` relative to `max(1, |z|)` (with `real_tol = 0`: only
+/// an exactly real one, as a real eigen-solver returns its real eigenvalues).
+fn symmetric(centres: &[Complex64], real_tol: f64) -> Option<Vec<(BigInt, BigInt)>> {
     let mut out = Vec::new();
     let mut lower = 0;
     for z in centres {
-        let tol = CLUSTER_TOL * z.norm().max(1.0);
+        let tol = real_tol * z.norm().max(1.0);
         if z.im.abs() <= tol {
             out.push((grid(z.re)?, BigInt::zero()));
         } else if z.im > 0.0 {
@@ -353,18 +374,23 @@ fn symmetric(centres: &[Complex64]) -> Option<Vec<(BigInt, BigInt)>> {
     (2 * lower + out.iter().filter(|p| p.1.is_zero()).count() == out.len()).then_some(out)
 }
 
-/// Disks for the roots of the square-free `f` (degree `m`) around the grid
-/// points `z` (`m` of them), or `None`.
-fn disks(f: &IntPoly, z: &[(BigInt, BigInt)], mult: usize) -> Option<Vec<Disk>> {
+/// For the grid points `z_i = (x_i + i y_i) / 2^bits` (`m = deg f` of them),
+/// the Gaussian integers `V_i = f(z_i) 2^(bits m)` and
+/// `Pi_i = prod_(j != i) (z_i - z_j) 2^(bits (m - 1))`, so that the
+/// Weierstrass correction is `w_i = V_i / (lc(f) Pi_i 2^bits)`. `None` when
+/// the counts disagree or two points coincide.
+fn weierstrass(
+    f: &IntPoly,
+    z: &[(BigInt, BigInt)],
+    bits: u32,
+) -> Option<Vec<(Gaussian, Gaussian)>> {
     let m = f.degree();
-    if z.len() != m {
+    if z.len() != m || m == 0 {
         return None;
     }
-    let s = BigInt::one() << GRID_BITS;
-    let lc = f.0.last()?.clone();
+    let s = BigInt::one() << bits;
     let mut out = Vec::with_capacity(m);
     for (i, zi) in z.iter().enumerate() {
-        // V = P(z_i) S^m.
         let mut v = (f.0[m].clone(), BigInt::zero());
         let mut sp = s.clone();
         for k in (0..m).rev() {
@@ -372,17 +398,30 @@ fn disks(f: &IntPoly, z: &[(BigInt, BigInt)], mult: usize) -> Option<Vec<Disk>> 
             v.0 += &f.0[k] * &sp;
             sp *= &s;
         }
-        // Pi = prod (z_i - z_j) S^(m-1).
         let mut pi = (BigInt::one(), BigInt::zero());
         for (j, zj) in z.iter().enumerate() {
             if j != i {
                 pi = gauss_mul(&pi, &(&zi.0 - &zj.0, &zi.1 - &zj.1));
             }
         }
-        let den = (&pi.0 * &pi.0 + &pi.1 * &pi.1) * &lc * &lc * &s * &s;
-        if den.is_zero() {
+        if pi.0.is_zero() && pi.1.is_zero() {
             return None;
         }
+        out.push((v, pi));
+    }
+    Some(out)
+}
+
+/// Disks for the roots of the square-free `f` (degree `m`) around the grid
+/// points `z` (`m` of them, `bits` fractional bits), or `None`.
+fn disks(f: &IntPoly, z: &[(BigInt, BigInt)], bits: u32, mult: usize) -> Option<Vec<Disk>> {
+    let m = f.degree();
+    let s = BigInt::one() << bits;
+    let lc = f.0.last()?.clone();
+    let w = weierstrass(f, z, bits)?;
+    let mut out = Vec::with_capacity(m);
+    for (zi, (v, pi)) in z.iter().zip(&w) {
+        let den = (&pi.0 * &pi.0 + &pi.1 * &pi.1) * &lc * &lc * &s * &s;
         let num = &v.0 * &v.0 + &v.1 * &v.1;
         // |w|^2 = num / den < 2^(bits(num) - bits(den) + 1); r = m 2^ceil((e+1)/2) >= m |w|.
         let r = if num.is_zero() {
@@ -398,13 +437,55 @@ fn disks(f: &IntPoly, z: &[(BigInt, BigInt)], mult: usize) -> Option<Vec<Disk>> 
             pow * Rational::from_integer(BigInt::from(m))
         };
         out.push(Disk {
-            x: dyadic(&zi.0, GRID_BITS),
-            y: dyadic(&zi.1, GRID_BITS),
+            x: dyadic(&zi.0, bits),
+            y: dyadic(&zi.1, bits),
             r,
             mult,
         });
     }
     Some(out)
+}
+
+/// `a / b` rounded to the nearest integer, halves away from zero (`b > 0`);
+/// odd in `a`, so conjugate points stay conjugate and real points real.
+fn round_div(a: &BigInt, b: &BigInt) -> BigInt {
+    let half = b >> 1u32;
+    if a.is_negative() {
+        -((-a + &half) / b)
+    } else {
+        (a + &half) / b
+    }
+}
+
+/// One Weierstrass (Durand-Kerner) step `z_i <- z_i - w_i` on the grid points
+/// `z` (`bits` fractional bits), rounded to `new_bits` fractional bits. The
+/// step converges quadratically near simple roots, so doubling the bits per
+/// step keeps the rounding below the correction. Exact arithmetic: a
+/// conjugate-symmetric set stays conjugate-symmetric and real points real.
+fn weierstrass_step(
+    f: &IntPoly,
+    z: &[(BigInt, BigInt)],
+    bits: u32,
+    new_bits: u32,
+) -> Option<Vec<(BigInt, BigInt)>> {
+    let lc = f.0.last()?.clone();
+    let w = weierstrass(f, z, bits)?;
+    let up = new_bits - bits;
+    Some(
+        z.iter()
+            .zip(&w)
+            .map(|(zi, (v, pi))| {
+                // w 2^new_bits = V conj(Pi) 2^new_bits / (lc |Pi|^2 2^bits).
+                let den = (&pi.0 * &pi.0 + &pi.1 * &pi.1) * &lc;
+                let num = gauss_mul(v, &(pi.0.clone(), -&pi.1));
+                let (wr, wi) = (
+                    round_div(&(num.0 << up), &den),
+                    round_div(&(num.1 << up), &den),
+                );
+                ((&zi.0 << up) - wr, (&zi.1 << up) - wi)
+            })
+            .collect(),
+    )
 }
 
 impl RootStructure {
@@ -413,9 +494,14 @@ impl RootStructure {
     /// floating-point approximations `approx` of the roots of `q` with
     /// multiplicity. `None` when the certificate fails.
     pub(crate) fn certify(factors: &[Poly], sf: &Poly, approx: &[Complex64]) -> Option<Self> {
-        // Group the approximations into clusters (multiple roots).
+        // Group the approximations into clusters (multiple roots). A proven
+        // square-free `q` (one factor) has simple roots only, however close
+        // their approximations: no grouping then.
         let mut left: Vec<Complex64> = approx.to_vec();
         let mut clusters: Vec<(Complex64, usize)> = Vec::new();
+        if factors.len() == 1 {
+            clusters = left.drain(..).map(|z| (z, 1)).collect();
+        }
         while let Some(z) = left.pop() {
             let tol = CLUSTER_TOL * z.norm().max(1.0);
             let (close, far): (Vec<Complex64>, Vec<Complex64>) =
@@ -425,18 +511,72 @@ impl RootStructure {
             clusters.push((centre, k));
             left = far;
         }
-        let mut all = Vec::new();
-        for (k, a) in factors.iter().enumerate() {
-            if a.degree().unwrap_or(0) == 0 {
+        let sfi = IntPoly::from_poly(sf);
+        // Real or a conjugate pair? The eigen-solver's exact zeros first (a
+        // close pair of real roots and a complex pair with a tiny imaginary
+        // part look alike), then the clustering tolerance. A wrong guess
+        // cannot converge (the Weierstrass step keeps real points real and
+        // pairs paired), so it only costs the rounds.
+        let mut tried: Vec<Vec<FactorPoints>> = Vec::new();
+        for real_tol in [0.0, CLUSTER_TOL] {
+            // Every factor gets its points, or this guess is skipped.
+            let starts: Option<Vec<FactorPoints>> = factors
+                .iter()
+                .enumerate()
+                .filter(|(_, a)| a.degree().unwrap_or(0) > 0)
+                .map(|(k, a)| {
+                    let centres: Vec<Complex64> = clusters
+                        .iter()
+                        .filter(|c| c.1 == k + 1)
+                        .map(|c| c.0)
+                        .collect();
+                    Some((IntPoly::from_poly(a), symmetric(&centres, real_tol)?, k + 1))
+                })
+                .collect();
+            let Some(starts) = starts else {
+                continue;
+            };
+            if tried
+                .iter()
+                .any(|t| t.len() == starts.len() && t.iter().zip(&starts).all(|(a, b)| a.1 == b.1))
+            {
                 continue;
             }
-            let centres: Vec<Complex64> = clusters
-                .iter()
-                .filter(|c| c.1 == k + 1)
-                .map(|c| c.0)
-                .collect();
-            let z = symmetric(&centres)?;
-            all.extend(disks(&IntPoly::from_poly(a), &z, k + 1)?);
+            if let Some(s) = Self::refine_and_certify(starts.clone(), &sfi) {
+                return Some(s);
+            }
+            tried.push(starts);
+        }
+        None
+    }
+
+    /// Up to [`REFINE_ROUNDS`] Weierstrass steps on the grid points of each
+    /// factor until [`Self::from_grid`] certifies them.
+    fn refine_and_certify(mut starts: Vec<FactorPoints>, sfi: &IntPoly) -> Option<Self> {
+        let mut bits = GRID_BITS;
+        for round in 0..=REFINE_ROUNDS {
+            if let Some(s) = Self::from_grid(&starts, bits, sfi) {
+                return Some(s);
+            }
+            if round == REFINE_ROUNDS {
+                break;
+            }
+            for (f, z, _) in &mut starts {
+                *z = weierstrass_step(f, z, bits, 2 * bits)?;
+            }
+            bits *= 2;
+        }
+        None
+    }
+
+    /// The certificate from the grid points `starts` (per square-free factor:
+    /// the factor, its points with `bits` fractional bits, its
+    /// multiplicity), or `None` when the disks overlap or a real root cannot
+    /// be told from a complex pair.
+    fn from_grid(starts: &[FactorPoints], bits: u32, sfi: &IntPoly) -> Option<Self> {
+        let mut all = Vec::new();
+        for (f, z, mult) in starts {
+            all.extend(disks(f, z, bits, *mult)?);
         }
         // Pairwise disjoint: |c_i - c_j|^2 > (r_i + r_j)^2.
         for i in 0..all.len() {
@@ -448,7 +588,6 @@ impl RootStructure {
                 }
             }
         }
-        let sfi = IntPoly::from_poly(sf);
         let mut real = Vec::new();
         for (i, d) in all.iter().enumerate() {
             if d.y.is_zero() {
@@ -475,7 +614,7 @@ impl RootStructure {
         Some(RootStructure {
             disks: all,
             real,
-            sf: sfi,
+            sf: sfi.clone(),
         })
     }
 
@@ -825,6 +964,52 @@ mod tests {
             };
             assert_eq!(ip.sign_at(&x), s, "at {x}");
         }
+    }
+
+    /// `(x - a)(x - b)(x - 1/2)` with `b - a = 2^-45`: the `f64`
+    /// approximations (each off by ~1e-14) give overlapping disks at 60 bits;
+    /// the Weierstrass steps separate them. And `(x - 1/4)^2 + 2^-90`, a
+    /// complex pair `1/4 +- 2^-45 i` that looks real to a tolerance: taken as
+    /// a pair (the eigen-solver's non-zero imaginary part) and certified
+    /// non-real. Both came out of `--exact` with `f64` knots, where they sent
+    /// every n >= 40 to the slow reference algorithms.
+    #[test]
+    fn close_roots_are_certified_after_refinement() {
+        let two = |e: u32| Rational::new(BigInt::one(), BigInt::one() << e);
+        let lin = |r: Rational| Poly::new(vec![-r, q(1)]);
+        let a = Rational::new(1.into(), 4.into());
+        let b = &a + two(45);
+        let half = Rational::new(1.into(), 2.into());
+        let p = lin(a.clone()).mul(&lin(b.clone())).mul(&lin(half));
+        let z = [
+            Complex64::new(0.25 - 1e-14, 0.0),
+            Complex64::new(0.25 + 2f64.powi(-45) + 1e-14, 0.0),
+            Complex64::new(0.5, 0.0),
+        ];
+        let bits = GRID_BITS;
+        let grid0 = symmetric(&z, 0.0).unwrap();
+        assert!(
+            RootStructure::from_grid(
+                &[(IntPoly::from_poly(&p), grid0, 1)],
+                bits,
+                &IntPoly::from_poly(&p)
+            )
+            .is_none(),
+            "the unrefined disks must overlap for this test to mean anything"
+        );
+        let mut s = RootStructure::certify(std::slice::from_ref(&p), &p, &z).expect("certified");
+        assert_eq!(s.real_count(), 3);
+        let mid = (&a + &b) / q(2);
+        assert_eq!(s.count(&q(0), &mid), 1);
+        assert_eq!(s.count(&mid, &q(1)), 2);
+
+        let eps = two(90);
+        let p = Poly::new(vec![&a * &a + eps, -(&a * q(2)), q(1)]);
+        let im = 2f64.powi(-45);
+        let z = [Complex64::new(0.25, im), Complex64::new(0.25, -im)];
+        let s = RootStructure::certify(std::slice::from_ref(&p), &p, &z).expect("certified");
+        assert_eq!(s.real_count(), 0);
+        assert_eq!(s.count_outside(&Rational::new(1.into(), 8.into())), Some(2));
     }
 
     #[test]
