@@ -136,6 +136,36 @@ fn cases() -> Vec<Case> {
             &[("k.knots", "1 2 1.5e-323\n")],
             "d(0->1) (OBJ 1->2) = 1.5e-323",
         ),
+        bad_with(
+            "subdivide-knot-file-interval-below-f64",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "nurds",
+                "--knots",
+                "k.knots",
+                "-o",
+                "x.obj",
+            ],
+            &[("k.knots", "1 2 1e-400\n")],
+            "1->2 (OBJ indices) = 1e-400 is not representable in f64: it rounds to 0",
+        ),
+        bad_with(
+            "subdivide-knot-file-interval-above-f64",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "nurds",
+                "--knots",
+                "k.knots",
+                "-o",
+                "x.obj",
+            ],
+            &[("k.knots", "1 2 1e400\n")],
+            "= 1e400 is not representable in f64: it rounds to inf",
+        ),
     ]);
     // Issue #16 item 1: a ratio below the f64 range names the edge ratio.
     v.extend([bad(

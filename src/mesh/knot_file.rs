@@ -68,6 +68,17 @@ pub fn apply_knot_text(mesh: &mut Mesh, text: &str, default: f64) -> Result<(), 
                 first_line: set_on[h],
             });
         }
+        let exact_positive = crate::scalar::parse_exact(tokens[2])
+            .is_some_and(|q| num_traits::Signed::is_positive(&q));
+        if exact_positive && !(d.is_finite() && d > 0.0) {
+            return Err(MeshError::KnotNotRepresentable {
+                line,
+                u,
+                v,
+                value: tokens[2].to_owned(),
+                rounded: d,
+            });
+        }
         if !(d.is_finite() && d > 0.0) {
             return Err(MeshError::KnotValue {
                 line,

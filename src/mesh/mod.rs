@@ -221,6 +221,21 @@ pub enum MeshError {
         /// The value, as text.
         value: String,
     },
+    /// A knot-file interval that is a positive finite number but rounds to 0
+    /// or infinity in `f64` (`1e-400`, `1e400`).
+    #[error("knot file line {line}: interval of {u}->{v} (OBJ indices) = {value} is not representable in f64: it rounds to {rounded}")]
+    KnotNotRepresentable {
+        /// 1-based line number.
+        line: usize,
+        /// Start vertex (OBJ, 1-based).
+        u: usize,
+        /// End vertex (OBJ, 1-based).
+        v: usize,
+        /// The value, as text.
+        value: String,
+        /// What `f64` makes of it.
+        rounded: f64,
+    },
     /// A knot interval that refinement cannot halve exactly in `f64` (a
     /// subnormal interval with an odd last bit, or the smallest subnormal):
     /// halving it would change the edge ratios or give 0.
