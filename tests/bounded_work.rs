@@ -4,27 +4,13 @@
 //! converge. Refusals of heavy work are rows of `tests/hostile_inputs.rs`
 //! (section bounded-work).
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
-fn bin() -> &'static str {
-    env!("CARGO_BIN_EXE_subdiv-lab")
-}
+use common::run;
+use std::path::{Path, PathBuf};
 
 fn analysis() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("analysis")
-}
-
-fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(bin())
-        .args(args)
-        .output()
-        .expect("binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
 }
 
 /// The test-time `--limit` of each shipped sweep spec (`None`: full size).

@@ -99,9 +99,14 @@ pub(crate) fn check_distinct(outputs: &[(&str, &Path)], inputs: &[(&str, &Path)]
     Ok(())
 }
 
-/// Creates a new file `dir/.{name}.tmp-{pid}[-k]` that did not exist before
-/// (so no existing file is ever truncated); returns it and its path.
-pub(crate) fn create_temp_file(dir: &Path, name: &str) -> std::io::Result<(File, PathBuf)> {
+/// Creates something new at the first free name `dir/.{name}.tmp-{pid}[-k]`
+/// with `create`, which must fail with `AlreadyExists` when the name is
+/// taken (so nothing existing is ever truncated or reused).
+fn create_at_free_temp_name<T>(
+    dir: &Path,
+    name: &str,
+    create: impl Fn(&Path) -> std::io::Result<T>,
+) -> std::io::Result<(T, PathBuf)> {
     let pid = std::process::id();
     let mut last = None;
     for k in 0..TEMP_ATTEMPTS {
@@ -110,8 +115,8 @@ pub(crate) fn create_temp_file(dir: &Path, name: &str) -> std::io::Result<(File,
         } else {
             dir.join(format!(".{name}.tmp-{pid}-{k}"))
         };
-        match OpenOptions::new().write(true).create_new(true).open(&tmp) {
-            Ok(f) => return Ok((f, tmp)),
+        match create(&tmp) {
+            Ok(t) => return Ok((t, tmp)),
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
             Err(e) => return Err(e),
         }
@@ -119,23 +124,17 @@ pub(crate) fn create_temp_file(dir: &Path, name: &str) -> std::io::Result<(File,
     Err(last.unwrap_or_else(|| std::io::Error::other("no free temporary name")))
 }
 
+/// Creates a new file `dir/.{name}.tmp-{pid}[-k]` that did not exist before
+/// (so no existing file is ever truncated); returns it and its path.
+pub(crate) fn create_temp_file(dir: &Path, name: &str) -> std::io::Result<(File, PathBuf)> {
+    create_at_free_temp_name(dir, name, |p| {
+        OpenOptions::new().write(true).create_new(true).open(p)
+    })
+}
+
 /// Creates a new directory `dir/.{name}.tmp-{pid}[-k]` that did not exist before.
 pub(crate) fn create_temp_dir(dir: &Path, name: &str) -> std::io::Result<PathBuf> {
-    let pid = std::process::id();
-    let mut last = None;
-    for k in 0..TEMP_ATTEMPTS {
-        let tmp = if k == 0 {
-            dir.join(format!(".{name}.tmp-{pid}"))
-        } else {
-            dir.join(format!(".{name}.tmp-{pid}-{k}"))
-        };
-        match fs::create_dir(&tmp) {
-            Ok(()) => return Ok(tmp),
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
-            Err(e) => return Err(e),
-        }
-    }
-    Err(last.unwrap_or_else(|| std::io::Error::other("no free temporary name")))
+    create_at_free_temp_name(dir, name, |p| fs::create_dir(p)).map(|((), p)| p)
 }
 
 /// Output files written to temporaries, not yet in place. Dropping it without
