@@ -111,6 +111,10 @@ fn certificate_detects_a_broken_face_block() {
     sum[(1, 0)] = sum[(1, 0)].clone() - eps.clone() * ratio;
     let cert = certify_face_block(&block_of(&sum, &c), &c, sum).unwrap();
     assert!(!cert.sums_three_quarters);
+    // Row 0 is off by exactly eps (row 1 by eps * c_0 / c_1, checked below).
+    let row1 = (eps.clone() * c[0].clone() / c[1].clone()).to_f64();
+    assert_eq!(cert.max_sum_defect(), eps.to_f64().max(row1));
+    assert_eq!(ok.max_sum_defect(), 0.0);
     assert!(cert.nonnegative && cert.face_point_invariant && cert.matches_assembly);
     assert!(!cert.holds());
 
