@@ -434,3 +434,47 @@ pub fn classify(
     out.note = note;
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ALL: [(ClassName, SubdominantClass); 5] = [
+        (ClassName::Standard, SubdominantClass::Standard),
+        (ClassName::RealDistinct, SubdominantClass::RealDistinct),
+        (ClassName::ComplexPair, SubdominantClass::ComplexPair),
+        (ClassName::Defective, SubdominantClass::Defective),
+        (ClassName::NotSeparated, SubdominantClass::NotSeparated),
+    ];
+
+    /// The names written to CSV, reports and JSON agree: the hand-written
+    /// `as_str` / `name` and serde's snake_case renaming (an independent
+    /// source); and they are distinct.
+    #[test]
+    fn class_names_agree_with_serde_and_are_distinct() {
+        let mut seen = std::collections::HashSet::new();
+        for (short, full) in ALL {
+            let json = serde_json::to_string(&short).unwrap();
+            assert_eq!(json, format!("\"{}\"", short.as_str()));
+            assert_eq!(full.name(), short.as_str());
+            assert_eq!(full.class_name(), Some(short));
+            let tagged = serde_json::to_value(&full).unwrap();
+            assert_eq!(tagged["class"], short.as_str());
+            assert!(seen.insert(short.as_str()), "duplicate {}", short.as_str());
+        }
+    }
+
+    #[test]
+    fn only_the_indeterminate_verdict_is_indeterminate() {
+        for (_, full) in ALL {
+            assert!(!full.is_indeterminate(), "{}", full.name());
+        }
+        let ind = SubdominantClass::Indeterminate {
+            between: (ClassName::Standard, ClassName::Defective),
+            reason: "test".into(),
+        };
+        assert!(ind.is_indeterminate());
+        assert_eq!(ind.name(), "indeterminate");
+        assert_eq!(ind.class_name(), None);
+    }
+}
