@@ -220,7 +220,9 @@ pub fn analyze_exact(n: usize, ratio_bits: u64) -> Estimate {
         SWEEP_EXACT_SECONDS_PER_N3 * (ratio_bits as f64 / 106.0).max(1.0).powi(2)
     };
     Estimate {
-        // The rational n x n face block and its characteristic polynomial.
+        // Not measured (the exact path stays far below the memory limit in
+        // every run so far): n^2 rationals of up to ~n * ratio_bits bits (the
+        // face block and its reductions), plus 64 bytes of overhead each.
         bytes: nf * nf * (ratio_bits as f64 * nf / 8.0 + 64.0),
         seconds: per_n3 * nf * nf * nf,
         what: format!("the exact verdict of the {n} x {n} face block"),
