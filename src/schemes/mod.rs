@@ -24,6 +24,7 @@
 pub mod assembly;
 pub mod catmull_clark;
 pub mod doo_sabin;
+pub mod loop_subdivision;
 
 pub use assembly::{Assembler, LocalMatrix, PointLabel, Role};
 
