@@ -142,7 +142,7 @@ pub fn theorem_weights<T: Scalar>(scheme: &LocalScheme<T>) -> Result<DMatrix<T>>
             Ok(w)
         }
         _ => Err(crate::error::Error::NotApplicable {
-            scheme: scheme.kind().name(),
+            scheme: scheme.kind().name().to_owned(),
             operation: "the face contraction of Theorem 1 (a Doo-Sabin-family notion)",
         }),
     }
@@ -350,7 +350,7 @@ pub struct Measured {
 pub fn measure(scheme: &LocalScheme<f64>, options: &MeasureOptions) -> Result<Measured> {
     if !scheme.kind().is_doo_sabin_family() {
         return Err(crate::error::Error::NotApplicable {
-            scheme: scheme.kind().name(),
+            scheme: scheme.kind().name().to_owned(),
             operation: "the face contraction of Theorem 1 (a Doo-Sabin-family notion)",
         });
     }

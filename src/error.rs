@@ -74,7 +74,7 @@ pub enum Error {
     #[error("{operation} is not defined for scheme {scheme}")]
     NotApplicable {
         /// The scheme's name.
-        scheme: &'static str,
+        scheme: String,
         /// The operation asked for.
         operation: &'static str,
     },

@@ -14,7 +14,8 @@
 //! * [`budget`]: memory and time estimates of the heavy steps (checked before they start);
 //! * [`scalar`]: `f64` and exact rationals behind one trait;
 //! * [`knots`]: knot intervals, edge ratios, extraordinary-point presets, face weights;
-//! * [`schemes`]: local subdivision matrices through one assembly path;
+//! * [`scheme`]: the scheme abstraction ([`Scheme`]): what a scheme provides so that the whole toolkit runs on it;
+//! * [`schemes`]: the built-in schemes' local subdivision matrices, through one assembly path;
 //! * [`spectral`]: eigen-analysis and subdominant classification (sections 4, 6, 7);
 //! * [`contraction`]: Theorem 1, certified and measured (section 5);
 //! * [`bspline`]: non-uniform quadratic B-splines and biquadratic patches;
@@ -49,6 +50,7 @@ pub mod knots;
 pub mod mesh;
 pub mod report;
 pub mod scalar;
+pub mod scheme;
 pub mod schemes;
 pub mod spectral;
 pub mod sweep;
@@ -56,3 +58,4 @@ pub mod sweep;
 pub mod testing;
 
 pub use error::{Error, Result};
+pub use scheme::Scheme;

@@ -71,6 +71,7 @@
 //! ```
 
 use super::regularity::{check_bezier_patches, gamma, DomainPoint, Regularity, RegularityVerdict};
+pub use super::report::CcPatchId;
 use super::winding::{winding_number, HullCurve};
 use super::{assemble_report, CharmapReport, Eigenstructure, PlanarBasis};
 use crate::bezier::{PlanarPatch, TensorBezier};
@@ -80,7 +81,6 @@ use crate::schemes::LocalScheme;
 use crate::spectral::{classify_scheme, Subdominant, SubdominantClass};
 use num_complex::Complex64;
 use std::f64::consts::PI;
-use std::fmt;
 
 /// Maximum refinement depth of the cone test per cell (sub-cells of side `2^-12`).
 pub const CONE_MAX_DEPTH: u32 = 12;
@@ -94,21 +94,6 @@ pub const CONE_MAX_PIECES: usize = 50_000;
 /// error radii are far below this), so a larger distance means no Fourier
 /// mode carries the subdominant pair and the verdict is indeterminate.
 pub const MODE_MATCH_TOL: f64 = 1e-9;
-
-/// A cell of the Catmull-Clark ring: sector `j` and regular sub-patch `Omega_m`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
-pub struct CcPatchId {
-    /// Sector (the quad `v, e_j, f_j, e_{j+1}`).
-    pub sector: usize,
-    /// Which of the three regular cells of the first ring in the sector.
-    pub sub: SubPatch,
-}
-
-impl fmt::Display for CcPatchId {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "Omega{}_{}", self.sub.index(), self.sector)
-    }
-}
 
 /// The univariate rule of the Catmull-Clark family (math doc section 8
 /// \[reconstructed\]): new vertex point `c/4 p_{i-1} + (1 - c/2) p_i + c/4 p_{i+1}`,

@@ -74,19 +74,21 @@ pub mod catmull_clark;
 pub mod extended;
 pub mod figure;
 pub mod regularity;
+pub mod report;
 pub mod ring;
 pub mod winding;
 
 use crate::error::{Error, Result};
 use crate::knots::EdgeRatios;
+use crate::scheme::Scheme;
 use crate::schemes::LocalScheme;
 use crate::spectral::{Subdominant, SubdominantClass};
 use extended::ExtendedMatrix;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use regularity::{check_regularity, gamma, Regularity, RegularityVerdict};
+pub use report::{AnyPatchId, CharmapReport, Eigenstructure, Verdict};
 use ring::Ring;
-use std::fmt;
 
 /// Safety factor on the first-order estimate `||S W - W M||_F / gap` of the
 /// error of the computed invariant subspace, reported as
@@ -104,29 +106,6 @@ pub const SVD_ERROR_FACTOR: f64 = 8.0;
 /// Smallest accepted `sin` of the angle between the two computed basis vectors;
 /// below it the vectors do not determine a plane (numerically parallel).
 pub const MIN_BASIS_SINE: f64 = 1e-8;
-
-/// The eigenstructures that have a characteristic map.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Eigenstructure {
-    /// `lambda_1 = lambda_2` real with a 2-D eigenspace.
-    Standard,
-    /// `lambda_1 > lambda_2`, both real.
-    RealDistinct,
-    /// `lambda_{1,2} = rho e^{+-i theta}`.
-    ComplexPair,
-}
-
-impl Eigenstructure {
-    /// `standard`, `real_distinct` or `complex_pair`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Eigenstructure::Standard => "standard",
-            Eigenstructure::RealDistinct => "real_distinct",
-            Eigenstructure::ComplexPair => "complex_pair",
-        }
-    }
-}
 
 /// An orthonormal basis `W = [w1 w2]` of the subdominant real invariant subspace
 /// of `S_n`, with `M = W^T S W` (so that `S W ~ W M`) and an error estimate.
@@ -343,220 +322,6 @@ fn frob(s: &DMatrix<f64>) -> f64 {
     s.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
-/// The overall verdict of the characteristic-map check.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
-pub enum Verdict {
-    /// Standard eigenstructure, regular and injective: C1 (Reif's criterion).
-    C1Standard,
-    /// Non-standard eigenstructure, regular and injective: tangent-plane
-    /// continuity (the generalised test; not "C1").
-    TangentPlaneContinuous {
-        /// `real_distinct` or `complex_pair`.
-        structure: Eigenstructure,
-    },
-    /// The characteristic map is not regular (a point with the wrong Jacobian sign exists).
-    NotRegular,
-    /// Regular, but the boundary winds `winding` times around the origin.
-    NotInjective {
-        /// The certified winding number.
-        winding: i64,
-    },
-    /// The floating-point evidence cannot decide.
-    Indeterminate {
-        /// Why.
-        reason: String,
-    },
-    /// No characteristic map exists for this eigenstructure.
-    NoCharacteristicMap {
-        /// `defective`, `not_separated` or `indeterminate`.
-        class: String,
-        /// Why there is no planar map.
-        reason: String,
-    },
-}
-
-impl Verdict {
-    /// A short machine-readable code (sweep columns).
-    pub fn code(&self) -> &'static str {
-        match self {
-            Verdict::C1Standard => "c1",
-            Verdict::TangentPlaneContinuous {
-                structure: Eigenstructure::RealDistinct,
-            } => "tpc_real_distinct",
-            Verdict::TangentPlaneContinuous {
-                structure: Eigenstructure::ComplexPair,
-            } => "tpc_complex_pair",
-            Verdict::TangentPlaneContinuous { .. } => "tpc",
-            Verdict::NotRegular => "not_regular",
-            Verdict::NotInjective { .. } => "not_injective",
-            Verdict::Indeterminate { .. } => "indeterminate",
-            Verdict::NoCharacteristicMap { .. } => "no_charmap",
-        }
-    }
-}
-
-impl fmt::Display for Verdict {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Verdict::C1Standard => f.write_str("C1 (standard; Reif)"),
-            Verdict::TangentPlaneContinuous { structure } => write!(
-                f,
-                "tangent-plane continuous (non-standard: {})",
-                structure.as_str()
-            ),
-            Verdict::NotRegular => f.write_str("not regular (characteristic map folds)"),
-            Verdict::NotInjective { winding } => {
-                write!(f, "not injective (winding number {winding})")
-            }
-            Verdict::Indeterminate { reason } => write!(f, "indeterminate ({reason})"),
-            Verdict::NoCharacteristicMap { class, reason } => {
-                write!(f, "no characteristic map ({class}: {reason})")
-            }
-        }
-    }
-}
-
-/// The full result of a characteristic-map check (`P` identifies ring patches:
-/// [`RingPatchId`](ring::RingPatchId) for the Doo-Sabin family,
-/// [`CcPatchId`](catmull_clark::CcPatchId) for the Catmull-Clark family).
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct CharmapReport<P = ring::RingPatchId> {
-    /// Eigenstructure of the planar basis (`None` when there is no map).
-    pub structure: Option<Eigenstructure>,
-    /// Regularity details (`None` when there is no map).
-    pub regularity: Option<Regularity<P>>,
-    /// Certified winding number of the outer boundary (ring on the left,
-    /// basis oriented so that the Jacobian is positive); `None` if undecided.
-    pub winding_number: Option<i64>,
-    /// The same for the inner boundary (a cross-check: equal for an embedded ring).
-    pub inner_winding_number: Option<i64>,
-    /// Absolute error bound used for the ring's control points (planar basis of unit vectors).
-    pub point_error: f64,
-    /// The verdict.
-    pub verdict: Verdict,
-}
-
-/// A ring patch of either scheme family (the patch type of [`check`] and
-/// [`check_classified`], which serve both families).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
-#[serde(untagged)]
-pub enum AnyPatchId {
-    /// A biquadratic patch of the Doo-Sabin family's ring.
-    DooSabin(ring::RingPatchId),
-    /// A regular cell of the Catmull-Clark family's ring.
-    CatmullClark(catmull_clark::CcPatchId),
-}
-
-impl AnyPatchId {
-    /// The sector (edge or corner index) the patch belongs to.
-    pub fn sector(&self) -> usize {
-        match self {
-            AnyPatchId::DooSabin(p) => p.index,
-            AnyPatchId::CatmullClark(p) => p.sector,
-        }
-    }
-
-    /// Position `0..3` of the patch within its sector (`A, B, C` or
-    /// `Omega_1, Omega_2, Omega_3`).
-    pub fn slot(&self) -> usize {
-        match self {
-            AnyPatchId::DooSabin(p) => match p.kind {
-                ring::PatchKind::A => 0,
-                ring::PatchKind::B => 1,
-                ring::PatchKind::C => 2,
-            },
-            AnyPatchId::CatmullClark(p) => p.sub.index() - 1,
-        }
-    }
-
-    /// The patch kind as text (`A`, `B`, `C`, `Omega1`, `Omega2`, `Omega3`).
-    pub fn kind_name(&self) -> String {
-        match self {
-            AnyPatchId::DooSabin(_) => ["A", "B", "C"][self.slot()].to_owned(),
-            AnyPatchId::CatmullClark(_) => format!("Omega{}", self.slot() + 1),
-        }
-    }
-}
-
-impl fmt::Display for AnyPatchId {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            AnyPatchId::DooSabin(p) => p.fmt(f),
-            AnyPatchId::CatmullClark(p) => p.fmt(f),
-        }
-    }
-}
-
-impl<P> CharmapReport<P> {
-    /// The same report with every patch identifier mapped by `f`.
-    pub fn map_patches<Q>(self, f: impl Fn(P) -> Q) -> CharmapReport<Q> {
-        CharmapReport {
-            structure: self.structure,
-            regularity: self.regularity.map(|r| r.map_patches(&f)),
-            winding_number: self.winding_number,
-            inner_winding_number: self.inner_winding_number,
-            point_error: self.point_error,
-            verdict: self.verdict,
-        }
-    }
-}
-
-impl<P> CharmapReport<P> {
-    /// A report for an eigenstructure without characteristic map.
-    pub fn no_map(class: &str, reason: &str) -> Self {
-        Self {
-            structure: None,
-            regularity: None,
-            winding_number: None,
-            inner_winding_number: None,
-            point_error: f64::NAN,
-            verdict: Verdict::NoCharacteristicMap {
-                class: class.to_owned(),
-                reason: reason.to_owned(),
-            },
-        }
-    }
-
-    /// `Some(true)` regular, `Some(false)` not regular, `None` undecided or no map.
-    pub fn regular(&self) -> Option<bool> {
-        match self.regularity.as_ref()?.verdict {
-            RegularityVerdict::Regular => Some(true),
-            RegularityVerdict::NotRegular => Some(false),
-            RegularityVerdict::Indeterminate => None,
-        }
-    }
-
-    /// `min sigma c_ij / max |c_ij|` (see [`Regularity::min_coeff`]).
-    pub fn min_jacobian_coeff(&self) -> Option<f64> {
-        self.regularity.as_ref().map(|r| r.min_coeff)
-    }
-}
-
-impl<P: fmt::Display> CharmapReport<P> {
-    /// The `"charmap"` JSON object: `regular`, `min_jacobian_coeff`,
-    /// `winding_number`, `verdict` (human text), plus `verdict_code`,
-    /// `regularity`, `structure`, `inner_winding_number`, and the witness.
-    pub fn to_json(&self) -> serde_json::Value {
-        let reg = self.regularity.as_ref();
-        serde_json::json!({
-            "regular": self.regular(),
-            "regularity": reg.map(|r| r.verdict.as_str()),
-            "min_jacobian_coeff": self.min_jacobian_coeff(),
-            "min_jacobian_location": reg.map(|r| serde_json::json!({
-                "patch": r.min_location.patch.to_string(), "s": r.min_location.s, "t": r.min_location.t})),
-            "relative_error_bound": reg.map(|r| r.relative_error_bound),
-            "witness": reg.and_then(|r| r.witness.as_ref()).map(|(p, v)| serde_json::json!({
-                "patch": p.patch.to_string(), "s": p.s, "t": p.t, "jacobian": v})),
-            "winding_number": self.winding_number,
-            "inner_winding_number": self.inner_winding_number,
-            "structure": self.structure.map(Eigenstructure::as_str),
-            "verdict": self.verdict.to_string(),
-            "verdict_code": self.verdict.code(),
-        })
-    }
-}
-
 /// Error bound of the ring's Bezier control points for a basis with entry
 /// error `vector_error` **\[derived\]**: `Ext` has absolute row sums `rho`, so the
 /// `9n` points are off by at most `rho vector_error + gamma_K rho max|w|`
@@ -689,33 +454,43 @@ fn structure_of(class: &SubdominantClass) -> std::result::Result<Eigenstructure,
     }
 }
 
-/// The characteristic-map check of one configuration of either family, given
-/// its subdominant classification (from [`crate::spectral`]): the Doo-Sabin
-/// family's biquadratic ring, or for Catmull-Clark and the adjustable scheme
-/// the ring of [`catmull_clark`] (bicubic Bezier certificate at `c = 1/2`,
-/// cone certificate otherwise).
+/// The characteristic-map check of one configuration of any [`Scheme`], given
+/// its subdominant classification (from [`crate::spectral`]): the scheme's
+/// own ring ([`Scheme::characteristic_map`]), or `no_charmap` when the scheme
+/// provides none.
 ///
-/// Cost (Doo-Sabin family): the `n x n` face block (a product and an SVD),
-/// `O(n)` small solves, the `9n x 4n` extended matrix and `3n` Jacobian
-/// patches; no `4n x 4n` eigen-decomposition.
-pub fn check_classified(
+/// Built-in schemes: the Doo-Sabin family's biquadratic ring
+/// ([`check_classified_doo_sabin`]), or for Catmull-Clark and the adjustable
+/// scheme the ring of [`catmull_clark`] (bicubic Bezier certificate at
+/// `c = 1/2`, cone certificate otherwise).
+pub fn check_classified<S: Scheme + ?Sized>(
+    scheme: &S,
+    sub: &Subdominant,
+) -> Result<CharmapReport<AnyPatchId>> {
+    match scheme.characteristic_map(sub) {
+        Some(r) => r,
+        None => Ok(CharmapReport::no_map(
+            sub.class.name(),
+            &format!("scheme {} provides no characteristic ring", scheme.name()),
+        )),
+    }
+}
+
+/// The Doo-Sabin family's check (the `9n`-point extended configuration and
+/// its `3n` biquadratic ring patches).
+///
+/// Cost: the `n x n` face block (a product and an SVD), `O(n)` small solves,
+/// the `9n x 4n` extended matrix and `3n` Jacobian patches; no `4n x 4n`
+/// eigen-decomposition.
+pub fn check_classified_doo_sabin(
     scheme: &LocalScheme<f64>,
     sub: &Subdominant,
 ) -> Result<CharmapReport<AnyPatchId>> {
-    let cc = |n: usize, c: f64| {
-        catmull_clark::check_classified(n, c, sub, catmull_clark::Certificate::for_c(c))
-            .map(|r| r.map_patches(AnyPatchId::CatmullClark))
+    let r = match prepare(scheme, sub)? {
+        Prepared::NoMap(r) => r,
+        Prepared::Basis(ext, basis) => check_basis(&ext, &scheme.ratios(), &basis)?,
     };
-    match scheme.shape_parameter() {
-        Some(c) => cc(scheme.valence(), c),
-        None => {
-            let r = match prepare(scheme, sub)? {
-                Prepared::NoMap(r) => r,
-                Prepared::Basis(ext, basis) => check_basis(&ext, &scheme.ratios(), &basis)?,
-            };
-            Ok(r.map_patches(AnyPatchId::DooSabin))
-        }
-    }
+    Ok(r.map_patches(AnyPatchId::DooSabin))
 }
 
 enum Prepared {
@@ -749,24 +524,40 @@ fn prepare(scheme: &LocalScheme<f64>, sub: &Subdominant) -> Result<Prepared> {
 /// let r = check(&LocalScheme::nurds(EdgeRatios::new(vec![0.1, 0.8, 0.3]).unwrap())).unwrap();
 /// assert_ne!(r.verdict, Verdict::C1Standard); // non-standard: never "C1"
 /// ```
-pub fn check(scheme: &LocalScheme<f64>) -> Result<CharmapReport<AnyPatchId>> {
-    let sub = crate::spectral::classify_scheme(scheme)?;
+pub fn check<S: Scheme + ?Sized>(scheme: &S) -> Result<CharmapReport<AnyPatchId>> {
+    let sub = match scheme.fast_classification() {
+        Some(fast) => fast?,
+        None => crate::spectral::classify_matrix(scheme.local_matrix()?.matrix())?,
+    };
     check_classified(scheme, &sub)
 }
 
 /// The plot data of a configuration's ring and `levels - 1` further levels
 /// (see [`figure::ring_plot`]), with the report of the check; `None` for the
-/// plot when there is no characteristic map.
-pub fn plot_data(
-    scheme: &LocalScheme<f64>,
+/// plot when there is no characteristic map ([`Scheme::characteristic_plot`]).
+pub fn plot_data<S: Scheme + ?Sized>(
+    scheme: &S,
     levels: usize,
     per_side: usize,
 ) -> Result<(CharmapReport<AnyPatchId>, Option<figure::RingPlot>)> {
-    let sub = crate::spectral::classify_scheme(scheme)?;
-    if let Some(c) = scheme.shape_parameter() {
-        return catmull_clark::plot_data(scheme.valence(), c, &sub, levels, per_side);
+    let sub = match scheme.fast_classification() {
+        Some(fast) => fast?,
+        None => crate::spectral::classify_matrix(scheme.local_matrix()?.matrix())?,
+    };
+    match scheme.characteristic_plot(&sub, levels, per_side) {
+        Some(r) => r,
+        None => Ok((check_classified(scheme, &sub)?, None)),
     }
-    let (ext, basis) = match prepare(scheme, &sub)? {
+}
+
+/// [`plot_data`] of the Doo-Sabin family given its classification.
+pub fn plot_data_doo_sabin(
+    scheme: &LocalScheme<f64>,
+    sub: &Subdominant,
+    levels: usize,
+    per_side: usize,
+) -> Result<(CharmapReport<AnyPatchId>, Option<figure::RingPlot>)> {
+    let (ext, basis) = match prepare(scheme, sub)? {
         Prepared::NoMap(r) => return Ok((r.map_patches(AnyPatchId::DooSabin), None)),
         Prepared::Basis(e, b) => (e, b),
     };

@@ -307,7 +307,7 @@ impl<T: Scalar> LocalScheme<T> {
             )),
             LocalScheme::CatmullClark { .. } | LocalScheme::AdjustableCc { .. } => {
                 Err(Error::NotApplicable {
-                    scheme: self.kind().name(),
+                    scheme: self.kind().name().to_owned(),
                     operation: "the face block (a Doo-Sabin-family notion)",
                 })
             }

@@ -45,9 +45,11 @@ pub use classify::{ClassName, Subdominant, SubdominantClass};
 pub use eigen::{Eigen, EigenOptions};
 pub use structured::{structured_spectrum, StructuredWorkspace};
 
-use crate::contraction::{self, MeasureOptions};
+use crate::contraction::MeasureOptions;
+use crate::error::Error;
 use crate::error::Result;
 use crate::scalar::Rational;
+use crate::scheme::{FaceContraction, Scheme, SpectralStructure};
 use crate::schemes::LocalScheme;
 use classify::{classify, Evidence, BACKWARD_ERROR_FACTOR};
 use eigen::spectral_order;
@@ -230,8 +232,8 @@ impl BoundCheck {
 /// Everything `subdiv-lab analyze --json` prints.
 #[derive(Clone, Debug, Serialize)]
 pub struct LocalAnalysis {
-    /// Scheme name.
-    pub scheme: &'static str,
+    /// Scheme name ([`Scheme::name`]).
+    pub scheme: String,
     /// Valence.
     pub valence: usize,
     /// Which path computed the spectrum.
@@ -296,12 +298,15 @@ impl LocalAnalysis {
 /// `sqrt((||A||_F + 1) eta)` with `eta = BACKWARD_ERROR_FACTOR n eps ||A||_F`
 /// for the face block `A`. (The classification meets no larger Jordan
 /// blocks; a block of size `k` would move by `eta^(1/k)`.)
-fn modulus_radius(scheme: &LocalScheme<f64>, e: f64) -> Result<f64> {
-    let a = scheme.face_block()?;
+fn modulus_radius(a: &DMatrix<f64>, e: f64) -> f64 {
     let norm = a.norm();
     let eta = BACKWARD_ERROR_FACTOR * a.nrows() as f64 * f64::EPSILON * norm;
     let cap = ((norm + 1.0) * eta).sqrt();
-    Ok(if e.is_nan() { cap } else { e.min(cap) })
+    if e.is_nan() {
+        cap
+    } else {
+        e.min(cap)
+    }
 }
 
 /// Error radius `max(kappa, 1) * eta` (0 when `eta = 0`, i.e. the zero matrix,
@@ -334,13 +339,27 @@ fn second_smallest_sigma(x: &DMatrix<f64>, lambda: f64) -> Result<f64, SpectralE
     Ok(s[n - 2])
 }
 
-/// Full analysis of one configuration (math doc sections 4-7).
-pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<LocalAnalysis> {
+/// Full analysis of one configuration of any [`Scheme`] (math doc sections
+/// 4-7 and 12): the spectrum (dense, or the scheme's structured path), the
+/// subdominant classification (the scheme's fast path when it has one), the
+/// limit and tangent stencils, Theorem 1 when the scheme provides it, and
+/// the deviation from the Fourier-block spectrum for rotationally symmetric
+/// schemes.
+///
+/// ```
+/// use subdiv_lab::schemes::LocalScheme;
+/// use subdiv_lab::spectral::{analyze, AnalyzeOptions, SpectrumPath};
+/// let s = LocalScheme::<f64>::catmull_clark(5).unwrap();
+/// let opts = AnalyzeOptions { path: SpectrumPath::Structured, ..Default::default() };
+/// let a = analyze(&s, &opts).unwrap();
+/// assert_eq!(a.eigenvalues.len(), 11);
+/// ```
+pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Result<LocalAnalysis> {
     let n = scheme.valence();
-    let lm = scheme.matrix()?;
+    let lm = scheme.local_matrix()?;
     let s = lm.matrix();
     let face_weights = scheme.face_weights();
-    let expected_limit = expected_limit_weights(scheme)?;
+    let expected_limit = scheme.limit_stencil().transpose()?;
     let (eigenvalues, residuals, conditions, limit, tangents, subdominant, subdominant_full);
     match options.path {
         SpectrumPath::Full => {
@@ -357,10 +376,9 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
                 },
                 &mut |lam| second_smallest_sigma(s, lam),
             )?;
-            subdominant = if scheme.kind().is_doo_sabin_family() {
-                classify_scheme(scheme)?
-            } else {
-                full.clone()
+            subdominant = match scheme.fast_classification() {
+                Some(fast) => fast?,
+                None => full.clone(),
             };
             subdominant_full = Some(full);
             eigenvalues = e.values().iter().map(|&z| c64(z)).collect::<Vec<_>>();
@@ -374,9 +392,14 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
                 let err = w
                     .iter()
                     .enumerate()
-                    .map(|(i, &x)| (x - expected_limit.get(i).copied().unwrap_or(0.0)).abs())
+                    .map(|(i, &x)| {
+                        let e = expected_limit
+                            .as_ref()
+                            .map(|l| l.get(i).copied().unwrap_or(0.0));
+                        e.map_or(0.0, |e| (x - e).abs())
+                    })
                     .fold(0.0, f64::max);
-                (w, err)
+                (w, expected_limit.as_ref().map(|_| err))
             });
             tangents = left.filter(|_| dim >= 3).map(|u| {
                 let scale = |v: Vec<f64>| {
@@ -402,11 +425,16 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
             });
         }
         SpectrumPath::Structured => {
-            let all = match cc_parameter(scheme) {
-                Some(c) => crate::schemes::catmull_clark::fourier::spectrum(n, c)?,
-                None => structured_spectrum(scheme)?,
+            let all = scheme
+                .structured_spectrum()
+                .ok_or_else(|| Error::NotApplicable {
+                    scheme: scheme.name().to_owned(),
+                    operation: "the structured spectral path (use the full path)",
+                })??;
+            subdominant = match scheme.fast_classification() {
+                Some(fast) => fast?,
+                None => classify_matrix(s)?,
             };
-            subdominant = classify_scheme(scheme)?;
             subdominant_full = None;
             eigenvalues = all.iter().map(|&z| c64(z)).collect();
             residuals = None;
@@ -420,10 +448,13 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
         .skip(1)
         .map(|z| z[0].hypot(z[1]))
         .fold(0.0, f64::max);
-    let contraction = if scheme.kind().is_doo_sabin_family() {
-        let cert = contraction::certificate(scheme)?;
-        let measured = contraction::measure(scheme, &options.measure)?;
-        let bound_radius = modulus_radius(scheme, subdominant.radii[1])?
+    let contraction = if let Some(fc) = scheme.face_contraction(&options.measure) {
+        let FaceContraction {
+            certificate: cert,
+            measured,
+            face_block,
+        } = fc?;
+        let bound_radius = modulus_radius(&face_block, subdominant.radii[1])
             + (spectral_bound - subdominant.lambda1.norm()).abs();
         let bound_check = BoundCheck::of(spectral_bound, bound_radius, 0.75);
         Some(ContractionSummary {
@@ -444,19 +475,19 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
     } else {
         None
     };
-    let fourier_deviation = match cc_parameter(scheme) {
-        Some(c) => Some(fourier_deviation(
-            &eigenvalues,
-            &crate::schemes::catmull_clark::fourier::spectrum(n, c)?,
-        )),
-        None => None,
+    let fourier_deviation = match scheme.spectral_structure() {
+        SpectralStructure::Fourier => match scheme.structured_spectrum() {
+            Some(blocks) => Some(fourier_deviation(&eigenvalues, &blocks?)),
+            None => None,
+        },
+        _ => None,
     };
     let (limit_weights, limit_weights_error) = match limit {
-        Some((w, e)) => (Some(w), Some(e)),
+        Some((w, e)) => (Some(w), e),
         None => (None, None),
     };
     Ok(LocalAnalysis {
-        scheme: scheme.kind().name(),
+        scheme: scheme.name().to_owned(),
         valence: n,
         path: options.path,
         eigenvalues,
@@ -472,25 +503,6 @@ pub fn analyze(scheme: &LocalScheme<f64>, options: &AnalyzeOptions) -> Result<Lo
         exact: None,
         fourier_deviation,
     })
-}
-
-/// The shape parameter `c` of a Catmull-Clark-family scheme (`None` otherwise).
-fn cc_parameter(scheme: &LocalScheme<f64>) -> Option<f64> {
-    if scheme.kind().is_catmull_clark_family() {
-        scheme.shape_parameter()
-    } else {
-        None
-    }
-}
-
-/// The closed-form left eigenvector for 1 of `scheme.matrix()`, normalised to
-/// sum 1: `(c, 0)` for the Doo-Sabin family (math doc section 4), the limit
-/// stencil over the one-ring for the Catmull-Clark family (math doc section 6).
-fn expected_limit_weights(scheme: &LocalScheme<f64>) -> Result<Vec<f64>> {
-    match cc_parameter(scheme) {
-        Some(c) => crate::schemes::catmull_clark::limit::limit_stencil(scheme.valence(), &c),
-        None => Ok(scheme.face_weights()),
-    }
 }
 
 /// Largest distance between two spectra after sorting both by

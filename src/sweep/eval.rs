@@ -23,7 +23,7 @@
 use super::plan::{Configuration, Plan};
 use super::spec::Columns;
 use crate::charmap;
-use crate::schemes::catmull_clark::fourier;
+use crate::scheme::{Scheme, SpectralStructure};
 use crate::schemes::LocalScheme;
 use crate::spectral::kernel::BATCH;
 use crate::spectral::structured::StructuredWorkspace;
@@ -253,14 +253,13 @@ impl Evaluate for SpectralEvaluator {
             let mut guard = cell.borrow_mut();
             let scratch = &mut *guard;
             let schemes = items.each_ref().map(|(_, s, _)| *s);
-            let subs: [crate::Result<Option<Subdominant>>; BATCH] = if self.needs_subdominant()
-                && schemes.iter().all(|s| s.kind().is_doo_sabin_family())
-            {
-                spectral::classify_schemes_batch(scratch.each_mut().map(|w| &mut w.ws), schemes)
-                    .map(|r| r.map(Some))
-            } else {
-                std::array::from_fn(|l| self.subdominant(&mut scratch[l], schemes[l]))
-            };
+            let subs: [crate::Result<Option<Subdominant>>; BATCH] =
+                if self.needs_subdominant() && schemes.iter().all(|s| face_block(*s)) {
+                    spectral::classify_schemes_batch(scratch.each_mut().map(|w| &mut w.ws), schemes)
+                        .map(|r| r.map(Some))
+                } else {
+                    std::array::from_fn(|l| self.subdominant(&mut scratch[l], schemes[l]))
+                };
             let mut lanes = scratch.iter_mut().zip(subs);
             items.map(|(c, s, out)| {
                 let (w, sub) = lanes.next().expect("one scratch per lane");
@@ -281,10 +280,10 @@ impl SpectralEvaluator {
             || cols.charmap
     }
 
-    /// The classification of `scheme` if a column needs it. The Doo-Sabin
-    /// family (every scheme a sweep spec names but the Catmull-Clark family)
-    /// goes through the structured path with the per-thread workspace;
-    /// anything else through the general classifier.
+    /// The classification of `scheme` if a column needs it. Face-block
+    /// schemes ([`SpectralStructure::FaceBlock`]: the Doo-Sabin family) go
+    /// through the structured path with the per-thread workspace; anything
+    /// else through the scheme's fast path or the dense classifier.
     fn subdominant(
         &self,
         scratch: &mut Scratch,
@@ -292,13 +291,16 @@ impl SpectralEvaluator {
     ) -> crate::Result<Option<Subdominant>> {
         if !self.needs_subdominant() {
             Ok(None)
-        } else if scheme.kind().is_doo_sabin_family() {
+        } else if face_block(scheme) {
             Ok(Some(spectral::classify_scheme_with(
                 &mut scratch.ws,
                 scheme,
             )?))
         } else {
-            Ok(Some(spectral::classify_scheme(scheme)?))
+            Ok(Some(match scheme.fast_classification() {
+                Some(fast) => fast?,
+                None => spectral::classify_matrix(scheme.local_matrix()?.matrix())?,
+            }))
         }
     }
 
@@ -315,7 +317,7 @@ impl SpectralEvaluator {
         out: &mut dyn CellSink,
     ) -> crate::Result<()> {
         let cols = &self.columns;
-        let structured = scheme.kind().is_doo_sabin_family();
+        let structured = face_block(scheme);
         if let Some(sub) = &sub {
             if cols.classification {
                 match &sub.class {
@@ -355,12 +357,19 @@ impl SpectralEvaluator {
                 };
                 full_spectrum(scheme.valence(), face, &mut scratch.spectrum);
                 &scratch.spectrum[..]
-            } else if let Some(c) = scheme.shape_parameter() {
-                // the closed-form Fourier blocks of the (2n+1) one-ring matrix
-                scratch.spectrum = fourier::spectrum(scheme.valence(), c)?;
-                &scratch.spectrum[..]
             } else {
-                scratch.spectrum = spectral::structured::structured_spectrum(scheme)?;
+                // the scheme's structured path (the closed-form Fourier blocks
+                // of the Catmull-Clark family's (2n+1) one-ring matrix), else
+                // the dense spectrum
+                scratch.spectrum = match scheme.structured_spectrum() {
+                    Some(all) => all?,
+                    None => spectral::eigen::Eigen::new(
+                        scheme.local_matrix()?.matrix(),
+                        spectral::EigenOptions::VALUES,
+                    )?
+                    .values()
+                    .to_vec(),
+                };
                 &scratch.spectrum[..]
             };
             for k in 0..cols.eigenvalues {
@@ -401,6 +410,11 @@ impl SpectralEvaluator {
         }
         Ok(())
     }
+}
+
+/// Whether `scheme` classifies through the face-block workspace.
+fn face_block(scheme: &LocalScheme<f64>) -> bool {
+    scheme.spectral_structure() == SpectralStructure::FaceBlock
 }
 
 /// `standard`, ..., or `indeterminate:A/B`.

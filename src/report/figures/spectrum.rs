@@ -18,6 +18,7 @@ use crate::report::plot::{
     circle_points, dash, draw_err, titled, viridis, LegendGlyph, Marker, Theme,
 };
 use crate::report::spec::{Common, FigureSpec};
+use crate::scheme::Scheme;
 use crate::spectral::{analyze, AnalyzeOptions, LocalAnalysis};
 use num_complex::Complex64;
 use plotters::prelude::*;
@@ -102,6 +103,57 @@ struct Output {
     columns: usize,
 }
 
+/// The spectrum figure of any [`Scheme`]s, as an SVG document: one panel per
+/// scheme (at most [`MAX_PANELS`]) labelled by [`Scheme::label`], the same
+/// drawing as `kind = "spectrum"` in a report spec (math doc section 12: the
+/// figure a scheme defined outside the crate gets).
+///
+/// ```
+/// use subdiv_lab::report::figures::spectrum::spectrum_svg;
+/// use subdiv_lab::schemes::LocalScheme;
+/// let s = LocalScheme::<f64>::catmull_clark(5).unwrap();
+/// let svg = spectrum_svg(&[&s], (640, 480), "Catmull-Clark").unwrap();
+/// assert!(svg.starts_with("<svg"));
+/// ```
+pub fn spectrum_svg(
+    schemes: &[&dyn Scheme],
+    size: (u32, u32),
+    title: &str,
+) -> Result<String, ReportError> {
+    if schemes.is_empty() || schemes.len() > MAX_PANELS {
+        return Err(ReportError::Spec {
+            at: None,
+            key: None,
+            message: format!("give 1 to {MAX_PANELS} schemes, got {}", schemes.len()),
+        });
+    }
+    let panels = schemes
+        .iter()
+        .map(|s| {
+            let a = analyze(*s, &AnalyzeOptions::default())?;
+            let e = eigenvalues(&a);
+            Ok((s.label(), (a, e)))
+        })
+        .collect::<crate::Result<Vec<_>>>()
+        .map_err(|source| ReportError::Analysis {
+            figure: title.to_owned(),
+            source,
+        })?;
+    let cols = panels.len().min(3);
+    let rows = panels.len().div_ceil(cols);
+    crate::report::backend::render_svg(size, &|area| {
+        let th = Theme::for_size(size);
+        let body = titled(area, title, &th)?;
+        let (pw, ph) = (size.0 / cols as u32, size.1 / rows as u32);
+        let side = pw.min(ph).max(size.0.min(size.1) * 70 / 100);
+        let panel_theme = Theme::for_size((side, side));
+        for ((label, a), pa) in panels.iter().zip(body.split_evenly((rows, cols)).iter()) {
+            draw_panel(pa, label, a, &panel_theme)?;
+        }
+        Ok(())
+    })
+}
+
 /// Role of eigenvalue `index` (in the analysis' sorted order).
 fn role(index: usize) -> &'static str {
     match index {
@@ -148,7 +200,7 @@ impl FigureOutput for Output {
         let panel_theme = Theme::for_size((side, side));
         let areas = body.split_evenly((rows, cols));
         for ((c, a), pa) in self.panels.iter().zip(areas.iter()) {
-            draw_panel(pa, c, a, &panel_theme)?;
+            draw_panel(pa, &c.label, a, &panel_theme)?;
         }
         Ok(())
     }
@@ -156,7 +208,7 @@ impl FigureOutput for Output {
 
 fn draw_panel(
     area: &Area<'_>,
-    c: &Configuration,
+    label: &str,
     (a, eig): &(LocalAnalysis, Vec<Complex64>),
     th: &Theme,
 ) -> Result<(), ReportError> {
@@ -170,7 +222,7 @@ fn draw_panel(
     let (x0, x1) = (-0.85, 1.12);
     let half_y = (x1 - x0) * ph / pw / 2.0;
     let mut chart = ChartBuilder::on(area)
-        .caption(c.label.clone(), th.font(th.label))
+        .caption(label, th.font(th.label))
         .margin(th.tick as i32 / 2)
         .x_label_area_size(xl)
         .y_label_area_size(yl)

@@ -1,0 +1,113 @@
+//! The built-in families as [`Scheme`]s: the Doo-Sabin family (NURDS,
+//! Doo-Sabin, the Catmull-Clark variant; face-centred, math doc sections 1-5)
+//! and the Catmull-Clark family (Catmull-Clark and the shape-adjustable
+//! scheme; vertex-centred, math doc sections 6 and 8).
+//!
+//! This impl is the one place where a [`LocalScheme`] is told apart by
+//! family: the analysis engine only sees the capabilities.
+
+use super::{FaceContraction, Scheme, SpectralStructure};
+use crate::charmap::{
+    self,
+    figure::RingPlot,
+    report::{AnyPatchId, CharmapReport},
+};
+use crate::contraction::{self, MeasureOptions};
+use crate::error::Result;
+use crate::schemes::{catmull_clark, LocalMatrix, LocalScheme};
+use crate::spectral::classify::Subdominant;
+use num_complex::Complex64;
+
+impl Scheme for LocalScheme<f64> {
+    fn name(&self) -> &str {
+        self.kind().name()
+    }
+
+    fn valence(&self) -> usize {
+        LocalScheme::valence(self)
+    }
+
+    fn local_matrix(&self) -> Result<LocalMatrix<f64>> {
+        self.matrix()
+    }
+
+    /// Doo-Sabin family: the face weights `c` over the `P` columns (the other
+    /// entries are zero; math doc section 4). Catmull-Clark family: the limit
+    /// stencil over the one-ring (math doc section 6).
+    fn limit_stencil(&self) -> Option<Result<Vec<f64>>> {
+        Some(match self.shape_parameter() {
+            Some(c) => catmull_clark::limit::limit_stencil(self.valence(), &c),
+            None => Ok(LocalScheme::face_weights(self)),
+        })
+    }
+
+    fn face_weights(&self) -> Vec<f64> {
+        LocalScheme::face_weights(self)
+    }
+
+    fn spectral_structure(&self) -> SpectralStructure {
+        if self.kind().is_doo_sabin_family() {
+            SpectralStructure::FaceBlock
+        } else {
+            SpectralStructure::Fourier
+        }
+    }
+
+    fn structured_spectrum(&self) -> Option<Result<Vec<Complex64>>> {
+        Some(match self.shape_parameter() {
+            Some(c) => catmull_clark::fourier::spectrum(self.valence(), c),
+            None => crate::spectral::structured::structured_spectrum(self).map_err(Into::into),
+        })
+    }
+
+    /// Doo-Sabin family: the face-block kernel
+    /// ([`classify_scheme`](crate::spectral::classify_scheme)). The
+    /// Catmull-Clark family has no faster path than the dense one.
+    fn fast_classification(&self) -> Option<Result<Subdominant>> {
+        self.kind()
+            .is_doo_sabin_family()
+            .then(|| crate::spectral::classify_scheme(self))
+    }
+
+    fn face_contraction(&self, options: &MeasureOptions) -> Option<Result<FaceContraction>> {
+        if !self.kind().is_doo_sabin_family() {
+            return None;
+        }
+        Some((|| {
+            Ok(FaceContraction {
+                certificate: contraction::certificate(self)?,
+                measured: contraction::measure(self, options)?,
+                face_block: self.face_block()?,
+            })
+        })())
+    }
+
+    fn characteristic_map(
+        &self,
+        subdominant: &Subdominant,
+    ) -> Option<Result<CharmapReport<AnyPatchId>>> {
+        let c = match self.shape_parameter() {
+            None => return Some(charmap::check_classified_doo_sabin(self, subdominant)),
+            Some(c) => c,
+        };
+        let certificate = charmap::catmull_clark::Certificate::for_c(c);
+        Some(
+            charmap::catmull_clark::check_classified(self.valence(), c, subdominant, certificate)
+                .map(|r| r.map_patches(AnyPatchId::CatmullClark)),
+        )
+    }
+
+    fn characteristic_plot(
+        &self,
+        subdominant: &Subdominant,
+        levels: usize,
+        per_side: usize,
+    ) -> Option<Result<(CharmapReport<AnyPatchId>, Option<RingPlot>)>> {
+        Some(match self.shape_parameter() {
+            Some(c) => {
+                charmap::catmull_clark::plot_data(self.valence(), c, subdominant, levels, per_side)
+            }
+            None => charmap::plot_data_doo_sabin(self, subdominant, levels, per_side),
+        })
+    }
+}
