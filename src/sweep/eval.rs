@@ -418,7 +418,7 @@ fn face_block(scheme: &LocalScheme<f64>) -> bool {
 }
 
 /// `standard`, ..., or `indeterminate:A/B`.
-fn class_text(c: &SubdominantClass) -> String {
+pub(crate) fn class_text(c: &SubdominantClass) -> String {
     match c {
         SubdominantClass::Indeterminate { between, .. } => {
             format!(

@@ -41,6 +41,7 @@
 
 pub mod eval;
 pub mod output;
+pub mod own;
 pub mod plan;
 pub mod sampler;
 pub mod spec;
