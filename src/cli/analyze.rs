@@ -49,12 +49,9 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         )));
     }
     let resolved = args.scheme.resolve(args.exact)?;
-    let n = resolved.f64.valence();
-    let estimate = subdiv_lab::budget::analyze(
-        resolved.f64.kind(),
-        n,
-        matches!(args.path, Path::Structured),
-    );
+    let n = resolved.scheme.valence();
+    let estimate =
+        subdiv_lab::budget::analyze(resolved.kind, n, matches!(args.path, Path::Structured));
     super::budget::check(
         "analyze",
         &format!("valence {n}"),
@@ -91,7 +88,7 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
             ..MeasureOptions::default()
         },
     };
-    let mut result = analyze(&resolved.f64, &options).map_err(CliError::lib)?;
+    let mut result = analyze(&*resolved.scheme, &options).map_err(CliError::lib)?;
     if let Some(exact) = &resolved.exact {
         result
             .add_exact(exact)
@@ -105,7 +102,7 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     }
     // Characteristic map (math doc section 7); a numerical failure there is
     // reported inside the "charmap" object, not as a failure of the analysis.
-    let charmap = charmap::check_classified(&resolved.f64, &result.subdominant);
+    let charmap = charmap::check_classified(&*resolved.scheme, &result.subdominant);
     if args.json {
         let mut value = serde_json::to_value(&result).map_err(CliError::failure)?;
         if let serde_json::Value::Object(map) = &mut value {
@@ -116,7 +113,7 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     } else {
         let mut text = summary(&result);
         // which certificate the coefficients belong to (charmap::check_classified's choice)
-        let cone = resolved.f64.shape_parameter().is_some_and(|c| {
+        let cone = resolved.c.is_some_and(|c| {
             charmap::catmull_clark::Certificate::for_c(c)
                 == charmap::catmull_clark::Certificate::Cone
         });

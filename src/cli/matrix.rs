@@ -5,7 +5,8 @@ use super::{write_stdout, CliError, CliResult};
 use clap::{Args, ValueEnum};
 use nalgebra::DMatrix;
 use subdiv_lab::scalar::Scalar;
-use subdiv_lab::schemes::{LocalMatrix, LocalScheme, PointLabel};
+use subdiv_lab::scheme::SpectralStructure;
+use subdiv_lab::schemes::{LocalMatrix, PointLabel};
 
 #[derive(Args, Debug)]
 pub(crate) struct MatrixArgs {
@@ -40,9 +41,9 @@ enum Format {
 
 pub(crate) fn run(args: MatrixArgs) -> CliResult {
     let resolved = args.scheme.resolve(args.exact)?;
-    let n = resolved.f64.valence();
+    let n = resolved.scheme.valence();
     let estimate = subdiv_lab::budget::matrix(
-        resolved.f64.kind(),
+        resolved.kind,
         n,
         matches!(args.block, Block::Face),
         args.exact,
@@ -55,18 +56,43 @@ pub(crate) fn run(args: MatrixArgs) -> CliResult {
         args.force,
     )?;
     let out = match &resolved.exact {
-        Some(exact) => render(exact, &args)?,
-        None => render(&resolved.f64, &args)?,
+        Some(exact) => render(
+            exact.kind().name(),
+            exact.matrix(),
+            exact.face_block().map(drop),
+            exact.face_weights(),
+            &args,
+        )?,
+        None => {
+            let s = &*resolved.scheme;
+            // the face block exists for face-block schemes only (a typed error otherwise)
+            let face = match s.spectral_structure() {
+                SpectralStructure::FaceBlock => Ok(()),
+                _ => Err(subdiv_lab::Error::NotApplicable {
+                    scheme: s.name().to_owned(),
+                    operation: "the face block (a Doo-Sabin-family notion)",
+                }),
+            };
+            render(s.name(), s.local_matrix(), face, s.face_weights(), &args)?
+        }
     };
     write_stdout(out.as_bytes())
 }
 
-fn render<T: Scalar>(scheme: &LocalScheme<T>, args: &MatrixArgs) -> CliResult<String> {
-    let full: LocalMatrix<T> = scheme.matrix().map_err(CliError::lib)?;
-    let n = scheme.valence();
+/// Renders a scheme's local matrix (`full`) or its face block; `face` is the
+/// error to report when the face block is asked for and there is none.
+fn render<T: Scalar>(
+    name: &str,
+    full: subdiv_lab::Result<LocalMatrix<T>>,
+    face: subdiv_lab::Result<()>,
+    weights: Vec<T>,
+    args: &MatrixArgs,
+) -> CliResult<String> {
+    let full: LocalMatrix<T> = full.map_err(CliError::lib)?;
+    let n = full.valence();
     if matches!(args.block, Block::Face) {
         // Typed error for schemes without a face block (the Catmull-Clark family).
-        scheme.face_block().map_err(CliError::lib)?;
+        face.map_err(CliError::lib)?;
     }
     let (labels, m): (Vec<PointLabel>, DMatrix<T>) = match args.block {
         Block::Full => (full.rows().to_vec(), full.matrix().clone()),
@@ -75,7 +101,6 @@ fn render<T: Scalar>(scheme: &LocalScheme<T>, args: &MatrixArgs) -> CliResult<St
             full.matrix().view((0, 0), (n, n)).into_owned(),
         ),
     };
-    let weights = scheme.face_weights();
     Ok(match args.format {
         Format::Csv => m
             .row_iter()
@@ -96,7 +121,7 @@ fn render<T: Scalar>(scheme: &LocalScheme<T>, args: &MatrixArgs) -> CliResult<St
                 }
             };
             let doc = serde_json::json!({
-                "scheme": scheme.kind().name(),
+                "scheme": name,
                 "valence": n,
                 "exact": T::EXACT,
                 "rows": labels.iter().map(ToString::to_string).collect::<Vec<_>>(),
@@ -120,7 +145,7 @@ fn render<T: Scalar>(scheme: &LocalScheme<T>, args: &MatrixArgs) -> CliResult<St
                 .unwrap_or(1);
             let mut s = format!(
                 "{} S_{} ({} block, {}x{}){}\n",
-                scheme.kind().name(),
+                name,
                 n,
                 match args.block {
                     Block::Full => "full",

@@ -7,6 +7,7 @@ use clap::Args;
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
 use subdiv_lab::scalar::{parse_exact, Rational, Scalar};
 use subdiv_lab::schemes::{LocalScheme, SchemeKind};
+use subdiv_lab::Scheme;
 
 /// Scheme selection flags.
 #[derive(Args, Debug, Clone)]
@@ -33,7 +34,13 @@ pub(crate) struct SchemeArgs {
 
 /// The validated configuration, in f64 and (when requested and possible) exactly.
 pub(crate) struct Resolved {
-    pub f64: LocalScheme<f64>,
+    /// The scheme's kind (for the work estimates).
+    pub kind: SchemeKind,
+    /// The shape parameter `c`, if given (`f64` value).
+    pub c: Option<f64>,
+    /// The configuration, through the scheme abstraction.
+    pub scheme: Box<dyn Scheme>,
+    /// The exact configuration (`--exact`).
     pub exact: Option<LocalScheme<Rational>>,
 }
 
@@ -232,13 +239,18 @@ impl SchemeArgs {
             }
             None => (None, None),
         };
-        let f = LocalScheme::from_kind_with_c(kind, valence, rf, cf).map_err(lib_err)?;
+        let scheme = subdiv_lab::scheme::builtin(kind, valence, rf, cf).map_err(lib_err)?;
         let exact = if exact {
             Some(LocalScheme::from_kind_with_c(kind, valence, rq, cq).map_err(lib_err)?)
         } else {
             None
         };
-        Ok(Resolved { f64: f, exact })
+        Ok(Resolved {
+            kind,
+            c: cf,
+            scheme,
+            exact,
+        })
     }
 
     fn check_count(&self, flag: &str, got: usize) -> CliResult {
