@@ -14,7 +14,7 @@ use crate::charmap::{
 };
 use crate::contraction::{self, MeasureOptions};
 use crate::error::Result;
-use crate::schemes::{catmull_clark, LocalMatrix, LocalScheme};
+use crate::schemes::{catmull_clark, doo_sabin, LocalMatrix, LocalScheme};
 use crate::spectral::classify::Subdominant;
 use num_complex::Complex64;
 
@@ -51,6 +51,12 @@ impl Scheme for LocalScheme<f64> {
         } else {
             SpectralStructure::Fourier
         }
+    }
+
+    fn fill_face_block(&self, out: &mut [f64]) -> Option<Result<()>> {
+        self.kind()
+            .is_doo_sabin_family()
+            .then(|| doo_sabin::fill_face_like(self, self.valence(), out))
     }
 
     fn structured_spectrum(&self) -> Option<Result<Vec<Complex64>>> {

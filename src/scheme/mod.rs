@@ -176,6 +176,17 @@ pub trait Scheme: fmt::Debug + Send + Sync {
         SpectralStructure::Dense
     }
 
+    /// Face-block schemes ([`SpectralStructure::FaceBlock`]): writes into
+    /// `out` (column-major, `n x n`, zeroed by the caller) a matrix with
+    /// constant row sums whose deflation by the constant vector has the
+    /// spectrum of the central face block without its eigenvalue 1 (the face
+    /// block itself, or for NURDS `M = (I + R)/4`, which differs from it by
+    /// `1 c^T / 4`; math doc section 4). Default none.
+    fn fill_face_block(&self, out: &mut [f64]) -> Option<Result<()>> {
+        let _ = out;
+        None
+    }
+
     /// The whole spectrum of `S` by the scheme's structure (face block plus
     /// known eigenvalues, or Fourier blocks), sorted by
     /// [`spectral_order`](crate::spectral::eigen::spectral_order); default none.

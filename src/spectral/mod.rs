@@ -102,7 +102,15 @@ pub enum SpectralError {
     #[error("the structured path needs a Doo-Sabin-family scheme, got {scheme}")]
     NotDooSabinFamily {
         /// Scheme name.
-        scheme: &'static str,
+        scheme: String,
+    },
+    /// A scheme's face block could not be written.
+    #[error("the face block of scheme {scheme}: {reason}")]
+    FaceBlock {
+        /// Scheme name.
+        scheme: String,
+        /// The scheme's error.
+        reason: String,
     },
     /// A singular value decomposition failed to converge.
     #[error("singular value decomposition did not converge ({size} x {size})")]
@@ -577,21 +585,22 @@ thread_local! {
 /// Condition numbers of the face eigenvalues in positions 1-3 come from
 /// inverse iteration on the Hessenberg form (`O(n^2)` each).
 ///
-/// Catmull-Clark family: there is no face block; the (2n+1) one-ring matrix
-/// is classified by [`classify_matrix`] (the allocation-free kernel; the
-/// one-ring matrix itself is assembled per call).
-pub fn classify_scheme(scheme: &LocalScheme<f64>) -> Result<Subdominant> {
+/// Schemes without a face block (the Catmull-Clark family, Loop): the local
+/// matrix is classified by [`classify_matrix`] (the allocation-free kernel;
+/// the matrix itself is assembled per call).
+pub fn classify_scheme<S: Scheme + ?Sized>(scheme: &S) -> Result<Subdominant> {
     WORKSPACE.with(|ws| classify_scheme_with(&mut ws.borrow_mut(), scheme))
 }
 
-/// [`classify_scheme`] with an explicit workspace (unused for the
-/// Catmull-Clark family).
-pub fn classify_scheme_with(
+/// [`classify_scheme`] with an explicit workspace (unused for schemes
+/// without a face block: those are classified by [`classify_matrix`] on
+/// their local matrix).
+pub fn classify_scheme_with<S: Scheme + ?Sized>(
     ws: &mut StructuredWorkspace,
-    scheme: &LocalScheme<f64>,
+    scheme: &S,
 ) -> Result<Subdominant> {
-    if scheme.kind().is_catmull_clark_family() {
-        return classify_matrix(scheme.matrix()?.matrix());
+    if scheme.spectral_structure() != SpectralStructure::FaceBlock {
+        return classify_matrix(scheme.local_matrix()?.matrix());
     }
     ws.face_nonunit(scheme)?;
     classify_face(ws, scheme.valence())
@@ -618,12 +627,15 @@ pub fn classify_scheme_with(
 ///     assert_eq!(r.unwrap(), classify_scheme(s).unwrap());
 /// }
 /// ```
-pub fn classify_schemes_batch(
+pub fn classify_schemes_batch<S: Scheme + ?Sized>(
     ws: [&mut StructuredWorkspace; kernel::BATCH],
-    schemes: [&LocalScheme<f64>; kernel::BATCH],
+    schemes: [&S; kernel::BATCH],
 ) -> [Result<Subdominant>; kernel::BATCH] {
     let mut ws = ws;
-    if !schemes.iter().all(|s| s.kind().is_doo_sabin_family()) {
+    if !schemes
+        .iter()
+        .all(|s| s.spectral_structure() == SpectralStructure::FaceBlock)
+    {
         return std::array::from_fn(|l| classify_scheme_with(ws[l], schemes[l]));
     }
     let faces = StructuredWorkspace::face_nonunit_batch(ws.each_mut().map(|w| &mut **w), schemes);

@@ -17,15 +17,17 @@
 //! are not needed for the spectrum at all (no closed form, no linear solve).
 //!
 //! `B` goes to the allocation-free [`kernel`](super::kernel). This path is for
-//! the Doo-Sabin family only ([`SchemeKind::is_doo_sabin_family`]); it is
-//! tested against the full `4n x 4n` decomposition.
+//! face-block schemes ([`SpectralStructure::FaceBlock`]: the Doo-Sabin family),
+//! which write their face block, or a matrix with the same deflated block, by
+//! [`Scheme::fill_face_block`]; it is tested against the full `4n x 4n`
+//! decomposition.
 //!
-//! [`SchemeKind::is_doo_sabin_family`]: crate::schemes::SchemeKind::is_doo_sabin_family
+//! [`SpectralStructure::FaceBlock`]: crate::scheme::SpectralStructure::FaceBlock
 
 use super::eigen::spectral_order;
 use super::kernel::{KernelWorkspace, BATCH};
 use super::SpectralError;
-use crate::schemes::LocalScheme;
+use crate::scheme::Scheme;
 use num_complex::Complex64;
 
 /// The eigenvalues of the E and C blocks, each of multiplicity `n`:
@@ -51,9 +53,9 @@ impl StructuredWorkspace {
 
     /// The non-unit eigenvalues of the face block `A` (the `n - 1` eigenvalues
     /// of the deflated block `B`), sorted by non-increasing modulus.
-    pub fn face_nonunit(
+    pub fn face_nonunit<S: Scheme + ?Sized>(
         &mut self,
-        scheme: &LocalScheme<f64>,
+        scheme: &S,
     ) -> Result<&[Complex64], SpectralError> {
         self.load(scheme)?;
         self.kernel.eigenvalues()?;
@@ -83,9 +85,9 @@ impl StructuredWorkspace {
     ///     assert_eq!(w.face_nonunit_cached(), single.face_nonunit(s).unwrap());
     /// }
     /// ```
-    pub fn face_nonunit_batch(
+    pub fn face_nonunit_batch<S: Scheme + ?Sized>(
         ws: [&mut Self; BATCH],
-        schemes: [&LocalScheme<f64>; BATCH],
+        schemes: [&S; BATCH],
     ) -> [Result<(), SpectralError>; BATCH] {
         let mut ws = ws;
         let loaded: [Result<(), SpectralError>; BATCH] =
@@ -109,16 +111,24 @@ impl StructuredWorkspace {
     }
 
     /// Builds the deflated block `B` of `scheme` as the kernel's input.
-    fn load(&mut self, scheme: &LocalScheme<f64>) -> Result<(), SpectralError> {
+    fn load<S: Scheme + ?Sized>(&mut self, scheme: &S) -> Result<(), SpectralError> {
         let n = scheme.valence();
-        if !scheme.kind().is_doo_sabin_family() {
-            return Err(SpectralError::NotDooSabinFamily {
-                scheme: scheme.kind().name(),
-            });
-        }
         self.f.clear();
         self.f.resize(n * n, 0.0);
-        fill_face_like(scheme, n, &mut self.f)?;
+        match scheme.fill_face_block(&mut self.f) {
+            Some(Ok(())) => {}
+            Some(Err(e)) => {
+                return Err(SpectralError::FaceBlock {
+                    scheme: scheme.name().to_owned(),
+                    reason: e.to_string(),
+                })
+            }
+            None => {
+                return Err(SpectralError::NotDooSabinFamily {
+                    scheme: scheme.name().to_owned(),
+                })
+            }
+        }
         let m = n - 1;
         let b = self.kernel.input(m);
         deflate_ones(n, &self.f, b, &mut self.wz);
@@ -171,61 +181,6 @@ impl StructuredWorkspace {
     /// The deflated block `B` (column major), e.g. for a rank test.
     pub fn deflated_matrix(&self) -> &[f64] {
         self.kernel.matrix()
-    }
-}
-
-/// Fills `f` (column major, `n x n`) with a matrix whose deflated block is `B`:
-/// `M = (I + R)/4` for NURDS and the CC variant, the face block for original Doo-Sabin.
-fn fill_face_like(scheme: &LocalScheme<f64>, n: usize, f: &mut [f64]) -> Result<(), SpectralError> {
-    match scheme {
-        LocalScheme::DooSabin { .. } => {
-            let den = 4.0 * n as f64;
-            for j in 0..n {
-                for i in 0..n {
-                    f[i + j * n] = if i == j {
-                        (n as f64 + 5.0) / den
-                    } else {
-                        let k = (i + n - j) % n;
-                        (3.0 + 2.0 * (2.0 * std::f64::consts::PI * k as f64 / n as f64).cos()) / den
-                    };
-                }
-            }
-        }
-        LocalScheme::Nurds(ratios) => fill_m(n, ratios.as_slice(), ratios.complement(), f),
-        LocalScheme::CcVariant { .. } => {
-            // Uniform ratios 1/2 (no allocation): diagonal 1/2, neighbours 1/8.
-            for i in 0..n {
-                let (prev, next) = neighbours(i, n);
-                f[i + i * n] = 0.25 * 2.0;
-                f[i + prev * n] += 0.125;
-                f[i + next * n] += 0.125;
-            }
-        }
-        #[allow(unreachable_patterns)]
-        _ => {
-            return Err(SpectralError::NotDooSabinFamily {
-                scheme: scheme.kind().name(),
-            })
-        }
-    }
-    Ok(())
-}
-
-/// The cyclic neighbours `(i - 1, i + 1) mod n` of `i < n` (no integer division).
-#[inline(always)]
-fn neighbours(i: usize, n: usize) -> (usize, usize) {
-    let prev = if i == 0 { n - 1 } else { i - 1 };
-    let next = if i + 1 == n { 0 } else { i + 1 };
-    (prev, next)
-}
-
-/// `M = (I + R)/4`: diagonal `(1 + s_{i-1} + r_i)/4`, sub `r_{i-1}/4`, super `s_i/4`.
-fn fill_m(n: usize, r: &[f64], s: &[f64], f: &mut [f64]) {
-    for i in 0..n {
-        let (prev, next) = neighbours(i, n);
-        f[i + i * n] = 0.25 * (1.0 + s[prev] + r[i]);
-        f[i + prev * n] += 0.25 * r[prev];
-        f[i + next * n] += 0.25 * s[i];
     }
 }
 
@@ -282,7 +237,9 @@ fn deflate_ones(n: usize, f: &[f64], b: &mut [f64], wz: &mut Vec<f64>) {
 /// assert_eq!(ev.len(), 16);
 /// assert!((ev[0].re - 1.0).abs() < 1e-15 && (ev[1].re - 0.5).abs() < 1e-15);
 /// ```
-pub fn structured_spectrum(scheme: &LocalScheme<f64>) -> Result<Vec<Complex64>, SpectralError> {
+pub fn structured_spectrum<S: Scheme + ?Sized>(
+    scheme: &S,
+) -> Result<Vec<Complex64>, SpectralError> {
     let mut ws = StructuredWorkspace::new();
     let n = scheme.valence();
     let face = ws.face_nonunit(scheme)?;
