@@ -18,6 +18,7 @@ use super::error::ReportError;
 use super::rng::{log_uniform, SplitMix64};
 use super::spec::FigureSpec;
 use crate::knots::{CornerIntervals, EdgeRatios};
+use crate::scheme::{Scheme, SpectralStructure};
 use crate::schemes::{LocalScheme, SchemeKind};
 use serde::Deserialize;
 use toml::Spanned;
@@ -253,7 +254,7 @@ pub fn require_doo_sabin_family(
     what: &str,
 ) -> Result<(), ReportError> {
     for (i, (spec, c)) in specs.get_ref().iter().zip(configs).enumerate() {
-        if !c.scheme.kind().is_doo_sabin_family() {
+        if c.scheme.spectral_structure() != SpectralStructure::FaceBlock {
             return Err(fs.error_at(
                 &spec.scheme,
                 &format!("configs[{i}].scheme"),
