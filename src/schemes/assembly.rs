@@ -35,6 +35,8 @@ pub enum Role {
     FaceNeighbour,
     /// `o_k`: one of the 7 outer control points of a Catmull-Clark patch.
     PatchOuter,
+    /// `g_i`: the Loop two-ring vertex straight beyond the edge neighbour `e_i`.
+    SecondRing,
 }
 
 /// Role and index of one point of a local configuration.
@@ -66,6 +68,7 @@ impl fmt::Display for PointLabel {
             Role::EdgeNeighbour => write!(f, "e{i}"),
             Role::FaceNeighbour => write!(f, "f{i}"),
             Role::PatchOuter => write!(f, "o{i}"),
+            Role::SecondRing => write!(f, "g{i}"),
         }
     }
 }
