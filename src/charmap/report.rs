@@ -150,6 +150,16 @@ pub enum AnyPatchId {
     DooSabin(RingPatchId),
     /// A regular cell of the Catmull-Clark family's ring.
     CatmullClark(CcPatchId),
+    /// A patch of another scheme's ring (Loop's triangles `T0..T2`, a user
+    /// scheme's patches): displayed `<prefix><slot>_<sector>`.
+    Other {
+        /// The sector the patch belongs to.
+        sector: usize,
+        /// Position of the patch within its sector.
+        slot: usize,
+        /// Name prefix of the patch kind (`"T"` for Loop's triangles).
+        prefix: &'static str,
+    },
 }
 
 impl AnyPatchId {
@@ -158,6 +168,7 @@ impl AnyPatchId {
         match self {
             AnyPatchId::DooSabin(p) => p.index,
             AnyPatchId::CatmullClark(p) => p.sector,
+            AnyPatchId::Other { sector, .. } => *sector,
         }
     }
 
@@ -171,6 +182,7 @@ impl AnyPatchId {
                 PatchKind::C => 2,
             },
             AnyPatchId::CatmullClark(p) => p.sub.index() - 1,
+            AnyPatchId::Other { slot, .. } => *slot,
         }
     }
 
@@ -179,6 +191,7 @@ impl AnyPatchId {
         match self {
             AnyPatchId::DooSabin(_) => ["A", "B", "C"][self.slot()].to_owned(),
             AnyPatchId::CatmullClark(_) => format!("Omega{}", self.slot() + 1),
+            AnyPatchId::Other { prefix, slot, .. } => format!("{prefix}{slot}"),
         }
     }
 }
@@ -188,6 +201,11 @@ impl fmt::Display for AnyPatchId {
         match self {
             AnyPatchId::DooSabin(p) => p.fmt(f),
             AnyPatchId::CatmullClark(p) => p.fmt(f),
+            AnyPatchId::Other {
+                sector,
+                slot,
+                prefix,
+            } => write!(f, "{prefix}{slot}_{sector}"),
         }
     }
 }

@@ -239,7 +239,7 @@ impl SchemeArgs {
             }
             None => (None, None),
         };
-        let scheme = subdiv_lab::scheme::builtin(kind, valence, rf, cf).map_err(lib_err)?;
+        let scheme = subdiv_lab::scheme::registry::from_kind(kind, valence, rf, cf).map_err(lib_err)?;
         let exact = if exact {
             Some(LocalScheme::from_kind_with_c(kind, valence, rq, cq).map_err(lib_err)?)
         } else {

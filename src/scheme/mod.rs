@@ -66,37 +66,16 @@ use crate::charmap::figure::RingPlot;
 use crate::charmap::report::{AnyPatchId, CharmapReport};
 use crate::contraction::{Certificate, MeasureOptions, Measured};
 use crate::error::Result;
-use crate::knots::EdgeRatios;
 use crate::scalar::Rational;
 use crate::schemes::assembly::LocalMatrix;
-use crate::schemes::{LocalScheme, SchemeKind};
 use crate::spectral::classify::Subdominant;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use std::fmt;
 
 mod builtin;
+pub mod registry;
 
-/// The configuration of a built-in scheme, by kind, as a [`Scheme`]: the one
-/// place where a scheme name becomes an implementation (the CLI and the specs
-/// dispatch here). `ratios` (NURDS; `None` = uniform) and `c` (the adjustable
-/// scheme) are validated as in [`LocalScheme::from_kind_with_c`].
-///
-/// ```
-/// use subdiv_lab::schemes::SchemeKind;
-/// let s = subdiv_lab::scheme::builtin(SchemeKind::CatmullClark, 5, None, None).unwrap();
-/// assert_eq!((s.name(), s.valence()), ("catmull-clark", 5));
-/// ```
-pub fn builtin(
-    kind: SchemeKind,
-    valence: usize,
-    ratios: Option<EdgeRatios<f64>>,
-    c: Option<f64>,
-) -> Result<Box<dyn Scheme>> {
-    Ok(Box::new(LocalScheme::from_kind_with_c(
-        kind, valence, ratios, c,
-    )?))
-}
 
 /// How a scheme's spectrum decomposes: which closed-form structure the
 /// analysis may cross-check against (math doc sections 4, 6 and 11).

@@ -50,6 +50,9 @@ pub enum SchemeKind {
     CatmullClark,
     /// The shape-adjustable Catmull-Clark scheme with parameter c in [0, 1] (**\[reconstructed\]**).
     AdjustableCc,
+    /// Loop subdivision on triangle meshes (vertex-centred; two-ring matrix 3n+1;
+    /// [`loop_subdivision::LoopScheme`]).
+    Loop,
 }
 
 impl SchemeKind {
@@ -60,6 +63,7 @@ impl SchemeKind {
         SchemeKind::CcVariant,
         SchemeKind::CatmullClark,
         SchemeKind::AdjustableCc,
+        SchemeKind::Loop,
     ];
 
     /// The scheme's command-line name.
@@ -70,6 +74,7 @@ impl SchemeKind {
             SchemeKind::CcVariant => "cc-variant",
             SchemeKind::CatmullClark => "catmull-clark",
             SchemeKind::AdjustableCc => "adjustable-cc",
+            SchemeKind::Loop => "loop",
         }
     }
 
@@ -105,7 +110,7 @@ impl fmt::Display for SchemeKind {
 
 /// Error for an unknown scheme name.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown scheme {0:?} (known: nurds, doo-sabin, cc-variant, catmull-clark, adjustable-cc)")]
+#[error("unknown scheme {0:?} (known: nurds, doo-sabin, cc-variant, catmull-clark, adjustable-cc, loop)")]
 pub struct UnknownScheme(pub String);
 
 impl FromStr for SchemeKind {
@@ -244,6 +249,10 @@ impl<T: Scalar> LocalScheme<T> {
             SchemeKind::CcVariant => Self::cc_variant(valence),
             SchemeKind::CatmullClark => Self::catmull_clark(valence),
             SchemeKind::AdjustableCc => Self::from_kind_with_c(kind, valence, ratios, None),
+            SchemeKind::Loop => Err(Error::NotApplicable {
+                scheme: kind.name().to_owned(),
+                operation: "a face- or one-ring configuration (use scheme::registry::from_kind)",
+            }),
         }
     }
 

@@ -44,7 +44,10 @@ pub mod charmap;
 pub mod fourier;
 pub mod matrix;
 pub mod mesh;
+mod scheme_impl;
 pub mod tri_bezier;
+
+pub use scheme_impl::LoopScheme;
 
 use crate::budget::MEMORY_LIMIT_BYTES;
 use crate::error::{Error, Result};
