@@ -13,12 +13,19 @@
 //!   output face. Whole-process peak RSS of the CLI is measured separately
 //!   with `/usr/bin/time -v` by `benches/cgal/compare.sh`.
 //!
+//! Loop subdivision (`schemes::loop_subdivision::mesh`) has its own input,
+//! a triangle mesh: the icosahedron refined 4 times with Loop (5,120
+//! triangles), refined 4 more times to 1,310,720 triangles; same two
+//! measurements. The comparison with CGAL and OpenSubdiv is
+//! `benches/cgal/compare_loop.sh`.
+//!
 //! Run: `cargo bench --bench mesh`.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use subdiv_lab::mesh::refine::refine_levels;
 use subdiv_lab::mesh::{generators, Mesh};
+use subdiv_lab::schemes::loop_subdivision::mesh as loop_mesh;
 use subdiv_lab::schemes::SchemeKind;
 
 struct PeakAlloc;
@@ -114,7 +121,28 @@ fn memory_table() {
             peak as f64 / r.face_count() as f64
         );
     }
+    let m = loop_input();
+    let base = LIVE.load(Ordering::Relaxed);
+    PEAK.store(base, Ordering::Relaxed);
+    let t = std::time::Instant::now();
+    let r = loop_mesh::refine_levels(&m, LEVELS).expect("refine");
+    let secs = t.elapsed().as_secs_f64();
+    let peak = PEAK.load(Ordering::Relaxed) - base;
+    println!(
+        "{:<11} {:>12} {:>10.3} {:>14.1} {:>16.1}   (input: {} triangles)",
+        "loop",
+        r.face_count(),
+        secs,
+        peak as f64 / (1 << 20) as f64,
+        peak as f64 / r.face_count() as f64,
+        m.face_count()
+    );
     println!();
+}
+
+/// The Loop input: the icosahedron refined 4 times with Loop (5,120 triangles).
+fn loop_input() -> Mesh {
+    loop_mesh::refine_levels(&generators::icosahedron(), 4).expect("loop input")
 }
 
 fn main() {
@@ -131,4 +159,15 @@ fn refine_4_levels(bencher: divan::Bencher, scheme: SchemeKind) {
     bencher
         .counter(divan::counter::ItemsCount::new(out_faces))
         .bench(|| refine_levels(divan::black_box(&m), scheme, LEVELS).expect("refine"));
+}
+
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn loop_refine_4_levels(bencher: divan::Bencher) {
+    let m = loop_input();
+    let out_faces = loop_mesh::refine_levels(&m, LEVELS)
+        .expect("refine")
+        .face_count();
+    bencher
+        .counter(divan::counter::ItemsCount::new(out_faces))
+        .bench(|| loop_mesh::refine_levels(divan::black_box(&m), LEVELS).expect("refine"));
 }

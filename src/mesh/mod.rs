@@ -271,6 +271,16 @@ pub enum MeshError {
         /// What needed quads.
         operation: &'static str,
     },
+    /// A Loop operation (triangle meshes only) met a face that is not a triangle.
+    #[error("face {face} has {corners} corners; {operation} needs an all-triangle mesh")]
+    NotAllTriangles {
+        /// The face.
+        face: usize,
+        /// Its number of corners.
+        corners: usize,
+        /// What needed triangles.
+        operation: &'static str,
+    },
     /// The shape parameter `c` of the Catmull-Clark family is outside `[0, 1]`.
     #[error("shape parameter c = {0} is not in [0, 1]")]
     InvalidShapeParameter(f64),
