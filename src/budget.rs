@@ -68,6 +68,12 @@ pub const ANALYZE_SECONDS_PER_N3_DS_STRUCTURED: f64 = 5.0e-7;
 /// Measured 1.9e-7 to 2.1e-7 at `n = 200, 400`.
 pub const ANALYZE_SECONDS_PER_N3_CC: f64 = 2.5e-7;
 
+/// Seconds per `n^3` of `analyze`, Loop (the dense `(3n+1)` decomposition
+/// with vectors and the characteristic-map certificate). Measured 1.4e-6 at
+/// `n = 100` and `n = 200` (1.40 s, 11.1 s) on the 2-core machine while other
+/// builds ran (load 9); rounded up.
+pub const ANALYZE_SECONDS_PER_N3_LOOP: f64 = 2.0e-6;
+
 /// Bytes per printed matrix entry of `matrix` (the entry, its text and the
 /// per-cell `String` of the text/JSON renderers); exact rationals need about
 /// twice as much.
@@ -169,10 +175,12 @@ fn round_2(x: f64) -> String {
 }
 
 /// Dimension of the local matrix of `kind` at valence `n`: `4n` (Doo-Sabin
-/// family), `2n + 1` (Catmull-Clark family).
+/// family), `2n + 1` (Catmull-Clark family), `3n + 1` (Loop).
 pub fn local_dimension(kind: SchemeKind, n: usize) -> f64 {
     let n = n as f64;
-    if kind.is_catmull_clark_family() {
+    if kind == SchemeKind::Loop {
+        3.0 * n + 1.0
+    } else if kind.is_catmull_clark_family() {
         2.0 * n + 1.0
     } else {
         4.0 * n
@@ -185,7 +193,9 @@ pub fn local_dimension(kind: SchemeKind, n: usize) -> f64 {
 pub fn analyze(kind: SchemeKind, n: usize, structured: bool) -> Estimate {
     let d = local_dimension(kind, n);
     let nf = n as f64;
-    let (per_entry, per_n3) = if kind.is_catmull_clark_family() {
+    let (per_entry, per_n3) = if kind == SchemeKind::Loop {
+        (ANALYZE_BYTES_PER_ENTRY_CC, ANALYZE_SECONDS_PER_N3_LOOP)
+    } else if kind.is_catmull_clark_family() {
         (ANALYZE_BYTES_PER_ENTRY_CC, ANALYZE_SECONDS_PER_N3_CC)
     } else if structured {
         (

@@ -6,6 +6,8 @@ use super::{write_stdout, CliError, CliResult};
 use clap::{Args, ValueEnum};
 use subdiv_lab::charmap;
 use subdiv_lab::contraction::MeasureOptions;
+use subdiv_lab::scheme::SpectralStructure;
+use subdiv_lab::schemes::{PointLabel, Role};
 use subdiv_lab::spectral::{
     analyze, AnalyzeOptions, BoundCheck, LocalAnalysis, SpectrumPath, SubdominantClass,
 };
@@ -111,7 +113,9 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         let text = serde_json::to_string_pretty(&value).map_err(CliError::failure)? + "\n";
         write_stdout(text.as_bytes())?;
     } else {
-        let mut text = summary(&result);
+        let lm = resolved.scheme.local_matrix().map_err(CliError::lib)?;
+        let m = MatrixText::of(lm.rows(), n, resolved.scheme.spectral_structure());
+        let mut text = summary(&result, &m);
         // which certificate the coefficients belong to (charmap::check_classified's choice)
         let cone = resolved.c.is_some_and(|c| {
             charmap::catmull_clark::Certificate::for_c(c)
@@ -193,19 +197,68 @@ fn cplx(z: [f64; 2]) -> String {
 }
 
 /// Human-readable summary.
-fn summary(a: &LocalAnalysis) -> String {
+/// How the local matrix is described in the summary: the centre (`face` or
+/// `vertex`), the full path's matrix and the structured path's method, from
+/// the matrix's labels and the scheme's spectral structure.
+struct MatrixText {
+    vertex: bool,
+    full: String,
+    structured: &'static str,
+    stencil: String,
+}
+
+impl MatrixText {
+    fn of(labels: &[PointLabel], n: usize, structure: SpectralStructure) -> Self {
+        let vertex = labels.first().is_some_and(|l| l.role == Role::Vertex);
+        let d = labels.len();
+        let full = if d == 4 * n {
+            "full 4n x 4n".to_owned()
+        } else if d == 2 * n + 1 {
+            "full (2n+1) one-ring".to_owned()
+        } else if d == 3 * n + 1 {
+            "full (3n+1) two-ring".to_owned()
+        } else {
+            format!("full {d} x {d}")
+        };
+        let structured = match structure {
+            SpectralStructure::Fourier => "Fourier blocks",
+            _ => "structured",
+        };
+        // the points' roles in order of first appearance: "v, e_0.., f_0.."
+        let mut roles: Vec<String> = Vec::new();
+        let mut seen = Vec::new();
+        for l in labels {
+            if !seen.contains(&l.role) {
+                seen.push(l.role);
+                let text = l.to_string();
+                let stem = text.trim_end_matches(|c: char| c.is_ascii_digit() || c == ',');
+                roles.push(if l.role == Role::Vertex {
+                    text
+                } else {
+                    format!("{stem}_0..")
+                });
+            }
+        }
+        Self {
+            vertex,
+            full,
+            structured,
+            stencil: roles.join(", "),
+        }
+    }
+}
+
+fn summary(a: &LocalAnalysis, m: &MatrixText) -> String {
     let s = &a.subdominant;
-    let cc = a.fourier_deviation.is_some();
+    let cc = a.face_weights.is_empty();
     let mut out = format!(
         "{} around an n = {} {} ({} path, {} eigenvalues)\n",
         a.scheme,
         a.valence,
-        if cc { "vertex" } else { "face" },
-        match (a.path, cc) {
-            (SpectrumPath::Full, false) => "full 4n x 4n",
-            (SpectrumPath::Full, true) => "full (2n+1) one-ring",
-            (SpectrumPath::Structured, false) => "structured",
-            (SpectrumPath::Structured, true) => "Fourier blocks",
+        if m.vertex { "vertex" } else { "face" },
+        match a.path {
+            SpectrumPath::Full => &m.full,
+            SpectrumPath::Structured => m.structured,
         },
         a.eigenvalues.len()
     );
@@ -255,7 +308,7 @@ fn summary(a: &LocalAnalysis) -> String {
     }
     if cc {
         if let Some(w) = &a.limit_weights {
-            out += "limit stencil (v, e_0.., f_0..):";
+            out += &format!("limit stencil ({}):", m.stencil);
             for x in w {
                 out += &format!(" {x:.8}");
             }

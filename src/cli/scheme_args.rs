@@ -12,7 +12,7 @@ use subdiv_lab::Scheme;
 /// Scheme selection flags.
 #[derive(Args, Debug, Clone)]
 pub(crate) struct SchemeArgs {
-    /// Scheme: nurds, doo-sabin, cc-variant, catmull-clark or adjustable-cc.
+    /// Scheme: nurds, doo-sabin, cc-variant, catmull-clark, adjustable-cc or loop.
     #[arg(long, default_value = "nurds")]
     pub scheme: String,
     /// Valence n >= 3 of the extraordinary face (inferred from --knots/--ratios if omitted).
@@ -239,9 +239,16 @@ impl SchemeArgs {
             }
             None => (None, None),
         };
-        let scheme = subdiv_lab::scheme::registry::from_kind(kind, valence, rf, cf).map_err(lib_err)?;
+        let scheme =
+            subdiv_lab::scheme::registry::from_kind(kind, valence, rf, cf).map_err(lib_err)?;
         let exact = if exact {
-            Some(LocalScheme::from_kind_with_c(kind, valence, rq, cq).map_err(lib_err)?)
+            // The f64 configuration was accepted, so a failure here means the
+            // scheme has no exact (rational) configuration.
+            Some(
+                LocalScheme::from_kind_with_c(kind, valence, rq, cq).map_err(|e| {
+                    CliError::usage(anyhow!("--exact is not available for --scheme {kind}: {e}"))
+                })?,
+            )
         } else {
             None
         };

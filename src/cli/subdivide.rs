@@ -15,14 +15,14 @@ use std::io::Write;
 use std::path::PathBuf;
 use subdiv_lab::mesh::limit::{level_stats, limit_mesh, LevelStats};
 use subdiv_lab::mesh::refine::{half_edges_after, refine};
-use subdiv_lab::mesh::{knot_file, obj, MAX_HALF_EDGES};
+use subdiv_lab::mesh::{knot_file, obj, Mesh, MeshError, MAX_HALF_EDGES};
 use subdiv_lab::schemes::SchemeKind;
 
 #[derive(Args, Debug)]
 pub(crate) struct SubdivideArgs {
     /// Input mesh (closed, oriented OBJ).
     input: PathBuf,
-    /// Scheme: nurds, doo-sabin, cc-variant, catmull-clark or adjustable-cc.
+    /// Scheme: nurds, doo-sabin, cc-variant, catmull-clark, adjustable-cc or loop.
     #[arg(long)]
     scheme: String,
     /// Shape parameter c in [0, 1] of --scheme adjustable-cc (0.3, 1/3, 25e-2).
@@ -93,6 +93,9 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     check_outputs(&args)?;
     if scheme.is_catmull_clark_family() {
         return run_cc(args, scheme);
+    }
+    if scheme == SchemeKind::Loop {
+        return run_loop(args);
     }
     if args.c.is_some() {
         return Err(CliError::usage(anyhow!(
@@ -280,6 +283,38 @@ fn run_cc(args: SubdivideArgs, scheme: SchemeKind) -> CliResult {
             x
         }
     };
+    use subdiv_lab::mesh::catmull_clark::{limit_mesh_cc, refine_cc};
+    let rules = VertexRules {
+        refine: &|m| refine_cc(m, c),
+        limit: &|m| limit_mesh_cc(m, c),
+    };
+    vertex_centred(args, &rules)
+}
+
+/// `subdivide --scheme loop` (closed triangle meshes; math doc section 11).
+fn run_loop(args: SubdivideArgs) -> CliResult {
+    use subdiv_lab::schemes::loop_subdivision::mesh::{limit_mesh, refine};
+    if args.c.is_some() {
+        return Err(CliError::usage(anyhow!(
+            "--c is the shape parameter of --scheme adjustable-cc only"
+        )));
+    }
+    let rules = VertexRules {
+        refine: &refine,
+        limit: &limit_mesh,
+    };
+    vertex_centred(args, &rules)
+}
+
+/// One refinement step and the limit positions of a vertex-centred scheme
+/// (no knot intervals, no per-level statistics).
+struct VertexRules<'a> {
+    refine: &'a dyn Fn(&Mesh) -> Result<Mesh, MeshError>,
+    limit: &'a dyn Fn(&Mesh) -> Result<Mesh, MeshError>,
+}
+
+/// The `subdivide` flow of the vertex-centred schemes (Catmull-Clark family, Loop).
+fn vertex_centred(args: SubdivideArgs, rules: &VertexRules<'_>) -> CliResult {
     if args.knots.is_some() || args.knots_out.is_some() || args.stats {
         return Err(CliError::usage(anyhow!(
             "--knots, --knots-out and --stats are Doo-Sabin-family options"
@@ -288,17 +323,20 @@ fn run_cc(args: SubdivideArgs, scheme: SchemeKind) -> CliResult {
     let Some(path) = args.output.clone() else {
         if args.timing {
             // Timing only: fall through with no output.
-            return cc_refine_and_write(&args, c, None);
+            return refine_and_write(&args, rules, None);
         }
         return Err(CliError::usage(anyhow!(
             "nothing to do: give -o OUT.obj or --timing"
         )));
     };
-    cc_refine_and_write(&args, c, Some(path))
+    refine_and_write(&args, rules, Some(path))
 }
 
-fn cc_refine_and_write(args: &SubdivideArgs, c: f64, path: Option<PathBuf>) -> CliResult {
-    use subdiv_lab::mesh::catmull_clark::{limit_mesh_cc, refine_cc};
+fn refine_and_write(
+    args: &SubdivideArgs,
+    rules: &VertexRules<'_>,
+    path: Option<PathBuf>,
+) -> CliResult {
     let text = std::fs::read_to_string(&args.input)
         .with_context(|| format!("cannot read {}", args.input.display()))
         .map_err(CliError::usage)?;
@@ -315,7 +353,7 @@ fn cc_refine_and_write(args: &SubdivideArgs, c: f64, path: Option<PathBuf>) -> C
     check_budget(args, needed)?;
     let t = std::time::Instant::now();
     for _ in 0..args.levels {
-        mesh = refine_cc(&mesh, c).map_err(CliError::lib)?;
+        mesh = (rules.refine)(&mesh).map_err(CliError::lib)?;
     }
     let secs = t.elapsed().as_secs_f64();
     if args.timing {
@@ -329,7 +367,7 @@ fn cc_refine_and_write(args: &SubdivideArgs, c: f64, path: Option<PathBuf>) -> C
     }
     let Some(path) = path else { return Ok(()) };
     let out_mesh = if args.limit {
-        limit_mesh_cc(&mesh, c).map_err(CliError::lib)?
+        (rules.limit)(&mesh).map_err(CliError::lib)?
     } else {
         mesh
     };

@@ -76,7 +76,6 @@ use std::fmt;
 mod builtin;
 pub mod registry;
 
-
 /// How a scheme's spectrum decomposes: which closed-form structure the
 /// analysis may cross-check against (math doc sections 4, 6 and 11).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -254,7 +254,7 @@ impl Evaluate for SpectralEvaluator {
             let scratch = &mut *guard;
             let schemes = items.each_ref().map(|(_, s, _)| *s);
             let subs: [crate::Result<Option<Subdominant>>; BATCH] =
-                if self.needs_subdominant() && schemes.iter().all(|s| face_block(*s)) {
+                if self.needs_subdominant() && schemes.iter().all(|s| face_block(s)) {
                     spectral::classify_schemes_batch(scratch.each_mut().map(|w| &mut w.ws), schemes)
                         .map(|r| r.map(Some))
                 } else {

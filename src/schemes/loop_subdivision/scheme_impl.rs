@@ -7,7 +7,7 @@ use crate::charmap::report::{AnyPatchId, CharmapReport};
 use crate::error::Result;
 use crate::scheme::{Scheme, SpectralStructure};
 use crate::schemes::assembly::LocalMatrix;
-use crate::spectral::classify::{SubdominantClass, Subdominant};
+use crate::spectral::classify::{Subdominant, SubdominantClass};
 use num_complex::Complex64;
 
 /// One Loop configuration: a vertex of valence `n >= 3` whose neighbours are
