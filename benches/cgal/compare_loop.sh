@@ -3,8 +3,7 @@
 # on a Surface_mesh, harness benches/cgal/loop.cpp), OpenSubdiv 3.5 (Far
 # TopologyRefiner with Sdc::SCHEME_LOOP and PrimvarRefinerReal<double>::Interpolate,
 # harness benches/opensubdiv/osd_loop.cpp) and subdiv-lab
-# (schemes::loop_subdivision::mesh::refine through the example binary
-# `loop_subdivide`). Not part of the crate build or CI.
+# (`subdiv-lab subdivide --scheme loop`). Not part of the crate build or CI.
 #
 # Needs: Debian's libcgal-dev, libosd-dev and opensubdiv-tools
 # (`apt-get install -y libcgal-dev libosd-dev opensubdiv-tools`), g++, python3,
@@ -54,8 +53,10 @@ RUNS=${RUNS:-3}
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 
-cargo build --release --quiet --manifest-path "$ROOT/Cargo.toml" --example loop_subdivide
-OURS="$ROOT/target/release/examples/loop_subdivide"
+cargo build --release --quiet --manifest-path "$ROOT/Cargo.toml" --bin subdiv-lab
+BIN="$ROOT/target/release/subdiv-lab"
+# ours MESH LEVELS OUT [FLAGS...]: our refinement of MESH, written to OUT
+ours() { "$BIN" subdivide "$1" --scheme loop --levels "$2" -o "$3" "${@:4}"; }
 g++ -O2 -DNDEBUG -DCGAL_NDEBUG -std=c++17 -o "$WORK/cgal_loop" "$ROOT/benches/cgal/loop.cpp"
 g++ -O2 -std=c++14 -o "$WORK/osd_loop" "$ROOT/benches/opensubdiv/osd_loop.cpp" -losdCPU
 CMP="python3 $ROOT/benches/opensubdiv/compare_meshes.py"
@@ -64,18 +65,18 @@ echo "agreement with CGAL (CGAL vs ours):"
 for m in "$ROOT/analysis/meshes/tetrahedron.obj" "$ROOT/analysis/meshes/icosahedron.obj" "$ROOT"/analysis/meshes/triangles/*.obj; do
   for l in 1 2 3; do
     "$WORK/cgal_loop" "$m" "$l" "$WORK/cgal.obj" >/dev/null
-    "$OURS" "$m" "$l" "$WORK/ours.obj"
+    ours "$m" "$l" "$WORK/ours.obj"
     printf '%-18s L%d  %s\n' "$(basename "$m" .obj)" "$l" "$($CMP "$WORK/cgal.obj" "$WORK/ours.obj")"
   done
 done
 
-"$OURS" "$ROOT/analysis/meshes/triangles/bipyramid_3_12.obj" 6 "$WORK/input.obj"
+ours "$ROOT/analysis/meshes/triangles/bipyramid_3_12.obj" 6 "$WORK/input.obj"
 IN_FACES=$(grep -c '^f ' "$WORK/input.obj")
 
 best() { sort -g | head -1; }
 # row NAME CMD...: best of RUNS refinement seconds and peak RSS of a harness
 # that prints "faces=F ... seconds=S ..." on standard output (ours: the
-# example's --timing line on standard error, rewritten to that form).
+# `--timing` line on standard error, rewritten to that form).
 row() {
   local name=$1; shift
   local ts=() ms=() faces="" line
@@ -100,4 +101,4 @@ printf '| %-21s | %12s | %10s | %16s | %14s |\n' "tool" "out faces" "refine s" "
 printf '|%s|%s|%s|%s|%s|\n' "-----------------------" "--------------" "------------" "------------------" "----------------"
 row "CGAL 5.5" "$WORK/cgal_loop" "$WORK/input.obj" "$LEVELS"
 row "OpenSubdiv 3.5 (Far)" "$WORK/osd_loop" "$WORK/input.obj" "$LEVELS"
-row subdiv-lab "$OURS" "$WORK/input.obj" "$LEVELS" --timing
+row subdiv-lab "$BIN" subdivide "$WORK/input.obj" --scheme loop --levels "$LEVELS" --timing

@@ -1,7 +1,6 @@
 #!/bin/sh
 # Compare subdiv-lab's Loop subdivision (library functions
-# schemes::loop_subdivision::mesh::{refine, limit_mesh}, through the example
-# binary `loop_subdivide`) with OpenSubdiv 3.5's Loop scheme (Debian packages
+# `subdiv-lab subdivide --scheme loop [--limit]`) with OpenSubdiv 3.5's Loop scheme (Debian packages
 # libosd-dev, opensubdiv-tools; harness benches/opensubdiv/osd_loop.cpp) on the
 # shipped triangle meshes. Not part of the crate's build or CI. Run from the
 # repository root:
@@ -35,19 +34,20 @@ LEVELS=${1:-3}
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 g++ -O2 -std=c++14 -o "$TMP/osd_loop" benches/opensubdiv/osd_loop.cpp -losdCPU
-cargo build --release -q --example loop_subdivide
-OURS=./target/release/examples/loop_subdivide
+cargo build --release -q --bin subdiv-lab
+# ours MESH LEVELS OUT [FLAGS...]: `subdiv-lab subdivide --scheme loop`
+ours() { ./target/release/subdiv-lab subdivide "$1" --scheme loop --levels "$2" -o "$3" "${@:4}"; }
 CMP="python3 benches/opensubdiv/compare_meshes.py"
 printf '%-22s %-7s %s\n' "mesh" "what" "OpenSubdiv vs ours"
 for m in analysis/meshes/tetrahedron.obj analysis/meshes/icosahedron.obj analysis/meshes/triangles/*.obj; do
   name=$(basename "$m" .obj)
   for l in $(seq 0 "$LEVELS"); do
     if [ "$l" -gt 0 ]; then
-      "$OURS" "$m" "$l" "$TMP/ours.obj"
+      ours "$m" "$l" "$TMP/ours.obj"
       "$TMP/osd_loop" "$m" "$l" "$TMP/osd.obj" >/dev/null
       printf '%-22s %-7s %s\n' "$name" "L$l" "$($CMP "$TMP/osd.obj" "$TMP/ours.obj")"
     fi
-    "$OURS" "$m" "$l" "$TMP/ours_limit.obj" --limit
+    ours "$m" "$l" "$TMP/ours_limit.obj" --limit
     "$TMP/osd_loop" "$m" "$l" "$TMP/osd_limit.obj" --limit >/dev/null
     printf '%-22s %-7s %s\n' "$name" "limit$l" "$($CMP "$TMP/osd_limit.obj" "$TMP/ours_limit.obj")"
   done
