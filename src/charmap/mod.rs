@@ -383,7 +383,7 @@ pub fn check_ring(ring: &Ring, delta: f64, structure: Eigenstructure) -> Charmap
 
 /// The verdict from a regularity result and the certified winding numbers
 /// (shared by both scheme families).
-fn assemble_report<P>(
+pub(crate) fn assemble_report<P>(
     reg: Regularity<P>,
     winding: Option<i64>,
     inner: Option<i64>,

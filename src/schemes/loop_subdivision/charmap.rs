@@ -53,7 +53,9 @@ use super::{check_size, TwoRing};
 use crate::bezier::BezierCurve;
 use crate::charmap::regularity::{gamma, DomainPoint, Regularity, RegularityVerdict};
 use crate::charmap::winding::winding_number;
-use crate::charmap::{propagated_error, CharmapReport, Eigenstructure, PlanarBasis, Verdict};
+use crate::charmap::{
+    assemble_report, propagated_error, CharmapReport, Eigenstructure, PlanarBasis,
+};
 use crate::error::{Error, Result};
 use num_complex::Complex64;
 use std::fmt;
@@ -491,34 +493,7 @@ pub fn check_ring(ring: &LoopRing, delta: f64) -> CharmapReport<LoopPatchId> {
     };
     let winding = winding_number(&r.outer_boundary(), delta);
     let inner = winding_number(&r.inner_boundary(), delta);
-    let verdict = match (reg.verdict, winding) {
-        _ if !delta.is_finite() => Verdict::Indeterminate {
-            reason: "the subdominant invariant subspace is not certified (Stewart's \
-                     separation hypothesis fails)"
-                .to_owned(),
-        },
-        (RegularityVerdict::NotRegular, _) => Verdict::NotRegular,
-        (RegularityVerdict::Indeterminate, _) => Verdict::Indeterminate {
-            reason: format!(
-                "Jacobian sign not certified (min coefficient {:.3e}, error bound {:.3e}, relative)",
-                reg.min_coeff, reg.relative_error_bound
-            ),
-        },
-        (RegularityVerdict::Regular, None) => Verdict::Indeterminate {
-            reason: "winding number not certified (boundary within rounding of the origin)"
-                .to_owned(),
-        },
-        (RegularityVerdict::Regular, Some(1)) => Verdict::C1Standard,
-        (RegularityVerdict::Regular, Some(w)) => Verdict::NotInjective { winding: w },
-    };
-    CharmapReport {
-        structure: Some(Eigenstructure::Standard),
-        regularity: Some(reg),
-        winding_number: winding,
-        inner_winding_number: inner,
-        point_error: delta,
-        verdict,
-    }
+    assemble_report(reg, winding, inner, delta, Eigenstructure::Standard)
 }
 
 /// The characteristic ring of valence `n` with its planar basis and the
@@ -599,6 +574,7 @@ pub fn check(n: usize) -> Result<CharmapReport<LoopPatchId>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::charmap::Verdict;
 
     #[test]
     fn valences_3_to_12_are_certified_c1() {
