@@ -564,4 +564,50 @@ mod tests {
             assert!(((a - b) / b).abs() < 1e-11, "{a} vs {b}");
         }
     }
+
+    /// `exp2i` against repeated exact halving and doubling (every power of two
+    /// from `2^-1074` to `2^1023` is an `f64`), at every `k`, and its
+    /// saturation just outside that range.
+    #[test]
+    fn exp2i_is_every_power_of_two_and_saturates() {
+        let mut x = 1.0f64;
+        for k in 0..=1023 {
+            assert_eq!(exp2i(k), x, "2^{k}");
+            x *= 2.0;
+        }
+        assert_eq!(exp2i(1024), f64::INFINITY);
+        assert_eq!(exp2i(5000), f64::INFINITY);
+        let mut x = 1.0f64;
+        for k in 0..=1074 {
+            assert_eq!(exp2i(-k), x, "2^-{k}");
+            x /= 2.0;
+        }
+        assert_eq!(exp2i(-1074), f64::from_bits(1));
+        assert_eq!(exp2i(-1075), 0.0);
+        assert_eq!(exp2i(-5000), 0.0);
+    }
+
+    /// Extended-exponent sums whose terms are more than `2^1024` apart, in
+    /// both orders: the small term vanishes and the big one comes back
+    /// exactly (no overflow in aligning the mantissas); `mul` and `div` keep
+    /// exponents beyond the `f64` range.
+    #[test]
+    fn ext_float_sums_of_far_apart_terms() {
+        let (big, small) = (ExtFloat::new(1e300), ExtFloat::new(1e-300));
+        for sum in [big.add(small), small.add(big)] {
+            assert_eq!(sum.to_f64(), 1e300);
+            assert_eq!(sum.ratio(big), 1.0);
+        }
+        let (a, b) = (ExtFloat::new(3.0), ExtFloat::new(0.75));
+        assert_eq!(a.add(b).to_f64(), 3.75);
+        assert_eq!(b.add(a).to_f64(), 3.75);
+        // x^2 / x = x for x = 1.5 * 2^(+-900) (mantissa products exact;
+        // the squares are beyond the f64 range)
+        for x in [1.5 * exp2i(900), 1.5 * exp2i(-900)] {
+            let e = ExtFloat::new(x);
+            let sq = e.mul(e);
+            assert_eq!(sq.to_f64(), if x > 1.0 { f64::INFINITY } else { 0.0 });
+            assert_eq!(sq.div(e).to_f64(), x);
+        }
+    }
 }

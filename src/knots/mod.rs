@@ -403,4 +403,134 @@ mod tests {
         let r = EdgeRatios::vertex_ep(&[1.0, 2.0, 3.0, 4.0]).unwrap();
         assert_eq!(r.as_slice(), &[0.75, 4.0 / 6.0, 0.25, 2.0 / 6.0]);
     }
+
+    /// A ratio that rounds to 1 in `f64` (its complement `s_0 = p_0 / (p_0 +
+    /// q_1)` is about `1e-600`) is refused naming the edge and "rounds to 1";
+    /// one that rounds to 0 names "rounds to 0" (the other side, also in
+    /// tests/knots.rs). Both reach `from_edge_pairs` through `ratios` and
+    /// through the face-EP preset.
+    #[test]
+    fn ratios_that_round_to_zero_or_one_name_the_edge() {
+        let k = CornerIntervals::new(vec![1.0, 1e-300, 1.0], vec![1.0, 1.0, 1e300]).unwrap();
+        let e = k.ratios().unwrap_err();
+        assert!(
+            matches!(&e, Error::RatioNotRepresentable { index: 1, rounded: "1", value } if value.contains("1e300")),
+            "{e:?}"
+        );
+        let e = EdgeRatios::face_ep(&[1.0, 1.0, 1e-300], &[1.0, 1.0, 1e300]).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::RatioNotRepresentable {
+                    index: 2,
+                    rounded: "1",
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let e = EdgeRatios::face_ep(&[1.0, 1e300, 1.0], &[1.0, 1e-300, 1.0]).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::RatioNotRepresentable {
+                    index: 1,
+                    rounded: "0",
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+    }
+
+    /// Exact ratios outside the `f64` range: `r_1 = 1 / (1e400/3 + 1)` rounds
+    /// to 0 and `r_2 = (1e400/3) / (1 + 1e400/3)` rounds to 1 (its complement
+    /// to 0); `to_f64_checked` names the first such edge and which way it
+    /// rounds, and passes representable ratios through unchanged.
+    #[test]
+    fn exact_ratios_beyond_f64_are_refused_by_to_f64_checked() {
+        let big = crate::scalar::parse_exact("1e400/3").unwrap();
+        let one = Rational::frac(1, 1);
+        // edge 1: p_1 = big, q_2 = 1 -> r_1 ~ 3e-400
+        let k = CornerIntervals::new(
+            vec![one.clone(), big.clone(), one.clone()],
+            vec![one.clone(); 3],
+        )
+        .unwrap();
+        let e = k.ratios().unwrap().to_f64_checked().unwrap_err();
+        assert!(
+            matches!(&e, Error::RatioNotRepresentable { index: 1, rounded: "0", value } if value.contains("e-400")),
+            "{e:?}"
+        );
+        // edge 2: p_2 = 1, q_0 = big -> s_2 ~ 3e-400, r_2 rounds to 1
+        let k = CornerIntervals::new(vec![one.clone(); 3], vec![big, one.clone(), one.clone()])
+            .unwrap();
+        let e = k.ratios().unwrap().to_f64_checked().unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::RatioNotRepresentable {
+                    index: 2,
+                    rounded: "1",
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let rq = EdgeRatios::<Rational>::new(vec![
+            Rational::frac(1, 3),
+            Rational::frac(1, 4),
+            Rational::frac(3, 4),
+        ])
+        .unwrap();
+        let rf = rq.to_f64_checked().unwrap();
+        assert_eq!(rf, rq.to_f64());
+        assert_eq!(rf.as_slice(), &[1.0 / 3.0, 0.25, 0.75]);
+        assert_eq!(rf.complement(), &[2.0 / 3.0, 0.75, 0.25]);
+    }
+
+    /// `rotated` and `get` against the definitions, and rotating the ratios
+    /// equals taking the ratios of the rotated corner intervals.
+    #[test]
+    fn rotation_and_cyclic_indexing() {
+        let r = EdgeRatios::new(vec![0.125, 0.25, 0.375, 0.5, 0.625]).unwrap();
+        let rot = r.rotated(2);
+        assert_eq!(rot.as_slice(), &[0.375, 0.5, 0.625, 0.125, 0.25]);
+        assert_eq!(rot.complement(), &[0.625, 0.5, 0.375, 0.875, 0.75]);
+        assert_eq!(r.rotated(0), r);
+        assert_eq!(r.rotated(5), r);
+        for (i, want) in [
+            (-6, 0.625),
+            (-1, 0.625),
+            (0, 0.125),
+            (2, 0.375),
+            (4, 0.625),
+            (7, 0.375),
+        ] {
+            assert_eq!(*r.get(i), want, "r.get({i})");
+        }
+        let k = CornerIntervals::new(vec![1.0, 2.0, 0.5, 3.0, 1.5], vec![0.7, 1.1, 2.0, 0.3, 1.0])
+            .unwrap();
+        for s in 0..5 {
+            assert_eq!(
+                k.rotated(s).ratios().unwrap(),
+                k.ratios().unwrap().rotated(s)
+            );
+        }
+    }
+
+    #[test]
+    fn only_all_halves_are_uniform() {
+        assert!(EdgeRatios::<f64>::uniform(4).unwrap().is_uniform());
+        assert!(EdgeRatios::new(vec![0.5; 3]).unwrap().is_uniform());
+        assert!(!EdgeRatios::new(vec![0.5, 0.5, 0.25]).unwrap().is_uniform());
+        let q = EdgeRatios::<Rational>::new(vec![
+            Rational::frac(1, 2),
+            Rational::frac(1, 3),
+            Rational::frac(1, 2),
+        ])
+        .unwrap();
+        assert!(!q.is_uniform());
+        assert!(EdgeRatios::<Rational>::uniform(3).unwrap().is_uniform());
+    }
 }
