@@ -79,7 +79,7 @@ fn condition_number_of_normal_and_jordan() {
     assert!(k > 1e8, "{k}");
 }
 
-fn random_matrix(rng: &mut crate::contraction::SplitMix64, n: usize) -> Vec<f64> {
+fn random_matrix(rng: &mut crate::rng::SplitMix64, n: usize) -> Vec<f64> {
     (0..n * n).map(|_| rng.uniform(-1.0, 1.0)).collect()
 }
 
@@ -99,7 +99,7 @@ fn eig_of(ws: &mut KernelWorkspace, a: &[f64], n: usize) -> Vec<Complex64> {
 fn real_and_complex_inverse_iteration_agree_for_real_eigenvalues() {
     // The real-arithmetic path for real lambda must give the condition
     // number the complex path gives for the same lambda.
-    let mut rng = crate::contraction::SplitMix64::new(5);
+    let mut rng = crate::rng::SplitMix64::new(5);
     let mut ws = KernelWorkspace::new();
     let mut checked = 0;
     for trial in 0..60 {
@@ -132,7 +132,7 @@ fn interleaved_condition_numbers_equal_lone_ones_bit_for_bit() {
     // Lanes share loops but not arithmetic: any mix of real and complex
     // eigenvalues, in groups of up to LANES, gives exactly the numbers of
     // one call per eigenvalue.
-    let mut rng = crate::contraction::SplitMix64::new(11);
+    let mut rng = crate::rng::SplitMix64::new(11);
     let mut ws = KernelWorkspace::new();
     let mut mixed = 0;
     for trial in 0..40 {
@@ -170,7 +170,7 @@ fn lone_bits(lone: &mut KernelWorkspace, a: &[f64], n: usize) -> Option<Vec<u64>
 }
 
 /// Matrices that exercise every branch of the lock-step kernel.
-fn lockstep_cases(rng: &mut crate::contraction::SplitMix64, n: usize, trial: usize) -> Vec<f64> {
+fn lockstep_cases(rng: &mut crate::rng::SplitMix64, n: usize, trial: usize) -> Vec<f64> {
     let mut a = random_matrix(rng, n);
     match trial % 8 {
         // sparse: exact zeros, whole zero columns (Hessenberg steps skipped
@@ -207,7 +207,7 @@ fn lockstep_cases(rng: &mut crate::contraction::SplitMix64, n: usize, trial: usi
 
 #[test]
 fn lockstep_batches_equal_lone_calls_bit_for_bit() {
-    let mut rng = crate::contraction::SplitMix64::new(77);
+    let mut rng = crate::rng::SplitMix64::new(77);
     let mut ws: Vec<KernelWorkspace> = (0..BATCH).map(|_| KernelWorkspace::new()).collect();
     let mut lone = KernelWorkspace::new();
     let (mut compared, mut failed) = (0, 0);
@@ -263,7 +263,7 @@ fn extreme_scales_take_the_rescaled_reflector_path() {
     // QR sweeps rescale (p, q, r); at ~2^+-400 they are inside and do not.
     // Either way the spectrum must scale along (squares of the entries,
     // formed by the shifts, stay normal numbers).
-    let mut rng = crate::contraction::SplitMix64::new(9);
+    let mut rng = crate::rng::SplitMix64::new(9);
     let mut ws = KernelWorkspace::new();
     for trial in 0..40 {
         let n = 3 + trial % 15;
@@ -311,7 +311,7 @@ fn adversarial_inputs_agree_with_faer() {
     use crate::schemes::LocalScheme;
     use nalgebra::DMatrix;
     let mut ws = KernelWorkspace::new();
-    let mut rng = crate::contraction::SplitMix64::new(2024);
+    let mut rng = crate::rng::SplitMix64::new(2024);
     // NURDS face blocks with extreme ratios (1e-6 and 1 - 1e-6 mixed in).
     for trial in 0..60 {
         let n = 3 + trial % 20;
