@@ -1,78 +1,55 @@
 //! Eigenvalue condition numbers of the kernel's last input by inverse
 //! iteration on its saved Hessenberg form, several eigenvalues interleaved.
 
-use super::KernelWorkspace;
 use num_complex::Complex64;
 
-impl KernelWorkspace {
-    /// The eigenvalue condition number `kappa = ||x|| ||y|| / |y^H x|` of the
-    /// (computed) eigenvalue `lambda` of the input last passed to
-    /// [`KernelWorkspace::eigenvalues`], with right and left eigenvectors `x`,
-    /// `y` from one step of inverse iteration (from a fixed non-special start
-    /// vector; one step suffices because `lambda` is accurate to rounding, so
-    /// the amplification of the eigenvector component is `~ gap / eps`).
-    ///
-    /// Works on the saved Hessenberg form `H = Q^T A Q` (`kappa` is invariant
-    /// under orthogonal similarity), so one call costs `O(n^2)`: an LU
-    /// factorisation of the Hessenberg matrix `H - lambda I` with adjacent-row
-    /// pivoting and four triangular solves.
-    ///
-    /// `kappa >= 1`; a value near `1 / eps` means `lambda` is (numerically) a
-    /// multiple eigenvalue with a non-trivial Jordan block, or an ill-matched
-    /// pair of vectors in a multi-dimensional eigenspace.
-    pub fn condition_number(&mut self, lambda: Complex64) -> f64 {
-        let mut out = [0.0];
-        self.condition_numbers(&[lambda], &mut out);
-        out[0]
+/// The body of [`KernelWorkspace::condition_numbers`](super::KernelWorkspace::condition_numbers)
+/// on the workspace's parts: the dimension `n`, the saved Hessenberg form
+/// `hess_form` and its Frobenius norm, and the inverse-iteration storage.
+pub(super) fn condition_numbers(
+    n: usize,
+    hess_form: &[f64],
+    hess_norm: f64,
+    st_real: &mut LaneStorage<f64>,
+    st_complex: &mut LaneStorage<Complex64>,
+    lambdas: &[Complex64],
+    out: &mut [f64],
+) {
+    let lambdas = &lambdas[..lambdas.len().min(out.len())];
+    if n == 0 {
+        out[..lambdas.len()].iter_mut().for_each(|k| *k = 1.0);
+        return;
     }
-
-    /// [`condition_number`](Self::condition_number) of several eigenvalues at
-    /// once: `out[i]` for `lambdas[i]`, for `i < min(lambdas.len(), out.len())`.
-    ///
-    /// The inverse iterations of up to three eigenvalues run interleaved, as
-    /// lanes of one loop (real eigenvalues in real arithmetic, complex ones in
-    /// complex arithmetic): each lane's arithmetic is exactly that of a lone
-    /// call, but the processor overlaps their dependency chains (the pivot
-    /// divisions of the LU factorisation, the substitutions), so three
-    /// condition numbers cost little more than one.
-    pub fn condition_numbers(&mut self, lambdas: &[Complex64], out: &mut [f64]) {
-        let n = self.n;
-        let lambdas = &lambdas[..lambdas.len().min(out.len())];
-        if n == 0 {
-            out[..lambdas.len()].iter_mut().for_each(|k| *k = 1.0);
-            return;
-        }
-        let tiny = f64::EPSILON * self.hess_norm.max(f64::MIN_POSITIVE);
-        let hess = &self.hess[..n * n];
-        // Real eigenvalues of a real matrix: real arithmetic throughout (the
-        // LU, pivots and vectors the complex path computes, up to rounding,
-        // at about a quarter of the cost; tested below).
-        let mut real = [(0usize, 0.0f64); LANES];
-        let mut complex = [(0usize, Complex64::new(0.0, 0.0)); LANES];
-        let (mut nr, mut nc) = (0, 0);
-        for (i, &z) in lambdas.iter().enumerate() {
-            if z.im == 0.0 {
-                real[nr] = (i, z.re);
-                nr += 1;
-                if nr == LANES {
-                    lanes(n, hess, &real, tiny, &mut self.real, out);
-                    nr = 0;
-                }
-            } else {
-                complex[nc] = (i, z);
-                nc += 1;
-                if nc == LANES {
-                    lanes(n, hess, &complex, tiny, &mut self.complex, out);
-                    nc = 0;
-                }
+    let tiny = f64::EPSILON * hess_norm.max(f64::MIN_POSITIVE);
+    let hess = &hess_form[..n * n];
+    // Real eigenvalues of a real matrix: real arithmetic throughout (the
+    // LU, pivots and vectors the complex path computes, up to rounding,
+    // at about a quarter of the cost; tested below).
+    let mut real = [(0usize, 0.0f64); LANES];
+    let mut complex = [(0usize, Complex64::new(0.0, 0.0)); LANES];
+    let (mut nr, mut nc) = (0, 0);
+    for (i, &z) in lambdas.iter().enumerate() {
+        if z.im == 0.0 {
+            real[nr] = (i, z.re);
+            nr += 1;
+            if nr == LANES {
+                lanes(n, hess, &real, tiny, st_real, out);
+                nr = 0;
+            }
+        } else {
+            complex[nc] = (i, z);
+            nc += 1;
+            if nc == LANES {
+                lanes(n, hess, &complex, tiny, st_complex, out);
+                nc = 0;
             }
         }
-        lanes(n, hess, &real[..nr], tiny, &mut self.real, out);
-        lanes(n, hess, &complex[..nc], tiny, &mut self.complex, out);
     }
+    lanes(n, hess, &real[..nr], tiny, st_real, out);
+    lanes(n, hess, &complex[..nc], tiny, st_complex, out);
 }
 
-/// Most inverse iterations [`KernelWorkspace::condition_numbers`] interleaves.
+/// Most inverse iterations [`condition_numbers`] interleaves.
 const LANES: usize = 3;
 
 /// Storage of the interleaved inverse iterations: entry `e` of lane `l` at
