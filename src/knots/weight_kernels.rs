@@ -1,10 +1,11 @@
 //! The kernels of the face-point weights (math doc section 3): the closed
 //! form in generic exact or plain arithmetic, fraction-free for rationals, and
 //! with extended exponents for `f64` (formulas and error bounds in
-//! [`super::face_weights`]).
+//! [`super::face_weights`](mod@super::face_weights)).
 //!
 //! A leaf: it uses no other module of the crate, so that [`crate::scalar`]
-//! can dispatch to these kernels while [`super::face_weights`] is generic over
+//! can dispatch to these kernels while
+//! [`super::face_weights`](mod@super::face_weights) is generic over
 //! [`crate::scalar::Scalar`].
 
 use num_rational::BigRational as Rational;
