@@ -17,8 +17,8 @@
 
 use divan::counter::ItemsCount;
 use divan::Bencher;
-use subdiv_lab::contraction::SplitMix64;
 use subdiv_lab::knots::EdgeRatios;
+use subdiv_lab::rng::SplitMix64;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};
 use subdiv_lab::spectral::kernel::{KernelWorkspace, BATCH};

@@ -18,22 +18,9 @@ use rayon::prelude::*;
 use std::collections::BTreeMap;
 use subdiv_lab::charmap::check;
 use subdiv_lab::knots::EdgeRatios;
+use subdiv_lab::rng::SplitMix64;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::classify_scheme;
-
-struct SplitMix64(u64);
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
 
 #[derive(Default)]
 struct Row {
@@ -69,7 +56,7 @@ fn main() {
         let results: Vec<(String, Option<Outcome>)> = (0..samples)
             .into_par_iter()
             .map(|k| {
-                let mut rng = SplitMix64(seed ^ ((n as u64) << 32) ^ k as u64);
+                let mut rng = SplitMix64::new(seed ^ ((n as u64) << 32) ^ k as u64);
                 let r: Vec<f64> = (0..n).map(|_| rng.uniform(lo, hi)).collect();
                 let s = LocalScheme::nurds(EdgeRatios::new(r).expect("ratios in (0, 1)"));
                 let class = match classify_scheme(&s) {

@@ -9,8 +9,8 @@
 //! `benches/compare_numpy.sh` can tabulate both.
 
 use std::time::Instant;
-use subdiv_lab::contraction::SplitMix64;
 use subdiv_lab::knots::EdgeRatios;
+use subdiv_lab::rng::SplitMix64;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};
 use subdiv_lab::spectral::kernel::BATCH;

@@ -35,6 +35,10 @@ use crate::schemes::LocalScheme;
 use nalgebra::DMatrix;
 use serde::Serialize;
 
+/// The generator of the random control points (moved to [`crate::rng`];
+/// re-exported here so that existing paths keep working).
+pub use crate::rng::SplitMix64;
+
 /// Tolerance on `|row sum - 3/4|` and on negative weights for `f64` input: the
 /// weights are sums of at most three terms of size `<= 1`, each rounded, so
 /// their error is below `8 eps`; `1e-13` leaves room for the `c_j` (accurate to
@@ -274,34 +278,6 @@ pub fn certify_face_block<T: Scalar>(
         face_point_invariant,
         matches_assembly,
     })
-}
-
-/// SplitMix64 (Steele, Lea and Flood 2014): a tiny, deterministic, seedable
-/// generator, good enough for random test geometry (not for cryptography).
-#[derive(Clone, Debug)]
-pub struct SplitMix64(u64);
-
-impl SplitMix64 {
-    /// A generator with the given seed.
-    pub fn new(seed: u64) -> Self {
-        Self(seed)
-    }
-    /// Next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in `[0, 1)` (53 random bits).
-    pub fn next_f64(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-    /// Uniform in `[lo, hi)`.
-    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
 }
 
 /// Options of the measured contraction.

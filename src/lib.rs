@@ -46,9 +46,11 @@ pub mod ccss_bound;
 pub mod charmap;
 pub mod contraction;
 pub mod error;
+pub mod hash;
 pub mod knots;
 pub mod mesh;
 pub mod report;
+pub mod rng;
 pub mod scalar;
 pub mod scheme;
 pub mod schemes;
@@ -56,6 +58,7 @@ pub mod spectral;
 pub mod sweep;
 #[cfg(feature = "testing")]
 pub mod testing;
+pub mod toml_location;
 
 pub use error::{Error, Result};
 pub use scheme::Scheme;

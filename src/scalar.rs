@@ -48,7 +48,7 @@ pub trait Scalar:
     /// overrides it with an overflow-free extended-exponent evaluation.
     #[doc(hidden)]
     fn face_weights_kernel(r: &[Self], s: &[Self]) -> Vec<Self> {
-        crate::knots::face_weights::generic_kernel(r, s)
+        crate::knots::weight_kernels::generic_kernel(r, s)
     }
 }
 
@@ -67,7 +67,7 @@ impl Scalar for f64 {
         format!("{self:?}")
     }
     fn face_weights_kernel(r: &[Self], s: &[Self]) -> Vec<Self> {
-        crate::knots::face_weights::f64_kernel(r, s)
+        crate::knots::weight_kernels::f64_kernel(r, s)
     }
     fn edge_ratio(a: &Self, b: &Self) -> (Self, Self) {
         if !(*a > 0.0 && *b > 0.0 && a.is_finite() && b.is_finite()) {
@@ -75,7 +75,7 @@ impl Scalar for f64 {
             let sum = a + b;
             return (b / sum, a / sum);
         }
-        let (r, s) = crate::knots::face_weights::edge_ratio_ext(*a, *b);
+        let (r, s) = crate::knots::weight_kernels::edge_ratio_ext(*a, *b);
         (r.to_f64(), s.to_f64())
     }
     fn from_f64_lossless(x: f64) -> Self {
@@ -98,7 +98,7 @@ impl Scalar for Rational {
         Rational::from_float(x).unwrap_or_else(Rational::zero)
     }
     fn face_weights_kernel(r: &[Self], s: &[Self]) -> Vec<Self> {
-        crate::knots::face_weights::rational_kernel(r, s)
+        crate::knots::weight_kernels::rational_kernel(r, s)
     }
     fn to_text(&self) -> String {
         if self.denom().is_one() {

@@ -17,6 +17,7 @@ use subdiv_lab::charmap::{
     check, check_basis, CharmapReport, Eigenstructure, PlanarBasis, Verdict,
 };
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
+use subdiv_lab::rng::Lcg64;
 use subdiv_lab::scalar::{Rational, Scalar};
 use subdiv_lab::schemes::LocalScheme;
 
@@ -613,13 +614,8 @@ proptest! {
 #[test]
 fn indeterminate_is_rare_for_random_nurds_knots() {
     // Deterministic LCG sampler, 200 configurations per n = 3..8.
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut next = || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        0.01 + 0.98 * ((state >> 11) as f64 / (1u64 << 53) as f64)
-    };
+    let mut state = Lcg64::new(0x2545_f491_4f6c_dd1du64);
+    let mut next = || 0.01 + 0.98 * state.next_f64();
     let mut total = 0;
     let mut indeterminate = 0;
     for n in 3..=8 {
@@ -647,13 +643,8 @@ fn structured_subspace_equals_the_full_eigenvector_subspace() {
     // vs. eigenvectors of the full 4n x 4n matrix (faer): same plane, and the
     // same verdict and min coefficient.
     use subdiv_lab::charmap::basis::subdominant_basis;
-    let mut state = 7u64;
-    let mut next = || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        0.01 + 0.98 * ((state >> 11) as f64 / (1u64 << 53) as f64)
-    };
+    let mut state = Lcg64::new(7u64);
+    let mut next = || 0.01 + 0.98 * state.next_f64();
     let mut schemes = vec![
         LocalScheme::<f64>::cc_variant(7).unwrap(),
         LocalScheme::<f64>::doo_sabin(5).unwrap(),

@@ -7,6 +7,7 @@ use subdiv_lab::mesh::limit::{refine_with_stats, LevelStats};
 use subdiv_lab::mesh::obj::{parse_obj, write_obj_string};
 use subdiv_lab::mesh::refine::{refine, refine_levels};
 use subdiv_lab::mesh::{generators, Mesh};
+use subdiv_lab::rng::Lcg64;
 use subdiv_lab::schemes::SchemeKind;
 
 fn mesh_dir() -> PathBuf {
@@ -101,13 +102,8 @@ fn check_contraction(name: &str, stats: &[LevelStats]) -> usize {
 
 #[test]
 fn extraordinary_faces_contract_by_three_quarters() {
-    let mut state = 12345u64;
-    let mut rnd = move || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut state = Lcg64::new(12345u64);
+    let mut rnd = move || state.next_f64();
     let mut total = 0;
     for (name, mesh) in generators::shipped() {
         for scheme in [

@@ -4,8 +4,8 @@
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use proptest::prelude::*;
-use subdiv_lab::contraction::SplitMix64;
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
+use subdiv_lab::rng::SplitMix64;
 use subdiv_lab::scalar::{Rational, Scalar};
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};

@@ -202,11 +202,10 @@ proptest! {
         let patch = ExtraordinaryPatch::new(n).unwrap();
         let family = default_family(n).unwrap();
         let report = bound(n, 3).unwrap();
-        let mut state = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        let mut rnd = || {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
+        // The first state is one LCG step from the seed.
+        let mut lcg = crate::rng::Lcg64::new(seed);
+        lcg.next_u64();
+        let mut rnd = || lcg.next_f64() * 2.0 - 1.0;
         let net: Vec<Vec<f64>> = (0..patch.len()).map(|_| vec![rnd(), rnd(), rnd()]).collect();
         let m = family.max_norm(&net).unwrap();
         let corners = patch.corner_limits().unwrap();

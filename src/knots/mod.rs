@@ -23,6 +23,7 @@
 //! V-face of an initial valence-n vertex).
 
 pub mod face_weights;
+pub(crate) mod weight_kernels;
 
 pub use face_weights::{face_weights, stationary_distribution};
 

@@ -7,7 +7,7 @@
 //! nothing here touches the file system or the system fonts.
 
 use super::error::ReportError;
-use super::plot::ensure_font;
+use super::font::ensure_font;
 use plotters::coord::Shift;
 use plotters::prelude::{BitMapBackend, DrawingArea, IntoDrawingArea, SVGBackend};
 use plotters_backend::{
@@ -180,7 +180,7 @@ pub fn encode_png(rgb: &[u8], (w, h): (u32, u32)) -> Result<Vec<u8>, ReportError
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::plot::FONT_FAMILY;
+    use crate::report::font::FONT_FAMILY;
     use plotters::prelude::*;
 
     fn draw_text(area: &Area<'_>) -> Result<(), ReportError> {

@@ -39,6 +39,7 @@ pub mod backend;
 pub mod config;
 pub mod error;
 pub mod figures;
+pub mod font;
 pub mod html;
 pub mod plot;
 pub mod rng;

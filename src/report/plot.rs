@@ -20,32 +20,8 @@ use plotters::element::{Drawable, PointCollection};
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
 use plotters_backend::{BackendCoord, DrawingErrorKind};
-use std::sync::OnceLock;
 
-/// The bundled font (DejaVu Sans, Bitstream Vera licence).
-pub static FONT_DATA: &[u8] = include_bytes!("fonts/DejaVuSans.ttf");
-/// The family name the bundled font is registered under.
-pub const FONT_FAMILY: &str = "sans-serif";
-
-/// Registers the bundled font with plotters (once per process).
-pub fn ensure_font() -> Result<(), ReportError> {
-    static DONE: OnceLock<bool> = OnceLock::new();
-    let ok = *DONE.get_or_init(|| {
-        [
-            FontStyle::Normal,
-            FontStyle::Bold,
-            FontStyle::Italic,
-            FontStyle::Oblique,
-        ]
-        .into_iter()
-        .all(|s| plotters::style::register_font(FONT_FAMILY, s, FONT_DATA).is_ok())
-    });
-    if ok {
-        Ok(())
-    } else {
-        Err(ReportError::Font)
-    }
-}
+pub use super::font::{ensure_font, FONT_DATA, FONT_FAMILY};
 
 /// Text and line sizes for a figure of a given pixel size.
 ///

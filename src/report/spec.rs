@@ -178,7 +178,7 @@ fn toml_error(src: &str, e: toml::de::Error, key: Option<String>) -> ReportError
     let message = e.message().trim().to_owned();
     let found = span
         .as_ref()
-        .and_then(|s| super::error::key_path_in_tree(src, s.start));
+        .and_then(|s| crate::toml_location::key_path_in_tree(src, s.start));
     let missing = message
         .strip_prefix("missing field `")
         .and_then(|m| m.strip_suffix('`'));

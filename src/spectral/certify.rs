@@ -1014,7 +1014,7 @@ mod tests {
 
     #[test]
     fn multimodular_charpoly_matches_rational_hessenberg() {
-        let mut rng = crate::contraction::SplitMix64::new(3);
+        let mut rng = crate::rng::SplitMix64::new(3);
         for m in [1usize, 2, 3, 6, 9] {
             let a = DMatrix::from_fn(m, m, |_, _| {
                 let num = (rng.next_u64() % 41) as i64 - 20;

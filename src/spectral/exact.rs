@@ -742,8 +742,8 @@ fn verdict(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contraction::SplitMix64;
     use crate::knots::{CornerIntervals, EdgeRatios};
+    use crate::rng::SplitMix64;
 
     fn q(a: i64, b: i64) -> Rational {
         Rational::new(a.into(), b.into())

@@ -17,13 +17,7 @@
 //! is fully reproducible, but its higher-dimensional projections are not the
 //! Joe-Kuo ones.
 
-/// SplitMix64 finaliser: a bijective avalanche mix of 64 bits.
-#[inline]
-pub fn mix64(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
+pub use crate::rng::mix64;
 
 /// 64 well-mixed bits determined by `(seed, stream, index, coordinate)`.
 #[inline]

@@ -57,6 +57,7 @@
 
 use super::SweepError;
 use crate::schemes::SchemeKind;
+use crate::toml_location::{key_path_at, key_path_in_tree, Location};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use toml::Spanned;
@@ -316,38 +317,6 @@ struct RawColumns {
     charmap: Option<bool>,
 }
 
-/// 1-based line of a byte offset.
-fn line_of(text: &str, offset: usize) -> usize {
-    text.as_bytes()[..offset.min(text.len())]
-        .iter()
-        .filter(|b| **b == b'\n')
-        .count()
-        + 1
-}
-
-/// The TOML key path at a byte offset: the last `[table]` header before it, and
-/// the bare key that starts at the offset (best effort; the line is exact).
-fn key_path_at(text: &str, offset: usize) -> Option<String> {
-    let offset = offset.min(text.len());
-    let before = &text[..offset];
-    let header = before.lines().rev().find_map(|l| {
-        let t = l.trim();
-        (t.starts_with('[') && t.ends_with(']'))
-            .then(|| t.trim_matches(|c| c == '[' || c == ']').trim().to_owned())
-    });
-    let key: String = text[offset..]
-        .chars()
-        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_' || *c == '-')
-        .collect();
-    if key.is_empty() {
-        return header;
-    }
-    Some(match header {
-        Some(h) => format!("{h}.{key}"),
-        None => key,
-    })
-}
-
 /// A spec error from the TOML deserializer, naming the key path and line: the
 /// key at the error's span; for a missing key, the table it is missing from
 /// (the span is that table's header, or the empty span of the document)
@@ -358,9 +327,9 @@ fn deserialize_error(text: &str, e: &toml::de::Error) -> SweepError {
     let missing = message
         .strip_prefix("missing field `")
         .and_then(|m| m.strip_suffix('`'));
-    let at = span.as_ref().and_then(|s| {
-        crate::report::error::key_path_in_tree(text, s.start).or_else(|| key_path_at(text, s.start))
-    });
+    let at = span
+        .as_ref()
+        .and_then(|s| key_path_in_tree(text, s.start).or_else(|| key_path_at(text, s.start)));
     let (key, message) = match missing {
         Some(field) => {
             let key = match &at {
@@ -380,7 +349,7 @@ fn deserialize_error(text: &str, e: &toml::de::Error) -> SweepError {
         }
     };
     SweepError::Spec {
-        line: span.map(|s| line_of(text, s.start)),
+        line: span.map(|s| Location::of(text, s.start).line),
         message,
         key,
     }
@@ -399,7 +368,7 @@ impl Ctx<'_> {
     ) -> Result<T, SweepError> {
         Err(SweepError::Spec {
             key: key.to_owned(),
-            line: span.map(|s| line_of(self.text, s.start)),
+            line: span.map(|s| Location::of(self.text, s.start).line),
             message,
         })
     }
@@ -962,11 +931,7 @@ impl SweepSpec {
     /// so that resume and merge can tell whether files come from the same spec.
     pub fn digest(&self) -> String {
         let json = serde_json::to_string(self).unwrap_or_default();
-        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-        for b in json.bytes() {
-            h ^= u64::from(b);
-            h = h.wrapping_mul(0x0100_0000_01b3);
-        }
+        let h = crate::hash::fnv1a64(json.as_bytes());
         format!("{h:016x}")
     }
 }

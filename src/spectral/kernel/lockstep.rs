@@ -4,7 +4,7 @@
 //! The matrices are stored lane-interleaved (entry `(i, j)` of every matrix
 //! side by side in one `[f64; BATCH]`), so that each arithmetic operation of
 //! the scalar kernel becomes one vector operation on all lanes. Every lane
-//! runs exactly the arithmetic of the scalar [`hessenberg`](super::hessenberg)
+//! runs exactly the arithmetic of the scalar [`hessenberg`](super::hessenberg())
 //! and [`hqr`](super::hqr), operation for operation and in the same order
 //! (Rust never contracts `a * b + c` into a fused multiply-add), so the
 //! results are bit for bit those of one-at-a-time calls; the tests of the
@@ -99,7 +99,7 @@ fn mask(m: [bool; BATCH]) -> Mask {
     m.map(|b| -(b as i64))
 }
 
-/// The scalar [`hessenberg`](super::hessenberg) on all lanes of the
+/// The scalar [`hessenberg`](super::hessenberg()) on all lanes of the
 /// interleaved `n x n` matrices `h` (stride `n`); `v`, `w` hold `n` entries.
 #[inline(always)]
 pub(super) fn hessenberg(n: usize, h: &mut [Lanes], v: &mut [Lanes], w: &mut [Lanes]) {
