@@ -52,7 +52,9 @@
 //! threads the re-check no longer has a serial read-and-split phase (about 18%
 //! of main's CPU time ran on one thread: `read_until`, copies, UTF-8).
 
-use super::{canonical_number, push_number, small_uint, split_csv_line, Kind, Layout, Scratch};
+use super::csv::{canonical_number, push_number, small_uint, split_csv_line};
+use super::layout::{Kind, Layout};
+use super::run::Scratch;
 use crate::sweep::eval::Evaluate;
 use crate::sweep::plan::{Configuration, Plan, Shard};
 use crate::sweep::sampler::mix64;
