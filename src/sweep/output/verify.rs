@@ -42,13 +42,17 @@
 //! path (parse, format, compare). Halton points use constant-base digit
 //! arithmetic. No check was dropped or weakened.
 //!
-//! Measured with `benches/resume_check.sh` (1M-row CSV of valence 3, Halton,
-//! default columns; re-check of the complete file) on the 2-core VM of the
-//! sweep2 branch, shared with other builds (load average 12 to 15: wall times
-//! there mean nothing), best of 5 by CPU time (user): a2db675 3.16 s, main
-//! before this change 1.44 s, after it 1.31 s. Deterministic instruction counts
-//! (`valgrind --tool=callgrind`, 100k-row file, `--threads 1`): main 1 050 M,
-//! after 902 M (-14%). On two
+//! Measured (the commands of `benches/resume_check.sh`: 1M-row CSV of valence
+//! 3, Halton, default columns; re-check of the complete file) on the 2-core
+//! VM of the sweep2 branch, shared with other agents' builds (load average 5.5
+//! to 6.5 during the runs, so the machine was about 3x oversubscribed), best
+//! of 5 interleaved runs, wall / CPU (user + sys): a2db675 3.72 s / 2.59 s,
+//! main before this change 2.19 s / 1.24 s, after it 1.80 s / 1.02 s: 2.1x
+//! wall, 2.5x CPU against a2db675, NOT the 5x of the issue on that loaded
+//! machine (an idle-machine measurement is still to be made; a parallel
+//! re-check gains least when the cores are taken). Deterministic instruction
+//! counts (`valgrind --tool=callgrind`, 100k-row file, `--threads 1`): main
+//! 1 050 M, after 902 M (-14%). On two
 //! threads the re-check no longer has a serial read-and-split phase (about 18%
 //! of main's CPU time ran on one thread: `read_until`, copies, UTF-8).
 
