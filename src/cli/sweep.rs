@@ -13,7 +13,7 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{BufRead, BufReader, BufWriter, IsTerminal, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use subdiv_lab::sweep::output::{self, MergeSource, Verifier};
+use subdiv_lab::sweep::output::{self, LineFault, MergeSource, Verifier};
 use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, Summary, SweepError, SweepSpec};
 
 #[derive(Args, Debug)]
@@ -138,26 +138,13 @@ fn scan_existing(
             message,
         })
     };
-    // Data lines are verified by blocks, each in parallel on the current pool.
-    const BLOCK_BYTES: usize = 8 << 20;
-    let mut block = String::new();
-    let mut block_start = 0u64;
-    let mut rows = 0u64;
-    let expected_id = |j: u64| shard.id(j);
-    let flush = |v: &mut Verifier, block: &mut String, start: &mut u64| -> CliResult {
-        if block.is_empty() {
-            return Ok(());
-        }
-        let r = v.check_block(*start, block, &expected_id);
-        block.clear();
-        r.map_err(|(l, m)| mismatch(l, m))
+    let read_error = |e: std::io::Error| {
+        CliError::failure(anyhow::Error::new(e).context(format!("reading {name}")))
     };
-    loop {
+    // The fingerprint and header lines.
+    while lineno < 2 {
         line.clear();
-        let n = reader
-            .read_until(b'\n', &mut line)
-            .with_context(|| format!("reading {name}"))
-            .map_err(CliError::failure)?;
+        let n = reader.read_until(b'\n', &mut line).map_err(read_error)?;
         if n == 0 {
             break;
         }
@@ -175,39 +162,70 @@ fn scan_existing(
         if lineno == 1 {
             output::check_fingerprint(plan, shard, text)
                 .map_err(|m| mismatch(1, format!("{m}; cannot resume")))?;
-        } else if lineno == 2 {
-            if text != header {
-                return Err(CliError::usage(anyhow!(
-                    "{name}: the header does not match this spec's columns; cannot resume (expected {:?})",
-                    header.trim_end()
-                )));
-            }
-        } else {
-            if rows >= summary.expected_rows {
-                flush(&mut verifier, &mut block, &mut block_start)?;
-                return Err(CliError::usage(anyhow!(
-                    "{name}: has more rows than this run expects ({}); was it written with another --limit?",
-                    summary.expected_rows
-                )));
-            }
-            if block.is_empty() {
-                block_start = lineno;
-            }
-            block.push_str(text);
-            rows += 1;
-            if block.len() >= BLOCK_BYTES {
-                flush(&mut verifier, &mut block, &mut block_start)?;
-            }
+        } else if text != header {
+            return Err(CliError::usage(anyhow!(
+                "{name}: the header does not match this spec's columns; cannot resume (expected {:?})",
+                header.trim_end()
+            )));
         }
         good += n as u64;
     }
-    flush(&mut verifier, &mut block, &mut block_start)?;
-    verifier.recheck(eval).map_err(|(l, m)| mismatch(l, m))?;
-    verifier.add_to(summary);
     if lineno < 2 {
         // Empty, or torn inside the fingerprint or header line: start afresh.
         return Ok((0, 0, true, torn && good > 0));
     }
+    // The data lines, by blocks of about BLOCK_BYTES: each block's complete
+    // lines are verified in parallel on the current pool while the next block
+    // is read; the bytes after the last line end go to the next block, and at
+    // the end of the file they are a torn last line (killed mid-write: dropped).
+    const BLOCK_BYTES: u64 = 8 << 20;
+    let fill = |reader: &mut BufReader<File>, buf: &mut Vec<u8>| -> CliResult<usize> {
+        let n = reader
+            .by_ref()
+            .take(BLOCK_BYTES)
+            .read_to_end(buf)
+            .map_err(read_error)?;
+        Ok(n)
+    };
+    let mut block = Vec::with_capacity(BLOCK_BYTES as usize + (1 << 16));
+    let mut next = Vec::with_capacity(BLOCK_BYTES as usize + (1 << 16));
+    let mut at_end = fill(&mut reader, &mut block)? == 0;
+    let expected_id = |j: u64| shard.id(j);
+    let max_rows = summary.expected_rows;
+    loop {
+        let complete = memchr::memrchr(b'\n', &block).map_or(0, |p| p + 1);
+        next.clear();
+        next.extend_from_slice(&block[complete..]);
+        let (checked, read) = rayon::join(
+            || verifier.check_block(lineno + 1, &block[..complete], &expected_id, max_rows),
+            || {
+                if at_end {
+                    Ok(0)
+                } else {
+                    fill(&mut reader, &mut next)
+                }
+            },
+        );
+        let lines = checked.map_err(|(l, fault)| match fault {
+            LineFault::NotUtf8 => CliError::usage(anyhow!(
+                "{name}: line {l} is not UTF-8; not a sweep CSV"
+            )),
+            LineFault::TooManyRows => CliError::usage(anyhow!(
+                "{name}: has more rows than this run expects ({max_rows}); was it written with another --limit?"
+            )),
+            LineFault::Mismatch(m) => mismatch(l, m),
+        })?;
+        lineno += lines;
+        good += complete as u64;
+        if at_end {
+            torn = !next.is_empty();
+            break;
+        }
+        at_end = read? == 0;
+        std::mem::swap(&mut block, &mut next);
+    }
+    verifier.recheck(eval).map_err(|(l, m)| mismatch(l, m))?;
+    verifier.add_to(summary);
     Ok((verifier.rows(), good, false, torn))
 }
 

@@ -7,7 +7,7 @@
 //! * [`eval`]: the per-configuration evaluation ([`Evaluate`], one place that calls
 //!   the spectral engine) and the result columns;
 //! * [`output`]: the CSV layout, row formatting and parsing, the streaming
-//!   [`run`](output::run) driver and the shard [`merge`](output::merge);
+//!   [`run`](output::run()) driver and the shard [`merge`](output::merge());
 //! * [`summary`]: the mergeable summary accumulator ([`Summary`]).
 //!
 //! The library does no file-system I/O: it writes to `impl std::io::Write` and

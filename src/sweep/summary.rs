@@ -6,7 +6,7 @@
 //! depend on the order (ties in an extreme go to the smaller configuration id).
 //! It serialises to the JSON written beside the CSV.
 
-use super::output::{Layout, Row};
+use super::output::layout::{Layout, Row};
 use super::plan::{Plan, Shard};
 use super::SweepError;
 use serde::{Deserialize, Serialize};

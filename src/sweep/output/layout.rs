@@ -1,0 +1,238 @@
+//! The columns of a sweep's CSV ([`Layout`]) and one row ([`Row`]): header,
+//! formatting and parsing of a whole row, the evaluation of one configuration
+//! into a row. A leaf of the sweep modules' graph: the summary builds on it.
+
+use super::csv::{itoa_buf, push_number, push_text, small_uint, split_csv_line};
+use crate::sweep::eval::{result_columns, Cell, Evaluate};
+use crate::sweep::plan::Plan;
+use crate::sweep::SweepError;
+use std::io::Write;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Kind {
+    Numeric,
+    Text,
+}
+
+/// One CSV row.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    /// Configuration id.
+    pub id: u64,
+    /// Valence.
+    pub valence: usize,
+    /// Coordinate cells then result cells, in column order.
+    pub cells: Vec<Cell>,
+    /// The evaluation error, if the configuration failed.
+    pub error: Option<String>,
+}
+
+/// The columns of a sweep's CSV.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layout {
+    pub(super) names: Vec<String>,
+    pub(super) kinds: Vec<Kind>,
+    pub(super) coordinates: usize,
+    pub(super) class: Option<usize>,
+    pub(super) numeric: Vec<(usize, String)>,
+}
+
+impl Layout {
+    /// The layout of `plan`'s CSV.
+    pub fn new(plan: &Plan) -> Layout {
+        let mut names = Vec::new();
+        let mut kinds = Vec::new();
+        for c in plan.coordinate_columns() {
+            names.push(c);
+            kinds.push(Kind::Numeric);
+        }
+        let coordinates = names.len();
+        for c in result_columns(&plan.spec().columns) {
+            names.push(c.name.to_owned());
+            kinds.push(if c.numeric { Kind::Numeric } else { Kind::Text });
+        }
+        let class = names.iter().position(|n| n == "class");
+        let numeric = names
+            .iter()
+            .zip(&kinds)
+            .enumerate()
+            .filter(|(_, (_, k))| **k == Kind::Numeric)
+            .map(|(i, (n, _))| (i, n.clone()))
+            .collect();
+        Layout {
+            names,
+            kinds,
+            coordinates,
+            class,
+            numeric,
+        }
+    }
+
+    /// Number of cells (coordinates + results) of a row.
+    pub fn cells(&self) -> usize {
+        self.names.len()
+    }
+
+    /// Number of coordinate cells.
+    pub fn coordinate_cells(&self) -> usize {
+        self.coordinates
+    }
+
+    /// The header line (with `\n`).
+    pub fn header(&self) -> String {
+        let mut s = String::from("id,valence");
+        for n in &self.names {
+            s.push(',');
+            s.push_str(n);
+        }
+        s.push_str(",error\n");
+        s
+    }
+
+    /// Writes the header.
+    pub fn write_header<W: Write>(&self, out: &mut W) -> Result<(), SweepError> {
+        out.write_all(self.header().as_bytes())?;
+        Ok(())
+    }
+
+    /// Numeric cells: (cell index, column name).
+    pub fn numeric_columns(&self) -> &[(usize, String)] {
+        &self.numeric
+    }
+
+    /// The number in cell `pos` of `row`, if any.
+    pub fn number_at(&self, row: &Row, pos: usize) -> Option<f64> {
+        match row.cells.get(pos) {
+            Some(Cell::Num(x)) => Some(*x),
+            _ => None,
+        }
+    }
+
+    /// The `class` cell of `row`, if the sweep computes it and the row has one.
+    pub fn class_of<'a>(&self, row: &'a Row) -> Option<&'a str> {
+        match row.cells.get(self.class?) {
+            Some(Cell::Text(t)) => Some(t),
+            _ => None,
+        }
+    }
+
+    /// The CSV line of `row` (with `\n`).
+    pub fn format(&self, row: &Row) -> String {
+        let mut s = String::with_capacity(32 + 24 * row.cells.len());
+        self.format_into(row, &mut s);
+        s
+    }
+
+    /// Appends the CSV line of `row` (with `\n`) to `s`.
+    pub fn format_into(&self, row: &Row, s: &mut String) {
+        let mut digits = zmij::Buffer::new();
+        let mut ibuf = itoa_buf();
+        s.push_str(small_uint(row.id, &mut ibuf));
+        s.push(',');
+        s.push_str(small_uint(row.valence as u64, &mut ibuf));
+        for c in &row.cells {
+            s.push(',');
+            match c {
+                Cell::Empty => {}
+                Cell::Num(x) => push_number(s, &mut digits, *x),
+                Cell::Text(t) => push_text(s, t),
+            }
+        }
+        s.push(',');
+        if let Some(e) = &row.error {
+            push_text(s, e);
+        }
+        s.push('\n');
+    }
+
+    /// Parses one line (without `\n`) back into a row.
+    pub fn parse(&self, line: &str) -> Result<Row, String> {
+        let fields = split_csv_line(line)?;
+        if fields.len() != self.names.len() + 3 {
+            return Err(format!(
+                "expected {} fields, found {}",
+                self.names.len() + 3,
+                fields.len()
+            ));
+        }
+        let id: u64 = fields[0]
+            .parse()
+            .map_err(|_| format!("id {:?} is not an integer", fields[0]))?;
+        let valence: usize = fields[1]
+            .parse()
+            .map_err(|_| format!("valence {:?} is not an integer", fields[1]))?;
+        let mut cells = Vec::with_capacity(self.names.len());
+        for ((f, k), name) in fields[2..2 + self.names.len()]
+            .iter()
+            .zip(&self.kinds)
+            .zip(&self.names)
+        {
+            cells.push(if f.is_empty() {
+                Cell::Empty
+            } else {
+                match k {
+                    Kind::Numeric => Cell::Num(
+                        f.parse()
+                            .map_err(|_| format!("{name} = {f:?} is not a number"))?,
+                    ),
+                    Kind::Text => Cell::Text(f.clone()),
+                }
+            });
+        }
+        let e = &fields[fields.len() - 1];
+        Ok(Row {
+            id,
+            valence,
+            cells,
+            error: (!e.is_empty()).then(|| e.clone()),
+        })
+    }
+
+    fn coordinate_row(&self, plan: &Plan, c: &crate::sweep::Configuration) -> Vec<Cell> {
+        let mut cells = vec![Cell::Empty; self.coordinates];
+        for (k, x) in c.coordinates.iter().enumerate() {
+            cells[plan.coordinate_column(c.valence, k)] = Cell::Num(*x);
+        }
+        cells
+    }
+
+    /// Evaluates configuration `id` into a row.
+    pub fn row<E: Evaluate + ?Sized>(&self, plan: &Plan, eval: &E, id: u64) -> Row {
+        let c = match plan.configuration(id) {
+            Ok(c) => c,
+            Err(e) => {
+                return Row {
+                    id,
+                    valence: 0,
+                    cells: vec![Cell::Empty; self.names.len()],
+                    error: Some(e.to_string()),
+                }
+            }
+        };
+        let mut cells = self.coordinate_row(plan, &c);
+        let n_results = self.names.len() - self.coordinates;
+        let error = match plan.scheme(&c).and_then(|s| eval.evaluate(plan, &c, &s)) {
+            Ok(r) if r.len() == n_results => {
+                cells.extend(r);
+                None
+            }
+            Ok(r) => {
+                cells.resize(self.names.len(), Cell::Empty);
+                Some(format!(
+                    "internal: evaluator returned {} cells for {n_results} result columns",
+                    r.len()
+                ))
+            }
+            Err(e) => {
+                cells.resize(self.names.len(), Cell::Empty);
+                Some(e.to_string())
+            }
+        };
+        Row {
+            id: c.id,
+            valence: c.valence,
+            cells,
+            error,
+        }
+    }
+}

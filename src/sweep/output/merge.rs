@@ -1,0 +1,257 @@
+//! The shard merge: shard CSVs, each verified in full, into one CSV in id
+//! order.
+
+use super::layout::Layout;
+use super::verify::Verifier;
+use crate::sweep::eval::Evaluate;
+use crate::sweep::plan::{Plan, Shard};
+use crate::sweep::summary::Summary;
+use crate::sweep::SweepError;
+use std::collections::BinaryHeap;
+use std::io::Write;
+
+/// A source of CSV data lines for [`merge`] (fingerprint and header already
+/// checked): a name (for messages), the shard its fingerprint names, and its
+/// data lines without `\n`, in file order (the first is line 3 of the file).
+pub struct MergeSource<I> {
+    /// File name.
+    pub name: String,
+    /// The shard the file holds (from its fingerprint line).
+    pub shard: Shard,
+    /// Data lines.
+    pub lines: I,
+}
+
+/// Merges shard CSVs (each in id order, as `sweep` writes them) into one CSV in
+/// id order. Every line is verified in full against `plan` ([`Verifier`]: the
+/// id is the shard's next one, parameters re-derived from it, results well
+/// formed, a random sample re-evaluated with `eval`), and the ids must be
+/// exactly `0..total`: an error names the first missing or duplicated id and
+/// where it was found. Memory is one line per source. Returns, per source, the
+/// summary of its rows (rebuilt from the verified lines, to compare with the
+/// summary file written beside it).
+pub fn merge<W, I, E>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    sources: Vec<MergeSource<I>>,
+    out: &mut W,
+    salt: u64,
+) -> Result<Vec<Summary>, SweepError>
+where
+    W: Write,
+    I: Iterator<Item = Result<String, SweepError>>,
+    E: Evaluate + ?Sized,
+{
+    struct Head {
+        line: String,
+        lineno: u64,
+    }
+    let total = plan.total();
+    let mut sources = sources;
+    let mut verifiers: Vec<Verifier> = (0..sources.len())
+        .map(|k| Verifier::new(plan, layout, salt ^ k as u64))
+        .collect();
+    let mut heads: Vec<Option<Head>> = Vec::with_capacity(sources.len());
+    let mut heap = BinaryHeap::new();
+    let advance = |src: &mut MergeSource<I>,
+                   ver: &mut Verifier,
+                   lineno: u64|
+     -> Result<Option<(u64, Head)>, SweepError> {
+        match src.lines.next() {
+            None => Ok(None),
+            Some(line) => {
+                let line = line?;
+                let expected = src.shard.id(ver.rows());
+                let id =
+                    ver.check(lineno, &line, expected)
+                        .map_err(|message| SweepError::Mismatch {
+                            source_name: src.name.clone(),
+                            line: lineno,
+                            message,
+                        })?;
+                Ok(Some((id, Head { line, lineno })))
+            }
+        }
+    };
+    for (k, (src, ver)) in sources.iter_mut().zip(&mut verifiers).enumerate() {
+        match advance(src, ver, 3)? {
+            Some((id, h)) => {
+                heap.push(std::cmp::Reverse((id, k)));
+                heads.push(Some(h));
+            }
+            None => heads.push(None),
+        }
+    }
+    let mut expected = 0u64;
+    let mut last: Option<(u64, usize, u64)> = None;
+    let mut buf = String::new();
+    while let Some(std::cmp::Reverse((id, k))) = heap.pop() {
+        let head = heads[k]
+            .take()
+            .ok_or_else(|| SweepError::Merge("internal: empty head".into()))?;
+        if id < expected {
+            let (_, pk, pl) = last.unwrap_or((id, k, head.lineno));
+            return Err(SweepError::Merge(format!(
+                "configuration id {id} appears twice ({} line {}, {} line {})",
+                sources[pk].name, pl, sources[k].name, head.lineno
+            )));
+        }
+        if id > expected {
+            return Err(SweepError::Merge(format!(
+                "configuration id {expected} is missing (next id found: {id} in {} line {})",
+                sources[k].name, head.lineno
+            )));
+        }
+        if id >= total {
+            return Err(SweepError::Merge(format!(
+                "configuration id {id} ({} line {}) is beyond the sweep's {total} configurations",
+                sources[k].name, head.lineno
+            )));
+        }
+        buf.push_str(&head.line);
+        buf.push('\n');
+        if buf.len() > 1 << 16 {
+            out.write_all(buf.as_bytes())?;
+            buf.clear();
+        }
+        last = Some((id, k, head.lineno));
+        expected += 1;
+        if let Some((nid, h)) = advance(&mut sources[k], &mut verifiers[k], head.lineno + 1)? {
+            heap.push(std::cmp::Reverse((nid, k)));
+            heads[k] = Some(h);
+        }
+    }
+    out.write_all(buf.as_bytes())?;
+    out.flush()?;
+    if expected < total {
+        return Err(SweepError::Merge(format!(
+            "configuration id {expected} is missing (the shards end there; the sweep has {total} configurations)"
+        )));
+    }
+    let mut parts = Vec::with_capacity(sources.len());
+    for (src, ver) in sources.iter().zip(&verifiers) {
+        ver.recheck(eval)
+            .map_err(|(line, message)| SweepError::Mismatch {
+                source_name: src.name.clone(),
+                line,
+                message,
+            })?;
+        let mut s = Summary::new(plan, layout, src.shard, None);
+        ver.add_to(&mut s);
+        parts.push(s);
+    }
+    Ok(parts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::run::run;
+    use super::*;
+    use crate::sweep::eval::SpectralEvaluator;
+
+    const EIGHT: &str = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n";
+
+    type Lines = std::vec::IntoIter<Result<String, SweepError>>;
+
+    fn src(name: &str, shard: Shard, lines: &[&str]) -> MergeSource<Lines> {
+        MergeSource {
+            name: name.into(),
+            shard,
+            lines: lines
+                .iter()
+                .map(|l| Ok(l.to_string()))
+                .collect::<Vec<_>>()
+                .into_iter(),
+        }
+    }
+
+    #[test]
+    fn merge_checks_ids_and_rows() {
+        let plan = Plan::new(crate::sweep::SweepSpec::from_toml(EIGHT).unwrap());
+        let layout = Layout::new(&plan);
+        let eval = SpectralEvaluator::new(plan.spec().columns);
+        let mut all = Vec::new();
+        run(
+            &plan,
+            &layout,
+            &eval,
+            0..8,
+            &mut all,
+            &mut Summary::new(&plan, &layout, Shard::ALL, None),
+            &mut |_| {},
+        )
+        .unwrap();
+        let all = String::from_utf8(all).unwrap();
+        let l: Vec<&str> = all.lines().collect();
+        let s0: Shard = "0/2".parse().unwrap();
+        let s1: Shard = "1/2".parse().unwrap();
+        let evens = [l[0], l[2], l[4], l[6]];
+        let odds = [l[1], l[3], l[5], l[7]];
+        let mut out = Vec::new();
+        let parts = merge(
+            &plan,
+            &layout,
+            &eval,
+            vec![src("a", s0, &evens), src("b", s1, &odds)],
+            &mut out,
+            1,
+        )
+        .unwrap();
+        assert_eq!(String::from_utf8(out).unwrap(), all);
+        assert_eq!(parts.iter().map(|p| p.rows).collect::<Vec<_>>(), vec![4, 4]);
+        let go = |srcs: Vec<MergeSource<Lines>>| {
+            merge(&plan, &layout, &eval, srcs, &mut Vec::new(), 1)
+                .unwrap_err()
+                .to_string()
+        };
+        let e = go(vec![src("a", s0, &evens), src("b", s1, &odds[..3])]);
+        assert!(e.contains("configuration id 7 is missing"), "{e}");
+        let e = go(vec![
+            src("a", s0, &evens),
+            src("b", s1, &odds),
+            src("c", s0, &evens[..1]),
+        ]);
+        assert!(e.contains("configuration id 0 appears twice"), "{e}");
+        let e = go(vec![src("a", s0, &[l[0], l[1]])]);
+        assert!(
+            e.contains("a: line 4: configuration id 1 where 2 was expected"),
+            "{e}"
+        );
+        // A bogus class, an edited number, an edited parameter.
+        let bogus = l[2]
+            .replacen(",standard,", ",bogus,", 1)
+            .replacen(",real_distinct,", ",bogus,", 1)
+            .replacen(",complex_pair,", ",bogus,", 1);
+        assert_ne!(bogus, l[2]);
+        let e = go(vec![
+            src("a", s0, &[l[0], &bogus, l[4], l[6]]),
+            src("b", s1, &odds),
+        ]);
+        assert!(e.contains("a: line 4: class = \"bogus\""), "{e}");
+        let f: Vec<&str> = l[4].split(',').collect();
+        let mut g = f.clone();
+        let lam = format!("{}", f[6].parse::<f64>().unwrap() + 0.25);
+        g[6] = &lam;
+        let edited = g.join(",");
+        let e = go(vec![
+            src("a", s0, &[l[0], l[2], &edited, l[6]]),
+            src("b", s1, &odds),
+        ]);
+        assert!(
+            e.contains("a: line 5: configuration 4 differs from a fresh evaluation: lambda1_re"),
+            "{e}"
+        );
+        let mut g = f.clone();
+        g[2] = "0.5";
+        let edited = g.join(",");
+        let e = go(vec![
+            src("a", s0, &[l[0], l[2], &edited, l[6]]),
+            src("b", s1, &odds),
+        ]);
+        assert!(
+            e.contains("configuration 4 has r0 = \"0.5\" where the spec gives"),
+            "{e}"
+        );
+    }
+}

@@ -1,0 +1,41 @@
+//! CSV layout, row formatting and parsing, the streaming sweep driver and the
+//! shard merge.
+//!
+//! The CSV has a header and one line per configuration:
+//!
+//! ```text
+//! id,valence,<coordinates>,<results>,error
+//! ```
+//!
+//! Coordinates are named for the largest valence of the sweep (`r0..r{N-1}`,
+//! `p0..p{N-1},q0..q{N-1}`, ...); a row of a smaller valence leaves the extra
+//! cells empty. Numbers are written in the shortest round-trip form, Ryu's format (reading a
+//! cell back gives the same `f64` bit for bit), so a summary rebuilt from the CSV
+//! equals the one accumulated while writing. Text cells never contain line
+//! breaks, so every line is one row; a line without its final `\n` is a torn
+//! write.
+//!
+//! By concern (files of this directory):
+//!
+//! * `layout.rs`: the columns of a sweep ([`Layout`]) and one [`Row`]; a leaf
+//!   (the summary builds on it, it knows no summary);
+//! * `csv.rs`: number and text cells, line splitting (no sweep types);
+//! * `run.rs`: the streaming driver ([`run()`], [`run_counting`]);
+//! * `merge.rs`: the shard merge ([`merge()`]);
+//! * `verify.rs`: the verification of existing files (resume and merge,
+//!   [`Verifier`]).
+
+mod csv;
+pub(crate) mod layout;
+mod merge;
+mod run;
+mod verify;
+
+pub use csv::{format_number, split_csv_line};
+pub use layout::{Layout, Row};
+pub use merge::{merge, MergeSource};
+pub use run::{run, run_counting, CHUNK, SUB_CHUNK};
+pub use verify::{
+    check_fingerprint, fingerprint_digest, fingerprint_line, fingerprint_shard, LineFault,
+    Verifier, PIECE_BYTES, RECHECK_SAMPLE,
+};

@@ -1,0 +1,575 @@
+//! The streaming sweep driver: evaluation in parallel chunks, rows formatted
+//! without allocation, written in id order while the next chunk is evaluated.
+
+use super::csv::{itoa_buf, push_number, push_text, small_uint};
+use super::layout::{Kind, Layout};
+use crate::spectral::kernel::BATCH;
+use crate::sweep::eval::{CellSink, Evaluate};
+use crate::sweep::plan::{Configuration, Plan};
+use crate::sweep::summary::{PartialSummary, Summary};
+use crate::sweep::SweepError;
+use rayon::prelude::*;
+use std::io::Write;
+
+/// Largest number of configurations evaluated in parallel as one chunk (fewer
+/// when rows are long, so that a chunk's text stays within about 8 MB). At most
+/// two chunks are in memory (one being evaluated, the previous one being
+/// written), which bounds the memory of a run independently of the sweep size;
+/// the chunk is large enough that the rayon split overhead is negligible.
+pub const CHUNK: usize = 4096;
+
+/// Largest number of consecutive configurations one rayon task evaluates (fewer
+/// when a chunk is small, so that every thread gets several tasks). A task
+/// formats its rows into one buffer and keeps one partial summary, reusing its
+/// per-row storage, so a row costs no allocation.
+pub const SUB_CHUNK: usize = 64;
+
+/// A staged result cell (text as a range of [`Stage::text`]).
+#[derive(Clone, Copy, Debug)]
+enum Slot {
+    Empty,
+    Num(f64),
+    Text(usize, usize),
+}
+
+/// The result cells of one configuration, staged without allocation (the
+/// buffers are reused row after row).
+#[derive(Debug, Default)]
+struct Stage {
+    slots: Vec<Slot>,
+    text: String,
+}
+
+impl Stage {
+    fn clear(&mut self) {
+        self.slots.clear();
+        self.text.clear();
+    }
+}
+
+impl CellSink for Stage {
+    fn empty(&mut self) {
+        self.slots.push(Slot::Empty);
+    }
+    fn num(&mut self, x: f64) {
+        self.slots.push(Slot::Num(x));
+    }
+    fn text(&mut self, t: &str) {
+        let start = self.text.len();
+        self.text.push_str(t);
+        self.slots.push(Slot::Text(start, self.text.len()));
+    }
+}
+
+/// One configuration of the sweep driver between evaluation and formatting.
+struct Staged {
+    config: Configuration,
+    sampler: Vec<f64>,
+    stage: Stage,
+    /// Coordinate cells of the current row (by column).
+    coordinates: Vec<Option<f64>>,
+    error: Option<String>,
+    valence: usize,
+}
+
+impl Staged {
+    fn new() -> Self {
+        Staged {
+            config: Configuration {
+                id: 0,
+                valence: 0,
+                coordinates: Vec::new(),
+            },
+            sampler: Vec::new(),
+            stage: Stage::default(),
+            coordinates: Vec::new(),
+            error: None,
+            valence: 0,
+        }
+    }
+}
+
+/// Reusable per-task storage of the sweep driver: [`BATCH`] staged rows (the
+/// driver evaluates configurations in batches, [`Evaluate::write_results_batch`]).
+pub(super) struct Scratch {
+    rows: [Staged; BATCH],
+    digits: zmij::Buffer,
+}
+
+impl Scratch {
+    pub(super) fn new() -> Self {
+        Scratch {
+            rows: std::array::from_fn(|_| Staged::new()),
+            digits: zmij::Buffer::new(),
+        }
+    }
+}
+
+impl Layout {
+    /// The sweep driver's path for one configuration: evaluates `id`, appends
+    /// its CSV line to `text` and adds it to `part`. Equal, byte for byte and
+    /// for the summary, to [`row`](Self::row) + [`format_into`](Self::format_into)
+    /// + [`Summary::add`] (a test checks it), but allocation-free after warm-up.
+    pub(super) fn append_row<E: Evaluate + ?Sized>(
+        &self,
+        plan: &Plan,
+        eval: &E,
+        id: u64,
+        sc: &mut Scratch,
+        text: &mut String,
+        part: &mut PartialSummary,
+    ) {
+        let row = &mut sc.rows[0];
+        if let Some(scheme) = self.load(plan, id, row) {
+            let r = eval.write_results(plan, &row.config, &scheme, &mut row.stage);
+            self.check_results(row, r);
+        }
+        self.emit(id, row, &mut sc.digits, text, part);
+    }
+
+    /// [`append_row`](Self::append_row) for [`BATCH`] configurations, evaluated
+    /// together by [`Evaluate::write_results_batch`]; the lines are those of
+    /// `append_row` calls (evaluators must give equal cells either way).
+    fn append_batch<E: Evaluate + ?Sized>(
+        &self,
+        plan: &Plan,
+        eval: &E,
+        ids: [u64; BATCH],
+        sc: &mut Scratch,
+        text: &mut String,
+        part: &mut PartialSummary,
+    ) {
+        let rows = &mut sc.rows;
+        let schemes: [Option<_>; BATCH] =
+            std::array::from_fn(|l| self.load(plan, ids[l], &mut rows[l]));
+        if schemes.iter().all(Option::is_some) {
+            let schemes = schemes.map(|s| s.expect("all loaded"));
+            let mut it = rows.iter_mut();
+            let items = std::array::from_fn(|l| {
+                let row = it.next().expect("one row per lane");
+                (
+                    &row.config,
+                    &schemes[l],
+                    &mut row.stage as &mut dyn CellSink,
+                )
+            });
+            let res = eval.write_results_batch(plan, items);
+            for (row, r) in rows.iter_mut().zip(res) {
+                self.check_results(row, r);
+            }
+        } else {
+            for (row, s) in rows.iter_mut().zip(schemes) {
+                if let Some(s) = s {
+                    let r = eval.write_results(plan, &row.config, &s, &mut row.stage);
+                    self.check_results(row, r);
+                }
+            }
+        }
+        for (row, &id) in rows.iter_mut().zip(&ids) {
+            self.emit(id, row, &mut sc.digits, text, part);
+        }
+    }
+
+    /// Enumerates configuration `id` into `row` (coordinates by column) and
+    /// builds its scheme; on an error, records it in `row` and returns `None`.
+    fn load(
+        &self,
+        plan: &Plan,
+        id: u64,
+        row: &mut Staged,
+    ) -> Option<crate::schemes::LocalScheme<f64>> {
+        row.stage.clear();
+        row.coordinates.clear();
+        row.coordinates.resize(self.coordinates, None);
+        row.error = None;
+        match plan.configuration_into(id, &mut row.config, &mut row.sampler) {
+            Ok(()) => {
+                let c = &row.config;
+                row.valence = c.valence;
+                for (k, x) in c.coordinates.iter().enumerate() {
+                    row.coordinates[plan.coordinate_column(c.valence, k)] = Some(*x);
+                }
+                match plan.scheme(c) {
+                    Ok(s) => Some(s),
+                    Err(e) => {
+                        row.error = Some(e.to_string());
+                        None
+                    }
+                }
+            }
+            Err(e) => {
+                row.error = Some(e.to_string());
+                row.coordinates.clear();
+                row.coordinates.resize(self.coordinates, None);
+                row.valence = 0;
+                None
+            }
+        }
+    }
+
+    /// Records the outcome of an evaluation into `row`: a wrong cell count or
+    /// an error empties the stage and becomes the row's error.
+    fn check_results(&self, row: &mut Staged, result: crate::Result<()>) {
+        let n_results = self.names.len() - self.coordinates;
+        match result {
+            Ok(()) if row.stage.slots.len() == n_results => {}
+            Ok(()) => {
+                row.error = Some(format!(
+                    "internal: evaluator returned {} cells for {n_results} result columns",
+                    row.stage.slots.len()
+                ));
+                row.stage.clear();
+            }
+            Err(e) => {
+                row.error = Some(e.to_string());
+                row.stage.clear();
+            }
+        }
+    }
+
+    /// Appends the CSV line of the staged `row` (configuration `id`) to `text`
+    /// and adds it to `part`.
+    fn emit(
+        &self,
+        id: u64,
+        row: &Staged,
+        digits: &mut zmij::Buffer,
+        text: &mut String,
+        part: &mut PartialSummary,
+    ) {
+        let n_results = self.names.len() - self.coordinates;
+        let valence = row.valence;
+        let error = &row.error;
+        let mut ibuf = itoa_buf();
+        text.push_str(small_uint(id, &mut ibuf));
+        text.push(',');
+        text.push_str(small_uint(valence as u64, &mut ibuf));
+        let mut numeric = 0usize;
+        for (pos, x) in row.coordinates.iter().enumerate() {
+            text.push(',');
+            let is_num = self.kinds[pos] == Kind::Numeric;
+            if let Some(x) = x {
+                push_number(text, digits, *x);
+                if is_num {
+                    part.push(numeric, *x, id);
+                }
+            }
+            if is_num {
+                numeric += 1;
+            }
+        }
+        let mut class: Option<&str> = None;
+        if row.stage.slots.is_empty() {
+            for _ in 0..n_results {
+                text.push(',');
+            }
+        } else {
+            for (k, slot) in row.stage.slots.iter().enumerate() {
+                let pos = self.coordinates + k;
+                text.push(',');
+                let is_num = self.kinds[pos] == Kind::Numeric;
+                match *slot {
+                    Slot::Empty => {}
+                    Slot::Num(x) => {
+                        push_number(text, digits, x);
+                        if is_num {
+                            part.push(numeric, x, id);
+                        }
+                    }
+                    Slot::Text(a, b) => {
+                        let t = &row.stage.text[a..b];
+                        push_text(text, t);
+                        if self.class == Some(pos) {
+                            class = Some(t);
+                        }
+                    }
+                }
+                if is_num {
+                    numeric += 1;
+                }
+            }
+        }
+        text.push(',');
+        if let Some(e) = &error {
+            push_text(text, e);
+        }
+        text.push('\n');
+        let class = class.unwrap_or(if error.is_some() { "error" } else { "all" });
+        part.count_row(valence, class, error.is_some());
+    }
+}
+
+/// Evaluates the configurations `ids` (in order) and writes their rows to `out`,
+/// adding each to `summary`. Evaluation runs on the current rayon pool in chunks
+/// of at most [`CHUNK`] configurations; while one chunk is evaluated, the
+/// previous one is written (so the workers do not wait for the output). Rows are
+/// written in `ids` order whatever the thread count. `progress` is called with
+/// the number of rows written after each chunk.
+pub fn run<E, W, I>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    ids: I,
+    out: &mut W,
+    summary: &mut Summary,
+    progress: &mut dyn FnMut(u64),
+) -> Result<u64, SweepError>
+where
+    E: Evaluate + ?Sized,
+    W: Write,
+    I: IntoIterator<Item = u64>,
+{
+    run_counting(
+        plan,
+        layout,
+        eval,
+        ids,
+        out,
+        summary,
+        progress,
+        &std::sync::atomic::AtomicU64::new(0),
+    )
+}
+
+/// [`run`], also adding to `evaluated` the configurations evaluated so far (by
+/// groups of at most [`SUB_CHUNK`], as the workers finish them, before they
+/// are written): another thread can read it for a progress report that moves
+/// even when a chunk takes minutes (slow columns such as `charmap`).
+#[allow(clippy::too_many_arguments)]
+pub fn run_counting<E, W, I>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    ids: I,
+    out: &mut W,
+    summary: &mut Summary,
+    progress: &mut dyn FnMut(u64),
+    evaluated: &std::sync::atomic::AtomicU64,
+) -> Result<u64, SweepError>
+where
+    E: Evaluate + ?Sized,
+    W: Write,
+    I: IntoIterator<Item = u64>,
+{
+    let mut ids = ids.into_iter();
+    let threads = rayon::current_num_threads().max(1);
+    let numeric = layout.numeric.len();
+    let chunk_len = chunk_len(layout);
+    let mut written = 0u64;
+    // Rows evaluated but not yet written: (text, partial summary) per task.
+    let mut pending: Vec<(String, PartialSummary)> = Vec::new();
+    let mut next: Vec<u64> = Vec::with_capacity(chunk_len);
+    loop {
+        next.clear();
+        next.extend(ids.by_ref().take(chunk_len));
+        if next.is_empty() && pending.is_empty() {
+            break;
+        }
+        let mut fresh: Vec<(String, PartialSummary)> = Vec::new();
+        let mut wrote: Result<u64, SweepError> = Ok(0);
+        rayon::in_place_scope(|scope| {
+            if !next.is_empty() {
+                let chunk = &next;
+                let slot = &mut fresh;
+                scope.spawn(move |_| {
+                    *slot = evaluate_chunk(plan, layout, eval, chunk, threads, numeric, evaluated);
+                });
+            }
+            // Meanwhile, on this thread: write the previous chunk in order.
+            wrote = (|| {
+                let mut rows = 0u64;
+                for (text, part) in &pending {
+                    out.write_all(text.as_bytes())?;
+                    summary.absorb_partial(part);
+                    rows += part.rows();
+                }
+                if rows > 0 {
+                    out.flush()?;
+                }
+                Ok(rows)
+            })();
+        });
+        let rows = wrote?;
+        if rows > 0 {
+            written += rows;
+            progress(written);
+        }
+        pending = fresh;
+    }
+    Ok(written)
+}
+
+/// Configurations per chunk: [`CHUNK`], fewer for long rows (large valences)
+/// so that a chunk's text stays within about 8 MB.
+fn chunk_len(layout: &Layout) -> usize {
+    let row_bytes = 32 + 24 * layout.cells();
+    ((8 << 20) / row_bytes).clamp(SUB_CHUNK, CHUNK)
+}
+
+/// Evaluates one chunk on the current pool: tasks of consecutive
+/// configurations, each formatting its rows into one buffer and keeping a
+/// partial summary, returned in order.
+fn evaluate_chunk<E: Evaluate + ?Sized>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    chunk: &[u64],
+    threads: usize,
+    numeric: usize,
+    evaluated: &std::sync::atomic::AtomicU64,
+) -> Vec<(String, PartialSummary)> {
+    let sub = (chunk.len() / (8 * threads)).clamp(1, SUB_CHUNK);
+    chunk
+        .par_chunks(sub)
+        .map(|ids| {
+            let mut text = String::with_capacity(ids.len() * (32 + 24 * layout.cells()));
+            let mut part = PartialSummary::new(numeric);
+            let mut scratch = Scratch::new();
+            let mut batches = ids.chunks_exact(BATCH);
+            for b in &mut batches {
+                let b: [u64; BATCH] = b.try_into().expect("chunks of BATCH");
+                layout.append_batch(plan, eval, b, &mut scratch, &mut text, &mut part);
+            }
+            for &id in batches.remainder() {
+                layout.append_row(plan, eval, id, &mut scratch, &mut text, &mut part);
+            }
+            evaluated.fetch_add(ids.len() as u64, std::sync::atomic::Ordering::Relaxed);
+            (text, part)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sweep::eval::{Cell, SpectralEvaluator};
+    use crate::sweep::plan::Shard;
+
+    /// An evaluator that returns the wrong number of cells for odd ids and fails
+    /// for ids divisible by 5, to exercise the error rows of the fast path.
+    struct Faulty(SpectralEvaluator);
+
+    impl Evaluate for Faulty {
+        fn evaluate(
+            &self,
+            plan: &Plan,
+            c: &Configuration,
+            scheme: &crate::schemes::LocalScheme<f64>,
+        ) -> crate::Result<Vec<Cell>> {
+            let mut v = self.0.evaluate(plan, c, scheme)?;
+            if c.id % 5 == 0 {
+                return Err(crate::Error::InvalidParameter {
+                    name: "test",
+                    value: format!("id {}", c.id),
+                    reason: "a failure with a comma, and \"quotes\"",
+                });
+            }
+            if c.id % 2 == 1 {
+                v.push(Cell::Text("extra".into()));
+            }
+            Ok(v)
+        }
+    }
+
+    /// The driver's allocation-free path equals `row` + `format` + `Summary::add`
+    /// (and `run` writes exactly that, for any thread count).
+    fn assert_fast_path_matches<E: Evaluate>(spec: &str, eval_of: impl Fn(&Plan) -> E) {
+        let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+        let layout = Layout::new(&plan);
+        let eval = eval_of(&plan);
+        let ids: Vec<u64> = (0..plan.total())
+            .chain([plan.total(), plan.total() + 7])
+            .collect();
+        let mut want = String::new();
+        let mut want_summary = Summary::new(&plan, &layout, Shard::ALL, None);
+        for &id in &ids {
+            let r = layout.row(&plan, &eval, id);
+            layout.format_into(&r, &mut want);
+            want_summary.add(&layout, &r);
+        }
+        let mut got = String::new();
+        let mut part = PartialSummary::new(layout.numeric.len());
+        let mut scratch = Scratch::new();
+        for &id in &ids {
+            layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
+        }
+        let mut got_summary = Summary::new(&plan, &layout, Shard::ALL, None);
+        got_summary.absorb_partial(&part);
+        assert_eq!(got, want);
+        assert_eq!(got_summary, want_summary);
+        // The batched path (the driver's) gives the same lines, whatever the
+        // phase of the batches (lone first rows shift every batch).
+        for skip in [0, 1, BATCH / 2 + 1, BATCH - 1] {
+            let skip = skip.min(ids.len());
+            let mut got = String::new();
+            let mut part = PartialSummary::new(layout.numeric.len());
+            for &id in &ids[..skip] {
+                layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
+            }
+            let mut batches = ids[skip..].chunks_exact(BATCH);
+            for b in &mut batches {
+                let b: [u64; BATCH] = b.try_into().unwrap();
+                layout.append_batch(&plan, &eval, b, &mut scratch, &mut got, &mut part);
+            }
+            for &id in batches.remainder() {
+                layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
+            }
+            let mut got_summary = Summary::new(&plan, &layout, Shard::ALL, None);
+            got_summary.absorb_partial(&part);
+            assert_eq!(got, want, "batches from row {skip}");
+            assert_eq!(got_summary, want_summary);
+        }
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut out = Vec::new();
+            let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+            let mut calls = Vec::new();
+            let n = pool
+                .install(|| {
+                    run(
+                        &plan,
+                        &layout,
+                        &eval,
+                        ids.iter().copied(),
+                        &mut out,
+                        &mut summary,
+                        &mut |k| calls.push(k),
+                    )
+                })
+                .unwrap();
+            assert_eq!(n, ids.len() as u64);
+            assert_eq!(calls.last(), Some(&n));
+            assert!(calls.windows(2).all(|w| w[0] < w[1]));
+            assert_eq!(String::from_utf8(out).unwrap(), want);
+            assert_eq!(summary, want_summary);
+        }
+    }
+
+    #[test]
+    fn fast_path_matches_row_format_and_summary() {
+        let spectral = |p: &Plan| SpectralEvaluator::new(p.spec().columns);
+        assert_fast_path_matches(
+            "scheme = \"nurds\"\nvalences = [4, 3]\n[space]\nkind = \"ratios\"\nratio_range = [0.001, 0.999]\nfixed = { r1 = 0.5 }\n[sampler]\nkind = \"grid\"\npoints_per_axis = 5\n[columns]\neigenvalues = 13\n",
+            spectral,
+        );
+        assert_fast_path_matches(
+            "scheme = \"nurds\"\nvalences = [3, 6]\n[space]\nkind = \"corner-intervals\"\ninterval_range = [0.001, 1000.0]\n[sampler]\nkind = \"random\"\ncount = 300\nseed = 5\n[columns]\ngap = false\ncharmap = true\n",
+            spectral,
+        );
+        assert_fast_path_matches(
+            "scheme = \"nurds\"\nvalences = [5]\n[space]\nkind = \"vertex-ep\"\ninterval_range = [0.1, 10.0]\n[sampler]\nkind = \"sobol\"\ncount = 200\nscramble = true\nseed = 2\n[columns]\nclassification = false\ngap = false\ncontraction = false\neigenvalues = 3\n",
+            spectral,
+        );
+        assert_fast_path_matches(
+            "scheme = \"cc-variant\"\nvalences = { from = 3, to = 40 }\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\neigenvalues = 2\n",
+            spectral,
+        );
+        assert_fast_path_matches(
+            "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"face-ep\"\ninterval_range = [0.01, 100.0]\n[sampler]\nkind = \"halton\"\ncount = 120\n",
+            |p: &Plan| Faulty(SpectralEvaluator::new(p.spec().columns)),
+        );
+    }
+}

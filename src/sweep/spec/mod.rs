@@ -1,0 +1,516 @@
+//! Sweep specifications: the TOML format, its validation, and the validated
+//! [`SweepSpec`].
+//!
+//! A spec names a scheme, the valences, a parameter space, a sampler and the
+//! columns to compute:
+//!
+//! ```toml
+//! name = "n3-grid"                 # optional; default "sweep"
+//! scheme = "nurds"                 # nurds | doo-sabin | cc-variant | catmull-clark | adjustable-cc
+//! valences = [3]                   # a list, or a range: { from = 3, to = 16 } (inclusive)
+//!
+//! [space]
+//! kind = "ratios"                  # ratios | corner-intervals | face-ep | vertex-ep | uniform | shape
+//! ratio_range = [0.05, 0.95]       # kind = "ratios": every r_i in [a, b], 0 < a < b < 1
+//! # interval_range = [0.1, 10.0]   # interval kinds: log-uniform in [a, b], 0 < a < b
+//! # c_range = [0.0, 1.0]           # kind = "shape": the shape parameter c in [a, b], 0 <= a < b <= 1
+//! fixed = { r2 = 0.5 }             # optional: fixed coordinates (slices)
+//!
+//! [sampler]
+//! kind = "grid"                    # grid | random | halton | sobol
+//! points_per_axis = 21             # grid
+//! # count = 100000                 # random / halton / sobol: configurations per valence
+//! # seed = 1                       # random (required); halton / sobol with scramble = true
+//! # scramble = true                # halton (random shift) / sobol (digital shift)
+//!
+//! [columns]                        # optional; defaults shown
+//! eigenvalues = 0                  # leading eigenvalues of S_n kept (by modulus)
+//! classification = true            # class, lambda1, lambda2, |lambda3|
+//! gap = true                       # gap |lambda2| - |lambda3|, modulus ratio, angle
+//! contraction = true               # asymptotic contraction rate |lambda1|
+//! exact_certificate = false        # exact classification over the rationals (slow)
+//! charmap = false                  # characteristic-map verdict (regular, injective)
+//! ```
+//!
+//! Coordinates of a valence-n configuration, by space kind:
+//!
+//! * `ratios`: `r0..r{n-1}` (edge ratios, math doc section 2), uniform in `ratio_range`;
+//! * `corner-intervals`: `p0..p{n-1}, q0..q{n-1}` (corner knot intervals), log-uniform
+//!   in `interval_range`; ratios `r_i = q_{i+1} / (p_i + q_{i+1})`;
+//! * `face-ep`: `forward0.., backward0..` (directed edge intervals of an initial n-gon,
+//!   math doc section 3), log-uniform;
+//! * `vertex-ep`: `a0..a{n-1}` (intervals around an initial valence-n vertex, math doc
+//!   section 3 **\[derived\]**), log-uniform;
+//! * `uniform`: no coordinates (one configuration per valence; the only space of the
+//!   knot-free schemes `doo-sabin`, `cc-variant` and `catmull-clark`);
+//! * `shape`: `c`, the shape parameter of `adjustable-cc` (math doc section 8
+//!   **\[reconstructed\]**), uniform in `c_range` (the only space of that scheme).
+//!
+//! For the Catmull-Clark family the classification is the common engine's on
+//! the `(2n + 1)` one-ring matrix, `eigenvalues` come from the closed-form
+//! Fourier blocks ([`crate::schemes::catmull_clark::fourier::spectrum`]), the
+//! `charmap` column is [`crate::charmap::catmull_clark`]'s certificate, and
+//! `exact_certificate` is not available (it is a face-block method).
+//!
+//! Every validation error names the key (`sampler.points_per_axis must be >= 1, got 0`)
+//! and, where the TOML parser knows it, the line.
+//!
+//! [`SweepSpec::from_toml`] calls one parser per concern (files of this
+//! directory): `raw.rs` (the serde form, error positions, integer and range
+//! checks), `scheme.rs` (the scheme configuration: scheme, valences, space kind
+//! and its ratio / interval / c range, in one function), `space.rs` (fixed
+//! coordinates), `sampler.rs`, `columns.rs`; the size check is
+//! [`SweepSpec`]'s own.
+
+mod columns;
+mod raw;
+mod sampler;
+mod scheme;
+mod space;
+
+use super::SweepError;
+use crate::schemes::SchemeKind;
+use raw::{deserialize_error, Ctx, RawSampler, RawSpec};
+use scheme::SchemeConfig;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// Largest number of configurations a sweep may have (over all valences).
+///
+/// Configuration ids are written to CSV and JSON; keeping them below `2^53`
+/// keeps them exact in every JSON reader (IEEE doubles). `2^48` (2.8e14) is far
+/// beyond any run that finishes, and catches grids such as 21^64 early.
+pub const MAX_CONFIGURATIONS: u64 = 1 << 48;
+
+/// Largest number of points of one Sobol sequence (32-bit direction numbers).
+pub const MAX_SOBOL_POINTS: u64 = 1 << 32;
+
+/// Largest leading-eigenvalue count that can be requested (`columns.eigenvalues`).
+pub const MAX_KEPT_EIGENVALUES: usize = 1024;
+
+/// Largest valence accepted in a sweep spec.
+pub const MAX_VALENCE: usize = 4096;
+
+/// The parameter space a sweep samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpaceKind {
+    /// Edge ratios `r_i`, uniform in a sub-interval of (0, 1).
+    Ratios,
+    /// Corner intervals `p_i, q_i`, log-uniform.
+    CornerIntervals,
+    /// Face extraordinary point: directed edge intervals, log-uniform.
+    FaceEp,
+    /// Vertex extraordinary point: intervals `a_k`, log-uniform.
+    VertexEp,
+    /// Uniform knots: no coordinates.
+    Uniform,
+    /// The shape parameter `c` of the adjustable Catmull-Clark scheme.
+    Shape,
+}
+
+impl SpaceKind {
+    /// The spec name.
+    pub fn name(self) -> &'static str {
+        match self {
+            SpaceKind::Ratios => "ratios",
+            SpaceKind::CornerIntervals => "corner-intervals",
+            SpaceKind::FaceEp => "face-ep",
+            SpaceKind::VertexEp => "vertex-ep",
+            SpaceKind::Uniform => "uniform",
+            SpaceKind::Shape => "shape",
+        }
+    }
+
+    fn parse(s: &str) -> Option<Self> {
+        [
+            SpaceKind::Ratios,
+            SpaceKind::CornerIntervals,
+            SpaceKind::FaceEp,
+            SpaceKind::VertexEp,
+            SpaceKind::Uniform,
+            SpaceKind::Shape,
+        ]
+        .into_iter()
+        .find(|k| k.name() == s)
+    }
+
+    /// The coordinate families, in column order (`["r"]`, `["p", "q"]`, ...).
+    pub fn families(self) -> &'static [&'static str] {
+        match self {
+            SpaceKind::Ratios => &["r"],
+            SpaceKind::CornerIntervals => &["p", "q"],
+            SpaceKind::FaceEp => &["forward", "backward"],
+            SpaceKind::VertexEp => &["a"],
+            SpaceKind::Uniform => &[],
+            SpaceKind::Shape => &["c"],
+        }
+    }
+
+    /// Number of coordinates of a valence-`n` configuration.
+    pub fn dimension(self, n: usize) -> usize {
+        match self {
+            SpaceKind::Shape => 1,
+            _ => self.families().len() * n,
+        }
+    }
+
+    /// Whether coordinates are sampled log-uniformly (knot intervals) rather than
+    /// uniformly (ratios).
+    pub fn is_log(self) -> bool {
+        matches!(
+            self,
+            SpaceKind::CornerIntervals | SpaceKind::FaceEp | SpaceKind::VertexEp
+        )
+    }
+
+    /// The name of coordinate `k` of a valence-`n` configuration (`r2`, `q0`, ...).
+    pub fn coordinate_name(self, n: usize, k: usize) -> String {
+        if self == SpaceKind::Shape {
+            return "c".to_owned();
+        }
+        let fam = self.families()[k / n];
+        format!("{fam}{}", k % n)
+    }
+
+    /// Position of a named coordinate in a valence-`n` configuration, if it exists.
+    pub fn coordinate_index(self, n: usize, name: &str) -> Option<usize> {
+        if self == SpaceKind::Shape {
+            return (name == "c").then_some(0);
+        }
+        // Longest family prefix first ("backward" before "b..." would not clash, but be safe).
+        self.families().iter().enumerate().find_map(|(f, fam)| {
+            let rest = name.strip_prefix(fam)?;
+            if rest.is_empty() || !rest.bytes().all(|b| b.is_ascii_digit()) {
+                return None;
+            }
+            if rest.len() > 1 && rest.starts_with('0') {
+                return None;
+            }
+            let i: usize = rest.parse().ok()?;
+            (i < n).then_some(f * n + i)
+        })
+    }
+}
+
+/// The validated parameter space.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Space {
+    /// What is sampled.
+    pub kind: SpaceKind,
+    /// Sampling range `[a, b]` of every free coordinate (`None` for `uniform`).
+    pub range: Option<(f64, f64)>,
+    /// Fixed coordinates by name (slices), e.g. `r2 = 0.5`.
+    pub fixed: BTreeMap<String, f64>,
+}
+
+/// The validated sampler.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Sampler {
+    /// Full tensor grid with `points_per_axis` points on every free coordinate
+    /// (end points included; one point = the midpoint).
+    Grid {
+        /// Points per free coordinate (>= 1).
+        points_per_axis: u64,
+    },
+    /// Independent uniform draws derived from `(seed, valence, index, coordinate)`.
+    Random {
+        /// Configurations per valence.
+        count: u64,
+        /// Seed.
+        seed: u64,
+    },
+    /// Halton sequence (prime bases), optionally with a random shift modulo 1.
+    Halton {
+        /// Configurations per valence.
+        count: u64,
+        /// Seed of the random shift (`None`: unscrambled).
+        scramble_seed: Option<u64>,
+    },
+    /// Sobol sequence (base 2), optionally with a random digital shift.
+    Sobol {
+        /// Configurations per valence.
+        count: u64,
+        /// Seed of the digital shift (`None`: unscrambled).
+        scramble_seed: Option<u64>,
+    },
+}
+
+/// Which result columns a sweep computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Columns {
+    /// Number of leading eigenvalues of `S_n` (by non-increasing modulus) kept.
+    pub eigenvalues: usize,
+    /// Subdominant class, `lambda1`, `lambda2`, `|lambda3|`.
+    pub classification: bool,
+    /// Gap `|lambda2| - |lambda3|`, ratio `|lambda2| / |lambda1|`, angle of `lambda1`.
+    pub gap: bool,
+    /// Asymptotic contraction rate of the face (`|lambda1|`).
+    pub contraction: bool,
+    /// Exact classification over the rationals.
+    pub exact_certificate: bool,
+    /// Characteristic-map verdict (regularity, injectivity; math doc section 7).
+    pub charmap: bool,
+}
+
+impl Default for Columns {
+    fn default() -> Self {
+        Columns {
+            eigenvalues: 0,
+            classification: true,
+            gap: true,
+            contraction: true,
+            exact_certificate: false,
+            charmap: false,
+        }
+    }
+}
+
+/// A validated sweep specification.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SweepSpec {
+    /// Name (for reports and summaries).
+    pub name: String,
+    /// The scheme.
+    pub scheme: SchemeKind,
+    /// The valences, in enumeration order (distinct).
+    pub valences: Vec<usize>,
+    /// The parameter space.
+    pub space: Space,
+    /// The sampler.
+    pub sampler: Sampler,
+    /// The result columns.
+    pub columns: Columns,
+}
+
+impl SweepSpec {
+    /// Parses and validates a TOML spec.
+    ///
+    /// ```
+    /// use subdiv_lab::sweep::SweepSpec;
+    /// let spec = SweepSpec::from_toml(r#"
+    /// scheme = "nurds"
+    /// valences = [3]
+    /// [space]
+    /// kind = "ratios"
+    /// ratio_range = [0.1, 0.9]
+    /// [sampler]
+    /// kind = "grid"
+    /// points_per_axis = 0
+    /// "#).unwrap_err();
+    /// assert!(spec.to_string().starts_with("sampler.points_per_axis must be >= 1, got 0"));
+    /// ```
+    pub fn from_toml(text: &str) -> Result<SweepSpec, SweepError> {
+        let raw: RawSpec = toml::from_str(text).map_err(|e| deserialize_error(text, &e))?;
+        let ctx = Ctx { text };
+        let SchemeConfig {
+            scheme,
+            valences,
+            kind,
+            range,
+        } = scheme::scheme_config(&ctx, &raw)?;
+        let min_valence = *valences.iter().min().unwrap_or(&3);
+        let fixed = space::fixed(&ctx, &raw.space, kind, min_valence)?;
+        let space = Space { kind, range, fixed };
+        let sampler = sampler::sampler(&ctx, &raw.sampler)?;
+        let columns = columns::columns(&ctx, &raw.columns, scheme)?;
+        let spec = SweepSpec {
+            name: raw.name.unwrap_or_else(|| "sweep".to_owned()),
+            scheme,
+            valences,
+            space,
+            sampler,
+            columns,
+        };
+        spec.check_size(&ctx, &raw.sampler)?;
+        Ok(spec)
+    }
+
+    /// The size check (grid overflow etc.): at most [`MAX_CONFIGURATIONS`].
+    fn check_size(&self, ctx: &Ctx, s: &RawSampler) -> Result<(), SweepError> {
+        if self.try_total().is_none() {
+            let (key, span) = match (&self.sampler, &s.points_per_axis, &s.count) {
+                (Sampler::Grid { .. }, Some(k), _) => ("sampler.points_per_axis", Some(k.span())),
+                (_, _, Some(c)) => ("sampler.count", Some(c.span())),
+                _ => ("sampler", None),
+            };
+            return ctx.err(
+                key,
+                span,
+                format!(
+                    "{key}: the sweep would have more than {MAX_CONFIGURATIONS} configurations; use fewer points, fewer valences or a random / low-discrepancy sampler"
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    /// Free (sampled) coordinates of a valence-`n` configuration.
+    pub fn free_dimension(&self, n: usize) -> usize {
+        self.space.kind.dimension(n) - self.space.fixed.len()
+    }
+
+    /// Configurations of valence `n`.
+    fn try_count(&self, n: usize) -> Option<u64> {
+        match self.sampler {
+            Sampler::Grid { points_per_axis } => {
+                let d = u32::try_from(self.free_dimension(n)).ok()?;
+                points_per_axis.checked_pow(d)
+            }
+            Sampler::Random { count, .. }
+            | Sampler::Halton { count, .. }
+            | Sampler::Sobol { count, .. } => Some(count),
+        }
+    }
+
+    fn try_total(&self) -> Option<u64> {
+        let mut t: u64 = 0;
+        for &n in &self.valences {
+            t = t.checked_add(self.try_count(n)?)?;
+        }
+        (t <= MAX_CONFIGURATIONS).then_some(t)
+    }
+
+    /// Number of configurations of valence `n` (validated: no overflow).
+    pub fn count_for(&self, n: usize) -> u64 {
+        self.try_count(n).unwrap_or(0)
+    }
+
+    /// Total number of configurations (validated to be <= [`MAX_CONFIGURATIONS`]).
+    pub fn total(&self) -> u64 {
+        self.try_total().unwrap_or(0)
+    }
+
+    /// A stable 64-bit digest (FNV-1a) of the validated spec, written to the summary
+    /// so that resume and merge can tell whether files come from the same spec.
+    pub fn digest(&self) -> String {
+        let json = serde_json::to_string(self).unwrap_or_default();
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        for b in json.bytes() {
+            h ^= u64::from(b);
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+        format!("{h:016x}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"
+name = "t"
+scheme = "nurds"
+valences = { from = 3, to = 5 }
+
+[space]
+kind = "ratios"
+ratio_range = [0.1, 0.9]
+fixed = { r2 = 0.5 }
+
+[sampler]
+kind = "grid"
+points_per_axis = 4
+"#;
+
+    fn err(text: &str) -> SweepError {
+        SweepSpec::from_toml(text).unwrap_err()
+    }
+
+    #[test]
+    fn good_spec_counts() {
+        let s = SweepSpec::from_toml(GOOD).unwrap();
+        assert_eq!(s.valences, vec![3, 4, 5]);
+        assert_eq!(s.count_for(3), 16);
+        assert_eq!(s.count_for(4), 64);
+        assert_eq!(s.total(), 16 + 64 + 256);
+        assert_eq!(s.columns, Columns::default());
+        assert_eq!(s.digest(), SweepSpec::from_toml(GOOD).unwrap().digest());
+        let other = SweepSpec::from_toml(&GOOD.replace("0.9", "0.8")).unwrap();
+        assert_ne!(s.digest(), other.digest());
+    }
+
+    #[test]
+    fn errors_name_key_and_line() {
+        let e = err(&GOOD.replace("points_per_axis = 4", "points_per_axis = 0"));
+        assert_eq!(
+            e.to_string(),
+            "sampler.points_per_axis must be >= 1, got 0 (line 13)"
+        );
+        let e = err(&GOOD.replace("[0.1, 0.9]", "[0.7, 0.2]"));
+        assert_eq!(
+            e.to_string(),
+            "space.ratio_range: lower bound 0.7 > upper bound 0.2 (line 8)"
+        );
+        let e = err(&GOOD.replace("[0.1, 0.9]", "[0.0, 0.9]"));
+        assert!(
+            e.to_string()
+                .starts_with("space.ratio_range: bound 0 is outside"),
+            "{e}"
+        );
+        let e = err(&GOOD.replace("[0.1, 0.9]", "[0.5, 0.5]"));
+        assert!(
+            e.to_string().contains("space.ratio_range: empty range"),
+            "{e}"
+        );
+        let e = err(&GOOD.replace("kind = \"grid\"", "kind = \"grid\"\nbogus = 3"));
+        assert!(
+            e.to_string().starts_with("sampler.bogus: unknown field"),
+            "{e}"
+        );
+        assert!(e.to_string().contains("line 13"), "{e}");
+        let e = err(&GOOD.replace("from = 3", "from = 7"));
+        assert!(e.to_string().starts_with("valences: empty range"), "{e}");
+        let e = err(&GOOD.replace("r2 = 0.5", "r3 = 0.5"));
+        assert!(
+            e.to_string()
+                .starts_with("space.fixed.r3: unknown coordinate"),
+            "{e}"
+        );
+        let e = err(&GOOD.replace("r2 = 0.5", "r2 = 1.5"));
+        assert!(e.to_string().starts_with("space.fixed.r2 must be"), "{e}");
+        let e = err(&GOOD.replace("valences = { from = 3, to = 5 }", "valences = []"));
+        assert!(e.to_string().starts_with("valences: empty list"), "{e}");
+        let e = err(&GOOD.replace("points_per_axis = 4", "points_per_axis = 4\nseed = 1"));
+        assert!(e.to_string().starts_with("sampler.seed is not used"), "{e}");
+        let e = err(&GOOD.replace("\"nurds\"", "\"loop\""));
+        assert!(e.to_string().starts_with("scheme: unknown scheme"), "{e}");
+        let e = err(&GOOD.replace("to = 5", "to = 64"));
+        assert!(
+            e.to_string()
+                .starts_with("sampler.points_per_axis: the sweep would have more"),
+            "{e}"
+        );
+        match e {
+            SweepError::Spec { key, line, .. } => {
+                assert_eq!(key, "sampler.points_per_axis");
+                assert_eq!(line, Some(13));
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn coordinate_names_round_trip() {
+        for kind in [
+            SpaceKind::Ratios,
+            SpaceKind::CornerIntervals,
+            SpaceKind::FaceEp,
+            SpaceKind::VertexEp,
+        ] {
+            for n in [3, 7, 12] {
+                for k in 0..kind.dimension(n) {
+                    let name = kind.coordinate_name(n, k);
+                    assert_eq!(kind.coordinate_index(n, &name), Some(k), "{name}");
+                }
+                assert_eq!(kind.coordinate_index(n, "x0"), None);
+                assert_eq!(
+                    kind.coordinate_index(n, &format!("{}{n}", kind.families()[0])),
+                    None
+                );
+            }
+        }
+        assert_eq!(SpaceKind::Ratios.coordinate_index(5, "r01"), None);
+    }
+}

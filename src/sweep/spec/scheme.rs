@@ -1,0 +1,235 @@
+//! The scheme configuration of a sweep spec: the scheme, the valences, the
+//! space kind the scheme admits and its range (edge ratios, knot intervals or
+//! the shape parameter c), in one function, [`scheme_config`] (kept apart so
+//! that it can be replaced by a validator shared by the CLI, reports and
+//! sweeps).
+
+use super::raw::{forbid, range, Ctx, Domain, RawSpec};
+use super::{SpaceKind, MAX_VALENCE};
+use crate::schemes::SchemeKind;
+use crate::sweep::SweepError;
+use toml::Spanned;
+
+/// The validated scheme configuration of a spec.
+pub(super) struct SchemeConfig {
+    /// The scheme.
+    pub(super) scheme: SchemeKind,
+    /// The valences, in spec order.
+    pub(super) valences: Vec<usize>,
+    /// The space kind.
+    pub(super) kind: SpaceKind,
+    /// The sampled range of the space (none for `uniform`).
+    pub(super) range: Option<(f64, f64)>,
+}
+
+/// Parses and validates the scheme configuration: `scheme`, `valences`,
+/// `space.kind` against the scheme, and the range key of that kind
+/// (`space.ratio_range`, `space.interval_range` or `space.c_range`; the others
+/// forbidden).
+pub(super) fn scheme_config(ctx: &Ctx, raw: &RawSpec) -> Result<SchemeConfig, SweepError> {
+    let scheme: SchemeKind = match raw.scheme.get_ref().parse() {
+        Ok(k) => k,
+        Err(e) => return ctx.err("scheme", Some(raw.scheme.span()), format!("scheme: {e}")),
+    };
+    let valences = valences(ctx, &raw.valences)?;
+
+    // Space.
+    let rs = &raw.space;
+    let kind = match SpaceKind::parse(rs.kind.get_ref()) {
+        Some(k) => k,
+        None => {
+            return ctx.err(
+                "space.kind",
+                Some(rs.kind.span()),
+                format!(
+                    "space.kind: unknown space {:?} (known: ratios, corner-intervals, face-ep, vertex-ep, uniform, shape)",
+                    rs.kind.get_ref()
+                ),
+            )
+        }
+    };
+    if scheme.takes_c() != (kind == SpaceKind::Shape) {
+        let msg = if scheme.takes_c() {
+            format!("space.kind: scheme {scheme} is sampled over its shape parameter; use kind = \"shape\" with space.c_range")
+        } else {
+            format!("space.kind: kind \"shape\" samples the shape parameter c of scheme \"adjustable-cc\", not of {scheme}")
+        };
+        return ctx.err("space.kind", Some(rs.kind.span()), msg);
+    }
+    if kind != SpaceKind::Shape {
+        forbid(
+            ctx,
+            "space.c_range",
+            &rs.c_range,
+            "except by space kind \"shape\"",
+        )?;
+    }
+    if !scheme.takes_knots() && !matches!(kind, SpaceKind::Uniform | SpaceKind::Shape) {
+        return ctx.err(
+            "space.kind",
+            Some(rs.kind.span()),
+            format!(
+                "space.kind: scheme {scheme} takes no knot intervals; use kind = \"uniform\" (or scheme = \"nurds\")"
+            ),
+        );
+    }
+    let range = match kind {
+        SpaceKind::Ratios => {
+            forbid(
+                ctx,
+                "space.interval_range",
+                &rs.interval_range,
+                "by space kind \"ratios\" (use space.ratio_range)",
+            )?;
+            match &rs.ratio_range {
+                Some(r) => Some(range(ctx, "space.ratio_range", r, Domain::Ratio)?),
+                None => {
+                    return ctx.err(
+                        "space.ratio_range",
+                        Some(rs.kind.span()),
+                        "space.ratio_range is required by space kind \"ratios\"".into(),
+                    )
+                }
+            }
+        }
+        SpaceKind::Shape => {
+            let why = "by space kind \"shape\" (use space.c_range)";
+            forbid(ctx, "space.ratio_range", &rs.ratio_range, why)?;
+            forbid(ctx, "space.interval_range", &rs.interval_range, why)?;
+            match &rs.c_range {
+                Some(r) => Some(range(ctx, "space.c_range", r, Domain::Shape)?),
+                None => {
+                    return ctx.err(
+                        "space.c_range",
+                        Some(rs.kind.span()),
+                        "space.c_range is required by space kind \"shape\"".into(),
+                    )
+                }
+            }
+        }
+        SpaceKind::Uniform => {
+            forbid(
+                ctx,
+                "space.ratio_range",
+                &rs.ratio_range,
+                "by space kind \"uniform\"",
+            )?;
+            forbid(
+                ctx,
+                "space.interval_range",
+                &rs.interval_range,
+                "by space kind \"uniform\"",
+            )?;
+            forbid(ctx, "space.fixed", &rs.fixed, "by space kind \"uniform\"")?;
+            None
+        }
+        _ => {
+            forbid(
+                ctx,
+                "space.ratio_range",
+                &rs.ratio_range,
+                "by interval spaces (use space.interval_range)",
+            )?;
+            match &rs.interval_range {
+                Some(r) => Some(range(ctx, "space.interval_range", r, Domain::Interval)?),
+                None => {
+                    return ctx.err(
+                        "space.interval_range",
+                        Some(rs.kind.span()),
+                        format!(
+                            "space.interval_range is required by space kind {:?}",
+                            kind.name()
+                        ),
+                    )
+                }
+            }
+        }
+    };
+    Ok(SchemeConfig {
+        scheme,
+        valences,
+        kind,
+        range,
+    })
+}
+
+fn valences(ctx: &Ctx, v: &Spanned<toml::Value>) -> Result<Vec<usize>, SweepError> {
+    let span = Some(v.span());
+    let check = |key: &str, x: &toml::Value| -> Result<usize, SweepError> {
+        match x.as_integer() {
+            Some(n) if (3..=MAX_VALENCE as i64).contains(&n) => Ok(n as usize),
+            Some(n) => ctx.err(
+                key,
+                span.clone(),
+                format!("{key} must be a valence in 3..={MAX_VALENCE}, got {n}"),
+            ),
+            None => ctx.err(
+                key,
+                span.clone(),
+                format!("{key} must be an integer, got {x}"),
+            ),
+        }
+    };
+    let list = match v.get_ref() {
+        toml::Value::Array(items) => {
+            if items.is_empty() {
+                return ctx.err("valences", span, "valences: empty list".into());
+            }
+            items
+                .iter()
+                .enumerate()
+                .map(|(i, x)| check(&format!("valences[{i}]"), x))
+                .collect::<Result<Vec<_>, _>>()?
+        }
+        toml::Value::Table(t) => {
+            for k in t.keys() {
+                if k != "from" && k != "to" {
+                    return ctx.err(
+                        &format!("valences.{k}"),
+                        span,
+                        format!("valences.{k}: unknown key (a valence range has `from` and `to`)"),
+                    );
+                }
+            }
+            let get = |k: &str| -> Result<usize, SweepError> {
+                match t.get(k) {
+                    Some(x) => check(&format!("valences.{k}"), x),
+                    None => ctx.err(
+                        &format!("valences.{k}"),
+                        span.clone(),
+                        format!("valences.{k} is missing (a valence range has `from` and `to`)"),
+                    ),
+                }
+            };
+            let (from, to) = (get("from")?, get("to")?);
+            if from > to {
+                return ctx.err(
+                    "valences",
+                    span,
+                    format!("valences: empty range, from = {from} > to = {to}"),
+                );
+            }
+            (from..=to).collect()
+        }
+        other => {
+            return ctx.err(
+                "valences",
+                span,
+                format!(
+                    "valences must be a list [3, 5] or a range {{ from = 3, to = 8 }}, got {other}"
+                ),
+            )
+        }
+    };
+    let mut seen = std::collections::BTreeSet::new();
+    for n in &list {
+        if !seen.insert(*n) {
+            return ctx.err(
+                "valences",
+                span,
+                format!("valences: valence {n} is listed twice"),
+            );
+        }
+    }
+    Ok(list)
+}
