@@ -807,7 +807,7 @@ pub(crate) fn annihilates(a: &DMatrix<Rational>, fe: &Poly) -> bool {
 
 /// Characteristic polynomial modulo `p` of the matrix with entries `a`
 /// (row-major `m x m`): Hessenberg reduction by Gaussian similarity, then the
-/// Hessenberg determinant recurrence (as [`super::exact::charpoly`]).
+/// Hessenberg determinant recurrence (as `exact::charpoly` over the rationals).
 fn charpoly_mod(mut h: Vec<u64>, m: usize, p: u64) -> Vec<u64> {
     let at = |i: usize, j: usize| i * m + j;
     for k in 0..m.saturating_sub(2) {
@@ -1010,28 +1010,6 @@ mod tests {
         let s = RootStructure::certify(std::slice::from_ref(&p), &p, &z).expect("certified");
         assert_eq!(s.real_count(), 0);
         assert_eq!(s.count_outside(&Rational::new(1.into(), 8.into())), Some(2));
-    }
-
-    #[test]
-    fn multimodular_charpoly_matches_rational_hessenberg() {
-        let mut rng = crate::rng::SplitMix64::new(3);
-        for m in [1usize, 2, 3, 6, 9] {
-            let a = DMatrix::from_fn(m, m, |_, _| {
-                let num = (rng.next_u64() % 41) as i64 - 20;
-                let den = 1 + (rng.next_u64() % 97) as i64;
-                Rational::new(num.into(), den.into())
-            });
-            assert_eq!(
-                charpoly_multimodular(&a),
-                super::super::exact::charpoly(&a),
-                "m = {m}"
-            );
-        }
-        // A zero sub-diagonal (block triangular) and a zero matrix.
-        let mut a = DMatrix::from_element(4, 4, Rational::zero());
-        a[(0, 1)] = q(3);
-        a[(2, 3)] = Rational::new(1.into(), 7.into());
-        assert_eq!(charpoly_multimodular(&a), super::super::exact::charpoly(&a));
     }
 
     #[test]

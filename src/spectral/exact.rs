@@ -749,6 +749,26 @@ mod tests {
         Rational::new(a.into(), b.into())
     }
 
+    /// The multimodular characteristic polynomial (certify.rs) against the
+    /// rational Hessenberg one (this module): two independent methods.
+    #[test]
+    fn multimodular_charpoly_matches_rational_hessenberg() {
+        let mut rng = crate::rng::SplitMix64::new(3);
+        for m in [1usize, 2, 3, 6, 9] {
+            let a = DMatrix::from_fn(m, m, |_, _| {
+                let num = (rng.next_u64() % 41) as i64 - 20;
+                let den = 1 + (rng.next_u64() % 97) as i64;
+                Rational::new(num.into(), den.into())
+            });
+            assert_eq!(certify::charpoly_multimodular(&a), charpoly(&a), "m = {m}");
+        }
+        // A zero sub-diagonal (block triangular) and a zero matrix.
+        let mut a = DMatrix::from_element(4, 4, Rational::zero());
+        a[(0, 1)] = q(3, 1);
+        a[(2, 3)] = Rational::new(1.into(), 7.into());
+        assert_eq!(certify::charpoly_multimodular(&a), charpoly(&a));
+    }
+
     /// Random rational knot intervals a/b, a and b in 1..12.
     fn random_knots(rng: &mut SplitMix64, n: usize) -> LocalScheme<Rational> {
         let mut draw = || {

@@ -289,7 +289,7 @@ pub fn mode_patch_eigenvectors(
         }
         let a_oo = a.view((r, r), (7, 7)).into_owned() - DMatrix::identity(7, 7) * lambda;
         let rhs = -(a.view((r, 0), (7, r)) * x.rows(0, r));
-        let xo = super::limit::solve_linear(a_oo, rhs)?;
+        let xo = super::linear::solve_linear(a_oo, rhs)?;
         x.rows_mut(r, 7).copy_from(&xo);
         Ok(x)
     };

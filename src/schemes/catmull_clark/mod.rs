@@ -62,6 +62,7 @@
 pub mod fourier;
 mod layout;
 pub mod limit;
+pub mod linear;
 
 pub use layout::{PatchLayout, SubPatch};
 
