@@ -92,9 +92,6 @@ pub enum Error {
     /// Mesh construction, I/O parsing or refinement.
     #[error(transparent)]
     Mesh(#[from] crate::mesh::MeshError),
-    /// A report spec or report generation error.
-    #[error(transparent)]
-    Report(#[from] Box<crate::report::ReportError>),
     /// An error of the spectral engine.
     #[error(transparent)]
     Spectral(#[from] crate::spectral::SpectralError),

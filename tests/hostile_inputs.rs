@@ -528,6 +528,24 @@ fn cases() -> Vec<Case> {
             "line 4, column 42: figure[0].configs[0].valence",
         ),
         bad_with(
+            "report-spec-loop",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"spectrum\"\nconfigs = [{ scheme = \"loop\", valence = 5 }]\n",
+            )],
+            "scheme loop is not available in report specs",
+        ),
+        bad_with(
+            "sweep-spec-loop",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[(
+                "s.toml",
+                "name = \"x\"\nscheme = \"loop\"\nvalences = [5]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n",
+            )],
+            "scheme: loop is not available in sweep specs",
+        ),
+        bad_with(
             "report-spec-missing-kind",
             &["report", "s.toml", "--out", "r"],
             &[("s.toml", "name = \"t\"\n[[figure]]\nid = \"a\"\n")],

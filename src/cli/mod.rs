@@ -78,9 +78,20 @@ impl CliError {
             CliError::Failure(e.into())
         }
     }
-    /// A report error, mapped like [`CliError::lib`].
+    /// A report error: an input error when the spec is invalid or the
+    /// analysis behind a figure failed on its input (as [`CliError::lib`]).
     pub(crate) fn report(e: subdiv_lab::report::ReportError) -> Self {
-        CliError::lib(Box::new(e))
+        use subdiv_lab::report::ReportError as R;
+        let input = match &e {
+            R::Spec { .. } => true,
+            R::Analysis { source, .. } => is_input_error(source),
+            _ => false,
+        };
+        if input {
+            CliError::Usage(e.into())
+        } else {
+            CliError::Failure(e.into())
+        }
     }
     /// The same error (same exit code) with `context` in front of its message.
     pub(crate) fn context(self, context: impl std::fmt::Display + Send + Sync + 'static) -> Self {
@@ -106,7 +117,6 @@ impl CliError {
 /// non-convergence, residual checks, LP failures, I/O while writing.
 pub(crate) fn is_input_error(e: &subdiv_lab::Error) -> bool {
     use subdiv_lab::ccss_bound::CcssBoundError as C;
-    use subdiv_lab::report::ReportError as R;
     use subdiv_lab::spectral::SpectralError as S;
     use subdiv_lab::sweep::SweepError as W;
     use subdiv_lab::Error as E;
@@ -122,11 +132,6 @@ pub(crate) fn is_input_error(e: &subdiv_lab::Error) -> bool {
         E::CcssBound(c) => matches!(c, C::InvalidTolerance(_) | C::NonFinitePoint { .. }),
         E::Spectral(s) => matches!(s, S::NotDooSabinFamily { .. }),
         E::Sweep(w) => !matches!(w, W::Io(_)),
-        E::Report(r) => match r.as_ref() {
-            R::Spec { .. } => true,
-            R::Analysis { source, .. } => is_input_error(source),
-            _ => false,
-        },
         _ => false,
     }
 }

@@ -15,8 +15,8 @@
 //! from the figure's seed, so the configuration is fixed by the spec and seed.
 
 use super::error::ReportError;
+use super::figure_spec::FigureSpec;
 use super::rng::{log_uniform, SplitMix64};
-use super::spec::FigureSpec;
 use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::scheme::{Scheme, SpectralStructure};
 use crate::schemes::{LocalScheme, SchemeKind};
@@ -77,6 +77,13 @@ impl ConfigSpec {
                 .map_err(|e: crate::schemes::UnknownScheme| {
                     fs.error_at(&self.scheme, &format!("{key}.scheme"), e.to_string())
                 })?;
+        if !kind.in_specs() {
+            return Err(fs.error_at(
+                &self.scheme,
+                &format!("{key}.scheme"),
+                format!("scheme {kind} is not available in report specs yet (use `subdiv-lab analyze --scheme {kind}`)"),
+            ));
+        }
         let given = [
             self.ratios.is_some(),
             self.knots.is_some(),

@@ -38,6 +38,7 @@
 pub mod backend;
 pub mod config;
 pub mod error;
+pub mod figure_spec;
 pub mod figures;
 pub mod font;
 pub mod html;

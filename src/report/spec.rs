@@ -20,10 +20,11 @@
 //! Every table rejects unknown keys. Errors carry the line and column of the
 //! offending key or value and name it (see [`ReportError::Spec`]).
 
-use super::error::{Location, ReportError};
+use super::error::ReportError;
+use super::figure_spec::toml_error;
+pub use super::figure_spec::{Common, FigureSpec, COMMON_KEYS};
 use super::figures::{self, Figure};
 use super::rng::derive_seed;
-use serde::de::DeserializeOwned;
 use serde::Deserialize;
 use toml::de::{DeTable, DeValue, ValueDeserializer};
 use toml::Spanned;
@@ -34,8 +35,6 @@ pub const DEFAULT_SIZE: (u32, u32) = (1600, 1000);
 pub const MIN_PIXELS: u32 = 400;
 /// Largest accepted figure width or height in pixels (keeps the RGB buffer below ~200 MB).
 pub const MAX_PIXELS: u32 = 8000;
-/// Keys every figure table may carry, handled here rather than by the kind.
-pub const COMMON_KEYS: &[&str] = &["kind", "id", "title", "caption", "width", "height", "seed"];
 
 /// A parsed, validated report spec.
 pub struct ReportSpec {
@@ -69,23 +68,6 @@ impl std::fmt::Debug for ReportSpec {
     }
 }
 
-/// The keys every figure shares.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct Common {
-    /// Figure kind name.
-    pub kind: &'static str,
-    /// Figure id (file stem).
-    pub id: String,
-    /// Title drawn on the figure and shown in index.html.
-    pub title: String,
-    /// Caption for index.html.
-    pub caption: Option<String>,
-    /// Pixel size (width, height).
-    pub size: (u32, u32),
-    /// Seed of the figure's random draws.
-    pub seed: u64,
-}
-
 /// One figure of a spec: shared keys plus the kind's parsed parameters.
 pub struct FigureEntry {
     /// Shared keys.
@@ -113,85 +95,6 @@ struct CommonRaw {
     width: Option<Spanned<u32>>,
     height: Option<Spanned<u32>>,
     seed: Option<u64>,
-}
-
-/// The kind-specific part of one `[[figure]]` table, with its position in the
-/// spec text so that errors can name the line.
-pub struct FigureSpec<'a> {
-    src: &'a str,
-    key: String,
-    value: Spanned<DeValue<'a>>,
-    seed: u64,
-}
-
-impl<'a> FigureSpec<'a> {
-    /// Deserializes the kind's keys into `T` (which should use
-    /// `#[serde(deny_unknown_fields)]`); errors carry line, column and key.
-    pub fn parse<T: DeserializeOwned>(&self) -> Result<T, ReportError> {
-        T::deserialize(ValueDeserializer::from(self.value.clone())).map_err(|e| {
-            let mut err = toml_error(self.src, e, Some(self.key.clone()));
-            if let ReportError::Spec { message, .. } = &mut err {
-                if message.starts_with("unknown field") && !message.contains("`id`") {
-                    message.push_str(&format!(", or a shared key ({})", COMMON_KEYS.join(", ")));
-                }
-            }
-            err
-        })
-    }
-
-    /// An error about a value that deserialized but is invalid, located by its span.
-    pub fn error_at<T>(
-        &self,
-        value: &Spanned<T>,
-        key: &str,
-        message: impl Into<String>,
-    ) -> ReportError {
-        ReportError::spec_at(
-            self.src,
-            value.span().start,
-            format!("{}.{key}", self.key),
-            message,
-        )
-    }
-
-    /// An error about the figure table as a whole (e.g. a missing combination of keys).
-    pub fn error(&self, message: impl Into<String>) -> ReportError {
-        ReportError::spec_at(self.src, self.value.span().start, self.key.clone(), message)
-    }
-
-    /// The figure's seed (for random draws made while parsing).
-    pub fn seed(&self) -> u64 {
-        self.seed
-    }
-
-    /// The dotted key of this figure, e.g. `figure[2]`.
-    pub fn key(&self) -> &str {
-        &self.key
-    }
-}
-
-/// A spec error from the TOML deserializer. The key is the exact dotted path
-/// at the error's span (e.g. `figure[0].configs[0].valence`) when the text
-/// parses, else `key`; a missing key is named by its table's path and name.
-fn toml_error(src: &str, e: toml::de::Error, key: Option<String>) -> ReportError {
-    let span = e.span().filter(|s| s.end > 0);
-    let message = e.message().trim().to_owned();
-    let found = span
-        .as_ref()
-        .and_then(|s| crate::toml_location::key_path_in_tree(src, s.start));
-    let missing = message
-        .strip_prefix("missing field `")
-        .and_then(|m| m.strip_suffix('`'));
-    let (key, message) = match (missing, found.or(key)) {
-        (Some(field), Some(table)) => (Some(format!("{table}.{field}")), "missing".to_owned()),
-        (Some(field), None) => (Some(field.to_owned()), "missing".to_owned()),
-        (None, k) => (k, message),
-    };
-    ReportError::Spec {
-        at: span.map(|s| Location::of(src, s.start)),
-        key,
-        message,
-    }
 }
 
 fn valid_id(id: &str) -> bool {
@@ -381,6 +284,7 @@ impl ReportSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::toml_location::Location;
 
     const ONE: &str = "name = \"t\"\nseed = 5\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme = \"nurds\", valence = 3 }]\n";
 

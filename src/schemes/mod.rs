@@ -88,6 +88,14 @@ impl SchemeKind {
         matches!(self, SchemeKind::AdjustableCc)
     }
 
+    /// Whether sweep and report specs can enumerate the scheme: those build a
+    /// [`LocalScheme`] per configuration (the face- and one-ring families).
+    /// Loop is available in `analyze`, `matrix`, `subdivide` and through the
+    /// library ([`crate::scheme::Scheme`]).
+    pub fn in_specs(self) -> bool {
+        self != SchemeKind::Loop
+    }
+
     /// Whether the scheme belongs to the Catmull-Clark family ((2n+1) one-ring matrix).
     pub fn is_catmull_clark_family(self) -> bool {
         matches!(self, SchemeKind::CatmullClark | SchemeKind::AdjustableCc)

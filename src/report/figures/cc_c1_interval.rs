@@ -22,8 +22,8 @@ use super::{bounded, num, valence_range, Context, DataTable, Figure, FigureKind,
 use crate::cc_study::{intervals, CInterval, Criterion};
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
+use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{draw_err, inner_legend, mix_white, titled, viridis, LegendGlyph, Theme};
-use crate::report::spec::{Common, FigureSpec};
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Deserialize;

@@ -21,10 +21,10 @@ use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::cc_study::{study_curve, StudyPoint};
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
+use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
     dash, draw_err, inner_legend, series_color, titled, LegendGlyph, Marker, Theme,
 };
-use crate::report::spec::{Common, FigureSpec};
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Deserialize;

@@ -20,10 +20,10 @@ use super::{bounded, num, valence_range, Context, DataTable, Figure, FigureKind,
 use crate::ccss_bound::bound::bound;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
+use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
     dash, draw_err, inner_legend, titled, viridis, LegendGlyph, Marker, Theme,
 };
-use crate::report::spec::{Common, FigureSpec};
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Deserialize;

@@ -20,11 +20,11 @@ use crate::contraction::{measure, MeasureOptions};
 use crate::report::backend::Area;
 use crate::report::config::{require_doo_sabin_family, resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
+use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
     dash, draw_err, series_color, side_legend, titled, LegendGlyph, Marker, Theme,
 };
 use crate::report::rng::derive_seed;
-use crate::report::spec::{Common, FigureSpec};
 use crate::spectral::classify_scheme;
 use plotters::prelude::*;
 use rayon::prelude::*;

@@ -27,11 +27,11 @@ use crate::mesh::limit::{convergence_series, face_local_scheme, refine_with_stat
 use crate::mesh::Mesh;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
+use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
     dash, draw_err, inner_legend, series_color, titled, LegendGlyph, Marker, Theme,
 };
 use crate::report::rng::{log_uniform, SplitMix64};
-use crate::report::spec::{Common, FigureSpec};
 use crate::schemes::SchemeKind;
 use crate::spectral::classify_scheme;
 use plotters::prelude::*;

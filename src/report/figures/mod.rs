@@ -35,7 +35,7 @@
 
 use super::backend::Area;
 use super::error::ReportError;
-use super::spec::{Common, FigureSpec};
+use super::figure_spec::{Common, FigureSpec};
 
 pub mod cc_c1_interval;
 pub mod cc_eigenvalues;

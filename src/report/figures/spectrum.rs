@@ -14,10 +14,10 @@ use super::{eigenvalues, num, Context, DataTable, Figure, FigureKind, FigureOutp
 use crate::report::backend::Area;
 use crate::report::config::{resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
+use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
     circle_points, dash, draw_err, titled, viridis, LegendGlyph, Marker, Theme,
 };
-use crate::report::spec::{Common, FigureSpec};
 use crate::scheme::Scheme;
 use crate::spectral::{analyze, AnalyzeOptions, LocalAnalysis};
 use num_complex::Complex64;

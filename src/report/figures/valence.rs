@@ -19,11 +19,11 @@ use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::report::backend::Area;
 use crate::report::config::MAX_VALENCE;
 use crate::report::error::ReportError;
+use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
     dash, draw_err, inner_legend, mix_white, titled, viridis, LegendGlyph, Marker, Theme,
 };
 use crate::report::rng::{derive_seed, log_uniform, SplitMix64};
-use crate::report::spec::{Common, FigureSpec};
 use crate::schemes::LocalScheme;
 use crate::spectral::classify_scheme;
 use plotters::prelude::*;

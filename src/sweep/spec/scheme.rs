@@ -31,6 +31,13 @@ pub(super) fn scheme_config(ctx: &Ctx, raw: &RawSpec) -> Result<SchemeConfig, Sw
         Ok(k) => k,
         Err(e) => return ctx.err("scheme", Some(raw.scheme.span()), format!("scheme: {e}")),
     };
+    if !scheme.in_specs() {
+        return ctx.err(
+            "scheme",
+            Some(raw.scheme.span()),
+            format!("scheme: {scheme} is not available in sweep specs yet (use `subdiv-lab analyze --scheme {scheme}` or the library's sweep::own)"),
+        );
+    }
     let valences = valences(ctx, &raw.valences)?;
 
     // Space.
