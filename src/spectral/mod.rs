@@ -93,7 +93,7 @@ impl Default for AnalyzeOptions {
 /// Contraction summary (math doc section 5).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ContractionSummary {
-    /// Largest row sum of the certificate weights `W` (3/4; see [`contraction::certificate`]).
+    /// Largest row sum of the certificate weights `W` (3/4; see [`crate::contraction::certificate`]).
     pub certificate_sum: f64,
     /// Largest `|row sum of W - 3/4|` (0 up to rounding; exactly 0 for rationals).
     pub certificate_sum_defect: f64,
