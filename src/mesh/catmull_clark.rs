@@ -28,7 +28,7 @@
 //! assert_eq!((once.face_count(), once.vertex_count()), (24, 26));
 //! ```
 
-use super::{Mesh, MeshError, MAX_HALF_EDGES};
+use super::{Mesh, MeshError};
 
 fn check_c(c: f64) -> Result<(), MeshError> {
     if (0.0..=1.0).contains(&c) {
@@ -65,13 +65,7 @@ fn edge_ids(mesh: &Mesh) -> (Vec<u32>, usize) {
 pub fn refine_cc(mesh: &Mesh, c: f64) -> Result<Mesh, MeshError> {
     check_c(c)?;
     let hc = mesh.half_edge_count();
-    let new_h = 4 * hc as u64;
-    if new_h > MAX_HALF_EDGES {
-        return Err(MeshError::TooLarge {
-            half_edges: new_h,
-            max: MAX_HALF_EDGES,
-        });
-    }
+    crate::mesh::quadrupled_half_edges(mesh)?;
     let (nv, nf) = (mesh.vertex_count(), mesh.face_count());
     let (eid, ne) = edge_ids(mesh);
     let p = mesh.positions();

@@ -289,6 +289,21 @@ pub enum MeshError {
 /// Largest number of half-edges a mesh may have (indices are `u32`).
 pub const MAX_HALF_EDGES: u64 = u32::MAX as u64;
 
+/// The half-edge count after one step that splits every face into as many
+/// faces as it has corners (every scheme here: `4H`), refused with
+/// [`MeshError::TooLarge`] above [`MAX_HALF_EDGES`] before anything is
+/// allocated.
+pub(crate) fn quadrupled_half_edges(mesh: &Mesh) -> Result<u64, MeshError> {
+    let new_h = 4 * mesh.half_edge_count() as u64;
+    if new_h > MAX_HALF_EDGES {
+        return Err(MeshError::TooLarge {
+            half_edges: new_h,
+            max: MAX_HALF_EDGES,
+        });
+    }
+    Ok(new_h)
+}
+
 /// A closed, oriented 2-manifold polygon mesh with one knot interval per
 /// directed edge. Constructed only through validation ([`Mesh::from_polygons`])
 /// or by refinement, so every instance satisfies the invariants.

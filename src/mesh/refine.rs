@@ -39,7 +39,7 @@
 // Index loops mirror the subscripts of the formulas in the math doc.
 #![allow(clippy::needless_range_loop)]
 
-use super::{Mesh, MeshError, MAX_HALF_EDGES};
+use super::{Mesh, MeshError};
 use crate::knots::face_weights::interval_kernel;
 use crate::schemes::SchemeKind;
 
@@ -175,13 +175,7 @@ pub fn refine(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
     }
     check_halvable(mesh)?;
     let h_count = mesh.half_edge_count();
-    let new_h = 4 * h_count as u64;
-    if new_h > MAX_HALF_EDGES {
-        return Err(MeshError::TooLarge {
-            half_edges: new_h,
-            max: MAX_HALF_EDGES,
-        });
-    }
+    crate::mesh::quadrupled_half_edges(mesh)?;
     let nf = mesh.face_count();
     let nv = mesh.vertex_count();
     let ne = h_count / 2;

@@ -6,6 +6,7 @@
 //! depend on the order (ties in an extreme go to the smaller configuration id).
 //! It serialises to the JSON written beside the CSV.
 
+use super::output::csv::small_uint;
 use super::output::layout::{Layout, Row};
 use super::plan::{Plan, Shard};
 use super::SweepError;
@@ -81,20 +82,6 @@ impl ColumnStats {
             }
         }
     }
-}
-
-/// Decimal digits of `v` in `buf` (no allocation).
-fn small_decimal(mut v: usize, buf: &mut [u8; 20]) -> &str {
-    let mut i = buf.len();
-    loop {
-        i -= 1;
-        buf[i] = b'0' + (v % 10) as u8;
-        v /= 10;
-        if v == 0 {
-            break;
-        }
-    }
-    std::str::from_utf8(&buf[i..]).unwrap_or("?")
 }
 
 /// Extremes of one numeric column in a [`PartialSummary`] (plain numbers, no
@@ -287,7 +274,7 @@ impl Summary {
                 .unwrap_or(if row.error.is_some() { "error" } else { "all" });
         // Look up before inserting: no allocation once a (valence, class) pair is known.
         let mut vbuf = [0u8; 20];
-        let vkey = small_decimal(row.valence, &mut vbuf);
+        let vkey = small_uint(row.valence as u64, &mut vbuf);
         if !self.classes.contains_key(vkey) {
             self.classes.insert(vkey.to_owned(), BTreeMap::new());
         }
@@ -377,7 +364,7 @@ impl Summary {
         self.complete = self.rows == self.expected_rows;
         let mut vbuf = [0u8; 20];
         for (valence, class, k) in &part.classes {
-            let vkey = small_decimal(*valence, &mut vbuf);
+            let vkey = small_uint(*valence as u64, &mut vbuf);
             if !self.classes.contains_key(vkey) {
                 self.classes.insert(vkey.to_owned(), BTreeMap::new());
             }

@@ -194,13 +194,7 @@ fn one_ring_stencil(mesh: &Mesh, rule: fn(usize) -> (f64, f64), capacity: usize)
 pub fn refine(mesh: &Mesh) -> Result<Mesh, MeshError> {
     check_triangles(mesh, "Loop refinement")?;
     let h_count = mesh.half_edge_count();
-    let new_h = 4 * h_count as u64;
-    if new_h > MAX_HALF_EDGES {
-        return Err(MeshError::TooLarge {
-            half_edges: new_h,
-            max: MAX_HALF_EDGES,
-        });
-    }
+    crate::mesh::quadrupled_half_edges(mesh)?;
     let nv = mesh.vertex_count();
     let nf = mesh.face_count();
     let ne = h_count / 2;

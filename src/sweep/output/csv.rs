@@ -7,7 +7,7 @@ pub(super) fn itoa_buf() -> [u8; 20] {
 }
 
 /// Decimal digits of `v` (no allocation).
-pub(super) fn small_uint(mut v: u64, buf: &mut [u8; 20]) -> &str {
+pub(crate) fn small_uint(mut v: u64, buf: &mut [u8; 20]) -> &str {
     let mut i = buf.len();
     loop {
         i -= 1;

@@ -25,7 +25,7 @@
 //! * `verify.rs`: the verification of existing files (resume and merge,
 //!   [`Verifier`]).
 
-mod csv;
+pub(crate) mod csv;
 pub(crate) mod layout;
 mod merge;
 mod run;
