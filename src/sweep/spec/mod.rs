@@ -474,8 +474,10 @@ points_per_axis = 4
         assert!(e.to_string().starts_with("valences: empty list"), "{e}");
         let e = err(&GOOD.replace("points_per_axis = 4", "points_per_axis = 4\nseed = 1"));
         assert!(e.to_string().starts_with("sampler.seed is not used"), "{e}");
-        let e = err(&GOOD.replace("\"nurds\"", "\"loop\""));
+        let e = err(&GOOD.replace("\"nurds\"", "\"butterfly\""));
         assert!(e.to_string().starts_with("scheme: unknown scheme"), "{e}");
+        let e = err(&GOOD.replace("\"nurds\"", "\"loop\""));
+        assert!(e.to_string().starts_with("scheme: loop is not available in sweep specs"), "{e}");
         let e = err(&GOOD.replace("to = 5", "to = 64"));
         assert!(
             e.to_string()
