@@ -477,7 +477,11 @@ points_per_axis = 4
         let e = err(&GOOD.replace("\"nurds\"", "\"butterfly\""));
         assert!(e.to_string().starts_with("scheme: unknown scheme"), "{e}");
         let e = err(&GOOD.replace("\"nurds\"", "\"loop\""));
-        assert!(e.to_string().starts_with("scheme: loop is not available in sweep specs"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("scheme: loop is not available in sweep specs"),
+            "{e}"
+        );
         let e = err(&GOOD.replace("to = 5", "to = 64"));
         assert!(
             e.to_string()
