@@ -182,7 +182,7 @@ fn bad_inputs() {
         (&["matrix", "--valence", "2", "--uniform"], "at least 3"),
         (
             &["matrix", "--scheme", "butterfly", "--valence", "4", "--uniform"],
-            "\"loop\"",
+            "\"butterfly\"",
         ),
         (
             &["matrix", "--uniform", "--ratios", "0.5,0.5,0.5"],
