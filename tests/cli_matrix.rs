@@ -181,7 +181,14 @@ fn bad_inputs() {
         (&["matrix", "--ratios", "0.5,0.5"], "at least 3"),
         (&["matrix", "--valence", "2", "--uniform"], "at least 3"),
         (
-            &["matrix", "--scheme", "butterfly", "--valence", "4", "--uniform"],
+            &[
+                "matrix",
+                "--scheme",
+                "butterfly",
+                "--valence",
+                "4",
+                "--uniform",
+            ],
             "\"butterfly\"",
         ),
         (
