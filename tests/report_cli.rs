@@ -433,8 +433,8 @@ fn bad_specs() -> Vec<(&'static str, String, Vec<&'static str>)> {
     vec![
         (
             "unknown scheme",
-            format!("{head}kind = \"spectrum\"\nconfigs = [\n  {{ scheme = \"loop\", valence = 5 }},\n]\n"),
-            vec!["line 5", "configs[0].scheme", "unknown scheme \"loop\""],
+            format!("{head}kind = \"spectrum\"\nconfigs = [\n  {{ scheme = \"butterfly\", valence = 5 }},\n]\n"),
+            vec!["line 5", "configs[0].scheme", "unknown scheme \"butterfly\""],
         ),
         (
             "bad knots",

@@ -86,7 +86,11 @@ style = "wireframe"
 fn bad_mesh_figure_specs_name_the_key() {
     for (body, needle) in [
         ("mesh = \"teapot\"\nscheme = \"nurds\"", "unknown mesh"),
-        ("mesh = \"cube\"\nscheme = \"loop\"", "unknown scheme"),
+        ("mesh = \"cube\"\nscheme = \"butterfly\"", "unknown scheme"),
+        (
+            "mesh = \"cube\"\nscheme = \"loop\"",
+            "not available in report specs",
+        ),
         (
             "mesh = \"cube\"\nscheme = \"doo-sabin\"\nrandom_knots = 2.0",
             "needs scheme",

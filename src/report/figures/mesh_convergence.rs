@@ -112,9 +112,18 @@ pub(crate) fn mesh_scheme(
     fs: &FigureSpec<'_>,
     s: &Spanned<String>,
 ) -> Result<SchemeKind, ReportError> {
-    s.get_ref()
+    let kind = s
+        .get_ref()
         .parse::<SchemeKind>()
-        .map_err(|e| fs.error_at(s, "scheme", e.to_string()))
+        .map_err(|e| fs.error_at(s, "scheme", e.to_string()))?;
+    if !kind.in_specs() {
+        return Err(fs.error_at(
+            s,
+            "scheme",
+            format!("scheme {kind} is not available in report specs yet (use `subdiv-lab subdivide --scheme {kind}`)"),
+        ));
+    }
+    Ok(kind)
 }
 
 struct MeshConvergence {
