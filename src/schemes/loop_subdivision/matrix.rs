@@ -237,16 +237,10 @@ mod tests {
         out
     }
 
+    /// Arbitrary data in [-1/2, 1/2) (the crate's one RNG, [`crate::rng`]).
     fn pseudo_random(len: usize, seed: u64) -> Vec<f64> {
-        let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-        (0..len)
-            .map(|_| {
-                x ^= x << 13;
-                x ^= x >> 7;
-                x ^= x << 17;
-                (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-            })
-            .collect()
+        let mut rng = crate::rng::SplitMix64::new(seed);
+        (0..len).map(|_| rng.uniform(-0.5, 0.5)).collect()
     }
 
     #[test]
