@@ -21,10 +21,10 @@ use subdiv_lab::knots::EdgeRatios;
 use subdiv_lab::rng::SplitMix64;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};
-use subdiv_lab::spectral::kernel::{KernelWorkspace, BATCH};
 use subdiv_lab::spectral::{
     analyze, classify_scheme, classify_schemes_batch, AnalyzeOptions, StructuredWorkspace,
 };
+use subdiv_lab::spectral::{KernelWorkspace, BATCH};
 
 fn main() {
     divan::main();

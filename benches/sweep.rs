@@ -56,7 +56,7 @@ fn classify_only(bencher: divan::Bencher, n: usize) {
             for id in 0..plan.total() {
                 let c = plan.configuration(id).expect("id in range");
                 let s = plan.scheme(&c).expect("valid configuration");
-                cells += eval.evaluate(&plan, &c, &s).expect("evaluates").len();
+                cells += eval.evaluate(&plan, &c, &*s).expect("evaluates").len();
             }
             black_box(cells)
         });

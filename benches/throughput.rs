@@ -13,7 +13,7 @@ use subdiv_lab::knots::EdgeRatios;
 use subdiv_lab::rng::SplitMix64;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};
-use subdiv_lab::spectral::kernel::BATCH;
+use subdiv_lab::spectral::BATCH;
 use subdiv_lab::spectral::{
     classify_scheme_with, classify_schemes_batch, StructuredWorkspace, SubdominantClass,
 };

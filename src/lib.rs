@@ -46,7 +46,7 @@ pub mod ccss_bound;
 pub mod charmap;
 pub mod contraction;
 pub mod error;
-pub mod hash;
+pub(crate) mod hash;
 pub mod knots;
 pub mod mesh;
 pub mod report;
@@ -58,7 +58,7 @@ pub mod spectral;
 pub mod sweep;
 #[cfg(feature = "testing")]
 pub mod testing;
-pub mod toml_location;
+pub(crate) mod toml_location;
 
 pub use error::{Error, Result};
 pub use scheme::Scheme;

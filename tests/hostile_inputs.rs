@@ -441,7 +441,53 @@ fn cases() -> Vec<Case> {
                 "--knots-out",
                 "k.knots",
             ],
-            "Doo-Sabin-family options",
+            "--knots/--knots-out: scheme loop takes no knot intervals",
+        ),
+        bad(
+            "loop-with-stats",
+            &[
+                "subdivide",
+                "{M}/icosahedron.obj",
+                "--scheme",
+                "loop",
+                "--stats",
+            ],
+            "--stats: scheme loop has no per-level statistics",
+        ),
+        bad(
+            "subdivide-catmull-clark-with-c",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "catmull-clark",
+                "--c",
+                "0.3",
+                "-o",
+                "out.obj",
+            ],
+            "--c: scheme catmull-clark takes no shape parameter c",
+        ),
+        bad(
+            "subdivide-adjustable-cc-without-c",
+            &[
+                "subdivide",
+                "{M}/cube.obj",
+                "--scheme",
+                "adjustable-cc",
+                "-o",
+                "out.obj",
+            ],
+            "--c: scheme adjustable-cc needs the shape parameter c",
+        ),
+        bad_with(
+            "report-mesh-picture-loop-random-knots",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"mesh-picture\"\nmesh = \"icosahedron\"\nscheme = \"loop\"\nrandom_knots = 2.0\n",
+            )],
+            "figure[0].random_knots: scheme loop takes no knot intervals",
         ),
         bad(
             "face-block-catmull-clark",
@@ -532,18 +578,18 @@ fn cases() -> Vec<Case> {
             &["report", "s.toml", "--out", "r"],
             &[(
                 "s.toml",
-                "name = \"t\"\n[[figure]]\nkind = \"spectrum\"\nconfigs = [{ scheme = \"loop\", valence = 5 }]\n",
+                "name = \"t\"\n[[figure]]\nkind = \"spectrum\"\nconfigs = [{ scheme = \"loop\", ratios = [0.3, 0.5, 0.5] }]\n",
             )],
-            "scheme loop is not available in report specs",
+            "figure[0].configs[0].scheme: scheme loop takes no knot intervals",
         ),
         bad_with(
             "sweep-spec-loop",
             &["sweep", "s.toml", "--out", "o.csv"],
             &[(
                 "s.toml",
-                "name = \"x\"\nscheme = \"loop\"\nvalences = [5]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n",
+                "name = \"x\"\nscheme = \"loop\"\nvalences = [5]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n",
             )],
-            "scheme: loop is not available in sweep specs",
+            "space.kind: scheme loop takes no knot intervals",
         ),
         bad_with(
             "report-spec-missing-kind",

@@ -6,9 +6,8 @@ use std::collections::HashMap;
 use subdiv_lab::contraction::{measure, MeasureOptions};
 use subdiv_lab::knots::EdgeRatios;
 use subdiv_lab::report::figures::NoProgress;
-use subdiv_lab::report::rng::derive_seed;
-use subdiv_lab::report::rng::{log_uniform, SplitMix64};
 use subdiv_lab::report::{generate, ReportSpec, RunInfo};
+use subdiv_lab::rng::{derive_seed, log_uniform, SplitMix64};
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::{analyze, classify_scheme, AnalyzeOptions};
 

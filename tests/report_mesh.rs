@@ -89,11 +89,11 @@ fn bad_mesh_figure_specs_name_the_key() {
         ("mesh = \"cube\"\nscheme = \"butterfly\"", "unknown scheme"),
         (
             "mesh = \"cube\"\nscheme = \"loop\"",
-            "not available in report specs",
+            "no per-level statistics",
         ),
         (
             "mesh = \"cube\"\nscheme = \"doo-sabin\"\nrandom_knots = 2.0",
-            "needs scheme",
+            "takes no knot intervals",
         ),
         (
             "mesh = \"cube\"\nscheme = \"nurds\"\nrandom_knots = 0.5",

@@ -10,12 +10,12 @@ use subdiv_lab::scalar::{Rational, Scalar};
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{Eigen, EigenOptions};
 use subdiv_lab::spectral::exact::{exact_verdict, TopPair};
-use subdiv_lab::spectral::kernel::{KernelWorkspace, BATCH};
 use subdiv_lab::spectral::structured::structured_spectrum;
 use subdiv_lab::spectral::{
     analyze, classify_scheme, classify_schemes_batch, AnalyzeOptions, ClassName, SpectrumPath,
     StructuredWorkspace, SubdominantClass,
 };
+use subdiv_lab::spectral::{KernelWorkspace, BATCH};
 
 fn full_values(s: &LocalScheme<f64>) -> Vec<Complex64> {
     let m = s.matrix().unwrap().into_matrix();

@@ -83,7 +83,7 @@ row() {
   for _ in $(seq "$RUNS"); do
     if [ "$name" = subdiv-lab ]; then
       /usr/bin/time -f "rss=%M" "$@" 2>"$WORK/time.err" >/dev/null
-      line=$(grep '^refinement:' "$WORK/time.err" | sed -E 's/refinement: [0-9]+ levels, ([0-9]+) faces, ([0-9]+) vertices, ([0-9.]+) s/faces=\1 vertices=\2 seconds=\3/')
+      line=$(grep '^refinement:' "$WORK/time.err" | sed -E 's/refinement: [0-9]+ levels, ([0-9]+) faces, ([0-9]+) vertices, ([0-9.]+) s.*/faces=\1 vertices=\2 seconds=\3/')
     else
       line=$(/usr/bin/time -f "rss=%M" "$@" 2>"$WORK/time.err")
     fi

@@ -6,6 +6,7 @@ use anyhow::anyhow;
 use clap::Args;
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
 use subdiv_lab::scalar::{parse_exact, Rational, Scalar};
+use subdiv_lab::scheme::choice::{validate, Choice, ChoiceError};
 use subdiv_lab::schemes::{LocalScheme, SchemeKind};
 use subdiv_lab::Scheme;
 
@@ -126,7 +127,6 @@ fn lib_err(e: subdiv_lab::Error) -> CliError {
 impl SchemeArgs {
     /// Validates the flags; `exact` also builds the exact-rational configuration.
     pub fn resolve(&self, exact: bool) -> CliResult<Resolved> {
-        let kind: SchemeKind = self.scheme.parse().map_err(CliError::usage)?;
         let given = [self.knots.is_some(), self.ratios.is_some(), self.uniform]
             .iter()
             .filter(|b| **b)
@@ -136,11 +136,19 @@ impl SchemeArgs {
                 "--knots, --ratios and --uniform are mutually exclusive; give one"
             )));
         }
-        if !kind.takes_knots() && (self.knots.is_some() || self.ratios.is_some()) {
-            return Err(CliError::usage(anyhow!(
-                "--scheme {kind} takes no knot intervals (only --uniform); use --scheme nurds for --knots/--ratios"
-            )));
-        }
+        // The shared rules (subdiv_lab::scheme::choice), with the flag named.
+        let choice = Choice {
+            name: &self.scheme,
+            knots: self.knots.is_some() || self.ratios.is_some(),
+            c: self.c.is_some(),
+        };
+        let kind = validate(&choice).map_err(|e| {
+            CliError::usage(match e {
+                ChoiceError::Unknown(_) => anyhow!("--scheme: {e}"),
+                ChoiceError::TakesNoKnots(_) => anyhow!("--knots/--ratios: {e}"),
+                ChoiceError::TakesNoC(_) | ChoiceError::NeedsC(_) => anyhow!("--c: {e}"),
+            })
+        })?;
         // Parse ratios in both arithmetics.
         let (rq, rf): (Option<EdgeRatios<Rational>>, Option<EdgeRatios<f64>>) = if let Some(text) =
             &self.knots

@@ -1,5 +1,6 @@
-//! `subdiv-lab subdivide`: refine a closed OBJ mesh with NURDS, original
-//! Doo-Sabin or the Catmull-Clark variant.
+//! `subdivide`: refine a closed OBJ mesh with any built-in scheme, through
+//! its mesh rules ([`subdiv_lab::scheme::registry::mesh_rules`]): one flow that
+//! asks the rules for capabilities (knot intervals, per-level statistics).
 //!
 //! Conflicting outputs (`-o X --knots-out X`, an output naming the input) are
 //! refused before anything is written. All outputs are produced in memory
@@ -13,9 +14,12 @@ use anyhow::{anyhow, Context};
 use clap::Args;
 use std::io::Write;
 use std::path::PathBuf;
-use subdiv_lab::mesh::limit::{level_stats, limit_mesh, LevelStats};
-use subdiv_lab::mesh::refine::{half_edges_after, refine};
-use subdiv_lab::mesh::{knot_file, obj, Mesh, MeshError, MAX_HALF_EDGES};
+use subdiv_lab::mesh::limit::LevelStats;
+use subdiv_lab::mesh::refine::half_edges_after;
+use subdiv_lab::mesh::rules::KnotUse;
+use subdiv_lab::mesh::{knot_file, obj, MAX_HALF_EDGES};
+use subdiv_lab::scheme::choice::{validate, Choice, ChoiceError};
+use subdiv_lab::scheme::registry::mesh_rules;
 use subdiv_lab::schemes::SchemeKind;
 
 #[derive(Args, Debug)]
@@ -89,17 +93,38 @@ fn check_outputs(args: &SubdivideArgs) -> CliResult {
 }
 
 pub(crate) fn run(args: SubdivideArgs) -> CliResult {
-    let scheme: SchemeKind = args.scheme.parse().map_err(CliError::usage)?;
+    // The shared rules (subdiv_lab::scheme::choice), with the flags named.
+    let choice = Choice {
+        name: &args.scheme,
+        knots: args.knots.is_some() || args.knots_out.is_some(),
+        c: args.c.is_some(),
+    };
+    let kind = validate(&choice).map_err(|e| {
+        CliError::usage(match e {
+            ChoiceError::Unknown(_) => anyhow!("--scheme: {e}"),
+            ChoiceError::TakesNoKnots(_) => anyhow!("--knots/--knots-out: {e}"),
+            ChoiceError::TakesNoC(_) | ChoiceError::NeedsC(_) => anyhow!("--c: {e}"),
+        })
+    })?;
     check_outputs(&args)?;
-    if scheme.is_catmull_clark_family() {
-        return run_cc(args, scheme);
-    }
-    if scheme == SchemeKind::Loop {
-        return run_loop(args);
-    }
-    if args.c.is_some() {
+    let c = match &args.c {
+        Some(t) => {
+            let (_, x) = super::scheme_args::parse_c(t)?;
+            if !(0.0..=1.0).contains(&x) {
+                return Err(CliError::usage(anyhow!(
+                    "--c: {t:?} is not a number in [0, 1]"
+                )));
+            }
+            Some(x)
+        }
+        None => None,
+    };
+    // The one dispatch: the scheme's mesh rules; everything below asks them
+    // for capabilities, never for the family.
+    let rules = mesh_rules(kind, c).map_err(CliError::usage)?;
+    if args.stats && !rules.has_level_stats() {
         return Err(CliError::usage(anyhow!(
-            "--c is the shape parameter of --scheme adjustable-cc only"
+            "--stats: scheme {kind} has no per-level statistics of extraordinary faces (a face-centred notion)"
         )));
     }
     if args.output.is_none() && args.knots_out.is_none() && !args.stats && !args.timing {
@@ -107,12 +132,9 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
             "nothing to do: give -o OUT.obj, --knots-out OUT.knots, --stats or --timing"
         )));
     }
-    if !scheme.takes_knots() && (args.knots.is_some() || args.knots_out.is_some()) {
-        return Err(CliError::usage(anyhow!(
-            "--scheme {scheme} takes no knot intervals; use --scheme nurds for --knots/--knots-out"
-        )));
-    }
-    if !(args.default_interval.is_finite() && args.default_interval > 0.0) {
+    let knots = rules.knots();
+    if knots != KnotUse::None && !(args.default_interval.is_finite() && args.default_interval > 0.0)
+    {
         return Err(CliError::usage(anyhow!(
             "--default-interval must be finite and > 0, got {}",
             args.default_interval
@@ -144,7 +166,7 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
         knot_file::apply_knot_text(&mut mesh, t, args.default_interval)
             .with_context(|| format!("{}", path.display()))
             .map_err(CliError::usage)?;
-    } else {
+    } else if knots != KnotUse::None {
         knot_file::apply_knot_text(&mut mesh, "", args.default_interval)
             .map_err(CliError::usage)?;
     }
@@ -159,16 +181,15 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
 
     let mut stats: Vec<LevelStats> = Vec::new();
     if args.stats {
-        stats.push(level_stats(&mesh, scheme, 0, None));
+        stats.extend(rules.level_stats(&mesh, 0, None));
     }
     let mut refine_secs = 0.0;
     for level in 1..=args.levels {
         let t = std::time::Instant::now();
-        mesh = refine(&mesh, scheme).map_err(CliError::lib)?;
+        mesh = rules.refine(&mesh).map_err(CliError::lib)?;
         refine_secs += t.elapsed().as_secs_f64();
         if args.stats {
-            let s = level_stats(&mesh, scheme, level, stats.last());
-            stats.push(s);
+            stats.extend(rules.level_stats(&mesh, level, stats.last()));
         }
     }
     if args.timing {
@@ -188,7 +209,7 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     if let Some(path) = &args.output {
         let mut buf = Vec::new();
         if args.limit {
-            let lm = limit_mesh(&mesh, scheme).map_err(CliError::lib)?;
+            let lm = rules.limit_mesh(&mesh).map_err(CliError::lib)?;
             obj::write_obj(&lm, &mut buf).map_err(CliError::failure)?;
         } else {
             obj::write_obj(&mesh, &mut buf).map_err(CliError::failure)?;
@@ -209,7 +230,7 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     let staged = Staged::write(&outputs)?;
     let mut text = Vec::new();
     if args.stats {
-        print_stats(&mut text, scheme, &stats).map_err(CliError::failure)?;
+        print_stats(&mut text, kind, &stats).map_err(CliError::failure)?;
     }
     if let Some(buf) = to_stdout {
         text.extend_from_slice(&buf);
@@ -257,125 +278,4 @@ fn print_stats(
         }
     }
     Ok(())
-}
-
-/// `subdivide` for the Catmull-Clark family (`--scheme catmull-clark|adjustable-cc [--c C]`).
-fn run_cc(args: SubdivideArgs, scheme: SchemeKind) -> CliResult {
-    let c = match (scheme, &args.c) {
-        (SchemeKind::CatmullClark, None) => 0.5,
-        (SchemeKind::CatmullClark, Some(_)) => {
-            return Err(CliError::usage(anyhow!(
-                "--scheme catmull-clark has c = 1/2; use --scheme adjustable-cc --c C"
-            )))
-        }
-        (_, None) => {
-            return Err(CliError::usage(anyhow!(
-                "--scheme adjustable-cc needs --c C in [0, 1]"
-            )))
-        }
-        (_, Some(t)) => {
-            let (_, x) = super::scheme_args::parse_c(t)?;
-            if !(0.0..=1.0).contains(&x) {
-                return Err(CliError::usage(anyhow!(
-                    "--c: {t:?} is not a number in [0, 1]"
-                )));
-            }
-            x
-        }
-    };
-    use subdiv_lab::mesh::catmull_clark::{limit_mesh_cc, refine_cc};
-    let rules = VertexRules {
-        refine: &|m| refine_cc(m, c),
-        limit: &|m| limit_mesh_cc(m, c),
-    };
-    vertex_centred(args, &rules)
-}
-
-/// `subdivide --scheme loop` (closed triangle meshes; math doc section 11).
-fn run_loop(args: SubdivideArgs) -> CliResult {
-    use subdiv_lab::schemes::loop_subdivision::mesh::{limit_mesh, refine};
-    if args.c.is_some() {
-        return Err(CliError::usage(anyhow!(
-            "--c is the shape parameter of --scheme adjustable-cc only"
-        )));
-    }
-    let rules = VertexRules {
-        refine: &refine,
-        limit: &limit_mesh,
-    };
-    vertex_centred(args, &rules)
-}
-
-/// One refinement step and the limit positions of a vertex-centred scheme
-/// (no knot intervals, no per-level statistics).
-struct VertexRules<'a> {
-    refine: &'a dyn Fn(&Mesh) -> Result<Mesh, MeshError>,
-    limit: &'a dyn Fn(&Mesh) -> Result<Mesh, MeshError>,
-}
-
-/// The `subdivide` flow of the vertex-centred schemes (Catmull-Clark family, Loop).
-fn vertex_centred(args: SubdivideArgs, rules: &VertexRules<'_>) -> CliResult {
-    if args.knots.is_some() || args.knots_out.is_some() || args.stats {
-        return Err(CliError::usage(anyhow!(
-            "--knots, --knots-out and --stats are Doo-Sabin-family options"
-        )));
-    }
-    let Some(path) = args.output.clone() else {
-        if args.timing {
-            // Timing only: fall through with no output.
-            return refine_and_write(&args, rules, None);
-        }
-        return Err(CliError::usage(anyhow!(
-            "nothing to do: give -o OUT.obj or --timing"
-        )));
-    };
-    refine_and_write(&args, rules, Some(path))
-}
-
-fn refine_and_write(
-    args: &SubdivideArgs,
-    rules: &VertexRules<'_>,
-    path: Option<PathBuf>,
-) -> CliResult {
-    let text = std::fs::read_to_string(&args.input)
-        .with_context(|| format!("cannot read {}", args.input.display()))
-        .map_err(CliError::usage)?;
-    let (mut mesh, _) = obj::parse_obj(&text)
-        .with_context(|| format!("{}", args.input.display()))
-        .map_err(CliError::usage)?;
-    let needed = half_edges_after(&mesh, args.levels);
-    if needed > MAX_HALF_EDGES {
-        return Err(CliError::usage(anyhow!(
-            "--levels {}: the result would have {needed} half-edges (limit {MAX_HALF_EDGES})",
-            args.levels
-        )));
-    }
-    check_budget(args, needed)?;
-    let t = std::time::Instant::now();
-    for _ in 0..args.levels {
-        mesh = (rules.refine)(&mesh).map_err(CliError::lib)?;
-    }
-    let secs = t.elapsed().as_secs_f64();
-    if args.timing {
-        write_stderr(&format!(
-            "refinement: {} levels, {} faces, {} vertices, {:.6} s",
-            args.levels,
-            mesh.face_count(),
-            mesh.vertex_count(),
-            secs
-        ));
-    }
-    let Some(path) = path else { return Ok(()) };
-    let out_mesh = if args.limit {
-        (rules.limit)(&mesh).map_err(CliError::lib)?
-    } else {
-        mesh
-    };
-    let mut buf = Vec::new();
-    obj::write_obj(&out_mesh, &mut buf).map_err(CliError::failure)?;
-    if path.as_os_str() == "-" {
-        write_stdout(&buf)
-    } else {
-        Staged::write(&[(path, buf)])?.commit()
-    }
 }

@@ -173,3 +173,33 @@ pub fn limit_mesh_cc(mesh: &Mesh, c: f64) -> Result<Mesh, MeshError> {
     m.set_positions(limit_positions(mesh, c)?)?;
     Ok(m)
 }
+
+/// The Catmull-Clark family's mesh rules ([`refine_cc`], [`limit_mesh_cc`])
+/// at shape parameter `c` (`1/2`: Catmull-Clark).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CatmullClarkRules {
+    name: &'static str,
+    c: f64,
+}
+
+impl CatmullClarkRules {
+    /// The rules at `c` in `[0, 1]` (named `name` in messages).
+    pub fn new(name: &'static str, c: f64) -> Result<Self, MeshError> {
+        check_c(c)?;
+        Ok(CatmullClarkRules { name, c })
+    }
+}
+
+impl super::rules::MeshRules for CatmullClarkRules {
+    fn name(&self) -> &str {
+        self.name
+    }
+
+    fn refine(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
+        refine_cc(mesh, self.c)
+    }
+
+    fn limit_mesh(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
+        limit_mesh_cc(mesh, self.c)
+    }
+}

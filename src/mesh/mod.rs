@@ -44,6 +44,7 @@ pub mod neighbourhood;
 pub mod obj;
 pub mod projection;
 pub mod refine;
+pub mod rules;
 
 use std::fmt;
 

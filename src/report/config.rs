@@ -16,9 +16,11 @@
 
 use super::error::ReportError;
 use super::figure_spec::FigureSpec;
-use super::rng::{log_uniform, SplitMix64};
 use crate::knots::{CornerIntervals, EdgeRatios};
-use crate::scheme::{Scheme, SpectralStructure};
+use crate::rng::{log_uniform, SplitMix64};
+use crate::scheme::choice::{validate, Choice, ChoiceError};
+use crate::scheme::registry::Builtin;
+use crate::scheme::SpectralStructure;
 use crate::schemes::{LocalScheme, SchemeKind};
 use serde::Deserialize;
 use toml::Spanned;
@@ -51,8 +53,8 @@ pub struct ConfigSpec {
 pub struct Configuration {
     /// Label used in legends and tables.
     pub label: String,
-    /// The configuration.
-    pub scheme: LocalScheme<f64>,
+    /// The configuration (a [`Scheme`] through `Deref`).
+    pub scheme: Builtin,
 }
 
 /// Short text of a ratio list for labels.
@@ -70,20 +72,6 @@ impl ConfigSpec {
         key: &str,
         rng: &mut SplitMix64,
     ) -> Result<Configuration, ReportError> {
-        let kind: SchemeKind =
-            self.scheme
-                .get_ref()
-                .parse()
-                .map_err(|e: crate::schemes::UnknownScheme| {
-                    fs.error_at(&self.scheme, &format!("{key}.scheme"), e.to_string())
-                })?;
-        if !kind.in_specs() {
-            return Err(fs.error_at(
-                &self.scheme,
-                &format!("{key}.scheme"),
-                format!("scheme {kind} is not available in report specs yet (use `subdiv-lab analyze --scheme {kind}`)"),
-            ));
-        }
         let given = [
             self.ratios.is_some(),
             self.knots.is_some(),
@@ -92,20 +80,29 @@ impl ConfigSpec {
         .iter()
         .filter(|b| **b)
         .count();
-        if given > 1 {
+        if self.scheme.get_ref().parse::<SchemeKind>().is_ok() && given > 1 {
             return Err(fs.error_at(
                 &self.scheme,
                 key,
                 "give at most one of ratios, knots and random_knots",
             ));
         }
-        if !kind.takes_knots() && given > 0 {
-            return Err(fs.error_at(
-                &self.scheme,
-                &format!("{key}.scheme"),
-                format!("scheme {kind} takes no knot intervals; use scheme = \"nurds\""),
-            ));
-        }
+        // The shared rules (crate::scheme::choice); the error names the key of
+        // the wrong part.
+        let choice = Choice {
+            name: self.scheme.get_ref(),
+            knots: given > 0,
+            c: self.c.is_some(),
+        };
+        let kind = validate(&choice).map_err(|e| match (&e, &self.c) {
+            (ChoiceError::TakesNoC(_), Some(c)) => {
+                fs.error_at(c, &format!("{key}.c"), e.to_string())
+            }
+            (ChoiceError::NeedsC(_), _) => {
+                fs.error_at(&self.scheme, &format!("{key}.c"), e.to_string())
+            }
+            _ => fs.error_at(&self.scheme, &format!("{key}.scheme"), e.to_string()),
+        })?;
         if let Some(v) = &self.valence {
             let n = *v.get_ref();
             if !(3..=MAX_VALENCE).contains(&n) {
@@ -177,31 +174,12 @@ impl ConfigSpec {
                 ))
             }
         };
-        let c = match (&self.c, kind.takes_c()) {
-            (Some(c), false) => {
-                return Err(fs.error_at(
-                    c,
-                    &format!("{key}.c"),
-                    format!(
-                        "scheme {kind} takes no shape parameter; use scheme = \"adjustable-cc\""
-                    ),
-                ))
-            }
-            (None, true) => {
-                return Err(fs.error_at(
-                    &self.scheme,
-                    &format!("{key}.c"),
-                    "scheme adjustable-cc needs the shape parameter c in [0, 1]",
-                ))
-            }
-            (c, _) => c.as_ref().map(|c| *c.get_ref()),
-        };
-        let scheme = LocalScheme::from_kind_with_c(kind, valence, ratios.clone(), c).map_err(
-            |e| match &self.c {
+        let c = self.c.as_ref().map(|c| *c.get_ref());
+        let scheme =
+            Builtin::from_kind(kind, valence, ratios.clone(), c).map_err(|e| match &self.c {
                 Some(cv) => fs.error_at(cv, &format!("{key}.c"), e.to_string()),
                 None => fs.error_at(&self.scheme, key, e.to_string()),
-            },
-        )?;
+            })?;
         let label = match &self.label {
             Some(l) => l.clone(),
             None => default_label(&scheme, &suffix),
@@ -211,7 +189,10 @@ impl ConfigSpec {
 }
 
 /// The generated legend label of a configuration.
-pub fn default_label(scheme: &LocalScheme<f64>, suffix: &str) -> String {
+pub fn default_label(scheme: &Builtin, suffix: &str) -> String {
+    let Some(scheme) = scheme.as_local() else {
+        return scheme.label();
+    };
     let n = scheme.valence();
     match scheme {
         LocalScheme::Nurds(r) if r.is_uniform() => format!("NURDS n={n}, uniform"),

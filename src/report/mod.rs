@@ -35,15 +35,14 @@
 //! assert!(names.contains(&"index.html") && names.contains(&"manifest.json"));
 //! ```
 
-pub mod backend;
+pub(crate) mod backend;
 pub mod config;
 pub mod error;
 pub mod figure_spec;
 pub mod figures;
-pub mod font;
-pub mod html;
-pub mod plot;
-pub mod rng;
+pub(crate) mod font;
+pub(crate) mod html;
+pub(crate) mod plot;
 pub mod spec;
 
 pub use error::{Location, ReportError};

@@ -21,7 +21,7 @@ use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
 use plotters_backend::{BackendCoord, DrawingErrorKind};
 
-pub use super::font::{ensure_font, FONT_DATA, FONT_FAMILY};
+pub use super::font::FONT_FAMILY;
 
 /// Text and line sizes for a figure of a given pixel size.
 ///

@@ -24,7 +24,7 @@ use super::error::ReportError;
 use super::figure_spec::toml_error;
 pub use super::figure_spec::{Common, FigureSpec, COMMON_KEYS};
 use super::figures::{self, Figure};
-use super::rng::derive_seed;
+use crate::rng::derive_seed;
 use serde::Deserialize;
 use toml::de::{DeTable, DeValue, ValueDeserializer};
 use toml::Spanned;

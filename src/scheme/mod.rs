@@ -74,6 +74,7 @@ use num_complex::Complex64;
 use std::fmt;
 
 mod builtin;
+pub mod choice;
 pub mod registry;
 
 /// How a scheme's spectrum decomposes: which closed-form structure the

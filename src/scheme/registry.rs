@@ -4,17 +4,121 @@
 //!
 //! A leaf of the module graph on purpose: every scheme module may depend on
 //! [`crate::scheme`], and only this file depends on every scheme module.
+//! [`Builtin`] is the closed set of built-in implementations (no allocation,
+//! so the sweep engine can build one per configuration); everything else
+//! sees it as `&dyn Scheme` through `Deref`, so the trait's capabilities
+//! never need to be repeated here.
 
 use super::Scheme;
 use crate::error::{Error, Result};
 use crate::knots::EdgeRatios;
+use crate::mesh::catmull_clark::CatmullClarkRules;
+use crate::mesh::rules::{FaceSplit, MeshRules};
+use crate::schemes::loop_subdivision::mesh::LoopRules;
 use crate::schemes::loop_subdivision::LoopScheme;
 use crate::schemes::{LocalScheme, SchemeKind};
+use std::ops::Deref;
 
-/// The configuration of a built-in scheme, by kind, as a [`Scheme`]: the one
-/// place where a scheme name becomes an implementation (the CLI and the specs
-/// dispatch here). `ratios` (NURDS; `None` = uniform) and `c` (the adjustable
-/// scheme) are validated as in [`LocalScheme::from_kind_with_c`].
+/// One configuration of a built-in scheme: the face- and one-ring families
+/// ([`LocalScheme`]) or Loop ([`LoopScheme`]). Use it as a [`Scheme`] through
+/// `Deref` (`&*builtin` is a `&dyn Scheme`).
+///
+/// ```
+/// use subdiv_lab::scheme::registry::Builtin;
+/// use subdiv_lab::schemes::SchemeKind;
+/// use subdiv_lab::spectral::classify_scheme;
+/// let s = Builtin::from_kind(SchemeKind::Loop, 5, None, None).unwrap();
+/// let sub = classify_scheme(&*s).unwrap();
+/// let lambda = 0.375 + 0.25 * (2.0 * std::f64::consts::PI / 5.0).cos();
+/// assert!((sub.lambda1.re - lambda).abs() < 1e-12);
+/// assert_eq!(s.kind(), SchemeKind::Loop);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub enum Builtin {
+    /// NURDS, Doo-Sabin, the CC variant, Catmull-Clark, adjustable CC.
+    Local(LocalScheme<f64>),
+    /// Loop subdivision.
+    Loop(LoopScheme),
+}
+
+impl Builtin {
+    /// The configuration of `kind` at `valence`; `ratios` (NURDS; `None` =
+    /// uniform) and `c` (the adjustable scheme) are validated as in
+    /// [`LocalScheme::from_kind_with_c`]; a scheme without knot intervals
+    /// accepts only uniform ratios, and only the adjustable scheme takes `c`.
+    pub fn from_kind(
+        kind: SchemeKind,
+        valence: usize,
+        ratios: Option<EdgeRatios<f64>>,
+        c: Option<f64>,
+    ) -> Result<Builtin> {
+        if kind != SchemeKind::Loop {
+            return Ok(Builtin::Local(LocalScheme::from_kind_with_c(
+                kind, valence, ratios, c,
+            )?));
+        }
+        if ratios.as_ref().is_some_and(|r| !r.is_uniform()) {
+            return Err(Error::InvalidParameter {
+                name: "knots",
+                value: kind.name().to_owned(),
+                reason:
+                    "this scheme has no knot intervals; use --scheme nurds for non-uniform knots",
+            });
+        }
+        if let Some(c) = c {
+            return Err(Error::InvalidParameter {
+                name: "c",
+                value: c.to_string(),
+                reason: "only adjustable-cc takes the shape parameter c",
+            });
+        }
+        Ok(Builtin::Loop(LoopScheme::new(valence)?))
+    }
+
+    /// The scheme's kind.
+    pub fn kind(&self) -> SchemeKind {
+        match self {
+            Builtin::Local(s) => s.kind(),
+            Builtin::Loop(_) => SchemeKind::Loop,
+        }
+    }
+
+    /// The edge ratios of a knot-interval scheme (uniform for the others;
+    /// `None` for schemes without edge ratios around a face, Loop).
+    pub fn ratios(&self) -> Option<EdgeRatios<f64>> {
+        match self {
+            Builtin::Local(s) => Some(s.ratios()),
+            Builtin::Loop(_) => None,
+        }
+    }
+
+    /// The [`LocalScheme`] of the face- and one-ring families (`None` for Loop).
+    pub fn as_local(&self) -> Option<&LocalScheme<f64>> {
+        match self {
+            Builtin::Local(s) => Some(s),
+            Builtin::Loop(_) => None,
+        }
+    }
+}
+
+impl Deref for Builtin {
+    type Target = dyn Scheme;
+    fn deref(&self) -> &(dyn Scheme + 'static) {
+        match self {
+            Builtin::Local(s) => s,
+            Builtin::Loop(s) => s,
+        }
+    }
+}
+
+impl From<LocalScheme<f64>> for Builtin {
+    fn from(s: LocalScheme<f64>) -> Builtin {
+        Builtin::Local(s)
+    }
+}
+
+/// The configuration of a built-in scheme, by kind, as a boxed [`Scheme`]
+/// ([`Builtin::from_kind`] boxed; the CLI dispatches here).
 ///
 /// ```
 /// use subdiv_lab::schemes::SchemeKind;
@@ -27,24 +131,48 @@ pub fn from_kind(
     ratios: Option<EdgeRatios<f64>>,
     c: Option<f64>,
 ) -> Result<Box<dyn Scheme>> {
-    if kind != SchemeKind::Loop {
-        return Ok(Box::new(LocalScheme::from_kind_with_c(
-            kind, valence, ratios, c,
-        )?));
-    }
-    if ratios.as_ref().is_some_and(|r| !r.is_uniform()) {
-        return Err(Error::InvalidParameter {
-            name: "knots",
-            value: kind.name().to_owned(),
-            reason: "this scheme has no knot intervals; use --scheme nurds for non-uniform knots",
-        });
-    }
-    if let Some(c) = c {
-        return Err(Error::InvalidParameter {
-            name: "c",
-            value: c.to_string(),
-            reason: "only adjustable-cc takes the shape parameter c",
-        });
-    }
-    Ok(Box::new(LoopScheme::new(valence)?))
+    Ok(match Builtin::from_kind(kind, valence, ratios, c)? {
+        Builtin::Local(s) => Box::new(s),
+        Builtin::Loop(s) => Box::new(s),
+    })
+}
+
+/// The mesh refinement rules of a built-in scheme, by kind: the one place
+/// where a scheme name becomes [`MeshRules`] (`subdivide` and the mesh
+/// figures dispatch here). `c` is the shape parameter of the adjustable
+/// scheme (Catmull-Clark proper has `c = 1/2`); other schemes refuse it.
+///
+/// ```
+/// use subdiv_lab::mesh::rules::KnotUse;
+/// use subdiv_lab::scheme::registry::mesh_rules;
+/// use subdiv_lab::schemes::SchemeKind;
+/// assert_eq!(mesh_rules(SchemeKind::Nurds, None).unwrap().knots(), KnotUse::Used);
+/// assert!(mesh_rules(SchemeKind::AdjustableCc, None).is_err());
+/// ```
+pub fn mesh_rules(kind: SchemeKind, c: Option<f64>) -> Result<Box<dyn MeshRules>> {
+    let rules: Box<dyn MeshRules> = match (kind, c) {
+        (SchemeKind::AdjustableCc, Some(c)) => {
+            Box::new(CatmullClarkRules::new(kind.name(), c).map_err(Error::from)?)
+        }
+        (SchemeKind::AdjustableCc, None) => {
+            return Err(Error::InvalidParameter {
+                name: "c",
+                value: "(missing)".to_owned(),
+                reason: "adjustable-cc needs the shape parameter c in [0, 1]",
+            })
+        }
+        (_, Some(c)) => {
+            return Err(Error::InvalidParameter {
+                name: "c",
+                value: c.to_string(),
+                reason: "only adjustable-cc takes the shape parameter c",
+            })
+        }
+        (SchemeKind::CatmullClark, None) => {
+            Box::new(CatmullClarkRules::new(kind.name(), 0.5).map_err(Error::from)?)
+        }
+        (SchemeKind::Loop, None) => Box::new(LoopRules),
+        (_, None) => Box::new(FaceSplit::new(kind).map_err(Error::from)?),
+    };
+    Ok(rules)
 }

@@ -88,12 +88,11 @@ impl SchemeKind {
         matches!(self, SchemeKind::AdjustableCc)
     }
 
-    /// Whether sweep and report specs can enumerate the scheme: those build a
-    /// [`LocalScheme`] per configuration (the face- and one-ring families).
-    /// Loop is available in `analyze`, `matrix`, `subdivide` and through the
-    /// library ([`crate::scheme::Scheme`]).
-    pub fn in_specs(self) -> bool {
-        self != SchemeKind::Loop
+    /// Whether the scheme has the exact (rational) face-block certificate of
+    /// sweeps' `exact_certificate` column (the Doo-Sabin family: rational
+    /// weights for rational knots; math doc section 10).
+    pub fn has_exact_certificate(self) -> bool {
+        self.is_doo_sabin_family()
     }
 
     /// Whether the scheme belongs to the Catmull-Clark family ((2n+1) one-ring matrix).

@@ -37,15 +37,16 @@ pub mod classify;
 pub mod eigen;
 pub mod exact;
 pub mod kernel;
-pub mod poly;
+pub(crate) mod poly;
 pub mod structured;
-pub mod svd;
+pub(crate) mod svd;
 
 mod error;
 pub use error::SpectralError;
 
 pub use classify::{ClassName, Subdominant, SubdominantClass};
 pub use eigen::{Eigen, EigenOptions};
+pub use kernel::{KernelWorkspace, BATCH};
 pub use structured::{structured_spectrum, StructuredWorkspace};
 
 use crate::contraction::MeasureOptions;

@@ -301,6 +301,7 @@ impl Sturm {
         self.at_infinity(false).saturating_sub(self.at(b))
     }
     /// Number of distinct real roots.
+    #[cfg(test)]
     pub fn count_all(&self) -> usize {
         self.at_infinity(false)
             .saturating_sub(self.at_infinity(true))

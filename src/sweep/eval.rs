@@ -24,7 +24,6 @@ use super::plan::{Configuration, Plan};
 use super::spec::Columns;
 use crate::charmap;
 use crate::scheme::{Scheme, SpectralStructure};
-use crate::schemes::LocalScheme;
 use crate::spectral::kernel::BATCH;
 use crate::spectral::structured::StructuredWorkspace;
 use crate::spectral::{self, Subdominant, SubdominantClass};
@@ -139,7 +138,7 @@ pub trait Evaluate: Sync {
         &self,
         plan: &Plan,
         c: &Configuration,
-        scheme: &LocalScheme<f64>,
+        scheme: &dyn Scheme,
     ) -> crate::Result<Vec<Cell>>;
 
     /// Writes the result cells of `c` to `out`, in order; the cells must equal
@@ -151,7 +150,7 @@ pub trait Evaluate: Sync {
         &self,
         plan: &Plan,
         c: &Configuration,
-        scheme: &LocalScheme<f64>,
+        scheme: &dyn Scheme,
         out: &mut dyn CellSink,
     ) -> crate::Result<()> {
         for cell in &self.evaluate(plan, c, scheme)? {
@@ -168,7 +167,7 @@ pub trait Evaluate: Sync {
     fn write_results_batch(
         &self,
         plan: &Plan,
-        items: [(&Configuration, &LocalScheme<f64>, &mut dyn CellSink); BATCH],
+        items: [(&Configuration, &dyn Scheme, &mut dyn CellSink); BATCH],
     ) -> [crate::Result<()>; BATCH] {
         items.map(|(c, s, out)| self.write_results(plan, c, s, out))
     }
@@ -222,7 +221,7 @@ impl Evaluate for SpectralEvaluator {
         &self,
         plan: &Plan,
         c: &Configuration,
-        scheme: &LocalScheme<f64>,
+        scheme: &dyn Scheme,
     ) -> crate::Result<Vec<Cell>> {
         let mut out = Vec::with_capacity(16 + 2 * self.columns.eigenvalues);
         self.write_results(plan, c, scheme, &mut out)?;
@@ -233,7 +232,7 @@ impl Evaluate for SpectralEvaluator {
         &self,
         plan: &Plan,
         c: &Configuration,
-        scheme: &LocalScheme<f64>,
+        scheme: &dyn Scheme,
         out: &mut dyn CellSink,
     ) -> crate::Result<()> {
         SCRATCH.with(|cell| {
@@ -247,14 +246,14 @@ impl Evaluate for SpectralEvaluator {
     fn write_results_batch(
         &self,
         plan: &Plan,
-        items: [(&Configuration, &LocalScheme<f64>, &mut dyn CellSink); BATCH],
+        items: [(&Configuration, &dyn Scheme, &mut dyn CellSink); BATCH],
     ) -> [crate::Result<()>; BATCH] {
         SCRATCH.with(|cell| {
             let mut guard = cell.borrow_mut();
             let scratch = &mut *guard;
             let schemes = items.each_ref().map(|(_, s, _)| *s);
             let subs: [crate::Result<Option<Subdominant>>; BATCH] =
-                if self.needs_subdominant() && schemes.iter().all(|s| face_block(s)) {
+                if self.needs_subdominant() && schemes.iter().all(|s| face_block(*s)) {
                     spectral::classify_schemes_batch(scratch.each_mut().map(|w| &mut w.ws), schemes)
                         .map(|r| r.map(Some))
                 } else {
@@ -287,7 +286,7 @@ impl SpectralEvaluator {
     fn subdominant(
         &self,
         scratch: &mut Scratch,
-        scheme: &LocalScheme<f64>,
+        scheme: &dyn Scheme,
     ) -> crate::Result<Option<Subdominant>> {
         if !self.needs_subdominant() {
             Ok(None)
@@ -312,7 +311,7 @@ impl SpectralEvaluator {
         scratch: &mut Scratch,
         plan: &Plan,
         c: &Configuration,
-        scheme: &LocalScheme<f64>,
+        scheme: &dyn Scheme,
         sub: Option<Subdominant>,
         out: &mut dyn CellSink,
     ) -> crate::Result<()> {
@@ -413,7 +412,7 @@ impl SpectralEvaluator {
 }
 
 /// Whether `scheme` classifies through the face-block workspace.
-fn face_block(scheme: &LocalScheme<f64>) -> bool {
+fn face_block(scheme: &dyn Scheme) -> bool {
     scheme.spectral_structure() == SpectralStructure::FaceBlock
 }
 
@@ -454,12 +453,13 @@ mod tests {
                 .collect();
             for id in ids {
                 let c = plan.configuration(id).unwrap();
-                let scheme = plan.scheme(&c).unwrap();
-                let cells = eval.evaluate(&plan, &c, &scheme).unwrap();
-                let all = spectral::structured::structured_spectrum(&scheme).unwrap();
+                let built = plan.scheme(&c).unwrap();
+                let scheme = &*built;
+                let cells = eval.evaluate(&plan, &c, scheme).unwrap();
+                let all = spectral::structured::structured_spectrum(scheme).unwrap();
                 let first = if classification { 6 } else { 0 };
                 if classification {
-                    let sub = spectral::classify_scheme(&scheme).unwrap();
+                    let sub = spectral::classify_scheme(scheme).unwrap();
                     assert_eq!(cells[1], Cell::Num(sub.lambda1.re));
                     assert_eq!(cells[5], Cell::Num(sub.abs_lambda3));
                 }

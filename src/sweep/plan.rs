@@ -25,6 +25,7 @@ use super::spec::{Sampler, SpaceKind, SweepSpec};
 use super::SweepError;
 use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::scalar::{Rational, Scalar};
+use crate::scheme::registry::Builtin;
 use crate::schemes::LocalScheme;
 use std::fmt;
 use std::str::FromStr;
@@ -261,38 +262,44 @@ impl Plan {
         Ok(())
     }
 
-    /// The scheme of a configuration, in `f64`.
-    pub fn scheme(&self, c: &Configuration) -> crate::Result<LocalScheme<f64>> {
-        self.scheme_in(c)
+    /// The scheme of a configuration, in `f64` (any built-in scheme, through
+    /// [`Builtin`]).
+    pub fn scheme(&self, c: &Configuration) -> crate::Result<Builtin> {
+        let (ratios, shape) = self.parameters_in(c)?;
+        Builtin::from_kind(self.spec.scheme, c.valence, ratios, shape)
     }
 
     /// The scheme of a configuration in exact rational arithmetic (every `f64`
     /// coordinate is a dyadic rational; the ratios are derived exactly from it).
     pub fn exact_scheme(&self, c: &Configuration) -> crate::Result<LocalScheme<Rational>> {
-        self.scheme_in(c)
+        let (ratios, shape) = self.parameters_in(c)?;
+        LocalScheme::from_kind_with_c(self.spec.scheme, c.valence, ratios, shape)
     }
 
-    fn scheme_in<T: Scalar>(&self, c: &Configuration) -> crate::Result<LocalScheme<T>> {
+    /// The edge ratios (`None`: uniform) and the shape parameter of a
+    /// configuration, in `T`.
+    #[allow(clippy::type_complexity)]
+    fn parameters_in<T: Scalar>(
+        &self,
+        c: &Configuration,
+    ) -> crate::Result<(Option<EdgeRatios<T>>, Option<T>)> {
         let n = c.valence;
         let x: Vec<T> = c
             .coordinates
             .iter()
             .map(|v| T::from_f64_lossless(*v))
             .collect();
-        if self.spec.space.kind == SpaceKind::Shape {
-            let c = x.into_iter().next();
-            return LocalScheme::from_kind_with_c(self.spec.scheme, n, None, c);
-        }
-        let ratios = match self.spec.space.kind {
-            SpaceKind::Uniform | SpaceKind::Shape => None,
-            SpaceKind::Ratios => Some(EdgeRatios::new(x)?),
-            SpaceKind::CornerIntervals => {
-                Some(CornerIntervals::new(x[..n].to_vec(), x[n..].to_vec())?.ratios()?)
-            }
-            SpaceKind::FaceEp => Some(EdgeRatios::face_ep(&x[..n], &x[n..])?),
-            SpaceKind::VertexEp => Some(EdgeRatios::vertex_ep(&x)?),
-        };
-        LocalScheme::from_kind(self.spec.scheme, n, ratios)
+        Ok(match self.spec.space.kind {
+            SpaceKind::Shape => (None, x.into_iter().next()),
+            SpaceKind::Uniform => (None, None),
+            SpaceKind::Ratios => (Some(EdgeRatios::new(x)?), None),
+            SpaceKind::CornerIntervals => (
+                Some(CornerIntervals::new(x[..n].to_vec(), x[n..].to_vec())?.ratios()?),
+                None,
+            ),
+            SpaceKind::FaceEp => (Some(EdgeRatios::face_ep(&x[..n], &x[n..])?), None),
+            SpaceKind::VertexEp => (Some(EdgeRatios::vertex_ep(&x)?), None),
+        })
     }
 }
 
@@ -418,7 +425,13 @@ mod tests {
                 assert!(c.coordinates.iter().all(|x| (0.01..=100.0).contains(x)));
                 let s = p.scheme(&c).unwrap();
                 let e = p.exact_scheme(&c).unwrap();
-                for (a, b) in s.ratios().as_slice().iter().zip(e.ratios().as_slice()) {
+                for (a, b) in s
+                    .ratios()
+                    .unwrap()
+                    .as_slice()
+                    .iter()
+                    .zip(e.ratios().as_slice())
+                {
                     assert!((a - b.to_f64()).abs() < 1e-15);
                 }
             }

@@ -94,7 +94,7 @@ impl Figure for Charmap {
             .par_iter()
             .map(|c| {
                 let (report, plot) =
-                    plot_data(&c.scheme, self.levels, self.samples).map_err(|e| ctx.err(e))?;
+                    plot_data(&*c.scheme, self.levels, self.samples).map_err(|e| ctx.err(e))?;
                 ctx.tick(1);
                 Ok(Panel {
                     config: c.clone(),

@@ -16,7 +16,7 @@ use crate::report::config::{resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::html::escape;
-use crate::report::rng::derive_seed;
+use crate::rng::derive_seed;
 use crate::spectral::{analyze, AnalyzeOptions, LocalAnalysis, SubdominantClass};
 use num_complex::Complex64;
 use rayon::prelude::*;
@@ -74,7 +74,7 @@ impl Figure for Table {
                     },
                     ..AnalyzeOptions::default()
                 };
-                let a = analyze(&c.scheme, &options).map_err(|e| ctx.err(e));
+                let a = analyze(&*c.scheme, &options).map_err(|e| ctx.err(e));
                 ctx.tick(1);
                 a
             })
@@ -153,17 +153,17 @@ impl FigureOutput for Output {
             &["config", "index", "re", "im", "modulus"],
         );
         for (i, (c, a)) in self.rows.iter().enumerate() {
-            let r = c.scheme.ratios();
+            let r = c
+                .scheme
+                .ratios()
+                .map(|r| r.as_slice().to_vec())
+                .unwrap_or_default();
             t.push(vec![
                 i.to_string(),
                 c.label.clone(),
                 c.scheme.kind().name().into(),
                 c.scheme.valence().to_string(),
-                r.as_slice()
-                    .iter()
-                    .map(|x| num(*x))
-                    .collect::<Vec<_>>()
-                    .join(";"),
+                r.iter().map(|x| num(*x)).collect::<Vec<_>>().join(";"),
                 a.subdominant.class.name().to_owned(),
                 num(a.subdominant.lambda1.re),
                 num(a.subdominant.lambda1.im),
@@ -206,7 +206,11 @@ impl FigureOutput for Output {
         let mut h = String::new();
         for (c, a) in &self.rows {
             let _ = writeln!(h, "<h3>{}</h3>", escape(&c.label));
-            let r = c.scheme.ratios();
+            let r = c
+                .scheme
+                .ratios()
+                .map(|r| r.as_slice().to_vec())
+                .unwrap_or_default();
             let _ = writeln!(
                 h,
                 "<table><tr><th class=\"l\">scheme</th><td class=\"l\">{} (n = {})</td></tr>\
@@ -220,8 +224,7 @@ impl FigureOutput for Output {
                 escape(c.scheme.kind().name()),
                 c.scheme.valence(),
                 escape(
-                    &r.as_slice()
-                        .iter()
+                    &r.iter()
                         .map(|x| format!("{x:.6}"))
                         .collect::<Vec<_>>()
                         .join(", ")

@@ -24,7 +24,7 @@ use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
     dash, draw_err, series_color, side_legend, titled, LegendGlyph, Marker, Theme,
 };
-use crate::report::rng::derive_seed;
+use crate::rng::derive_seed;
 use crate::spectral::classify_scheme;
 use plotters::prelude::*;
 use rayon::prelude::*;
@@ -86,14 +86,14 @@ impl Figure for Convergence {
             .par_iter()
             .enumerate()
             .map(|(i, c)| {
-                let sub = classify_scheme(&c.scheme).map_err(|e| ctx.err(e))?;
+                let sub = classify_scheme(&*c.scheme).map_err(|e| ctx.err(e))?;
                 let lambda1 = sub.lambda1.norm();
                 let options = MeasureOptions {
                     levels: self.steps,
                     seed: derive_seed(ctx.common.seed, &i.to_string()),
                     dim: 3,
                 };
-                let m = measure(&c.scheme, &options).map_err(|e| ctx.err(e))?;
+                let m = measure(&*c.scheme, &options).map_err(|e| ctx.err(e))?;
                 let d0 = m.distances.first().copied().unwrap_or(0.0);
                 let points: Vec<(usize, f64)> = m
                     .distances

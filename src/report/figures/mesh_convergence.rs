@@ -24,6 +24,7 @@
 use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::mesh::generators;
 use crate::mesh::limit::{convergence_series, face_local_scheme, refine_with_stats};
+use crate::mesh::rules::MeshRules;
 use crate::mesh::Mesh;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
@@ -31,7 +32,9 @@ use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
     dash, draw_err, inner_legend, series_color, titled, LegendGlyph, Marker, Theme,
 };
-use crate::report::rng::{log_uniform, SplitMix64};
+use crate::rng::{log_uniform, SplitMix64};
+use crate::scheme::choice::{validate, Choice, ChoiceError};
+use crate::scheme::registry::mesh_rules;
 use crate::schemes::SchemeKind;
 use crate::spectral::classify_scheme;
 use plotters::prelude::*;
@@ -66,7 +69,6 @@ struct Params {
 pub(crate) fn built_in_mesh(
     fs: &FigureSpec<'_>,
     name: &Spanned<String>,
-    scheme: SchemeKind,
     random_knots: Option<&Spanned<f64>>,
 ) -> Result<Mesh, ReportError> {
     let mut mesh = generators::shipped()
@@ -87,9 +89,6 @@ pub(crate) fn built_in_mesh(
         })?;
     if let Some(s) = random_knots {
         let v = *s.get_ref();
-        if scheme != SchemeKind::Nurds {
-            return Err(fs.error_at(s, "random_knots", "random_knots needs scheme = \"nurds\""));
-        }
         if !(v.is_finite() && v >= 1.0) {
             return Err(fs.error_at(
                 s,
@@ -107,23 +106,31 @@ pub(crate) fn built_in_mesh(
     Ok(mesh)
 }
 
-/// The scheme name of a mesh figure.
+/// The scheme of a mesh figure and its mesh rules, through the shared rules
+/// ([`crate::scheme::choice`]: `random_knots` is knot data) and the one
+/// dispatch ([`crate::scheme::registry::mesh_rules`]; mesh figures have no
+/// shape parameter).
 pub(crate) fn mesh_scheme(
     fs: &FigureSpec<'_>,
     s: &Spanned<String>,
-) -> Result<SchemeKind, ReportError> {
-    let kind = s
-        .get_ref()
-        .parse::<SchemeKind>()
-        .map_err(|e| fs.error_at(s, "scheme", e.to_string()))?;
-    if !kind.in_specs() {
-        return Err(fs.error_at(
+    random_knots: Option<&Spanned<f64>>,
+) -> Result<(SchemeKind, Box<dyn MeshRules>), ReportError> {
+    let choice = Choice {
+        name: s.get_ref(),
+        knots: random_knots.is_some(),
+        c: false,
+    };
+    let kind = validate(&choice).map_err(|e| match (&e, random_knots) {
+        (ChoiceError::TakesNoKnots(_), Some(r)) => fs.error_at(r, "random_knots", e.to_string()),
+        (ChoiceError::NeedsC(_), _) => fs.error_at(
             s,
             "scheme",
-            format!("scheme {kind} is not available in report specs yet (use `subdiv-lab subdivide --scheme {kind}`)"),
-        ));
-    }
-    Ok(kind)
+            format!("{e}, which mesh figures do not take (use `subdiv-lab subdivide --c`)"),
+        ),
+        _ => fs.error_at(s, "scheme", e.to_string()),
+    })?;
+    let rules = mesh_rules(kind, None).map_err(|e| fs.error_at(s, "scheme", e.to_string()))?;
+    Ok((kind, rules))
 }
 
 struct MeshConvergence {
@@ -136,8 +143,15 @@ struct MeshConvergence {
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    let scheme = mesh_scheme(fs, &p.scheme)?;
-    let mesh = built_in_mesh(fs, &p.mesh, scheme, p.random_knots.as_ref())?;
+    let (scheme, rules) = mesh_scheme(fs, &p.scheme, p.random_knots.as_ref())?;
+    if !rules.has_level_stats() {
+        return Err(fs.error_at(
+            &p.scheme,
+            "scheme",
+            format!("scheme {scheme} has no per-level statistics of extraordinary faces, which mesh-convergence plots (use mesh-picture)"),
+        ));
+    }
+    let mesh = built_in_mesh(fs, &p.mesh, p.random_knots.as_ref())?;
     let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 6)?;
     let max_faces = bounded(fs, &p.max_faces, "max_faces", 1, 32, 6)?;
     if !(0..mesh.face_count()).any(|f| mesh.is_extraordinary_face(f))

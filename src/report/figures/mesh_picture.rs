@@ -19,7 +19,7 @@
 use super::mesh_convergence::{built_in_mesh, mesh_scheme};
 use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::mesh::projection::{project, Projected, View};
-use crate::mesh::refine::refine_levels;
+use crate::mesh::rules::MeshRules;
 use crate::mesh::Mesh;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
@@ -56,6 +56,7 @@ struct Params {
 struct MeshPicture {
     mesh: Mesh,
     scheme: SchemeKind,
+    rules: Box<dyn MeshRules>,
     levels: usize,
     view: View,
     wireframe: bool,
@@ -63,8 +64,8 @@ struct MeshPicture {
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    let scheme = mesh_scheme(fs, &p.scheme)?;
-    let mesh = built_in_mesh(fs, &p.mesh, scheme, p.random_knots.as_ref())?;
+    let (scheme, rules) = mesh_scheme(fs, &p.scheme, p.random_knots.as_ref())?;
+    let mesh = built_in_mesh(fs, &p.mesh, p.random_knots.as_ref())?;
     let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 2)?;
     let angle = |a: &Option<Spanned<f64>>, key: &str, default: f64, lim: f64| match a {
         None => Ok(default),
@@ -100,6 +101,7 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     Ok(Box::new(MeshPicture {
         mesh,
         scheme,
+        rules,
         levels,
         view,
         wireframe,
@@ -114,8 +116,10 @@ impl Figure for MeshPicture {
     fn compute(&self, ctx: &Context<'_>) -> Result<Box<dyn FigureOutput>, ReportError> {
         let before = project(&self.mesh, &self.view);
         ctx.tick(1);
-        let refined =
-            refine_levels(&self.mesh, self.scheme, self.levels).map_err(|e| ctx.err(e.into()))?;
+        let refined = self
+            .rules
+            .refine_levels(&self.mesh, self.levels)
+            .map_err(|e| ctx.err(e.into()))?;
         let after = project(&refined, &self.view);
         ctx.tick(1);
         Ok(Box::new(Output {

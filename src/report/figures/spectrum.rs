@@ -81,7 +81,7 @@ impl Figure for Spectrum {
             .configs
             .par_iter()
             .map(|c| {
-                let a = analyze(&c.scheme, &AnalyzeOptions::default())
+                let a = analyze(&*c.scheme, &AnalyzeOptions::default())
                     .map(|a| {
                         let e = eigenvalues(&a);
                         (a, e)

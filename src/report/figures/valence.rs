@@ -23,7 +23,7 @@ use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
     dash, draw_err, inner_legend, mix_white, titled, viridis, LegendGlyph, Marker, Theme,
 };
-use crate::report::rng::{derive_seed, log_uniform, SplitMix64};
+use crate::rng::{derive_seed, log_uniform, SplitMix64};
 use crate::schemes::LocalScheme;
 use crate::spectral::classify_scheme;
 use plotters::prelude::*;

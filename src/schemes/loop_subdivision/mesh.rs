@@ -384,3 +384,22 @@ mod tests {
         assert_eq!(half_edges_after(&ico, 2), 60 * 16);
     }
 }
+
+/// Loop's mesh rules ([`refine`], [`limit_mesh`]) behind
+/// [`MeshRules`](crate::mesh::rules::MeshRules).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LoopRules;
+
+impl crate::mesh::rules::MeshRules for LoopRules {
+    fn name(&self) -> &str {
+        "loop"
+    }
+
+    fn refine(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
+        refine(mesh)
+    }
+
+    fn limit_mesh(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
+        limit_mesh(mesh)
+    }
+}

@@ -121,7 +121,7 @@ impl Layout {
     ) {
         let row = &mut sc.rows[0];
         if let Some(scheme) = self.load(plan, id, row) {
-            let r = eval.write_results(plan, &row.config, &scheme, &mut row.stage);
+            let r = eval.write_results(plan, &row.config, &*scheme, &mut row.stage);
             self.check_results(row, r);
         }
         self.emit(id, row, &mut sc.digits, text, part);
@@ -149,7 +149,7 @@ impl Layout {
                 let row = it.next().expect("one row per lane");
                 (
                     &row.config,
-                    &schemes[l],
+                    &*schemes[l],
                     &mut row.stage as &mut dyn CellSink,
                 )
             });
@@ -160,7 +160,7 @@ impl Layout {
         } else {
             for (row, s) in rows.iter_mut().zip(schemes) {
                 if let Some(s) = s {
-                    let r = eval.write_results(plan, &row.config, &s, &mut row.stage);
+                    let r = eval.write_results(plan, &row.config, &*s, &mut row.stage);
                     self.check_results(row, r);
                 }
             }
@@ -177,7 +177,7 @@ impl Layout {
         plan: &Plan,
         id: u64,
         row: &mut Staged,
-    ) -> Option<crate::schemes::LocalScheme<f64>> {
+    ) -> Option<crate::scheme::registry::Builtin> {
         row.stage.clear();
         row.coordinates.clear();
         row.coordinates.resize(self.coordinates, None);
@@ -454,7 +454,7 @@ mod tests {
             &self,
             plan: &Plan,
             c: &Configuration,
-            scheme: &crate::schemes::LocalScheme<f64>,
+            scheme: &dyn crate::scheme::Scheme,
         ) -> crate::Result<Vec<Cell>> {
             let mut v = self.0.evaluate(plan, c, scheme)?;
             if c.id % 5 == 0 {

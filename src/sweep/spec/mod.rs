@@ -479,7 +479,7 @@ points_per_axis = 4
         let e = err(&GOOD.replace("\"nurds\"", "\"loop\""));
         assert!(
             e.to_string()
-                .starts_with("scheme: loop is not available in sweep specs"),
+                .starts_with("space.kind: scheme loop takes no knot intervals"),
             "{e}"
         );
         let e = err(&GOOD.replace("to = 5", "to = 64"));

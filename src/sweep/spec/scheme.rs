@@ -1,11 +1,12 @@
 //! The scheme configuration of a sweep spec: the scheme, the valences, the
 //! space kind the scheme admits and its range (edge ratios, knot intervals or
-//! the shape parameter c), in one function, [`scheme_config`] (kept apart so
-//! that it can be replaced by a validator shared by the CLI, reports and
-//! sweeps).
+//! the shape parameter c), in one function, [`scheme_config`]; the rules for
+//! the scheme and its parameters are the shared ones of
+//! [`crate::scheme::choice`].
 
 use super::raw::{forbid, range, Ctx, Domain, RawSpec};
 use super::{SpaceKind, MAX_VALENCE};
+use crate::scheme::choice::{validate, Choice, ChoiceError};
 use crate::schemes::SchemeKind;
 use crate::sweep::SweepError;
 use toml::Spanned;
@@ -27,16 +28,10 @@ pub(super) struct SchemeConfig {
 /// (`space.ratio_range`, `space.interval_range` or `space.c_range`; the others
 /// forbidden).
 pub(super) fn scheme_config(ctx: &Ctx, raw: &RawSpec) -> Result<SchemeConfig, SweepError> {
-    let scheme: SchemeKind = match raw.scheme.get_ref().parse() {
-        Ok(k) => k,
-        Err(e) => return ctx.err("scheme", Some(raw.scheme.span()), format!("scheme: {e}")),
-    };
-    if !scheme.in_specs() {
-        return ctx.err(
-            "scheme",
-            Some(raw.scheme.span()),
-            format!("scheme: {scheme} is not available in sweep specs yet (use `subdiv-lab analyze --scheme {scheme}` or the library's sweep::own)"),
-        );
+    // The scheme name first (its error names `scheme`), then the space kind,
+    // then the shared rules (crate::scheme::choice) for that pair.
+    if let Err(e) = raw.scheme.get_ref().parse::<SchemeKind>() {
+        return ctx.err("scheme", Some(raw.scheme.span()), format!("scheme: {e}"));
     }
     let valences = valences(ctx, &raw.valences)?;
 
@@ -55,14 +50,27 @@ pub(super) fn scheme_config(ctx: &Ctx, raw: &RawSpec) -> Result<SchemeConfig, Sw
             )
         }
     };
-    if scheme.takes_c() != (kind == SpaceKind::Shape) {
-        let msg = if scheme.takes_c() {
-            format!("space.kind: scheme {scheme} is sampled over its shape parameter; use kind = \"shape\" with space.c_range")
-        } else {
-            format!("space.kind: kind \"shape\" samples the shape parameter c of scheme \"adjustable-cc\", not of {scheme}")
-        };
-        return ctx.err("space.kind", Some(rs.kind.span()), msg);
-    }
+    let choice = Choice {
+        name: raw.scheme.get_ref(),
+        knots: !matches!(kind, SpaceKind::Uniform | SpaceKind::Shape),
+        c: kind == SpaceKind::Shape,
+    };
+    let scheme = match validate(&choice) {
+        Ok(k) => k,
+        Err(e) => {
+            let msg = match &e {
+                ChoiceError::TakesNoKnots(_) => {
+                    format!("space.kind: {e}; use kind = \"uniform\"")
+                }
+                ChoiceError::TakesNoC(_) => format!("space.kind: kind \"shape\": {e}"),
+                ChoiceError::NeedsC(_) => {
+                    format!("space.kind: {e}; use kind = \"shape\" with space.c_range")
+                }
+                ChoiceError::Unknown(_) => format!("scheme: {e}"),
+            };
+            return ctx.err("space.kind", Some(rs.kind.span()), msg);
+        }
+    };
     if kind != SpaceKind::Shape {
         forbid(
             ctx,
@@ -70,15 +78,6 @@ pub(super) fn scheme_config(ctx: &Ctx, raw: &RawSpec) -> Result<SchemeConfig, Sw
             &rs.c_range,
             "except by space kind \"shape\"",
         )?;
-    }
-    if !scheme.takes_knots() && !matches!(kind, SpaceKind::Uniform | SpaceKind::Shape) {
-        return ctx.err(
-            "space.kind",
-            Some(rs.kind.span()),
-            format!(
-                "space.kind: scheme {scheme} takes no knot intervals; use kind = \"uniform\" (or scheme = \"nurds\")"
-            ),
-        );
     }
     let range = match kind {
         SpaceKind::Ratios => {

@@ -1,0 +1,136 @@
+//! A scheme's mesh refinement rules behind one trait, [`MeshRules`] (math doc
+//! section 12): one refinement step, the limit mesh, and the optional
+//! capabilities the `subdivide` command and the mesh figures use (half-edge
+//! knot intervals, per-level statistics of extraordinary faces). The built-in
+//! rules are chosen by name in one place,
+//! [`crate::scheme::registry::mesh_rules`]; this file holds the trait and the
+//! Doo-Sabin family's implementation ([`FaceSplit`]), the Catmull-Clark
+//! family's and Loop's sit with their refinement code.
+//!
+//! ```
+//! use subdiv_lab::mesh::{generators, rules::MeshRules};
+//! use subdiv_lab::scheme::registry::mesh_rules;
+//! use subdiv_lab::schemes::SchemeKind;
+//! let rules = mesh_rules(SchemeKind::Loop, None).unwrap();
+//! let ico = generators::icosahedron();
+//! let once = rules.refine(&ico).unwrap();
+//! assert_eq!(once.face_count(), 4 * ico.face_count());
+//! assert!(rules.level_stats(&once, 1, None).is_none());
+//! ```
+
+use super::limit::{level_stats, limit_mesh, LevelStats};
+use super::refine::refine;
+use super::{Mesh, MeshError};
+use crate::schemes::SchemeKind;
+use std::fmt;
+
+/// How a scheme's refinement treats the mesh's half-edge knot intervals.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum KnotUse {
+    /// The scheme ignores them and the result carries none of interest.
+    None,
+    /// The scheme ignores them but propagates (halves) them, so they must be
+    /// valid (original Doo-Sabin, the Catmull-Clark variant).
+    Propagated,
+    /// The scheme's weights depend on them and it propagates them (NURDS):
+    /// `--knots` and `--knots-out` apply.
+    Used,
+}
+
+/// The mesh refinement rules of one scheme (with its parameters).
+pub trait MeshRules: fmt::Debug + Send + Sync {
+    /// The scheme's name.
+    fn name(&self) -> &str;
+
+    /// How the rules treat half-edge knot intervals (default [`KnotUse::None`]).
+    fn knots(&self) -> KnotUse {
+        KnotUse::None
+    }
+
+    /// One refinement step of a closed mesh.
+    fn refine(&self, mesh: &Mesh) -> Result<Mesh, MeshError>;
+
+    /// The limit mesh of a (refined) control mesh.
+    fn limit_mesh(&self, mesh: &Mesh) -> Result<Mesh, MeshError>;
+
+    /// Per-level statistics of the extraordinary faces of `mesh` at `level`
+    /// (`previous`: the parent level's, for the ratios); `None` (the
+    /// default) when the scheme has no such notion (vertex-centred schemes).
+    fn level_stats(
+        &self,
+        mesh: &Mesh,
+        level: usize,
+        previous: Option<&LevelStats>,
+    ) -> Option<LevelStats> {
+        let _ = (mesh, level, previous);
+        None
+    }
+
+    /// Whether [`level_stats`](Self::level_stats) gives statistics (default
+    /// `false`; must agree with it).
+    fn has_level_stats(&self) -> bool {
+        false
+    }
+
+    /// `levels` steps of [`refine`](Self::refine).
+    fn refine_levels(&self, mesh: &Mesh, levels: usize) -> Result<Mesh, MeshError> {
+        let mut m = mesh.clone();
+        for _ in 0..levels {
+            m = self.refine(&m)?;
+        }
+        Ok(m)
+    }
+}
+
+/// The Doo-Sabin family's rules (NURDS, original Doo-Sabin, the
+/// Catmull-Clark variant): [`refine`], [`limit_mesh`] and [`level_stats`] of
+/// this crate's `mesh` module (math doc sections 1-3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FaceSplit(SchemeKind);
+
+impl FaceSplit {
+    /// The rules of `kind`, a scheme of the Doo-Sabin family
+    /// ([`MeshError::UnsupportedScheme`] otherwise).
+    pub fn new(kind: SchemeKind) -> Result<FaceSplit, MeshError> {
+        if kind.is_doo_sabin_family() {
+            Ok(FaceSplit(kind))
+        } else {
+            Err(MeshError::UnsupportedScheme(kind.name().to_owned()))
+        }
+    }
+}
+
+impl MeshRules for FaceSplit {
+    fn name(&self) -> &str {
+        self.0.name()
+    }
+
+    fn knots(&self) -> KnotUse {
+        if self.0.takes_knots() {
+            KnotUse::Used
+        } else {
+            KnotUse::Propagated
+        }
+    }
+
+    fn refine(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
+        refine(mesh, self.0)
+    }
+
+    fn limit_mesh(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
+        limit_mesh(mesh, self.0)
+    }
+
+    fn level_stats(
+        &self,
+        mesh: &Mesh,
+        level: usize,
+        previous: Option<&LevelStats>,
+    ) -> Option<LevelStats> {
+        Some(level_stats(mesh, self.0, level, previous))
+    }
+
+    fn has_level_stats(&self) -> bool {
+        true
+    }
+}
