@@ -16,8 +16,8 @@
 //! * a number parses as an `f64`, is written in the sweep's shortest round-trip
 //!   form (so that a summary rebuilt from the file equals the one accumulated
 //!   while writing), and lies in its column's range where the column has one
-//!   (`abs_lambda3`, `contraction_rate` >= 0, `exact_agrees` 0 or 1,
-//!   `charmap_winding` an integer).
+//!   (`abs_lambda3`, `contraction_rate` >= 0, `charmap_winding` an integer; `exact_agrees` `true` or
+//!   `false`).
 //!
 //! Edited *results* that stay plausible (a `lambda1_re` changed to another
 //! number, another valid class, an error text edited) cannot be told apart by
@@ -161,6 +161,7 @@ enum TextRule {
     Class,
     Verdict,
     ExactClass,
+    Bool,
     Any,
 }
 
@@ -169,7 +170,6 @@ enum TextRule {
 enum NumRule {
     Any,
     NonNegative,
-    ZeroOne,
     Integer,
 }
 
@@ -204,6 +204,7 @@ fn text_ok(rule: TextRule, t: &str) -> bool {
         }
         TextRule::Verdict => VERDICTS.contains(&t),
         TextRule::ExactClass => t == "undecided" || CLASSES.contains(&t),
+        TextRule::Bool => t == "true" || t == "false",
         TextRule::Any => true,
     }
 }
@@ -213,6 +214,7 @@ fn text_rule(name: &str) -> TextRule {
         "class" => TextRule::Class,
         "charmap_verdict" => TextRule::Verdict,
         "exact_class" => TextRule::ExactClass,
+        "exact_agrees" => TextRule::Bool,
         _ => TextRule::Any,
     }
 }
@@ -220,7 +222,6 @@ fn text_rule(name: &str) -> TextRule {
 fn num_rule(name: &str) -> NumRule {
     match name {
         "abs_lambda3" | "contraction_rate" => NumRule::NonNegative,
-        "exact_agrees" => NumRule::ZeroOne,
         "charmap_winding" => NumRule::Integer,
         _ => NumRule::Any,
     }
@@ -230,7 +231,6 @@ fn num_ok(rule: NumRule, x: f64) -> bool {
     match rule {
         NumRule::Any => true,
         NumRule::NonNegative => x >= 0.0,
-        NumRule::ZeroOne => x == 0.0 || x == 1.0,
         NumRule::Integer => x.is_finite() && x.fract() == 0.0,
     }
 }
@@ -610,6 +610,7 @@ impl<'a> Verifier<'a> {
                             TextRule::Class => " (a class name: standard, real_distinct, complex_pair, defective, not_separated or indeterminate:A/B)",
                             TextRule::Verdict => " (a characteristic-map verdict code)",
                             TextRule::ExactClass => " (a class name or undecided)",
+                            TextRule::Bool => " (true or false)",
                             TextRule::Any => "",
                         }
                     ));
