@@ -939,6 +939,58 @@ fn cases() -> Vec<Case> {
         &[("s.toml", "this is = = not toml\n")],
         "s.toml",
     )]);
+    // `--format`: the value named, Parquet only to a file, and a resumed
+    // Parquet file that is not one (or torn without its journal) refused.
+    v.extend([
+        Case {
+            name: "sweep-format-unknown",
+            args: &["sweep", "h.toml", "--out", "o.csv", "--format", "xml"],
+            files: &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n")],
+            code: 2,
+            needle: "xml",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "sweep-format-parquet-stdout",
+            args: &["sweep", "h.toml", "--format", "parquet"],
+            files: &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n")],
+            code: 2,
+            needle: "--format parquet needs --out",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "sweep-format-parquet-resume-csv",
+            args: &["sweep", "h.toml", "--out", "o.csv", "--resume", "--format", "parquet"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence\n"),
+            ],
+            code: 2,
+            needle: "not a Parquet file",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "sweep-format-parquet-resume-torn",
+            args: &["sweep", "h.toml", "--out", "o.parquet", "--resume", "--format", "parquet"],
+            files: &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"), ("o.parquet", "PAR1 torn row group")],
+            code: 2,
+            needle: "torn",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "sweep-format-parquet-damaged-journal",
+            args: &["sweep", "h.toml", "--out", "o.parquet", "--resume", "--format", "parquet"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("o.parquet", "PAR1 torn row group"),
+                (".o.parquet.commit", "subdiv-lab parquet commit v1\n4\n0000000000000000 3\nxyz"),
+            ],
+            code: 2,
+            needle: "damaged",
+            stdout: Stdout::Pipe,
+        },
+    ]);
+
     // Resume and merge trust nothing: every row verified, files tied to their
     // spec and shard by the fingerprint line (the set-up files are left as they were).
     v.extend([

@@ -12,6 +12,7 @@ mod report;
 mod scheme_args;
 mod subdivide;
 mod sweep;
+mod sweep_parquet;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

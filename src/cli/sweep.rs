@@ -44,6 +44,10 @@ pub(crate) struct SweepArgs {
     /// progress lines otherwise) and no closing line; errors are still reported.
     #[arg(long)]
     quiet: bool,
+    /// Output format of the rows: `csv` (default) or `parquet` (typed columns,
+    /// row groups of 65536 rows as commit units; needs --out).
+    #[arg(long, value_enum, default_value_t = Format::Csv)]
+    format: Format,
     /// Seconds between progress lines when stderr is not a terminal (testing).
     #[arg(long, hide = true, default_value_t = PROGRESS_EVERY.as_secs_f64())]
     progress_every: f64,
@@ -63,6 +67,15 @@ pub(crate) struct MergeArgs {
     spec: PathBuf,
 }
 
+/// Output format of `sweep`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum Format {
+    /// One CSV line per configuration.
+    Csv,
+    /// Apache Parquet, typed columns.
+    Parquet,
+}
+
 fn parse_shard(s: &str) -> Result<Shard, String> {
     s.parse::<Shard>().map_err(|e| e.to_string())
 }
@@ -73,12 +86,15 @@ fn summary_path(csv: &Path) -> PathBuf {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let stem = name.strip_suffix(".csv").unwrap_or(&name);
+    let stem = name
+        .strip_suffix(".csv")
+        .or_else(|| name.strip_suffix(".parquet"))
+        .unwrap_or(&name);
     csv.with_file_name(format!("{stem}.summary.json"))
 }
 
 /// Writes `bytes` to `path` atomically (temporary file + rename).
-fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+pub(super) fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     let tmp = path.with_file_name(format!(
         ".{}.tmp",
         path.file_name()
@@ -229,6 +245,33 @@ fn scan_existing(
     Ok((verifier.rows(), good, false, torn))
 }
 
+/// Where the rows go: CSV text, or Parquet row groups.
+enum Sink {
+    Csv(Box<dyn Write + Send>),
+    Parquet(Box<super::sweep_parquet::ParquetSink>),
+}
+
+impl Write for Sink {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match self {
+            Sink::Csv(w) => w.write(buf),
+            Sink::Parquet(p) => p.write(buf),
+        }
+    }
+    fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
+        match self {
+            Sink::Csv(w) => w.write_all(buf),
+            Sink::Parquet(p) => p.write_all(buf),
+        }
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        match self {
+            Sink::Csv(w) => w.flush(),
+            Sink::Parquet(p) => p.flush(),
+        }
+    }
+}
+
 /// Progress lines for batch jobs (stderr not a terminal, e.g. a Slurm log): a
 /// thread that prints `sweep: K/N rows (P%), R configurations/s, elapsed E,
 /// ETA T` when the run starts, then every [`PROGRESS_EVERY`] during the first
@@ -335,6 +378,11 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     if args.resume && args.out.is_none() {
         return Err(CliError::usage(anyhow!("--resume needs --out FILE.csv")));
     }
+    if args.format == Format::Parquet && args.out.is_none() {
+        return Err(CliError::usage(anyhow!(
+            "--format parquet needs --out FILE.parquet (Parquet is not written to standard output)"
+        )));
+    }
     let shard = args.shard.unwrap_or(Shard::ALL);
     let plan = Plan::new(spec);
     let layout = Layout::new(&plan);
@@ -367,15 +415,39 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         .map_err(CliError::failure)?;
 
     // Open the output (only now: a bad spec or flag creates no file).
-    let (mut sink, done, summary_file): (Box<dyn Write + Send>, u64, Option<PathBuf>) = match &args
-        .out
-    {
+    let (mut sink, done, summary_file): (Sink, u64, Option<PathBuf>) = match &args.out {
         None => {
             let mut w = BufWriter::with_capacity(1 << 20, std::io::stdout());
             w.write_all(output::fingerprint_line(&plan, shard).as_bytes())
                 .map_err(CliError::failure)?;
             layout.write_header(&mut w).map_err(CliError::failure)?;
-            (Box::new(w), 0, None)
+            (Sink::Csv(Box::new(w)), 0, None)
+        }
+        Some(path) if args.format == Format::Parquet => {
+            let spath = summary_path(path);
+            let exists = path.exists();
+            if exists && !args.resume {
+                return Err(CliError::usage(anyhow!(
+                    "{} exists; pass --resume to continue it, or remove it",
+                    path.display()
+                )));
+            }
+            let (sink, done, recovered) = pool.install(|| {
+                super::sweep_parquet::open(path, &plan, &layout, &eval, shard, &mut summary, salt())
+            })?;
+            if exists && (done > 0 || recovered) && !args.quiet {
+                eprintln!(
+                    "sweep: resuming {} at row {done} of {expected}{}",
+                    path.display(),
+                    if recovered {
+                        " (dropped the row groups after the last commit)"
+                    } else {
+                        ""
+                    }
+                );
+            }
+            write_summary(&spath, &summary)?;
+            (Sink::Parquet(Box::new(sink)), done, Some(spath))
         }
         Some(path) => {
             let spath = summary_path(path);
@@ -422,7 +494,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
             }
             write_summary(&spath, &summary)?;
             (
-                Box::new(BufWriter::with_capacity(1 << 20, file)),
+                Sink::Csv(Box::new(BufWriter::with_capacity(1 << 20, file))),
                 done,
                 Some(spath),
             )
@@ -482,8 +554,10 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         pb.finish_and_clear();
     }
     let evaluated = result.map_err(CliError::failure)?;
-    sink.flush().map_err(CliError::failure)?;
-    drop(sink);
+    match sink {
+        Sink::Csv(mut w) => w.flush().map_err(CliError::failure)?,
+        Sink::Parquet(p) => p.finish().map_err(CliError::failure)?,
+    }
     let seconds = start.elapsed().as_secs_f64();
     summary.set_throughput(evaluated, seconds, threads);
     if let Some(spath) = &summary_file {
@@ -513,8 +587,17 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     Ok(())
 }
 
+/// Whether `path` starts as a Parquet file does (`PAR1`).
+fn is_parquet_file(path: &Path) -> bool {
+    let mut head = [0u8; 4];
+    File::open(path)
+        .and_then(|mut f| f.read_exact(&mut head))
+        .is_ok()
+        && subdiv_lab::sweep::output::parquet::is_parquet(&head)
+}
+
 /// Data lines of one shard CSV.
-type LineIter = Box<dyn Iterator<Item = Result<String, SweepError>>>;
+pub(crate) type LineIter = Box<dyn Iterator<Item = Result<String, SweepError>>>;
 
 /// The data lines of one shard CSV, after its fingerprint line (checked against
 /// `plan`; it gives the shard) and its header (checked against `layout`), as a
@@ -526,6 +609,9 @@ fn data_lines(
     rows: std::rc::Rc<std::cell::Cell<u64>>,
 ) -> CliResult<MergeSource<LineIter>> {
     let name = path.display().to_string();
+    if is_parquet_file(path) {
+        return super::sweep_parquet::merge_source(path, plan, layout, rows);
+    }
     let file = File::open(path)
         .with_context(|| format!("opening {name}"))
         .map_err(CliError::usage)?;
@@ -689,10 +775,31 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default()
     ));
+    let parquet = args
+        .inputs
+        .iter()
+        .map(|p| is_parquet_file(p))
+        .collect::<Vec<_>>();
+    if parquet.iter().any(|&q| q != parquet[0]) {
+        return Err(CliError::usage(anyhow!(
+            "the shards mix CSV and Parquet files; merge shards of one format"
+        )));
+    }
     let result = (|| -> CliResult<Vec<Summary>> {
         let file = File::create(&tmp)
             .with_context(|| format!("creating {}", tmp.display()))
             .map_err(CliError::failure)?;
+        if parquet[0] {
+            let mut w = super::sweep_parquet::merge_sink(file, &plan, &layout)?;
+            let parts = output::merge(&plan, &layout, &eval, sources, &mut w, salt()).map_err(
+                |e| match e {
+                    SweepError::Io(_) => CliError::failure(e),
+                    other => CliError::usage(other),
+                },
+            )?;
+            w.finish().map_err(CliError::failure)?;
+            return Ok(parts);
+        }
         let mut w = BufWriter::with_capacity(1 << 20, file);
         w.write_all(output::fingerprint_line(&plan, Shard::ALL).as_bytes())
             .map_err(CliError::failure)?;

@@ -10,7 +10,7 @@
 //! | `contraction` | `contraction_rate` = `|lambda1|`, the asymptotic per-step contraction of the face towards its limit point (math doc section 5; <= 3/4) |
 //! | `eigenvalues = K` | `ev0_re, ev0_im, .., ev{K-1}_re, ev{K-1}_im`: the K leading eigenvalues of `S_n` by non-increasing modulus (empty beyond `4n`; for the Catmull-Clark family those of the `(2n+1)` one-ring matrix from the Fourier blocks, empty beyond `2n + 1`) |
 //! | `charmap` | `charmap_verdict` (`c1`, `tpc_real_distinct`, `tpc_complex_pair`, `not_regular`, `not_injective`, `indeterminate`, `no_charmap`; see [`crate::charmap::Verdict`]), `charmap_min_jacobian` (smallest Bezier coefficient of the ring's Jacobian relative to the largest; > 0 certifies regularity), `charmap_winding` (winding number of the ring boundary around the origin) |
-//! | `exact_certificate` | `exact_class`: the classification decided exactly over the rationals from the exact value of the `f64` parameters (`undecided` when the exact method cannot decide); `exact_agrees` = 1 / 0 when both verdicts are decided and agree / disagree (empty otherwise) |
+//! | `exact_certificate` | `exact_class`: the classification decided exactly over the rationals from the exact value of the `f64` parameters (`undecided` when the exact method cannot decide); `exact_agrees` = `true` / `false` when both verdicts are decided and agree / disagree (empty otherwise) |
 //!
 //! `lambda0 = 1` is the dominant eigenvalue; `lambda1, lambda2` the subdominant
 //! pair, `lambda3` the next one. The class is one of `standard`, `real_distinct`,
@@ -41,58 +41,138 @@ pub enum Cell {
     Text(String),
 }
 
-/// A result column.
+/// The type of a column, declared once in the column table
+/// ([`result_columns`]); the CSV text, the Parquet type and the schema
+/// documentation follow from it (math doc section 16.2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ColumnType {
+    /// A 64-bit float: CSV shortest round-trip text, Parquet `DOUBLE`;
+    /// enters the summary's extremes.
+    Float,
+    /// A label from a small set of values: CSV text, Parquet dictionary-encoded
+    /// `BYTE_ARRAY` (UTF-8 string).
+    Label,
+    /// A boolean: CSV `true` / `false`, Parquet `BOOLEAN`.
+    Bool,
+}
+
+impl ColumnType {
+    /// The name used in the schema documentation (`f64`, `string`, `bool`).
+    pub fn name(self) -> &'static str {
+        match self {
+            ColumnType::Float => "f64",
+            ColumnType::Label => "string",
+            ColumnType::Bool => "bool",
+        }
+    }
+}
+
+/// A result column: one row of the column table.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ResultColumn {
-    /// CSV header name.
+    /// CSV header name (and Parquet column name).
     pub name: String,
     /// Numeric (enters the summary's extremes) or text.
     pub numeric: bool,
+    /// The column's type.
+    pub ty: ColumnType,
+    /// What the value is (for the schema documentation).
+    pub meaning: String,
+    /// Its unit (`1` for a pure number, `rad`, or `-` for a label).
+    pub unit: &'static str,
 }
 
-/// The result columns of `columns`, in CSV order.
+/// The result columns of `columns`, in CSV order: the column table. Each row
+/// gives the name, the type (once: CSV and Parquet follow it), the meaning and
+/// the unit; a new column is one more row here and its cells in
+/// [`SpectralEvaluator`].
 pub fn result_columns(columns: &Columns) -> Vec<ResultColumn> {
-    let num = |n: &str| ResultColumn {
-        name: n.to_owned(),
-        numeric: true,
+    let col = |name: &str, ty: ColumnType, meaning: &str, unit: &'static str| ResultColumn {
+        name: name.to_owned(),
+        numeric: ty == ColumnType::Float,
+        ty,
+        meaning: meaning.to_owned(),
+        unit,
     };
-    let text = |n: &str| ResultColumn {
-        name: n.to_owned(),
-        numeric: false,
-    };
+    let num = |n: &str, meaning: &str, unit: &'static str| col(n, ColumnType::Float, meaning, unit);
     let mut v = Vec::new();
     if columns.classification {
-        v.push(text("class"));
-        for n in [
-            "lambda1_re",
-            "lambda1_im",
+        v.push(col(
+            "class",
+            ColumnType::Label,
+            "class of the subdominant eigenvalues (math doc section 7): standard, real_distinct, complex_pair, defective, not_separated, or indeterminate:A/B",
+            "-",
+        ));
+        v.push(num("lambda1_re", "real part of lambda1, the subdominant eigenvalue of largest modulus (lambda0 = 1 excluded)", "1"));
+        v.push(num("lambda1_im", "imaginary part of lambda1", "1"));
+        v.push(num(
             "lambda2_re",
-            "lambda2_im",
+            "real part of lambda2, the second subdominant eigenvalue",
+            "1",
+        ));
+        v.push(num("lambda2_im", "imaginary part of lambda2", "1"));
+        v.push(num(
             "abs_lambda3",
-        ] {
-            v.push(num(n));
-        }
+            "|lambda3|, the modulus of the next eigenvalue",
+            "1",
+        ));
     }
     if columns.gap {
-        for n in ["gap", "ratio", "rho", "theta"] {
-            v.push(num(n));
-        }
+        v.push(num("gap", "|lambda2| - |lambda3|", "1"));
+        v.push(num(
+            "ratio",
+            "lambda2 / lambda1 when both are real (empty otherwise)",
+            "1",
+        ));
+        v.push(num(
+            "rho",
+            "|lambda1| for a complex pair (empty otherwise)",
+            "1",
+        ));
+        v.push(num(
+            "theta",
+            "|arg lambda1| for a complex pair, in (0, pi) (empty otherwise)",
+            "rad",
+        ));
     }
     if columns.contraction {
-        v.push(num("contraction_rate"));
+        v.push(num(
+            "contraction_rate",
+            "|lambda1|, the asymptotic per-step contraction factor of the spectrum (a spectral quantity, not a measured rate; math doc section 5)",
+            "1",
+        ));
     }
     for k in 0..columns.eigenvalues {
-        v.push(num(&format!("ev{k}_re")));
-        v.push(num(&format!("ev{k}_im")));
+        v.push(num(&format!("ev{k}_re"), &format!("real part of the eigenvalue of rank {k} by non-increasing modulus (empty beyond the matrix size)"), "1"));
+        v.push(num(
+            &format!("ev{k}_im"),
+            &format!("imaginary part of the eigenvalue of rank {k}"),
+            "1",
+        ));
     }
     if columns.charmap {
-        v.push(text("charmap_verdict"));
-        v.push(num("charmap_min_jacobian"));
-        v.push(num("charmap_winding"));
+        v.push(col("charmap_verdict", ColumnType::Label, "characteristic-map verdict code (c1, tpc_real_distinct, tpc_complex_pair, not_regular, not_injective, indeterminate, no_charmap)", "-"));
+        v.push(num("charmap_min_jacobian", "smallest Bezier coefficient of the ring's Jacobian relative to the largest (> 0 certifies regularity)", "1"));
+        v.push(num(
+            "charmap_winding",
+            "winding number of the ring boundary around the origin (an integer)",
+            "1",
+        ));
     }
     if columns.exact_certificate {
-        v.push(text("exact_class"));
-        v.push(num("exact_agrees"));
+        v.push(col(
+            "exact_class",
+            ColumnType::Label,
+            "class decided exactly over the rationals from the exact f64 parameters, or undecided",
+            "-",
+        ));
+        v.push(col(
+            "exact_agrees",
+            ColumnType::Bool,
+            "whether the exact and the floating-point class agree (empty when either is undecided)",
+            "-",
+        ));
     }
     v
 }
@@ -403,7 +483,7 @@ impl SpectralEvaluator {
             let v = spectral::exact::exact_verdict(&exact, sub.as_ref())?;
             out.text(v.class.map_or("undecided", |k| k.as_str()));
             match v.agrees_with_float {
-                Some(a) => out.num(f64::from(u8::from(a))),
+                Some(a) => out.text(if a { "true" } else { "false" }),
                 None => out.empty(),
             }
         }

@@ -235,6 +235,10 @@ pub struct Summary {
     pub columns: Vec<ColumnStats>,
     /// Throughput.
     pub throughput: Throughput,
+    /// The data schema: every column of the rows file (CSV or Parquet), with
+    /// its type, meaning and unit (math doc section 16.2).
+    #[serde(default)]
+    pub schema: Vec<crate::sweep::output::ColumnDoc>,
 }
 
 impl Summary {
@@ -258,6 +262,7 @@ impl Summary {
                 .map(|(_, name)| ColumnStats::new(name.clone()))
                 .collect(),
             throughput: Throughput::default(),
+            schema: layout.column_docs().to_vec(),
         }
     }
 
@@ -324,6 +329,7 @@ impl Summary {
             classes: BTreeMap::new(),
             columns: Vec::new(),
             throughput: Throughput::default(),
+            schema: self.schema.clone(),
         }
     }
 

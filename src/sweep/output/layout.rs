@@ -3,7 +3,7 @@
 //! into a row. A leaf of the sweep modules' graph: the summary builds on it.
 
 use super::csv::{itoa_buf, push_number, push_text, small_uint, split_csv_line};
-use crate::sweep::eval::{result_columns, Cell, Evaluate};
+use crate::sweep::eval::{result_columns, Cell, ColumnType, Evaluate};
 use crate::sweep::plan::Plan;
 use crate::sweep::SweepError;
 use std::io::Write;
@@ -35,6 +35,25 @@ pub struct Layout {
     pub(super) coordinates: usize,
     pub(super) class: Option<usize>,
     pub(super) numeric: Vec<(usize, String)>,
+    /// The type of each cell's column (coordinates: `Float`).
+    pub(super) types: Vec<ColumnType>,
+    /// The schema documentation of every column, `id` to `error`.
+    pub(super) docs: Vec<ColumnDoc>,
+}
+
+/// The documentation of one column of a sweep's output (CSV and Parquet):
+/// written into the summary JSON and listed in the README.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct ColumnDoc {
+    /// Column name.
+    pub name: String,
+    /// Type: `u64`, `u32`, `f64`, `string`, `bool`.
+    #[serde(rename = "type")]
+    pub ty: String,
+    /// What the value is.
+    pub meaning: String,
+    /// Unit (`1`: a pure number; `-`: not a quantity).
+    pub unit: String,
 }
 
 impl Layout {
@@ -42,15 +61,47 @@ impl Layout {
     pub fn new(plan: &Plan) -> Layout {
         let mut names = Vec::new();
         let mut kinds = Vec::new();
+        let mut types = Vec::new();
+        let doc = |name: &str, ty: &str, meaning: &str, unit: &str| ColumnDoc {
+            name: name.to_owned(),
+            ty: ty.to_owned(),
+            meaning: meaning.to_owned(),
+            unit: unit.to_owned(),
+        };
+        let mut docs = vec![
+            doc("id", "u64", "configuration id: its position in the enumeration of the spec (the parameters are re-derived from it)", "-"),
+            doc("valence", "u32", "valence n of the extraordinary face or vertex", "-"),
+        ];
+        let kind = plan.spec().space.kind;
         for c in plan.coordinate_columns() {
+            let fam = c.trim_end_matches(|ch: char| ch.is_ascii_digit());
+            let meaning = match fam {
+                "r" => "edge ratio r_i of the knot intervals around the extraordinary face (math doc section 2); empty beyond the row's valence",
+                "p" | "q" => "corner knot interval p_i / q_i (log-uniform); empty beyond the row's valence",
+                "forward" | "backward" => "directed edge knot interval around the face (log-uniform); empty beyond the row's valence",
+                "a" => "knot interval a_k around the extraordinary vertex (log-uniform); empty beyond the row's valence",
+                "c" => "shape parameter c of the adjustable Catmull-Clark scheme",
+                _ => "coordinate of the parameter space",
+            };
+            let unit = if kind.is_log() { "knot interval" } else { "1" };
+            docs.push(doc(&c, "f64", meaning, unit));
             names.push(c);
             kinds.push(Kind::Numeric);
+            types.push(ColumnType::Float);
         }
         let coordinates = names.len();
         for c in result_columns(&plan.spec().columns) {
+            docs.push(doc(&c.name, c.ty.name(), &c.meaning, c.unit));
             names.push(c.name.to_owned());
             kinds.push(if c.numeric { Kind::Numeric } else { Kind::Text });
+            types.push(c.ty);
         }
+        docs.push(doc(
+            "error",
+            "string",
+            "why the configuration could not be evaluated (empty on success; a failed row has every result cell empty)",
+            "-",
+        ));
         let class = names.iter().position(|n| n == "class");
         let numeric = names
             .iter()
@@ -65,7 +116,20 @@ impl Layout {
             coordinates,
             class,
             numeric,
+            types,
+            docs,
         }
+    }
+
+    /// The schema documentation of every column, `id` to `error` (name, type,
+    /// meaning, unit).
+    pub fn column_docs(&self) -> &[ColumnDoc] {
+        &self.docs
+    }
+
+    /// The column names, `id` to `error`.
+    pub fn column_names(&self) -> Vec<String> {
+        self.docs.iter().map(|d| d.name.clone()).collect()
     }
 
     /// Number of cells (coordinates + results) of a row.

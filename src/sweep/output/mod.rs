@@ -22,17 +22,20 @@
 //! * `csv.rs`: number and text cells, line splitting (no sweep types);
 //! * `run.rs`: the streaming driver ([`run()`], [`run_counting`]);
 //! * `merge.rs`: the shard merge ([`merge()`]);
+//! * `parquet.rs`: the Parquet form of the rows (typed columns, row groups as
+//!   commit units, reading back: [`parquet::read_table`]);
 //! * `verify.rs`: the verification of existing files (resume and merge,
 //!   [`Verifier`]).
 
 pub(crate) mod csv;
 pub(crate) mod layout;
 mod merge;
+pub mod parquet;
 mod run;
 mod verify;
 
 pub use csv::{format_number, split_csv_line};
-pub use layout::{Layout, Row};
+pub use layout::{ColumnDoc, Layout, Row};
 pub use merge::{merge, MergeSource};
 pub use run::{run, run_counting, CHUNK, SUB_CHUNK};
 pub use verify::{

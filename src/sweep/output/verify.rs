@@ -16,8 +16,8 @@
 //! * a number parses as an `f64`, is written in the sweep's shortest round-trip
 //!   form (so that a summary rebuilt from the file equals the one accumulated
 //!   while writing), and lies in its column's range where the column has one
-//!   (`abs_lambda3`, `contraction_rate` >= 0, `exact_agrees` 0 or 1,
-//!   `charmap_winding` an integer).
+//!   (`abs_lambda3`, `contraction_rate` >= 0, `charmap_winding` an integer; `exact_agrees` `true` or
+//!   `false`).
 //!
 //! Edited *results* that stay plausible (a `lambda1_re` changed to another
 //! number, another valid class, an error text edited) cannot be told apart by
@@ -42,7 +42,19 @@
 //! path (parse, format, compare). Halton points use constant-base digit
 //! arithmetic. No check was dropped or weakened.
 //!
-//! Measured (the commands of `benches/resume_check.sh`: 1M-row CSV of valence
+//! Since then (resume helper, session 26): a 16- or 17-digit number is
+//! decided by exact integer arithmetic without formatting
+//! (`shortest_by_integers` in `csv.rs`, math doc section 16.2), and a
+//! coordinate cell is checked the same way (its value compared bit for bit
+//! with the one re-derived from the id) instead of formatting the expected
+//! value; only undecided texts are formatted. `benches/resume_check.sh`
+//! (best of 5, 2-core Xeon VM shared with six agents' builds, load average
+//! 12.4 to 13.5): a2db675 9.00 s wall / 2.95 s CPU, this 3.02 s / 0.85 s:
+//! 3.5x CPU; the wall times measure the load, not the program. On one
+//! thread (`--threads 1`, same load) 0.85 to 0.94 s CPU against 1.6 to 1.8 s
+//! before this change (`perf`: the Zmij formatting, 18% of the time, is gone).
+//!
+//! Measured before that (the commands of `benches/resume_check.sh`: 1M-row CSV of valence
 //! 3, Halton, default columns; re-check of the complete file) on the 2-core
 //! VM of the sweep2 branch, shared with other agents' builds (load average 5.5
 //! to 6.5 during the runs, so the machine was about 3x oversubscribed), best
@@ -149,6 +161,7 @@ enum TextRule {
     Class,
     Verdict,
     ExactClass,
+    Bool,
     Any,
 }
 
@@ -157,7 +170,6 @@ enum TextRule {
 enum NumRule {
     Any,
     NonNegative,
-    ZeroOne,
     Integer,
 }
 
@@ -192,6 +204,7 @@ fn text_ok(rule: TextRule, t: &str) -> bool {
         }
         TextRule::Verdict => VERDICTS.contains(&t),
         TextRule::ExactClass => t == "undecided" || CLASSES.contains(&t),
+        TextRule::Bool => t == "true" || t == "false",
         TextRule::Any => true,
     }
 }
@@ -201,6 +214,7 @@ fn text_rule(name: &str) -> TextRule {
         "class" => TextRule::Class,
         "charmap_verdict" => TextRule::Verdict,
         "exact_class" => TextRule::ExactClass,
+        "exact_agrees" => TextRule::Bool,
         _ => TextRule::Any,
     }
 }
@@ -208,7 +222,6 @@ fn text_rule(name: &str) -> TextRule {
 fn num_rule(name: &str) -> NumRule {
     match name {
         "abs_lambda3" | "contraction_rate" => NumRule::NonNegative,
-        "exact_agrees" => NumRule::ZeroOne,
         "charmap_winding" => NumRule::Integer,
         _ => NumRule::Any,
     }
@@ -218,7 +231,6 @@ fn num_ok(rule: NumRule, x: f64) -> bool {
     match rule {
         NumRule::Any => true,
         NumRule::NonNegative => x >= 0.0,
-        NumRule::ZeroOne => x == 0.0 || x == 1.0,
         NumRule::Integer => x.is_finite() && x.fract() == 0.0,
     }
 }
@@ -526,11 +538,17 @@ impl<'a> Verifier<'a> {
             let f = field(2 + pos);
             let ok = match self.coordinates[pos] {
                 None => f.is_empty(),
-                Some(x) => {
-                    self.number.clear();
-                    push_number(&mut self.number, &mut self.digits, x);
-                    f == self.number
-                }
+                // `f` is the text written for `y` (without formatting `x`,
+                // usually: see `canonical_number`) and `y` is `x`; otherwise
+                // the definitive test, the bytes written for `x`.
+                Some(x) => match canonical_number(f, &mut self.number, &mut self.digits) {
+                    Some(y) if y.to_bits() == x.to_bits() => true,
+                    _ => {
+                        self.number.clear();
+                        push_number(&mut self.number, &mut self.digits, x);
+                        f == self.number
+                    }
+                },
             };
             if !ok {
                 self.number.clear();
@@ -592,6 +610,7 @@ impl<'a> Verifier<'a> {
                             TextRule::Class => " (a class name: standard, real_distinct, complex_pair, defective, not_separated or indeterminate:A/B)",
                             TextRule::Verdict => " (a characteristic-map verdict code)",
                             TextRule::ExactClass => " (a class name or undecided)",
+                            TextRule::Bool => " (true or false)",
                             TextRule::Any => "",
                         }
                     ));

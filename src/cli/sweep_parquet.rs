@@ -1,0 +1,289 @@
+//! The file side of `sweep --format parquet`: the commit protocol (row group,
+//! footer, journal) and resume. The encoding, the verification and the journal
+//! format live in `subdiv_lab::sweep::output::parquet` (math doc section 16.2).
+//!
+//! On disk: `NAME.parquet` is `PAR1`, the committed row groups and the footer
+//! of the last commit (a valid Parquet file after every commit);
+//! `.NAME.parquet.commit` (beside it, while the run is unfinished) is the
+//! journal of the last commit, replaced atomically after each one. A commit
+//! truncates the file at the end of the previous group (dropping its footer),
+//! writes the group and the new footer, then replaces the journal. A run
+//! killed anywhere leaves a file whose first `data_end` bytes (the journal's)
+//! are the committed groups: `--resume` truncates there and appends the
+//! journal's footer, which drops a torn trailing group.
+
+use super::{CliError, CliResult};
+use anyhow::{anyhow, Context};
+use std::fs::{self, File, OpenOptions};
+use std::io::{Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+use subdiv_lab::sweep::output::parquet::{
+    self as pq, footer_for_groups, journal_bytes, parse_journal, read_table, Commit, ParquetRows,
+};
+use subdiv_lab::sweep::output::{self, LineFault, Verifier};
+use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, Summary, SweepError};
+
+/// The commit callback of a run.
+pub(crate) type CommitFn = Box<dyn FnMut(Commit<'_>) -> std::io::Result<()> + Send>;
+
+/// The rows sink of a Parquet run.
+pub(crate) struct ParquetSink {
+    rows: ParquetRows<CommitFn>,
+    journal: PathBuf,
+}
+
+impl ParquetSink {
+    /// Commits the last group and removes the journal (the file is complete).
+    pub(crate) fn finish(self) -> anyhow::Result<()> {
+        self.rows.finish().map_err(|e| anyhow!("{e}"))?;
+        match fs::remove_file(&self.journal) {
+            Ok(()) => Ok(()),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+            Err(e) => Err(anyhow!("removing {}: {e}", self.journal.display())),
+        }
+    }
+}
+
+impl Write for ParquetSink {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.rows.write(buf)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.rows.flush()
+    }
+}
+
+/// `.NAME.commit` beside `path`.
+fn journal_path(path: &Path) -> PathBuf {
+    path.with_file_name(format!(
+        ".{}.commit",
+        path.file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    ))
+}
+
+/// Truncates `file` at `at` and writes `parts` there.
+fn write_at(file: &mut File, at: u64, parts: &[&[u8]]) -> std::io::Result<()> {
+    file.set_len(at)?;
+    file.seek(SeekFrom::Start(at))?;
+    for p in parts {
+        file.write_all(p)?;
+    }
+    file.flush()
+}
+
+fn commit_fn(mut file: File, journal: PathBuf) -> CommitFn {
+    Box::new(move |c: Commit<'_>| {
+        write_at(&mut file, c.offset, &[c.group, c.footer])?;
+        let end = c.offset + c.group.len() as u64;
+        super::sweep::write_atomic(&journal, &journal_bytes(end, c.footer))
+            .map_err(|e| std::io::Error::other(format!("{e:#}")))
+    })
+}
+
+/// Opens `path` for a Parquet run of `shard`: a new file, or (when it exists)
+/// the committed rows of an earlier run, recovered from the journal if the run
+/// was killed, verified in full ([`Verifier`], as for a CSV) and added to
+/// `summary`. Returns the sink, the rows already present and whether groups
+/// after the last commit (or a last short group) were dropped.
+pub(crate) fn open(
+    path: &Path,
+    plan: &Plan,
+    layout: &Layout,
+    eval: &SpectralEvaluator,
+    shard: Shard,
+    summary: &mut Summary,
+    salt: u64,
+) -> CliResult<(ParquetSink, u64, bool)> {
+    let name = path.display().to_string();
+    let journal = journal_path(path);
+    let fingerprint = output::fingerprint_line(plan, shard);
+    let io = |e: std::io::Error, what: &str| CliError::failure(anyhow!("{what} {name}: {e}"));
+    let mut recovered = false;
+    let mut existing = Vec::new();
+    let mut data_end = pq::MAGIC.len() as u64;
+    let mut done = 0u64;
+    let mut fresh = true;
+    if path.exists() {
+        // A killed run: back to the journal's last commit.
+        if journal.exists() {
+            let j = fs::read(&journal).map_err(|e| io(e, "reading the journal of"))?;
+            let (end, footer) = parse_journal(&j).map_err(|m| {
+                CliError::usage(anyhow!("{}: {m}; cannot resume", journal.display()))
+            })?;
+            let len = fs::metadata(path).map_err(|e| io(e, "reading"))?.len();
+            if len < end {
+                return Err(CliError::usage(anyhow!(
+                    "{name}: shorter ({len} bytes) than its last commit ({end} bytes); cannot resume"
+                )));
+            }
+            let mut f = OpenOptions::new()
+                .write(true)
+                .open(path)
+                .map_err(|e| io(e, "opening"))?;
+            write_at(&mut f, end, &[&footer]).map_err(|e| io(e, "writing"))?;
+            recovered = len != end + footer.len() as u64;
+        }
+        let bytes = fs::read(path).map_err(|e| io(e, "reading"))?;
+        if !bytes.is_empty() {
+            fresh = false;
+            let table = read_table(bytes).map_err(|e| {
+                CliError::usage(anyhow!("{name}: {e}; cannot resume (not a sweep Parquet file, or torn without its commit journal)"))
+            })?;
+            let mismatch = |line: u64, message: String| {
+                CliError::usage(SweepError::Mismatch {
+                    source_name: name.clone(),
+                    line,
+                    message,
+                })
+            };
+            let fp = table.fingerprint().unwrap_or_default().to_owned() + "\n";
+            output::check_fingerprint(plan, shard, &fp)
+                .map_err(|m| mismatch(1, format!("{m}; cannot resume")))?;
+            if table.names != layout.column_names() {
+                return Err(CliError::usage(anyhow!(
+                    "{name}: the columns do not match this spec's; cannot resume (expected {})",
+                    layout.column_names().join(",")
+                )));
+            }
+            let rows = table.rows() as u64;
+            let expected = summary.expected_rows;
+            if rows > expected {
+                return Err(CliError::usage(anyhow!(
+                    "{name}: has more rows than this run expects ({expected}); was it written with another --limit?"
+                )));
+            }
+            // Keep the leading full groups (all of them if the file is
+            // complete): the groups are then those of an uninterrupted run.
+            let sizes = table.group_rows();
+            let keep = if rows == expected {
+                sizes.len()
+            } else {
+                sizes
+                    .iter()
+                    .take_while(|&&r| r == pq::ROW_GROUP_ROWS as u64)
+                    .count()
+            };
+            done = sizes[..keep].iter().sum();
+            let lines = table.csv_lines(0, done as usize);
+            let mut verifier = Verifier::new(plan, layout, salt);
+            let expected_id = |j: u64| shard.id(j);
+            verifier
+                .check_block(1, lines.as_bytes(), &expected_id, expected)
+                .map_err(|(l, fault)| match fault {
+                    LineFault::Mismatch(m) => mismatch(l, format!("row {l}: {m}")),
+                    LineFault::NotUtf8 => mismatch(l, "not UTF-8".into()),
+                    LineFault::TooManyRows => mismatch(l, "more rows than expected".into()),
+                })?;
+            verifier.recheck(eval).map_err(|(l, m)| mismatch(l, m))?;
+            verifier.add_to(summary);
+            data_end = table.end_of_groups(keep);
+            if keep < sizes.len() {
+                let footer = footer_for_groups(layout, &table, keep).map_err(CliError::failure)?;
+                let mut f = OpenOptions::new()
+                    .write(true)
+                    .open(path)
+                    .map_err(|e| io(e, "opening"))?;
+                write_at(&mut f, data_end, &[&footer]).map_err(|e| io(e, "writing"))?;
+                recovered = true;
+            }
+            existing = table.row_groups()[..keep].to_vec();
+        }
+    }
+    let mut file = OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .read(true)
+        .write(true)
+        .open(path)
+        .with_context(|| format!("opening {name}"))
+        .map_err(CliError::failure)?;
+    let commit = commit_fn(
+        file.try_clone().map_err(|e| io(e, "opening"))?,
+        journal.clone(),
+    );
+    let rows = ParquetRows::new(layout, &fingerprint, existing, data_end, commit)
+        .map_err(CliError::failure)?;
+    if fresh {
+        // A new file: PAR1 and the footer of no group (valid Parquet).
+        let footer = rows.current_footer().map_err(CliError::failure)?;
+        write_at(&mut file, 0, &[pq::MAGIC, &footer]).map_err(|e| io(e, "writing"))?;
+        super::sweep::write_atomic(&journal, &journal_bytes(data_end, &footer))
+            .map_err(CliError::failure)?;
+    }
+    Ok((ParquetSink { rows, journal }, done, recovered))
+}
+
+/// A Parquet shard as a merge source: its fingerprint (which gives the shard)
+/// checked against `plan`, its columns against `layout`, its rows as the CSV
+/// lines the sweep writes for them (verified by the merge like a CSV's).
+pub(crate) fn merge_source(
+    path: &Path,
+    plan: &Plan,
+    layout: &Layout,
+    rows: std::rc::Rc<std::cell::Cell<u64>>,
+) -> CliResult<output::MergeSource<super::sweep::LineIter>> {
+    let name = path.display().to_string();
+    let bytes = fs::read(path)
+        .with_context(|| format!("reading {name}"))
+        .map_err(CliError::usage)?;
+    let mismatch = |line: u64, message: String| {
+        CliError::usage(SweepError::Mismatch {
+            source_name: name.clone(),
+            line,
+            message,
+        })
+    };
+    let table = read_table(bytes).map_err(|e| {
+        mismatch(
+            1,
+            format!("{e}; finish this shard with `sweep --resume` first"),
+        )
+    })?;
+    let fp = table.fingerprint().unwrap_or_default().to_owned() + "\n";
+    let shard = output::fingerprint_shard(&fp).ok_or_else(|| {
+        mismatch(
+            1,
+            output::check_fingerprint(plan, Shard::ALL, &fp)
+                .err()
+                .unwrap_or_else(|| "the fingerprint names no shard".into()),
+        )
+    })?;
+    output::check_fingerprint(plan, shard, &fp).map_err(|m| mismatch(1, m))?;
+    if table.names != layout.column_names() {
+        return Err(mismatch(1, "the columns do not match the spec's".into()));
+    }
+    let text = table.csv_lines(0, table.rows());
+    let lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let iter = lines.into_iter().map(move |l| {
+        rows.set(rows.get() + 1);
+        Ok(l)
+    });
+    Ok(output::MergeSource {
+        name,
+        shard,
+        lines: Box::new(iter),
+    })
+}
+
+/// The rows sink of a merged Parquet file (written to a temporary file that
+/// the caller renames when every check passed: no journal).
+pub(crate) fn merge_sink(
+    mut file: File,
+    plan: &Plan,
+    layout: &Layout,
+) -> CliResult<ParquetRows<CommitFn>> {
+    file.write_all(pq::MAGIC).map_err(CliError::failure)?;
+    let commit: CommitFn =
+        Box::new(move |c: Commit<'_>| write_at(&mut file, c.offset, &[c.group, c.footer]));
+    let rows = ParquetRows::new(
+        layout,
+        &output::fingerprint_line(plan, Shard::ALL),
+        Vec::new(),
+        pq::MAGIC.len() as u64,
+        commit,
+    )
+    .map_err(CliError::failure)?;
+    Ok(rows)
+}

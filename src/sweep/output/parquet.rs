@@ -1,0 +1,904 @@
+//! The Parquet form of a sweep's rows (`sweep --format parquet`; math doc
+//! section 16.2).
+//!
+//! # Columns
+//!
+//! The columns of the CSV, in the same order, typed: `id` `INT64` (unsigned),
+//! `valence` `INT32` (unsigned), coordinates and float results `DOUBLE`,
+//! labels (`class`, verdicts) dictionary-encoded UTF-8 `BYTE_ARRAY`, booleans
+//! `BOOLEAN`, `error` UTF-8 `BYTE_ARRAY`; every column but `id` and `valence`
+//! is optional (an empty CSV cell is a null). The type of a result column is
+//! declared once, in the column table ([`result_columns`]).
+//!
+//! The values are those of the CSV: a row group is built from the CSV lines
+//! the sweep driver formats (numbers in shortest round-trip form, which read
+//! back to the same `f64` bit for bit), so the Parquet file holds exactly the
+//! numbers of the CSV of the same spec (a test reads both back and compares).
+//! No compression, no statistics, no page index: the bytes depend only on the
+//! rows, so the file is byte-identical for any thread count.
+//!
+//! # Commit units
+//!
+//! Rows are cut into row groups of [`ROW_GROUP_ROWS`] rows (the last one
+//! shorter). A row group is the unit of commit: [`ParquetRows`] hands each
+//! completed group to its caller as a [`Commit`] (the bytes of the group, the
+//! offset where they go, the footer that makes the file end there). The file
+//! on disk is `PAR1`, the committed groups, and the footer of the last commit:
+//! a valid Parquet file after every commit. Each group is encoded alone (a
+//! one-group Parquet file in memory) and its column offsets are moved to its
+//! place in the file. The caller's journal of the last commit (offset and
+//! footer) lets a killed run find the last committed group: the CLI keeps it
+//! beside the file (see `docs/math.md` section 16.2).
+//!
+//! The key-value metadata `subdiv-lab.fingerprint` holds the CSV's fingerprint
+//! line ([`super::fingerprint_line`]: spec digest, shard, configurations), which
+//! ties the file to its spec and shard for resume and merge;
+//! `subdiv-lab.schema` holds the column documentation (JSON).
+//!
+//! [`result_columns`]: crate::sweep::eval::result_columns
+
+use super::csv::{canonical_number, push_number, push_text, split_csv_line};
+use super::layout::Layout;
+use crate::sweep::eval::ColumnType;
+use crate::sweep::SweepError;
+use bytes::Bytes;
+use parquet::basic::{IntType, LogicalType, Repetition, Type as PhysicalType};
+use parquet::data_type::{BoolType, ByteArray, ByteArrayType, DoubleType, Int32Type, Int64Type};
+use parquet::file::metadata::{
+    FileMetaData, KeyValue, ParquetMetaData, ParquetMetaDataBuilder, ParquetMetaDataWriter,
+    RowGroupMetaData,
+};
+use parquet::file::properties::{EnabledStatistics, WriterProperties, WriterVersion};
+use parquet::file::reader::{FileReader, SerializedFileReader};
+use parquet::file::writer::SerializedFileWriter;
+use parquet::record::Field;
+use parquet::schema::types::{ColumnPath, SchemaDescriptor, Type, TypePtr};
+use std::sync::Arc;
+
+/// Rows per row group (the commit unit; the last group of a file is
+/// shorter). Fixed, so that the groups, and with them the bytes of the file,
+/// do not depend on the thread count or on where a run was interrupted; 65 536
+/// rows of the default columns are about 8 MB, a common row-group size for
+/// readers, and a few seconds of evaluation at the sweep's rate.
+pub const ROW_GROUP_ROWS: usize = 65_536;
+
+/// The key of the fingerprint line in the key-value metadata.
+pub const FINGERPRINT_KEY: &str = "subdiv-lab.fingerprint";
+
+/// The key of the column documentation (JSON) in the key-value metadata.
+pub const SCHEMA_KEY: &str = "subdiv-lab.schema";
+
+/// The four bytes that start (and end) every Parquet file.
+pub const MAGIC: &[u8; 4] = b"PAR1";
+
+fn pq_err(e: parquet::errors::ParquetError) -> SweepError {
+    SweepError::Io(format!("parquet: {e}"))
+}
+
+/// The column types of a layout, `id` to `error`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Col {
+    Id,
+    Valence,
+    Float,
+    Label,
+    Bool,
+    Error,
+}
+
+fn columns_of(layout: &Layout) -> Vec<Col> {
+    let mut v = vec![Col::Id, Col::Valence];
+    v.extend(layout.types.iter().map(|t| match t {
+        ColumnType::Float => Col::Float,
+        ColumnType::Label => Col::Label,
+        ColumnType::Bool => Col::Bool,
+    }));
+    v.push(Col::Error);
+    v
+}
+
+/// The Parquet schema of `layout`'s rows.
+fn schema_of(layout: &Layout) -> Result<TypePtr, SweepError> {
+    let names = layout.column_names();
+    let mut fields = Vec::with_capacity(names.len());
+    for (name, col) in names.iter().zip(columns_of(layout)) {
+        let (phys, logical, rep) = match col {
+            Col::Id => (
+                PhysicalType::INT64,
+                Some(LogicalType::Integer(IntType {
+                    bit_width: 64,
+                    is_signed: false,
+                })),
+                Repetition::REQUIRED,
+            ),
+            Col::Valence => (
+                PhysicalType::INT32,
+                Some(LogicalType::Integer(IntType {
+                    bit_width: 32,
+                    is_signed: false,
+                })),
+                Repetition::REQUIRED,
+            ),
+            Col::Float => (PhysicalType::DOUBLE, None, Repetition::OPTIONAL),
+            Col::Label | Col::Error => (
+                PhysicalType::BYTE_ARRAY,
+                Some(LogicalType::String),
+                Repetition::OPTIONAL,
+            ),
+            Col::Bool => (PhysicalType::BOOLEAN, None, Repetition::OPTIONAL),
+        };
+        let t = Type::primitive_type_builder(name, phys)
+            .with_repetition(rep)
+            .with_logical_type(logical)
+            .build()
+            .map_err(pq_err)?;
+        fields.push(Arc::new(t));
+    }
+    Ok(Arc::new(
+        Type::group_type_builder("sweep")
+            .with_fields(fields)
+            .build()
+            .map_err(pq_err)?,
+    ))
+}
+
+/// Writer properties: no compression, statistics or page index (the bytes
+/// depend on the rows only); dictionary encoding for the label columns.
+fn properties(layout: &Layout) -> Arc<WriterProperties> {
+    let mut b = WriterProperties::builder()
+        .set_writer_version(WriterVersion::PARQUET_1_0)
+        .set_statistics_enabled(EnabledStatistics::None)
+        .set_offset_index_disabled(true)
+        .set_dictionary_enabled(false)
+        .set_max_row_group_row_count(Some(ROW_GROUP_ROWS))
+        .set_created_by(format!("subdiv-lab {}", env!("CARGO_PKG_VERSION")));
+    for (name, col) in layout.column_names().iter().zip(columns_of(layout)) {
+        if col == Col::Label {
+            b = b.set_column_dictionary_enabled(ColumnPath::from(name.as_str()), true);
+        }
+    }
+    Arc::new(b.build())
+}
+
+/// The values of one column of a row group being built.
+#[derive(Debug)]
+enum Values {
+    U64(Vec<i64>),
+    U32(Vec<i32>),
+    F64(Vec<f64>, Vec<i16>),
+    Str(Vec<ByteArray>, Vec<i16>),
+    Bool(Vec<bool>, Vec<i16>),
+}
+
+impl Values {
+    fn new(col: Col) -> Values {
+        match col {
+            Col::Id => Values::U64(Vec::new()),
+            Col::Valence => Values::U32(Vec::new()),
+            Col::Float => Values::F64(Vec::new(), Vec::new()),
+            Col::Label | Col::Error => Values::Str(Vec::new(), Vec::new()),
+            Col::Bool => Values::Bool(Vec::new(), Vec::new()),
+        }
+    }
+
+    fn clear(&mut self) {
+        match self {
+            Values::U64(v) => v.clear(),
+            Values::U32(v) => v.clear(),
+            Values::F64(v, d) => {
+                v.clear();
+                d.clear();
+            }
+            Values::Str(v, d) => {
+                v.clear();
+                d.clear();
+            }
+            Values::Bool(v, d) => {
+                v.clear();
+                d.clear();
+            }
+        }
+    }
+
+    /// Appends the CSV cell `f` (`name` for messages; `scratch` and `digits`
+    /// for [`canonical_number`], which reads most written numbers without a
+    /// full parse).
+    fn push(
+        &mut self,
+        f: &str,
+        name: &str,
+        scratch: &mut String,
+        digits: &mut zmij::Buffer,
+    ) -> Result<(), String> {
+        let bad = |what: &str| format!("{name} = {f:?} is not {what}");
+        match self {
+            Values::U64(v) => {
+                v.push(f.parse::<u64>().map_err(|_| bad("an unsigned integer"))? as i64)
+            }
+            Values::U32(v) => {
+                v.push(f.parse::<u32>().map_err(|_| bad("an unsigned integer"))? as i32)
+            }
+            Values::F64(v, d) => {
+                if f.is_empty() {
+                    d.push(0);
+                } else {
+                    let x = match canonical_number(f, scratch, digits) {
+                        Some(x) => x,
+                        None => f.parse::<f64>().map_err(|_| bad("a number"))?,
+                    };
+                    v.push(x);
+                    d.push(1);
+                }
+            }
+            Values::Str(v, d) => {
+                if f.is_empty() {
+                    d.push(0);
+                } else {
+                    v.push(ByteArray::from(f));
+                    d.push(1);
+                }
+            }
+            Values::Bool(v, d) => {
+                match f {
+                    "" => {
+                        d.push(0);
+                        return Ok(());
+                    }
+                    "true" => v.push(true),
+                    "false" => v.push(false),
+                    _ => return Err(bad("true or false")),
+                }
+                d.push(1);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One committed row group, handed to the caller of [`ParquetRows`]: write
+/// `group` at byte `offset` of the file (dropping whatever follows), then
+/// `footer`; the file is then a valid Parquet file of `rows` rows. Record
+/// `(offset + group.len(), footer)` as the last commit.
+#[derive(Debug)]
+pub struct Commit<'a> {
+    /// Where the group's bytes go (the end of the previous group).
+    pub offset: u64,
+    /// The row group's bytes.
+    pub group: &'a [u8],
+    /// The footer (metadata, its length, `PAR1`) of the file ending after `group`.
+    pub footer: &'a [u8],
+    /// Rows in the file after this commit.
+    pub rows: u64,
+}
+
+/// Rows of a sweep in Parquet form: receives the CSV lines the sweep driver
+/// writes (as a [`std::io::Write`]), builds row groups of [`ROW_GROUP_ROWS`]
+/// rows and hands each completed one to `commit`; [`finish`](Self::finish)
+/// commits the last, shorter group. No I/O of its own.
+pub struct ParquetRows<F> {
+    names: Vec<String>,
+    schema: TypePtr,
+    props: Arc<WriterProperties>,
+    key_value: Vec<KeyValue>,
+    values: Vec<Values>,
+    rows_in_group: usize,
+    groups: Vec<RowGroupMetaData>,
+    /// End of the last committed group (the file's length without its footer).
+    data_end: u64,
+    pending: Vec<u8>,
+    commit: F,
+    number: String,
+    digits: zmij::Buffer,
+}
+
+impl<F> std::fmt::Debug for ParquetRows<F> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ParquetRows")
+            .field("groups", &self.groups.len())
+            .field("data_end", &self.data_end)
+            .finish()
+    }
+}
+
+impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
+    /// Rows for `layout` tied to `fingerprint` (the CSV's fingerprint line),
+    /// continuing after `existing` (row groups already in the file, from
+    /// [`ParquetTable::row_groups`], ending at byte `data_end`; none and 4 for
+    /// a new file, which starts with [`MAGIC`]).
+    pub fn new(
+        layout: &Layout,
+        fingerprint: &str,
+        existing: Vec<RowGroupMetaData>,
+        data_end: u64,
+        commit: F,
+    ) -> Result<Self, SweepError> {
+        let cols = columns_of(layout);
+        let schema_json = serde_json::to_string(layout.column_docs())
+            .map_err(|e| SweepError::Io(e.to_string()))?;
+        Ok(ParquetRows {
+            values: cols.iter().map(|c| Values::new(*c)).collect(),
+            names: layout.column_names(),
+            schema: schema_of(layout)?,
+            props: properties(layout),
+            key_value: vec![
+                KeyValue::new(
+                    FINGERPRINT_KEY.to_owned(),
+                    fingerprint.trim_end_matches('\n').to_owned(),
+                ),
+                KeyValue::new(SCHEMA_KEY.to_owned(), schema_json),
+            ],
+            rows_in_group: 0,
+            groups: existing,
+            data_end,
+            pending: Vec::new(),
+            commit,
+            number: String::new(),
+            digits: zmij::Buffer::new(),
+        })
+    }
+
+    /// Rows committed so far (in the file) plus rows of the open group.
+    pub fn rows(&self) -> u64 {
+        self.groups.iter().map(|g| g.num_rows() as u64).sum::<u64>() + self.rows_in_group as u64
+    }
+
+    /// The footer of a file holding `groups` (metadata, length, `PAR1`).
+    fn footer(&self) -> Result<Vec<u8>, SweepError> {
+        footer_bytes(&self.schema, &self.props, &self.key_value, &self.groups)
+    }
+
+    /// The footer of the file as committed so far (for a new file: no group).
+    pub fn current_footer(&self) -> Result<Vec<u8>, SweepError> {
+        self.footer()
+    }
+
+    fn push_line(&mut self, line: &str) -> Result<(), SweepError> {
+        let bad = |m: String| SweepError::Io(format!("parquet: row {line:?}: {m}"));
+        let n = self.values.len();
+        let quoted = line.contains('"');
+        let owned;
+        let found = if quoted {
+            owned = split_csv_line(line).map_err(bad)?;
+            owned.len()
+        } else {
+            owned = Vec::new();
+            memchr::memchr_iter(b',', line.as_bytes()).count() + 1
+        };
+        if found != n {
+            return Err(bad(format!("{found} fields for {n} columns")));
+        }
+        let fields: Box<dyn Iterator<Item = &str>> = if quoted {
+            Box::new(owned.iter().map(String::as_str))
+        } else {
+            Box::new(line.split(','))
+        };
+        for ((v, f), name) in self.values.iter_mut().zip(fields).zip(&self.names) {
+            v.push(f, name, &mut self.number, &mut self.digits)
+                .map_err(bad)?;
+        }
+        self.rows_in_group += 1;
+        if self.rows_in_group == ROW_GROUP_ROWS {
+            self.commit_group()?;
+        }
+        Ok(())
+    }
+
+    /// Encodes the open group, moves it to its place and commits it.
+    fn commit_group(&mut self) -> Result<(), SweepError> {
+        let (bytes, meta) = encode_group(&self.schema, &self.props, &self.values)?;
+        let shift = self.data_end as i64 - MAGIC.len() as i64;
+        let meta = move_group(&meta, shift, self.groups.len())?;
+        let meta = as_read_back(&self.schema, &self.props, meta)?;
+        self.groups.push(meta);
+        let footer = self.footer()?;
+        let rows = self.rows();
+        let offset = self.data_end;
+        (self.commit)(Commit {
+            offset,
+            group: &bytes,
+            footer: &footer,
+            rows,
+        })?;
+        self.data_end += bytes.len() as u64;
+        for v in &mut self.values {
+            v.clear();
+        }
+        self.rows_in_group = 0;
+        Ok(())
+    }
+
+    /// Commits the last (shorter) group, if any rows are open; returns the
+    /// rows of the file.
+    pub fn finish(mut self) -> Result<u64, SweepError> {
+        if !self.pending.is_empty() {
+            return Err(SweepError::Io(
+                "parquet: the rows ended inside a line".into(),
+            ));
+        }
+        if self.rows_in_group > 0 {
+            self.commit_group()?;
+        } else if self.groups.is_empty() {
+            // No row at all: the file is `PAR1` and the footer of no group.
+            let footer = self.footer()?;
+            (self.commit)(Commit {
+                offset: self.data_end,
+                group: &[],
+                footer: &footer,
+                rows: 0,
+            })?;
+        }
+        Ok(self.rows())
+    }
+}
+
+impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> std::io::Write for ParquetRows<F> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let to_io = |e: SweepError| std::io::Error::other(e.to_string());
+        let utf8 = || std::io::Error::other("parquet: a row is not UTF-8");
+        let mut rest = buf;
+        while let Some(p) = memchr::memchr(b'\n', rest) {
+            if self.pending.is_empty() {
+                let line = std::str::from_utf8(&rest[..p]).map_err(|_| utf8())?;
+                self.push_line(line).map_err(to_io)?;
+            } else {
+                let mut l = std::mem::take(&mut self.pending);
+                l.extend_from_slice(&rest[..p]);
+                let line = std::str::from_utf8(&l).map_err(|_| utf8())?;
+                self.push_line(line).map_err(to_io)?;
+            }
+            rest = &rest[p + 1..];
+        }
+        self.pending.extend_from_slice(rest);
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// One group as a one-group Parquet file in memory: its bytes after `PAR1`
+/// up to its footer, and its metadata (offsets within that file).
+fn encode_group(
+    schema: &TypePtr,
+    props: &Arc<WriterProperties>,
+    values: &[Values],
+) -> Result<(Vec<u8>, RowGroupMetaData), SweepError> {
+    let mut buf: Vec<u8> = Vec::new();
+    let mut w =
+        SerializedFileWriter::new(&mut buf, schema.clone(), props.clone()).map_err(pq_err)?;
+    let mut rg = w.next_row_group().map_err(pq_err)?;
+    for v in values {
+        let Some(mut c) = rg.next_column().map_err(pq_err)? else {
+            return Err(SweepError::Io("parquet: fewer columns than values".into()));
+        };
+        match v {
+            Values::U64(x) => c.typed::<Int64Type>().write_batch(x, None, None),
+            Values::U32(x) => c.typed::<Int32Type>().write_batch(x, None, None),
+            Values::F64(x, d) => c.typed::<DoubleType>().write_batch(x, Some(d), None),
+            Values::Str(x, d) => c.typed::<ByteArrayType>().write_batch(x, Some(d), None),
+            Values::Bool(x, d) => c.typed::<BoolType>().write_batch(x, Some(d), None),
+        }
+        .map_err(pq_err)?;
+        c.close().map_err(pq_err)?;
+    }
+    let meta = rg.close().map_err(pq_err)?;
+    let end = w.bytes_written();
+    w.close().map_err(pq_err)?;
+    let meta = (*meta).clone();
+    Ok((buf[MAGIC.len()..end].to_vec(), meta))
+}
+
+/// `meta` with every byte offset moved by `shift` and ordinal `ordinal`.
+fn move_group(
+    meta: &RowGroupMetaData,
+    shift: i64,
+    ordinal: usize,
+) -> Result<RowGroupMetaData, SweepError> {
+    let cols = meta
+        .columns()
+        .iter()
+        .map(|c| {
+            c.clone()
+                .into_builder()
+                .set_data_page_offset(c.data_page_offset() + shift)
+                .set_dictionary_page_offset(c.dictionary_page_offset().map(|o| o + shift))
+                .build()
+                .map_err(pq_err)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut b = meta.clone().into_builder();
+    b.take_columns();
+    let mut b = b
+        .set_column_metadata(cols)
+        .set_ordinal(i32::try_from(ordinal).unwrap_or(i32::MAX));
+    if let Some(o) = meta.file_offset() {
+        b = b.set_file_offset(o + shift);
+    }
+    b.build().map_err(pq_err)
+}
+
+/// `meta` as a reader decodes it from a footer: the form in which a resumed
+/// run finds the groups already in the file, so that the footers written
+/// after a resume are those of an uninterrupted run.
+fn as_read_back(
+    schema: &TypePtr,
+    props: &Arc<WriterProperties>,
+    meta: RowGroupMetaData,
+) -> Result<RowGroupMetaData, SweepError> {
+    let footer = footer_bytes(schema, props, &[], &[meta])?;
+    let n = footer.len();
+    let len =
+        u32::from_le_bytes([footer[n - 8], footer[n - 7], footer[n - 6], footer[n - 5]]) as usize;
+    let md = parquet::file::metadata::ParquetMetaDataReader::decode_metadata(
+        &footer[n - 8 - len..n - 8],
+    )
+    .map_err(pq_err)?;
+    md.row_groups()
+        .first()
+        .cloned()
+        .ok_or_else(|| SweepError::Io("parquet: a footer without its group".into()))
+}
+
+fn footer_bytes(
+    schema: &TypePtr,
+    props: &Arc<WriterProperties>,
+    key_value: &[KeyValue],
+    groups: &[RowGroupMetaData],
+) -> Result<Vec<u8>, SweepError> {
+    let rows: i64 = groups.iter().map(RowGroupMetaData::num_rows).sum();
+    let file = FileMetaData::new(
+        props.writer_version().as_num(),
+        rows,
+        Some(props.created_by().to_owned()),
+        Some(key_value.to_vec()),
+        Arc::new(SchemaDescriptor::new(schema.clone())),
+        None,
+    );
+    let md: ParquetMetaData = ParquetMetaDataBuilder::new(file)
+        .set_row_groups(groups.to_vec())
+        .build();
+    let mut out = Vec::new();
+    ParquetMetaDataWriter::new(&mut out, &md)
+        .finish()
+        .map_err(pq_err)?;
+    Ok(out)
+}
+
+/// A column of a [`ParquetTable`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum Column {
+    /// `u64` values (`id`).
+    U64(Vec<u64>),
+    /// `u32` values (`valence`).
+    U32(Vec<u32>),
+    /// `f64` values (`None`: null, an empty CSV cell).
+    F64(Vec<Option<f64>>),
+    /// Strings.
+    Str(Vec<Option<String>>),
+    /// Booleans.
+    Bool(Vec<Option<bool>>),
+}
+
+impl Column {
+    fn len(&self) -> usize {
+        match self {
+            Column::U64(v) => v.len(),
+            Column::U32(v) => v.len(),
+            Column::F64(v) => v.len(),
+            Column::Str(v) => v.len(),
+            Column::Bool(v) => v.len(),
+        }
+    }
+}
+
+/// A sweep's Parquet file read back: the columns by name, the key-value
+/// metadata and the row groups.
+#[derive(Clone, Debug)]
+pub struct ParquetTable {
+    /// Column names, in file order.
+    pub names: Vec<String>,
+    /// The columns, in file order.
+    pub columns: Vec<Column>,
+    /// The key-value metadata.
+    pub key_value: Vec<(String, String)>,
+    groups: Vec<RowGroupMetaData>,
+}
+
+impl ParquetTable {
+    /// Rows.
+    pub fn rows(&self) -> usize {
+        self.columns.first().map_or(0, Column::len)
+    }
+
+    /// The column named `name`.
+    pub fn column(&self, name: &str) -> Option<&Column> {
+        let i = self.names.iter().position(|n| n == name)?;
+        self.columns.get(i)
+    }
+
+    /// The value of key-value metadata `key`.
+    pub fn metadata(&self, key: &str) -> Option<&str> {
+        self.key_value
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| v.as_str())
+    }
+
+    /// The fingerprint line (without `\n`), if the file has one.
+    pub fn fingerprint(&self) -> Option<&str> {
+        self.metadata(FINGERPRINT_KEY)
+    }
+
+    /// The row groups' metadata (offsets in the file).
+    pub fn row_groups(&self) -> &[RowGroupMetaData] {
+        &self.groups
+    }
+
+    /// Rows of each row group.
+    pub fn group_rows(&self) -> Vec<u64> {
+        self.groups.iter().map(|g| g.num_rows() as u64).collect()
+    }
+
+    /// The byte offset where row group `k` ends (where group `k + 1` starts;
+    /// 4 for `k` = none, i.e. `end_of_groups(0)` is the end of no group).
+    pub fn end_of_groups(&self, k: usize) -> u64 {
+        self.groups[..k]
+            .iter()
+            .map(|g| {
+                g.columns()
+                    .iter()
+                    .map(|c| {
+                        let (start, len) = c.byte_range();
+                        start + len
+                    })
+                    .max()
+                    .unwrap_or(MAGIC.len() as u64)
+            })
+            .max()
+            .unwrap_or(MAGIC.len() as u64)
+    }
+
+    /// The CSV lines (each with `\n`) of rows `from..to`, byte for byte those
+    /// the sweep writes for them (numbers in shortest round-trip form).
+    pub fn csv_lines(&self, from: usize, to: usize) -> String {
+        let mut s = String::new();
+        let mut digits = zmij::Buffer::new();
+        for r in from..to {
+            for (k, c) in self.columns.iter().enumerate() {
+                if k > 0 {
+                    s.push(',');
+                }
+                match c {
+                    Column::U64(v) => s.push_str(&v[r].to_string()),
+                    Column::U32(v) => s.push_str(&v[r].to_string()),
+                    Column::F64(v) => {
+                        if let Some(x) = v[r] {
+                            push_number(&mut s, &mut digits, x);
+                        }
+                    }
+                    Column::Str(v) => {
+                        if let Some(t) = &v[r] {
+                            push_text(&mut s, t);
+                        }
+                    }
+                    Column::Bool(v) => {
+                        if let Some(b) = v[r] {
+                            s.push_str(if b { "true" } else { "false" });
+                        }
+                    }
+                }
+            }
+            s.push('\n');
+        }
+        s
+    }
+}
+
+/// Reads a sweep's Parquet file from its bytes (the library does no I/O: the
+/// caller reads the file, e.g. `std::fs::read`), returning the columns by
+/// name. Every column must be of a type a sweep writes (`u64`, `u32`, `f64`,
+/// string, `bool`); a file that is not Parquet, or is torn (no valid footer),
+/// is refused with a message naming the problem.
+///
+/// ```
+/// use subdiv_lab::sweep::output::parquet::{read_table, Column};
+/// assert!(read_table(b"not parquet".to_vec()).is_err());
+/// # let _ = Column::U64(vec![]);
+/// ```
+pub fn read_table(bytes: impl Into<Bytes>) -> Result<ParquetTable, SweepError> {
+    let bytes: Bytes = bytes.into();
+    if bytes.len() < 12 || &bytes[..4] != MAGIC || &bytes[bytes.len() - 4..] != MAGIC {
+        return Err(SweepError::Io(
+            "not a Parquet file, or torn (no PAR1 footer at its end)".into(),
+        ));
+    }
+    let reader = SerializedFileReader::new(bytes).map_err(pq_err)?;
+    let md = reader.metadata();
+    let key_value = md
+        .file_metadata()
+        .key_value_metadata()
+        .map(|kv| {
+            kv.iter()
+                .map(|k| (k.key.clone(), k.value.clone().unwrap_or_default()))
+                .collect()
+        })
+        .unwrap_or_default();
+    let schema = md.file_metadata().schema_descr();
+    let names: Vec<String> = schema
+        .columns()
+        .iter()
+        .map(|c| c.name().to_owned())
+        .collect();
+    let mut columns: Vec<Column> = schema
+        .columns()
+        .iter()
+        .map(|c| match (c.physical_type(), c.logical_type_ref()) {
+            (PhysicalType::INT64, _) => Ok(Column::U64(Vec::new())),
+            (PhysicalType::INT32, _) => Ok(Column::U32(Vec::new())),
+            (PhysicalType::DOUBLE, _) => Ok(Column::F64(Vec::new())),
+            (PhysicalType::BYTE_ARRAY, _) => Ok(Column::Str(Vec::new())),
+            (PhysicalType::BOOLEAN, _) => Ok(Column::Bool(Vec::new())),
+            (t, _) => Err(SweepError::Io(format!(
+                "parquet: column {} has type {t}, which a sweep does not write",
+                c.name()
+            ))),
+        })
+        .collect::<Result<_, _>>()?;
+    let groups = md.row_groups().to_vec();
+    let rows = reader.get_row_iter(None).map_err(pq_err)?;
+    for row in rows {
+        let row = row.map_err(pq_err)?;
+        for (k, (_, f)) in row.get_column_iter().enumerate() {
+            let Some(col) = columns.get_mut(k) else {
+                return Err(SweepError::Io("parquet: a row has too many fields".into()));
+            };
+            let ok = match (col, f) {
+                (Column::U64(v), Field::ULong(x)) => {
+                    v.push(*x);
+                    true
+                }
+                (Column::U64(v), Field::Long(x)) if *x >= 0 => {
+                    v.push(*x as u64);
+                    true
+                }
+                (Column::U32(v), Field::UInt(x)) => {
+                    v.push(*x);
+                    true
+                }
+                (Column::U32(v), Field::Int(x)) if *x >= 0 => {
+                    v.push(*x as u32);
+                    true
+                }
+                (Column::F64(v), Field::Double(x)) => {
+                    v.push(Some(*x));
+                    true
+                }
+                (Column::F64(v), Field::Null) => {
+                    v.push(None);
+                    true
+                }
+                (Column::Str(v), Field::Str(x)) => {
+                    v.push(Some(x.clone()));
+                    true
+                }
+                (Column::Str(v), Field::Null) => {
+                    v.push(None);
+                    true
+                }
+                (Column::Bool(v), Field::Bool(x)) => {
+                    v.push(Some(*x));
+                    true
+                }
+                (Column::Bool(v), Field::Null) => {
+                    v.push(None);
+                    true
+                }
+                _ => false,
+            };
+            if !ok {
+                return Err(SweepError::Io(format!(
+                    "parquet: column {} holds {f}, not a value a sweep writes there",
+                    names[k]
+                )));
+            }
+        }
+    }
+    Ok(ParquetTable {
+        names,
+        columns,
+        key_value,
+        groups,
+    })
+}
+
+/// The footer that makes a file of `table`'s first `groups` row groups end
+/// there (for dropping the groups after them), with `table`'s schema and
+/// key-value metadata.
+pub fn footer_for_groups(
+    layout: &Layout,
+    table: &ParquetTable,
+    groups: usize,
+) -> Result<Vec<u8>, SweepError> {
+    let kv: Vec<KeyValue> = table
+        .key_value
+        .iter()
+        .map(|(k, v)| KeyValue::new(k.clone(), v.clone()))
+        .collect();
+    footer_bytes(
+        &schema_of(layout)?,
+        &properties(layout),
+        &kv,
+        &table.groups[..groups],
+    )
+}
+
+/// Whether `bytes` start as a Parquet file does.
+pub fn is_parquet(bytes: &[u8]) -> bool {
+    bytes.starts_with(MAGIC)
+}
+
+/// The first line of a commit journal ([`journal_bytes`]).
+const JOURNAL_HEADER: &str = "subdiv-lab parquet commit v1\n";
+
+/// FNV-1a (64 bits) of `bytes`: detects a damaged journal.
+fn fnv64(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in bytes {
+        h ^= u64::from(*b);
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    h
+}
+
+/// The journal of the last commit (the caller writes it beside the file,
+/// atomically, after each [`Commit`]): a header line, the end of the committed
+/// groups `data_end`, a checksum line and the footer. With it a killed run
+/// finds its last commit: truncate the file to `data_end` and append `footer`
+/// ([`parse_journal`]).
+///
+/// ```
+/// use subdiv_lab::sweep::output::parquet::{journal_bytes, parse_journal};
+/// let j = journal_bytes(1234, b"footer-bytes");
+/// assert_eq!(parse_journal(&j).unwrap(), (1234, b"footer-bytes".to_vec()));
+/// assert!(parse_journal(&j[..j.len() - 1]).is_err());
+/// ```
+pub fn journal_bytes(data_end: u64, footer: &[u8]) -> Vec<u8> {
+    let mut v = format!(
+        "{JOURNAL_HEADER}{data_end}\n{:016x} {}\n",
+        fnv64(footer),
+        footer.len()
+    )
+    .into_bytes();
+    v.extend_from_slice(footer);
+    v
+}
+
+/// Reads a journal written by [`journal_bytes`]: `(data_end, footer)`; the
+/// error names what is wrong (not a journal, damaged, truncated).
+pub fn parse_journal(bytes: &[u8]) -> Result<(u64, Vec<u8>), String> {
+    let rest = bytes
+        .strip_prefix(JOURNAL_HEADER.as_bytes())
+        .ok_or("not a subdiv-lab Parquet commit journal")?;
+    let mut parts = rest.splitn(3, |&b| b == b'\n');
+    let end = parts.next().and_then(|l| std::str::from_utf8(l).ok());
+    let check = parts.next().and_then(|l| std::str::from_utf8(l).ok());
+    let footer = parts.next().unwrap_or_default();
+    let end: u64 = end
+        .and_then(|e| e.parse().ok())
+        .ok_or("the commit journal's offset line is damaged")?;
+    let (hash, len) = check
+        .and_then(|c| c.split_once(' '))
+        .ok_or("the commit journal's checksum line is damaged")?;
+    if len.parse::<usize>().ok() != Some(footer.len())
+        || u64::from_str_radix(hash, 16).ok() != Some(fnv64(footer))
+    {
+        return Err(
+            "the commit journal is damaged (its footer does not match its checksum)".into(),
+        );
+    }
+    if end < MAGIC.len() as u64 || !footer.ends_with(MAGIC) {
+        return Err("the commit journal names no valid commit".into());
+    }
+    Ok((end, footer.to_vec()))
+}
