@@ -323,6 +323,12 @@ impl CellSink for RowCells {
     }
 }
 
+/// One evaluated row: its result cells, or its error.
+type RowOut = (Vec<Cell>, Option<String>);
+
+/// A refined mesh: vertex positions `(m, 3)` and faces.
+type MeshOut<'py> = (Bound<'py, PyArray2<f64>>, Vec<Vec<usize>>);
+
 /// `classify_batch`: result columns of a ratios sweep, one row per row of `ratios`.
 #[pyfunction]
 #[pyo3(signature = (ratios, scheme="nurds", columns_json=None, threads=None))]
@@ -364,69 +370,62 @@ fn classify_batch<'py>(
     let pool = pool(threads)?;
     // Row-major rows of n ratios; chunks of whole batches, evaluated in parallel.
     const CHUNK: usize = 64 * BATCH;
-    let rows: Vec<Result<Vec<(Vec<Cell>, Option<String>)>, PyErr>> = py.detach(|| {
+    let rows: Vec<PyResult<Vec<RowOut>>> = py.detach(|| {
         pool.install(|| {
             data.par_chunks(CHUNK * n)
                 .enumerate()
-                .map(
-                    |(ci, chunk)| -> Result<Vec<(Vec<Cell>, Option<String>)>, PyErr> {
-                        let base = ci * CHUNK;
-                        let configs: Vec<Configuration> = chunk
-                            .chunks(n)
-                            .enumerate()
-                            .map(|(k, r)| Configuration {
-                                id: (base + k) as u64,
-                                valence: n,
-                                coordinates: r.to_vec(),
-                            })
-                            .collect();
-                        let schemes = configs
-                            .iter()
-                            .map(|c| {
-                                plan.scheme(c)
-                                    .map_err(|e| value_err(format!("ratios row {}: {e}", c.id)))
-                            })
-                            .collect::<Result<Vec<_>, _>>()?;
-                        let mut out = Vec::with_capacity(configs.len());
-                        let mut i = 0;
-                        while i < configs.len() {
-                            if i + BATCH <= configs.len() {
-                                let mut sinks: [RowCells; BATCH] = Default::default();
-                                let mut it = sinks.iter_mut();
-                                let items = std::array::from_fn(|l| {
-                                    (
-                                        &configs[i + l],
-                                        &schemes[i + l],
-                                        it.next().expect("lane") as &mut dyn CellSink,
-                                    )
+                .map(|(ci, chunk)| -> PyResult<Vec<RowOut>> {
+                    let base = ci * CHUNK;
+                    let configs: Vec<Configuration> = chunk
+                        .chunks(n)
+                        .enumerate()
+                        .map(|(k, r)| Configuration {
+                            id: (base + k) as u64,
+                            valence: n,
+                            coordinates: r.to_vec(),
+                        })
+                        .collect();
+                    let schemes = configs
+                        .iter()
+                        .map(|c| {
+                            plan.scheme(c)
+                                .map_err(|e| value_err(format!("ratios row {}: {e}", c.id)))
+                        })
+                        .collect::<Result<Vec<_>, _>>()?;
+                    let mut out = Vec::with_capacity(configs.len());
+                    let mut i = 0;
+                    while i < configs.len() {
+                        if i + BATCH <= configs.len() {
+                            let mut sinks: [RowCells; BATCH] = Default::default();
+                            let mut it = sinks.iter_mut();
+                            let items = std::array::from_fn(|l| {
+                                (
+                                    &configs[i + l],
+                                    &schemes[i + l],
+                                    it.next().expect("lane") as &mut dyn CellSink,
+                                )
+                            });
+                            let res = eval.write_results_batch(&plan, items);
+                            for (s, r) in sinks.into_iter().zip(res) {
+                                out.push(match r {
+                                    Ok(()) => (s.0, None),
+                                    Err(e) => (Vec::new(), Some(e.to_string())),
                                 });
-                                let res = eval.write_results_batch(&plan, items);
-                                for (s, r) in sinks.into_iter().zip(res) {
-                                    out.push(match r {
-                                        Ok(()) => (s.0, None),
-                                        Err(e) => (Vec::new(), Some(e.to_string())),
-                                    });
-                                }
-                                i += BATCH;
-                            } else {
-                                let mut s = RowCells::default();
-                                out.push(
-                                    match eval.write_results(
-                                        &plan,
-                                        &configs[i],
-                                        &schemes[i],
-                                        &mut s,
-                                    ) {
-                                        Ok(()) => (s.0, None),
-                                        Err(e) => (Vec::new(), Some(e.to_string())),
-                                    },
-                                );
-                                i += 1;
                             }
+                            i += BATCH;
+                        } else {
+                            let mut s = RowCells::default();
+                            out.push(
+                                match eval.write_results(&plan, &configs[i], &schemes[i], &mut s) {
+                                    Ok(()) => (s.0, None),
+                                    Err(e) => (Vec::new(), Some(e.to_string())),
+                                },
+                            );
+                            i += 1;
                         }
-                        Ok(out)
-                    },
-                )
+                    }
+                    Ok(out)
+                })
                 .collect()
         })
     });
@@ -514,7 +513,7 @@ fn subdivide<'py>(
     knots: Option<Vec<((usize, usize), f64)>>,
     levels: usize,
     c: Option<f64>,
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Vec<Vec<usize>>)> {
+) -> PyResult<MeshOut<'py>> {
     use subdiv_lab::mesh::Mesh;
     let kind: SchemeKind = scheme
         .parse()
@@ -595,6 +594,45 @@ fn subdivide<'py>(
     Ok((a, faces))
 }
 
+/// `report`: the files of a report (`(relative path, bytes)`), generated with
+/// the GIL released; the Python side writes them.
+#[pyfunction]
+#[pyo3(signature = (spec_toml, spec_path=None))]
+fn report_files(
+    py: Python<'_>,
+    spec_toml: &str,
+    spec_path: Option<String>,
+) -> PyResult<Vec<(String, pyo3::Py<pyo3::types::PyBytes>)>> {
+    use subdiv_lab::report::{figures::NoProgress, generate, ReportError, ReportSpec, RunInfo};
+    let report_err = |e: ReportError| {
+        let input = match &e {
+            ReportError::Spec { .. } => true,
+            ReportError::Analysis { source, .. } => source.is_input_error(),
+            _ => false,
+        };
+        if input {
+            PyValueError::new_err(e.to_string())
+        } else {
+            PyRuntimeError::new_err(e.to_string())
+        }
+    };
+    let spec = ReportSpec::parse(spec_toml).map_err(report_err)?;
+    let run = RunInfo {
+        version: Some(subdiv_lab::spectral::json::TOOL_VERSION.to_owned()),
+        git_revision: None,
+        spec_path,
+        spec_builtin: false,
+    };
+    let report = py
+        .detach(|| generate(&spec, &run, &NoProgress))
+        .map_err(report_err)?;
+    Ok(report
+        .files
+        .into_iter()
+        .map(|f| (f.path, pyo3::types::PyBytes::new(py, &f.bytes).unbind()))
+        .collect())
+}
+
 /// The native module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -605,5 +643,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(classify_batch, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(subdivide, m)?)?;
+    m.add_function(wrap_pyfunction!(report_files, m)?)?;
     Ok(())
 }

@@ -17,7 +17,7 @@ from . import _native
 
 __version__ = _native.__version__
 
-__all__ = ["matrix", "analyze", "classify_batch", "sweep", "subdivide", "__version__"]
+__all__ = ["matrix", "analyze", "classify_batch", "sweep", "subdivide", "report", "__version__"]
 
 
 def _knots(knots):
@@ -87,8 +87,7 @@ def classify_batch(ratios, scheme: str = "nurds", columns: Optional[Mapping[str,
 def _spec_text(spec: Union[str, os.PathLike, Mapping[str, Any]]) -> str:
     if isinstance(spec, Mapping):
         return _native.spec_json_to_toml(json.dumps(spec))
-    if isinstance(spec, os.PathLike) or (isinstance(spec, str) and "\n" not in spec
-                                         and spec.endswith(".toml")):
+    if _is_path(spec):
         with open(spec, encoding="utf-8") as f:
             return f.read()
     return str(spec)
@@ -150,3 +149,29 @@ def subdivide(vertices, faces: Sequence[Sequence[int]], scheme: str = "nurds",
     k = None if knots is None else [((int(a), int(b)), float(x)) for (a, b), x in knots.items()]
     return _native.subdivide(v, [list(map(int, f)) for f in faces], scheme, k, int(levels),
                              None if c is None else float(c))
+
+
+def report(spec: Union[str, os.PathLike, Mapping[str, Any]], out: Union[str, os.PathLike]) -> List[str]:
+    """Generate a report (``subdiv-lab report SPEC --out OUT``): ``spec`` is the
+    TOML text, a path to a ``.toml`` file or a dict; ``out`` must be a new or
+    empty directory. Returns the names of the files written (``index.html``,
+    the figures as SVG and PNG with their CSV data, ``manifest.json``)."""
+    path = os.fspath(spec) if isinstance(spec, (str, os.PathLike)) and _is_path(spec) else None
+    text = _spec_text(spec)
+    out = os.fspath(out)
+    if os.path.exists(out):
+        if not os.path.isdir(out):
+            raise ValueError(f"--out {out} exists and is not a directory; give a new or empty directory")
+        if os.listdir(out):
+            raise ValueError(f"--out {out} is not empty; give a new or empty directory")
+    files = _native.report_files(text, path)
+    os.makedirs(out, exist_ok=True)
+    for name, data in files:
+        with open(os.path.join(out, name), "wb") as f:
+            f.write(data)
+    return [name for name, _ in files]
+
+
+def _is_path(spec) -> bool:
+    return isinstance(spec, os.PathLike) or (isinstance(spec, str) and "\n" not in spec
+                                             and spec.endswith(".toml"))
