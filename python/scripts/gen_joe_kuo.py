@@ -40,7 +40,7 @@ print(f"""//! The Joe-Kuo Sobol direction numbers `new-joe-kuo-6.21201`, dimensi
 //! (odd, `< 2^k`), exactly as the lines `d s a m_1 ... m_s` of the published file.
 //! Generated: do not edit.
 
-/// Number of dimensions of [`JOE_KUO`] plus the first (van der Corput).
+/// Number of dimensions of the shipped table plus the first (van der Corput).
 pub const SOBOL_MAX_DIMENSION: usize = {MAX_DIM};
 
 /// Largest polynomial degree in the table.

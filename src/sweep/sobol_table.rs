@@ -12,7 +12,7 @@
 //! (odd, `< 2^k`), exactly as the lines `d s a m_1 ... m_s` of the published file.
 //! Generated: do not edit.
 
-/// Number of dimensions of [`JOE_KUO`] plus the first (van der Corput).
+/// Number of dimensions of the shipped table plus the first (van der Corput).
 pub const SOBOL_MAX_DIMENSION: usize = 1024;
 
 /// Largest polynomial degree in the table.
