@@ -102,3 +102,29 @@ pub enum Error {
 
 /// Shorthand for results of the library core.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+impl Error {
+    /// Whether the error is about the caller's input (a bad parameter, spec
+    /// or mesh: the CLI's exit 2, Python's `ValueError`) rather than a failure
+    /// while running (a numerical failure, an I/O error).
+    pub fn is_input_error(&self) -> bool {
+        use crate::ccss_bound::CcssBoundError as C;
+        use crate::spectral::SpectralError as S;
+        use crate::sweep::SweepError as W;
+        use Error as E;
+        match self {
+            E::ValenceTooSmall { .. }
+            | E::InvalidInterval { .. }
+            | E::InvalidRatio { .. }
+            | E::CountMismatch { .. }
+            | E::InvalidParameter { .. }
+            | E::NotApplicable { .. }
+            | E::Mesh(_) => true,
+            E::Numerical { .. } => false,
+            E::CcssBound(c) => matches!(c, C::InvalidTolerance(_) | C::NonFinitePoint { .. }),
+            E::Spectral(s) => matches!(s, S::NotDooSabinFamily { .. }),
+            E::Sweep(w) => !matches!(w, W::Io(_)),
+            _ => false,
+        }
+    }
+}

@@ -35,6 +35,30 @@ fn json_has_the_documented_keys() {
     assert_eq!(c["certificate_nonnegative"], serde_json::Value::Bool(true));
     assert!((c["certificate_sum"].as_f64().unwrap() - 0.75).abs() < 1e-15);
     assert!(v["exact"].is_null());
+    // The input and the tool version are echoed.
+    let input = &v["input"];
+    assert_eq!(input["scheme"], "nurds");
+    assert_eq!(input["valence"], 5);
+    assert_eq!(input["knots"][1], serde_json::json!([2.5, 1.0]));
+    assert_eq!(input["knots"].as_array().unwrap().len(), 5);
+    assert!(input["ratios"].is_null() && input["c"].is_null());
+    assert_eq!(input["uniform"], false);
+    assert_eq!(v["tool_version"], env!("CARGO_PKG_VERSION"));
+    let (code, out, err) = run(&[
+        "analyze",
+        "--scheme",
+        "adjustable-cc",
+        "--valence",
+        "4",
+        "--c",
+        "1/4",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["input"]["scheme"], "adjustable-cc");
+    assert_eq!(v["input"]["c"], 0.25);
+    assert!(v["input"]["knots"].is_null());
 }
 
 #[test]

@@ -547,6 +547,24 @@ fn cases() -> Vec<Case> {
             "sampler.count: invalid type: floating point `5.5`, expected i64 (line 9)",
         ),
         bad_with(
+            "sweep-sobol-dimension-beyond-the-joe-kuo-table",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[(
+                "s.toml",
+                "name = \"x\"\nscheme = \"nurds\"\nvalences = [3, 600]\n[space]\nkind = \"corner-intervals\"\ninterval_range = [0.5, 2.0]\n[sampler]\nkind = \"sobol\"\ncount = 4\n",
+            )],
+            "sampler.kind: the Sobol sampler supports at most 1024 free coordinates (Joe-Kuo direction numbers shipped), valence 600 has 1200",
+        ),
+        bad_with(
+            "sweep-sobol-scramble-not-a-bool",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[(
+                "s.toml",
+                "name = \"x\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"sobol\"\ncount = 4\nscramble = \"owen\"\n",
+            )],
+            "sampler.scramble",
+        ),
+        bad_with(
             "sweep-missing-sampler",
             &["sweep", "s.toml", "--out", "o.csv"],
             &[(

@@ -118,7 +118,7 @@ proptest! {
     #[test]
     fn low_discrepancy_points_are_in_the_unit_cube(d in 1usize..40, i in 0u64..(1 << 32), seed in proptest::option::of(any::<u64>())) {
         let mut x = vec![0.0; d];
-        Sobol::new(d, seed, 3).point(i, &mut x);
+        Sobol::new(d, seed, 3).unwrap().point(i, &mut x);
         prop_assert!(x.iter().all(|v| (0.0..1.0).contains(v)));
         Halton::new(d, seed, 3).point(i, &mut x);
         prop_assert!(x.iter().all(|v| (0.0..1.0).contains(v)));

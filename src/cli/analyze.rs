@@ -106,10 +106,7 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     // reported inside the "charmap" object, not as a failure of the analysis.
     let charmap = charmap::check_classified(&*resolved.scheme, &result.subdominant);
     if args.json {
-        let mut value = serde_json::to_value(&result).map_err(CliError::failure)?;
-        if let serde_json::Value::Object(map) = &mut value {
-            map.insert("charmap".to_owned(), charmap_json(&charmap));
-        }
+        let value = subdiv_lab::spectral::json::analysis_json(&result, &charmap, &resolved.input);
         let text = serde_json::to_string_pretty(&value).map_err(CliError::failure)? + "\n";
         write_stdout(text.as_bytes())?;
     } else {
@@ -125,19 +122,6 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         write_stdout(text.as_bytes())?;
     }
     Ok(())
-}
-
-fn charmap_json(
-    c: &subdiv_lab::Result<charmap::CharmapReport<charmap::AnyPatchId>>,
-) -> serde_json::Value {
-    match c {
-        Ok(r) => r.to_json(),
-        Err(e) => serde_json::json!({
-            "regular": null, "min_jacobian_coeff": null, "winding_number": null,
-            "verdict": format!("indeterminate (characteristic map not computed: {e})"),
-            "verdict_code": "indeterminate", "error": e.to_string(),
-        }),
-    }
 }
 
 /// Human-readable characteristic-map lines.

@@ -117,24 +117,7 @@ impl CliError {
 /// result too large), spec errors of reports and sweeps. Failure: numerical
 /// non-convergence, residual checks, LP failures, I/O while writing.
 pub(crate) fn is_input_error(e: &subdiv_lab::Error) -> bool {
-    use subdiv_lab::ccss_bound::CcssBoundError as C;
-    use subdiv_lab::spectral::SpectralError as S;
-    use subdiv_lab::sweep::SweepError as W;
-    use subdiv_lab::Error as E;
-    match e {
-        E::ValenceTooSmall { .. }
-        | E::InvalidInterval { .. }
-        | E::InvalidRatio { .. }
-        | E::CountMismatch { .. }
-        | E::InvalidParameter { .. }
-        | E::NotApplicable { .. }
-        | E::Mesh(_) => true,
-        E::Numerical { .. } => false,
-        E::CcssBound(c) => matches!(c, C::InvalidTolerance(_) | C::NonFinitePoint { .. }),
-        E::Spectral(s) => matches!(s, S::NotDooSabinFamily { .. }),
-        E::Sweep(w) => !matches!(w, W::Io(_)),
-        _ => false,
-    }
+    e.is_input_error()
 }
 
 pub(crate) type CliResult<T = ()> = Result<T, CliError>;

@@ -43,6 +43,8 @@ pub(crate) struct Resolved {
     pub scheme: Box<dyn Scheme>,
     /// The exact configuration (`--exact`).
     pub exact: Option<LocalScheme<Rational>>,
+    /// The input as given, echoed by `analyze --json`.
+    pub input: subdiv_lab::spectral::json::AnalysisInput,
 }
 
 /// One number from the command line, exactly and as the nearest f64.
@@ -149,6 +151,8 @@ impl SchemeArgs {
                 ChoiceError::TakesNoC(_) | ChoiceError::NeedsC(_) => anyhow!("--c: {e}"),
             })
         })?;
+        let mut knots_given: Option<Vec<[f64; 2]>> = None;
+        let mut ratios_given: Option<Vec<f64>> = None;
         // Parse ratios in both arithmetics.
         let (rq, rf): (Option<EdgeRatios<Rational>>, Option<EdgeRatios<f64>>) = if let Some(text) =
             &self.knots
@@ -169,6 +173,7 @@ impl SchemeArgs {
                 qf.push(d);
             }
             self.check_count("--knots", pf.len())?;
+            knots_given = Some(pf.iter().zip(&qf).map(|(p, q)| [*p, *q]).collect());
             let kq = CornerIntervals::new(pq.clone(), qq.clone()).map_err(lib_err)?;
             if exact {
                 // The exact path: ratios computed exactly from the exact
@@ -220,6 +225,7 @@ impl SchemeArgs {
                 vf.push(b);
             }
             self.check_count("--ratios", vf.len())?;
+            ratios_given = Some(vf.clone());
             let rf = EdgeRatios::new(vf).map_err(lib_err)?;
             let rq = EdgeRatios::new(vq).map_err(lib_err)?;
             (Some(rq), Some(rf))
@@ -265,6 +271,14 @@ impl SchemeArgs {
             c: cf,
             scheme,
             exact,
+            input: subdiv_lab::spectral::json::AnalysisInput {
+                scheme: kind.to_string(),
+                valence,
+                knots: knots_given,
+                ratios: ratios_given,
+                uniform: self.uniform,
+                c: cf,
+            },
         })
     }
 

@@ -36,6 +36,7 @@ pub(crate) mod certify;
 pub mod classify;
 pub mod eigen;
 pub mod exact;
+pub mod json;
 pub mod kernel;
 pub(crate) mod poly;
 pub mod structured;

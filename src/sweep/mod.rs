@@ -44,6 +44,7 @@ pub mod output;
 pub mod own;
 pub mod plan;
 pub mod sampler;
+mod sobol_table;
 pub mod spec;
 pub mod summary;
 

@@ -13,8 +13,10 @@
 //!   `hash_uniform(seed, n, i, c)`, mapped linearly (ratios) or log-uniformly
 //!   (intervals) onto `[a, b)`;
 //! * Halton / Sobol: point `i + 1` (Halton, skipping the origin) or `i` (Sobol, Gray
-//!   order) of the `d`-dimensional sequence, `d` = free coordinates of valence `n`,
-//!   scrambled per valence (stream `n`) when asked, mapped as for random.
+//!   order, Joe-Kuo direction numbers, the origin included) of the `d`-dimensional
+//!   sequence, `d` = free coordinates of valence `n`, scrambled per valence (stream
+//!   `n`; Halton: random shift, Sobol: Owen's nested uniform scrambling) when asked,
+//!   mapped as for random.
 //!
 //! So results never depend on thread count or sharding. A [`Shard`] `I/N` is the
 //! set of ids with `id % N == I` (round-robin, so every shard gets the same mix of
@@ -43,10 +45,17 @@ pub struct Configuration {
 
 #[derive(Clone, Debug)]
 enum Generator {
-    Grid { k: u64 },
-    Random { seed: u64 },
+    Grid {
+        k: u64,
+    },
+    Random {
+        seed: u64,
+    },
     Halton(Halton),
     Sobol(Sobol),
+    /// A Sobol block beyond the shipped direction numbers (refused by spec
+    /// validation; reported by [`Plan::configuration`] for hand-built specs).
+    SobolTooLarge(super::sampler::SobolDimensionError),
 }
 
 #[derive(Clone, Debug)]
@@ -92,7 +101,10 @@ impl Plan {
                     Generator::Halton(Halton::new(d, scramble_seed, n as u64))
                 }
                 Sampler::Sobol { scramble_seed, .. } => {
-                    Generator::Sobol(Sobol::new(d, scramble_seed, n as u64))
+                    match Sobol::new(d, scramble_seed, n as u64) {
+                        Ok(s) => Generator::Sobol(s),
+                        Err(e) => Generator::SobolTooLarge(e),
+                    }
                 }
             };
             let count = spec.count_for(n);
@@ -257,6 +269,13 @@ impl Plan {
                 for (&pos, &x) in b.free.iter().zip(scratch.iter()) {
                     coords[pos] = map(x);
                 }
+            }
+            Generator::SobolTooLarge(e) => {
+                return Err(SweepError::Spec {
+                    key: "sampler.kind".into(),
+                    line: None,
+                    message: format!("sampler.kind: valence {n}: {e}"),
+                })
             }
         }
         Ok(())

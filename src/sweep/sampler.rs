@@ -6,17 +6,17 @@
 //!   `(seed, stream, index, coordinate)`;
 //! * [`radical_inverse`] / [`Halton`]: the Halton sequence in the first `d`
 //!   prime bases, optionally with a random shift modulo 1 (Cranley-Patterson);
-//! * [`Sobol`]: the Sobol sequence in base 2 (Gray-code order), primitive
-//!   polynomials enumerated here, optionally with a random digital shift (XOR).
+//! * [`Sobol`]: the Sobol sequence in base 2 (Gray-code order) with the Joe-Kuo
+//!   direction numbers `new-joe-kuo-6.21201` (first [`SOBOL_MAX_DIMENSION`]
+//!   dimensions), optionally with Owen's nested uniform scrambling (math doc
+//!   section 16.1).
 //!
-//! Sobol initial direction numbers: any odd `m_k < 2^k` gives a valid Sobol
-//! sequence (every one-dimensional projection is a (0, 1)-sequence, and the first
-//! two coordinates form a (0, 2)-sequence); the tables of Joe and Kuo tune them
-//! for two-dimensional projections. This module does not ship those tables: it
-//! derives `m_k` deterministically from a hash of `(dimension, k)`. The sequence
-//! is fully reproducible, but its higher-dimensional projections are not the
-//! Joe-Kuo ones.
+//! Unscrambled Sobol points are exactly those of
+//! `scipy.stats.qmc.Sobol(d, scramble=False)`, the first point (the origin)
+//! included (tests against SciPy's points in `tests/data/sobol_scipy.txt`).
 
+use super::sobol_table::JOE_KUO;
+pub use super::sobol_table::SOBOL_MAX_DIMENSION;
 pub use crate::rng::mix64;
 
 /// 64 well-mixed bits determined by `(seed, stream, index, coordinate)`.
@@ -240,83 +240,149 @@ pub fn primitive_polynomials(count: usize) -> Vec<(u32, u64)> {
     out
 }
 
-/// The Sobol sequence in `d` dimensions, 32-bit.
+/// A Sobol dimension beyond the shipped Joe-Kuo table.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("the Sobol sampler supports at most {SOBOL_MAX_DIMENSION} dimensions (Joe-Kuo direction numbers shipped), got {dimension}")]
+pub struct SobolDimensionError {
+    /// The requested dimension.
+    pub dimension: usize,
+}
+
+/// The Sobol sequence in `d <= SOBOL_MAX_DIMENSION` dimensions, 32-bit
+/// (math doc section 16.1).
+///
+/// Dimension `j` (0-based) uses row `j + 1` of Joe and Kuo's
+/// `new-joe-kuo-6.21201` (dimension 0: `m_k = 1`), the recurrence
+/// `m_k = 2 a_1 m_(k-1) ^ 4 a_2 m_(k-2) ^ ... ^ 2^s m_(k-s) ^ m_(k-s)` and
+/// `v_k = m_k 2^(32 - k)`; point `i` is the XOR of the `v_k` of the set bits of
+/// the Gray code `i ^ (i >> 1)`, divided by `2^32`.
+///
+/// ```
+/// use subdiv_lab::sweep::sampler::Sobol;
+/// // scipy.stats.qmc.Sobol(3, scramble=False).random(4)
+/// let s = Sobol::new(3, None, 0).unwrap();
+/// let mut x = [0.0; 3];
+/// let pts: Vec<[f64; 3]> = (0..4).map(|i| { s.point(i, &mut x); x }).collect();
+/// assert_eq!(pts, [[0.0, 0.0, 0.0], [0.5, 0.5, 0.5], [0.75, 0.25, 0.25], [0.25, 0.75, 0.75]]);
+/// assert!(Sobol::new(5000, None, 0).is_err());
+/// ```
 #[derive(Clone, Debug)]
 pub struct Sobol {
     /// `v[dim][k]`: direction number of bit `k` (already shifted to 32 bits).
     v: Vec<[u32; SOBOL_BITS]>,
-    shift: Vec<u32>,
+    /// Per-dimension keys of the nested uniform scrambling (`None`: unscrambled).
+    scramble: Option<Vec<u64>>,
+}
+
+/// Direction numbers `v_1..v_32` of 0-based Sobol dimension `dim <= SOBOL_MAX_DIMENSION - 1`.
+fn direction_numbers(dim: usize) -> [u32; SOBOL_BITS] {
+    let mut dir = [0u32; SOBOL_BITS];
+    if dim == 0 {
+        for (k, x) in dir.iter_mut().enumerate() {
+            *x = 1u32 << (SOBOL_BITS - 1 - k);
+        }
+        return dir;
+    }
+    let (s, a, init) = JOE_KUO[dim - 1];
+    let s = usize::from(s);
+    let a = u64::from(a);
+    // m[k], k = 1..=32 (index 0 unused).
+    let mut m = [0u64; SOBOL_BITS + 1];
+    for k in 1..=s.min(SOBOL_BITS) {
+        m[k] = u64::from(init[k - 1]);
+    }
+    for k in (s + 1)..=SOBOL_BITS {
+        let mut x = m[k - s] ^ (m[k - s] << s);
+        for j in 1..s {
+            // a_j: bit (s - 1 - j) of `a` (a_1 is the most significant of the s - 1 bits).
+            if (a >> (s - 1 - j)) & 1 == 1 {
+                x ^= m[k - j] << j;
+            }
+        }
+        m[k] = x;
+    }
+    for k in 1..=SOBOL_BITS {
+        dir[k - 1] = (m[k] << (SOBOL_BITS - k)) as u32;
+    }
+    dir
 }
 
 impl Sobol {
-    /// `d` dimensions; `scramble_seed` adds a random digital shift (XOR) per
-    /// dimension derived from the seed and `stream`.
-    pub fn new(d: usize, scramble_seed: Option<u64>, stream: u64) -> Self {
-        let polys = primitive_polynomials(d.saturating_sub(1));
-        let mut v = Vec::with_capacity(d);
-        for dim in 0..d {
-            let mut dir = [0u32; SOBOL_BITS];
-            if dim == 0 {
-                for (k, x) in dir.iter_mut().enumerate() {
-                    *x = 1u32 << (SOBOL_BITS - 1 - k);
-                }
-            } else {
-                let (s, poly) = polys[dim - 1];
-                let s = s as usize;
-                // Initial m_k (k = 1..s), odd and < 2^k. Dimension 1 (poly x + 1) uses
-                // m_1 = 1, which makes dimensions 0 and 1 a (0, 2)-sequence.
-                let mut m = vec![0u64; SOBOL_BITS + 1];
-                for (k, mk) in m.iter_mut().enumerate().take(s.min(SOBOL_BITS) + 1).skip(1) {
-                    let h = if dim == 1 {
-                        1
-                    } else {
-                        hash4(0x0005_0b01, dim as u64, k as u64, 0)
-                    };
-                    *mk = (h & ((1u64 << k) - 1)) | 1;
-                }
-                // Recurrence m_k = 2 a_1 m_{k-1} ^ 4 a_2 m_{k-2} ^ ... ^ 2^s m_{k-s} ^ m_{k-s}.
-                for k in (s + 1)..=SOBOL_BITS {
-                    let mut x = m[k - s] ^ (m[k - s] << s);
-                    for j in 1..s {
-                        let a_j = (poly >> (s - j)) & 1;
-                        if a_j == 1 {
-                            x ^= m[k - j] << j;
-                        }
-                    }
-                    m[k] = x;
-                }
-                for k in 1..=SOBOL_BITS {
-                    dir[k - 1] = (m[k] << (SOBOL_BITS - k)) as u32;
-                }
-            }
-            v.push(dir);
+    /// `d` dimensions; `scramble_seed` applies Owen's nested uniform scrambling
+    /// with per-dimension keys derived from the seed and `stream` (math doc
+    /// section 16.1). Errors when `d > SOBOL_MAX_DIMENSION`.
+    pub fn new(
+        d: usize,
+        scramble_seed: Option<u64>,
+        stream: u64,
+    ) -> Result<Self, SobolDimensionError> {
+        if d > SOBOL_MAX_DIMENSION {
+            return Err(SobolDimensionError { dimension: d });
         }
-        let shift = match scramble_seed {
-            Some(seed) => (0..d as u64)
-                .map(|k| (hash4(seed, stream, u64::MAX - 1, k) >> 32) as u32)
-                .collect(),
-            None => vec![0; d],
-        };
-        Sobol { v, shift }
+        Ok(Sobol {
+            v: (0..d).map(direction_numbers).collect(),
+            scramble: scramble_seed.map(|seed| {
+                (0..d as u64)
+                    .map(|k| hash4(seed, stream, u64::MAX - 2, k))
+                    .collect()
+            }),
+        })
     }
 
-    /// Writes point `i < 2^32` (Gray-code order) into `out`.
-    pub fn point(&self, i: u64, out: &mut [f64]) {
+    /// The unscrambled 32-bit integer `2^32 x` of coordinate `dim` of point `i`.
+    #[inline]
+    fn integer(&self, i: u64, dim: usize) -> u32 {
         let g = i ^ (i >> 1);
-        for ((o, dir), &sh) in out.iter_mut().zip(&self.v).zip(&self.shift) {
-            let mut x = 0u32;
-            let mut bits = g;
-            let mut k = 0;
-            while bits != 0 && k < SOBOL_BITS {
-                if bits & 1 == 1 {
-                    x ^= dir[k];
-                }
-                bits >>= 1;
-                k += 1;
+        let mut x = 0u32;
+        let mut bits = g;
+        let mut k = 0;
+        while bits != 0 && k < SOBOL_BITS {
+            if bits & 1 == 1 {
+                x ^= self.v[dim][k];
             }
-            *o = f64::from(x ^ sh) * (1.0 / 4_294_967_296.0);
+            bits >>= 1;
+            k += 1;
+        }
+        x
+    }
+
+    /// Writes point `i < 2^32` (Gray-code order) into `out` (one coordinate in
+    /// `[0, 1)` per dimension; extra entries of `out` are left alone).
+    pub fn point(&self, i: u64, out: &mut [f64]) {
+        for (dim, o) in out.iter_mut().enumerate().take(self.v.len()) {
+            let x = self.integer(i, dim);
+            *o = match &self.scramble {
+                None => f64::from(x) * (1.0 / 4_294_967_296.0),
+                Some(keys) => {
+                    let (y, tail) = owen_scramble(x, keys[dim]);
+                    ((u64::from(y) << 21) | tail) as f64 * (1.0 / (1u64 << 53) as f64)
+                }
+            };
         }
     }
+}
+
+/// Nested uniform (Owen) scrambling of the 32 leading binary digits of `x`
+/// under `key`, and 21 further random digits (math doc section 16.1).
+///
+/// Digit `j` (from the top, `j = 0..32`) is flipped by a coin that depends on
+/// the key and on the `j` digits above it (the node `2^j + prefix` of the
+/// binary tree), so points that share a prefix share its flips: every
+/// elementary interval is permuted as a whole, which keeps the net property.
+/// The digits below the 32nd are zero in the unscrambled point, so their
+/// scrambled values are fair coins determined by the full 32-digit prefix.
+#[inline]
+fn owen_scramble(x: u32, key: u64) -> (u32, u64) {
+    const G: u64 = 0x9e37_79b9_7f4a_7c15;
+    let xx = u64::from(x);
+    let mut flips = 0u32;
+    for j in 0..SOBOL_BITS as u32 {
+        let node = (1u64 << j) | (xx >> (SOBOL_BITS as u32 - j));
+        let coin = (mix64(key ^ node.wrapping_mul(G)) >> 63) as u32;
+        flips |= coin << (SOBOL_BITS as u32 - 1 - j);
+    }
+    let tail = mix64(key ^ ((1u64 << SOBOL_BITS) | xx).wrapping_mul(G)) >> 43;
+    (x ^ flips, tail)
 }
 
 #[cfg(test)]
@@ -374,7 +440,7 @@ mod tests {
     fn sobol_nets() {
         let d = 40;
         for seed in [None, Some(7)] {
-            let s = Sobol::new(d, seed, 3);
+            let s = Sobol::new(d, seed, 3).unwrap();
             let m = 10u32;
             let pts: Vec<Vec<f64>> = (0..1u64 << m)
                 .map(|i| {
@@ -400,7 +466,7 @@ mod tests {
             assert!(!is_02_net(&bad, m));
         }
         // Unscrambled dimension 0 in Gray order: 0, 1/2, 3/4, 1/4, ...
-        let s = Sobol::new(1, None, 0);
+        let s = Sobol::new(1, None, 0).unwrap();
         let xs: Vec<f64> = (0..4)
             .map(|i| {
                 let mut x = [0.0];
@@ -409,6 +475,133 @@ mod tests {
             })
             .collect();
         assert_eq!(xs, vec![0.0, 0.5, 0.75, 0.25]);
+    }
+
+    /// The shipped table is Joe-Kuo's: its first published lines
+    /// (`d s a m_i`: `2 1 0 1`, `3 2 1 1 3`, `4 3 1 1 3 1`, `5 3 2 1 1 1`,
+    /// `6 4 1 1 1 3 3`, `7 4 4 1 3 5 13`, `8 5 2 1 1 5 5 17`), every polynomial
+    /// primitive, distinct, and by non-decreasing degree, every `m_k` odd and `< 2^k`.
+    #[test]
+    fn joe_kuo_table() {
+        let first: [(u8, u16, &[u16]); 7] = [
+            (1, 0, &[1]),
+            (2, 1, &[1, 3]),
+            (3, 1, &[1, 3, 1]),
+            (3, 2, &[1, 1, 1]),
+            (4, 1, &[1, 1, 3, 3]),
+            (4, 4, &[1, 3, 5, 13]),
+            (5, 2, &[1, 1, 5, 5, 17]),
+        ];
+        for (row, (s, a, m)) in JOE_KUO.iter().zip(first) {
+            assert_eq!((row.0, row.1, &row.2[..m.len()]), (s, a, m));
+        }
+        let mut seen = std::collections::HashSet::new();
+        let mut last_degree = 0;
+        for (d, &(s, a, m)) in JOE_KUO.iter().enumerate() {
+            let s32 = u32::from(s);
+            let poly = (1u64 << s32) | (u64::from(a) << 1) | 1;
+            assert!(is_primitive(poly, s32), "dimension {}", d + 2);
+            assert!(seen.insert(poly));
+            assert!(s >= last_degree);
+            last_degree = s;
+            for (k, &mk) in m.iter().enumerate() {
+                if k < usize::from(s) {
+                    assert!(
+                        mk % 2 == 1 && u32::from(mk) < 1 << (k + 1),
+                        "dimension {}",
+                        d + 2
+                    );
+                } else {
+                    assert_eq!(mk, 0);
+                }
+            }
+        }
+        assert_eq!(JOE_KUO.len() + 1, SOBOL_MAX_DIMENSION);
+    }
+
+    /// Unscrambled points equal SciPy's `qmc.Sobol(d, scramble=False)` exactly
+    /// (fixture generated by `python/scripts/gen_sobol_fixture.py`).
+    #[test]
+    fn unscrambled_points_equal_scipy() {
+        let text = include_str!("../../tests/data/sobol_scipy.txt");
+        let mut lines = 0;
+        let mut dims = std::collections::BTreeSet::new();
+        for line in text.lines().filter(|l| !l.starts_with('#')) {
+            let f: Vec<&str> = line.split(' ').collect();
+            let d: usize = f[0].parse().unwrap();
+            let i: u64 = f[1].parse().unwrap();
+            let cols: Vec<usize> = f[2].split(',').map(|c| c.parse().unwrap()).collect();
+            let s = Sobol::new(d, None, 0).unwrap();
+            let mut x = vec![0.0; d];
+            s.point(i, &mut x);
+            for (c, k) in cols.iter().zip(&f[3..]) {
+                let k: u64 = k.parse().unwrap();
+                assert_eq!(
+                    x[*c],
+                    k as f64 / (1u64 << 30) as f64,
+                    "d {d} point {i} coordinate {c}"
+                );
+            }
+            lines += 1;
+            dims.insert(d);
+        }
+        assert!(lines >= 100 && dims.len() >= 8, "{lines} {dims:?}");
+    }
+
+    /// Owen scrambling: a bijection of each elementary interval (points with a
+    /// common `j`-digit prefix keep a common scrambled prefix, distinct
+    /// prefixes stay distinct), not a digital shift (the flip of a digit
+    /// depends on the digits above it), seeded, and uniform on average.
+    #[test]
+    fn owen_scrambling_is_nested_not_a_shift() {
+        let key = hash4(11, 5, 0, 0);
+        let xs: Vec<u32> = (0..4096u32).map(|i| i.wrapping_mul(0x9e37_79b9)).collect();
+        let ys: Vec<u32> = xs.iter().map(|&x| owen_scramble(x, key).0).collect();
+        for j in 1..=12u32 {
+            let mut map = std::collections::HashMap::new();
+            let mut back = std::collections::HashMap::new();
+            for (&x, &y) in xs.iter().zip(&ys) {
+                assert_eq!(
+                    *map.entry(x >> (32 - j)).or_insert(y >> (32 - j)),
+                    y >> (32 - j)
+                );
+                assert_eq!(
+                    *back.entry(y >> (32 - j)).or_insert(x >> (32 - j)),
+                    x >> (32 - j)
+                );
+            }
+        }
+        // A digital shift flips digit 11 the same way for every point; Owen's
+        // flip depends on the 10 digits above it (1024 independent coins).
+        let flip11: std::collections::HashSet<u32> = xs
+            .iter()
+            .zip(&ys)
+            .map(|(x, y)| ((x ^ y) >> 21) & 1)
+            .collect();
+        assert_eq!(flip11.len(), 2);
+        assert_ne!(owen_scramble(12345, key), owen_scramble(12345, key ^ 1));
+        let s = Sobol::new(4, Some(3), 7).unwrap();
+        let n = 1u64 << 14;
+        let mut mean = [0.0; 4];
+        let mut x = [0.0; 4];
+        for i in 0..n {
+            s.point(i, &mut x);
+            for (m, v) in mean.iter_mut().zip(x) {
+                assert!((0.0..1.0).contains(&v));
+                *m += v / n as f64;
+            }
+        }
+        // A scrambled (0, m, 1)-net of 2^14 points: every mean within 2^-14 of 1/2.
+        assert!(
+            mean.iter().all(|m| (m - 0.5).abs() < 1.0 / n as f64),
+            "{mean:?}"
+        );
+        assert_eq!(
+            Sobol::new(SOBOL_MAX_DIMENSION + 1, None, 0).unwrap_err(),
+            SobolDimensionError {
+                dimension: SOBOL_MAX_DIMENSION + 1
+            }
+        );
     }
 
     #[test]

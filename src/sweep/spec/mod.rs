@@ -21,7 +21,7 @@
 //! points_per_axis = 21             # grid
 //! # count = 100000                 # random / halton / sobol: configurations per valence
 //! # seed = 1                       # random (required); halton / sobol with scramble = true
-//! # scramble = true                # halton (random shift) / sobol (digital shift)
+//! # scramble = true                # halton (random shift) / sobol (Owen nested uniform); default false
 //!
 //! [columns]                        # optional; defaults shown
 //! eigenvalues = 0                  # leading eigenvalues of S_n kept (by modulus)
@@ -228,11 +228,12 @@ pub enum Sampler {
         /// Seed of the random shift (`None`: unscrambled).
         scramble_seed: Option<u64>,
     },
-    /// Sobol sequence (base 2), optionally with a random digital shift.
+    /// Sobol sequence (base 2, Joe-Kuo direction numbers), optionally with
+    /// Owen's nested uniform scrambling (math doc section 16.1).
     Sobol {
         /// Configurations per valence.
         count: u64,
-        /// Seed of the digital shift (`None`: unscrambled).
+        /// Seed of the scrambling (`None`: unscrambled, SciPy's points).
         scramble_seed: Option<u64>,
     },
 }
@@ -329,6 +330,23 @@ impl SweepSpec {
 
     /// The size check (grid overflow etc.): at most [`MAX_CONFIGURATIONS`].
     fn check_size(&self, ctx: &Ctx, s: &RawSampler) -> Result<(), SweepError> {
+        if let Sampler::Sobol { .. } = self.sampler {
+            let max = crate::sweep::sampler::SOBOL_MAX_DIMENSION;
+            if let Some(&n) = self
+                .valences
+                .iter()
+                .find(|&&n| self.free_dimension(n) > max)
+            {
+                return ctx.err(
+                    "sampler.kind",
+                    Some(s.kind.span()),
+                    format!(
+                        "sampler.kind: the Sobol sampler supports at most {max} free coordinates (Joe-Kuo direction numbers shipped), valence {n} has {}; use sampler kind \"halton\" or \"random\", or fix coordinates",
+                        self.free_dimension(n)
+                    ),
+                );
+            }
+        }
         if self.try_total().is_none() {
             let (key, span) = match (&self.sampler, &s.points_per_axis, &s.count) {
                 (Sampler::Grid { .. }, Some(k), _) => ("sampler.points_per_axis", Some(k.span())),

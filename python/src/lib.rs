@@ -1,0 +1,648 @@
+//! Python bindings of subdiv-lab (`subdiv_lab._native`): thin wrappers over the
+//! library, one per CLI command. The Python package `subdiv_lab` adds the
+//! keyword-argument API, numpy/pyarrow conversion and docstrings.
+//!
+//! Bad input raises `ValueError` with the library's (the CLI's) message, any
+//! other failure `RuntimeError`. Heavy work runs with the GIL released.
+
+use numpy::{PyArray1, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rayon::prelude::*;
+use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
+use subdiv_lab::schemes::SchemeKind;
+use subdiv_lab::spectral::json::AnalysisInput;
+use subdiv_lab::spectral::kernel::BATCH;
+use subdiv_lab::sweep::eval::CellSink;
+use subdiv_lab::sweep::{
+    Cell, Configuration, Evaluate, Layout, Plan, Shard, SpectralEvaluator, SweepSpec,
+};
+
+/// A library error as a Python exception: input errors are `ValueError`.
+fn lib_err(e: impl Into<subdiv_lab::Error>) -> PyErr {
+    let e = e.into();
+    if e.is_input_error() {
+        PyValueError::new_err(e.to_string())
+    } else {
+        PyRuntimeError::new_err(e.to_string())
+    }
+}
+
+fn value_err(msg: impl Into<String>) -> PyErr {
+    PyValueError::new_err(msg.into())
+}
+
+/// A rayon pool of `threads` workers (`None` or 0: all cores).
+fn pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| PyRuntimeError::new_err(format!("cannot start the worker threads: {e}")))
+}
+
+/// The scheme flags of `matrix` / `analyze`, validated as the CLI does.
+struct Resolved {
+    scheme: Box<dyn subdiv_lab::Scheme>,
+    input: AnalysisInput,
+}
+
+fn resolve(
+    scheme: &str,
+    valence: Option<usize>,
+    knots: Option<Vec<(f64, f64)>>,
+    ratios: Option<Vec<f64>>,
+    uniform: bool,
+    c: Option<f64>,
+) -> PyResult<Resolved> {
+    let kind: SchemeKind = scheme
+        .parse()
+        .map_err(|e: subdiv_lab::schemes::UnknownScheme| value_err(e.to_string()))?;
+    let given = [knots.is_some(), ratios.is_some(), uniform]
+        .iter()
+        .filter(|b| **b)
+        .count();
+    if given > 1 {
+        return Err(value_err(
+            "knots, ratios and uniform are mutually exclusive; give one",
+        ));
+    }
+    if !kind.takes_knots() && (knots.is_some() || ratios.is_some()) {
+        return Err(value_err(format!(
+            "scheme {kind} takes no knot intervals (only uniform); use scheme nurds for knots/ratios"
+        )));
+    }
+    let count = |what: &str, got: usize| match valence {
+        Some(n) if n != got => Err(value_err(format!(
+            "{what} has {got} entries but valence is {n}"
+        ))),
+        _ => Ok(()),
+    };
+    let rf = if let Some(k) = &knots {
+        count("knots", k.len())?;
+        let (p, q): (Vec<f64>, Vec<f64>) = k.iter().copied().unzip();
+        Some(
+            CornerIntervals::new(p, q)
+                .map_err(lib_err)?
+                .ratios()
+                .map_err(lib_err)?,
+        )
+    } else if let Some(r) = &ratios {
+        count("ratios", r.len())?;
+        Some(EdgeRatios::new(r.clone()).map_err(lib_err)?)
+    } else {
+        if kind.takes_knots() && !uniform {
+            return Err(value_err(format!(
+                "scheme {kind} needs one of knots, ratios or uniform=True"
+            )));
+        }
+        None
+    };
+    let n = match (&rf, valence) {
+        (Some(r), _) => r.valence(),
+        (None, Some(n)) => n,
+        (None, None) => return Err(value_err(format!("valence is required with scheme {kind}"))),
+    };
+    let s = subdiv_lab::scheme::registry::from_kind(kind, n, rf, c).map_err(lib_err)?;
+    Ok(Resolved {
+        scheme: s,
+        input: AnalysisInput {
+            scheme: kind.to_string(),
+            valence: n,
+            knots: knots.map(|k| k.into_iter().map(|(p, q)| [p, q]).collect()),
+            ratios,
+            uniform,
+            c,
+        },
+    })
+}
+
+/// `matrix`: (matrix, row labels) of the local subdivision matrix or its face block.
+#[pyfunction]
+#[pyo3(signature = (scheme, valence=None, knots=None, ratios=None, uniform=false, c=None, block="full"))]
+#[allow(clippy::too_many_arguments)]
+fn matrix<'py>(
+    py: Python<'py>,
+    scheme: &str,
+    valence: Option<usize>,
+    knots: Option<Vec<(f64, f64)>>,
+    ratios: Option<Vec<f64>>,
+    uniform: bool,
+    c: Option<f64>,
+    block: &str,
+) -> PyResult<(Bound<'py, PyArray2<f64>>, Vec<String>)> {
+    let r = resolve(scheme, valence, knots, ratios, uniform, c)?;
+    let lm = r.scheme.local_matrix().map_err(lib_err)?;
+    let n = lm.valence();
+    let (labels, m) = match block {
+        "full" => (lm.rows().to_vec(), lm.matrix().clone()),
+        "face" => {
+            if r.scheme.spectral_structure() != subdiv_lab::scheme::SpectralStructure::FaceBlock {
+                return Err(lib_err(subdiv_lab::Error::NotApplicable {
+                    scheme: r.scheme.name().to_owned(),
+                    operation: "the face block (a Doo-Sabin-family notion)",
+                }));
+            }
+            (
+                lm.rows()[..n].to_vec(),
+                lm.matrix().view((0, 0), (n, n)).into_owned(),
+            )
+        }
+        other => {
+            return Err(value_err(format!(
+                "block must be \"full\" or \"face\", got {other:?}"
+            )))
+        }
+    };
+    let rows: Vec<Vec<f64>> = m
+        .row_iter()
+        .map(|row| row.iter().copied().collect())
+        .collect();
+    let a = PyArray2::from_vec2(py, &rows).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    Ok((a, labels.iter().map(ToString::to_string).collect()))
+}
+
+/// `analyze`: the JSON text of `subdiv-lab analyze --json`.
+#[pyfunction]
+#[pyo3(signature = (scheme, valence=None, knots=None, ratios=None, uniform=false, c=None, path="full", levels=60, seed=0x5EED))]
+#[allow(clippy::too_many_arguments)]
+fn analyze_json(
+    py: Python<'_>,
+    scheme: &str,
+    valence: Option<usize>,
+    knots: Option<Vec<(f64, f64)>>,
+    ratios: Option<Vec<f64>>,
+    uniform: bool,
+    c: Option<f64>,
+    path: &str,
+    levels: usize,
+    seed: u64,
+) -> PyResult<String> {
+    use subdiv_lab::spectral::{AnalyzeOptions, SpectrumPath};
+    if levels == 0 || levels > 10_000 {
+        return Err(value_err(format!(
+            "levels must be between 1 and 10000, got {levels}"
+        )));
+    }
+    let path = match path {
+        "full" => SpectrumPath::Full,
+        "structured" => SpectrumPath::Structured,
+        other => {
+            return Err(value_err(format!(
+                "path must be \"full\" or \"structured\", got {other:?}"
+            )))
+        }
+    };
+    let r = resolve(scheme, valence, knots, ratios, uniform, c)?;
+    let options = AnalyzeOptions {
+        path,
+        measure: subdiv_lab::contraction::MeasureOptions {
+            levels,
+            seed,
+            ..Default::default()
+        },
+    };
+    let Resolved { scheme, input } = r;
+    let scheme = std::sync::Arc::<dyn subdiv_lab::Scheme>::from(scheme);
+    let (result, charmap) = py.detach(move || -> PyResult<_> {
+        let result = subdiv_lab::spectral::analyze(&*scheme, &options).map_err(lib_err)?;
+        let charmap = subdiv_lab::charmap::check_classified(&*scheme, &result.subdominant);
+        Ok((result, charmap))
+    })?;
+    let v = subdiv_lab::spectral::json::analysis_json(&result, &charmap, &input);
+    serde_json::to_string(&v).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
+/// A TOML sweep spec from its JSON form (the Python dict).
+#[pyfunction]
+fn spec_json_to_toml(json: &str) -> PyResult<String> {
+    let v: serde_json::Value =
+        serde_json::from_str(json).map_err(|e| value_err(format!("spec: {e}")))?;
+    toml::to_string(&v).map_err(|e| value_err(format!("spec: {e}")))
+}
+
+/// Columns of evaluated rows, filled in row order.
+struct Columns {
+    names: Vec<String>,
+    numeric: Vec<bool>,
+    nums: Vec<Vec<f64>>,
+    valid: Vec<Vec<bool>>,
+    texts: Vec<Vec<String>>,
+}
+
+impl Columns {
+    fn new(names: Vec<String>, numeric: Vec<bool>, rows: usize) -> Self {
+        let k = names.len();
+        Columns {
+            nums: numeric
+                .iter()
+                .map(|&n| {
+                    if n {
+                        Vec::with_capacity(rows)
+                    } else {
+                        Vec::new()
+                    }
+                })
+                .collect(),
+            valid: (0..k).map(|_| Vec::with_capacity(rows)).collect(),
+            texts: numeric
+                .iter()
+                .map(|&n| {
+                    if n {
+                        Vec::new()
+                    } else {
+                        Vec::with_capacity(rows)
+                    }
+                })
+                .collect(),
+            names,
+            numeric,
+        }
+    }
+
+    fn push(&mut self, cells: &[Cell]) {
+        for (j, numeric) in self.numeric.iter().enumerate() {
+            let cell = cells.get(j).unwrap_or(&Cell::Empty);
+            let ok = !matches!(cell, Cell::Empty);
+            self.valid[j].push(ok);
+            if *numeric {
+                self.nums[j].push(match cell {
+                    Cell::Num(x) => *x,
+                    _ => f64::NAN,
+                });
+            } else {
+                self.texts[j].push(match cell {
+                    Cell::Text(t) => t.clone(),
+                    Cell::Num(x) => x.to_string(),
+                    Cell::Empty => String::new(),
+                });
+            }
+        }
+    }
+
+    /// `{name: (values, valid)}`: numpy float64 arrays or lists of str, with a numpy bool mask.
+    fn into_dict<'py>(self, py: Python<'py>, out: &Bound<'py, PyDict>) -> PyResult<()> {
+        let Columns {
+            names,
+            numeric,
+            nums,
+            valid,
+            texts,
+        } = self;
+        for ((((name, numeric), num), ok), text) in names
+            .into_iter()
+            .zip(numeric)
+            .zip(nums)
+            .zip(valid)
+            .zip(texts)
+        {
+            let mask = PyArray1::from_vec(py, ok);
+            if numeric {
+                out.set_item(name, (PyArray1::from_vec(py, num), mask))?;
+            } else {
+                out.set_item(name, (text, mask))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A cell sink that stores one row's cells (reused across rows).
+#[derive(Default)]
+struct RowCells(Vec<Cell>);
+
+impl CellSink for RowCells {
+    fn empty(&mut self) {
+        self.0.push(Cell::Empty);
+    }
+    fn num(&mut self, x: f64) {
+        self.0.push(Cell::Num(x));
+    }
+    fn text(&mut self, t: &str) {
+        self.0.push(Cell::Text(t.to_owned()));
+    }
+}
+
+/// One evaluated row: its result cells, or its error.
+type RowOut = (Vec<Cell>, Option<String>);
+
+/// A refined mesh: vertex positions `(m, 3)` and faces.
+type MeshOut<'py> = (Bound<'py, PyArray2<f64>>, Vec<Vec<usize>>);
+
+/// `classify_batch`: result columns of a ratios sweep, one row per row of `ratios`.
+#[pyfunction]
+#[pyo3(signature = (ratios, scheme="nurds", columns_json=None, threads=None))]
+fn classify_batch<'py>(
+    py: Python<'py>,
+    ratios: PyReadonlyArray2<'py, f64>,
+    scheme: &str,
+    columns_json: Option<&str>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let shape = ratios.shape();
+    let (m, n) = (shape[0], shape[1]);
+    if n < 3 {
+        return Err(value_err(format!(
+            "ratios must have one column per edge of a valence n >= 3 face, got {n} columns"
+        )));
+    }
+    let columns: serde_json::Value = match columns_json {
+        Some(t) => serde_json::from_str(t).map_err(|e| value_err(format!("columns: {e}")))?,
+        None => serde_json::json!({}),
+    };
+    let spec = serde_json::json!({
+        "name": "classify_batch",
+        "scheme": scheme,
+        "valences": [n],
+        "space": {"kind": "ratios", "ratio_range": [0.01, 0.99]},
+        "sampler": {"kind": "grid", "points_per_axis": 1},
+        "columns": columns,
+    });
+    let toml_text = toml::to_string(&spec).map_err(|e| value_err(format!("columns: {e}")))?;
+    let spec = SweepSpec::from_toml(&toml_text).map_err(lib_err)?;
+    let plan = Plan::new(spec);
+    let result_names: Vec<_> = subdiv_lab::sweep::eval::result_columns(&plan.spec().columns);
+    let eval = SpectralEvaluator::new(plan.spec().columns);
+    let data: Vec<f64> = match ratios.as_slice() {
+        Ok(s) => s.to_vec(),
+        Err(_) => ratios.as_array().iter().copied().collect(),
+    };
+    let pool = pool(threads)?;
+    // Row-major rows of n ratios; chunks of whole batches, evaluated in parallel.
+    const CHUNK: usize = 64 * BATCH;
+    let rows: Vec<PyResult<Vec<RowOut>>> = py.detach(|| {
+        pool.install(|| {
+            data.par_chunks(CHUNK * n)
+                .enumerate()
+                .map(|(ci, chunk)| -> PyResult<Vec<RowOut>> {
+                    let base = ci * CHUNK;
+                    let configs: Vec<Configuration> = chunk
+                        .chunks(n)
+                        .enumerate()
+                        .map(|(k, r)| Configuration {
+                            id: (base + k) as u64,
+                            valence: n,
+                            coordinates: r.to_vec(),
+                        })
+                        .collect();
+                    let schemes = configs
+                        .iter()
+                        .map(|c| {
+                            plan.scheme(c)
+                                .map_err(|e| value_err(format!("ratios row {}: {e}", c.id)))
+                        })
+                        .collect::<Result<Vec<_>, _>>()?;
+                    let mut out = Vec::with_capacity(configs.len());
+                    let mut i = 0;
+                    while i < configs.len() {
+                        if i + BATCH <= configs.len() {
+                            let mut sinks: [RowCells; BATCH] = Default::default();
+                            let mut it = sinks.iter_mut();
+                            let items = std::array::from_fn(|l| {
+                                (
+                                    &configs[i + l],
+                                    &schemes[i + l],
+                                    it.next().expect("lane") as &mut dyn CellSink,
+                                )
+                            });
+                            let res = eval.write_results_batch(&plan, items);
+                            for (s, r) in sinks.into_iter().zip(res) {
+                                out.push(match r {
+                                    Ok(()) => (s.0, None),
+                                    Err(e) => (Vec::new(), Some(e.to_string())),
+                                });
+                            }
+                            i += BATCH;
+                        } else {
+                            let mut s = RowCells::default();
+                            out.push(
+                                match eval.write_results(&plan, &configs[i], &schemes[i], &mut s) {
+                                    Ok(()) => (s.0, None),
+                                    Err(e) => (Vec::new(), Some(e.to_string())),
+                                },
+                            );
+                            i += 1;
+                        }
+                    }
+                    Ok(out)
+                })
+                .collect()
+        })
+    });
+    let mut cols = Columns::new(
+        result_names.iter().map(|c| c.name.clone()).collect(),
+        result_names.iter().map(|c| c.numeric).collect(),
+        m,
+    );
+    let mut errors = Vec::with_capacity(m);
+    for chunk in rows {
+        for (cells, err) in chunk? {
+            cols.push(&cells);
+            errors.push(err.unwrap_or_default());
+        }
+    }
+    let out = PyDict::new(py);
+    cols.into_dict(py, &out)?;
+    out.set_item("error", errors)?;
+    Ok(out)
+}
+
+/// `sweep`: the rows of a sweep (all, one shard, or its first `limit` ids) as columns.
+#[pyfunction]
+#[pyo3(signature = (spec_toml, threads=None, shard=None, limit=None))]
+fn sweep<'py>(
+    py: Python<'py>,
+    spec_toml: &str,
+    threads: Option<usize>,
+    shard: Option<(u64, u64)>,
+    limit: Option<u64>,
+) -> PyResult<(Vec<String>, Bound<'py, PyDict>)> {
+    let spec = SweepSpec::from_toml(spec_toml).map_err(lib_err)?;
+    let shard = match shard {
+        Some((i, k)) => Shard::new(i, k).map_err(lib_err)?,
+        None => Shard::ALL,
+    };
+    let plan = Plan::new(spec);
+    let layout = Layout::new(&plan);
+    let header = layout.header();
+    let names: Vec<String> = header.trim_end().split(',').map(str::to_owned).collect();
+    let inner: Vec<String> = names[2..names.len() - 1].to_vec();
+    let mut numeric = vec![false; inner.len()];
+    for (pos, _) in layout.numeric_columns() {
+        if let Some(x) = numeric.get_mut(*pos) {
+            *x = true;
+        }
+    }
+    let count = shard.len(plan.total()).min(limit.unwrap_or(u64::MAX));
+    let eval = SpectralEvaluator::new(plan.spec().columns);
+    let pool = pool(threads)?;
+    let rows: Vec<subdiv_lab::sweep::output::Row> = py.detach(|| {
+        pool.install(|| {
+            (0..count)
+                .into_par_iter()
+                .map(|j| layout.row(&plan, &eval, shard.id(j)))
+                .collect()
+        })
+    });
+    let mut cols = Columns::new(inner, numeric, rows.len());
+    let mut ids = Vec::with_capacity(rows.len());
+    let mut valences = Vec::with_capacity(rows.len());
+    let mut errors = Vec::with_capacity(rows.len());
+    for r in rows {
+        ids.push(r.id);
+        valences.push(r.valence as u32);
+        cols.push(&r.cells);
+        errors.push(r.error.unwrap_or_default());
+    }
+    let out = PyDict::new(py);
+    out.set_item("id", PyArray1::from_vec(py, ids))?;
+    out.set_item("valence", PyArray1::from_vec(py, valences))?;
+    cols.into_dict(py, &out)?;
+    out.set_item("error", errors)?;
+    Ok((names, out))
+}
+
+/// `subdivide`: `levels` refinement steps of a closed polygon mesh.
+#[pyfunction]
+#[pyo3(signature = (vertices, faces, scheme="nurds", knots=None, levels=1, c=None))]
+fn subdivide<'py>(
+    py: Python<'py>,
+    vertices: PyReadonlyArray2<'py, f64>,
+    faces: Vec<Vec<usize>>,
+    scheme: &str,
+    knots: Option<Vec<((usize, usize), f64)>>,
+    levels: usize,
+    c: Option<f64>,
+) -> PyResult<MeshOut<'py>> {
+    use subdiv_lab::mesh::Mesh;
+    let kind: SchemeKind = scheme
+        .parse()
+        .map_err(|e: subdiv_lab::schemes::UnknownScheme| value_err(e.to_string()))?;
+    let shape = vertices.shape();
+    if shape[1] != 3 {
+        return Err(value_err(format!(
+            "vertices must have shape (m, 3), got ({}, {})",
+            shape[0], shape[1]
+        )));
+    }
+    let v = vertices.as_array();
+    let positions: Vec<[f64; 3]> = v.rows().into_iter().map(|r| [r[0], r[1], r[2]]).collect();
+    let mut mesh = Mesh::from_polygons(positions, &faces).map_err(lib_err)?;
+    if let Some(k) = &knots {
+        if !kind.takes_knots() {
+            return Err(value_err(format!(
+                "scheme {kind} takes no knot intervals; use scheme nurds for knots"
+            )));
+        }
+        for &((a, b), x) in k {
+            let h = mesh.find_half_edge(a, b).ok_or_else(|| {
+                value_err(format!("knots: ({a}, {b}) is not an edge of the mesh"))
+            })?;
+            mesh.set_knot(h, x).map_err(lib_err)?;
+        }
+    }
+    let cc = match (kind, c) {
+        (SchemeKind::CatmullClark, None) => Some(0.5),
+        (SchemeKind::CatmullClark, Some(_)) => {
+            return Err(value_err(
+                "scheme catmull-clark has c = 1/2; use scheme adjustable-cc with c",
+            ))
+        }
+        (SchemeKind::AdjustableCc, None) => {
+            return Err(value_err("scheme adjustable-cc needs c in [0, 1]"))
+        }
+        (SchemeKind::AdjustableCc, Some(c)) => Some(c),
+        (_, Some(_)) => {
+            return Err(value_err(
+                "c is the shape parameter of scheme adjustable-cc only",
+            ))
+        }
+        (_, None) => None,
+    };
+    let mut est = mesh.half_edge_count() as u64;
+    for _ in 0..levels {
+        est = est.saturating_mul(4);
+    }
+    if est > subdiv_lab::mesh::MAX_HALF_EDGES {
+        return Err(value_err(format!(
+            "{levels} levels would make about {est} half-edges, more than {}",
+            subdiv_lab::mesh::MAX_HALF_EDGES
+        )));
+    }
+    let refined = py.detach(move || -> Result<Mesh, subdiv_lab::mesh::MeshError> {
+        for _ in 0..levels {
+            mesh = match (kind, cc) {
+                (_, Some(c)) => subdiv_lab::mesh::catmull_clark::refine_cc(&mesh, c)?,
+                (SchemeKind::Loop, _) => {
+                    subdiv_lab::schemes::loop_subdivision::mesh::refine(&mesh)?
+                }
+                _ => subdiv_lab::mesh::refine::refine(&mesh, kind)?,
+            };
+        }
+        Ok(mesh)
+    });
+    let mesh = refined.map_err(lib_err)?;
+    let pos: Vec<Vec<f64>> = mesh.positions().iter().map(|p| p.to_vec()).collect();
+    let faces: Vec<Vec<usize>> = (0..mesh.face_count())
+        .map(|f| mesh.face_vertices(f).collect())
+        .collect();
+    let a = if pos.is_empty() {
+        PyArray2::zeros(py, [0, 3], false)
+    } else {
+        PyArray2::from_vec2(py, &pos).map_err(|e| PyRuntimeError::new_err(e.to_string()))?
+    };
+    Ok((a, faces))
+}
+
+/// `report`: the files of a report (`(relative path, bytes)`), generated with
+/// the GIL released; the Python side writes them.
+#[pyfunction]
+#[pyo3(signature = (spec_toml, spec_path=None))]
+fn report_files(
+    py: Python<'_>,
+    spec_toml: &str,
+    spec_path: Option<String>,
+) -> PyResult<Vec<(String, pyo3::Py<pyo3::types::PyBytes>)>> {
+    use subdiv_lab::report::{figures::NoProgress, generate, ReportError, ReportSpec, RunInfo};
+    let report_err = |e: ReportError| {
+        let input = match &e {
+            ReportError::Spec { .. } => true,
+            ReportError::Analysis { source, .. } => source.is_input_error(),
+            _ => false,
+        };
+        if input {
+            PyValueError::new_err(e.to_string())
+        } else {
+            PyRuntimeError::new_err(e.to_string())
+        }
+    };
+    let spec = ReportSpec::parse(spec_toml).map_err(report_err)?;
+    let run = RunInfo {
+        version: Some(subdiv_lab::spectral::json::TOOL_VERSION.to_owned()),
+        git_revision: None,
+        spec_path,
+        spec_builtin: false,
+    };
+    let report = py
+        .detach(|| generate(&spec, &run, &NoProgress))
+        .map_err(report_err)?;
+    Ok(report
+        .files
+        .into_iter()
+        .map(|f| (f.path, pyo3::types::PyBytes::new(py, &f.bytes).unbind()))
+        .collect())
+}
+
+/// The native module.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", subdiv_lab::spectral::json::TOOL_VERSION)?;
+    m.add_function(wrap_pyfunction!(matrix, m)?)?;
+    m.add_function(wrap_pyfunction!(analyze_json, m)?)?;
+    m.add_function(wrap_pyfunction!(spec_json_to_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(classify_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(subdivide, m)?)?;
+    m.add_function(wrap_pyfunction!(report_files, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,23 @@
+"""The compiled module (use the wrappers in subdiv_lab instead)."""
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+def matrix(scheme: str, valence: Optional[int], knots: Optional[List[Tuple[float, float]]],
+           ratios: Optional[List[float]], uniform: bool, c: Optional[float],
+           block: str) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
+def analyze_json(scheme: str, valence: Optional[int], knots: Optional[List[Tuple[float, float]]],
+                 ratios: Optional[List[float]], uniform: bool, c: Optional[float], path: str,
+                 levels: int, seed: int) -> str: ...
+def spec_json_to_toml(json: str) -> str: ...
+def classify_batch(ratios: npt.NDArray[np.float64], scheme: str = ...,
+                   columns_json: Optional[str] = ..., threads: Optional[int] = ...) -> Dict[str, Any]: ...
+def sweep(spec_toml: str, threads: Optional[int] = ..., shard: Optional[Tuple[int, int]] = ...,
+          limit: Optional[int] = ...) -> Tuple[List[str], Dict[str, Any]]: ...
+def subdivide(vertices: npt.NDArray[np.float64], faces: Sequence[Sequence[int]], scheme: str = ...,
+              knots: Optional[List[Tuple[Tuple[int, int], float]]] = ..., levels: int = ...,
+              c: Optional[float] = ...) -> Tuple[npt.NDArray[np.float64], List[List[int]]]: ...
+def report_files(spec_toml: str, spec_path: Optional[str] = ...) -> List[Tuple[str, bytes]]: ...

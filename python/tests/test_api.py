@@ -1,0 +1,177 @@
+"""The Python API against the CLI (same JSON, same rows, same messages) and
+its own invariants. Needs the release binary (built by `cargo test --release`
+or `cargo build --release`; override with SUBDIV_LAB_BIN)."""
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pyarrow as pa
+import pytest
+
+import subdiv_lab as sl
+
+ROOT = Path(__file__).resolve().parents[2]
+BIN = os.environ.get("SUBDIV_LAB_BIN", str(ROOT / "target" / "release" / "subdiv-lab"))
+
+
+def cli(*args, check=True):
+    assert Path(BIN).exists(), f"{BIN} missing: run cargo build --release first"
+    p = subprocess.run([BIN, *args], capture_output=True, text=True)
+    if check:
+        assert p.returncode == 0, p.stderr
+    return p
+
+
+SPEC = """name = "py"
+scheme = "nurds"
+valences = [3, 5]
+[space]
+kind = "ratios"
+ratio_range = [0.01, 0.99]
+[sampler]
+kind = "random"
+count = 300
+seed = 4
+"""
+
+
+def test_matrix_equals_cli_json():
+    m, labels = sl.matrix(ratios=[0.3, 0.5, 0.7, 0.2])
+    doc = json.loads(cli("matrix", "--ratios", "0.3,0.5,0.7,0.2", "--format", "json").stdout)
+    assert labels == doc["rows"]
+    assert m.shape == (16, 16)
+    assert np.array_equal(m, np.array(doc["matrix"], dtype=float))
+    # affine invariance: every row of S_n sums to 1
+    assert np.allclose(m.sum(axis=1), 1.0, atol=1e-14)
+    face, flabels = sl.matrix(ratios=[0.3, 0.5, 0.7, 0.2], block="face")
+    assert face.shape == (4, 4) and flabels == labels[:4]
+    assert np.array_equal(face, m[:4, :4])
+
+
+def test_analyze_equals_cli_json():
+    a = sl.analyze(knots=[(1, 2), (2.5, 1), (0.3, 1), (1, 4), (2, 0.5)])
+    doc = json.loads(cli("analyze", "--knots", "1:2,2.5:1,0.3:1,1:4,2:0.5", "--json").stdout)
+    assert a == doc
+    assert a["input"]["knots"][1] == [2.5, 1.0]
+    assert a["tool_version"] == sl.__version__
+    cc = sl.analyze(scheme="adjustable-cc", valence=4, c=0.25)
+    assert cc["input"] == {"scheme": "adjustable-cc", "valence": 4, "knots": None,
+                           "ratios": None, "uniform": False, "c": 0.25}
+
+
+def test_bad_input_is_value_error_with_the_cli_message():
+    p = cli("analyze", "--ratios", "0.3,1.5,0.7", "--json", check=False)
+    assert p.returncode == 2
+    with pytest.raises(ValueError) as e:
+        sl.analyze(ratios=[0.3, 1.5, 0.7])
+    assert str(e.value) in p.stderr
+    with pytest.raises(ValueError, match="unknown scheme"):
+        sl.matrix(scheme="butterfly", valence=3)
+    with pytest.raises(ValueError, match="mutually exclusive"):
+        sl.matrix(ratios=[0.5] * 3, uniform=True)
+    with pytest.raises(ValueError, match="sampler.count"):
+        sl.sweep(SPEC.replace("count = 300", "count = 0"))
+    with pytest.raises(ValueError, match="ratios row 1"):
+        sl.classify_batch(np.array([[0.5, 0.5, 0.5], [0.5, 2.0, 0.5]]))
+    with pytest.raises(ValueError, match="shard"):
+        sl.sweep(SPEC, shard="3/2")
+
+
+def test_sweep_equals_the_cli_csv(tmp_path):
+    spec = tmp_path / "s.toml"
+    spec.write_text(SPEC)
+    out = tmp_path / "s.csv"
+    cli("sweep", str(spec), "--out", str(out))
+    t = sl.sweep(SPEC, threads=2)
+    assert isinstance(t, pa.Table)
+    lines = [l for l in out.read_text().splitlines() if not l.startswith("#")]
+    header = lines[0].split(",")
+    assert t.column_names == header
+    assert t.num_rows == len(lines) - 1 == 600
+    assert t.schema.field("id").type == pa.uint64()
+    assert t.schema.field("valence").type == pa.uint32()
+    cols = {name: t.column(name).to_pylist() for name in header}
+    for i, line in enumerate(lines[1:]):
+        for name, text in zip(header, line.split(",")):
+            got = cols[name][i]
+            if text == "":
+                assert got is None, (i, name, got)
+            elif isinstance(got, str):
+                assert got == text
+            else:
+                assert got == float(text), (i, name, got, text)  # shortest round trip: exact
+
+
+def test_sweep_from_dict_shard_and_limit():
+    d = {"name": "py", "scheme": "nurds", "valences": [3, 5],
+         "space": {"kind": "ratios", "ratio_range": [0.01, 0.99]},
+         "sampler": {"kind": "random", "count": 300, "seed": 4}}
+    full = sl.sweep(SPEC)
+    assert sl.sweep(d).equals(full)
+    s1 = sl.sweep(d, shard=(1, 3))
+    assert s1.column("id").to_pylist() == list(range(1, 600, 3))
+    assert s1.equals(full.take(list(range(1, 600, 3))))
+    assert sl.sweep(d, shard="1/3", limit=5).equals(s1.slice(0, 5))
+    assert sl.sweep(d, threads=1).equals(full)
+
+
+def test_classify_batch_equals_a_sweep():
+    for n in (3, 5, 8):
+        spec = SPEC.replace("valences = [3, 5]", f"valences = [{n}]")
+        t = sl.sweep(spec)
+        ratios = np.column_stack([t.column(f"r{k}").to_numpy() for k in range(n)])
+        r = sl.classify_batch(ratios, threads=2)
+        assert list(r["class"]) == t.column("class").to_pylist()
+        for name in ("lambda1_re", "lambda1_im", "lambda2_re", "lambda2_im", "abs_lambda3",
+                     "gap", "ratio", "rho", "theta", "contraction_rate"):
+            want = np.array([np.nan if x is None else x for x in t.column(name).to_pylist()])
+            assert np.array_equal(r[name], want, equal_nan=True), (n, name)
+        assert (r["lambda1"].real == r["lambda1_re"]).all()
+        # classification columns only
+        c = sl.classify_batch(ratios, columns={"gap": False, "contraction": False}, threads=1)
+        assert set(c) == {"class", "lambda1_re", "lambda1_im", "lambda2_re", "lambda2_im",
+                          "abs_lambda3", "error", "lambda1", "lambda2"}
+        assert np.array_equal(c["abs_lambda3"], r["abs_lambda3"])
+    # odd sizes (not a multiple of the batch width) and one row
+    x = np.random.default_rng(3).uniform(0.05, 0.95, (13, 6))
+    whole = sl.classify_batch(x)
+    one = sl.classify_batch(x[7:8])
+    assert one["class"][0] == whole["class"][7]
+    assert one["gap"][0] == whole["gap"][7]
+
+
+def test_subdivide():
+    v = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+    faces = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]]
+    pv, pf = sl.subdivide(v, faces, scheme="catmull-clark", levels=1)
+    assert pv.shape == (8 + 12 + 6, 3) and len(pf) == 24
+    dv, df = sl.subdivide(v, faces, scheme="nurds", levels=1)
+    assert dv.shape == (24, 3) and len(df) == 6 + 12 + 8
+    # each new vertex is a convex combination of its face's corners: on the cube
+    assert (dv >= 0).all() and (dv <= 1).all()
+    assert sorted(set(dv.ravel())) == [0.0, 0.25, 0.75, 1.0]
+    with pytest.raises(ValueError):
+        sl.subdivide(v, faces[:-1], levels=1)  # open mesh
+
+
+TINY_REPORT = ('name = "t"\n[[figure]]\nkind = "table"\nid = "a"\n'
+               'configs = [{ scheme = "cc-variant", valence = 4 }]\n')
+
+
+def test_report_writes_the_cli_files(tmp_path):
+    files = sl.report(TINY_REPORT, tmp_path / "py")
+    spec = tmp_path / "t.toml"
+    spec.write_text(TINY_REPORT)
+    cli("report", str(spec), "--out", str(tmp_path / "cli"), "--quiet")
+    assert sorted(files) == sorted(p.name for p in (tmp_path / "cli").iterdir())
+    assert "index.html" in files and "manifest.json" in files
+    for name in files:
+        if name.endswith((".csv", ".svg")):
+            assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    with pytest.raises(ValueError, match="not empty"):
+        sl.report(TINY_REPORT, tmp_path / "py")
+    with pytest.raises(ValueError, match="kind"):
+        sl.report(TINY_REPORT.replace('"table"', '"nope"'), tmp_path / "bad")
+    assert not (tmp_path / "bad").exists()
