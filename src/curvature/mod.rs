@@ -61,12 +61,12 @@ pub mod tuning;
 use crate::error::Result;
 use crate::scalar::Rational;
 use crate::scheme::Scheme;
+use crate::spectral::classify::BACKWARD_ERROR_FACTOR;
 use crate::spectral::classify::{decide, Decision, Subdominant, SubdominantClass};
+use crate::spectral::classify_matrix;
 use crate::spectral::eigen::{Eigen, EigenOptions};
 use crate::spectral::exact::charpoly;
 use crate::spectral::poly::{roots_outside, Poly};
-use crate::spectral::classify::BACKWARD_ERROR_FACTOR;
-use crate::spectral::classify_matrix;
 use nalgebra::DMatrix;
 use num_bigint::BigInt;
 use num_complex::Complex64;
@@ -273,7 +273,9 @@ pub fn summarize<S: Scheme + ?Sized>(
     out.mu_multiplicity = tail
         .iter()
         .enumerate()
-        .filter(|(k, z)| decide((z.norm() - mu).abs(), radius_of(3 + k) + r_mu) != Decision::NonZero)
+        .filter(|(k, z)| {
+            decide((z.norm() - mu).abs(), radius_of(3 + k) + r_mu) != Decision::NonZero
+        })
         .count();
     if let Some(blocks) = scheme.fourier_spectrum() {
         out.mu_mode = Some(modes_of(&blocks?, scheme.valence(), mu, r_mu));
@@ -481,7 +483,9 @@ pub fn certify_rational(
     let mq = rational_candidate(mu, tol(r_mu, mu))
         .ok_or_else(|| format!("mu = {mu:.6e} has no rational candidate"))?;
     if !(mq.is_positive() && mq < lq && lq < Rational::one()) {
-        return Err(format!("candidates out of order: 0 < mu = {mq} < lambda = {lq} < 1 fails"));
+        return Err(format!(
+            "candidates out of order: 0 < mu = {mq} < lambda = {lq} < 1 fails"
+        ));
     }
     let p = charpoly(s);
     let (p1, m1) = deflate_root(&p, &Rational::one());
@@ -490,10 +494,14 @@ pub fn certify_rational(
     }
     let (p2, ml) = deflate_root(&p1, &lq);
     if ml != 2 {
-        return Err(format!("lambda = {lq} is a root of multiplicity {ml}, not 2"));
+        return Err(format!(
+            "lambda = {lq} is a root of multiplicity {ml}, not 2"
+        ));
     }
     if p2.eval(&-lq.clone()).is_zero() {
-        return Err(format!("-lambda = -{lq} is also a root (|lambda_2| = |lambda_3|)"));
+        return Err(format!(
+            "-lambda = -{lq} is also a root (|lambda_2| = |lambda_3|)"
+        ));
     }
     let (p3, mp) = deflate_root(&p2, &mq);
     let (p4, mm) = deflate_root(&p3, &-mq.clone());
