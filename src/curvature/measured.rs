@@ -315,7 +315,7 @@ fn measure_level(
         reason: format!("degenerate tangent plane at level {level}"),
     };
     let nn = normal.norm();
-    if !(nn > 0.0) || !nn.is_finite() {
+    if nn.is_nan() || nn <= 0.0 || nn.is_infinite() {
         return Err(degenerate());
     }
     let nrm = normal / nn;
@@ -329,7 +329,7 @@ fn measure_level(
     // Least squares z = a x^2 + b xy + c y^2, scaled by the ring radius so
     // the normal equations are well conditioned.
     let radius = pts.iter().map(|p| p.norm()).fold(0.0, f64::max);
-    if !(radius > 0.0) {
+    if radius.is_nan() || radius <= 0.0 {
         return Err(degenerate());
     }
     let mut ata = Matrix3::zeros();

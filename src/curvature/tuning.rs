@@ -14,7 +14,7 @@
 //! **Rigorous sign evaluation.** [`enclosure`] evaluates `F(c)` in interval
 //! arithmetic with outward rounding: every `f64` operation (`+ - * /` and
 //! `sqrt`, all correctly rounded in IEEE 754) is followed by one step
-//! outward ([`f64::next_down`], [`f64::next_up`]), so each computed interval
+//! outward (to the neighbouring double), so each computed interval
 //! contains the exact value. `cos(2 pi l / n)` enters as an enclosure proved
 //! over the rationals: it is a root of `T_n(x) - 1` (Chebyshev); a Sturm
 //! count ([`Sturm`]) proves that a small interval around the `f64` cosine
@@ -95,8 +95,8 @@ impl Interval {
     }
     fn out(lo: f64, hi: f64) -> Self {
         Self {
-            lo: lo.next_down(),
-            hi: hi.next_up(),
+            lo: step_down(lo),
+            hi: step_up(hi),
         }
     }
     fn add(self, o: Self) -> Self {
@@ -156,6 +156,24 @@ impl Interval {
             Sign::Undecided
         }
     }
+}
+
+/// The next `f64` above `x` (`f64::next_up`, which needs Rust 1.86; the
+/// crate's MSRV is 1.85): infinities and NaN are returned unchanged.
+fn step_up(x: f64) -> f64 {
+    if x.is_nan() || x == f64::INFINITY {
+        return x;
+    }
+    if x == 0.0 {
+        return f64::from_bits(1);
+    }
+    let b = x.to_bits();
+    f64::from_bits(if x > 0.0 { b + 1 } else { b - 1 })
+}
+
+/// The next `f64` below `x`.
+fn step_down(x: f64) -> f64 {
+    -step_up(-x)
 }
 
 /// A certified sign of `mu - lambda^2`.

@@ -102,7 +102,7 @@ impl Scheme for LocalScheme<f64> {
     /// Catmull-Clark family has no faster path than the dense one.
     /// Catmull-Clark family: the closed-form block eigenvalues
     /// ([`catmull_clark::fourier::block_eigenvalues`]).
-    fn fourier_spectrum(&self) -> Option<Result<Vec<(usize, Vec<Complex64>)>>> {
+    fn fourier_spectrum(&self) -> Option<Result<crate::scheme::FourierSpectrum>> {
         let c = self.shape_parameter()?;
         let n = self.valence();
         Some(

@@ -77,6 +77,10 @@ use std::fmt;
 mod builtin;
 pub mod registry;
 
+/// The spectrum by Fourier mode: `(l, eigenvalues of block l)` per frequency
+/// ([`Scheme::fourier_spectrum`]).
+pub type FourierSpectrum = Vec<(usize, Vec<Complex64>)>;
+
 /// How a scheme's spectrum decomposes: which closed-form structure the
 /// analysis may cross-check against (math doc sections 4, 6 and 11).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -201,7 +205,7 @@ pub trait Scheme: fmt::Debug + Send + Sync {
     /// first with its eigenvalue 1 first (default none: the dense spectrum
     /// carries no modes, and the curvature analysis reports `mu_mode: null`;
     /// math doc sections 6, 11 and 13).
-    fn fourier_spectrum(&self) -> Option<Result<Vec<(usize, Vec<Complex64>)>>> {
+    fn fourier_spectrum(&self) -> Option<Result<FourierSpectrum>> {
         None
     }
 

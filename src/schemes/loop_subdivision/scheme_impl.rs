@@ -65,7 +65,7 @@ impl Scheme for LoopScheme {
         Some(fourier::spectrum(self.n))
     }
 
-    fn fourier_spectrum(&self) -> Option<Result<Vec<(usize, Vec<Complex64>)>>> {
+    fn fourier_spectrum(&self) -> Option<Result<crate::scheme::FourierSpectrum>> {
         Some(
             (0..self.n)
                 .map(|l| fourier::block_eigenvalues(self.n, l).map(|e| (l, e)))
