@@ -26,7 +26,7 @@
 //!    section 10). `mu` is a maximum over the tail, so its radius is the
 //!    spread of `max_k (|lambda_k| +- r_k)`; `lambda^2` has radius
 //!    `(2 lambda + r) r`. The difference `d = mu - lambda^2` is decided by
-//!    [`decide`](crate::spectral::classify::decide) with the radius
+//!    [`crate::spectral::classify::decide`] with the radius
 //!    `r_mu + (2 lambda + r_lambda) r_lambda`: certainly non-zero gives `zero`
 //!    or `unbounded`; otherwise the exact path is tried.
 //! 2. **Exact** (schemes with an
@@ -37,7 +37,7 @@
 //!    root `lambda_q` of multiplicity exactly 2 (and not `-lambda_q`), the
 //!    root `mu_q` (or `-mu_q`), and after dividing these out, no root of
 //!    modulus `>= mu_q` (the Schur-Cohn count of
-//!    [`roots_outside`](crate::spectral::poly::roots_outside), which refuses
+//!    [`crate::spectral::poly::roots_outside`], which refuses
 //!    roots on the circle). Then `lambda = lambda_q` and `mu = mu_q` exactly
 //!    and `mu_q` is compared with `lambda_q^2` in rationals. A wrong candidate
 //!    fails a check and leaves the verdict `indeterminate`; it never makes a
