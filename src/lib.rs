@@ -45,6 +45,7 @@ pub mod cc_study;
 pub mod ccss_bound;
 pub mod charmap;
 pub mod contraction;
+pub mod curvature;
 pub mod error;
 pub(crate) mod hash;
 pub mod knots;

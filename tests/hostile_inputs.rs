@@ -1143,6 +1143,58 @@ fn cases() -> Vec<Case> {
     // (end of section mesh)
 
     let _ = full; // used by the cli-io section
+                  // ===================================================================
+                  // SECTION curvature (issue 18 part 1): the `curvature` and
+                  // `curvature-tuning` figure keys and the sweep column switch.
+                  // ===================================================================
+    v.extend([
+        bad_with(
+            "report-curvature-valence-too-small",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nvalences = [2, 5]\n")],
+            "valences must list 1 to 8 valences in 3..=16, got [2, 5]",
+        ),
+        bad_with(
+            "report-curvature-c-out-of-range",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nc = 1.5\n")],
+            "c must be between 0 and 1, got 1.5",
+        ),
+        bad_with(
+            "report-curvature-levels-zero",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nlevels = 0\n")],
+            "levels must be between 1 and 24, got 0",
+        ),
+        bad_with(
+            "report-curvature-unknown-key",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nvalence = [3, 5]\n")],
+            "valence",
+        ),
+        bad_with(
+            "report-curvature-tuning-grid-zero",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature-tuning\"\ngrid = 0\n")],
+            "grid must be between 1 and 4096, got 0",
+        ),
+        bad_with(
+            "report-curvature-tuning-valence-range",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature-tuning\"\nvalence = [2, 5]\n")],
+            "valence range must satisfy 3 <= lo <= hi <= 64, got [2, 5]",
+        ),
+        bad_with(
+            "sweep-columns-curvature-not-bool",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[(
+                "s.toml",
+                "name = \"x\"\nscheme = \"catmull-clark\"\nvalences = [5]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\ncurvature = \"yes\"\n",
+            )],
+            "columns.curvature",
+        ),
+    ]);
+
     v
 }
 

@@ -339,6 +339,7 @@ fn summary(a: &LocalAnalysis, m: &MatrixText) -> String {
         c.spectral_bound
     );
     }
+    out += &a.curvature.human_line();
     if let Some(x) = &a.exact {
         out += &format!(
             "exact: class {} ({}); 1 simple: {}; {} distinct real roots of p(x)/(x-1); |lambda| < 3/4: {}; Theorem 1 certificate exact: {}",

@@ -14,6 +14,7 @@ use crate::charmap::{
 };
 use crate::contraction::{self, MeasureOptions};
 use crate::error::Result;
+use crate::scalar::{f64_to_rational, Rational};
 use crate::schemes::{catmull_clark, doo_sabin, LocalMatrix, LocalScheme};
 use crate::spectral::classify::Subdominant;
 use num_complex::Complex64;
@@ -29,6 +30,36 @@ impl Scheme for LocalScheme<f64> {
 
     fn local_matrix(&self) -> Result<LocalMatrix<f64>> {
         self.matrix()
+    }
+
+    /// The same configuration over the rationals, from the exact values of
+    /// its `f64` parameters (every finite `f64` is a dyadic rational): NURDS
+    /// and the Catmull-Clark variant (rational knot weights), Catmull-Clark
+    /// and the adjustable scheme (rational in `c` and `1/n`). Doo-Sabin's
+    /// weights contain `cos(2 pi j / n)`: none.
+    fn exact_local_matrix(&self) -> Option<Result<LocalMatrix<Rational>>> {
+        let exact: Result<LocalScheme<Rational>> = match self {
+            LocalScheme::Nurds(r) => r
+                .as_slice()
+                .iter()
+                .map(|&x| {
+                    f64_to_rational(x).ok_or_else(|| crate::Error::InvalidParameter {
+                        name: "knots",
+                        value: x.to_string(),
+                        reason: "not a finite number",
+                    })
+                })
+                .collect::<Result<Vec<_>>>()
+                .and_then(|v| Ok(LocalScheme::nurds(crate::knots::EdgeRatios::new(v)?))),
+            LocalScheme::CcVariant { valence } => LocalScheme::cc_variant(*valence),
+            LocalScheme::CatmullClark { valence } => LocalScheme::catmull_clark(*valence),
+            LocalScheme::AdjustableCc { valence, c } => match f64_to_rational(*c) {
+                Some(q) => LocalScheme::adjustable_cc(*valence, q),
+                None => return None,
+            },
+            _ => return None,
+        };
+        Some(exact.and_then(|s| s.matrix()))
     }
 
     /// Doo-Sabin family: the face weights `c` over the `P` columns (the other
@@ -69,6 +100,18 @@ impl Scheme for LocalScheme<f64> {
     /// Doo-Sabin family: the face-block kernel
     /// ([`classify_scheme`](crate::spectral::classify_scheme)). The
     /// Catmull-Clark family has no faster path than the dense one.
+    /// Catmull-Clark family: the closed-form block eigenvalues
+    /// ([`catmull_clark::fourier::block_eigenvalues`]).
+    fn fourier_spectrum(&self) -> Option<Result<crate::scheme::FourierSpectrum>> {
+        let c = self.shape_parameter()?;
+        let n = self.valence();
+        Some(
+            (0..n)
+                .map(|l| catmull_clark::fourier::block_eigenvalues(n, l, c).map(|e| (l, e)))
+                .collect(),
+        )
+    }
+
     fn fast_classification(&self) -> Option<Result<Subdominant>> {
         self.kind()
             .is_doo_sabin_family()

@@ -20,6 +20,7 @@
 //! | [`fast_classification`](Scheme::fast_classification) | none: dense classification of the local matrix | sweeps, reports |
 //! | [`face_contraction`](Scheme::face_contraction) | none: no Theorem 1 section | `analyze`, sweeps' `contraction` |
 //! | [`characteristic_map`](Scheme::characteristic_map) | none: `no_charmap` | sweeps' `charmap`, reports |
+//! | [`fourier_spectrum`](Scheme::fourier_spectrum) | none: the curvature's `mu_mode` is `null` | `analyze`'s `curvature` |
 //!
 //! The built-in families implement it: [`LocalScheme`](crate::schemes::LocalScheme)
 //! (NURDS, Doo-Sabin, the Catmull-Clark variant, Catmull-Clark and the
@@ -76,6 +77,10 @@ use std::fmt;
 mod builtin;
 pub mod choice;
 pub mod registry;
+
+/// The spectrum by Fourier mode: `(l, eigenvalues of block l)` per frequency
+/// ([`Scheme::fourier_spectrum`]).
+pub type FourierSpectrum = Vec<(usize, Vec<Complex64>)>;
 
 /// How a scheme's spectrum decomposes: which closed-form structure the
 /// analysis may cross-check against (math doc sections 4, 6 and 11).
@@ -193,6 +198,15 @@ pub trait Scheme: fmt::Debug + Send + Sync {
         subdominant: &Subdominant,
     ) -> Option<Result<CharmapReport<AnyPatchId>>> {
         let _ = subdominant;
+        None
+    }
+
+    /// The spectrum by Fourier mode (rotationally symmetric schemes): one
+    /// entry `(l, eigenvalues of block l)` per frequency `l = 0..n`, block 0
+    /// first with its eigenvalue 1 first (default none: the dense spectrum
+    /// carries no modes, and the curvature analysis reports `mu_mode: null`;
+    /// math doc sections 6, 11 and 13).
+    fn fourier_spectrum(&self) -> Option<Result<FourierSpectrum>> {
         None
     }
 

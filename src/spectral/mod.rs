@@ -226,6 +226,9 @@ pub struct LocalAnalysis {
     pub contraction: Option<ContractionSummary>,
     /// Exact verdicts (`--exact`).
     pub exact: Option<exact::ExactVerdict>,
+    /// Second order at the extraordinary point: `mu` against `lambda^2`
+    /// ([`crate::curvature`], math doc section 13).
+    pub curvature: crate::curvature::CurvatureSummary,
 }
 
 impl LocalAnalysis {
@@ -309,6 +312,7 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
     let face_weights = scheme.face_weights();
     let expected_limit = scheme.limit_stencil().transpose()?;
     let (eigenvalues, residuals, conditions, limit, tangents, subdominant, subdominant_full);
+    let curvature;
     match options.path {
         SpectrumPath::Full => {
             let e = Eigen::new(s, EigenOptions::BOTH)?;
@@ -329,6 +333,7 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
                 None => full.clone(),
             };
             subdominant_full = Some(full);
+            curvature = crate::curvature::summarize(scheme, e.values(), &radii, &subdominant)?;
             eigenvalues = e.values().iter().map(|&z| c64(z)).collect::<Vec<_>>();
             residuals = e.residuals().map(<[f64]>::to_vec);
             conditions = Some(kappa);
@@ -384,6 +389,11 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
                 None => classify_matrix(s)?,
             };
             subdominant_full = None;
+            curvature = if s.nrows() <= crate::curvature::STRUCTURED_DENSE_MAX_DIM {
+                crate::curvature::curvature(scheme)?
+            } else {
+                crate::curvature::summarize(scheme, &all, &[], &subdominant)?
+            };
             eigenvalues = all.iter().map(|&z| c64(z)).collect();
             residuals = None;
             conditions = None;
@@ -450,6 +460,7 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
         contraction,
         exact: None,
         fourier_deviation,
+        curvature,
     })
 }
 

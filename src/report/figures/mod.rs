@@ -43,6 +43,8 @@ pub mod ccss_bound;
 pub mod charmap_ring;
 pub mod config_table;
 pub mod convergence;
+pub mod curvature;
+pub mod curvature_tuning;
 pub mod knot_map;
 pub mod mesh_convergence;
 pub mod mesh_picture;
@@ -74,6 +76,8 @@ pub const REGISTRY: &[FigureKind] = &[
     ccss_bound::KIND,
     cc_eigenvalues::KIND,
     cc_c1_interval::KIND,
+    curvature::KIND,
+    curvature_tuning::KIND,
 ];
 
 /// The kind named `name`.

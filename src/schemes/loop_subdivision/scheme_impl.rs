@@ -65,6 +65,14 @@ impl Scheme for LoopScheme {
         Some(fourier::spectrum(self.n))
     }
 
+    fn fourier_spectrum(&self) -> Option<Result<crate::scheme::FourierSpectrum>> {
+        Some(
+            (0..self.n)
+                .map(|l| fourier::block_eigenvalues(self.n, l).map(|e| (l, e)))
+                .collect(),
+        )
+    }
+
     /// The certified ring of [`charmap::check`] when the classification is
     /// standard (Loop's eigenstructure is standard at every valence: the
     /// subdominant pair is the `k = +-1` Fourier eigenvalue); otherwise no

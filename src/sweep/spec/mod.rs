@@ -30,6 +30,7 @@
 //! contraction = true               # asymptotic contraction rate |lambda1|
 //! exact_certificate = false        # exact classification over the rationals (slow)
 //! charmap = false                  # characteristic-map verdict (regular, injective)
+//! curvature = false                # mu, mu / lambda^2 and the curvature verdict (math doc section 13)
 //! ```
 //!
 //! Coordinates of a valence-n configuration, by space kind:
@@ -253,6 +254,11 @@ pub struct Columns {
     pub exact_certificate: bool,
     /// Characteristic-map verdict (regularity, injectivity; math doc section 7).
     pub charmap: bool,
+    /// Curvature at the extraordinary point: `mu`, `mu / lambda^2` and the
+    /// verdict ([`crate::curvature`], math doc section 13). Left out of the
+    /// serialised spec when false, so that existing summaries are unchanged.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub curvature: bool,
 }
 
 impl Default for Columns {
@@ -264,6 +270,7 @@ impl Default for Columns {
             contraction: true,
             exact_certificate: false,
             charmap: false,
+            curvature: false,
         }
     }
 }
