@@ -86,8 +86,7 @@ pub(crate) fn run(args: PlotArgs) -> CliResult {
     check_distinct(&[("-o", &args.out)], &[("input", &args.input)])?;
     let bytes = std::fs::read(&args.input)
         .map_err(|e| CliError::usage(anyhow!("cannot read {in_name}: {e}")))?;
-    let table =
-        Table::from_csv(&bytes).map_err(|e| CliError::usage(anyhow!("{in_name}: {e}")))?;
+    let table = Table::from_csv(&bytes).map_err(|e| CliError::usage(anyhow!("{in_name}: {e}")))?;
     super::budget::check(
         "plot",
         &in_name,

@@ -194,7 +194,10 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
     for p in spec.input_paths() {
         let path = base.join(&p);
         let bytes = std::fs::read(&path).map_err(|e| {
-            CliError::usage(anyhow!("{spec_name}: figure input {p} ({}): {e}", path.display()))
+            CliError::usage(anyhow!(
+                "{spec_name}: figure input {p} ({}): {e}",
+                path.display()
+            ))
         })?;
         inputs.insert(p, bytes);
     }

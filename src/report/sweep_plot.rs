@@ -134,9 +134,7 @@ fn default_value_column(t: &Table, params: &[String]) -> Option<String> {
     }
     t.names()
         .iter()
-        .find(|n| {
-            *n != "id" && *n != "valence" && !params.contains(n) && t.is_numeric(n)
-        })
+        .find(|n| *n != "id" && *n != "valence" && !params.contains(n) && t.is_numeric(n))
         .cloned()
 }
 
@@ -186,9 +184,10 @@ pub fn choose(t: &Table, req: &PlotRequest) -> Result<(PlotKind, PlotRequest), T
         }
         PlotKind::Scatter => {
             if out.x.is_none() {
-                out.x = params.first().cloned().or_else(|| {
-                    t.has("valence").then(|| "valence".to_owned())
-                });
+                out.x = params
+                    .first()
+                    .cloned()
+                    .or_else(|| t.has("valence").then(|| "valence".to_owned()));
             }
             if out.y.is_none() {
                 out.y = value.filter(|v| Some(v) != out.x.as_ref());
@@ -276,9 +275,7 @@ pub struct SweepPlot {
 /// Finite `(x, y)` values of two numeric columns and the row indices kept.
 fn finite_pairs(xs: &[Option<f64>], ys: &[Option<f64>]) -> Vec<usize> {
     (0..xs.len())
-        .filter(|&i| {
-            matches!((xs[i], ys[i]), (Some(a), Some(b)) if a.is_finite() && b.is_finite())
-        })
+        .filter(|&i| matches!((xs[i], ys[i]), (Some(a), Some(b)) if a.is_finite() && b.is_finite()))
         .collect()
 }
 
@@ -297,7 +294,13 @@ fn categories(labels: &[String]) -> Vec<String> {
     cats
 }
 
-fn too_many(name: &str, count: usize, max: usize, kind: PlotKind, hint: &'static str) -> TableError {
+fn too_many(
+    name: &str,
+    count: usize,
+    max: usize,
+    kind: PlotKind,
+    hint: &'static str,
+) -> TableError {
     TableError::TooManyValues {
         name: name.to_owned(),
         count,
@@ -338,13 +341,30 @@ impl SweepPlot {
                 let labels = color_labels.unwrap_or_default();
                 let cats = categories(&labels);
                 if cats.len() > MAX_CATEGORIES {
-                    return Err(too_many(&color, cats.len(), MAX_CATEGORIES, kind, "choose a column of categories, such as class"));
+                    return Err(too_many(
+                        &color,
+                        cats.len(),
+                        MAX_CATEGORIES,
+                        kind,
+                        "choose a column of categories, such as class",
+                    ));
                 }
-                let mut gx: Vec<f64> = xs.iter().flatten().copied().filter(|v| v.is_finite()).collect();
+                let mut gx: Vec<f64> = xs
+                    .iter()
+                    .flatten()
+                    .copied()
+                    .filter(|v| v.is_finite())
+                    .collect();
                 gx.sort_by(f64::total_cmp);
                 gx.dedup();
                 if gx.len() > MAX_GROUPS {
-                    return Err(too_many(&x, gx.len(), MAX_GROUPS, kind, "use --kind histogram with --color for a continuous column"));
+                    return Err(too_many(
+                        &x,
+                        gx.len(),
+                        MAX_GROUPS,
+                        kind,
+                        "use --kind histogram with --color for a continuous column",
+                    ));
                 }
                 let mut counts = vec![vec![0usize; gx.len()]; cats.len()];
                 let mut totals = vec![0usize; gx.len()];
@@ -373,7 +393,13 @@ impl SweepPlot {
                 let cats = categories(&labels);
                 if cats.len() > MAX_CATEGORIES {
                     let c = req.color.clone().unwrap_or_default();
-                    return Err(too_many(&c, cats.len(), MAX_CATEGORIES, kind, "choose a column of categories, such as class"));
+                    return Err(too_many(
+                        &c,
+                        cats.len(),
+                        MAX_CATEGORIES,
+                        kind,
+                        "choose a column of categories, such as class",
+                    ));
                 }
                 let vals: Vec<(f64, usize)> = xs
                     .iter()
@@ -383,7 +409,11 @@ impl SweepPlot {
                 let lo = vals.iter().map(|v| v.0).fold(f64::INFINITY, f64::min);
                 let hi = vals.iter().map(|v| v.0).fold(f64::NEG_INFINITY, f64::max);
                 let bins = ((vals.len() as f64).sqrt().round() as usize).clamp(MIN_BINS, MAX_BINS);
-                let (lo, hi) = if hi > lo { (lo, hi) } else { (lo - 0.5, lo + 0.5) };
+                let (lo, hi) = if hi > lo {
+                    (lo, hi)
+                } else {
+                    (lo - 0.5, lo + 0.5)
+                };
                 let w = (hi - lo) / bins as f64;
                 let edges: Vec<f64> = (0..=bins).map(|k| lo + w * k as f64).collect();
                 let mut counts = vec![vec![0usize; bins]; cats.len()];
@@ -408,7 +438,12 @@ impl SweepPlot {
                 }
                 let colors = match (&req.color, color_labels) {
                     (Some(c), Some(labels)) => {
-                        if t.is_numeric(c) && t.distinct_numbers(c) > MAX_CATEGORIES {
+                        // Numbers are categories only if they are few whole
+                        // numbers (a valence); else a continuous colour scale.
+                        let whole = t
+                            .numeric(c)
+                            .is_ok_and(|v| v.iter().flatten().all(|x| x.fract() == 0.0));
+                        if t.is_numeric(c) && (!whole || t.distinct_numbers(c) > MAX_CATEGORIES) {
                             let v = t.numeric(c)?;
                             let vals: Vec<f64> =
                                 keep.iter().map(|&i| v[i].unwrap_or(f64::NAN)).collect();
@@ -420,10 +455,17 @@ impl SweepPlot {
                             }
                             Colors::Values(vals, (lo, hi))
                         } else {
-                            let kept: Vec<String> = keep.iter().map(|&i| labels[i].clone()).collect();
+                            let kept: Vec<String> =
+                                keep.iter().map(|&i| labels[i].clone()).collect();
                             let cats = categories(&kept);
                             if cats.len() > MAX_CATEGORIES {
-                                return Err(too_many(c, cats.len(), MAX_CATEGORIES, kind, "colour by a numeric column or by categories such as class"));
+                                return Err(too_many(
+                                    c,
+                                    cats.len(),
+                                    MAX_CATEGORIES,
+                                    kind,
+                                    "colour by a numeric column or by categories such as class",
+                                ));
                             }
                             let idx = kept
                                 .iter()
@@ -567,7 +609,10 @@ impl SweepPlot {
         let side_w = (w as f64 * 0.24) as u32;
         let (main, side) = body.split_horizontally(w - side_w);
         let cat_color = |cats: &[String], i: usize| -> RGBColor {
-            if cats.iter().all(|c| super::figures::knot_map::CLASSES.contains(&c.as_str())) {
+            if cats
+                .iter()
+                .all(|c| super::figures::knot_map::CLASSES.contains(&c.as_str()))
+            {
                 class_color(&cats[i])
             } else {
                 series_color(i, cats.len())
@@ -580,11 +625,16 @@ impl SweepPlot {
                 .map(|(i, c)| {
                     let col = cat_color(cats, i);
                     let g = if marker {
-                        LegendGlyph::line((0, 0), &th, col, th.line).marker(Marker::nth(i), th.marker)
+                        LegendGlyph::line((0, 0), &th, col, th.line)
+                            .marker(Marker::nth(i), th.marker)
                     } else {
                         LegendGlyph::line((0, 0), &th, col, 0).boxed()
                     };
-                    let name = if c.is_empty() { "(missing)".to_owned() } else { c.replace('_', " ") };
+                    let name = if c.is_empty() {
+                        "(missing)".to_owned()
+                    } else {
+                        c.replace('_', " ")
+                    };
                     (g, vec![name])
                 })
                 .collect();
@@ -611,8 +661,17 @@ impl SweepPlot {
                 totals,
             } => {
                 let (x0, x1) = pad(xs[0], xs[xs.len() - 1]);
-                let mut chart = builder.build_cartesian_2d(x0..x1, -0.02f64..1.02f64).map_err(draw_err)?;
-                mesh(&mut chart, &self.x, "fraction of configurations", &th)?;
+                let mut chart = builder
+                    .build_cartesian_2d(x0..x1, -0.02f64..1.02f64)
+                    .map_err(draw_err)?;
+                // One tick per discrete value, up to 10.
+                mesh(
+                    &mut chart,
+                    &self.x,
+                    "fraction of configurations",
+                    xs.len().clamp(2, 10),
+                    &th,
+                )?;
                 for (ci, _) in cats.iter().enumerate() {
                     let col = cat_color(cats, ci);
                     let pts: Vec<(f64, f64)> = xs
@@ -624,7 +683,11 @@ impl SweepPlot {
                     chart
                         .draw_series(LineSeries::new(pts.clone(), col.stroke_width(th.line)))
                         .map_err(draw_err)?;
-                    let ms = if pts.len() > 80 { th.marker / 2 } else { th.marker };
+                    let ms = if pts.len() > 80 {
+                        th.marker / 2
+                    } else {
+                        th.marker
+                    };
                     chart
                         .draw_series(pts.iter().map(|p| Marker::nth(ci).at(*p, ms.max(2), col)))
                         .map_err(draw_err)?;
@@ -645,14 +708,21 @@ impl SweepPlot {
                 let mut chart = builder
                     .build_cartesian_2d(edges[0]..edges[bins], 0f64..top * 1.05)
                     .map_err(draw_err)?;
-                mesh(&mut chart, &self.x, "count", &th)?;
+                mesh(&mut chart, &self.x, "count", 6, &th)?;
                 let mut base = vec![0usize; bins];
                 for (ci, c) in counts.iter().enumerate() {
-                    let col = if cats.len() == 1 { viridis(0.3) } else { cat_color(cats, ci) };
+                    let col = if cats.len() == 1 {
+                        viridis(0.3)
+                    } else {
+                        cat_color(cats, ci)
+                    };
                     chart
                         .draw_series((0..bins).filter(|b| c[*b] > 0).map(|b| {
                             Rectangle::new(
-                                [(edges[b], base[b] as f64), (edges[b + 1], (base[b] + c[b]) as f64)],
+                                [
+                                    (edges[b], base[b] as f64),
+                                    (edges[b + 1], (base[b] + c[b]) as f64),
+                                ],
                                 col.filled(),
                             )
                         }))
@@ -685,15 +755,21 @@ impl SweepPlot {
                     (x0, x1) = pad(x0, x1);
                     (y0, y1) = pad(y0, y1);
                 }
-                let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(draw_err)?;
-                mesh(&mut chart, &self.x, self.y.as_deref().unwrap_or(""), &th)?;
+                let mut chart = builder
+                    .build_cartesian_2d(x0..x1, y0..y1)
+                    .map_err(draw_err)?;
+                mesh(&mut chart, &self.x, self.y.as_deref().unwrap_or(""), 8, &th)?;
                 let color_of = |i: usize| -> RGBColor {
                     match colors {
                         Colors::None => viridis(0.1),
                         Colors::Categories(idx, cats) => cat_color(cats, idx[i]),
                         Colors::Values(v, (lo, hi)) => {
                             if v[i].is_finite() {
-                                viridis(if hi > lo { (v[i] - lo) / (hi - lo) } else { 0.5 })
+                                viridis(if hi > lo {
+                                    (v[i] - lo) / (hi - lo)
+                                } else {
+                                    0.5
+                                })
                             } else {
                                 RGBColor(215, 215, 215)
                             }
@@ -706,7 +782,10 @@ impl SweepPlot {
                         chart
                             .draw_series((0..xs.len()).map(|i| {
                                 Rectangle::new(
-                                    [(xs[i] - dx / 2.0, ys[i] - dy / 2.0), (xs[i] + dx / 2.0, ys[i] + dy / 2.0)],
+                                    [
+                                        (xs[i] - dx / 2.0, ys[i] - dy / 2.0),
+                                        (xs[i] + dx / 2.0, ys[i] + dy / 2.0),
+                                    ],
                                     color_of(i).filled(),
                                 )
                             }))
@@ -717,9 +796,16 @@ impl SweepPlot {
                             Colors::Categories(idx, _) if !dense => Marker::nth(idx[i]),
                             _ => Marker::Circle,
                         };
-                        let ms = if dense { (th.marker / 3).max(1) } else { th.marker };
+                        let ms = if dense {
+                            (th.marker / 3).max(1)
+                        } else {
+                            th.marker
+                        };
                         chart
-                            .draw_series((0..xs.len()).map(|i| marker(i).at((xs[i], ys[i]), ms, color_of(i))))
+                            .draw_series(
+                                (0..xs.len())
+                                    .map(|i| marker(i).at((xs[i], ys[i]), ms, color_of(i))),
+                            )
                             .map_err(draw_err)?;
                     }
                 }
@@ -742,13 +828,19 @@ impl SweepPlot {
 
 /// Axes, tick labels (no negative zero) and axis descriptions.
 fn mesh<'a, DB: DrawingBackend + 'a>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>>,
+    chart: &mut ChartContext<
+        'a,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
     x: &str,
     y: &str,
+    x_labels: usize,
     th: &Theme,
 ) -> Result<(), ReportError> {
     chart
         .configure_mesh()
+        .x_labels(x_labels)
         .x_desc(x)
         .y_desc(y)
         .label_style(th.font(th.tick))
@@ -782,14 +874,23 @@ mod tests {
     #[test]
     fn defaults_follow_the_data() {
         let multi = t("id,valence,r0,class,x\n0,3,0.1,standard,1\n1,4,0.1,defective,2\n");
-        assert_eq!(choose(&multi, &PlotRequest::default()).unwrap().0, PlotKind::Fractions);
+        assert_eq!(
+            choose(&multi, &PlotRequest::default()).unwrap().0,
+            PlotKind::Fractions
+        );
         let slice = t("id,valence,r0,r1,r2,class,contraction_rate\n0,3,0.1,0.1,0.5,a,1\n1,3,0.2,0.1,0.5,b,2\n2,3,0.1,0.2,0.5,a,3\n");
         let (k, r) = choose(&slice, &PlotRequest::default()).unwrap();
         assert_eq!(k, PlotKind::Map);
-        assert_eq!((r.x.as_deref(), r.y.as_deref(), r.color.as_deref()), (Some("r0"), Some("r1"), Some("class")));
+        assert_eq!(
+            (r.x.as_deref(), r.y.as_deref(), r.color.as_deref()),
+            (Some("r0"), Some("r1"), Some("class"))
+        );
         let line = t("id,valence,c,class,contraction_rate\n0,3,0.1,a,1\n1,3,0.2,b,2\n");
         let (k, r) = choose(&line, &PlotRequest::default()).unwrap();
-        assert_eq!((k, r.y.as_deref()), (PlotKind::Scatter, Some("contraction_rate")));
+        assert_eq!(
+            (k, r.y.as_deref()),
+            (PlotKind::Scatter, Some("contraction_rate"))
+        );
     }
 
     #[test]
@@ -798,10 +899,17 @@ mod tests {
         let p = SweepPlot::build(&tab, &PlotRequest::default()).unwrap();
         let d = p.data();
         for v in ["3", "5"] {
-            let s: f64 = d.rows.iter().filter(|r| r[0] == v).map(|r| r[3].parse::<f64>().unwrap()).sum();
+            let s: f64 = d
+                .rows
+                .iter()
+                .filter(|r| r[0] == v)
+                .map(|r| r[3].parse::<f64>().unwrap())
+                .sum();
             assert!((s - 1.0).abs() < 1e-12, "{v}: {s}");
         }
-        assert!(d.rows.contains(&vec!["3".into(), "b".into(), "2".into(), num(2.0 / 3.0)]));
+        assert!(d
+            .rows
+            .contains(&vec!["3".into(), "b".into(), "2".into(), num(2.0 / 3.0)]));
     }
 
     #[test]
@@ -811,16 +919,34 @@ mod tests {
             s.push_str(&format!("{}\n", (i as f64 * 0.37).sin()));
         }
         s.push_str("NaN\n\n");
-        let p = SweepPlot::build(&t(&s), &PlotRequest { kind: Some(PlotKind::Histogram), ..Default::default() }).unwrap();
-        let total: usize = p.data().rows.iter().map(|r| r[3].parse::<usize>().unwrap()).sum();
+        let p = SweepPlot::build(
+            &t(&s),
+            &PlotRequest {
+                kind: Some(PlotKind::Histogram),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let total: usize = p
+            .data()
+            .rows
+            .iter()
+            .map(|r| r[3].parse::<usize>().unwrap())
+            .sum();
         assert_eq!(total, 200);
     }
 
     #[test]
     fn bad_columns_are_named() {
         let tab = t("valence,class,v\n3,a,x\n4,b,1\n");
-        let req = |x: &str| PlotRequest { kind: Some(PlotKind::Histogram), x: Some(x.into()), ..Default::default() };
-        let e = SweepPlot::build(&tab, &req("nope")).unwrap_err().to_string();
+        let req = |x: &str| PlotRequest {
+            kind: Some(PlotKind::Histogram),
+            x: Some(x.into()),
+            ..Default::default()
+        };
+        let e = SweepPlot::build(&tab, &req("nope"))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("\"nope\""), "{e}");
         let e = SweepPlot::build(&tab, &req("v")).unwrap_err().to_string();
         assert!(e.contains("\"v\"") && e.contains("not numeric"), "{e}");

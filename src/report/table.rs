@@ -291,7 +291,10 @@ mod tests {
         assert!(e.contains("\"a\" appears twice"), "{e}");
         let t = Table::from_csv(b"a,b\n1,x\n2,3\n").unwrap();
         let e = t.numeric("b").unwrap_err().to_string();
-        assert!(e.contains("\"b\"") && e.contains("row 1") && e.contains("\"x\""), "{e}");
+        assert!(
+            e.contains("\"b\"") && e.contains("row 1") && e.contains("\"x\""),
+            "{e}"
+        );
         let e = t.column("zz").unwrap_err().to_string();
         assert!(e.contains("\"zz\"") && e.contains("a, b"), "{e}");
     }

@@ -197,8 +197,7 @@ impl FigureOutput for Output {
             ),
             (
                 LegendGlyph::line((0, 0), &th, mid, lw).marker(Marker::Diamond, ms),
-                "standard-eigenstructure interval: lower end (bracket down to c = 0)"
-                    .to_owned(),
+                "standard-eigenstructure interval: lower end (bracket down to c = 0)".to_owned(),
             ),
         ];
         if !c1_hi.is_empty() {

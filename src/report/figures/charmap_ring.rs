@@ -241,11 +241,7 @@ impl Output {
                 }
             }
         }
-        let place = [
-            "at (E_i, P_i)",
-            "at (E_i, P_i+1)",
-            "at (V_i, P_i)",
-        ];
+        let place = ["at (E_i, P_i)", "at (E_i, P_i+1)", "at (V_i, P_i)"];
         let mut out: Vec<(LegendGlyph, String)> = names
             .iter()
             .enumerate()
@@ -269,7 +265,8 @@ impl Output {
             "Jacobian > 0 at a sample".to_owned(),
         ));
         out.push((
-            LegendGlyph::line((0, 0), th, RGBColor(220, 30, 30), 0).marker(Marker::Cross, th.marker),
+            LegendGlyph::line((0, 0), th, RGBColor(220, 30, 30), 0)
+                .marker(Marker::Cross, th.marker),
             "Jacobian ≤ 0 at a sample".to_owned(),
         ));
         out.push((
@@ -310,7 +307,10 @@ fn draw_panel(area: &Area<'_>, p: &Panel, th: &Theme) -> Result<(), ReportError>
     let (w, h) = area.dim_in_pixel();
     // Equal aspect from the exact plot-area size (no axes: only the margin).
     let (xr, yr) = equal_aspect(
-        (w.saturating_sub(2 * m).max(1), h.saturating_sub(2 * m).max(1)),
+        (
+            w.saturating_sub(2 * m).max(1),
+            h.saturating_sub(2 * m).max(1),
+        ),
         (-r, r),
         (-r, r),
     );
@@ -344,15 +344,21 @@ fn draw_panel(area: &Area<'_>, p: &Panel, th: &Theme) -> Result<(), ReportError>
                     .map_err(draw_err)?;
             } else {
                 chart
-                    .draw_series(std::iter::once(
-                        Marker::Cross.at((q[0], q[1]), th.marker, RGBColor(220, 30, 30)),
-                    ))
+                    .draw_series(std::iter::once(Marker::Cross.at(
+                        (q[0], q[1]),
+                        th.marker,
+                        RGBColor(220, 30, 30),
+                    )))
                     .map_err(draw_err)?;
             }
         }
     }
     chart
-        .draw_series(std::iter::once(Marker::Plus.at((0.0, 0.0), th.marker, BLACK)))
+        .draw_series(std::iter::once(Marker::Plus.at(
+            (0.0, 0.0),
+            th.marker,
+            BLACK,
+        )))
         .map_err(draw_err)?;
     Ok(())
 }

@@ -323,7 +323,6 @@ impl Output {
             })
             .collect()
     }
-
 }
 
 fn fixed_text(fixed: &[f64]) -> String {
@@ -404,19 +403,33 @@ impl FigureOutput for Output {
         let areas = maps.split_evenly((1, k));
         let g = self.grid as f64;
         for ((fixed, cells), pa) in self.panels.iter().zip(areas.iter()) {
+            // Square plot area (equal aspect on the unit square): centre the
+            // panel with an estimated caption height, draw the caption, then
+            // pad the longer side so that the plot area is exactly square.
             let (pw, ph) = pa.dim_in_pixel();
-            // Square plot area: pad vertically.
             let xl = th.label * 3;
             let yl = th.label * 3;
-            let plot_w = pw.saturating_sub(yl + th.tick);
-            let plot_h = ph.saturating_sub(xl + th.label * 2);
-            let pad = plot_h.saturating_sub(plot_w) / 2;
-            let mut chart = ChartBuilder::on(pa)
-                .caption(fixed_text(fixed), th.font(th.label))
-                .margin_left(th.tick as i32 / 2)
-                .margin_right(th.tick as i32)
-                .margin_top(pad as i32)
-                .margin_bottom(pad as i32)
+            let (ml, mr) = (th.tick / 2, th.tick);
+            let cap = th.label * 2;
+            let est = pw
+                .saturating_sub(yl + ml + mr)
+                .min(ph.saturating_sub(xl + cap));
+            let pad0 = ph.saturating_sub(xl + cap + est) / 2;
+            let pa = pa.margin(pad0, pad0, 0, 0);
+            let pa = pa
+                .titled(&fixed_text(fixed), th.font(th.label))
+                .map_err(draw_err)?;
+            let (pw, ph) = pa.dim_in_pixel();
+            let avail_w = pw.saturating_sub(yl + ml + mr);
+            let avail_h = ph.saturating_sub(xl);
+            let plot_w = avail_w.min(avail_h).max(1);
+            let pad_h = avail_w.saturating_sub(plot_w) / 2;
+            let pad_v = avail_h.saturating_sub(plot_w);
+            let mut chart = ChartBuilder::on(&pa)
+                .margin_left((ml + pad_h) as i32)
+                .margin_right((mr + avail_w.saturating_sub(plot_w + pad_h)) as i32)
+                .margin_top((pad_v / 2) as i32)
+                .margin_bottom((pad_v - pad_v / 2) as i32)
                 .x_label_area_size(xl)
                 .y_label_area_size(yl)
                 .build_cartesian_2d(0.0..1.0, 0.0..1.0)
@@ -498,8 +511,12 @@ impl FigureOutput for Output {
                     if rare.contains(&name) {
                         side.draw(&rare_marker(&name).at((x + s, y + s), s * 2 / 3 + 2, WHITE))
                             .map_err(draw_err)?;
-                        side.draw(&rare_marker(&name).at((x + s, y + s), s * 2 / 3, class_color(&name)))
-                            .map_err(draw_err)?;
+                        side.draw(&rare_marker(&name).at(
+                            (x + s, y + s),
+                            s * 2 / 3,
+                            class_color(&name),
+                        ))
+                        .map_err(draw_err)?;
                     }
                     side.draw(&Text::new(text, (x + s * 3, y + s / 3), th.font(th.legend)))
                         .map_err(draw_err)?;

@@ -219,7 +219,10 @@ fn draw_spectra(
     let entries = legend_entries(&th);
     let legend_h = legend_rows_height(&body, bw, &entries, &th) + th.legend;
     let (panels_area, legend_area) = body.split_vertically(bh.saturating_sub(legend_h));
-    for ((label, a), pa) in panels.iter().zip(panels_area.split_evenly((rows, cols)).iter()) {
+    for ((label, a), pa) in panels
+        .iter()
+        .zip(panels_area.split_evenly((rows, cols)).iter())
+    {
         draw_panel(pa, label, a, &pt)?;
     }
     legend_rows(&legend_area.margin(th.legend / 2, 0, 0, 0), &entries, &th)?;
@@ -267,9 +270,7 @@ fn draw_panel(
 ) -> Result<(), ReportError> {
     // Two caption lines: the configuration, then its class and |λ₁|.
     let area = area.margin(th.tick / 2, 0, 0, 0);
-    let area = area
-        .titled(label, th.font(th.label))
-        .map_err(draw_err)?;
+    let area = area.titled(label, th.font(th.label)).map_err(draw_err)?;
     let info = format!(
         "{}, |λ₁| = {}",
         a.subdominant.class.name().replace('_', " "),

@@ -61,7 +61,10 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
         return Err(fs.error_at(
             &p.path,
             "path",
-            format!("{}: Parquet input is not yet supported; give the sweep's CSV", p.path.get_ref()),
+            format!(
+                "{}: Parquet input is not yet supported; give the sweep's CSV",
+                p.path.get_ref()
+            ),
         ));
     }
     let kind = match &p.plot {
@@ -117,7 +120,9 @@ impl Figure for Sweep {
     }
 
     fn compute(&self, ctx: &Context<'_>) -> Result<Box<dyn FigureOutput>, ReportError> {
-        let plot = self.build(ctx.inputs).map_err(|e| e.in_figure(&ctx.common.id))?;
+        let plot = self
+            .build(ctx.inputs)
+            .map_err(|e| e.in_figure(&ctx.common.id))?;
         ctx.tick(1);
         Ok(Box::new(Output { plot }))
     }
