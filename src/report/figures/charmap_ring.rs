@@ -319,7 +319,7 @@ fn draw_panel(area: &Area<'_>, p: &Panel, th: &Theme) -> Result<(), ReportError>
         .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
         .map_err(draw_err)?;
     for pp in plot.patches.iter().rev() {
-        let fill = patch_color(pp.patch.slot(), pp.level as usize);
+        let fill = patch_color(pp.patch.slot(), pp.level);
         let pts: Vec<(f64, f64)> = pp.outline.iter().map(|q| (q[0], q[1])).collect();
         chart
             .draw_series(std::iter::once(Polygon::new(pts.clone(), fill.filled())))
