@@ -179,7 +179,8 @@ pub fn choose(t: &Table, req: &PlotRequest) -> Result<(PlotKind, PlotRequest), T
         }
         PlotKind::Histogram => {
             if out.x.is_none() {
-                out.x = value;
+                // A result column, else any numeric column.
+                out.x = value.or_else(|| parameter_columns(t).into_iter().next());
             }
         }
         PlotKind::Scatter => {
