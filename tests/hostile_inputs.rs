@@ -1132,6 +1132,167 @@ fn cases() -> Vec<Case> {
     //
 
     // ===================================================================
+    // SECTION figures: `plot` (sweep CSV -> figure), `report --formats`,
+    // the keys of the report figure kind `sweep` (issue 21).
+    // ===================================================================
+    v.extend([
+        bad_with(
+            "plot-missing-column",
+            &["plot", "s.csv", "-o", "f.svg", "--x", "nope"],
+            &[("s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "no column \"nope\"",
+        ),
+        bad_with(
+            "plot-non-numeric-axis",
+            &["plot", "s.csv", "-o", "f.svg", "--kind", "scatter", "--x", "r0", "--y", "class"],
+            &[("s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "column \"class\" is not numeric",
+        ),
+        bad_with(
+            "plot-non-numeric-histogram",
+            &["plot", "s.csv", "-o", "f.png", "--kind", "histogram", "--x", "class"],
+            &[("s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "column \"class\" is not numeric",
+        ),
+        bad_with(
+            "plot-missing-color-column",
+            &["plot", "s.csv", "-o", "f.svg", "--color", "colour"],
+            &[("s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "no column \"colour\"",
+        ),
+        bad_with(
+            "plot-empty-file",
+            &["plot", "e.csv", "-o", "f.svg"],
+            &[("e.csv", "")],
+            "e.csv: the file is empty",
+        ),
+        bad_with(
+            "plot-comment-only-file",
+            &["plot", "e.csv", "-o", "f.svg"],
+            &[("e.csv", "# subdiv-lab sweep: nothing\n")],
+            "the file is empty",
+        ),
+        bad_with(
+            "plot-header-only",
+            &["plot", "h.csv", "-o", "f.svg"],
+            &[("h.csv", "id,valence,class\n")],
+            "no data rows",
+        ),
+        bad_with(
+            "plot-ragged-row",
+            &["plot", "r.csv", "-o", "f.svg"],
+            &[("r.csv", "valence,class\n3,standard\n4\n")],
+            "line 3",
+        ),
+        bad_with(
+            "plot-no-numeric-column",
+            &["plot", "t.csv", "-o", "f.svg"],
+            &[("t.csv", "name\nx\ny\n")],
+            "no numeric column",
+        ),
+        bad_with(
+            "plot-unknown-kind",
+            &["plot", "s.csv", "-o", "f.svg", "--kind", "pie"],
+            &[("s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "\"pie\"",
+        ),
+        bad_with(
+            "plot-bad-output-extension",
+            &["plot", "s.csv", "-o", "f.pdf"],
+            &[("s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "f.pdf",
+        ),
+        bad_with(
+            "plot-output-directory-missing",
+            &["plot", "s.csv", "-o", "nodir/f.svg"],
+            &[("s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "nodir",
+        ),
+        bad_with(
+            "plot-output-is-the-input",
+            &["plot", "s.svg", "-o", "s.svg"],
+            &[("s.svg", "valence,class\n3,standard\n")],
+            "s.svg",
+        ),
+        bad_with(
+            "plot-width-too-small",
+            &["plot", "s.csv", "-o", "f.svg", "--width", "10"],
+            &[("s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "--width",
+        ),
+        bad_with(
+            "plot-parquet-not-yet",
+            &["plot", "s.parquet", "-o", "f.svg"],
+            &[("s.parquet", "PAR1")],
+            "Parquet input is not yet supported",
+        ),
+        bad_with(
+            "report-sweep-missing-file",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\npath = \"nope.csv\"\n")],
+            "nope.csv",
+        ),
+        bad_with(
+            "report-sweep-missing-column",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\npath = \"s.csv\"\nx = \"nope\"\n"), ("d/s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "no column \"nope\"",
+        ),
+        bad_with(
+            "report-sweep-non-numeric-axis",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\npath = \"s.csv\"\nplot = \"scatter\"\nx = \"r0\"\ny = \"class\"\n"), ("d/s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "column \"class\" is not numeric",
+        ),
+        bad_with(
+            "report-sweep-empty-csv",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\npath = \"s.csv\"\n"), ("d/s.csv", "")],
+            "the file is empty",
+        ),
+        bad_with(
+            "report-sweep-unknown-plot",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\npath = \"s.csv\"\nplot = \"pie\"\n"), ("d/s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "unknown plot \"pie\"",
+        ),
+        bad_with(
+            "report-sweep-parquet",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\npath = \"s.parquet\"\n")],
+            "Parquet input is not yet supported",
+        ),
+        bad_with(
+            "report-sweep-empty-path",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\npath = \"\"\n")],
+            "path is empty",
+        ),
+        bad_with(
+            "report-sweep-missing-path",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\n")],
+            "figure[0].path",
+        ),
+        bad_with(
+            "report-sweep-unknown-key",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\npath = \"s.csv\"\ncolour = \"class\"\n"), ("d/s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "colour",
+        ),
+        bad_with(
+            "report-sweep-x-not-a-string",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\npath = \"s.csv\"\nx = 3\n"), ("d/s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
+            "figure[0].x",
+        ),
+        bad("plot-missing-input", &["plot", "none.csv", "-o", "f.svg"], "none.csv"),
+        bad("report-formats-unknown", &["report", "--formats", "svg,pdf", "--out", "r"], "svg,pdf"),
+        bad("report-formats-empty", &["report", "--formats", "", "--out", "r"], "formats"),
+    ]);
+    // (end of section figures)
+
+    // ===================================================================
     // SECTION mesh: subdivide, OBJ input, knot files.
     // ===================================================================
     v.extend([bad_with(

@@ -8,6 +8,7 @@ mod cc_study;
 mod ccss_bound;
 mod matrix;
 mod outfiles;
+mod plot;
 mod report;
 mod scheme_args;
 mod subdivide;
@@ -51,6 +52,8 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Merge shard CSVs of one sweep, checking no configuration is missing or duplicated.
     Merge(sweep::MergeArgs),
+    /// Plot a sweep's results (class fractions, histogram, scatter or 2-D class map).
+    Plot(plot::PlotArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -84,7 +87,7 @@ impl CliError {
     pub(crate) fn report(e: subdiv_lab::report::ReportError) -> Self {
         use subdiv_lab::report::ReportError as R;
         let input = match &e {
-            R::Spec { .. } => true,
+            R::Spec { .. } | R::Input { .. } => true,
             R::Analysis { source, .. } => is_input_error(source),
             _ => false,
         };
@@ -207,6 +210,7 @@ pub fn main() -> ExitCode {
         Command::Analyze(args) => analyze::run(args),
         Command::Sweep(args) => sweep::run_sweep(args),
         Command::Merge(args) => sweep::run_merge(args),
+        Command::Plot(args) => plot::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -27,7 +27,9 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use subdiv_lab::report::figures::{NoProgress, Progress};
-use subdiv_lab::report::{generate, total_work, OutputFile, ReportSpec, RunInfo};
+use subdiv_lab::report::{
+    generate_with, total_work, Formats, Inputs, Options, OutputFile, ReportSpec, RunInfo,
+};
 
 /// Where the built-in default spec comes from (shown in the manifest).
 const DEFAULT_SPEC_PATH: &str = "analysis/default.toml";
@@ -54,6 +56,10 @@ pub(crate) struct ReportArgs {
     /// No progress bar and no summary line.
     #[arg(long)]
     quiet: bool,
+    /// Picture formats of the figures: a comma-separated list of svg and png
+    /// (CSV data, index.html and manifest.json are always written).
+    #[arg(long, default_value = "svg,png")]
+    formats: Formats,
 }
 
 struct Bar(ProgressBar);
@@ -176,6 +182,29 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
         .unwrap_or_else(|| Path::new(DEFAULT_ROOT).join(&spec.name));
     // Refuse a bad --out before the (long) generation.
     let target = check_target(&out)?;
+    // Input files of the figures (sweep CSVs): relative paths are read from
+    // the spec's directory. The library checks their columns before any
+    // figure is computed.
+    let base = args
+        .spec
+        .as_deref()
+        .map(super::outfiles::parent_dir)
+        .unwrap_or_else(|| PathBuf::from("."));
+    let mut inputs = Inputs::default();
+    for p in spec.input_paths() {
+        let path = base.join(&p);
+        let bytes = std::fs::read(&path).map_err(|e| {
+            CliError::usage(anyhow!(
+                "{spec_name}: figure input {p} ({}): {e}",
+                path.display()
+            ))
+        })?;
+        inputs.insert(p, bytes);
+    }
+    let options = Options {
+        formats: args.formats,
+        inputs,
+    };
     let run = RunInfo {
         version: Some(env!("CARGO_PKG_VERSION").to_owned()),
         git_revision: (GIT_REVISION != "unknown").then(|| GIT_REVISION.to_owned()),
@@ -193,11 +222,11 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
         );
         bar.set_message(spec.name.clone());
         bar.enable_steady_tick(std::time::Duration::from_millis(200));
-        let r = generate(&spec, &run, &Bar(bar.clone()));
+        let r = generate_with(&spec, &run, &Bar(bar.clone()), &options);
         bar.finish_and_clear();
         r
     } else {
-        generate(&spec, &run, &NoProgress)
+        generate_with(&spec, &run, &NoProgress, &options)
     }
     .map_err(|e| CliError::report(e).context(spec_name.clone()))?;
     match target {

@@ -34,6 +34,17 @@ pub enum ReportError {
         /// What went wrong.
         message: String,
     },
+    /// An input file of a figure (e.g. the CSV of a `sweep` figure) is missing
+    /// or unusable; `message` names the offending column or value.
+    #[error("figure {figure:?}: {path}: {message}")]
+    Input {
+        /// Figure id (empty if unknown).
+        figure: String,
+        /// The path as written in the spec.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
     /// The bundled font could not be loaded.
     #[error("the bundled font could not be registered")]
     Font,
@@ -59,6 +70,15 @@ impl ReportError {
         match self {
             ReportError::Render { figure, message } if figure.is_empty() => ReportError::Render {
                 figure: id.to_owned(),
+                message,
+            },
+            ReportError::Input {
+                figure,
+                path,
+                message,
+            } if figure.is_empty() => ReportError::Input {
+                figure: id.to_owned(),
+                path,
                 message,
             },
             other => other,

@@ -80,16 +80,24 @@ pub fn index(spec: &ReportSpec, manifest: &Manifest, fragments: &[Option<String>
     h.push_str("</ol>\n");
     for (f, frag) in manifest.figures.iter().zip(fragments) {
         let _ = writeln!(h, "<h2 id=\"{}\">{}</h2>", escape(&f.id), escape(&f.title));
-        if let (Some(png), Some(svg)) = (&f.png, &f.svg) {
-            let _ = writeln!(
-                h,
-                "<figure><a href=\"{svg}\"><img src=\"{png}\" width=\"{}\" height=\"{}\" alt=\"{}\"></a>",
+        // The image shown is the PNG (or the SVG if no PNG was written); it
+        // links to the SVG when there is one.
+        if let Some(img) = f.png.as_ref().or(f.svg.as_ref()) {
+            let tag = format!(
+                "<img src=\"{}\" width=\"{}\" height=\"{}\" alt=\"{}\">",
+                escape(img),
                 f.size.0,
                 f.size.1,
                 escape(&f.title),
-                svg = escape(svg),
-                png = escape(png),
             );
+            match &f.svg {
+                Some(svg) => {
+                    let _ = writeln!(h, "<figure><a href=\"{}\">{tag}</a>", escape(svg));
+                }
+                None => {
+                    let _ = writeln!(h, "<figure>{tag}");
+                }
+            }
             if let Some(c) = &f.caption {
                 let _ = writeln!(h, "<figcaption>{}</figcaption>", escape(c));
             }

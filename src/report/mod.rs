@@ -44,6 +44,8 @@ pub(crate) mod font;
 pub(crate) mod html;
 pub(crate) mod plot;
 pub mod spec;
+pub mod sweep_plot;
+pub mod table;
 
 pub use error::{Location, ReportError};
 pub use spec::{Common, ReportSpec};
@@ -151,67 +153,212 @@ pub fn total_work(spec: &ReportSpec) -> u64 {
         .sum()
 }
 
-/// Computes and renders every figure of `spec`.
+/// Which picture formats a report writes for each figure (CSV data, index.html
+/// and manifest.json are always written).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Formats {
+    /// Write `<id>.svg`.
+    pub svg: bool,
+    /// Write `<id>.png`.
+    pub png: bool,
+}
+
+impl Default for Formats {
+    fn default() -> Self {
+        Formats::ALL
+    }
+}
+
+/// An unknown or empty `--formats` list.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("formats {0:?}: give a comma-separated list of svg and png (e.g. svg,png)")]
+pub struct FormatsError(pub String);
+
+impl Formats {
+    /// Both SVG and PNG (the default).
+    pub const ALL: Formats = Formats {
+        svg: true,
+        png: true,
+    };
+}
+
+impl std::str::FromStr for Formats {
+    type Err = FormatsError;
+
+    /// Parses a comma-separated list of `svg` and `png`.
+    ///
+    /// ```
+    /// use subdiv_lab::report::Formats;
+    /// assert_eq!("png".parse::<Formats>().unwrap(), Formats { svg: false, png: true });
+    /// assert_eq!("svg, png".parse::<Formats>().unwrap(), Formats::ALL);
+    /// assert!("pdf".parse::<Formats>().is_err() && "".parse::<Formats>().is_err());
+    /// ```
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let mut f = Formats {
+            svg: false,
+            png: false,
+        };
+        for part in s.split(',').map(str::trim) {
+            match part {
+                "svg" => f.svg = true,
+                "png" => f.png = true,
+                _ => return Err(FormatsError(s.to_owned())),
+            }
+        }
+        Ok(f)
+    }
+}
+
+/// Files that figures of a spec read (e.g. the CSV of a `sweep` figure), by
+/// the path as written in the spec. The library never opens files: the
+/// caller reads every path of [`ReportSpec::input_paths`] and passes the
+/// bytes here.
+#[derive(Clone, Debug, Default)]
+pub struct Inputs {
+    files: std::collections::BTreeMap<String, Vec<u8>>,
+}
+
+impl Inputs {
+    /// Adds the contents of `path`.
+    pub fn insert(&mut self, path: impl Into<String>, bytes: Vec<u8>) {
+        self.files.insert(path.into(), bytes);
+    }
+
+    /// The contents of `path`, if given.
+    pub fn get(&self, path: &str) -> Option<&[u8]> {
+        self.files.get(path).map(Vec::as_slice)
+    }
+}
+
+/// How a report is generated beyond its spec.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// Picture formats.
+    pub formats: Formats,
+    /// Input files of the figures.
+    pub inputs: Inputs,
+}
+
+/// Computes and renders every figure of `spec` (SVG and PNG; a spec that
+/// reads input files needs [`generate_with`]).
 pub fn generate(
     spec: &ReportSpec,
     run: &RunInfo,
     progress: &dyn Progress,
 ) -> Result<RenderedReport, ReportError> {
+    generate_with(spec, run, progress, &Options::default())
+}
+
+/// One figure's part of the report.
+struct Part {
+    record: FigureRecord,
+    files: Vec<OutputFile>,
+    fragment: Option<String>,
+}
+
+/// Computes and renders one figure.
+fn figure_part(
+    entry: &spec::FigureEntry,
+    progress: &dyn Progress,
+    options: &Options,
+) -> Result<Part, ReportError> {
+    let common = &entry.common;
+    let t0 = Instant::now();
+    let ctx = Context {
+        common,
+        progress,
+        inputs: &options.inputs,
+    };
+    let out = entry.figure.compute(&ctx)?;
+    let compute_seconds = t0.elapsed().as_secs_f64();
+    let t1 = Instant::now();
+    let mut record = FigureRecord {
+        id: common.id.clone(),
+        kind: common.kind,
+        title: common.title.clone(),
+        caption: common.caption.clone(),
+        seed: common.seed,
+        size: common.size,
+        svg: None,
+        png: None,
+        csv: Vec::new(),
+        compute_seconds,
+        render_seconds: 0.0,
+    };
+    let mut files = Vec::new();
+    for table in out.tables() {
+        let name = table.file_name(&common.id);
+        let bytes = table.to_csv().map_err(|e| e.in_figure(&common.id))?;
+        record.csv.push(name.clone());
+        files.push(OutputFile { path: name, bytes });
+    }
+    if out.has_plot() {
+        let draw = |area: &backend::Area<'_>| out.draw(area, common);
+        let f = options.formats;
+        let (svg, png) = rayon::join(
+            || f.svg.then(|| backend::render_svg(common.size, &draw)),
+            || f.png.then(|| backend::render_png(common.size, &draw)),
+        );
+        if let Some(svg) = svg {
+            let svg = svg.map_err(|e| e.in_figure(&common.id))?;
+            let name = format!("{}.svg", common.id);
+            files.push(OutputFile {
+                path: name.clone(),
+                bytes: svg.into_bytes(),
+            });
+            record.svg = Some(name);
+        }
+        if let Some(png) = png {
+            let png = png.map_err(|e| e.in_figure(&common.id))?;
+            let name = format!("{}.png", common.id);
+            files.push(OutputFile {
+                path: name.clone(),
+                bytes: png,
+            });
+            record.png = Some(name);
+        }
+    }
+    progress.inc(RENDER_WORK);
+    record.render_seconds = t1.elapsed().as_secs_f64();
+    Ok(Part {
+        record,
+        files,
+        fragment: out.html(),
+    })
+}
+
+/// Computes and renders every figure of `spec` in the given formats, with the
+/// given input files. Every figure's inputs are checked first (so a bad input
+/// fails before any long computation); the figures are then computed and
+/// rendered in parallel (their results do not depend on the order), and the
+/// files are listed in spec order.
+pub fn generate_with(
+    spec: &ReportSpec,
+    run: &RunInfo,
+    progress: &dyn Progress,
+    options: &Options,
+) -> Result<RenderedReport, ReportError> {
+    use rayon::prelude::*;
     let start = Instant::now();
+    for entry in &spec.figures {
+        entry
+            .figure
+            .check_inputs(&options.inputs)
+            .map_err(|e| e.in_figure(&entry.common.id))?;
+    }
+    let parts = spec
+        .figures
+        .par_iter()
+        .map(|entry| figure_part(entry, progress, options))
+        .collect::<Vec<_>>();
     let mut files = Vec::new();
     let mut records = Vec::new();
     let mut fragments = Vec::new();
-    for entry in &spec.figures {
-        let common = &entry.common;
-        let t0 = Instant::now();
-        let ctx = Context { common, progress };
-        let out = entry.figure.compute(&ctx)?;
-        let compute_seconds = t0.elapsed().as_secs_f64();
-        let t1 = Instant::now();
-        let mut record = FigureRecord {
-            id: common.id.clone(),
-            kind: common.kind,
-            title: common.title.clone(),
-            caption: common.caption.clone(),
-            seed: common.seed,
-            size: common.size,
-            svg: None,
-            png: None,
-            csv: Vec::new(),
-            compute_seconds,
-            render_seconds: 0.0,
-        };
-        for table in out.tables() {
-            let name = table.file_name(&common.id);
-            let bytes = table.to_csv().map_err(|e| e.in_figure(&common.id))?;
-            record.csv.push(name.clone());
-            files.push(OutputFile { path: name, bytes });
-        }
-        if out.has_plot() {
-            let draw = |area: &backend::Area<'_>| out.draw(area, common);
-            let (svg, png) = rayon::join(
-                || backend::render_svg(common.size, &draw),
-                || backend::render_png(common.size, &draw),
-            );
-            let svg = svg.map_err(|e| e.in_figure(&common.id))?;
-            let png = png.map_err(|e| e.in_figure(&common.id))?;
-            let svg_name = format!("{}.svg", common.id);
-            let png_name = format!("{}.png", common.id);
-            files.push(OutputFile {
-                path: svg_name.clone(),
-                bytes: svg.into_bytes(),
-            });
-            files.push(OutputFile {
-                path: png_name.clone(),
-                bytes: png,
-            });
-            record.svg = Some(svg_name);
-            record.png = Some(png_name);
-        }
-        progress.inc(RENDER_WORK);
-        record.render_seconds = t1.elapsed().as_secs_f64();
-        fragments.push(out.html());
-        records.push(record);
+    for part in parts {
+        let part = part?;
+        files.extend(part.files);
+        records.push(part.record);
+        fragments.push(part.fragment);
     }
     let manifest = Manifest {
         tool: "subdiv-lab",

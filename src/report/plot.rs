@@ -462,3 +462,206 @@ where
         .draw()
         .map_err(draw_err)
 }
+
+/// Colour of a subdominant class (math doc section 7) in class maps: the
+/// common classes get well-separated viridis samples, the rare ones dark or
+/// grey fills; unknown names get a light grey.
+pub fn class_color(class: &str) -> RGBColor {
+    match class {
+        "standard" => RGBColor(20, 20, 20),
+        "real_distinct" => viridis(0.35),
+        "complex_pair" => viridis(0.9),
+        "defective" => RGBColor(110, 110, 110),
+        "not_separated" => RGBColor(160, 160, 160),
+        _ => RGBColor(215, 215, 215),
+    }
+}
+
+/// A tick label: at most 6 decimals with trailing zeros removed, scientific
+/// notation below 1e-4 and from 1e6 on, and never a negative zero: a value
+/// below [`TICK_ZERO`] in modulus (a rounding residue of the tick arithmetic
+/// on linear axes, e.g. `-0.85 + 5 * 0.17`) is written `0`.
+///
+/// ```
+/// use subdiv_lab::report::plot::tick;
+/// assert_eq!(tick(-0.0), "0");
+/// assert_eq!(tick(-1e-17), "0");
+/// assert_eq!(tick(0.30000000000000004), "0.3");
+/// assert_eq!(tick(2.0), "2");
+/// assert_eq!(tick(1e-5), "1e-5");
+/// ```
+pub fn tick(v: f64) -> String {
+    let a = v.abs();
+    if a < TICK_ZERO {
+        return "0".to_owned();
+    }
+    if !(1e-4..1e6).contains(&a) {
+        return format!("{v:e}");
+    }
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_owned()
+    } else {
+        s.to_owned()
+    }
+}
+
+/// Tick values below this modulus are written `0` by [`tick`]: 1e-12 is far
+/// below any tick step of the figures (the smallest axis span is ~1e-7, on
+/// log axes, which format their own ticks).
+pub const TICK_ZERO: f64 = 1e-12;
+
+/// Clips a polyline to the box `[x0, x1] x [y0, y1]`: the pieces inside, each
+/// a polyline of its own, with the crossing points interpolated on the box
+/// edge (plotters would otherwise draw points outside the plot area along its
+/// frame).
+///
+/// ```
+/// use subdiv_lab::report::plot::clip_polyline;
+/// let p = clip_polyline(&[(-1.0, 0.5), (0.5, 0.5), (2.0, 0.5)], (0.0, 1.0), (0.0, 1.0));
+/// assert_eq!(p, vec![vec![(0.0, 0.5), (0.5, 0.5), (1.0, 0.5)]]);
+/// ```
+pub fn clip_polyline(
+    points: &[(f64, f64)],
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+) -> Vec<Vec<(f64, f64)>> {
+    let inside = |p: (f64, f64)| x0 <= p.0 && p.0 <= x1 && y0 <= p.1 && p.1 <= y1;
+    // Liang-Barsky clip of the segment a-b; None if it misses the box.
+    let clip = |a: (f64, f64), b: (f64, f64)| -> Option<((f64, f64), (f64, f64))> {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let (mut t0, mut t1) = (0.0f64, 1.0f64);
+        for (p, q) in [
+            (-dx, a.0 - x0),
+            (dx, x1 - a.0),
+            (-dy, a.1 - y0),
+            (dy, y1 - a.1),
+        ] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return None;
+                }
+            } else {
+                let r = q / p;
+                if p < 0.0 {
+                    t0 = t0.max(r);
+                } else {
+                    t1 = t1.min(r);
+                }
+            }
+        }
+        (t0 <= t1).then_some((
+            (a.0 + t0 * dx, a.1 + t0 * dy),
+            (a.0 + t1 * dx, a.1 + t1 * dy),
+        ))
+    };
+    let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut cur: Vec<(f64, f64)> = Vec::new();
+    for w in points.windows(2) {
+        match clip(w[0], w[1]) {
+            Some((p, q)) => {
+                if cur.is_empty() {
+                    cur.push(p);
+                }
+                cur.push(q);
+                if !inside(w[1]) {
+                    out.push(std::mem::take(&mut cur));
+                }
+            }
+            None => {
+                if !cur.is_empty() {
+                    out.push(std::mem::take(&mut cur));
+                }
+            }
+        }
+    }
+    if !cur.is_empty() {
+        out.push(cur);
+    }
+    out.retain(|p| p.len() > 1);
+    out
+}
+
+/// Axis ranges with equal scale on both axes (a circle stays round) for a
+/// plot area of `(w, h)` pixels that must show the box `[x0, x1] x [y0, y1]`:
+/// the box is centred and the axis with room to spare is widened.
+///
+/// ```
+/// use subdiv_lab::report::plot::equal_aspect;
+/// let ((a, b), (c, d)) = equal_aspect((400, 200), (0.0, 1.0), (0.0, 1.0));
+/// assert_eq!(((a, b), (c, d)), ((-0.5, 1.5), (0.0, 1.0)));
+/// ```
+pub fn equal_aspect(
+    (w, h): (u32, u32),
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+) -> ((f64, f64), (f64, f64)) {
+    let (w, h) = (w.max(1) as f64, h.max(1) as f64);
+    let scale = (w / (x1 - x0)).min(h / (y1 - y0));
+    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    let (hx, hy) = (w / scale / 2.0, h / scale / 2.0);
+    ((cx - hx, cx + hx), (cy - hy, cy + hy))
+}
+
+/// Draws a legend as rows of entries (glyph and one line of text) across
+/// `area`, wrapping to a new row when an entry does not fit; returns the
+/// height used. The glyphs must have been made with anchor `(0, 0)`.
+pub fn legend_rows(
+    area: &Area<'_>,
+    entries: &[(LegendGlyph, String)],
+    theme: &Theme,
+) -> Result<u32, ReportError> {
+    let (w, _) = area.dim_in_pixel();
+    let font = theme.font(theme.legend);
+    let gap = theme.legend as i32 * 2;
+    let row_h = theme.legend as i32 * 3 / 2;
+    let (mut x, mut y) = (gap / 2, 0);
+    let widths: Vec<i32> = entries
+        .iter()
+        .map(|(g, text)| {
+            let tw = area.estimate_text_size(text, &font).map_or(0, |s| s.0) as i32;
+            g.width + theme.legend as i32 / 2 + tw
+        })
+        .collect();
+    for ((glyph, text), ew) in entries.iter().zip(widths) {
+        if x > gap / 2 && x + ew > w as i32 {
+            x = gap / 2;
+            y += row_h;
+        }
+        let mut g = *glyph;
+        g.at = (x, y + theme.legend as i32 / 2);
+        area.draw(&g).map_err(draw_err)?;
+        area.draw(&Text::new(
+            text.clone(),
+            (x + g.width + theme.legend as i32 / 2, y),
+            font.clone(),
+        ))
+        .map_err(draw_err)?;
+        x += ew + gap;
+    }
+    Ok((y + row_h) as u32)
+}
+
+/// The height [`legend_rows`] will use for `entries` on an area `width` wide.
+pub fn legend_rows_height(
+    area: &Area<'_>,
+    width: u32,
+    entries: &[(LegendGlyph, String)],
+    theme: &Theme,
+) -> u32 {
+    let font = theme.font(theme.legend);
+    let gap = theme.legend as i32 * 2;
+    let row_h = theme.legend as i32 * 3 / 2;
+    let (mut x, mut rows) = (gap / 2, 1);
+    for (g, text) in entries {
+        let tw = area.estimate_text_size(text, &font).map_or(0, |s| s.0) as i32;
+        let ew = g.width + theme.legend as i32 / 2 + tw;
+        if x > gap / 2 && x + ew > width as i32 {
+            x = gap / 2;
+            rows += 1;
+        }
+        x += ew + gap;
+    }
+    (rows * row_h) as u32
+}

@@ -52,6 +52,23 @@ pub struct ReportSpec {
     pub source: String,
 }
 
+impl ReportSpec {
+    /// The input files the spec's figures read (as written in the spec, in
+    /// figure order, without repeats): the caller reads them and passes them
+    /// to [`super::generate_with`] in [`super::Inputs`].
+    pub fn input_paths(&self) -> Vec<String> {
+        let mut out: Vec<String> = Vec::new();
+        for f in &self.figures {
+            for p in f.figure.inputs() {
+                if !out.contains(&p) {
+                    out.push(p);
+                }
+            }
+        }
+        out
+    }
+}
+
 impl std::fmt::Debug for ReportSpec {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("ReportSpec")

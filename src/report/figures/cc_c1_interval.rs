@@ -4,9 +4,11 @@
 //!
 //! Drawn from [`crate::cc_study::c1_intervals`] (class certified `standard`
 //! and characteristic map certified regular and injective; ends located by
-//! bisection to `tol`): one vertical bar per interval and valence, with the
-//! certified-`standard` intervals ([`crate::cc_study::standard_intervals`])
-//! as wider light bars behind them. The CSV has one row per interval and
+//! bisection to `tol`) on a log axis of `c`: the lower end `c_min(n)` of each
+//! C1 interval and of each certified-`standard` interval
+//! ([`crate::cc_study::standard_intervals`]) against `n`, each with its
+//! bisection bracket `[outside, end]` as an error bar (a bracket reaching
+//! `c = 0` runs to the axis); upper ends are drawn only where they are below 1. The CSV has one row per interval and
 //! criterion with both ends, the bracketing points just outside, and the
 //! verdict there.
 //!
@@ -23,7 +25,10 @@ use crate::cc_study::{intervals, CInterval, Criterion};
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
-use crate::report::plot::{draw_err, inner_legend, mix_white, titled, viridis, LegendGlyph, Theme};
+use crate::report::plot::{
+    draw_err, legend_rows, legend_rows_height, titled, viridis, LegendGlyph, Marker, Theme,
+};
+use plotters::coord::combinators::IntoLogRange;
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Deserialize;
@@ -152,59 +157,120 @@ impl FigureOutput for Output {
         let body = titled(area, &common.title, &th)?;
         let lo = self.rows.first().map_or(3, |r| r.n) as f64;
         let hi = self.rows.last().map_or(32, |r| r.n) as f64;
-        let mut chart = ChartBuilder::on(&body)
+        let dark = viridis(0.1);
+        let mid = viridis(0.55);
+        let red = RGBColor(200, 40, 40);
+        let lw = th.line;
+        let ms = th.marker;
+        // Lower ends (c_min of the C1 intervals, the start of the standard
+        // intervals) and upper ends below 1, each with its bisection bracket.
+        let ends = |pick: &dyn Fn(&Row) -> &Vec<CInterval>, upper: bool| -> Vec<(f64, f64, f64)> {
+            self.rows
+                .iter()
+                .flat_map(|r| {
+                    pick(r).iter().filter_map(move |i| {
+                        let (v, out) = if upper {
+                            (i.hi, i.hi_outside)
+                        } else {
+                            (i.lo, i.lo_outside)
+                        };
+                        (v > 0.0 && (!upper || v < 1.0)).then_some((r.n as f64, v, out))
+                    })
+                })
+                .collect()
+        };
+        let c1_lo = ends(&|r| &r.c1, false);
+        let st_lo = ends(&|r| &r.standard, false);
+        let c1_hi = ends(&|r| &r.c1, true);
+        let positive = c1_lo
+            .iter()
+            .chain(&st_lo)
+            .chain(&c1_hi)
+            .flat_map(|e| [e.1, e.2])
+            .filter(|v| *v > 0.0);
+        let ymin = positive.fold(0.5f64, f64::min) / 4.0;
+        let ymax = 2.0;
+        let mut entries = vec![
+            (
+                LegendGlyph::line((0, 0), &th, dark, lw).marker(Marker::Circle, ms),
+                "C1 interval: lower end c_min(n) (bar: bisection bracket)".to_owned(),
+            ),
+            (
+                LegendGlyph::line((0, 0), &th, mid, lw).marker(Marker::Diamond, ms),
+                "standard-eigenstructure interval: lower end (bracket down to c = 0)".to_owned(),
+            ),
+        ];
+        if !c1_hi.is_empty() {
+            entries.push((
+                LegendGlyph::line((0, 0), &th, dark, lw).marker(Marker::Triangle, ms),
+                "C1 interval: upper end below 1".to_owned(),
+            ));
+        }
+        entries.push((
+            LegendGlyph::line((0, 0), &th, red, lw),
+            "c = 1/2: Catmull-Clark".to_owned(),
+        ));
+        let (bw, bh) = body.dim_in_pixel();
+        let legend_h = legend_rows_height(&body, bw, &entries, &th) + th.legend;
+        let (plot_area, legend_area) = body.split_vertically(bh.saturating_sub(legend_h));
+        let mut chart = ChartBuilder::on(&plot_area)
             .margin(th.tick as i32)
             .x_label_area_size(th.label * 3)
             .y_label_area_size(th.label * 4)
-            .build_cartesian_2d((lo - 1.0)..(hi + 1.0), -0.05f64..1.25f64)
+            .build_cartesian_2d((lo - 1.0)..(hi + 1.0), (ymin..ymax).log_scale())
             .map_err(draw_err)?;
         chart
             .configure_mesh()
             .x_desc("valence n")
-            .y_desc("shape parameter c")
+            .y_desc("shape parameter c (log scale)")
             .label_style(th.font(th.tick))
             .axis_desc_style(th.font(th.label))
-            .light_line_style(WHITE.mix(0.0))
+            .light_line_style(WHITE)
             .bold_line_style(BLACK.mix(0.1))
-            .y_label_formatter(&|y| format!("{y:.1}"))
+            .y_label_formatter(&|y| log_tick(*y))
             .x_label_formatter(&|x| format!("{x:.0}"))
             .draw()
             .map_err(draw_err)?;
-        let dark = viridis(0.1);
-        let light = mix_white(viridis(0.6), 0.45);
-        let (wide, narrow) = (0.36, 0.16);
-        let bar = |n: usize, i: &CInterval, w: f64, col: RGBColor| {
-            Rectangle::new([(n as f64 - w, i.lo), (n as f64 + w, i.hi)], col.filled())
-        };
-        chart
-            .draw_series(
-                self.rows
-                    .iter()
-                    .flat_map(|r| r.standard.iter().map(move |i| bar(r.n, i, wide, light))),
-            )
-            .map_err(draw_err)?
-            .label("certified standard eigenstructure")
-            .legend(move |p| LegendGlyph::line(p, &th, light, 0).boxed());
-        chart
-            .draw_series(
-                self.rows
-                    .iter()
-                    .flat_map(|r| r.c1.iter().map(move |i| bar(r.n, i, narrow, dark))),
-            )
-            .map_err(draw_err)?
-            .label("certified C1 (standard, regular, injective)")
-            .legend(move |p| LegendGlyph::line(p, &th, dark, 0).boxed());
-        let lw = th.line;
-        let red = RGBColor(200, 40, 40);
         chart
             .draw_series(LineSeries::new(
                 vec![(lo - 1.0, 0.5), (hi + 1.0, 0.5)],
                 red.stroke_width(lw),
             ))
-            .map_err(draw_err)?
-            .label("c = 1/2: Catmull-Clark")
-            .legend(move |p| LegendGlyph::line(p, &th, red, lw));
-        inner_legend(&mut chart, SeriesLabelPosition::UpperRight, &th)?;
+            .map_err(draw_err)?;
+        let cap = 0.25;
+        for (points, col, marker) in [
+            (&st_lo, mid, Marker::Diamond),
+            (&c1_lo, dark, Marker::Circle),
+            (&c1_hi, dark, Marker::Triangle),
+        ] {
+            for &(n, v, out) in points.iter() {
+                // The bracket [outside, end]; an outside end at 0 runs to the axis.
+                let o = out.max(ymin);
+                let style = col.stroke_width(lw);
+                chart
+                    .draw_series(LineSeries::new(vec![(n, o), (n, v)], style))
+                    .map_err(draw_err)?;
+                if out > ymin {
+                    chart
+                        .draw_series(LineSeries::new(vec![(n - cap, o), (n + cap, o)], style))
+                        .map_err(draw_err)?;
+                }
+                chart
+                    .draw_series(std::iter::once(marker.at((n, v), ms, col)))
+                    .map_err(draw_err)?;
+            }
+        }
+        legend_rows(&legend_area.margin(th.legend / 2, 0, 0, 0), &entries, &th)?;
         Ok(())
+    }
+}
+
+/// A tick label of the log axis: the power of ten (`1e-5`), or the decimal
+/// form from 0.01 on (`0.1`, `1`).
+fn log_tick(y: f64) -> String {
+    if y >= 0.01 {
+        crate::report::plot::tick((y * 1e6).round() / 1e6)
+    } else {
+        format!("{y:.0e}")
     }
 }

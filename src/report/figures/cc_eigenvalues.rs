@@ -23,7 +23,7 @@ use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
-    dash, draw_err, inner_legend, series_color, titled, LegendGlyph, Marker, Theme,
+    dash, draw_err, inner_legend, series_color, tick, titled, LegendGlyph, Marker, Theme,
 };
 use plotters::prelude::*;
 use rayon::prelude::*;
@@ -176,11 +176,12 @@ impl FigureOutput for Output {
             .light_line_style(WHITE.mix(0.0))
             .bold_line_style(BLACK.mix(0.1))
             .y_label_formatter(&|y| format!("{y:.2}"))
-            .x_label_formatter(&|x| format!("{x:.1}"))
+            .x_label_formatter(&|x| tick(*x))
             .draw()
             .map_err(draw_err)?;
         let lw = th.line;
-        let (d, g) = dash(1, &th);
+        // Dashes (not dots): the legend and the caption say "dashed".
+        let (d, g) = dash(0, &th);
         for (k, (n, curve)) in self.curves.iter().enumerate() {
             let col = series_color(k, count);
             let l1: Vec<(f64, f64)> = curve

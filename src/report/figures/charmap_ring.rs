@@ -6,10 +6,11 @@
 //! patches `A_i`, `B_i`, `C_i` on the (orthonormalised) subdominant planar
 //! basis, oriented so that the Jacobian is positive; level `k` is the ring
 //! mapped `k` times by the restriction `M` of `S_n` to the planar subspace.
-//! Each patch outline is filled (colour by patch position around the face,
-//! lighter for deeper levels); the overlay marks sample points of the ring
-//! (level 0) where `sigma J > 0` (small dark dots) and `sigma J <= 0` (large
-//! red crosses, a fold). The verdict is written under each panel (short form:
+//! Each patch outline is filled (colour by patch kind: `A`, `B`, `C`, or
+//! `Omega1..3` in the Catmull-Clark family, lighter for deeper levels); the
+//! overlay marks sample points of the ring (level 0) where `sigma J > 0`
+//! (small grey dots) and `sigma J <= 0` (large red crosses, a fold). One
+//! legend below the panels explains the colours and marks. The verdict is written under each panel (short form:
 //! "TPC" = tangent-plane continuous, non-standard eigenstructure). The CSV
 //! tables hold exactly the plotted data (outlines, signed samples of all
 //! levels, verdicts).
@@ -31,7 +32,10 @@ use crate::report::backend::Area;
 use crate::report::config::{resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
-use crate::report::plot::{draw_err, mix_white, series_color, titled, Theme};
+use crate::report::plot::{
+    draw_err, equal_aspect, legend_rows, legend_rows_height, mix_white, titled, viridis,
+    LegendGlyph, Marker, Theme,
+};
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Deserialize;
@@ -196,16 +200,85 @@ impl FigureOutput for Output {
         let (pw, ph) = (common.size.0 / cols as u32, common.size.1 / rows as u32);
         let side = pw.min(ph).max(common.size.0.min(common.size.1) * 70 / 100);
         let panel_theme = Theme::for_size((side, side));
-        let areas = body.split_evenly((rows, cols));
+        // One legend for all panels, below them: patch kinds and sample signs.
+        let entries = self.legend_entries(&th);
+        let (bw, bh) = body.dim_in_pixel();
+        let legend_h = legend_rows_height(&body, bw, &entries, &th) + th.legend;
+        let (panels_area, legend_area) = body.split_vertically(bh.saturating_sub(legend_h));
+        let areas = panels_area.split_evenly((rows, cols));
         for (p, pa) in self.panels.iter().zip(areas.iter()) {
             draw_panel(pa, p, &panel_theme)?;
         }
+        legend_rows(&legend_area.margin(th.legend / 2, 0, 0, 0), &entries, &th)?;
         Ok(())
     }
 }
 
+/// Fill colour of a patch: by its kind (slot within the sector), lighter on
+/// finer levels. Three viridis samples far apart in lightness, so the kinds
+/// stay apart in greyscale.
+fn patch_color(slot: usize, level: usize) -> RGBColor {
+    let base = viridis([0.12, 0.5, 0.85][slot % 3]);
+    mix_white(base, 0.75 - 0.35 * (level as f64 / 4.0).min(1.0))
+}
+
+/// The level whose colour the legend boxes show (the ring itself).
+const LEGEND_LEVEL: usize = 0;
+
+impl Output {
+    /// Legend: one box per patch kind (names from the panels' patches, e.g.
+    /// `A` or `Omega1`), the sample dots and crosses, the centre.
+    fn legend_entries(&self, th: &Theme) -> Vec<(LegendGlyph, String)> {
+        let mut names: [Vec<String>; 3] = Default::default();
+        for p in &self.panels {
+            if let Some(plot) = &p.plot {
+                for pp in &plot.patches {
+                    let s = pp.patch.slot() % 3;
+                    let name = pp.patch.kind_name();
+                    if !names[s].contains(&name) {
+                        names[s].push(name);
+                    }
+                }
+            }
+        }
+        let place = ["at (E_i, P_i)", "at (E_i, P_i+1)", "at (V_i, P_i)"];
+        let mut out: Vec<(LegendGlyph, String)> = names
+            .iter()
+            .enumerate()
+            .filter(|(_, n)| !n.is_empty())
+            .map(|(s, n)| {
+                let ds = n.iter().any(|x| ["A", "B", "C"].contains(&x.as_str()));
+                let text = if ds {
+                    format!("{} patches {}", n.join(" / "), place[s])
+                } else {
+                    format!("{} patches", n.join(" / "))
+                };
+                (
+                    LegendGlyph::line((0, 0), th, patch_color(s, LEGEND_LEVEL), 0).boxed(),
+                    text,
+                )
+            })
+            .collect();
+        let dot = (th.marker / 2).max(2);
+        out.push((
+            LegendGlyph::line((0, 0), th, RGBColor(115, 115, 115), 0).marker(Marker::Circle, dot),
+            "Jacobian > 0 at a sample".to_owned(),
+        ));
+        out.push((
+            LegendGlyph::line((0, 0), th, RGBColor(220, 30, 30), 0)
+                .marker(Marker::Cross, th.marker),
+            "Jacobian ≤ 0 at a sample".to_owned(),
+        ));
+        out.push((
+            LegendGlyph::line((0, 0), th, BLACK, 0).marker(Marker::Plus, th.marker),
+            "centre; finer levels lighter".to_owned(),
+        ));
+        out
+    }
+}
+
 fn draw_panel(area: &Area<'_>, p: &Panel, th: &Theme) -> Result<(), ReportError> {
-    let (w, h) = area.dim_in_pixel();
+    let (_, h) = area.dim_in_pixel();
     // verdict line at the bottom of the panel, label as the caption
     let verdict = short_verdict(&p.report);
     area.draw_text(
@@ -219,7 +292,10 @@ fn draw_panel(area: &Area<'_>, p: &Panel, th: &Theme) -> Result<(), ReportError>
             .map_err(draw_err)?;
         return Ok(());
     };
-    let area = &area.margin(0, 2 * th.tick, 0, 0);
+    let area = area.margin(0, 2 * th.tick, 0, 0);
+    let area = area
+        .titled(&p.config.label, th.font(th.tick))
+        .map_err(draw_err)?;
     let mut r = 0.0f64;
     for pp in plot.patches.iter().filter(|q| q.level == 0) {
         for q in &pp.outline {
@@ -227,30 +303,23 @@ fn draw_panel(area: &Area<'_>, p: &Panel, th: &Theme) -> Result<(), ReportError>
         }
     }
     let r = if r > 0.0 { r * 1.05 } else { 1.0 };
-    let cap = th.label * 3;
-    let aspect = w.max(1) as f64 / (h.saturating_sub(cap)).max(1) as f64;
-    let (rx, ry) = if aspect >= 1.0 {
-        (r * aspect, r)
-    } else {
-        (r, r / aspect)
-    };
-    let mut chart = ChartBuilder::on(area)
-        .caption(p.config.label.clone(), th.font(th.tick))
-        .margin(th.tick as i32 / 2)
-        .build_cartesian_2d(-rx..rx, -ry..ry)
+    let m = th.tick / 2;
+    let (w, h) = area.dim_in_pixel();
+    // Equal aspect from the exact plot-area size (no axes: only the margin).
+    let (xr, yr) = equal_aspect(
+        (
+            w.saturating_sub(2 * m).max(1),
+            h.saturating_sub(2 * m).max(1),
+        ),
+        (-r, r),
+        (-r, r),
+    );
+    let mut chart = ChartBuilder::on(&area)
+        .margin(m as i32)
+        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
         .map_err(draw_err)?;
-    let n = plot
-        .patches
-        .iter()
-        .map(|q| q.patch.sector())
-        .max()
-        .unwrap_or(0)
-        + 1;
     for pp in plot.patches.iter().rev() {
-        // colour by position around the face: A, B, C of sector i get neighbouring hues
-        let slot = 3 * pp.patch.sector() + pp.patch.slot();
-        let base = series_color(slot, 3 * n);
-        let fill = mix_white(base, 0.35 + 0.5 * (pp.level as f64 / 6.0).min(0.6));
+        let fill = patch_color(pp.patch.slot(), pp.level);
         let pts: Vec<(f64, f64)> = pp.outline.iter().map(|q| (q[0], q[1])).collect();
         chart
             .draw_series(std::iter::once(Polygon::new(pts.clone(), fill.filled())))
@@ -270,25 +339,25 @@ fn draw_panel(area: &Area<'_>, p: &Panel, th: &Theme) -> Result<(), ReportError>
                     .draw_series(std::iter::once(Circle::new(
                         (q[0], q[1]),
                         dot,
-                        BLACK.mix(0.55).filled(),
+                        RGBColor(115, 115, 115).filled(),
                     )))
                     .map_err(draw_err)?;
             } else {
                 chart
-                    .draw_series(std::iter::once(Cross::new(
+                    .draw_series(std::iter::once(Marker::Cross.at(
                         (q[0], q[1]),
                         th.marker,
-                        RED.stroke_width(2),
+                        RGBColor(220, 30, 30),
                     )))
                     .map_err(draw_err)?;
             }
         }
     }
     chart
-        .draw_series(std::iter::once(Cross::new(
+        .draw_series(std::iter::once(Marker::Plus.at(
             (0.0, 0.0),
             th.marker,
-            BLACK.stroke_width(2),
+            BLACK,
         )))
         .map_err(draw_err)?;
     Ok(())

@@ -5,7 +5,13 @@
 //! per entry of `slices`, so n = 2 + the slice length; n = 3 for one value).
 //! Each cell is coloured by the subdominant class (math doc section 7), by
 //! |lambda_2|/|lambda_1|, or by the angle theta = |arg lambda_1| (nonzero
-//! exactly for complex pairs and negative real lambda_1).
+//! exactly for complex pairs and negative real lambda_1). In the class map,
+//! classes covering less than [`RARE_SHARE`] of the cells (points and curves
+//! of the ratio space) are also drawn as enlarged markers on top.
+//!
+//! The CSV has one row per cell: `slice, r0, r1, fixed, class, lambda1_re,
+//! lambda1_im, lambda2_re, lambda2_im, modulus_ratio, angle_degrees`; the
+//! plotted column is `class`, `modulus_ratio` or `angle_degrees` by `color_by`.
 //!
 //! ```toml
 //! [[figure]]
@@ -20,7 +26,9 @@ use crate::knots::EdgeRatios;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
-use crate::report::plot::{colorbar, draw_err, subscript, titled, viridis, Marker, Theme};
+use crate::report::plot::{
+    class_color, colorbar, draw_err, subscript, tick, titled, viridis, Marker, Theme,
+};
 use crate::schemes::LocalScheme;
 use crate::spectral::classify_scheme;
 use plotters::prelude::*;
@@ -219,23 +227,22 @@ struct Output {
     range: (f64, f64),
 }
 
-/// Colour of a class: lightness decreases standard -> real_distinct -> complex_pair
-/// apart; rare classes get greys (and a cross overlay when drawn).
-fn class_color(class: &str) -> RGBColor {
-    match class {
-        "standard" => RGBColor(20, 20, 20),
-        "real_distinct" => viridis(0.35),
-        "complex_pair" => viridis(0.9),
-        "defective" => RGBColor(110, 110, 110),
-        "not_separated" => RGBColor(160, 160, 160),
-        _ => RGBColor(215, 215, 215),
-    }
-}
+/// A class covering less than this share of a class map's cells is drawn as
+/// a measure-zero set: every cell of it also gets an enlarged marker on top
+/// (single cells are points of the ratio space, chains of cells are curves;
+/// at 2% a class is below one row of an 81 x 81 grid per panel, too thin to
+/// see as fill alone).
+pub const RARE_SHARE: f64 = 0.02;
 
-/// Classes whose cells also get a cross (they are rare, often thin curves,
-/// and their grey fill alone would not stand out).
-fn crossed(class: &str) -> bool {
-    !matches!(class, "standard" | "real_distinct" | "complex_pair")
+/// The marker of a rare class in the class map (and its legend).
+fn rare_marker(class: &str) -> Marker {
+    match class {
+        "standard" => Marker::Diamond,
+        "defective" => Marker::Square,
+        "not_separated" => Marker::Triangle,
+        "indeterminate" => Marker::TriangleDown,
+        _ => Marker::Circle,
+    }
 }
 
 impl Output {
@@ -259,6 +266,29 @@ impl Output {
                 viridis((t * COLOR_LEVELS).floor() / COLOR_LEVELS)
             }
         }
+    }
+
+    /// The classes drawn as measure-zero sets (share below [`RARE_SHARE`]).
+    fn rare_classes(&self) -> Vec<String> {
+        let total: usize = self.panels.iter().map(|p| p.1.len()).sum();
+        let mut names: Vec<String> = Vec::new();
+        for c in self.panels.iter().flat_map(|p| p.1.iter()) {
+            if !names.contains(&c.class) {
+                names.push(c.class.clone());
+            }
+        }
+        names
+            .into_iter()
+            .filter(|n| {
+                let count = self
+                    .panels
+                    .iter()
+                    .flat_map(|p| p.1.iter())
+                    .filter(|c| &c.class == n)
+                    .count();
+                (count as f64) < RARE_SHARE * total as f64
+            })
+            .collect()
     }
 
     /// Legend lines of the class map: ("real distinct (58.2%)", class name),
@@ -293,14 +323,6 @@ impl Output {
             })
             .collect()
     }
-
-    fn value_name(&self) -> &'static str {
-        match self.color_by {
-            ColorBy::Class => "class_index",
-            ColorBy::ModulusRatio => "modulus_ratio",
-            ColorBy::Angle => "angle_degrees",
-        }
-    }
 }
 
 fn fixed_text(fixed: &[f64]) -> String {
@@ -328,8 +350,6 @@ impl FigureOutput for Output {
                 "lambda2_im",
                 "modulus_ratio",
                 "angle_degrees",
-                "value",
-                "plotted",
             ],
         );
         let g = self.grid as f64;
@@ -348,8 +368,6 @@ impl FigureOutput for Output {
                     num(c.l2.im),
                     num(c.modulus_ratio()),
                     num(c.angle().to_degrees()),
-                    num(self.value(c)),
-                    self.value_name().into(),
                 ]);
             }
         }
@@ -361,6 +379,11 @@ impl FigureOutput for Output {
         let body = titled(area, &common.title, &th)?;
         let (w, _) = body.dim_in_pixel();
         let legend = self.class_legend();
+        let rare = if self.color_by == ColorBy::Class {
+            self.rare_classes()
+        } else {
+            Vec::new()
+        };
         let side_w = match self.color_by {
             ColorBy::Class => {
                 let widest = legend
@@ -380,19 +403,33 @@ impl FigureOutput for Output {
         let areas = maps.split_evenly((1, k));
         let g = self.grid as f64;
         for ((fixed, cells), pa) in self.panels.iter().zip(areas.iter()) {
+            // Square plot area (equal aspect on the unit square): centre the
+            // panel with an estimated caption height, draw the caption, then
+            // pad the longer side so that the plot area is exactly square.
             let (pw, ph) = pa.dim_in_pixel();
-            // Square plot area: pad vertically.
             let xl = th.label * 3;
             let yl = th.label * 3;
-            let plot_w = pw.saturating_sub(yl + th.tick);
-            let plot_h = ph.saturating_sub(xl + th.label * 2);
-            let pad = plot_h.saturating_sub(plot_w) / 2;
-            let mut chart = ChartBuilder::on(pa)
-                .caption(fixed_text(fixed), th.font(th.label))
-                .margin_left(th.tick as i32 / 2)
-                .margin_right(th.tick as i32)
-                .margin_top(pad as i32)
-                .margin_bottom(pad as i32)
+            let (ml, mr) = (th.tick / 2, th.tick);
+            let cap = th.label * 2;
+            let est = pw
+                .saturating_sub(yl + ml + mr)
+                .min(ph.saturating_sub(xl + cap));
+            let pad0 = ph.saturating_sub(xl + cap + est) / 2;
+            let pa = pa.margin(pad0, pad0, 0, 0);
+            let pa = pa
+                .titled(&fixed_text(fixed), th.font(th.label))
+                .map_err(draw_err)?;
+            let (pw, ph) = pa.dim_in_pixel();
+            let avail_w = pw.saturating_sub(yl + ml + mr);
+            let avail_h = ph.saturating_sub(xl);
+            let plot_w = avail_w.min(avail_h).max(1);
+            let pad_h = avail_w.saturating_sub(plot_w) / 2;
+            let pad_v = avail_h.saturating_sub(plot_w);
+            let mut chart = ChartBuilder::on(&pa)
+                .margin_left((ml + pad_h) as i32)
+                .margin_right((mr + avail_w.saturating_sub(plot_w + pad_h)) as i32)
+                .margin_top((pad_v / 2) as i32)
+                .margin_bottom((pad_v - pad_v / 2) as i32)
                 .x_label_area_size(xl)
                 .y_label_area_size(yl)
                 .build_cartesian_2d(0.0..1.0, 0.0..1.0)
@@ -406,8 +443,10 @@ impl FigureOutput for Output {
                 .y_labels(3)
                 .label_style(th.font(th.tick))
                 .axis_desc_style(th.font(th.label))
-                .x_label_formatter(&|x| format!("{x:.1}"))
-                .y_label_formatter(&|y| format!("{y:.1}"))
+                .x_label_formatter(&|x| tick(*x))
+                // The corner's 0 is written once, on the r₀ axis (two
+                // zeros there would collide).
+                .y_label_formatter(&|y| if *y == 0.0 { String::new() } else { tick(*y) })
                 .draw()
                 .map_err(draw_err)?;
             // Merge runs of equal colour along each row into one rectangle.
@@ -434,16 +473,22 @@ impl FigureOutput for Output {
             }
             chart.draw_series(rects).map_err(draw_err)?;
             if self.color_by == ColorBy::Class {
-                let ms = ((plot_w as f64 / g) * 0.3).max(2.0) as i32;
-                chart
-                    .draw_series(cells.iter().filter(|c| crossed(&c.class)).map(|c| {
-                        Marker::Cross.at(
-                            ((c.i as f64 + 0.5) / g, (c.j as f64 + 0.5) / g),
-                            ms,
-                            BLACK,
-                        )
-                    }))
-                    .map_err(draw_err)?;
+                // Measure-zero sets on top: enlarged markers with a white halo.
+                let ms = ((plot_w as f64 / g) * 0.9).max(th.marker as f64) as i32;
+                for name in &rare {
+                    let m = rare_marker(name);
+                    let at: Vec<(f64, f64)> = cells
+                        .iter()
+                        .filter(|c| &c.class == name)
+                        .map(|c| ((c.i as f64 + 0.5) / g, (c.j as f64 + 0.5) / g))
+                        .collect();
+                    chart
+                        .draw_series(at.iter().map(|p| m.at(*p, ms + 2, WHITE)))
+                        .map_err(draw_err)?;
+                    chart
+                        .draw_series(at.iter().map(|p| m.at(*p, ms, class_color(name))))
+                        .map_err(draw_err)?;
+                }
             }
         }
         match self.color_by {
@@ -463,9 +508,15 @@ impl FigureOutput for Output {
                         .map_err(draw_err)?;
                     side.draw(&Rectangle::new(bx, BLACK.stroke_width(1)))
                         .map_err(draw_err)?;
-                    if crossed(&name) {
-                        side.draw(&Marker::Cross.at((x + s, y + s), s / 2, BLACK))
+                    if rare.contains(&name) {
+                        side.draw(&rare_marker(&name).at((x + s, y + s), s * 2 / 3 + 2, WHITE))
                             .map_err(draw_err)?;
+                        side.draw(&rare_marker(&name).at(
+                            (x + s, y + s),
+                            s * 2 / 3,
+                            class_color(&name),
+                        ))
+                        .map_err(draw_err)?;
                     }
                     side.draw(&Text::new(text, (x + s * 3, y + s / 3), th.font(th.legend)))
                         .map_err(draw_err)?;

@@ -49,6 +49,7 @@ pub mod knot_map;
 pub mod mesh_convergence;
 pub mod mesh_picture;
 pub mod spectrum;
+pub mod sweep;
 pub mod valence;
 
 /// A registered figure kind.
@@ -78,6 +79,7 @@ pub const REGISTRY: &[FigureKind] = &[
     cc_c1_interval::KIND,
     curvature::KIND,
     curvature_tuning::KIND,
+    sweep::KIND,
 ];
 
 /// The kind named `name`.
@@ -104,6 +106,8 @@ pub struct Context<'a> {
     pub common: &'a Common,
     /// Progress sink.
     pub progress: &'a dyn Progress,
+    /// Input files of the spec's figures (see [`crate::report::Inputs`]).
+    pub inputs: &'a crate::report::Inputs,
 }
 
 impl Context<'_> {
@@ -125,6 +129,14 @@ impl Context<'_> {
 pub trait Figure: Send + Sync {
     /// Number of progress units `compute` reports (for the progress bar's ETA).
     fn work(&self) -> u64;
+    /// Input files the figure reads, as written in the spec (default: none).
+    fn inputs(&self) -> Vec<String> {
+        Vec::new()
+    }
+    /// Checks the input files before any figure is computed (default: nothing to check).
+    fn check_inputs(&self, _inputs: &crate::report::Inputs) -> Result<(), ReportError> {
+        Ok(())
+    }
     /// Runs the analyses behind the figure.
     fn compute(&self, ctx: &Context<'_>) -> Result<Box<dyn FigureOutput>, ReportError>;
 }

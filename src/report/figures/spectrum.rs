@@ -16,7 +16,8 @@ use crate::report::config::{resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
-    circle_points, dash, draw_err, titled, viridis, LegendGlyph, Marker, Theme,
+    circle_points, clip_polyline, dash, draw_err, equal_aspect, legend_rows, legend_rows_height,
+    mix_white, tick, titled, viridis, LegendGlyph, Marker, Theme,
 };
 use crate::scheme::Scheme;
 use crate::spectral::{analyze, AnalyzeOptions, LocalAnalysis};
@@ -140,17 +141,10 @@ pub fn spectrum_svg(
             source,
         })?;
     let cols = panels.len().min(3);
-    let rows = panels.len().div_ceil(cols);
     crate::report::backend::render_svg(size, &|area| {
-        let th = Theme::for_size(size);
-        let body = titled(area, title, &th)?;
-        let (pw, ph) = (size.0 / cols as u32, size.1 / rows as u32);
-        let side = pw.min(ph).max(size.0.min(size.1) * 70 / 100);
-        let panel_theme = Theme::for_size((side, side));
-        for ((label, a), pa) in panels.iter().zip(body.split_evenly((rows, cols)).iter()) {
-            draw_panel(pa, label, a, &panel_theme)?;
-        }
-        Ok(())
+        let refs: Vec<(&str, &(LocalAnalysis, Vec<Complex64>))> =
+            panels.iter().map(|(l, a)| (l.as_str(), a)).collect();
+        draw_spectra(area, title, size, cols, &refs)
     })
 }
 
@@ -189,21 +183,83 @@ impl FigureOutput for Output {
     }
 
     fn draw(&self, area: &Area<'_>, common: &Common) -> Result<(), ReportError> {
-        let th = Theme::for_size(common.size);
-        let body = titled(area, &common.title, &th)?;
-        let cols = self.columns.max(1);
-        let rows = self.panels.len().div_ceil(cols);
-        // Panel text scales with the panel, but never below 70% of the figure's
-        // text size (paper readability wins over panel density).
-        let (pw, ph) = (common.size.0 / cols as u32, common.size.1 / rows as u32);
-        let side = pw.min(ph).max(common.size.0.min(common.size.1) * 70 / 100);
-        let panel_theme = Theme::for_size((side, side));
-        let areas = body.split_evenly((rows, cols));
-        for ((c, a), pa) in self.panels.iter().zip(areas.iter()) {
-            draw_panel(pa, &c.label, a, &panel_theme)?;
-        }
-        Ok(())
+        let refs: Vec<(&str, &(LocalAnalysis, Vec<Complex64>))> = self
+            .panels
+            .iter()
+            .map(|(c, a)| (c.label.as_str(), a))
+            .collect();
+        draw_spectra(area, &common.title, common.size, self.columns, &refs)
     }
+}
+
+/// The part of the complex plane every panel shows (before the equal-aspect
+/// widening): the circle |z| = 3/4 that holds every non-unit eigenvalue
+/// (Theorem 1) and the dominant eigenvalue 1, with room for their markers.
+pub const PANEL_BOX: ((f64, f64), (f64, f64)) = ((-0.82, 1.1), (-0.82, 0.82));
+
+/// Draws the title, one panel per analysis and one legend shared by all
+/// panels (below them).
+fn draw_spectra(
+    area: &Area<'_>,
+    title: &str,
+    size: (u32, u32),
+    columns: usize,
+    panels: &[(&str, &(LocalAnalysis, Vec<Complex64>))],
+) -> Result<(), ReportError> {
+    let th = Theme::for_size(size);
+    let body = titled(area, title, &th)?;
+    let cols = columns.clamp(1, panels.len().max(1));
+    let rows = panels.len().div_ceil(cols).max(1);
+    // Panel text scales with the panel, but never below 70% of the figure's
+    // text size (paper readability wins over panel density).
+    let (pw, ph) = (size.0 / cols as u32, size.1 / rows as u32);
+    let side = pw.min(ph).max(size.0.min(size.1) * 70 / 100);
+    let pt = Theme::for_size((side, side));
+    let (bw, bh) = body.dim_in_pixel();
+    let entries = legend_entries(&th);
+    let legend_h = legend_rows_height(&body, bw, &entries, &th) + th.legend;
+    let (panels_area, legend_area) = body.split_vertically(bh.saturating_sub(legend_h));
+    for ((label, a), pa) in panels
+        .iter()
+        .zip(panels_area.split_evenly((rows, cols)).iter())
+    {
+        draw_panel(pa, label, a, &pt)?;
+    }
+    legend_rows(&legend_area.margin(th.legend / 2, 0, 0, 0), &entries, &th)?;
+    Ok(())
+}
+
+/// The shared legend: circles and marker kinds (the same in every panel).
+fn legend_entries(th: &Theme) -> Vec<(LegendGlyph, String)> {
+    let lw = th.line;
+    let grey = RGBColor(120, 120, 120);
+    let ms = th.marker;
+    vec![
+        (
+            LegendGlyph::line((0, 0), th, BLACK, lw).dashed(dash(0, th)),
+            "|z| = 3/4 (Theorem 1 bound)".to_owned(),
+        ),
+        (
+            LegendGlyph::line((0, 0), th, grey, lw).dashed(dash(1, th)),
+            "|z| = 1/4".to_owned(),
+        ),
+        (
+            LegendGlyph::line((0, 0), th, mix_white(grey, 0.5), 1),
+            "|z| = 1".to_owned(),
+        ),
+        (
+            LegendGlyph::line((0, 0), th, BLACK, 0).marker(Marker::Square, ms + 2),
+            "λ₀ = 1".to_owned(),
+        ),
+        (
+            LegendGlyph::line((0, 0), th, viridis(0.0), 0).marker(Marker::Diamond, ms * 2),
+            "λ₁, λ₂ (subdominant)".to_owned(),
+        ),
+        (
+            LegendGlyph::line((0, 0), th, viridis(0.45), 0).marker(Marker::Ring, ms),
+            "other eigenvalues".to_owned(),
+        ),
+    ]
 }
 
 fn draw_panel(
@@ -212,21 +268,40 @@ fn draw_panel(
     (a, eig): &(LocalAnalysis, Vec<Complex64>),
     th: &Theme,
 ) -> Result<(), ReportError> {
+    // Two caption lines: the configuration, then its class and |λ₁|.
+    let area = area.margin(th.tick / 2, 0, 0, 0);
+    let area = area.titled(label, th.font(th.label)).map_err(draw_err)?;
+    let info = format!(
+        "{}, |λ₁| = {}",
+        a.subdominant.class.name().replace('_', " "),
+        tick((a.subdominant.lambda1.norm() * 1e4).round() / 1e4)
+    );
+    let area = area.titled(&info, th.font(th.legend)).map_err(draw_err)?;
     let (w, h) = area.dim_in_pixel();
     let xl = th.label * 2 + th.tick;
     let yl = th.label * 2 + th.tick * 3;
-    let cap = th.label * 3;
-    let pw = (w.saturating_sub(yl + th.tick * 2)).max(10) as f64;
-    let ph = (h.saturating_sub(xl + cap + th.tick)).max(10) as f64;
+    let m = th.tick / 2;
+    let plot = (
+        w.saturating_sub(yl + 2 * m).max(10),
+        h.saturating_sub(xl + 2 * m).max(10),
+    );
     // Equal aspect: circles must look round.
-    let (x0, x1) = (-0.85, 1.12);
-    let half_y = (x1 - x0) * ph / pw / 2.0;
-    let mut chart = ChartBuilder::on(area)
-        .caption(label, th.font(th.label))
-        .margin(th.tick as i32 / 2)
+    // The box holds every eigenvalue (with room for its marker), so none
+    // is clipped even for schemes outside Theorem 1.
+    let pad = 0.08;
+    let ((mut x0, mut x1), (mut y0, mut y1)) = PANEL_BOX;
+    for z in eig.iter().filter(|z| z.re.is_finite() && z.im.is_finite()) {
+        x0 = x0.min(z.re - pad);
+        x1 = x1.max(z.re + pad);
+        y0 = y0.min(z.im - pad);
+        y1 = y1.max(z.im + pad);
+    }
+    let (xr, yr) = equal_aspect(plot, (x0, x1), (y0, y1));
+    let mut chart = ChartBuilder::on(&area)
+        .margin(m as i32)
         .x_label_area_size(xl)
         .y_label_area_size(yl)
-        .build_cartesian_2d(x0..x1, -half_y..half_y)
+        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
         .map_err(draw_err)?;
     chart
         .configure_mesh()
@@ -234,77 +309,49 @@ fn draw_panel(
         .y_desc("Im λ")
         .x_labels(5)
         .y_labels(5)
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
         .label_style(th.font(th.tick))
         .axis_desc_style(th.font(th.label))
-        .light_line_style(WHITE.mix(0.0))
+        .light_line_style(WHITE)
         .bold_line_style(BLACK.mix(0.08))
         .draw()
         .map_err(draw_err)?;
     let lw = th.line;
-    let th2 = *th;
     let grey = RGBColor(120, 120, 120);
-    chart
-        .draw_series(LineSeries::new(
-            circle_points(1.0, 240),
-            grey.mix(0.5).stroke_width(1),
-        ))
-        .map_err(draw_err)?;
+    // Circles clipped to the plot area (never drawn along its frame).
+    let circle = |r: f64, n: usize| clip_polyline(&circle_points(r, n), xr, yr);
+    for piece in circle(1.0, 240) {
+        chart
+            .draw_series(LineSeries::new(piece, mix_white(grey, 0.5).stroke_width(1)))
+            .map_err(draw_err)?;
+    }
     let (d1, g1) = dash(0, th);
-    chart
-        .draw_series(DashedLineSeries::new(
-            circle_points(0.75, 240),
-            d1,
-            g1,
-            BLACK.stroke_width(lw),
-        ))
-        .map_err(draw_err)?
-        .label("|z| = 3/4")
-        .legend(move |p| LegendGlyph::line(p, &th2, BLACK, lw).dashed((d1, g1)));
+    for piece in circle(0.75, 240) {
+        chart
+            .draw_series(DashedLineSeries::new(piece, d1, g1, BLACK.stroke_width(lw)))
+            .map_err(draw_err)?;
+    }
     let (d2, g2) = dash(1, th);
-    chart
-        .draw_series(DashedLineSeries::new(
-            circle_points(0.25, 160),
-            d2,
-            g2,
-            grey.stroke_width(lw),
-        ))
-        .map_err(draw_err)?
-        .label("|z| = 1/4")
-        .legend(move |p| LegendGlyph::line(p, &th2, grey, lw).dashed((d2, g2)));
+    for piece in circle(0.25, 160) {
+        chart
+            .draw_series(DashedLineSeries::new(piece, d2, g2, grey.stroke_width(lw)))
+            .map_err(draw_err)?;
+    }
     let ms = th.marker;
     let other = viridis(0.45);
     let others: Vec<(f64, f64)> = eig.iter().skip(3).map(|z| (z.re, z.im)).collect();
     chart
         .draw_series(others.iter().map(|&p| Marker::Ring.at(p, ms, other)))
-        .map_err(draw_err)?
-        .label("other eigenvalues")
-        .legend(move |p| LegendGlyph::line(p, &th2, other, 0).marker(Marker::Ring, ms));
+        .map_err(draw_err)?;
     let sub_col = viridis(0.0);
     let sub: Vec<(f64, f64)> = eig.iter().skip(1).take(2).map(|z| (z.re, z.im)).collect();
     chart
         .draw_series(sub.iter().map(|&p| Marker::Diamond.at(p, ms * 2, sub_col)))
-        .map_err(draw_err)?
-        .label(format!(
-            "λ₁, λ₂ ({}): |λ₁| = {:.4}",
-            a.subdominant.class.name().replace('_', " "),
-            a.subdominant.lambda1.norm()
-        ))
-        .legend(move |p| LegendGlyph::line(p, &th2, sub_col, 0).marker(Marker::Diamond, ms * 2));
+        .map_err(draw_err)?;
     let dom: Vec<(f64, f64)> = eig.iter().take(1).map(|z| (z.re, z.im)).collect();
     chart
         .draw_series(dom.iter().map(|&p| Marker::Square.at(p, ms + 2, BLACK)))
-        .map_err(draw_err)?
-        .label("λ₀ = 1")
-        .legend(move |p| LegendGlyph::line(p, &th2, BLACK, 0).marker(Marker::Square, ms + 2));
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font(th.font(th.legend))
-        .legend_area_size(th.legend_area())
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .margin(th.legend as i32 / 3)
-        .draw()
         .map_err(draw_err)?;
     Ok(())
 }
