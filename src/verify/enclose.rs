@@ -1,0 +1,302 @@
+//! Rigorous eigenvalue enclosures of the NURDS face block over a box of
+//! edge ratios (math doc section 15).
+//!
+//! **The matrix family.** The face block is `A(r) = (I + R(r) + 1 c^T)/4`
+//! (math doc section 4) with `R` affine in `r`. `R 1 = 2 * 1` for every `r`,
+//! so in the basis `T = [1, e_1, .., e_{n-1}]` the block is upper block
+//! triangular and `spec(A) = {1} U spec(C(r))` with the `(n-1) x (n-1)` matrix
+//!
+//! ```text
+//! C(r)_{ab} = ( delta_ab + R_{a+1, b+1} - R_{0, b+1} ) / 4      (a, b = 0 .. n-2)
+//! ```
+//!
+//! **\[derived\]** (`T^{-1} y = (y_0, y_1 - y_0, ..)`, `T^{-1} 1 = e_0`, so the
+//! rank-one term `1 c^T` only touches row 0). `C` is affine in `r`:
+//! `C(r) = C_0 + sum_k r_k C_k` with entries that are multiples of `1/4`
+//! (exact in `f64`). Tested against the eigenvalues of the assembled face
+//! block.
+//!
+//! **The enclosure.** At the cell centre `r0` (a float) take a numerical
+//! eigen-decomposition `C(r0) ~ V D V^{-1}` and a numerical inverse `X` of
+//! `V`. In interval arithmetic: `E = I - X V`; if `beta = ||E||_inf < 1/2`,
+//! `V` is invertible and `||V^{-1} - X||_inf <= beta ||X||_inf / (1 - beta)`
+//! (Neumann series), so an interval matrix `Y` contains `V^{-1}`. For every
+//! `r` in the cell,
+//!
+//! ```text
+//! V^{-1} C(r) V  in  M0 + [-G, G],   M0 = Y C(r0) V,   G = sum_k h_k |Y C_k V|
+//! ```
+//!
+//! with `h_k` the half-widths. Gershgorin's theorem on this interval matrix
+//! (rows, and separately columns) gives discs that contain every eigenvalue
+//! of every `C(r)` in the cell, and a union of `k` discs disjoint from the
+//! others contains exactly `k` of them (continuity: shrinking the
+//! off-diagonal part keeps each disc of the actual matrix inside ours).
+
+use super::interval::{Ci, Disc, Iv};
+use crate::spectral::eigen::{Eigen, EigenOptions};
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+
+/// Largest accepted `||I - X V||_inf` for the verified inverse: below `1/2`
+/// the Neumann bound at most doubles `||X||` times `beta`; a larger residual
+/// means an ill-conditioned eigenvector basis (near a defective pair), where
+/// the discs would be useless anyway.
+pub const MAX_INVERSE_RESIDUAL: f64 = 0.5;
+
+/// How the enclosure may be weakened on purpose, to show that the soundness
+/// tests catch an unsound enclosure. Never used outside tests.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Tamper {
+    /// The sound enclosure.
+    #[default]
+    None,
+    /// Omit the variation over the cell (`G = 0`): the discs only hold at
+    /// the centre.
+    DropVariation,
+}
+
+/// An affine matrix family `C(x) = C_0 + sum_k x_k C_k` of size `m`.
+#[derive(Clone, Debug)]
+pub struct AffineFamily {
+    m: usize,
+    c0: Vec<f64>,
+    terms: Vec<Vec<(usize, usize, f64)>>,
+}
+
+impl AffineFamily {
+    /// The deflated NURDS face-block family `C(r)` of valence `n >= 3`
+    /// (module docs).
+    ///
+    /// ```
+    /// use subdiv_lab::verify::enclose::AffineFamily;
+    /// let f = AffineFamily::nurds(3);
+    /// assert_eq!(f.dim(), 2);
+    /// // uniform ratios: C = diag-free 2x2 with eigenvalues 3/8, 3/8
+    /// let c = f.at(&[0.5; 3]);
+    /// let (t, d) = (c[0] + c[3], c[0] * c[3] - c[1] * c[2]);
+    /// assert!((t - 0.75).abs() < 1e-15 && (d - 0.140625).abs() < 1e-15);
+    /// ```
+    pub fn nurds(n: usize) -> Self {
+        let m = n - 1;
+        // R as affine entries: (row, col) -> (const, [(k, coef)])
+        let mut rc = vec![0.0; n * n];
+        let mut rt: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n * n];
+        for i in 0..n {
+            let im1 = (i + n - 1) % n;
+            let ip1 = (i + 1) % n;
+            rt[i * n + im1].push((im1, 1.0));
+            rc[i * n + i] += 1.0;
+            rt[i * n + i].push((im1, -1.0));
+            rt[i * n + i].push((i, 1.0));
+            rc[i * n + ip1] += 1.0;
+            rt[i * n + ip1].push((i, -1.0));
+        }
+        let mut c0 = vec![0.0; m * m];
+        let mut terms: Vec<Vec<(usize, usize, f64)>> = vec![Vec::new(); n];
+        for a in 0..m {
+            for b in 0..m {
+                let (i, j) = (a + 1, b + 1);
+                let delta = if a == b { 1.0 } else { 0.0 };
+                c0[a * m + b] = (delta + rc[i * n + j] - rc[j]) / 4.0;
+                let mut coef = vec![0.0; n];
+                for &(k, v) in &rt[i * n + j] {
+                    coef[k] += v;
+                }
+                for &(k, v) in &rt[j] {
+                    coef[k] -= v;
+                }
+                for (k, &v) in coef.iter().enumerate() {
+                    if v != 0.0 {
+                        terms[k].push((a, b, v / 4.0));
+                    }
+                }
+            }
+        }
+        AffineFamily { m, c0, terms }
+    }
+
+    /// Matrix size.
+    pub fn dim(&self) -> usize {
+        self.m
+    }
+
+    /// Number of parameters.
+    pub fn params(&self) -> usize {
+        self.terms.len()
+    }
+
+    /// `C(x)` in floating point, row-major.
+    pub fn at(&self, x: &[f64]) -> Vec<f64> {
+        let mut c = self.c0.clone();
+        for (k, t) in self.terms.iter().enumerate() {
+            for &(a, b, v) in t {
+                c[a * self.m + b] += v * x[k];
+            }
+        }
+        c
+    }
+
+    /// `C(x)` enclosed in interval arithmetic (each entry contains the exact value).
+    fn at_interval(&self, x: &[f64]) -> Vec<Iv> {
+        let mut c: Vec<Iv> = self.c0.iter().map(|&v| Iv::point(v)).collect();
+        for (k, t) in self.terms.iter().enumerate() {
+            for &(a, b, v) in t {
+                let e = &mut c[a * self.m + b];
+                *e = e.add(Iv::point(v).mul(Iv::point(x[k])));
+            }
+        }
+        c
+    }
+}
+
+/// Row- and column-Gershgorin discs enclosing the eigenvalues of `C(x)` for
+/// every `x` in the box `[lo, hi]`; `None` when the centre decomposition or
+/// the verified inverse fails (the cell is then undecided).
+#[derive(Clone, Debug)]
+pub struct Enclosure {
+    /// Discs from the rows of the transformed interval matrix.
+    pub rows: Vec<Disc>,
+    /// Discs from its columns.
+    pub cols: Vec<Disc>,
+}
+
+/// Encloses the spectrum of the family over the box (module docs).
+pub fn enclose(family: &AffineFamily, lo: &[f64], hi: &[f64], tamper: Tamper) -> Option<Enclosure> {
+    let m = family.m;
+    let k = family.params();
+    if lo.len() != k || hi.len() != k {
+        return None;
+    }
+    let mut r0 = vec![0.0; k];
+    let mut h = vec![0.0; k];
+    for i in 0..k {
+        let mid = 0.5 * lo[i] + 0.5 * hi[i];
+        r0[i] = mid;
+        // exact half-width bound: the larger distance to an end, rounded up
+        h[i] = Iv::point(hi[i])
+            .sub(Iv::point(mid))
+            .hi
+            .max(Iv::point(mid).sub(Iv::point(lo[i])).hi);
+    }
+    let cf = family.at(&r0);
+    let dm = DMatrix::from_row_slice(m, m, &cf);
+    let eig = Eigen::new(
+        &dm,
+        EigenOptions {
+            right: true,
+            left: false,
+        },
+    )
+    .ok()?;
+    let v = eig.right()?.clone();
+    let x = v.clone().try_inverse()?;
+    let vi = |a: usize, b: usize| -> Ci {
+        let z: Complex64 = v[(a, b)];
+        Ci::point(z.re, z.im)
+    };
+    let xi = |a: usize, b: usize| -> Ci {
+        let z: Complex64 = x[(a, b)];
+        Ci::point(z.re, z.im)
+    };
+    // E = I - X V, beta = ||E||_inf
+    let mut beta = 0.0f64;
+    let mut xnorm = 0.0f64;
+    for a in 0..m {
+        let mut row = 0.0;
+        let mut xrow = 0.0;
+        for b in 0..m {
+            let mut s = if a == b {
+                Ci::point(1.0, 0.0)
+            } else {
+                Ci::ZERO
+            };
+            for j in 0..m {
+                s = s.sub(xi(a, j).mul(vi(j, b)));
+            }
+            row = super::interval::up(row + s.mag());
+            xrow = super::interval::up(xrow + xi(a, b).mag());
+        }
+        beta = beta.max(row);
+        xnorm = xnorm.max(xrow);
+    }
+    if !(beta < MAX_INVERSE_RESIDUAL) || !xnorm.is_finite() {
+        return None;
+    }
+    let one_minus = Iv::point(1.0).sub(Iv::point(beta)).lo;
+    let delta = Iv::point(beta).mul(Iv::point(xnorm)).hi;
+    let delta = super::interval::up(delta / one_minus);
+    let y: Vec<Ci> = (0..m * m).map(|t| xi(t / m, t % m).widen(delta)).collect();
+    // M0 = Y (C(r0) V)
+    let c0 = family.at_interval(&r0);
+    let mut cv = vec![Ci::ZERO; m * m];
+    for a in 0..m {
+        for b in 0..m {
+            let mut s = Ci::ZERO;
+            for j in 0..m {
+                s = s.add(vi(j, b).scale(c0[a * m + j]));
+            }
+            cv[a * m + b] = s;
+        }
+    }
+    let mut m0 = vec![Ci::ZERO; m * m];
+    for a in 0..m {
+        for b in 0..m {
+            let mut s = Ci::ZERO;
+            for j in 0..m {
+                s = s.add(y[a * m + j].mul(cv[j * m + b]));
+            }
+            m0[a * m + b] = s;
+        }
+    }
+    // G = sum_k h_k |Y C_k V|
+    let mut g = vec![0.0f64; m * m];
+    if tamper != Tamper::DropVariation {
+        for (kk, t) in family.terms.iter().enumerate() {
+            if t.is_empty() {
+                continue;
+            }
+            let mut p = vec![Ci::ZERO; m * m];
+            for &(i, j, val) in t {
+                for a in 0..m {
+                    let yv = y[a * m + i].scale(Iv::point(val));
+                    for b in 0..m {
+                        p[a * m + b] = p[a * m + b].add(yv.mul(vi(j, b)));
+                    }
+                }
+            }
+            for (gi, pi) in g.iter_mut().zip(&p) {
+                *gi = super::interval::up(*gi + Iv::point(h[kk]).mul(Iv::point(pi.mag())).hi);
+            }
+        }
+    }
+    let disc = |a: usize, off: f64| -> Disc {
+        let mut d = Disc::around(m0[a * m + a]);
+        d.radius = super::interval::up(super::interval::up(d.radius + g[a * m + a]) + off);
+        d
+    };
+    let mut rows = Vec::with_capacity(m);
+    let mut cols = Vec::with_capacity(m);
+    for a in 0..m {
+        let mut off_r = 0.0;
+        let mut off_c = 0.0;
+        for b in 0..m {
+            if b != a {
+                off_r = super::interval::up(
+                    off_r + super::interval::up(m0[a * m + b].mag() + g[a * m + b]),
+                );
+                off_c = super::interval::up(
+                    off_c + super::interval::up(m0[b * m + a].mag() + g[b * m + a]),
+                );
+            }
+        }
+        rows.push(disc(a, off_r));
+        cols.push(disc(a, off_c));
+    }
+    let finite = rows
+        .iter()
+        .chain(&cols)
+        .all(|d| d.re.is_finite() && d.im.is_finite() && d.radius.is_finite());
+    finite.then_some(Enclosure { rows, cols })
+}
