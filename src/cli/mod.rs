@@ -12,6 +12,7 @@ mod report;
 mod scheme_args;
 mod subdivide;
 mod sweep;
+mod verify;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -50,6 +51,8 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Merge shard CSVs of one sweep, checking no configuration is missing or duplicated.
     Merge(sweep::MergeArgs),
+    /// Prove class/separation verdicts over a box of ratios or an interval of c (cells.csv + summary.json).
+    Verify(verify::VerifyArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -223,6 +226,7 @@ pub fn main() -> ExitCode {
         Command::Analyze(args) => analyze::run(args),
         Command::Sweep(args) => sweep::run_sweep(args),
         Command::Merge(args) => sweep::run_merge(args),
+        Command::Verify(args) => verify::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -13,7 +13,17 @@
 //! **\[derived\]** (`T^{-1} y = (y_0, y_1 - y_0, ..)`, `T^{-1} 1 = e_0`, so the
 //! rank-one term `1 c^T` only touches row 0). `C` is affine in `r`:
 //! `C(r) = C_0 + sum_k r_k C_k` with entries that are multiples of `1/4`
-//! (exact in `f64`). Tested against the eigenvalues of the assembled face
+//! (exact in `f64`).
+//!
+//! **Even `n` [derived].** The alternating vector `y = (1, -1, 1, ..)` is a
+//! left null vector of `R` (column `j` of `R` holds `r_j`, `1 - r_{j-1} + r_j`,
+//! `1 - r_{j-1}`), and `y^T 1 = 0`, so `y^T A = y^T / 4`: every even-sided
+//! face block has the eigenvalue `1/4` for all ratios. It is removed exactly
+//! as well: with `w = (y_1, .., y_{n-1})`, `w^T C = w^T / 4`, and with `S` the
+//! identity whose row 0 is `w^T`, row 0 of `S C S^{-1}` is `e_0^T / 4`; the
+//! remaining `(n-2)`-square block `C'_{ij} = C_{ij} - C_{i0} w_j / w_0`
+//! (`i, j >= 1`) is again affine in `r`. Then `spec(A) = {1, 1/4} U spec(C')`.
+//! Both reductions are tested against the eigenvalues of the assembled face
 //! block.
 //!
 //! **The enclosure.** At the cell centre `r0` (a float) take a numerical
@@ -93,27 +103,58 @@ impl AffineFamily {
             rc[i * n + ip1] += 1.0;
             rt[i * n + ip1].push((i, -1.0));
         }
-        let mut c0 = vec![0.0; m * m];
-        let mut terms: Vec<Vec<(usize, usize, f64)>> = vec![Vec::new(); n];
+        // dense affine pieces: index 0 = constant, 1 + k = coefficient of r_k
+        let mut dense = vec![vec![0.0; m * m]; n + 1];
         for a in 0..m {
             for b in 0..m {
                 let (i, j) = (a + 1, b + 1);
                 let delta = if a == b { 1.0 } else { 0.0 };
-                c0[a * m + b] = (delta + rc[i * n + j] - rc[j]) / 4.0;
-                let mut coef = vec![0.0; n];
+                dense[0][a * m + b] = (delta + rc[i * n + j] - rc[j]) / 4.0;
                 for &(k, v) in &rt[i * n + j] {
-                    coef[k] += v;
+                    dense[1 + k][a * m + b] += v / 4.0;
                 }
                 for &(k, v) in &rt[j] {
-                    coef[k] -= v;
-                }
-                for (k, &v) in coef.iter().enumerate() {
-                    if v != 0.0 {
-                        terms[k].push((a, b, v / 4.0));
-                    }
+                    dense[1 + k][a * m + b] -= v / 4.0;
                 }
             }
         }
+        let (m, dense) = if n % 2 == 0 {
+            // even n: w = ((-1)^(j+1))_j is a left eigenvector of C for 1/4
+            // (the alternating vector is a left null vector of R); remove it
+            // exactly: rows/columns 1.. of S C S^{-1}, S = I with row 0 := w
+            let m2 = m - 1;
+            let red: Vec<Vec<f64>> = dense
+                .iter()
+                .map(|d| {
+                    let mut o = vec![0.0; m2 * m2];
+                    for i in 1..m {
+                        for j in 1..m {
+                            let sign = if j % 2 == 0 { 1.0 } else { -1.0 };
+                            o[(i - 1) * m2 + (j - 1)] = d[i * m + j] - d[i * m] * sign;
+                        }
+                    }
+                    o
+                })
+                .collect();
+            (m2, red)
+        } else {
+            (m, dense)
+        };
+        let c0 = dense[0].clone();
+        let terms = dense[1..]
+            .iter()
+            .map(|d| {
+                let mut t = Vec::new();
+                for a in 0..m {
+                    for b in 0..m {
+                        if d[a * m + b] != 0.0 {
+                            t.push((a, b, d[a * m + b]));
+                        }
+                    }
+                }
+                t
+            })
+            .collect();
         AffineFamily { m, c0, terms }
     }
 
