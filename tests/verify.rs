@@ -34,14 +34,14 @@ proptest! {
     /// disagrees with the exact classifier (class and separation).
     #[test]
     fn certified_cells_never_disagree_with_exact(
-        n in 3usize..=4,
-        corner in prop::collection::vec(0.02f64..0.7, 4),
-        width in prop::collection::vec(0.05f64..0.28, 4),
-        picks in prop::collection::vec((any::<prop::sample::Index>(), prop::collection::vec(0.0f64..=1.0, 4)), 6),
+        n in 3usize..=5,
+        corner in prop::collection::vec(0.02f64..0.7, 5),
+        width in prop::collection::vec(0.05f64..0.28, 5),
+        picks in prop::collection::vec((any::<prop::sample::Index>(), prop::collection::vec(0.0f64..=1.0, 5)), 6),
     ) {
         let lo: Vec<f64> = corner[..n].to_vec();
         let hi: Vec<f64> = lo.iter().zip(&width).map(|(a, w)| a + w).collect();
-        let spec = nurds_spec(lo, hi, if n == 3 { 1.0 / 64.0 } else { 1.0 / 8.0 });
+        let spec = nurds_spec(lo, hi, match n { 3 => 1.0 / 64.0, 4 => 1.0 / 16.0, _ => 1.0 / 8.0 });
         let out = run(&spec, &Limits::default());
         let decided: Vec<_> = out.cells.iter().filter(|c| c.status.iter().any(|(_, s)| *s != Status::Undecided)).collect();
         prop_assume!(!decided.is_empty());

@@ -341,3 +341,121 @@ pub fn enclose(family: &AffineFamily, lo: &[f64], hi: &[f64], tamper: Tamper) ->
         .all(|d| d.re.is_finite() && d.im.is_finite() && d.radius.is_finite());
     finite.then_some(Enclosure { rows, cols })
 }
+
+/// `[lo, hi]^2` (exact range of the square, rounded outward).
+fn sqr(x: Iv) -> Iv {
+    if x.lo >= 0.0 {
+        x.mul(x)
+    } else if x.hi <= 0.0 {
+        x.neg().mul(x.neg())
+    } else {
+        let m = x.mag();
+        Iv::new(0.0, Iv::point(m).mul(Iv::point(m)).hi)
+    }
+}
+
+impl AffineFamily {
+    /// The range of the affine combination `sum_t w_t C_t(x)_{entry_t}`
+    /// over the box, rounded outward (each parameter enters once, so the
+    /// interval evaluation is the exact range up to rounding).
+    fn affine_range(&self, entries: &[(usize, f64)], lo: &[f64], hi: &[f64]) -> Iv {
+        let mut acc = Iv::point(0.0);
+        for &(e, w) in entries {
+            acc = acc.add(Iv::point(self.c0[e]).mul(Iv::point(w)));
+        }
+        for (k, t) in self.terms.iter().enumerate() {
+            let mut coef = Iv::point(0.0);
+            for &(a, b, v) in t {
+                for &(e, w) in entries {
+                    if e == a * self.m + b {
+                        coef = coef.add(Iv::point(v).mul(Iv::point(w)));
+                    }
+                }
+            }
+            acc = acc.add(coef.mul(Iv::new(lo[k], hi[k])));
+        }
+        acc
+    }
+}
+
+/// The exact 2 x 2 route (`n = 3`, and `n = 4` after the removal of `1/4`):
+/// eigenvalues `t/2 +- sqrt(disc)` with `t = C00 + C11` and
+/// `disc = ((C00 - C11)/2)^2 + C01 C10`, both ranges over the cell in
+/// interval arithmetic (`t` and `C00 - C11` affine: exact ranges; the
+/// product `C01 C10` overestimates only to second order in the width).
+/// `None` unless the family is 2 x 2. Verdicts as [`super::decide::decide`].
+pub fn decide_2x2(
+    family: &AffineFamily,
+    lo: &[f64],
+    hi: &[f64],
+    tamper: Tamper,
+) -> Option<super::decide::SpectralVerdict> {
+    use super::decide::{SpectralVerdict, Status, FIXED_MODULUS};
+    use crate::spectral::ClassName;
+    if family.m != 2 || lo.len() != family.params() || hi.len() != family.params() {
+        return None;
+    }
+    let centre: Vec<f64> = lo.iter().zip(hi).map(|(a, b)| 0.5 * a + 0.5 * b).collect();
+    let (lo, hi) = match tamper {
+        Tamper::DropVariation => (centre.as_slice(), centre.as_slice()),
+        Tamper::None => (lo, hi),
+    };
+    let half_t = family
+        .affine_range(&[(0, 1.0), (3, 1.0)], lo, hi)
+        .mul(Iv::point(0.5));
+    let half_diff = family
+        .affine_range(&[(0, 1.0), (3, -1.0)], lo, hi)
+        .mul(Iv::point(0.5));
+    let c01 = family.affine_range(&[(1, 1.0)], lo, hi);
+    let c10 = family.affine_range(&[(2, 1.0)], lo, hi);
+    let disc = sqr(half_diff).add(c01.mul(c10));
+    let undecided = SpectralVerdict {
+        separation: Status::Undecided,
+        class: None,
+    };
+    let not_separated = SpectralVerdict {
+        separation: Status::Refuted,
+        class: Some(ClassName::NotSeparated),
+    };
+    if disc.lo > 0.0 {
+        // real, distinct: lambda_- < lambda_+
+        let root = Iv::new(
+            super::interval::down(disc.lo.sqrt()),
+            super::interval::up(disc.hi.sqrt()),
+        );
+        let plus = half_t.add(root);
+        let minus = half_t.sub(root);
+        if !(plus.hi < 1.0) {
+            return Some(undecided);
+        }
+        if minus.lo > FIXED_MODULUS {
+            return Some(SpectralVerdict {
+                separation: Status::Certified,
+                class: Some(ClassName::RealDistinct),
+            });
+        }
+        if minus.lo > -FIXED_MODULUS && minus.hi < FIXED_MODULUS {
+            return Some(not_separated);
+        }
+        Some(undecided)
+    } else if disc.hi < 0.0 {
+        // complex pair, |lambda|^2 = (t/2)^2 - disc
+        let mod2 = sqr(half_t).sub(disc);
+        let q = FIXED_MODULUS * FIXED_MODULUS;
+        if !(mod2.hi < 1.0) {
+            return Some(undecided);
+        }
+        if mod2.lo > q {
+            return Some(SpectralVerdict {
+                separation: Status::Certified,
+                class: Some(ClassName::ComplexPair),
+            });
+        }
+        if mod2.hi < q {
+            return Some(not_separated);
+        }
+        Some(undecided)
+    } else {
+        Some(undecided)
+    }
+}

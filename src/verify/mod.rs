@@ -3,7 +3,8 @@
 //! shape-adjustable Catmull-Clark scheme), by branch and bound.
 //!
 //! Each cell gets a rigorous enclosure of the eigenvalues that holds for
-//! every parameter in it ([`enclose`] for NURDS, [`cc`] for the `c` path), in
+//! every parameter in it ([`enclose`] for NURDS: the closed 2 x 2 form for
+//! `n = 3, 4`, Gershgorin discs in the eigenvector basis above; [`cc`] for the `c` path), in
 //! interval arithmetic with outward rounding ([`interval`]); [`decide`] turns
 //! the enclosure into verdicts. A cell whose requested properties are not all
 //! decided is bisected across its widest side, down to `min_width`; what is
@@ -138,6 +139,12 @@ fn evaluate(
     tamper: Tamper,
 ) -> (Option<ClassName>, Vec<(Property, Status)>) {
     let (separation, class) = match (&spec.region, family) {
+        (Region::Ratios { .. }, Some(f)) if f.dim() == 2 => {
+            match enclose::decide_2x2(f, lo, hi, tamper) {
+                Some(v) => (v.separation, v.class),
+                None => (Status::Undecided, None),
+            }
+        }
         (Region::Ratios { .. }, Some(f)) => match enclose::enclose(f, lo, hi, tamper) {
             Some(e) => {
                 let v = decide::decide_either(&e.rows, &e.cols);

@@ -175,6 +175,53 @@ fn a_weakened_enclosure_is_caught() {
     );
 }
 
+fn spec5(min_width: f64) -> VerifySpec {
+    VerifySpec {
+        name: "t5".into(),
+        region: Region::Ratios {
+            lo: vec![0.05; 5],
+            hi: vec![0.95; 5],
+        },
+        properties: vec![Property::Class, Property::Separation],
+        min_width,
+        time_budget: None,
+    }
+}
+
+#[test]
+fn gershgorin_path_agrees_with_the_exact_classifier_and_its_weakening_is_caught() {
+    // n = 5: the 4 x 4 block, discs in the eigenvector basis; small random boxes
+    let mut rng = SplitMix64::new(5);
+    let mut certified = 0;
+    for _ in 0..8 {
+        let lo: Vec<f64> = (0..5).map(|_| rng.uniform(0.05, 0.85)).collect();
+        let hi: Vec<f64> = lo.iter().map(|x| x + 0.06).collect();
+        let spec = VerifySpec {
+            region: Region::Ratios { lo, hi },
+            ..spec5(0.01)
+        };
+        let out = run(&spec, &Limits::default());
+        certified += out.cells.iter().filter(|c| c.class.is_some()).count();
+        let (bad, checks) = disagreements(&spec, &out, 20, 3);
+        assert!(bad == 0, "{bad} disagreements in {checks}");
+    }
+    assert!(certified > 0, "no n = 5 cell was certified");
+    // coarse cells certified from their centre alone are caught
+    let spec = spec5(0.25);
+    let weak = run(
+        &spec,
+        &Limits {
+            tamper: Tamper::DropVariation,
+            ..Limits::default()
+        },
+    );
+    let (bad, checks) = disagreements(&spec, &weak, 150, 3);
+    assert!(
+        bad > 0,
+        "the weakened enclosure went unnoticed in {checks} checks"
+    );
+}
+
 #[test]
 fn cells_tile_the_box_exactly() {
     let spec = spec3([0.05, 0.2, 0.3], [0.95, 0.7, 0.9], 1.0 / 16.0);
