@@ -381,62 +381,11 @@ pub fn sweep_rows(plan: &Plan, rows: u64, shard_count: u64, threads: usize) -> E
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn issue_16_sizes_exceed_the_limits_and_small_ones_do_not() {
-        for kind in [
-            SchemeKind::Nurds,
-            SchemeKind::DooSabin,
-            SchemeKind::CcVariant,
-            SchemeKind::CatmullClark,
-            SchemeKind::AdjustableCc,
-        ] {
-            for structured in [false, true] {
-                let big = analyze(kind, 100_000, structured);
-                assert!(big.bytes > MEMORY_LIMIT_BYTES, "{kind}");
-                assert!(analyze(kind, 20_000, structured).bytes > MEMORY_LIMIT_BYTES);
-                assert!(analyze(kind, 1000, structured).seconds > TIME_LIMIT_SECONDS);
-                let small = analyze(kind, 64, structured);
-                assert!(small.within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
-            }
-            assert!(matrix(kind, 100_000, false, false).bytes > MEMORY_LIMIT_BYTES);
-            assert!(
-                matrix(kind, 64, false, true).within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES)
-            );
-        }
-        // the CC one-ring at n = 100000 is the issue's 320 GB matrix
-        let cc = analyze(SchemeKind::CatmullClark, 100_000, false);
-        assert!(cc.bytes >= 8.0 * 200_001f64.powi(2));
-        assert!(cc.what.contains("200001 x 200001"));
-        assert!(ccss_bound(1000, 4).seconds > TIME_LIMIT_SECONDS);
-        assert!(ccss_bound(50, 4).seconds < 10.0);
-        assert!(ccss_bound(100_000, 4).bytes > MEMORY_LIMIT_BYTES);
-        // 720k quads, 5 levels
-        assert!(subdivide(4 * 720_000 * 1024).bytes > MEMORY_LIMIT_BYTES);
-        assert!(subdivide(4 * 720_000).within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
-    }
-
-    #[test]
-    fn formatting() {
-        assert_eq!(format_bytes(320e9), "320 GB");
-        assert_eq!(format_bytes(MEMORY_LIMIT_BYTES), "4.0 GB");
-        assert_eq!(format_bytes(12.0), "12 bytes");
-        assert_eq!(format_seconds(30.0), "30 s");
-        assert_eq!(format_seconds(200.0), "3.3 min");
-        assert_eq!(format_seconds(60.0), "60 s");
-        assert_eq!(format_seconds(7200.0), "2.0 h");
-        assert!(format_seconds(1e12).contains("years"));
-    }
-}
-
 /// Seconds per evaluated cell of `verify` on a NURDS box, per `n^4` (the
 /// centre eigen-decomposition of the `(n-1)`-square deflated block and the
-/// `n` interval products `Y C_k V`). Measured on the reference machine
-/// (section 15 of the math doc lists the runs); rounded up.
-pub const VERIFY_SECONDS_PER_CELL_N4: f64 = 1.0e-7;
+/// `n` interval products `Y C_k V`). Measured 6.3e-7 at `n = 3` (582 000
+/// cells in 14.8 s on 2 threads, machine load 11); rounded up.
+pub const VERIFY_SECONDS_PER_CELL_N4: f64 = 1.0e-6;
 
 /// Seconds per evaluated cell of `verify` on an interval of `c` (closed-form
 /// Fourier blocks, `n/2` quadratics in interval arithmetic), per `n`.
@@ -485,5 +434,56 @@ pub fn verify(
         bytes: cells * (VERIFY_BYTES_PER_CELL + VERIFY_BYTES_PER_CELL_DIM * dim),
         seconds,
         what: format!("up to {max_cells} cells of the branch and bound"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn issue_16_sizes_exceed_the_limits_and_small_ones_do_not() {
+        for kind in [
+            SchemeKind::Nurds,
+            SchemeKind::DooSabin,
+            SchemeKind::CcVariant,
+            SchemeKind::CatmullClark,
+            SchemeKind::AdjustableCc,
+        ] {
+            for structured in [false, true] {
+                let big = analyze(kind, 100_000, structured);
+                assert!(big.bytes > MEMORY_LIMIT_BYTES, "{kind}");
+                assert!(analyze(kind, 20_000, structured).bytes > MEMORY_LIMIT_BYTES);
+                assert!(analyze(kind, 1000, structured).seconds > TIME_LIMIT_SECONDS);
+                let small = analyze(kind, 64, structured);
+                assert!(small.within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
+            }
+            assert!(matrix(kind, 100_000, false, false).bytes > MEMORY_LIMIT_BYTES);
+            assert!(
+                matrix(kind, 64, false, true).within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES)
+            );
+        }
+        // the CC one-ring at n = 100000 is the issue's 320 GB matrix
+        let cc = analyze(SchemeKind::CatmullClark, 100_000, false);
+        assert!(cc.bytes >= 8.0 * 200_001f64.powi(2));
+        assert!(cc.what.contains("200001 x 200001"));
+        assert!(ccss_bound(1000, 4).seconds > TIME_LIMIT_SECONDS);
+        assert!(ccss_bound(50, 4).seconds < 10.0);
+        assert!(ccss_bound(100_000, 4).bytes > MEMORY_LIMIT_BYTES);
+        // 720k quads, 5 levels
+        assert!(subdivide(4 * 720_000 * 1024).bytes > MEMORY_LIMIT_BYTES);
+        assert!(subdivide(4 * 720_000).within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
+    }
+
+    #[test]
+    fn formatting() {
+        assert_eq!(format_bytes(320e9), "320 GB");
+        assert_eq!(format_bytes(MEMORY_LIMIT_BYTES), "4.0 GB");
+        assert_eq!(format_bytes(12.0), "12 bytes");
+        assert_eq!(format_seconds(30.0), "30 s");
+        assert_eq!(format_seconds(200.0), "3.3 min");
+        assert_eq!(format_seconds(60.0), "60 s");
+        assert_eq!(format_seconds(7200.0), "2.0 h");
+        assert!(format_seconds(1e12).contains("years"));
     }
 }

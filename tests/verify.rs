@@ -76,8 +76,11 @@ fn write_spec(dir: &Path, text: &str) -> String {
 
 const SPEC3: &str = "name = \"t3\"\nscheme = \"nurds\"\nvalence = 3\nbox = [[0.05, 0.95], [0.2, 0.6], [0.1, 0.9]]\nproperties = [\"class\", \"separation\", \"theorem1\"]\nmin_width = 0.03\n";
 
-/// Reads cells.csv: (lo, hi, verdict) rows, and the header.
-fn read_cells(path: &Path) -> (Vec<String>, Vec<(Vec<f64>, Vec<f64>, String)>) {
+/// One row of cells.csv: lower corner, upper corner, verdict.
+type Row = (Vec<f64>, Vec<f64>, String);
+
+/// Reads cells.csv: the header and the rows.
+fn read_cells(path: &Path) -> (Vec<String>, Vec<Row>) {
     let text = fs::read_to_string(path).unwrap();
     let mut lines = text.lines();
     let header: Vec<String> = lines

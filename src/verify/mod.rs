@@ -20,6 +20,10 @@
 //! assert!(out.cells.iter().all(|c| c.verdict() == "complex_pair"));
 //! ```
 
+// Negated float comparisons (`!(x < bound)`) are deliberate throughout: a NaN
+// makes them true, so a NaN never certifies anything.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod cc;
 pub mod decide;
 pub mod enclose;
@@ -130,6 +134,9 @@ fn attempted(region: &Region, p: Property) -> bool {
     }
 }
 
+/// A cell's class (when proven) and the status of each requested property.
+type Evaluation = (Option<ClassName>, Vec<(Property, Status)>);
+
 /// Evaluates one cell.
 fn evaluate(
     spec: &VerifySpec,
@@ -137,7 +144,7 @@ fn evaluate(
     lo: &[f64],
     hi: &[f64],
     tamper: Tamper,
-) -> (Option<ClassName>, Vec<(Property, Status)>) {
+) -> Evaluation {
     let (separation, class) = match (&spec.region, family) {
         (Region::Ratios { .. }, Some(f)) if f.dim() == 2 => {
             match enclose::decide_2x2(f, lo, hi, tamper) {
@@ -207,7 +214,7 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
     let mut stopped = None;
     let mut level: u32 = 0;
     while !frontier.is_empty() {
-        let results: Vec<(Option<ClassName>, Vec<(Property, Status)>)> = frontier
+        let results: Vec<Evaluation> = frontier
             .par_iter()
             .map(|(a, b)| evaluate(spec, family.as_ref(), a, b, limits.tamper))
             .collect();

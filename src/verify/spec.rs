@@ -347,7 +347,7 @@ fn range(
                 format!("{key}: bound {x} is outside [0, 1], the range of the shape parameter c"),
             );
         }
-        if !shape && !(x > 0.0 && x < 1.0) {
+        if !shape && (x <= 0.0 || x >= 1.0) {
             return ctx.err(
                 key,
                 span,
