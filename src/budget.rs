@@ -381,6 +381,62 @@ pub fn sweep_rows(plan: &Plan, rows: u64, shard_count: u64, threads: usize) -> E
     }
 }
 
+/// Seconds per evaluated cell of `verify` on a NURDS box, per `n^4` (the
+/// centre eigen-decomposition of the `(n-1)`-square deflated block and the
+/// `n` interval products `Y C_k V`). Measured 6.3e-7 at `n = 3` (582 000
+/// cells in 14.8 s on 2 threads, machine load 11); rounded up.
+pub const VERIFY_SECONDS_PER_CELL_N4: f64 = 1.0e-6;
+
+/// Seconds per evaluated cell of `verify` on an interval of `c` (closed-form
+/// Fourier blocks, `n/2` quadratics in interval arithmetic), per `n`.
+pub const VERIFY_SECONDS_PER_CELL_N_CC: f64 = 2.0e-7;
+
+/// Peak bytes per evaluated cell of `verify`, plus [`VERIFY_BYTES_PER_CELL_DIM`]
+/// per box dimension: the cell's two corner vectors and verdicts, held in the
+/// frontier and in the final list, and its CSV row.
+pub const VERIFY_BYTES_PER_CELL: f64 = 400.0;
+
+/// Additional peak bytes per evaluated cell and box dimension (see
+/// [`VERIFY_BYTES_PER_CELL`]).
+pub const VERIFY_BYTES_PER_CELL_DIM: f64 = 64.0;
+
+/// `verify` with at most `max_cells` evaluated cells on `threads` threads
+/// (NURDS of valence `n` when `nurds`, else the adjustable Catmull-Clark
+/// scheme over `c`); a `time_budget` caps the time (it is checked between
+/// bisection levels, so the estimate allows one more level: twice the budget).
+///
+/// ```
+/// let e = subdiv_lab::budget::verify(3, true, 4_000_000, None, 2);
+/// assert!(e.bytes < 4e9);
+/// let t = subdiv_lab::budget::verify(8, true, 4_000_000, Some(60.0), 2);
+/// assert!(t.seconds <= 120.0);
+/// ```
+pub fn verify(
+    n: usize,
+    nurds: bool,
+    max_cells: u64,
+    time_budget: Option<f64>,
+    threads: usize,
+) -> Estimate {
+    let cells = max_cells as f64;
+    let nf = n as f64;
+    let per_cell = if nurds {
+        VERIFY_SECONDS_PER_CELL_N4 * nf.powi(4)
+    } else {
+        VERIFY_SECONDS_PER_CELL_N_CC * nf
+    };
+    let mut seconds = cells * per_cell / threads.max(1) as f64;
+    if let Some(t) = time_budget {
+        seconds = seconds.min(2.0 * t);
+    }
+    let dim = if nurds { nf } else { 1.0 };
+    Estimate {
+        bytes: cells * (VERIFY_BYTES_PER_CELL + VERIFY_BYTES_PER_CELL_DIM * dim),
+        seconds,
+        what: format!("up to {max_cells} cells of the branch and bound"),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -26,6 +26,7 @@
 //! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face;
 //! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory);
 //! * [`sweep`]: parameter sweeps (specs, samplers, sharded resumable CSV output);
+//! * [`verify`]: certified verdicts over boxes of ratios and intervals of `c` (branch and bound);
 //! * `testing` (feature `testing`): proptest strategies and checks for users' own property tests.
 //!
 //! ```
@@ -60,6 +61,7 @@ pub mod sweep;
 #[cfg(feature = "testing")]
 pub mod testing;
 pub(crate) mod toml_location;
+pub mod verify;
 
 pub use error::{Error, Result};
 pub use scheme::Scheme;

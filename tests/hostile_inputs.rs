@@ -1303,6 +1303,199 @@ fn cases() -> Vec<Case> {
     )]);
     // (end of section mesh)
 
+    // ===================================================================
+    // SECTION verify: verify specs (every key), --out, --threads, --max-cells.
+    // ===================================================================
+    v.extend([
+        bad_with(
+            "verify-missing-spec",
+            &["verify", "nope.toml", "--out", "o"],
+            &[],
+            "nope.toml",
+        ),
+        bad_with(
+            "verify-not-toml",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = ")],
+            "v.toml",
+        ),
+        bad_with(
+            "verify-unknown-key",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\nbogus = 1\n")],
+            "bogus",
+        ),
+        bad_with(
+            "verify-missing-properties",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\n")],
+            "properties",
+        ),
+        bad_with(
+            "verify-unknown-scheme",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"butterfly\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "butterfly",
+        ),
+        bad_with(
+            "verify-valence-2",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 2\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "valence",
+        ),
+        bad_with(
+            "verify-valence-huge",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 100000\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "valence",
+        ),
+        bad_with(
+            "verify-box-count",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "box",
+        ),
+        bad_with(
+            "verify-box-ratio-1",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 1.0], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "box[1]",
+        ),
+        bad_with(
+            "verify-box-reversed",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.9, 0.1]]\nproperties = [\"class\"]\n")],
+            "box[2]",
+        ),
+        bad_with(
+            "verify-box-nan",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, nan], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "box[0]",
+        ),
+        bad_with(
+            "verify-box-three-numbers",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.5, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "box[0]",
+        ),
+        bad_with(
+            "verify-box-missing",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nproperties = [\"class\"]\n")],
+            "box",
+        ),
+        bad_with(
+            "verify-c-range-for-nurds",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nc_range = [0.1, 0.5]\nproperties = [\"class\"]\n")],
+            "c_range",
+        ),
+        bad_with(
+            "verify-box-for-cc",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"adjustable-cc\"\nvalence = 3\nbox = [[0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "box",
+        ),
+        bad_with(
+            "verify-c-range-outside",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"adjustable-cc\"\nvalence = 3\nc_range = [0.1, 1.5]\nproperties = [\"class\"]\n")],
+            "c_range",
+        ),
+        bad_with(
+            "verify-c-range-missing",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"adjustable-cc\"\nvalence = 3\nproperties = [\"class\"]\n")],
+            "c_range",
+        ),
+        bad_with(
+            "verify-theorem1-for-cc",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"adjustable-cc\"\nvalence = 3\nc_range = [0.1, 0.5]\nproperties = [\"theorem1\"]\n")],
+            "properties[0]",
+        ),
+        bad_with(
+            "verify-unknown-property",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\", \"smooth\"]\n")],
+            "properties[1]",
+        ),
+        bad_with(
+            "verify-property-twice",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\", \"class\"]\n")],
+            "properties[1]",
+        ),
+        bad_with(
+            "verify-properties-empty",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = []\n")],
+            "properties",
+        ),
+        bad_with(
+            "verify-min-width-zero",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\nmin_width = 0.0\n")],
+            "min_width",
+        ),
+        bad_with(
+            "verify-min-width-string",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\nmin_width = \"small\"\n")],
+            "min_width",
+        ),
+        bad_with(
+            "verify-time-budget-negative",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\ntime_budget = -1.0\n")],
+            "time_budget",
+        ),
+        bad_with(
+            "verify-threads-zero",
+            &["verify", "v.toml", "--out", "o", "--threads", "0"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "--threads",
+        ),
+        bad_with(
+            "verify-max-cells-zero",
+            &["verify", "v.toml", "--out", "o", "--max-cells", "0"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "--max-cells",
+        ),
+        bad_with(
+            "verify-max-cells-huge",
+            &["verify", "v.toml", "--out", "o", "--max-cells", "100000000000"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "--force",
+        ),
+        bad_with(
+            "verify-out-is-file",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n"), ("o", "x")],
+            "not a directory",
+        ),
+        bad_with(
+            "verify-out-foreign-dir",
+            &["verify", "v.toml", "--out", "d"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n"), ("d/keep.txt", "x")],
+            "not empty",
+        ),
+        bad_with(
+            "verify-out-parent-missing",
+            &["verify", "v.toml", "--out", "no/such/o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "does not exist",
+        ),
+        bad_with(
+            "verify-missing-out",
+            &["verify", "v.toml"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "--out",
+        ),
+    ]);
+    // (end of section verify)
+
     let _ = full; // used by the cli-io section
                   // ===================================================================
                   // SECTION curvature (issue 18 part 1): the `curvature` and

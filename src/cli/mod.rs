@@ -14,6 +14,7 @@ mod scheme_args;
 mod subdivide;
 mod sweep;
 mod sweep_parquet;
+mod verify;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -54,6 +55,8 @@ enum Command {
     Merge(sweep::MergeArgs),
     /// Plot a sweep's results (class fractions, histogram, scatter or 2-D class map).
     Plot(plot::PlotArgs),
+    /// Prove class/separation verdicts over a box of ratios or an interval of c (cells.csv + summary.json).
+    Verify(verify::VerifyArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -211,6 +214,7 @@ pub fn main() -> ExitCode {
         Command::Sweep(args) => sweep::run_sweep(args),
         Command::Merge(args) => sweep::run_merge(args),
         Command::Plot(args) => plot::run(args),
+        Command::Verify(args) => verify::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

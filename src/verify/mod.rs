@@ -1,0 +1,407 @@
+//! Proofs over regions (issue 20; math doc section 15): certified verdicts
+//! for whole boxes of edge ratios (NURDS) and intervals of `c` (the
+//! shape-adjustable Catmull-Clark scheme), by branch and bound.
+//!
+//! Each cell gets a rigorous enclosure of the eigenvalues that holds for
+//! every parameter in it ([`enclose`] for NURDS: the closed 2 x 2 form for
+//! `n = 3, 4`, Gershgorin discs in the eigenvector basis above; [`cc`] for the `c` path), in
+//! interval arithmetic with outward rounding ([`interval`]); [`decide`] turns
+//! the enclosure into verdicts. A cell whose requested properties are not all
+//! decided is bisected across its widest side, down to `min_width`; what is
+//! still open there is `undecided`. Bisection points are floats strictly
+//! inside their cells, so the cells tile the box exactly.
+//!
+//! ```
+//! use subdiv_lab::verify::{run, spec::VerifySpec, Limits};
+//! let spec = VerifySpec::parse(
+//!     "scheme = \"nurds\"\nvalence = 3\nbox = [[0.3, 0.4], [0.3, 0.4], [0.3, 0.4]]\nproperties = [\"class\", \"separation\"]\n",
+//! ).unwrap();
+//! let out = run(&spec, &Limits::default());
+//! assert!(out.cells.iter().all(|c| c.verdict() == "complex_pair"));
+//! ```
+
+// Negated float comparisons (`!(x < bound)`) are deliberate throughout: a NaN
+// makes them true, so a NaN never certifies anything.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+pub mod cc;
+pub mod decide;
+pub mod enclose;
+pub mod interval;
+pub mod spec;
+
+use crate::spectral::ClassName;
+use decide::Status;
+pub use enclose::Tamper;
+use rayon::prelude::*;
+use serde::Serialize;
+use spec::{Property, Region, VerifySpec};
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+/// Default cap on the number of cells evaluated.
+pub const DEFAULT_MAX_CELLS: u64 = 4_000_000;
+
+/// Limits of one run (besides the spec's `min_width` and `time_budget`).
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    /// At most this many cells are evaluated; refinement stops before a
+    /// level that would exceed it (the open cells stay `undecided`).
+    pub max_cells: u64,
+    /// Test hook: deliberately weakens the enclosure (never set by the CLI).
+    #[doc(hidden)]
+    pub tamper: Tamper,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_cells: DEFAULT_MAX_CELLS,
+            tamper: Tamper::None,
+        }
+    }
+}
+
+/// The verdicts of one cell.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cell {
+    /// Lower corner.
+    pub lo: Vec<f64>,
+    /// Upper corner.
+    pub hi: Vec<f64>,
+    /// Bisection depth (0 = the whole box).
+    pub level: u32,
+    /// The class when the class property is requested and proven.
+    pub class: Option<ClassName>,
+    /// One status per requested property (spec order).
+    pub status: Vec<(Property, Status)>,
+}
+
+impl Cell {
+    /// The `verdict` column: the class name when `class` is requested (or
+    /// `undecided`); otherwise `certified` when every property holds,
+    /// `refuted` when one fails and none is open, else `undecided`.
+    pub fn verdict(&self) -> &'static str {
+        if self.status.iter().any(|(p, _)| *p == Property::Class) {
+            return self.class.map_or("undecided", ClassName::as_str);
+        }
+        if self.status.iter().all(|(_, s)| *s == Status::Certified) {
+            "certified"
+        } else if self.status.iter().any(|(_, s)| *s == Status::Undecided) {
+            "undecided"
+        } else {
+            "refuted"
+        }
+    }
+
+    /// The cell's volume (product of the side lengths, in `f64`).
+    pub fn volume(&self) -> f64 {
+        self.lo.iter().zip(&self.hi).map(|(a, b)| b - a).product()
+    }
+}
+
+/// Why refinement stopped early (cells left open are `undecided`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Stop {
+    /// The spec's `time_budget` ran out.
+    TimeBudget,
+    /// The next level would exceed `max_cells`.
+    MaxCells,
+}
+
+/// The result of a run.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    /// The final cells (a tiling of the box).
+    pub cells: Vec<Cell>,
+    /// Cells evaluated (leaves and inner nodes).
+    pub evaluated: u64,
+    /// Why refinement stopped early, if it did.
+    pub stopped: Option<Stop>,
+    /// Wall time, seconds.
+    pub seconds: f64,
+}
+
+/// Whether a property can be attempted for this region (the others stay
+/// `undecided` without driving the refinement).
+fn attempted(region: &Region, p: Property) -> bool {
+    match (region, p) {
+        // not implemented over cells yet (math doc section 15)
+        (_, Property::Charmap) => false,
+        (Region::Shape { .. }, Property::Theorem1) => false,
+        _ => true,
+    }
+}
+
+/// A cell's class (when proven) and the status of each requested property.
+type Evaluation = (Option<ClassName>, Vec<(Property, Status)>);
+
+/// Evaluates one cell.
+fn evaluate(
+    spec: &VerifySpec,
+    family: Option<&enclose::AffineFamily>,
+    lo: &[f64],
+    hi: &[f64],
+    tamper: Tamper,
+) -> Evaluation {
+    let (separation, class) = match (&spec.region, family) {
+        (Region::Ratios { .. }, Some(f)) if f.dim() == 2 => {
+            match enclose::decide_2x2(f, lo, hi, tamper) {
+                Some(v) => (v.separation, v.class),
+                None => (Status::Undecided, None),
+            }
+        }
+        (Region::Ratios { .. }, Some(f)) => match enclose::enclose(f, lo, hi, tamper) {
+            Some(e) => {
+                let v = decide::decide_either(&e.rows, &e.cols);
+                (v.separation, v.class)
+            }
+            None => (Status::Undecided, None),
+        },
+        (Region::Shape { valence, .. }, _) => cc::verdict(*valence, lo[0], hi[0]),
+        _ => (Status::Undecided, None),
+    };
+    let status = spec
+        .properties
+        .iter()
+        .map(|&p| {
+            let s = match p {
+                Property::Class => {
+                    if class.is_some() {
+                        Status::Certified
+                    } else {
+                        Status::Undecided
+                    }
+                }
+                Property::Separation => separation,
+                // Theorem 1 holds for every ratio vector in (0, 1)^n (math doc
+                // section 5): the box lies in (0, 1)^n (checked by the spec).
+                Property::Theorem1 => match spec.region {
+                    Region::Ratios { .. } => Status::Certified,
+                    Region::Shape { .. } => Status::Undecided,
+                },
+                Property::Charmap => Status::Undecided,
+            };
+            (p, s)
+        })
+        .collect();
+    (class, status)
+}
+
+fn decided(spec: &VerifySpec, class: Option<ClassName>, status: &[(Property, Status)]) -> bool {
+    status.iter().all(|&(p, s)| {
+        !attempted(&spec.region, p)
+            || match p {
+                Property::Class => class.is_some(),
+                _ => s != Status::Undecided,
+            }
+    })
+}
+
+/// Runs the branch and bound (parallel over the cells of a level on the
+/// current rayon pool; the result does not depend on the thread count).
+pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
+    let start = Instant::now();
+    let family = match spec.region {
+        Region::Ratios { .. } => Some(enclose::AffineFamily::nurds(spec.valence())),
+        Region::Shape { .. } => None,
+    };
+    let (lo, hi) = spec.bounds();
+    let mut frontier: Vec<(Vec<f64>, Vec<f64>)> = vec![(lo, hi)];
+    let mut cells = Vec::new();
+    let mut evaluated: u64 = 0;
+    let mut stopped = None;
+    let mut level: u32 = 0;
+    while !frontier.is_empty() {
+        let results: Vec<Evaluation> = frontier
+            .par_iter()
+            .map(|(a, b)| evaluate(spec, family.as_ref(), a, b, limits.tamper))
+            .collect();
+        evaluated += frontier.len() as u64;
+        let splittable = |a: &[f64], b: &[f64]| -> Option<(usize, f64)> {
+            let (mut k, mut w) = (0, -1.0);
+            for i in 0..a.len() {
+                if b[i] - a[i] > w {
+                    w = b[i] - a[i];
+                    k = i;
+                }
+            }
+            let mid = 0.5 * a[k] + 0.5 * b[k];
+            (w > spec.min_width && a[k] < mid && mid < b[k]).then_some((k, mid))
+        };
+        let open: usize = frontier
+            .iter()
+            .zip(&results)
+            .filter(|((a, b), (c, s))| !decided(spec, *c, s) && splittable(a, b).is_some())
+            .count();
+        if open > 0 && stopped.is_none() {
+            if evaluated + 2 * open as u64 > limits.max_cells {
+                stopped = Some(Stop::MaxCells);
+            } else if spec
+                .time_budget
+                .is_some_and(|t| start.elapsed().as_secs_f64() > t)
+            {
+                stopped = Some(Stop::TimeBudget);
+            }
+        }
+        let mut next = Vec::with_capacity(2 * open);
+        for ((a, b), (class, status)) in frontier.into_iter().zip(results) {
+            let split = if stopped.is_none() && !decided(spec, class, &status) {
+                splittable(&a, &b)
+            } else {
+                None
+            };
+            match split {
+                Some((k, mid)) => {
+                    let mut b1 = b.clone();
+                    b1[k] = mid;
+                    let mut a2 = a.clone();
+                    a2[k] = mid;
+                    next.push((a, b1));
+                    next.push((a2, b));
+                }
+                None => cells.push(Cell {
+                    lo: a,
+                    hi: b,
+                    level,
+                    class,
+                    status,
+                }),
+            }
+        }
+        frontier = next;
+        level += 1;
+    }
+    Outcome {
+        cells,
+        evaluated,
+        stopped,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// The CSV columns' names: `lo0..`, `hi0..` (or `c_lo, c_hi`), `verdict`,
+/// one per property.
+pub fn csv_header(spec: &VerifySpec) -> Vec<String> {
+    let mut h = Vec::new();
+    match spec.region {
+        Region::Ratios { .. } => {
+            let n = spec.valence();
+            h.extend((0..n).map(|i| format!("lo{i}")));
+            h.extend((0..n).map(|i| format!("hi{i}")));
+        }
+        Region::Shape { .. } => {
+            h.push("c_lo".to_owned());
+            h.push("c_hi".to_owned());
+        }
+    }
+    h.push("verdict".to_owned());
+    h.extend(spec.properties.iter().map(|p| p.as_str().to_owned()));
+    h
+}
+
+/// `cells.csv` as text (end points in shortest round-trip form, so they
+/// parse back to the exact floats of the cells).
+pub fn cells_csv(spec: &VerifySpec, outcome: &Outcome) -> String {
+    let mut s = csv_header(spec).join(",");
+    s.push('\n');
+    for c in &outcome.cells {
+        let mut row: Vec<String> = c.lo.iter().chain(&c.hi).map(|x| format!("{x:?}")).collect();
+        row.push(c.verdict().to_owned());
+        row.extend(c.status.iter().map(|(_, st)| st.as_str().to_owned()));
+        s.push_str(&row.join(","));
+        s.push('\n');
+    }
+    s
+}
+
+/// `summary.json`'s content.
+#[derive(Clone, Debug, Serialize)]
+pub struct Summary {
+    /// `"subdiv-lab"`.
+    pub tool: &'static str,
+    /// `"verify"`.
+    pub command: &'static str,
+    /// Spec name.
+    pub name: String,
+    /// Scheme.
+    pub scheme: &'static str,
+    /// Valence.
+    pub valence: usize,
+    /// The box, one `[lo, hi]` per coordinate (`c` for the shape path).
+    pub r#box: Vec<[f64; 2]>,
+    /// Properties.
+    pub properties: Vec<Property>,
+    /// `min_width` of the spec.
+    pub min_width: f64,
+    /// Final cells.
+    pub cells: usize,
+    /// Cells evaluated, including the ones that were split.
+    pub evaluated: u64,
+    /// Final cells per verdict.
+    pub counts: BTreeMap<String, usize>,
+    /// Volume fraction per verdict.
+    pub volume_fraction: BTreeMap<String, f64>,
+    /// Volume fraction of `undecided` cells.
+    pub undecided_fraction: f64,
+    /// Per property: volume fraction per status.
+    pub property_volume_fraction: BTreeMap<String, BTreeMap<String, f64>>,
+    /// Deepest bisection level among the final cells.
+    pub deepest_level: u32,
+    /// Why refinement stopped early (`null`: it did not).
+    pub stopped: Option<Stop>,
+    /// Wall time of the refinement, seconds.
+    pub seconds: f64,
+}
+
+/// Builds the summary of a run.
+pub fn summary(spec: &VerifySpec, outcome: &Outcome) -> Summary {
+    let (lo, hi) = spec.bounds();
+    let total: f64 = lo.iter().zip(&hi).map(|(a, b)| b - a).product();
+    let mut counts = BTreeMap::new();
+    let mut vol: BTreeMap<String, f64> = BTreeMap::new();
+    let mut pvol: BTreeMap<String, BTreeMap<String, f64>> = BTreeMap::new();
+    for p in &spec.properties {
+        let e = pvol.entry(p.as_str().to_owned()).or_default();
+        for s in ["certified", "refuted", "undecided"] {
+            e.insert(s.to_owned(), 0.0);
+        }
+    }
+    let mut deepest = 0;
+    for c in &outcome.cells {
+        let v = c.volume() / total;
+        *counts.entry(c.verdict().to_owned()).or_insert(0) += 1;
+        *vol.entry(c.verdict().to_owned()).or_insert(0.0) += v;
+        for (p, s) in &c.status {
+            *pvol
+                .entry(p.as_str().to_owned())
+                .or_default()
+                .entry(s.as_str().to_owned())
+                .or_insert(0.0) += v;
+        }
+        deepest = deepest.max(c.level);
+    }
+    Summary {
+        tool: "subdiv-lab",
+        command: "verify",
+        name: spec.name.clone(),
+        scheme: spec.scheme(),
+        valence: spec.valence(),
+        r#box: lo.iter().zip(&hi).map(|(a, b)| [*a, *b]).collect(),
+        properties: spec.properties.clone(),
+        min_width: spec.min_width,
+        cells: outcome.cells.len(),
+        evaluated: outcome.evaluated,
+        undecided_fraction: vol.get("undecided").copied().unwrap_or(0.0),
+        counts,
+        volume_fraction: vol,
+        property_volume_fraction: pvol,
+        deepest_level: deepest,
+        stopped: outcome.stopped,
+        seconds: outcome.seconds,
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,390 @@
+//! The `verify` spec (TOML): what to prove over which region.
+//!
+//! ```toml
+//! name = "v3"
+//! scheme = "nurds"            # or "adjustable-cc" (then c_range instead of box)
+//! valence = 3
+//! box = [[0.01, 0.99], [0.01, 0.99], [0.01, 0.99]]   # one [lo, hi] per edge ratio r_i
+//! properties = ["class", "separation"]                # also "theorem1", "charmap"
+//! min_width = 0.002          # optional: cells this narrow are not split further
+//! time_budget = 60           # optional, seconds: refinement stops after this
+//! ```
+//!
+//! Errors name the key and the line (the rules of the sweep specs).
+
+use crate::sweep::SweepError;
+use crate::toml_location::{key_path_at, key_path_in_tree, Location};
+use serde::Deserialize;
+use toml::Spanned;
+
+/// Default `min_width`: `2^-9` (cells of width about 0.002 in ratio space).
+pub const DEFAULT_MIN_WIDTH: f64 = 1.0 / 512.0;
+
+/// Smallest accepted `min_width`: `2^-40`; below it the cell count is
+/// unbounded in practice and the end points approach the `f64` spacing.
+pub const MIN_MIN_WIDTH: f64 = 1.0 / 1_099_511_627_776.0;
+
+/// Largest valence of a NURDS box (the box has one dimension per edge; above
+/// 16 dimensions bisection cannot reach a useful width).
+pub const MAX_NURDS_VALENCE: usize = 16;
+
+/// Largest valence of the adjustable Catmull-Clark scheme over `c`.
+pub const MAX_CC_VALENCE: usize = 1024;
+
+/// A property to prove on every cell.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Property {
+    /// The subdominant class is constant on the cell.
+    Class,
+    /// `|lambda_2| > |lambda_3|` and `> 1/4`, `lambda_0 = 1` simple.
+    Separation,
+    /// Theorem 1 (the 3/4 contraction of the central face).
+    Theorem1,
+    /// The characteristic map is regular and injective on the whole cell.
+    Charmap,
+}
+
+impl Property {
+    /// The spec and CSV name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Property::Class => "class",
+            Property::Separation => "separation",
+            Property::Theorem1 => "theorem1",
+            Property::Charmap => "charmap",
+        }
+    }
+
+    fn parse(s: &str) -> Option<Self> {
+        [
+            Property::Class,
+            Property::Separation,
+            Property::Theorem1,
+            Property::Charmap,
+        ]
+        .into_iter()
+        .find(|p| p.as_str() == s)
+    }
+}
+
+/// The scheme and its parameter region.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Region {
+    /// NURDS of valence `lo.len()`, edge ratios `r_i` in `[lo_i, hi_i]`.
+    Ratios {
+        /// Lower ends.
+        lo: Vec<f64>,
+        /// Upper ends.
+        hi: Vec<f64>,
+    },
+    /// The adjustable Catmull-Clark scheme of valence `valence`, `c` in `[lo, hi]`.
+    Shape {
+        /// Valence.
+        valence: usize,
+        /// Lower end of `c`.
+        lo: f64,
+        /// Upper end of `c`.
+        hi: f64,
+    },
+}
+
+/// A validated `verify` spec.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VerifySpec {
+    /// Name (default `verify`).
+    pub name: String,
+    /// Scheme and region.
+    pub region: Region,
+    /// Properties, sorted, without repetitions.
+    pub properties: Vec<Property>,
+    /// Cells whose widest side is at most this are not split.
+    pub min_width: f64,
+    /// Wall-time budget of the refinement, seconds.
+    pub time_budget: Option<f64>,
+}
+
+impl VerifySpec {
+    /// Valence of the configuration.
+    pub fn valence(&self) -> usize {
+        match &self.region {
+            Region::Ratios { lo, .. } => lo.len(),
+            Region::Shape { valence, .. } => *valence,
+        }
+    }
+
+    /// The scheme's spec name.
+    pub fn scheme(&self) -> &'static str {
+        match &self.region {
+            Region::Ratios { .. } => "nurds",
+            Region::Shape { .. } => "adjustable-cc",
+        }
+    }
+
+    /// The box as `(lo, hi)` vectors (one entry for the `c` path).
+    pub fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        match &self.region {
+            Region::Ratios { lo, hi } => (lo.clone(), hi.clone()),
+            Region::Shape { lo, hi, .. } => (vec![*lo], vec![*hi]),
+        }
+    }
+
+    /// Parses and validates a spec; errors name the key and the line.
+    ///
+    /// ```
+    /// use subdiv_lab::verify::spec::{Property, VerifySpec};
+    /// let s = VerifySpec::parse("scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"separation\", \"class\"]\n").unwrap();
+    /// assert_eq!(s.properties, vec![Property::Class, Property::Separation]);
+    /// let e = VerifySpec::parse("scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 1.5]]\nproperties = [\"class\"]\n").unwrap_err();
+    /// assert!(e.to_string().contains("box[2]") && e.to_string().contains("line 3"));
+    /// ```
+    pub fn parse(text: &str) -> Result<Self, SweepError> {
+        let raw: RawSpec = toml::from_str(text).map_err(|e| deserialize_error(text, &e))?;
+        let ctx = Ctx { text };
+        let scheme = raw.scheme.get_ref().as_str();
+        let v = *raw.valence.get_ref();
+        let vspan = Some(raw.valence.span());
+        let region = match scheme {
+            "nurds" => {
+                if !(3..=MAX_NURDS_VALENCE as i64).contains(&v) {
+                    return ctx.err(
+                        "valence",
+                        vspan,
+                        format!("valence must be between 3 and {MAX_NURDS_VALENCE} for a nurds box, got {v}"),
+                    );
+                }
+                if let Some(c) = &raw.c_range {
+                    return ctx.err("c_range", Some(c.span()), "c_range is for scheme \"adjustable-cc\"; a nurds spec gives box".into());
+                }
+                let Some(b) = &raw.r#box else {
+                    return ctx.err("box", None, "box: missing (required key for scheme \"nurds\")".into());
+                };
+                let n = v as usize;
+                if b.get_ref().len() != n {
+                    return ctx.err(
+                        "box",
+                        Some(b.span()),
+                        format!("box must have one [lo, hi] per edge ratio ({n} for valence {n}), got {}", b.get_ref().len()),
+                    );
+                }
+                let mut lo = Vec::with_capacity(n);
+                let mut hi = Vec::with_capacity(n);
+                for (i, r) in b.get_ref().iter().enumerate() {
+                    let key = format!("box[{i}]");
+                    let (a, z) = range(&ctx, &key, r, false)?;
+                    lo.push(a);
+                    hi.push(z);
+                }
+                Region::Ratios { lo, hi }
+            }
+            "adjustable-cc" => {
+                if !(3..=MAX_CC_VALENCE as i64).contains(&v) {
+                    return ctx.err(
+                        "valence",
+                        vspan,
+                        format!("valence must be between 3 and {MAX_CC_VALENCE}, got {v}"),
+                    );
+                }
+                if let Some(b) = &raw.r#box {
+                    return ctx.err("box", Some(b.span()), "box is for scheme \"nurds\"; an adjustable-cc spec gives c_range".into());
+                }
+                let Some(c) = &raw.c_range else {
+                    return ctx.err("c_range", None, "c_range: missing (required key for scheme \"adjustable-cc\")".into());
+                };
+                let (lo, hi) = range(&ctx, "c_range", c, true)?;
+                Region::Shape {
+                    valence: v as usize,
+                    lo,
+                    hi,
+                }
+            }
+            other => {
+                return ctx.err(
+                    "scheme",
+                    Some(raw.scheme.span()),
+                    format!("scheme: unknown scheme {other:?}; verify supports \"nurds\" (box) and \"adjustable-cc\" (c_range)"),
+                )
+            }
+        };
+        let mut properties = Vec::new();
+        let plist = raw.properties.get_ref();
+        if plist.is_empty() {
+            return ctx.err(
+                "properties",
+                Some(raw.properties.span()),
+                "properties: empty list; give at least one of class, separation, theorem1, charmap"
+                    .into(),
+            );
+        }
+        for (i, p) in plist.iter().enumerate() {
+            let key = format!("properties[{i}]");
+            let Some(prop) = Property::parse(p.get_ref()) else {
+                return ctx.err(
+                    &key,
+                    Some(p.span()),
+                    format!(
+                        "{key}: unknown property {:?}; one of class, separation, theorem1, charmap",
+                        p.get_ref()
+                    ),
+                );
+            };
+            if properties.contains(&prop) {
+                return ctx.err(
+                    &key,
+                    Some(p.span()),
+                    format!("{key}: property {:?} is listed twice", p.get_ref()),
+                );
+            }
+            if prop == Property::Theorem1 && scheme != "nurds" {
+                return ctx.err(
+                    &key,
+                    Some(p.span()),
+                    format!("{key}: theorem1 (the 3/4 contraction of the central face) applies to scheme \"nurds\" only"),
+                );
+            }
+            properties.push(prop);
+        }
+        properties.sort();
+        let min_width = match &raw.min_width {
+            None => DEFAULT_MIN_WIDTH,
+            Some(w) => {
+                let x = *w.get_ref();
+                if !(x.is_finite() && x >= MIN_MIN_WIDTH) {
+                    return ctx.err(
+                        "min_width",
+                        Some(w.span()),
+                        format!("min_width must be finite and at least 2^-40 ({MIN_MIN_WIDTH:e}), got {x}"),
+                    );
+                }
+                x
+            }
+        };
+        let time_budget = match &raw.time_budget {
+            None => None,
+            Some(t) => {
+                let x = *t.get_ref();
+                if !(x.is_finite() && x > 0.0) {
+                    return ctx.err(
+                        "time_budget",
+                        Some(t.span()),
+                        format!("time_budget must be a positive number of seconds, got {x}"),
+                    );
+                }
+                Some(x)
+            }
+        };
+        let name = raw.name.unwrap_or_else(|| "verify".to_owned());
+        Ok(VerifySpec {
+            name,
+            region,
+            properties,
+            min_width,
+            time_budget,
+        })
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSpec {
+    name: Option<String>,
+    scheme: Spanned<String>,
+    valence: Spanned<i64>,
+    r#box: Option<Spanned<Vec<Spanned<Vec<f64>>>>>,
+    c_range: Option<Spanned<Vec<f64>>>,
+    properties: Spanned<Vec<Spanned<String>>>,
+    min_width: Option<Spanned<f64>>,
+    time_budget: Option<Spanned<f64>>,
+}
+
+struct Ctx<'a> {
+    text: &'a str,
+}
+
+impl Ctx<'_> {
+    fn err<T>(
+        &self,
+        key: &str,
+        span: Option<std::ops::Range<usize>>,
+        message: String,
+    ) -> Result<T, SweepError> {
+        Err(SweepError::Spec {
+            key: key.to_owned(),
+            line: span.map(|s| Location::of(self.text, s.start).line),
+            message,
+        })
+    }
+}
+
+fn range(
+    ctx: &Ctx,
+    key: &str,
+    v: &Spanned<Vec<f64>>,
+    shape: bool,
+) -> Result<(f64, f64), SweepError> {
+    let span = Some(v.span());
+    let r = v.get_ref();
+    if r.len() != 2 {
+        return ctx.err(
+            key,
+            span,
+            format!("{key} must be [lower, upper], got {} values", r.len()),
+        );
+    }
+    let (a, b) = (r[0], r[1]);
+    if !(a.is_finite() && b.is_finite()) {
+        return ctx.err(
+            key,
+            span,
+            format!("{key}: bounds must be finite, got [{a}, {b}]"),
+        );
+    }
+    for x in [a, b] {
+        if shape && !(0.0..=1.0).contains(&x) {
+            return ctx.err(
+                key,
+                span,
+                format!("{key}: bound {x} is outside [0, 1], the range of the shape parameter c"),
+            );
+        }
+        if !shape && (x <= 0.0 || x >= 1.0) {
+            return ctx.err(
+                key,
+                span,
+                format!("{key}: bound {x} is outside the open interval (0, 1) of edge ratios"),
+            );
+        }
+    }
+    if a >= b {
+        return ctx.err(
+            key,
+            span,
+            format!("{key}: lower bound {a} must be below upper bound {b}"),
+        );
+    }
+    Ok((a, b))
+}
+
+/// A deserializer error naming the key path and the line.
+fn deserialize_error(text: &str, e: &toml::de::Error) -> SweepError {
+    let span = e.span().filter(|s| s.end > 0);
+    let message = e.message().trim().to_owned();
+    let missing = message
+        .strip_prefix("missing field `")
+        .and_then(|m| m.strip_suffix('`'));
+    let at = span
+        .as_ref()
+        .and_then(|s| key_path_in_tree(text, s.start).or_else(|| key_path_at(text, s.start)));
+    let (key, message) = match missing {
+        Some(field) => (field.to_owned(), format!("{field}: missing (required key)")),
+        None => {
+            let key = at.unwrap_or_else(|| "spec".to_owned());
+            (key.clone(), format!("{key}: {message}"))
+        }
+    };
+    SweepError::Spec {
+        line: span.map(|s| Location::of(text, s.start).line),
+        message,
+        key,
+    }
+}

@@ -1,0 +1,288 @@
+//! Unit tests of the region verifier: the deflated family against the face
+//! block, soundness against the exact pointwise classifier, a deliberately
+//! weakened enclosure caught by the same check, exact tiling.
+
+use super::enclose::{enclose, AffineFamily};
+use super::*;
+use crate::knots::EdgeRatios;
+use crate::rng::SplitMix64;
+use crate::scalar::{f64_to_rational, Rational};
+use crate::schemes::LocalScheme;
+use crate::spectral::eigen::{Eigen, EigenOptions};
+use crate::spectral::exact::exact_verdict;
+use nalgebra::DMatrix;
+use num_traits::Zero;
+
+fn spec3(lo: [f64; 3], hi: [f64; 3], min_width: f64) -> VerifySpec {
+    VerifySpec {
+        name: "t".into(),
+        region: Region::Ratios {
+            lo: lo.to_vec(),
+            hi: hi.to_vec(),
+        },
+        properties: vec![Property::Class, Property::Separation],
+        min_width,
+        time_budget: None,
+    }
+}
+
+#[test]
+fn deflated_family_has_the_face_block_spectrum() {
+    let mut rng = SplitMix64::new(7);
+    for n in 3..=8 {
+        let f = AffineFamily::nurds(n);
+        for _ in 0..5 {
+            let r: Vec<f64> = (0..n).map(|_| rng.uniform(0.05, 0.95)).collect();
+            let a = LocalScheme::nurds(EdgeRatios::new(r.clone()).unwrap())
+                .face_block()
+                .unwrap();
+            let ea = Eigen::new(&a, EigenOptions::VALUES).unwrap();
+            let m = f.dim();
+            let c = DMatrix::from_row_slice(m, m, &f.at(&r));
+            let ec = Eigen::new(&c, EigenOptions::VALUES).unwrap();
+            // face block: 1 first, then the spectrum of C
+            assert!((ea.values()[0].re - 1.0).abs() < 1e-12);
+            let mut rest: Vec<_> = ea.values()[1..].to_vec();
+            for z in ec.values() {
+                let (k, d) = rest
+                    .iter()
+                    .enumerate()
+                    .map(|(k, w)| (k, (w - z).norm()))
+                    .min_by(|a, b| a.1.total_cmp(&b.1))
+                    .unwrap();
+                assert!(d < 1e-7, "n={n} r={r:?}: {z} missing (nearest {d})");
+                rest.remove(k);
+            }
+            // even n: the exactly removed eigenvalue 1/4 is what is left
+            if n % 2 == 0 {
+                assert!(
+                    rest.len() == 1 && (rest[0].re - 0.25).abs() < 1e-7 && rest[0].im.abs() < 1e-7,
+                    "n={n}: {rest:?}"
+                );
+            } else {
+                assert!(rest.is_empty());
+            }
+        }
+    }
+}
+
+#[test]
+fn discs_contain_the_spectrum_at_sampled_points() {
+    let mut rng = SplitMix64::new(11);
+    for n in 3..=6 {
+        let f = AffineFamily::nurds(n);
+        for _ in 0..20 {
+            let lo: Vec<f64> = (0..n).map(|_| rng.uniform(0.05, 0.9)).collect();
+            let hi: Vec<f64> = lo.iter().map(|x| x + 0.01).collect();
+            let Some(e) = enclose(&f, &lo, &hi, Tamper::None) else {
+                continue;
+            };
+            for _ in 0..5 {
+                let r: Vec<f64> = lo
+                    .iter()
+                    .zip(&hi)
+                    .map(|(a, b)| rng.uniform(*a, *b))
+                    .collect();
+                let m = f.dim();
+                let c = DMatrix::from_row_slice(m, m, &f.at(&r));
+                for z in Eigen::new(&c, EigenOptions::VALUES).unwrap().values() {
+                    for discs in [&e.rows, &e.cols] {
+                        assert!(discs
+                            .iter()
+                            .any(|d| ((z.re - d.re).powi(2) + (z.im - d.im).powi(2)).sqrt()
+                                <= d.radius + 1e-12));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Random rational points inside the decided cells, each compared with the
+/// exact classifier; returns the number of disagreements and of checks.
+pub(super) fn disagreements(
+    spec: &VerifySpec,
+    out: &Outcome,
+    samples: usize,
+    seed: u64,
+) -> (usize, usize) {
+    let mut rng = SplitMix64::new(seed);
+    let decided: Vec<&Cell> = out.cells.iter().filter(|c| c.class.is_some()).collect();
+    let mut bad = 0;
+    let mut checks = 0;
+    if decided.is_empty() {
+        return (0, 0);
+    }
+    let _ = spec;
+    for s in 0..samples {
+        let cell = decided[s % decided.len()];
+        let r: Vec<Rational> = cell
+            .lo
+            .iter()
+            .zip(&cell.hi)
+            .map(|(a, b)| f64_to_rational(rng.uniform(*a, *b).clamp(*a, *b)).unwrap())
+            .collect();
+        assert!(r.iter().all(|x| !x.is_zero()));
+        let v = exact_verdict(&LocalScheme::nurds(EdgeRatios::new(r).unwrap()), None).unwrap();
+        checks += 1;
+        if let Some(k) = v.class {
+            if Some(k) != cell.class {
+                bad += 1;
+            }
+        }
+        for (p, st) in &cell.status {
+            if *p == Property::Separation {
+                let want = match st {
+                    Status::Certified => Some(true),
+                    Status::Refuted => Some(false),
+                    Status::Undecided => None,
+                };
+                if want.is_some() && v.separated.is_some() && want != v.separated {
+                    bad += 1;
+                }
+            }
+        }
+    }
+    (bad, checks)
+}
+
+#[test]
+fn certified_cells_agree_with_the_exact_classifier() {
+    // a box across the class boundary and the separation boundary
+    let spec = spec3([0.05, 0.05, 0.05], [0.95, 0.95, 0.95], 1.0 / 32.0);
+    let out = run(&spec, &Limits::default());
+    let classes: std::collections::HashSet<_> = out.cells.iter().filter_map(|c| c.class).collect();
+    assert!(
+        classes.len() >= 2,
+        "expected several classes, got {classes:?}"
+    );
+    let (bad, checks) = disagreements(&spec, &out, 300, 1);
+    assert!(checks == 300 && bad == 0, "{bad} disagreements in {checks}");
+}
+
+#[test]
+fn a_weakened_enclosure_is_caught() {
+    let spec = spec3([0.05, 0.05, 0.05], [0.95, 0.95, 0.95], 1.0 / 32.0);
+    let limits = Limits {
+        tamper: Tamper::DropVariation,
+        ..Limits::default()
+    };
+    let out = run(&spec, &limits);
+    let (bad, checks) = disagreements(&spec, &out, 300, 1);
+    assert!(
+        bad > 0,
+        "the weakened enclosure went unnoticed in {checks} checks"
+    );
+}
+
+fn spec5(min_width: f64) -> VerifySpec {
+    VerifySpec {
+        name: "t5".into(),
+        region: Region::Ratios {
+            lo: vec![0.05; 5],
+            hi: vec![0.95; 5],
+        },
+        properties: vec![Property::Class, Property::Separation],
+        min_width,
+        time_budget: None,
+    }
+}
+
+#[test]
+fn gershgorin_path_agrees_with_the_exact_classifier_and_its_weakening_is_caught() {
+    // n = 5: the 4 x 4 block, discs in the eigenvector basis; small random boxes
+    let mut rng = SplitMix64::new(5);
+    let mut certified = 0;
+    for _ in 0..8 {
+        let lo: Vec<f64> = (0..5).map(|_| rng.uniform(0.05, 0.85)).collect();
+        let hi: Vec<f64> = lo.iter().map(|x| x + 0.06).collect();
+        let spec = VerifySpec {
+            region: Region::Ratios { lo, hi },
+            ..spec5(0.01)
+        };
+        let out = run(&spec, &Limits::default());
+        certified += out.cells.iter().filter(|c| c.class.is_some()).count();
+        let (bad, checks) = disagreements(&spec, &out, 20, 3);
+        assert!(bad == 0, "{bad} disagreements in {checks}");
+    }
+    assert!(certified > 0, "no n = 5 cell was certified");
+    // coarse cells certified from their centre alone are caught
+    let spec = spec5(0.25);
+    let weak = run(
+        &spec,
+        &Limits {
+            tamper: Tamper::DropVariation,
+            ..Limits::default()
+        },
+    );
+    let (bad, checks) = disagreements(&spec, &weak, 150, 3);
+    assert!(
+        bad > 0,
+        "the weakened enclosure went unnoticed in {checks} checks"
+    );
+}
+
+#[test]
+fn cells_tile_the_box_exactly() {
+    let spec = spec3([0.05, 0.2, 0.3], [0.95, 0.7, 0.9], 1.0 / 16.0);
+    let out = run(&spec, &Limits::default());
+    assert!(out.cells.len() > 10);
+    let q = |x: f64| f64_to_rational(x).unwrap();
+    let (lo, hi) = spec.bounds();
+    let total: Rational = lo.iter().zip(&hi).map(|(a, b)| q(*b) - q(*a)).product();
+    let mut sum = Rational::zero();
+    for (i, c) in out.cells.iter().enumerate() {
+        for k in 0..3 {
+            assert!(lo[k] <= c.lo[k] && c.lo[k] < c.hi[k] && c.hi[k] <= hi[k]);
+        }
+        sum +=
+            c.lo.iter()
+                .zip(&c.hi)
+                .map(|(a, b)| q(*b) - q(*a))
+                .product::<Rational>();
+        for d in &out.cells[..i] {
+            // interiors disjoint: separated along some axis (float comparisons are exact)
+            assert!((0..3).any(|k| c.hi[k] <= d.lo[k] || d.hi[k] <= c.lo[k]));
+        }
+    }
+    assert_eq!(sum, total);
+}
+
+#[test]
+fn cc_path_agrees_with_cc_study() {
+    for n in [3usize, 5, 8] {
+        let spec = VerifySpec {
+            name: "cc".into(),
+            region: Region::Shape {
+                valence: n,
+                lo: 0.001,
+                hi: 1.0,
+            },
+            properties: vec![Property::Class, Property::Separation],
+            min_width: 1e-4,
+            time_budget: None,
+        };
+        let out = run(&spec, &Limits::default());
+        let iv = crate::cc_study::standard_intervals(n, 200, 1e-9).unwrap();
+        let mut certified = 0.0;
+        for c in out.cells.iter().filter(|c| c.class.is_some()) {
+            assert!(
+                iv.iter()
+                    .any(|i| i.lo <= c.lo[0] + 1e-6 && c.hi[0] <= i.hi + 1e-6),
+                "n={n}: {:?} outside {iv:?}",
+                c.lo
+            );
+            let mid = 0.5 * (c.lo[0] + c.hi[0]);
+            assert_eq!(
+                crate::cc_study::study_point(n, mid).unwrap().class,
+                "standard"
+            );
+            certified += c.hi[0] - c.lo[0];
+        }
+        let study: f64 = iv.iter().map(|i| i.hi - i.lo.max(0.001)).sum();
+        assert!(
+            certified > study - 0.01,
+            "n={n}: certified {certified} of {study}"
+        );
+    }
+}
