@@ -1026,6 +1026,167 @@ fn cases() -> Vec<Case> {
     )]);
     // (end of section mesh)
 
+    // ===================================================================
+    // SECTION g2-cap: the G2 cap command (issue 18 part 2).
+    // ===================================================================
+    const RING5: &str = "v 0.0000 0.0000 0.0000\nv 1.0000 0.0000 0.1000\nv 2.0000 0.0000 0.4000\nv 0.3090 0.9511 -0.0809\nv 0.6180 1.9021 -0.3236\nv -0.8090 0.5878 0.0309\nv -1.6180 1.1756 0.1236\nv -0.8090 -0.5878 0.0309\nv -1.6180 -1.1756 0.1236\nv 0.3090 -0.9511 -0.0809\nv 0.6180 -1.9021 -0.3236\nv 1.3090 0.9511 0.0809\nv 1.6180 1.9021 -0.1000\nv 2.3090 0.9511 0.4427\nv 2.6180 1.9021 0.3236\nv -0.5000 1.5388 -0.2118\nv -1.3090 2.1266 -0.2809\nv -0.1910 2.4899 -0.6163\nv -1.0000 3.0777 -0.8472\nv -1.6180 0.0000 0.2618\nv -2.4271 -0.5878 0.5545\nv -2.4271 0.5878 0.5545\nv -3.2361 0.0000 1.0472\nv -0.5000 -1.5388 -0.2118\nv -0.1910 -2.4899 -0.6163\nv -1.3090 -2.1266 -0.2809\nv -1.0000 -3.0777 -0.8472\nv 1.3090 -0.9511 0.0809\nv 2.3090 -0.9511 0.4427\nv 1.6180 -1.9021 -0.1000\nv 2.6180 -1.9021 0.3236\nf 1 2 12 4\nf 2 3 14 12\nf 4 12 13 5\nf 12 14 15 13\nf 1 4 16 6\nf 4 5 18 16\nf 6 16 17 7\nf 16 18 19 17\nf 1 6 20 8\nf 6 7 22 20\nf 8 20 21 9\nf 20 22 23 21\nf 1 8 24 10\nf 8 9 26 24\nf 10 24 25 11\nf 24 26 27 25\nf 1 10 28 2\nf 10 11 30 28\nf 2 28 29 3\nf 28 30 31 29\n";
+    const TRI5: &str = "v 0.0000 0.0000 0.0000\nv 1.0000 0.0000 0.1000\nv 2.0000 0.0000 0.4000\nv 0.3090 0.9511 -0.0809\nv 0.6180 1.9021 -0.3236\nv -0.8090 0.5878 0.0309\nv -1.6180 1.1756 0.1236\nv -0.8090 -0.5878 0.0309\nv -1.6180 -1.1756 0.1236\nv 0.3090 -0.9511 -0.0809\nv 0.6180 -1.9021 -0.3236\nv 1.3090 0.9511 0.0809\nv 1.6180 1.9021 -0.1000\nv 2.3090 0.9511 0.4427\nv 2.6180 1.9021 0.3236\nv -0.5000 1.5388 -0.2118\nv -1.3090 2.1266 -0.2809\nv -0.1910 2.4899 -0.6163\nv -1.0000 3.0777 -0.8472\nv -1.6180 0.0000 0.2618\nv -2.4271 -0.5878 0.5545\nv -2.4271 0.5878 0.5545\nv -3.2361 0.0000 1.0472\nv -0.5000 -1.5388 -0.2118\nv -0.1910 -2.4899 -0.6163\nv -1.3090 -2.1266 -0.2809\nv -1.0000 -3.0777 -0.8472\nv 1.3090 -0.9511 0.0809\nv 2.3090 -0.9511 0.4427\nv 1.6180 -1.9021 -0.1000\nv 2.6180 -1.9021 0.3236\nf 1 2 12\nf 2 3 14 12\nf 4 12 13 5\nf 12 14 15 13\nf 1 4 16 6\nf 4 5 18 16\nf 6 16 17 7\nf 16 18 19 17\nf 1 6 20 8\nf 6 7 22 20\nf 8 20 21 9\nf 20 22 23 21\nf 1 8 24 10\nf 8 9 26 24\nf 10 24 25 11\nf 24 26 27 25\nf 1 10 28 2\nf 10 11 30 28\nf 2 28 29 3\nf 28 30 31 29\n";
+    const G2: &[(&str, &str)] = &[("ring5.obj", RING5), ("tri5.obj", TRI5)];
+    v.extend([
+        bad_with(
+            "g2cap-not-extraordinary",
+            &[
+                "g2-cap",
+                "ring5.obj",
+                "--vertex",
+                "1",
+                "--c",
+                "0.5",
+                "-o",
+                "cap.obj",
+            ],
+            G2,
+            "vertex 1 (OBJ 2) is not extraordinary",
+        ),
+        bad_with(
+            "g2cap-boundary-vertex",
+            &[
+                "g2-cap",
+                "ring5.obj",
+                "--vertex",
+                "2",
+                "--c",
+                "0.5",
+                "-o",
+                "cap.obj",
+            ],
+            G2,
+            "vertex 2 (OBJ 3) is a boundary vertex",
+        ),
+        bad_with(
+            "g2cap-not-quads-around-vertex",
+            &[
+                "g2-cap", "tri5.obj", "--vertex", "0", "--c", "0.5", "-o", "cap.obj",
+            ],
+            G2,
+            "vertex 0 (OBJ 1) is not all quads",
+        ),
+        bad_with(
+            "g2cap-vertex-out-of-range",
+            &["g2-cap", "ring5.obj", "--vertex", "99", "--c", "0.5"],
+            G2,
+            "vertex 99 (OBJ 100) does not exist",
+        ),
+        bad_with(
+            "g2cap-missing-mesh",
+            &["g2-cap", "nothere.obj", "--vertex", "0", "--c", "0.5"],
+            G2,
+            "nothere.obj",
+        ),
+        bad_with(
+            "g2cap-c-out-of-range",
+            &["g2-cap", "ring5.obj", "--vertex", "0", "--c", "1.5"],
+            G2,
+            "--c",
+        ),
+        bad_with(
+            "g2cap-output-is-input",
+            &[
+                "g2-cap",
+                "ring5.obj",
+                "--vertex",
+                "0",
+                "--c",
+                "0.5",
+                "-o",
+                "ring5.obj",
+            ],
+            G2,
+            "ring5.obj",
+        ),
+        bad_with(
+            "g2cap-mesh-without-vertex",
+            &["g2-cap", "ring5.obj", "--c", "0.5"],
+            G2,
+            "--vertex",
+        ),
+        bad(
+            "g2cap-both-sources",
+            &[
+                "g2-cap",
+                "--vertex",
+                "0",
+                "--valence",
+                "5",
+                "--random-net",
+                "1",
+                "--c",
+                "0.5",
+            ],
+            "not both",
+        ),
+        bad(
+            "g2cap-valence-without-seed",
+            &["g2-cap", "--valence", "5", "--c", "0.5"],
+            "--random-net",
+        ),
+        bad("g2cap-nothing", &["g2-cap", "--c", "0.5"], "nothing to cap"),
+        bad(
+            "g2cap-valence-too-large",
+            &[
+                "g2-cap",
+                "--valence",
+                "40",
+                "--random-net",
+                "1",
+                "--c",
+                "0.5",
+            ],
+            "valence 40",
+        ),
+        bad(
+            "g2cap-valence-two",
+            &[
+                "g2-cap",
+                "--valence",
+                "2",
+                "--random-net",
+                "1",
+                "--c",
+                "0.5",
+            ],
+            "valence 2",
+        ),
+        bad(
+            "g2cap-samples-zero",
+            &[
+                "g2-cap",
+                "--valence",
+                "5",
+                "--random-net",
+                "1",
+                "--c",
+                "0.5",
+                "--samples",
+                "0",
+            ],
+            "--samples",
+        ),
+        full(
+            "g2cap-stdout-full",
+            &[
+                "g2-cap",
+                "--valence",
+                "5",
+                "--random-net",
+                "1",
+                "--c",
+                "0.5",
+            ],
+        ),
+    ]);
+    // (end of section g2-cap)
+
     let _ = full; // used by the cli-io section
     v
 }

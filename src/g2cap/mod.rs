@@ -38,6 +38,9 @@
 //! assert!(cap.g2_residual() < 1e-9);
 //! ```
 
+// Index loops mirror the subscripts of the formulas in the math doc.
+#![allow(clippy::needless_range_loop)]
+
 pub mod bernstein;
 pub mod residual;
 pub mod ring;
@@ -48,8 +51,9 @@ use residual::Jumps;
 use ring::{Point, RefinedRing, TwoRing};
 
 /// Largest accepted residual (internal G1 and G2, outer boundary): the jump
-/// of the unit normal, and of `K L^2` and `H L` (`L` the diameter of the
-/// cap's control points). The construction satisfies its conditions
+/// of the unit normal, and of `K / k_s^2` and `H / k_s` (`k_s` the curvature
+/// scale: the largest principal curvature magnitude over the samples, at
+/// least `1 / L`, `L` the diameter of the cap's control points). The construction satisfies its conditions
 /// exactly; what remains is rounding in the SVD and in the evaluation,
 /// measured between `1e-15` and `3e-11` for `n = 3..=8` (math doc section
 /// 14.6), so `1e-9` leaves a margin of thirty and still refuses any real
@@ -187,6 +191,7 @@ pub struct G2Cap {
     internal: Jumps,
     outer: Jumps,
     scale: f64,
+    curvature_scale: f64,
     rank: usize,
     freedom: usize,
     refined: RefinedRing,
@@ -204,8 +209,12 @@ impl G2Cap {
         let (fixed, corner_mismatch) = solve::fixed_nets(&refined, n);
         let solved = solve::solve(&fixed)?;
         let scale = residual::length_scale(&solved.nets);
-        let internal = residual::internal(&solved.nets, scale);
-        let outer = residual::outer(&solved.nets, &refined, scale);
+        let inner_pairs = residual::internal(&solved.nets);
+        let outer_pairs = residual::outer(&solved.nets, &refined);
+        let all: Vec<residual::Pair> = inner_pairs.iter().chain(&outer_pairs).cloned().collect();
+        let curvature_scale = residual::curvature_scale(&all, scale);
+        let internal = residual::jumps(&inner_pairs, curvature_scale);
+        let outer = residual::jumps(&outer_pairs, curvature_scale);
         Ok(G2Cap {
             c,
             energy: solved.energy,
@@ -215,6 +224,7 @@ impl G2Cap {
             internal,
             outer,
             scale,
+            curvature_scale,
             rank: solved.rank,
             freedom: solved.freedom,
             refined,
@@ -236,7 +246,7 @@ impl G2Cap {
             ("outer_residual.g2", self.outer.curvature, RESIDUAL_TOL),
         ];
         for (what, value, tol) in items {
-            if !(value <= tol) {
+            if value.is_nan() || value > tol {
                 return Err(G2CapError::Residual { what, value, tol });
             }
         }
@@ -268,7 +278,7 @@ impl G2Cap {
     pub fn g1_residual(&self) -> f64 {
         self.internal.normal
     }
-    /// Largest internal jump of `K L^2` and `H L`.
+    /// Largest internal jump of `K / k_s^2` and `H / k_s`.
     pub fn g2_residual(&self) -> f64 {
         self.internal.curvature
     }
@@ -288,6 +298,12 @@ impl G2Cap {
     /// The length scale `L` (diameter of the control points).
     pub fn length_scale(&self) -> f64 {
         self.scale
+    }
+    /// The curvature scale `k_s` the curvature jumps are relative to: the
+    /// largest principal curvature magnitude over all samples, at least
+    /// `1 / L`.
+    pub fn curvature_scale(&self) -> f64 {
+        self.curvature_scale
     }
     /// Rank of the constraint matrix and dimension of its solution space.
     pub fn rank_and_freedom(&self) -> (usize, usize) {
@@ -331,5 +347,47 @@ impl G2Cap {
             }
         }
         (pts, quads)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_residual_above_the_tolerance_or_nan_is_refused_by_name() {
+        let ring = TwoRing::random(5, 1).unwrap();
+        let good = G2Cap::build(&ring, 0.5).unwrap();
+        good.check().unwrap();
+        let mut bad = good.clone();
+        bad.internal.curvature = 2.0 * RESIDUAL_TOL;
+        let e = bad.check().unwrap_err();
+        assert!(e.to_string().contains("g2_residual"), "{e}");
+        assert!(!e.is_input_error());
+        let mut nan = good.clone();
+        nan.outer.normal = f64::NAN;
+        let e = nan.check().unwrap_err();
+        assert!(e.to_string().contains("outer_residual.g1"), "{e}");
+    }
+
+    #[test]
+    fn the_fixed_corner_blocks_agree_and_the_system_is_consistent() {
+        for n in [3, 5, 8] {
+            let cap = G2Cap::build(&TwoRing::random(n, 9).unwrap(), 0.25).unwrap();
+            assert!(cap.corner_mismatch() < 1e-14, "{}", cap.corner_mismatch());
+            assert!(cap.constraint_residual() < CONSTRAINT_RTOL);
+            let (rank, freedom) = cap.rank_and_freedom();
+            assert_eq!(rank + freedom, 25 * n);
+            assert!(freedom > 0);
+        }
+    }
+
+    #[test]
+    fn shape_parameter_outside_the_unit_interval_is_refused() {
+        let ring = TwoRing::random(5, 1).unwrap();
+        for c in [-0.1, 1.1, f64::NAN] {
+            let e = G2Cap::build(&ring, c).unwrap_err();
+            assert!(e.is_input_error(), "{e}");
+        }
     }
 }

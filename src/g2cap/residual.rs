@@ -60,8 +60,9 @@ fn grid_derivs(grid: &[[Point; 4]; 4], u: f64, v: f64) -> [Point; 5] {
 }
 
 /// Largest jumps along a family of sample pairs: `(normal, curvature)`,
-/// with the curvature jump `max(|K_1 - K_2| L^2, |H_1 - H_2| L)` relative to
-/// the curvature scale `1 / L`. A singular sample is an infinite jump.
+/// with the curvature jump `max(|K_1 - K_2| / k_s^2, |H_1 - H_2| / k_s)`
+/// relative to the curvature scale `k_s` ([`curvature_scale`]). A singular
+/// sample is an infinite jump.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Jumps {
     /// Largest `|N_1 - N_2|` (unit normals).
@@ -70,62 +71,84 @@ pub struct Jumps {
     pub curvature: f64,
 }
 
-impl Jumps {
-    fn add(&mut self, a: Option<(Point, f64, f64)>, b: Option<(Point, f64, f64)>, scale: f64) {
+/// Normal, `K` and `H` on both sides of one sample point.
+pub type Pair = (Option<(Point, f64, f64)>, Option<(Point, f64, f64)>);
+
+/// The curvature scale `k_s = max(1 / L, max |kappa|)`: the largest principal
+/// curvature magnitude `|H| + sqrt(max(H^2 - K, 0))` over all samples, at
+/// least the reciprocal of the length scale `L` (so a flat cap is measured
+/// against its size).
+pub fn curvature_scale(pairs: &[Pair], length: f64) -> f64 {
+    let mut ks = 1.0 / length;
+    for (a, b) in pairs {
+        for (_, k, h) in a.iter().chain(b.iter()) {
+            let kappa = h.abs() + (h * h - k).max(0.0).sqrt();
+            if kappa.is_finite() {
+                ks = ks.max(kappa);
+            }
+        }
+    }
+    ks
+}
+
+/// The jumps of a family of sample pairs against the curvature scale `ks`.
+pub fn jumps(pairs: &[Pair], ks: f64) -> Jumps {
+    let mut j = Jumps::default();
+    for (a, b) in pairs {
         match (a, b) {
             (Some((na, ka, ha)), Some((nb, kb, hb))) => {
                 let dn =
                     ((na[0] - nb[0]).powi(2) + (na[1] - nb[1]).powi(2) + (na[2] - nb[2]).powi(2))
                         .sqrt();
-                let dc = ((ka - kb).abs() * scale * scale).max((ha - hb).abs() * scale);
-                self.normal = self.normal.max(dn);
-                self.curvature = self.curvature.max(dc);
+                let dc = ((ka - kb).abs() / (ks * ks)).max((ha - hb).abs() / ks);
+                j.normal = j.normal.max(dn);
+                j.curvature = j.curvature.max(dc);
             }
             _ => {
-                self.normal = f64::INFINITY;
-                self.curvature = f64::INFINITY;
+                j.normal = f64::INFINITY;
+                j.curvature = f64::INFINITY;
             }
-        }
-    }
-}
-
-/// Jumps across the internal edges: `P_i(0, t)` against `P_(i+1)(t, 0)`.
-pub fn internal(nets: &[Net], scale: f64) -> Jumps {
-    let n = nets.len();
-    let mut j = Jumps::default();
-    for i in 0..n {
-        for s in 0..=SAMPLES {
-            let t = s as f64 / SAMPLES as f64;
-            let a = shape(&net_derivs(&nets[i], 0.0, t));
-            let b = shape(&net_derivs(&nets[(i + 1) % n], t, 0.0));
-            j.add(a, b, scale);
         }
     }
     j
 }
 
-/// Jumps across the outer boundary: `P_i(1, t)` against the bicubic
+/// Samples across the internal edges: `P_i(0, t)` against `P_(i+1)(t, 0)`.
+pub fn internal(nets: &[Net]) -> Vec<Pair> {
+    let n = nets.len();
+    let mut out = Vec::new();
+    for i in 0..n {
+        for s in 0..=SAMPLES {
+            let t = s as f64 / SAMPLES as f64;
+            out.push((
+                shape(&net_derivs(&nets[i], 0.0, t)),
+                shape(&net_derivs(&nets[(i + 1) % n], t, 0.0)),
+            ));
+        }
+    }
+    out
+}
+
+/// Samples across the outer boundary: `P_i(1, t)` against the bicubic
 /// B-spline cell across `u = 1` at `(0, t)`, and `P_i(t, 1)` against the cell
 /// across `v = 1` at `(t, 0)`.
-pub fn outer(nets: &[Net], refined: &RefinedRing, scale: f64) -> Jumps {
-    let mut j = Jumps::default();
+pub fn outer(nets: &[Net], refined: &RefinedRing) -> Vec<Pair> {
+    let mut out = Vec::new();
     for (i, net) in nets.iter().enumerate() {
         let (gu, gv) = (refined.grid_u(i), refined.grid_v(i));
         for s in 0..=SAMPLES {
             let t = s as f64 / SAMPLES as f64;
-            j.add(
+            out.push((
                 shape(&net_derivs(net, 1.0, t)),
                 shape(&grid_derivs(&gu, 0.0, t)),
-                scale,
-            );
-            j.add(
+            ));
+            out.push((
                 shape(&net_derivs(net, t, 1.0)),
                 shape(&grid_derivs(&gv, t, 0.0)),
-                scale,
-            );
+            ));
         }
     }
-    j
+    out
 }
 
 /// The length scale `L`: the diagonal of the bounding box of all control

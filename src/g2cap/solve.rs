@@ -10,13 +10,15 @@ use nalgebra::DMatrix;
 /// Free control points per patch: `p_jk` with `j, k < FREE`.
 pub const FREE: usize = 5;
 
-/// Relative rank threshold of the constraint matrix: singular values below
-/// `RANK_RTOL * sigma_max` count as zero. The constraint system is
-/// rank-deficient by design (the G0/G1/G2 conditions near the outer corners
-/// hold automatically and several vertex conditions repeat); its smallest
-/// genuine singular values are above `1e-4 sigma_max` for `n <= 16`, the
-/// spurious ones below `1e-13 sigma_max`, so `1e-10` separates them with
-/// margin on both sides.
+/// Relative rank threshold of the constraint matrix (rows scaled to unit
+/// absolute sum): singular values below `RANK_RTOL * sigma_max` count as
+/// zero. The matrix is rank-deficient by design (the conditions near the
+/// outer corners hold automatically, and several vertex conditions repeat),
+/// so a threshold is needed; the spurious singular values are rounding
+/// (`~1e-15 sigma_max`), the genuine ones were above `1e-4 sigma_max` in the
+/// prototype. A wrong rank decision would show as a constraint residual
+/// above [`super::CONSTRAINT_RTOL`] or a geometric residual above
+/// [`super::RESIDUAL_TOL`], both checked after the solve.
 pub const RANK_RTOL: f64 = 1e-10;
 
 /// The coefficient `b(t)` of the transition map along an internal edge
@@ -105,14 +107,23 @@ impl<'a> System<'a> {
             rhs: Vec::new(),
         }
     }
-    /// Appends the row `sum w p^patch_jk = 0`.
-    fn row(&mut self, terms: &[(usize, usize, usize, f64)]) {
+    /// Appends the row `sum w p^patch_jk = 0`, scaled so that `sum |w| = 1`
+    /// when `normalise` (the constraint rows: then `|A x - r|` is relative to
+    /// the size of the points).
+    fn row_scaled(&mut self, terms: &[(usize, usize, usize, f64)], normalise: bool) {
+        let total: f64 = terms.iter().map(|t| t.3.abs()).sum();
+        let scale = if normalise && total > 0.0 {
+            1.0 / total
+        } else {
+            1.0
+        };
         let mut c = Vec::new();
         let mut r = [0.0; 3];
         for &(patch, j, k, w) in terms {
             if w == 0.0 {
                 continue;
             }
+            let w = w * scale;
             let patch = patch % self.n;
             if j < FREE && k < FREE {
                 c.push((index(patch, j, k), w));
@@ -124,6 +135,9 @@ impl<'a> System<'a> {
         }
         self.coef.push(c);
         self.rhs.push(r);
+    }
+    fn row(&mut self, terms: &[(usize, usize, usize, f64)]) {
+        self.row_scaled(terms, false);
     }
     fn matrices(&self) -> (DMatrix<f64>, DMatrix<f64>) {
         let cols = self.n * FREE * FREE;
@@ -159,7 +173,7 @@ fn add_edge_conditions(sys: &mut System, i: usize) {
     let n = sys.n;
     let ip = i + 1;
     for k in 0..=DEGREE {
-        sys.row(&[(i, 0, k, 1.0), (ip, k, 0, -1.0)]);
+        sys.row_scaled(&[(i, 0, k, 1.0), (ip, k, 0, -1.0)], true);
     }
     let z0 = deriv_weights(0, 0.0);
     let z1 = deriv_weights(1, 0.0);
@@ -176,7 +190,7 @@ fn add_edge_conditions(sys: &mut System, i: usize) {
                 terms.push((i, j, k, z1[j] * t0[k] - b * z0[j] * t1[k]));
             }
         }
-        sys.row(&terms);
+        sys.row_scaled(&terms, true);
     }
     for t in chebyshev(DEGREE - 2 + 2 * db + 1) {
         let b = transition_b(n, t);
@@ -197,7 +211,7 @@ fn add_edge_conditions(sys: &mut System, i: usize) {
                 ));
             }
         }
-        sys.row(&terms);
+        sys.row_scaled(&terms, true);
     }
 }
 
