@@ -24,6 +24,7 @@
 //! * [`mesh`]: closed polygon meshes with knot intervals and mesh-level subdivision;
 //! * [`cc_study`]: parameter study of the shape-adjustable Catmull-Clark scheme (spectral part);
 //! * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its limit face;
+//! * [`g2cap`]: the G2 cap of bidegree (7, 7) around an extraordinary vertex (seed 003);
 //! * [`report`]: plotted reports (spec in, figures/CSV/HTML out, in memory);
 //! * [`sweep`]: parameter sweeps (specs, samplers, sharded resumable CSV output);
 //! * [`verify`]: certified verdicts over boxes of ratios and intervals of `c` (branch and bound);
@@ -48,6 +49,7 @@ pub mod charmap;
 pub mod contraction;
 pub mod curvature;
 pub mod error;
+pub mod g2cap;
 pub(crate) mod hash;
 pub mod knots;
 pub mod mesh;

@@ -6,6 +6,7 @@ mod analyze;
 mod budget;
 mod cc_study;
 mod ccss_bound;
+mod g2_cap;
 mod matrix;
 mod outfiles;
 mod plot;
@@ -51,6 +52,8 @@ enum Command {
     Analyze(analyze::AnalyzeArgs),
     /// Run a parameter sweep from a TOML spec into a CSV (+ summary JSON).
     Sweep(sweep::SweepArgs),
+    /// G2 cap of bidegree (7, 7) around an extraordinary vertex (seed 003): JSON, OBJ.
+    G2Cap(g2_cap::G2CapArgs),
     /// Merge shard CSVs of one sweep, checking no configuration is missing or duplicated.
     Merge(sweep::MergeArgs),
     /// Plot a sweep's results (class fractions, histogram, scatter or 2-D class map).
@@ -215,6 +218,7 @@ pub fn main() -> ExitCode {
         Command::Merge(args) => sweep::run_merge(args),
         Command::Plot(args) => plot::run(args),
         Command::Verify(args) => verify::run(args),
+        Command::G2Cap(args) => g2_cap::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
