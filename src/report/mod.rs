@@ -47,6 +47,7 @@ pub mod spec;
 pub mod sweep_plot;
 pub mod table;
 
+pub use backend::{render_png, render_svg, Area};
 pub use error::{Location, ReportError};
 pub use spec::{Common, ReportSpec};
 

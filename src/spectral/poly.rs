@@ -301,7 +301,6 @@ impl Sturm {
         self.at_infinity(false).saturating_sub(self.at(b))
     }
     /// Number of distinct real roots.
-    #[cfg(test)]
     pub fn count_all(&self) -> usize {
         self.at_infinity(false)
             .saturating_sub(self.at_infinity(true))

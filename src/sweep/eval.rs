@@ -167,7 +167,11 @@ pub fn result_columns(columns: &Columns) -> Vec<ResultColumn> {
             "mu, the largest eigenvalue modulus after the subdominant pair (math doc section 13)",
             "1",
         ));
-        v.push(num("curvature_ratio", "mu / lambda1^2 (> 1: curvature unbounded)", "1"));
+        v.push(num(
+            "curvature_ratio",
+            "mu / lambda1^2 (> 1: curvature unbounded)",
+            "1",
+        ));
         v.push(col(
             "curvature_verdict",
             ColumnType::Label,
