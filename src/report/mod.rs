@@ -35,14 +35,14 @@
 //! assert!(names.contains(&"index.html") && names.contains(&"manifest.json"));
 //! ```
 
-pub(crate) mod backend;
+pub mod backend;
 pub mod config;
 pub mod error;
 pub mod figure_spec;
 pub mod figures;
 pub(crate) mod font;
-pub(crate) mod html;
-pub(crate) mod plot;
+pub mod html;
+pub mod plot;
 pub mod spec;
 pub mod sweep_plot;
 pub mod table;

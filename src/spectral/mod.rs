@@ -40,7 +40,7 @@ pub mod json;
 pub mod kernel;
 pub(crate) mod poly;
 pub mod structured;
-pub(crate) mod svd;
+pub mod svd;
 
 mod error;
 pub use error::SpectralError;

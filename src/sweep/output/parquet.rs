@@ -843,12 +843,7 @@ const JOURNAL_HEADER: &str = "subdiv-lab parquet commit v1\n";
 
 /// FNV-1a (64 bits) of `bytes`: detects a damaged journal.
 fn fnv64(bytes: &[u8]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in bytes {
-        h ^= u64::from(*b);
-        h = h.wrapping_mul(0x0100_0000_01b3);
-    }
-    h
+    crate::hash::fnv1a64(bytes)
 }
 
 /// The journal of the last commit (the caller writes it beside the file,
@@ -859,8 +854,8 @@ fn fnv64(bytes: &[u8]) -> u64 {
 ///
 /// ```
 /// use subdiv_lab::sweep::output::parquet::{journal_bytes, parse_journal};
-/// let j = journal_bytes(1234, b"footer-bytes");
-/// assert_eq!(parse_journal(&j).unwrap(), (1234, b"footer-bytes".to_vec()));
+/// let j = journal_bytes(1234, b"footer-bytes PAR1");
+/// assert_eq!(parse_journal(&j).unwrap(), (1234, b"footer-bytes PAR1".to_vec()));
 /// assert!(parse_journal(&j[..j.len() - 1]).is_err());
 /// ```
 pub fn journal_bytes(data_end: u64, footer: &[u8]) -> Vec<u8> {
