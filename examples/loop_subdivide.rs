@@ -18,7 +18,7 @@ use anyhow::{anyhow, bail, Context, Result};
 use std::io::Write;
 use subdiv_lab::budget::{format_bytes, format_seconds, MEMORY_LIMIT_BYTES, TIME_LIMIT_SECONDS};
 use subdiv_lab::mesh::obj;
-use subdiv_lab::schemes::loop_subdivision::mesh::{estimate, limit_mesh, refine};
+use subdiv_lab::schemes::loop_subdivision::mesh::{half_edges_after, limit_mesh, refine};
 
 fn run() -> Result<()> {
     let mut positional = Vec::new();
@@ -40,7 +40,7 @@ fn run() -> Result<()> {
         .map_err(|_| anyhow!("LEVELS: {levels:?} is not a non-negative integer"))?;
     let text = std::fs::read_to_string(input).with_context(|| format!("cannot read {input}"))?;
     let (mut mesh, _) = obj::parse_obj(&text).with_context(|| input.clone())?;
-    let e = estimate(&mesh, levels);
+    let e = subdiv_lab::budget::subdivide(half_edges_after(&mesh, levels));
     if !e.within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES) {
         bail!(
             "{levels} levels need about {} and {} for {}, above the limits",

@@ -31,7 +31,6 @@
 
 use crate::error::Result;
 use crate::scalar::Scalar;
-use crate::scheme::{Scheme, SpectralStructure};
 use crate::schemes::LocalScheme;
 use nalgebra::DMatrix;
 use serde::Serialize;
@@ -324,18 +323,14 @@ pub struct Measured {
 /// `1e-16` under `m_k`; it is removed after every step by re-centring on the
 /// current face point `c^T P^k` (zero in exact arithmetic, since `F` is
 /// invariant), so the rates are measured over all 60 levels.
-///
-/// Any scheme with a face block ([`SpectralStructure::FaceBlock`]: the
-/// Doo-Sabin family) can be measured; others are
-/// [`NotApplicable`](crate::error::Error::NotApplicable).
-pub fn measure<S: Scheme + ?Sized>(scheme: &S, options: &MeasureOptions) -> Result<Measured> {
-    if scheme.spectral_structure() != SpectralStructure::FaceBlock {
+pub fn measure(scheme: &LocalScheme<f64>, options: &MeasureOptions) -> Result<Measured> {
+    if !scheme.kind().is_doo_sabin_family() {
         return Err(crate::error::Error::NotApplicable {
-            scheme: scheme.name().to_owned(),
+            scheme: scheme.kind().name().to_owned(),
             operation: "the face contraction of Theorem 1 (a Doo-Sabin-family notion)",
         });
     }
-    let s = scheme.local_matrix()?.into_matrix();
+    let s = scheme.matrix()?.into_matrix();
     let c = scheme.face_weights();
     let n = scheme.valence();
     let dim = options.dim.max(1);

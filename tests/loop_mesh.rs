@@ -12,7 +12,7 @@ use std::path::PathBuf;
 use subdiv_lab::mesh::obj::{parse_obj, write_obj_string};
 use subdiv_lab::mesh::{generators, Mesh, MeshError, MAX_HALF_EDGES};
 use subdiv_lab::schemes::loop_subdivision::mesh::{
-    counts_after, estimate, half_edges_after, limit_mesh, limit_positions, refine, refine_levels,
+    counts_after, half_edges_after, limit_mesh, limit_positions, refine, refine_levels,
 };
 use subdiv_lab::schemes::loop_subdivision::{beta, subdominant_eigenvalue};
 
@@ -619,6 +619,11 @@ fn vertices_converge_to_the_limit_at_the_subdominant_rates() {
 
 // ---------------------------------------------------------------------------
 // Refusals and estimates.
+
+/// The work estimate of `levels` Loop steps: the `subdivide` model of every scheme.
+fn estimate(mesh: &subdiv_lab::mesh::Mesh, levels: usize) -> subdiv_lab::budget::Estimate {
+    subdiv_lab::budget::subdivide(half_edges_after(mesh, levels))
+}
 
 #[test]
 fn refuses_quads_and_mixed_meshes_naming_the_face() {

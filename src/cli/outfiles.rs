@@ -207,3 +207,20 @@ impl Drop for Staged {
         }
     }
 }
+
+/// Writes `bytes` to `path` atomically (temporary file + rename).
+pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    let tmp = path.with_file_name(format!(
+        ".{}.tmp",
+        path.file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    ));
+    fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
+    fs::rename(&tmp, path)
+        .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
+    Ok(())
+}
+
+/// Data lines of one shard CSV (or of a Parquet shard, as CSV lines).
+pub(crate) type LineIter = Box<dyn Iterator<Item = Result<String, subdiv_lab::sweep::SweepError>>>;

@@ -6,6 +6,7 @@
 //! when the run starts and again when it ends). `--resume` re-reads `NAME.csv`,
 //! drops a torn last line, verifies every row against the spec, and continues.
 
+use super::outfiles::{write_atomic, LineIter};
 use super::{CliError, CliResult};
 use anyhow::{anyhow, Context};
 use clap::Args;
@@ -91,20 +92,6 @@ fn summary_path(csv: &Path) -> PathBuf {
         .or_else(|| name.strip_suffix(".parquet"))
         .unwrap_or(&name);
     csv.with_file_name(format!("{stem}.summary.json"))
-}
-
-/// Writes `bytes` to `path` atomically (temporary file + rename).
-pub(super) fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let tmp = path.with_file_name(format!(
-        ".{}.tmp",
-        path.file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default()
-    ));
-    fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
-    fs::rename(&tmp, path)
-        .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
-    Ok(())
 }
 
 fn write_summary(path: &Path, summary: &Summary) -> CliResult {
@@ -394,7 +381,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     // Work estimate of this shard's rows (before --resume skips any: a
     // conservative bound), checked before any file is opened.
-    let estimate = subdiv_lab::budget::sweep_rows(&plan, expected, shard.count, threads);
+    let estimate = subdiv_lab::sweep::estimate::sweep_rows(&plan, expected, shard.count, threads);
     super::budget::check(
         "sweep",
         &format!("{}", args.spec.display()),
@@ -595,9 +582,6 @@ fn is_parquet_file(path: &Path) -> bool {
         .is_ok()
         && subdiv_lab::sweep::output::parquet::is_parquet(&head)
 }
-
-/// Data lines of one shard CSV.
-pub(crate) type LineIter = Box<dyn Iterator<Item = Result<String, SweepError>>>;
 
 /// The data lines of one shard CSV, after its fingerprint line (checked against
 /// `plan`; it gives the shard) and its header (checked against `layout`), as a

@@ -77,7 +77,7 @@ fn commit_fn(mut file: File, journal: PathBuf) -> CommitFn {
     Box::new(move |c: Commit<'_>| {
         write_at(&mut file, c.offset, &[c.group, c.footer])?;
         let end = c.offset + c.group.len() as u64;
-        super::sweep::write_atomic(&journal, &journal_bytes(end, c.footer))
+        super::outfiles::write_atomic(&journal, &journal_bytes(end, c.footer))
             .map_err(|e| std::io::Error::other(format!("{e:#}")))
     })
 }
@@ -209,7 +209,7 @@ pub(crate) fn open(
         // A new file: PAR1 and the footer of no group (valid Parquet).
         let footer = rows.current_footer().map_err(CliError::failure)?;
         write_at(&mut file, 0, &[pq::MAGIC, &footer]).map_err(|e| io(e, "writing"))?;
-        super::sweep::write_atomic(&journal, &journal_bytes(data_end, &footer))
+        super::outfiles::write_atomic(&journal, &journal_bytes(data_end, &footer))
             .map_err(CliError::failure)?;
     }
     Ok((ParquetSink { rows, journal }, done, recovered))
@@ -223,7 +223,7 @@ pub(crate) fn merge_source(
     plan: &Plan,
     layout: &Layout,
     rows: std::rc::Rc<std::cell::Cell<u64>>,
-) -> CliResult<output::MergeSource<super::sweep::LineIter>> {
+) -> CliResult<output::MergeSource<super::outfiles::LineIter>> {
     let name = path.display().to_string();
     let bytes = fs::read(path)
         .with_context(|| format!("reading {name}"))

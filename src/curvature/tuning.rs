@@ -431,7 +431,9 @@ pub fn tune(n: usize, grid: usize) -> Result<Tuning> {
 /// Whether the exact certificate proves `mu = lambda^2` at `c`.
 fn exact_bounded_at(n: usize, c: f64) -> Result<bool> {
     let s = LocalScheme::adjustable_cc(n, c)?;
-    let r = super::curvature(&s)?;
-    Ok(r.verdict == super::CurvatureVerdict::Bounded
-        && r.evidence == super::CurvatureEvidence::Exact)
+    let r = crate::spectral::curvature::curvature(&s)?;
+    Ok(
+        r.verdict == crate::spectral::curvature::CurvatureVerdict::Bounded
+            && r.evidence == crate::spectral::curvature::CurvatureEvidence::Exact,
+    )
 }

@@ -53,7 +53,7 @@ pub struct ConfigSpec {
 pub struct Configuration {
     /// Label used in legends and tables.
     pub label: String,
-    /// The configuration (a [`Scheme`] through `Deref`).
+    /// The configuration (a [`Scheme`](crate::Scheme) through `Deref`).
     pub scheme: Builtin,
 }
 

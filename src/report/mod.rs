@@ -15,7 +15,7 @@
 //! * [`plot`]: plotting helpers (bundled font, sizes, colours, markers);
 //! * [`backend`]: one drawing backend for SVG and PNG, in-memory rendering;
 //! * [`html`]: the `index.html` page;
-//! * [`rng`]: the deterministic random generator behind random knots.
+//! * [`crate::rng`]: the deterministic random generator behind random knots.
 //!
 //! ```
 //! use subdiv_lab::report::{generate, ReportSpec, RunInfo, figures::NoProgress};

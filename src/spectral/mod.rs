@@ -34,11 +34,12 @@
 
 pub(crate) mod certify;
 pub mod classify;
+pub mod curvature;
 pub mod eigen;
 pub mod exact;
 pub mod json;
 pub mod kernel;
-pub(crate) mod poly;
+pub mod poly;
 pub mod structured;
 pub mod svd;
 
@@ -228,7 +229,7 @@ pub struct LocalAnalysis {
     pub exact: Option<exact::ExactVerdict>,
     /// Second order at the extraordinary point: `mu` against `lambda^2`
     /// ([`crate::curvature`], math doc section 13).
-    pub curvature: crate::curvature::CurvatureSummary,
+    pub curvature: curvature::CurvatureSummary,
 }
 
 impl LocalAnalysis {
@@ -333,7 +334,7 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
                 None => full.clone(),
             };
             subdominant_full = Some(full);
-            curvature = crate::curvature::summarize(scheme, e.values(), &radii, &subdominant)?;
+            curvature = curvature::summarize(scheme, e.values(), &radii, &subdominant)?;
             eigenvalues = e.values().iter().map(|&z| c64(z)).collect::<Vec<_>>();
             residuals = e.residuals().map(<[f64]>::to_vec);
             conditions = Some(kappa);
@@ -389,10 +390,10 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
                 None => classify_matrix(s)?,
             };
             subdominant_full = None;
-            curvature = if s.nrows() <= crate::curvature::STRUCTURED_DENSE_MAX_DIM {
-                crate::curvature::curvature(scheme)?
+            curvature = if s.nrows() <= curvature::STRUCTURED_DENSE_MAX_DIM {
+                curvature::curvature(scheme)?
             } else {
-                crate::curvature::summarize(scheme, &all, &[], &subdominant)?
+                curvature::summarize(scheme, &all, &[], &subdominant)?
             };
             eigenvalues = all.iter().map(|&z| c64(z)).collect();
             residuals = None;
@@ -557,7 +558,7 @@ pub fn classify_scheme_with<S: Scheme + ?Sized>(
     classify_face(ws, scheme.valence())
 }
 
-/// [`classify_scheme_with`] for [`BATCH`](kernel::BATCH) schemes in as many
+/// [`classify_scheme_with`] for [`BATCH`] schemes in as many
 /// workspaces at once: the face spectra come from
 /// [`StructuredWorkspace::face_nonunit_batch`] (the QR iterations in lock
 /// step, one per SIMD lane), so the results equal, bit for bit, those of

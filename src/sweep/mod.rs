@@ -39,6 +39,7 @@
 //! assert_eq!(summary.rows, 8);
 //! ```
 
+pub mod estimate;
 pub mod eval;
 pub mod output;
 pub mod own;

@@ -15,7 +15,7 @@
 //! `C(r) = C_0 + sum_k r_k C_k` with entries that are multiples of `1/4`
 //! (exact in `f64`).
 //!
-//! **Even `n` [derived].** The alternating vector `y = (1, -1, 1, ..)` is a
+//! **Even `n` \[derived\].** The alternating vector `y = (1, -1, 1, ..)` is a
 //! left null vector of `R` (column `j` of `R` holds `r_j`, `1 - r_{j-1} + r_j`,
 //! `1 - r_{j-1}`), and `y^T 1 = 0`, so `y^T A = y^T / 4`: every even-sided
 //! face block has the eigenvalue `1/4` for all ratios. It is removed exactly

@@ -93,7 +93,13 @@ impl Figure for Convergence {
                     seed: derive_seed(ctx.common.seed, &i.to_string()),
                     dim: 3,
                 };
-                let m = measure(&*c.scheme, &options).map_err(|e| ctx.err(e))?;
+                let local = c.scheme.as_local().ok_or_else(|| {
+                    ctx.err(crate::Error::NotApplicable {
+                        scheme: c.scheme.name().to_owned(),
+                        operation: "the face contraction of Theorem 1 (a Doo-Sabin-family notion)",
+                    })
+                })?;
+                let m = measure(local, &options).map_err(|e| ctx.err(e))?;
                 let d0 = m.distances.first().copied().unwrap_or(0.0);
                 let points: Vec<(usize, f64)> = m
                     .distances

@@ -58,7 +58,6 @@
 //! ```
 
 use super::beta;
-use crate::budget::{self, Estimate};
 use crate::mesh::{Mesh, MeshError, MAX_HALF_EDGES};
 
 /// The next corner of the same triangle (faces are `3f..3f+3`).
@@ -330,25 +329,6 @@ pub fn counts_after(vertices: u64, edges: u64, faces: u64, levels: usize) -> (u6
 /// before allocating.
 pub fn half_edges_after(mesh: &Mesh, levels: usize) -> u64 {
     crate::mesh::refine::half_edges_after(mesh, levels)
-}
-
-/// Work estimate of `levels` Loop steps of `mesh` followed by writing the
-/// result: [`budget::subdivide`] of [`half_edges_after`], the model the
-/// `subdivide` command uses for every scheme (peak bytes and seconds per
-/// half-edge of the refined mesh; Loop's mesh needs fewer bytes per half-edge
-/// than the model's constant, see the measurements in
-/// `benches/cgal/compare_loop.sh`).
-///
-/// ```
-/// use subdiv_lab::budget::{MEMORY_LIMIT_BYTES, TIME_LIMIT_SECONDS};
-/// use subdiv_lab::mesh::generators;
-/// use subdiv_lab::schemes::loop_subdivision::mesh::estimate;
-/// let ico = generators::icosahedron();
-/// assert!(estimate(&ico, 4).within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
-/// assert!(estimate(&ico, 14).bytes > MEMORY_LIMIT_BYTES);
-/// ```
-pub fn estimate(mesh: &Mesh, levels: usize) -> Estimate {
-    budget::subdivide(half_edges_after(mesh, levels))
 }
 
 #[cfg(test)]

@@ -1,0 +1,75 @@
+//! The work estimate of a sweep (issue #16: heavy work is estimated first):
+//! the per-configuration cost model of [`crate::budget`] summed over a shard.
+
+use super::Plan;
+use crate::budget::*;
+
+/// Seconds of one sweep configuration at valence `n` with the columns of
+/// `plan` (structured classification `O(n^3)` with a small constant; the
+/// characteristic map like `analyze --path structured`; the exact
+/// certificate grows fastest, `n^3` with a larger constant for floating-point
+/// knots).
+fn sweep_seconds_per_configuration(plan: &Plan, n: usize) -> f64 {
+    let c = plan.spec().columns;
+    let cc = plan.spec().scheme.is_catmull_clark_family();
+    let nf = n as f64;
+    let mut s = SWEEP_SECONDS_BASE + 4e-9 * nf * nf * nf;
+    if cc {
+        s += ANALYZE_SECONDS_PER_N3_CC * nf * nf * nf;
+    }
+    if c.charmap {
+        s += 1e-3
+            + if cc {
+                ANALYZE_SECONDS_PER_N3_CC
+            } else {
+                ANALYZE_SECONDS_PER_N3_DS_STRUCTURED
+            } * nf
+                * nf
+                * nf;
+    }
+    if c.exact_certificate {
+        let per_n3 = if plan.spec().space.kind == super::SpaceKind::Uniform {
+            SWEEP_EXACT_UNIFORM_SECONDS_PER_N3
+        } else {
+            SWEEP_EXACT_SECONDS_PER_N3
+        };
+        s += per_n3 * nf * nf * nf;
+    }
+    s
+}
+
+/// `subdiv-lab sweep`: the per-configuration cost summed over a shard's first
+/// `rows` configurations, computed per valence block without visiting each id
+/// (`count_for(n)` configurations of valence `n`, in the order of the spec,
+/// a shard taking every `shard_count`-th).
+pub fn sweep_rows(plan: &Plan, rows: u64, shard_count: u64, threads: usize) -> Estimate {
+    let mut left = rows;
+    let mut seconds = 0.0;
+    let mut max_n = 3;
+    for &n in &plan.spec().valences {
+        if left == 0 {
+            break;
+        }
+        let block = plan.spec().count_for(n).div_ceil(shard_count.max(1));
+        let take = block.min(left);
+        left -= take;
+        max_n = max_n.max(n);
+        seconds += take as f64 * sweep_seconds_per_configuration(plan, n);
+    }
+    let d = local_dimension(plan.spec().scheme, max_n);
+    // the characteristic map works on S_n (d x d); the classification alone
+    // on the n x n face block (Doo-Sabin family) or the one-ring (d x d)
+    let nf = max_n as f64;
+    let per_thread = if plan.spec().columns.charmap {
+        ANALYZE_BYTES_PER_ENTRY_DS * d * d
+    } else if plan.spec().scheme.is_catmull_clark_family() {
+        64.0 * d * d
+    } else {
+        64.0 * nf * nf
+    };
+    Estimate {
+        bytes: threads as f64 * per_thread + 64e6,
+        seconds: seconds / threads.max(1) as f64,
+        what: format!("{rows} configurations on {threads} threads"),
+    }
+}
