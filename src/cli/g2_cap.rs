@@ -153,6 +153,12 @@ fn human_text(cap: &G2Cap) -> String {
 
 pub(crate) fn run(args: G2CapArgs) -> CliResult {
     let (_, c) = parse_c(&args.c)?;
+    if !(0.0..=1.0).contains(&c) {
+        return Err(CliError::usage(anyhow!(
+            "--c: {:?} is not a number in [0, 1]",
+            args.c
+        )));
+    }
     if args.samples == 0 || args.samples > MAX_SAMPLES {
         return Err(CliError::usage(anyhow!(
             "--samples must be in 1..={MAX_SAMPLES}, got {}",
