@@ -401,7 +401,7 @@ fn classify_batch<'py>(
                             let items = std::array::from_fn(|l| {
                                 (
                                     &configs[i + l],
-                                    &schemes[i + l],
+                                    &*schemes[i + l],
                                     it.next().expect("lane") as &mut dyn CellSink,
                                 )
                             });
@@ -416,7 +416,7 @@ fn classify_batch<'py>(
                         } else {
                             let mut s = RowCells::default();
                             out.push(
-                                match eval.write_results(&plan, &configs[i], &schemes[i], &mut s) {
+                                match eval.write_results(&plan, &configs[i], &*schemes[i], &mut s) {
                                     Ok(()) => (s.0, None),
                                     Err(e) => (Vec::new(), Some(e.to_string())),
                                 },
