@@ -307,29 +307,187 @@ impl Columns {
     }
 }
 
-/// A cell sink that stores one row's cells (reused across rows).
-#[derive(Default)]
-struct RowCells(Vec<Cell>);
-
-impl CellSink for RowCells {
-    fn empty(&mut self) {
-        self.0.push(Cell::Empty);
-    }
-    fn num(&mut self, x: f64) {
-        self.0.push(Cell::Num(x));
-    }
-    fn text(&mut self, t: &str) {
-        self.0.push(Cell::Text(t.to_owned()));
-    }
-}
-
-/// One evaluated row: its result cells, or its error.
-type RowOut = (Vec<Cell>, Option<String>);
-
 /// A refined mesh: vertex positions `(m, 3)` and faces.
 type MeshOut<'py> = (Bound<'py, PyArray2<f64>>, Vec<Vec<usize>>);
 
+/// The distinct texts of one text column; a cell is stored as its index
+/// (`u32` code). Sweep text columns take a handful of values (class names,
+/// verdict codes, `true`/`false`), so a linear search is the fastest lookup.
+#[derive(Default)]
+struct Levels(Vec<String>);
+
+impl Levels {
+    fn code(&mut self, t: &str) -> u32 {
+        match self.0.iter().position(|l| l == t) {
+            Some(i) => i as u32,
+            None => {
+                self.0.push(t.to_owned());
+                (self.0.len() - 1) as u32
+            }
+        }
+    }
+}
+
+/// One result column, typed: numbers (NaN where empty) or text codes.
+enum TypedColumn {
+    Num(Vec<f64>),
+    Text(Vec<u32>, Levels),
+}
+
+/// One cell of a lane's row, held until the batch is committed.
+#[derive(Clone, Copy)]
+enum Slot {
+    Empty,
+    Num(f64),
+    /// A byte range of the lane's text arena.
+    Text(usize, usize),
+}
+
+/// A reusable row buffer for one lane of a batch (no allocation per row once
+/// warm: the cells and the texts' bytes are kept across rows).
+#[derive(Default)]
+struct LaneRow {
+    slots: Vec<Slot>,
+    text: String,
+}
+
+impl LaneRow {
+    fn clear(&mut self) {
+        self.slots.clear();
+        self.text.clear();
+    }
+}
+
+impl CellSink for LaneRow {
+    fn empty(&mut self) {
+        self.slots.push(Slot::Empty);
+    }
+    fn num(&mut self, x: f64) {
+        self.slots.push(Slot::Num(x));
+    }
+    fn text(&mut self, t: &str) {
+        let a = self.text.len();
+        self.text.push_str(t);
+        self.slots.push(Slot::Text(a, self.text.len()));
+    }
+}
+
+/// Typed result columns of consecutive rows (one block of `classify_batch`),
+/// with the validity mask and the error texts; blocks are concatenated in
+/// order by [`TypedColumns::append`].
+struct TypedColumns {
+    cols: Vec<TypedColumn>,
+    valid: Vec<Vec<bool>>,
+    errors: Vec<u32>,
+    error_levels: Levels,
+}
+
+impl TypedColumns {
+    fn new(numeric: &[bool], rows: usize) -> Self {
+        let mut error_levels = Levels::default();
+        error_levels.code("");
+        TypedColumns {
+            cols: numeric
+                .iter()
+                .map(|&n| {
+                    if n {
+                        TypedColumn::Num(Vec::with_capacity(rows))
+                    } else {
+                        TypedColumn::Text(Vec::with_capacity(rows), Levels::default())
+                    }
+                })
+                .collect(),
+            valid: numeric.iter().map(|_| Vec::with_capacity(rows)).collect(),
+            errors: Vec::with_capacity(rows),
+            error_levels,
+        }
+    }
+
+    /// Appends one row: its cells (missing trailing cells are empty; a number
+    /// in a text column is written as Rust's shortest text, as `Cell` did), or
+    /// its error (every cell empty).
+    fn push_row(&mut self, row: Result<&LaneRow, &str>) {
+        for (j, (col, valid)) in self.cols.iter_mut().zip(&mut self.valid).enumerate() {
+            let slot = match row {
+                Ok(r) => r.slots.get(j).copied().unwrap_or(Slot::Empty),
+                Err(_) => Slot::Empty,
+            };
+            valid.push(!matches!(slot, Slot::Empty));
+            match col {
+                TypedColumn::Num(v) => v.push(match slot {
+                    Slot::Num(x) => x,
+                    _ => f64::NAN,
+                }),
+                TypedColumn::Text(codes, levels) => codes.push(match (slot, row) {
+                    (Slot::Text(a, b), Ok(r)) => levels.code(&r.text[a..b]),
+                    (Slot::Num(x), _) => levels.code(&x.to_string()),
+                    _ => levels.code(""),
+                }),
+            }
+        }
+        let e = match row {
+            Ok(_) => 0,
+            Err(msg) => self.error_levels.code(msg),
+        };
+        self.errors.push(e);
+    }
+
+    /// Appends the rows of `other` (text codes translated to this block's levels).
+    fn append(&mut self, other: TypedColumns) {
+        for (mine, theirs) in self.cols.iter_mut().zip(other.cols) {
+            match (mine, theirs) {
+                (TypedColumn::Num(a), TypedColumn::Num(b)) => a.extend(b),
+                (TypedColumn::Text(a, la), TypedColumn::Text(b, lb)) => {
+                    let map: Vec<u32> = lb.0.iter().map(|t| la.code(t)).collect();
+                    a.extend(b.into_iter().map(|c| map[c as usize]));
+                }
+                _ => unreachable!("both blocks have the same column types"),
+            }
+        }
+        for (a, b) in self.valid.iter_mut().zip(other.valid) {
+            a.extend(b);
+        }
+        let map: Vec<u32> = other
+            .error_levels
+            .0
+            .iter()
+            .map(|t| self.error_levels.code(t))
+            .collect();
+        self.errors
+            .extend(other.errors.into_iter().map(|c| map[c as usize]));
+    }
+
+    /// `name -> (values, mask)` for numeric columns and `name -> (codes,
+    /// levels, mask)` for text columns (the Python side expands the codes);
+    /// `error -> (codes, levels)`.
+    fn into_dict<'py>(
+        self,
+        py: Python<'py>,
+        names: &[String],
+        out: &Bound<'py, PyDict>,
+    ) -> PyResult<()> {
+        for ((name, col), ok) in names.iter().zip(self.cols).zip(self.valid) {
+            let mask = PyArray1::from_vec(py, ok);
+            match col {
+                TypedColumn::Num(v) => out.set_item(name, (PyArray1::from_vec(py, v), mask))?,
+                TypedColumn::Text(codes, levels) => {
+                    out.set_item(name, (PyArray1::from_vec(py, codes), levels.0, mask))?
+                }
+            }
+        }
+        out.set_item(
+            "error",
+            (PyArray1::from_vec(py, self.errors), self.error_levels.0),
+        )?;
+        Ok(())
+    }
+}
+
 /// `classify_batch`: result columns of a ratios sweep, one row per row of `ratios`.
+///
+/// Rows are evaluated in blocks of whole batches on the pool; each block
+/// writes typed columns directly (numbers as `f64`, texts as codes into a few
+/// distinct values), so a row costs no allocation beyond its scheme.
 #[pyfunction]
 #[pyo3(signature = (ratios, scheme="nurds", columns_json=None, threads=None))]
 fn classify_batch<'py>(
@@ -340,7 +498,7 @@ fn classify_batch<'py>(
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let shape = ratios.shape();
-    let (m, n) = (shape[0], shape[1]);
+    let n = shape[1];
     if n < 3 {
         return Err(value_err(format!(
             "ratios must have one column per edge of a valence n >= 3 face, got {n} columns"
@@ -362,88 +520,89 @@ fn classify_batch<'py>(
     let spec = SweepSpec::from_toml(&toml_text).map_err(lib_err)?;
     let plan = Plan::new(spec);
     let result_names: Vec<_> = subdiv_lab::sweep::eval::result_columns(&plan.spec().columns);
+    let names: Vec<String> = result_names.iter().map(|c| c.name.clone()).collect();
+    let numeric: Vec<bool> = result_names.iter().map(|c| c.numeric).collect();
     let eval = SpectralEvaluator::new(plan.spec().columns);
     let data: Vec<f64> = match ratios.as_slice() {
         Ok(s) => s.to_vec(),
         Err(_) => ratios.as_array().iter().copied().collect(),
     };
     let pool = pool(threads)?;
-    // Row-major rows of n ratios; chunks of whole batches, evaluated in parallel.
+    // Row-major rows of n ratios; blocks of whole batches, evaluated in parallel.
     const CHUNK: usize = 64 * BATCH;
-    let rows: Vec<PyResult<Vec<RowOut>>> = py.detach(|| {
+    let blocks: Vec<PyResult<TypedColumns>> = py.detach(|| {
         pool.install(|| {
             data.par_chunks(CHUNK * n)
                 .enumerate()
-                .map(|(ci, chunk)| -> PyResult<Vec<RowOut>> {
-                    let base = ci * CHUNK;
-                    let configs: Vec<Configuration> = chunk
-                        .chunks(n)
-                        .enumerate()
-                        .map(|(k, r)| Configuration {
-                            id: (base + k) as u64,
+                .map(|(ci, chunk)| -> PyResult<TypedColumns> {
+                    let rows = chunk.len() / n;
+                    let mut cols = TypedColumns::new(&numeric, rows);
+                    let mut configs: [Configuration; BATCH] =
+                        std::array::from_fn(|_| Configuration {
+                            id: 0,
                             valence: n,
-                            coordinates: r.to_vec(),
-                        })
-                        .collect();
-                    let schemes = configs
-                        .iter()
-                        .map(|c| {
-                            plan.scheme(c)
-                                .map_err(|e| value_err(format!("ratios row {}: {e}", c.id)))
-                        })
-                        .collect::<Result<Vec<_>, _>>()?;
-                    let mut out = Vec::with_capacity(configs.len());
-                    let mut i = 0;
-                    while i < configs.len() {
-                        if i + BATCH <= configs.len() {
-                            let mut sinks: [RowCells; BATCH] = Default::default();
-                            let mut it = sinks.iter_mut();
+                            coordinates: Vec::with_capacity(n),
+                        });
+                    let mut lanes: [LaneRow; BATCH] = Default::default();
+                    for (bi, group) in chunk.chunks(BATCH * n).enumerate() {
+                        let width = group.len() / n;
+                        let base = (ci * CHUNK + bi * BATCH) as u64;
+                        for (l, r) in group.chunks(n).enumerate() {
+                            configs[l].id = base + l as u64;
+                            configs[l].coordinates.clear();
+                            configs[l].coordinates.extend_from_slice(r);
+                        }
+                        let mut schemes = Vec::with_capacity(width);
+                        for c in &configs[..width] {
+                            schemes.push(
+                                plan.scheme(c)
+                                    .map_err(|e| value_err(format!("ratios row {}: {e}", c.id)))?,
+                            );
+                        }
+                        for lane in &mut lanes {
+                            lane.clear();
+                        }
+                        if width == BATCH {
+                            let mut it = lanes.iter_mut();
                             let items = std::array::from_fn(|l| {
                                 (
-                                    &configs[i + l],
-                                    &*schemes[i + l],
+                                    &configs[l],
+                                    &*schemes[l],
                                     it.next().expect("lane") as &mut dyn CellSink,
                                 )
                             });
                             let res = eval.write_results_batch(&plan, items);
-                            for (s, r) in sinks.into_iter().zip(res) {
-                                out.push(match r {
-                                    Ok(()) => (s.0, None),
-                                    Err(e) => (Vec::new(), Some(e.to_string())),
-                                });
+                            for (lane, r) in lanes.iter().zip(res) {
+                                match r {
+                                    Ok(()) => cols.push_row(Ok(lane)),
+                                    Err(e) => cols.push_row(Err(&e.to_string())),
+                                }
                             }
-                            i += BATCH;
                         } else {
-                            let mut s = RowCells::default();
-                            out.push(
-                                match eval.write_results(&plan, &configs[i], &*schemes[i], &mut s) {
-                                    Ok(()) => (s.0, None),
-                                    Err(e) => (Vec::new(), Some(e.to_string())),
-                                },
-                            );
-                            i += 1;
+                            for l in 0..width {
+                                match eval.write_results(
+                                    &plan,
+                                    &configs[l],
+                                    &*schemes[l],
+                                    &mut lanes[l],
+                                ) {
+                                    Ok(()) => cols.push_row(Ok(&lanes[l])),
+                                    Err(e) => cols.push_row(Err(&e.to_string())),
+                                }
+                            }
                         }
                     }
-                    Ok(out)
+                    Ok(cols)
                 })
                 .collect()
         })
     });
-    let mut cols = Columns::new(
-        result_names.iter().map(|c| c.name.clone()).collect(),
-        result_names.iter().map(|c| c.numeric).collect(),
-        m,
-    );
-    let mut errors = Vec::with_capacity(m);
-    for chunk in rows {
-        for (cells, err) in chunk? {
-            cols.push(&cells);
-            errors.push(err.unwrap_or_default());
-        }
+    let mut all = TypedColumns::new(&numeric, shape[0]);
+    for block in blocks {
+        all.append(block?);
     }
     let out = PyDict::new(py);
-    cols.into_dict(py, &out)?;
-    out.set_item("error", errors)?;
+    all.into_dict(py, &names, &out)?;
     Ok(out)
 }
 

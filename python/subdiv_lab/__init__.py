@@ -73,11 +73,13 @@ def classify_batch(ratios, scheme: str = "nurds", columns: Optional[Mapping[str,
     raw = _native.classify_batch(r, scheme, cols, threads)
     out: Dict[str, np.ndarray] = {}
     for name, value in raw.items():
-        if name == "error":
-            out[name] = np.asarray(value, dtype=object)
+        if name == "error" or len(value) == 3:
+            # text: codes into a few distinct values (expanded here, in numpy)
+            codes, levels = value[0], value[1]
+            out[name] = np.asarray(levels, dtype=object)[codes]
         else:
             values, _valid = value
-            out[name] = values if isinstance(values, np.ndarray) else np.asarray(values, dtype=object)
+            out[name] = values
     if "lambda1_re" in out:
         out["lambda1"] = out["lambda1_re"] + 1j * out["lambda1_im"]
         out["lambda2"] = out["lambda2_re"] + 1j * out["lambda2_im"]
