@@ -10,14 +10,6 @@ const FNV_PRIME: u64 = 0x0000_0100_0000_01B3;
 
 /// 64-bit FNV-1a of `bytes`: from the offset basis, for each byte `b`,
 /// `h = (h ^ b) * prime (mod 2^64)`.
-///
-/// ```
-/// use subdiv_lab::hash::fnv1a64;
-/// // Published test vectors.
-/// assert_eq!(fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
-/// assert_eq!(fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
-/// assert_eq!(fnv1a64(b"foobar"), 0x8594_4171_f739_67e8);
-/// ```
 pub fn fnv1a64(bytes: &[u8]) -> u64 {
     let mut h = FNV_OFFSET_BASIS;
     for &b in bytes {
@@ -25,4 +17,19 @@ pub fn fnv1a64(bytes: &[u8]) -> u64 {
         h = h.wrapping_mul(FNV_PRIME);
     }
     h
+}
+
+#[cfg(test)]
+mod doc_examples {
+    //! The examples of this private module's items (not doctests: the module is
+    //! not public).
+    use super::*;
+
+    #[test]
+    fn fnv1a64_published_vectors() {
+        // Published test vectors.
+        assert_eq!(fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(fnv1a64(b"foobar"), 0x8594_4171_f739_67e8);
+    }
 }

@@ -50,7 +50,7 @@ pub mod contraction;
 pub mod curvature;
 pub mod error;
 pub mod g2cap;
-pub mod hash;
+pub(crate) mod hash;
 pub mod knots;
 pub mod mesh;
 pub mod report;
@@ -62,7 +62,7 @@ pub mod spectral;
 pub mod sweep;
 #[cfg(feature = "testing")]
 pub mod testing;
-pub mod toml_location;
+pub(crate) mod toml_location;
 pub mod verify;
 
 pub use error::{Error, Result};

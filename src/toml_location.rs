@@ -18,7 +18,7 @@ impl Location {
     /// offset inside a multi-byte character counts as that character).
     ///
     /// ```
-    /// use subdiv_lab::toml_location::Location;
+    /// use subdiv_lab::report::Location;
     /// let src = "a = 1\nb = \"é\"\n";
     /// assert_eq!(Location::of(src, 6), Location { line: 2, column: 1 });
     /// assert_eq!(Location::of(src, 11).to_string(), "line 2, column 6");

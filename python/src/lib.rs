@@ -13,7 +13,7 @@ use rayon::prelude::*;
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
 use subdiv_lab::schemes::SchemeKind;
 use subdiv_lab::spectral::json::AnalysisInput;
-use subdiv_lab::spectral::kernel::BATCH;
+use subdiv_lab::spectral::BATCH;
 use subdiv_lab::sweep::eval::CellSink;
 use subdiv_lab::sweep::{
     Cell, Configuration, Evaluate, Layout, Plan, Shard, SpectralEvaluator, SweepSpec,

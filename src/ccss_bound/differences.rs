@@ -257,7 +257,7 @@ fn line(name: String, y: usize, x: usize, z: usize) -> Difference {
 /// The documented default family of `2n + 10` differences (module docs).
 ///
 /// ```
-/// use subdiv_lab::ccss_bound::differences::default_family;
+/// use subdiv_lab::ccss_bound::default_family;
 /// for n in 3..10 {
 ///     assert_eq!(default_family(n).unwrap().len(), 2 * n + 10);
 /// }

@@ -122,12 +122,15 @@ fn polish(alphas: &DMatrix<f64>, target: &[f64], x: &[f64]) -> Option<Vec<f64>> 
 /// mistake rounding for an unbounded ray. The box removes the lineality; an
 /// optimal `y` of moderate size exists (the family's non-zero singular values
 /// are `>= 0.03` for `n <= 50`, so optimal `y` have norm `<~ 100`), so the
-/// boxed optimum equals the dual optimum.
+/// boxed optimum equals the dual optimum. (The dual is the tests' independent
+/// optimality check.)
+#[cfg(test)]
 pub const DUAL_BOX: f64 = 1e4;
 
 /// The dual optimum `max target . y` s.t. `-1 <= alpha_l . y <= 1`, `y_0 = 0`,
 /// `|y_p| <= DUAL_BOX`. Equal to the primal optimum by LP duality: an
 /// independent optimality check.
+#[cfg(test)]
 pub fn dual_objective(alphas: &DMatrix<f64>, target: &[f64], what: &str) -> Result<f64> {
     let (m, l) = alphas.shape();
     let mut vars = ProblemVariables::new();

@@ -1,15 +1,15 @@
 //! Distance between an extraordinary Catmull-Clark patch and its limit face:
 //! the bound `beta(n)` by linear programming (math doc section 9, seed 002).
 //!
-//! * [`patch`]: the patch with its `2n + 8` control points as symbols; the
+//! * `patch`: the patch with its `2n + 8` control points as symbols; the
 //!   sub-patches `Omega^k_m` as bicubic B-spline and Bezier nets of linear
 //!   forms; the limit face `F` in Bezier form on the same sub-domains;
-//! * [`differences`]: families of second-order differences, their validator,
+//! * `differences`: families of second-order differences, their validator,
 //!   and the documented default family of `2n + 10`;
-//! * [`lp`]: `min sum |x_l|` s.t. `sum x_l alpha_l = b_ij - bbar_ij` (good_lp +
+//! * `lp`: `min sum |x_l|` s.t. `sum x_l alpha_l = b_ij - bbar_ij` (good_lp +
 //!   microlp) and its dual;
 //! * [`bound`]: `c_ij`, `B(u, v)`, `D(t)`, `beta(n)`, the `beta(n)` table as CSV;
-//! * [`steps`]: how many subdivision steps bring the limit mesh within `epsilon`.
+//! * `steps`: how many subdivision steps bring the limit mesh within `epsilon`.
 //!
 //! The bound: for `(u, v)` in `Omega^k_m`, `|S(u, v) - F(u, v)| <= B^k_m M`,
 //! `M = max_l |alpha_l|`, `B^k_m = sum c_ij B^3_i B^3_j`.
@@ -32,10 +32,17 @@
 //! `Omega^k_1`, `Omega^k_3` mirror each other to `1e-15`.
 
 pub mod bound;
-pub mod differences;
-pub mod lp;
-pub mod patch;
-pub mod steps;
+pub(crate) mod differences;
+pub(crate) mod lp;
+pub(crate) mod patch;
+pub(crate) mod steps;
+
+pub use differences::{default_family, Difference, DifferenceFamily};
+pub use patch::ExtraordinaryPatch;
+pub use steps::{
+    contraction, contraction_with, steps_a_priori, steps_needed, Contraction, StepsReport,
+    MAX_STEPS,
+};
 
 /// Failures specific to the bound computation.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -196,7 +196,9 @@ impl ExtraordinaryPatch {
     }
 }
 
-/// Uniform cubic B-spline basis at `t` in `[0, 1]`.
+/// Uniform cubic B-spline basis at `t` in `[0, 1]` (the tests' reference
+/// evaluation of the patch).
+#[cfg(test)]
 pub fn bspline_basis(t: f64) -> [f64; 4] {
     let s = 1.0 - t;
     [

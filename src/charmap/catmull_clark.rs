@@ -973,7 +973,7 @@ fn refine_grid(rule: &UnivariateRule, g: &[Vec<[f64; 2]>]) -> Vec<Vec<[f64; 2]>>
 
 /// Plot data of the ring of the adjustable scheme at `(n, c)` (classified as
 /// `sub`) and `levels - 1` further rings, in the format of the Doo-Sabin
-/// family ([`super::figure::RingPlot`]): each cell's window is refined with
+/// family (`super::figure::RingPlot`): each cell's window is refined with
 /// the rule until its side has at least `per_side - 1` spans (at most 6
 /// levels), the limit points of the grid vertices (limit stencil) give the
 /// outline, and the vertex Jacobians (central differences with the limit

@@ -25,7 +25,7 @@
 //! Submodules: [`extended`] (the `9n x 4n` matrix), [`ring`] (the `3n`
 //! patches and boundary chains), [`basis`] (the subdominant invariant
 //! subspace from the face block), [`regularity`] (Jacobian sign with error
-//! bound and subdivision), [`winding`] (certified winding numbers), [`figure`]
+//! bound and subdivision), [`winding`] (certified winding numbers), `figure`
 //! (plot data). Entry points: [`check`] (one configuration, classification
 //! included; the sweep entry point), [`check_classified`] (when the
 //! classification is already known), [`check_basis`] / [`check_ring`] (any
@@ -72,9 +72,9 @@
 pub mod basis;
 pub mod catmull_clark;
 pub mod extended;
-pub mod figure;
+pub(crate) mod figure;
 pub mod regularity;
-pub mod report;
+pub(crate) mod report;
 pub mod ring;
 pub mod winding;
 
@@ -533,7 +533,7 @@ pub fn check<S: Scheme + ?Sized>(scheme: &S) -> Result<CharmapReport<AnyPatchId>
 }
 
 /// The plot data of a configuration's ring and `levels - 1` further levels
-/// (see [`figure::ring_plot`]), with the report of the check; `None` for the
+/// (see `figure::ring_plot`), with the report of the check; `None` for the
 /// plot when there is no characteristic map ([`Scheme::characteristic_plot`]).
 pub fn plot_data<S: Scheme + ?Sized>(
     scheme: &S,

@@ -6,11 +6,7 @@ use anyhow::anyhow;
 use clap::Args;
 use std::fmt::Write as _;
 use subdiv_lab::ccss_bound::bound::{beta_table, bound, write_beta_csv, DEFAULT_LEVELS};
-use subdiv_lab::ccss_bound::patch::ExtraordinaryPatch;
-use subdiv_lab::ccss_bound::{
-    differences::default_family,
-    steps::{contraction_with, steps_needed},
-};
+use subdiv_lab::ccss_bound::{contraction_with, default_family, steps_needed, ExtraordinaryPatch};
 
 #[derive(Args, Debug)]
 pub(crate) struct CcssBoundArgs {

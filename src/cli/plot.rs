@@ -13,10 +13,10 @@ use super::{CliError, CliResult};
 use anyhow::anyhow;
 use clap::Args;
 use std::path::PathBuf;
-use subdiv_lab::report::spec::{MAX_PIXELS, MIN_PIXELS};
 use subdiv_lab::report::sweep_plot::{self, PlotKind, PlotRequest, SweepPlot};
 use subdiv_lab::report::table::Table;
 use subdiv_lab::report::{render_png, render_svg, Area};
+use subdiv_lab::report::{MAX_PIXELS, MIN_PIXELS};
 
 #[derive(Args, Debug)]
 pub(crate) struct PlotArgs {

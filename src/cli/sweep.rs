@@ -381,7 +381,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     // Work estimate of this shard's rows (before --resume skips any: a
     // conservative bound), checked before any file is opened.
-    let estimate = subdiv_lab::sweep::estimate::sweep_rows(&plan, expected, shard.count, threads);
+    let estimate = subdiv_lab::sweep::sweep_rows(&plan, expected, shard.count, threads);
     super::budget::check(
         "sweep",
         &format!("{}", args.spec.display()),

@@ -17,7 +17,7 @@
 //! outward (to the neighbouring double), so each computed interval
 //! contains the exact value. `cos(2 pi l / n)` enters as an enclosure proved
 //! over the rationals: it is a root of `T_n(x) - 1` (Chebyshev); a Sturm
-//! count ([`Sturm`]) proves that a small interval around the `f64` cosine
+//! count (`Sturm`) proves that a small interval around the `f64` cosine
 //! holds exactly one root, and the intervals' order identifies which. The moduli of a quadratic's
 //! roots are enclosed for real, complex and undecided discriminants; the
 //! `k`-th largest of interval values is enclosed by the `k`-th largest lower

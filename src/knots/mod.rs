@@ -22,7 +22,7 @@
 //! [`EdgeRatios::face_ep`] (an initial n-gon) and [`EdgeRatios::vertex_ep`] (the
 //! V-face of an initial valence-n vertex).
 
-pub mod face_weights;
+pub(crate) mod face_weights;
 pub(crate) mod weight_kernels;
 
 pub use face_weights::{face_weights, stationary_distribution};

@@ -21,7 +21,7 @@
 //! sidecar), [`refine`] (one step of each scheme), [`limit`] (limit points,
 //! limit meshes, per-level convergence statistics), [`generators`] (the small
 //! closed meshes shipped under `analysis/meshes/`), [`neighbourhood`] (the `4n`
-//! points of `S_n` around a face), [`projection`] (orthographic pictures).
+//! points of `S_n` around a face), `projection` (orthographic pictures).
 //!
 //! ```
 //! use subdiv_lab::mesh::{generators, refine::refine};
@@ -42,7 +42,7 @@ pub mod knot_file;
 pub mod limit;
 pub mod neighbourhood;
 pub mod obj;
-pub mod projection;
+pub(crate) mod projection;
 pub mod refine;
 pub mod rules;
 

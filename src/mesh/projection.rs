@@ -136,27 +136,3 @@ pub fn project(mesh: &Mesh, view: &View) -> Projected {
     faces.sort_by(|a, b| a.depth.total_cmp(&b.depth));
     Projected { faces, bounds }
 }
-
-/// Screen segments of every edge of a visible face (each edge once).
-pub fn wireframe_segments(mesh: &Mesh, view: &View) -> Vec<[[f64; 2]; 2]> {
-    let p = project(mesh, view);
-    let mut visible = vec![false; mesh.face_count()];
-    for f in &p.faces {
-        visible[f.face] = true;
-    }
-    let (right, up, _) = view.axes();
-    let s = |v: usize| {
-        let x = mesh.positions()[v];
-        [dot(&x, &right), dot(&x, &up)]
-    };
-    let mut out = Vec::new();
-    for h in 0..mesh.half_edge_count() {
-        let t = mesh.twin(h);
-        let (fh, ft) = (visible[mesh.face_of(h)], visible[mesh.face_of(t)]);
-        // draw once: from the smaller visible half-edge
-        if fh && (!ft || h < t) {
-            out.push([s(mesh.origin(h)), s(mesh.target(h))]);
-        }
-    }
-    out
-}

@@ -199,15 +199,6 @@ pub const SVG_DECIMALS: usize = 2;
 ///   painted twice).
 ///
 /// Text content is never changed.
-///
-/// ```
-/// use subdiv_lab::report::backend::thin_svg;
-/// let svg = "<svg>\n<rect x=\"0\" y=\"0\" width=\"2\" height=\"2\" opacity=\"1\" fill=\"#FF0000\" stroke=\"none\"/>\n<rect x=\"2\" y=\"0\" width=\"2\" height=\"2\" opacity=\"1\" fill=\"#FF0000\" stroke=\"none\"/>\n<text font-size=\"40.32258064516129\" opacity=\"1\">\n0.5\n</text>\n<line x1=\"0\" opacity=\"0\"/>\n</svg>\n";
-/// let thin = thin_svg(svg);
-/// assert!(thin.contains("<path fill=\"#FF0000\" d=\"M0 0h2v2h-2zM2 0h2v2h-2z\"/>"));
-/// assert!(thin.contains("font-size=\"40.32\"") && thin.contains("\n0.5\n"));
-/// assert!(!thin.contains("opacity") && !thin.contains("<line"));
-/// ```
 pub fn thin_svg(svg: &str) -> String {
     let mut out = String::with_capacity(svg.len() / 2);
     let mut run: Vec<RectBox> = Vec::new();
@@ -447,5 +438,21 @@ mod tests {
         let svg = render_svg((200, 100), &draw_text).unwrap();
         assert!(svg.contains("width=\"200\"") && svg.contains("height=\"100\""));
         assert!(svg.contains("<text") && svg.contains("λ₁ = 3/4"));
+    }
+}
+
+#[cfg(test)]
+mod doc_examples {
+    //! The examples of this private module's items (not doctests: the module is
+    //! not public).
+    use super::*;
+
+    #[test]
+    fn thin_svg_example() {
+        let svg = "<svg>\n<rect x=\"0\" y=\"0\" width=\"2\" height=\"2\" opacity=\"1\" fill=\"#FF0000\" stroke=\"none\"/>\n<rect x=\"2\" y=\"0\" width=\"2\" height=\"2\" opacity=\"1\" fill=\"#FF0000\" stroke=\"none\"/>\n<text font-size=\"40.32258064516129\" opacity=\"1\">\n0.5\n</text>\n<line x1=\"0\" opacity=\"0\"/>\n</svg>\n";
+        let thin = thin_svg(svg);
+        assert!(thin.contains("<path fill=\"#FF0000\" d=\"M0 0h2v2h-2zM2 0h2v2h-2z\"/>"));
+        assert!(thin.contains("font-size=\"40.32\"") && thin.contains("\n0.5\n"));
+        assert!(!thin.contains("opacity") && !thin.contains("<line"));
     }
 }

@@ -7,10 +7,6 @@ use super::Manifest;
 use std::fmt::Write;
 
 /// Escapes text for HTML element content and attribute values.
-///
-/// ```
-/// assert_eq!(subdiv_lab::report::html::escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
-/// ```
 pub fn escape(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
@@ -124,4 +120,16 @@ pub fn index(spec: &ReportSpec, manifest: &Manifest, fragments: &[Option<String>
     }
     h.push_str("</body>\n</html>\n");
     h
+}
+
+#[cfg(test)]
+mod doc_examples {
+    //! The examples of this private module's items (not doctests: the module is
+    //! not public).
+    use super::*;
+
+    #[test]
+    fn escape_example() {
+        assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
+    }
 }

@@ -1,20 +1,20 @@
 //! Plotted reports: a TOML spec in, a directory of figures out.
 //!
-//! A report spec (format in [`spec`]) lists figures by kind; [`generate`]
+//! A report spec (format in `spec`) lists figures by kind; [`generate`]
 //! computes every figure, renders it to SVG and PNG, writes the data behind it
 //! as CSV, and assembles a self-contained `index.html` and a `manifest.json`
 //! (tool version, git revision, the spec text, seeds and timings). Everything
 //! is produced **in memory** as a list of [`OutputFile`]s: the library does no
 //! file-system I/O, the CLI (`subdiv-lab report`) writes the files atomically.
 //!
-//! * [`spec`]: the spec format and parser (errors name line and key);
-//! * [`config`]: scheme configurations as written in specs;
+//! * `spec`: the spec format and parser (errors name line and key);
+//! * `config`: scheme configurations as written in specs;
 //! * [`figures`]: the figure registry and the figure kinds — **to add a figure
 //!   kind, read the module docs of [`figures`]**: one new module plus one line
 //!   in [`figures::REGISTRY`];
-//! * [`plot`]: plotting helpers (bundled font, sizes, colours, markers);
-//! * [`backend`]: one drawing backend for SVG and PNG, in-memory rendering;
-//! * [`html`]: the `index.html` page;
+//! * `plot`: plotting helpers (bundled font, sizes, colours, markers);
+//! * `backend`: one drawing backend for SVG and PNG, in-memory rendering;
+//! * `html`: the `index.html` page;
 //! * [`crate::rng`]: the deterministic random generator behind random knots.
 //!
 //! ```
@@ -35,21 +35,21 @@
 //! assert!(names.contains(&"index.html") && names.contains(&"manifest.json"));
 //! ```
 
-pub mod backend;
-pub mod config;
-pub mod error;
-pub mod figure_spec;
+pub(crate) mod backend;
+pub(crate) mod config;
+pub(crate) mod error;
+pub(crate) mod figure_spec;
 pub mod figures;
 pub(crate) mod font;
-pub mod html;
-pub mod plot;
-pub mod spec;
+pub(crate) mod html;
+pub(crate) mod plot;
+pub(crate) mod spec;
 pub mod sweep_plot;
 pub mod table;
 
 pub use backend::{render_png, render_svg, Area};
 pub use error::{Location, ReportError};
-pub use spec::{Common, ReportSpec};
+pub use spec::{Common, ReportSpec, MAX_PIXELS, MIN_PIXELS};
 
 use figures::{Context, Progress};
 use serde::Serialize;

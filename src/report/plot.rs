@@ -481,15 +481,6 @@ pub fn class_color(class: &str) -> RGBColor {
 /// notation below 1e-4 and from 1e6 on, and never a negative zero: a value
 /// below [`TICK_ZERO`] in modulus (a rounding residue of the tick arithmetic
 /// on linear axes, e.g. `-0.85 + 5 * 0.17`) is written `0`.
-///
-/// ```
-/// use subdiv_lab::report::plot::tick;
-/// assert_eq!(tick(-0.0), "0");
-/// assert_eq!(tick(-1e-17), "0");
-/// assert_eq!(tick(0.30000000000000004), "0.3");
-/// assert_eq!(tick(2.0), "2");
-/// assert_eq!(tick(1e-5), "1e-5");
-/// ```
 pub fn tick(v: f64) -> String {
     let a = v.abs();
     if a < TICK_ZERO {
@@ -516,12 +507,6 @@ pub const TICK_ZERO: f64 = 1e-12;
 /// a polyline of its own, with the crossing points interpolated on the box
 /// edge (plotters would otherwise draw points outside the plot area along its
 /// frame).
-///
-/// ```
-/// use subdiv_lab::report::plot::clip_polyline;
-/// let p = clip_polyline(&[(-1.0, 0.5), (0.5, 0.5), (2.0, 0.5)], (0.0, 1.0), (0.0, 1.0));
-/// assert_eq!(p, vec![vec![(0.0, 0.5), (0.5, 0.5), (1.0, 0.5)]]);
-/// ```
 pub fn clip_polyline(
     points: &[(f64, f64)],
     (x0, x1): (f64, f64),
@@ -586,12 +571,6 @@ pub fn clip_polyline(
 /// Axis ranges with equal scale on both axes (a circle stays round) for a
 /// plot area of `(w, h)` pixels that must show the box `[x0, x1] x [y0, y1]`:
 /// the box is centred and the axis with room to spare is widened.
-///
-/// ```
-/// use subdiv_lab::report::plot::equal_aspect;
-/// let ((a, b), (c, d)) = equal_aspect((400, 200), (0.0, 1.0), (0.0, 1.0));
-/// assert_eq!(((a, b), (c, d)), ((-0.5, 1.5), (0.0, 1.0)));
-/// ```
 pub fn equal_aspect(
     (w, h): (u32, u32),
     (x0, x1): (f64, f64),
@@ -664,4 +643,36 @@ pub fn legend_rows_height(
         x += ew + gap;
     }
     (rows * row_h) as u32
+}
+
+#[cfg(test)]
+mod doc_examples {
+    //! The examples of this private module's items (not doctests: the module is
+    //! not public).
+    use super::*;
+
+    #[test]
+    fn tick_examples() {
+        assert_eq!(tick(-0.0), "0");
+        assert_eq!(tick(-1e-17), "0");
+        assert_eq!(tick(0.30000000000000004), "0.3");
+        assert_eq!(tick(2.0), "2");
+        assert_eq!(tick(1e-5), "1e-5");
+    }
+
+    #[test]
+    fn clip_polyline_example() {
+        let p = clip_polyline(
+            &[(-1.0, 0.5), (0.5, 0.5), (2.0, 0.5)],
+            (0.0, 1.0),
+            (0.0, 1.0),
+        );
+        assert_eq!(p, vec![vec![(0.0, 0.5), (0.5, 0.5), (1.0, 0.5)]]);
+    }
+
+    #[test]
+    fn equal_aspect_example() {
+        let ((a, b), (c, d)) = equal_aspect((400, 200), (0.0, 1.0), (0.0, 1.0));
+        assert_eq!(((a, b), (c, d)), ((-0.5, 1.5), (0.0, 1.0)));
+    }
 }

@@ -1,6 +1,6 @@
 //! Plots of sweep results (`subdiv-lab plot` and the report figure kind
 //! `sweep`): a [`Table`] of named columns in, a figure out, in the reports'
-//! fonts, colours and print-safe markers ([`super::plot`]).
+//! fonts, colours and print-safe markers (`super::plot`).
 //!
 //! Kinds ([`PlotKind`]):
 //!

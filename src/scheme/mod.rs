@@ -211,7 +211,7 @@ pub trait Scheme: fmt::Debug + Send + Sync {
     }
 
     /// The characteristic-map check with the plot data of the ring and
-    /// `levels - 1` further levels ([`crate::charmap::figure::ring_plot`];
+    /// `levels - 1` further levels (`crate::charmap::figure::ring_plot`;
     /// `per_side` samples per patch side) for report figures (default none:
     /// [`characteristic_map`](Self::characteristic_map) without a plot).
     fn characteristic_plot(

@@ -21,12 +21,12 @@
 //! assert_eq!(m.rows()[5].to_string(), "E0,1");
 //! ```
 
-pub mod assembly;
+pub(crate) mod assembly;
 pub mod catmull_clark;
 pub mod doo_sabin;
 pub mod loop_subdivision;
 
-pub use assembly::{Assembler, LocalMatrix, PointLabel, Role};
+pub use assembly::{Assembler, LocalMatrix, PointLabel, Role, ROW_SUM_TOL};
 
 use crate::error::{Error, Result};
 use crate::knots::{face_weights, EdgeRatios};

@@ -37,7 +37,7 @@
 //!    root `lambda_q` of multiplicity exactly 2 (and not `-lambda_q`), the
 //!    root `mu_q` (or `-mu_q`), and after dividing these out, no root of
 //!    modulus `>= mu_q` (the Schur-Cohn count of
-//!    [`crate::spectral::poly::roots_outside`], which refuses
+//!    `crate::spectral::poly::roots_outside`, which refuses
 //!    roots on the circle). Then `lambda = lambda_q` and `mu = mu_q` exactly
 //!    and `mu_q` is compared with `lambda_q^2` in rationals. A wrong candidate
 //!    fails a check and leaves the verdict `indeterminate`; it never makes a

@@ -10,7 +10,7 @@
 //!    multiplicities (from the chain `gcd(q, q')`, `gcd(q'', ..)`);
 //! 3. the subdominant structure of the full spectrum
 //!    `spec(S_n) = {1} U roots(q) U {1/4, 1/8, 1/16} (n each)`, decided exactly:
-//!    * **count by modulus**: the Schur-Cohn recursion ([`roots_outside`])
+//!    * **count by modulus**: the Schur-Cohn recursion (`roots_outside`)
 //!      counts the roots with `|z| > t` for a rational `t`; a count of exactly 2
 //!      at `t` proves `|lambda_2| > t > |lambda_3|` (separation);
 //!    * **real or complex**: Sturm counts of the real roots in `|x| > t`: 0 means

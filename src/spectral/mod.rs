@@ -4,7 +4,7 @@
 //!
 //! * [`eigen`]: general eigen-decomposition of any square matrix (faer), with
 //!   left/right vectors, residuals and condition numbers;
-//! * [`kernel`]: an allocation-free small dense eigenvalue kernel (Hessenberg +
+//! * `kernel` (private; [`KernelWorkspace`] and [`BATCH`] are re-exported): an allocation-free small dense eigenvalue kernel (Hessenberg +
 //!   Francis double-shift QR, bounded iterations) for sweeps;
 //! * [`structured`]: the Doo-Sabin family fast path (face block + the known
 //!   1/4, 1/8, 1/16);
@@ -38,17 +38,20 @@ pub mod curvature;
 pub mod eigen;
 pub mod exact;
 pub mod json;
-pub mod kernel;
-pub mod poly;
+pub(crate) mod kernel;
+pub(crate) mod poly;
 pub mod structured;
-pub mod svd;
+pub(crate) mod svd;
 
 mod error;
 pub use error::SpectralError;
 
 pub use classify::{ClassName, Subdominant, SubdominantClass};
 pub use eigen::{Eigen, EigenOptions};
-pub use kernel::{KernelWorkspace, BATCH};
+pub use kernel::{
+    KernelWorkspace, BATCH, EXCEPTIONAL_SHIFT_PERIOD, LOCKSTEP_MAX_DIM, LOCKSTEP_MIN_DIM,
+    MAX_SWEEPS_PER_DIMENSION, MAX_SWEEPS_PER_EIGENVALUE,
+};
 pub use structured::{structured_spectrum, StructuredWorkspace};
 
 use crate::contraction::MeasureOptions;
@@ -568,7 +571,7 @@ pub fn classify_scheme_with<S: Scheme + ?Sized>(
 /// ```
 /// use subdiv_lab::knots::EdgeRatios;
 /// use subdiv_lab::schemes::LocalScheme;
-/// use subdiv_lab::spectral::kernel::BATCH;
+/// use subdiv_lab::spectral::BATCH;
 /// use subdiv_lab::spectral::{classify_scheme, classify_schemes_batch, StructuredWorkspace};
 /// let schemes: Vec<LocalScheme<f64>> = (0..BATCH)
 ///     .map(|i| LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.5, 0.05 + 0.05 * i as f64]).unwrap()))
@@ -661,7 +664,7 @@ thread_local! {
 }
 
 /// Classification only for any square matrix (e.g. schemes outside the
-/// Doo-Sabin family), by the allocation-free [`kernel`]: all eigenvalues,
+/// Doo-Sabin family), by the allocation-free eigenvalue kernel ([`KernelWorkspace`]): all eigenvalues,
 /// condition numbers of `lambda_1..lambda_3` by inverse iteration, and the
 /// rank test (faer SVD) only for a double-eigenvalue candidate.
 ///

@@ -16,7 +16,7 @@
 //! so `B` is the trailing block of `H M H` **\[derived\]**: the face weights `c`
 //! are not needed for the spectrum at all (no closed form, no linear solve).
 //!
-//! `B` goes to the allocation-free [`kernel`](super::kernel). This path is for
+//! `B` goes to the allocation-free eigenvalue kernel ([`KernelWorkspace`]). This path is for
 //! face-block schemes ([`SpectralStructure::FaceBlock`]: the Doo-Sabin family),
 //! which write their face block, or a matrix with the same deflated block, by
 //! [`Scheme::fill_face_block`]; it is tested against the full `4n x 4n`
@@ -72,7 +72,7 @@ impl StructuredWorkspace {
     /// ```
     /// use subdiv_lab::knots::EdgeRatios;
     /// use subdiv_lab::schemes::LocalScheme;
-    /// use subdiv_lab::spectral::kernel::BATCH;
+    /// use subdiv_lab::spectral::BATCH;
     /// use subdiv_lab::spectral::StructuredWorkspace;
     /// let schemes: Vec<LocalScheme<f64>> = (0..BATCH)
     ///     .map(|i| LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.05 + 0.05 * i as f64]).unwrap()))

@@ -21,15 +21,6 @@
 //! callers use, e.g. [`crate::charmap::SVD_ERROR_FACTOR`]). It converges
 //! quadratically in practice; [`JACOBI_MAX_SWEEPS`] bounds it, and only a
 //! failure of both routes is an error.
-//!
-//! ```
-//! use nalgebra::DMatrix;
-//! use subdiv_lab::spectral::svd::{jacobi_svd, singular_values};
-//! let a = DMatrix::from_row_slice(3, 3, &[2.0, 0.0, 0.0, 0.0, -3.0, 0.0, 0.0, 0.0, 1.0]);
-//! assert_eq!(singular_values(&a).unwrap(), vec![3.0, 2.0, 1.0]);
-//! let (s, _v) = jacobi_svd(&a, false).unwrap();
-//! assert_eq!(s, vec![3.0, 2.0, 1.0]);
-//! ```
 
 use super::SpectralError;
 use nalgebra::DMatrix;
@@ -211,5 +202,21 @@ mod tests {
         let s = singular_values(&x).unwrap();
         let (j, _) = jacobi_svd(&x, false).unwrap();
         assert!(s[5] < 1e-12 && j[5] < 1e-12, "{s:?} {j:?}");
+    }
+}
+
+#[cfg(test)]
+mod doc_examples {
+    //! The examples of this private module's items (not doctests: the module is
+    //! not public).
+    use super::*;
+
+    #[test]
+    fn svd_of_a_diagonal_matrix() {
+        use nalgebra::DMatrix;
+        let a = DMatrix::from_row_slice(3, 3, &[2.0, 0.0, 0.0, 0.0, -3.0, 0.0, 0.0, 0.0, 1.0]);
+        assert_eq!(singular_values(&a).unwrap(), vec![3.0, 2.0, 1.0]);
+        let (s, _v) = jacobi_svd(&a, false).unwrap();
+        assert_eq!(s, vec![3.0, 2.0, 1.0]);
     }
 }

@@ -1,14 +1,14 @@
 //! Parameter sweeps: millions of configurations, deterministic, shardable and
 //! resumable.
 //!
-//! * [`spec`]: the TOML sweep specification and its validation ([`SweepSpec`]);
+//! * `spec`: the TOML sweep specification and its validation ([`SweepSpec`]);
 //! * [`sampler`]: counter-based random draws, Halton and Sobol sequences;
-//! * [`plan`]: the enumeration `id -> configuration` ([`Plan`]) and [`Shard`]s;
+//! * `plan`: the enumeration `id -> configuration` ([`Plan`]) and [`Shard`]s;
 //! * [`eval`]: the per-configuration evaluation ([`Evaluate`], one place that calls
 //!   the spectral engine) and the result columns;
 //! * [`output`]: the CSV layout, row formatting and parsing, the streaming
 //!   [`run`](output::run()) driver and the shard [`merge`](output::merge());
-//! * [`summary`]: the mergeable summary accumulator ([`Summary`]).
+//! * `summary`: the mergeable summary accumulator ([`Summary`]).
 //!
 //! The library does no file-system I/O: it writes to `impl std::io::Write` and
 //! reads lines the caller hands it. The `subdiv-lab sweep` and `subdiv-lab merge`
@@ -39,20 +39,21 @@
 //! assert_eq!(summary.rows, 8);
 //! ```
 
-pub mod estimate;
+pub(crate) mod estimate;
 pub mod eval;
 pub mod output;
 pub mod own;
-pub mod plan;
+pub(crate) mod plan;
 pub mod sampler;
 mod sobol_table;
-pub mod spec;
-pub mod summary;
+pub(crate) mod spec;
+pub(crate) mod summary;
 
+pub use estimate::sweep_rows;
 pub use eval::{Cell, Evaluate, SpectralEvaluator};
 pub use output::Layout;
 pub use plan::{Configuration, Plan, Shard};
-pub use spec::{Columns, Sampler, Space, SpaceKind, SweepSpec};
+pub use spec::{Columns, Sampler, Space, SpaceKind, SweepSpec, MAX_CONFIGURATIONS};
 pub use summary::Summary;
 
 use thiserror::Error as ThisError;

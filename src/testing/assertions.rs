@@ -32,7 +32,7 @@ impl Violation {
 }
 
 /// Default tolerance on `|row sum - 1|` for `f64` matrices: see
-/// [`crate::schemes::assembly::ROW_SUM_TOL`].
+/// [`crate::schemes::ROW_SUM_TOL`].
 pub const ROW_SUM_TOL: f64 = crate::schemes::assembly::ROW_SUM_TOL;
 
 /// Every row of `matrix` sums to 1 (affine invariance): exactly for rationals,

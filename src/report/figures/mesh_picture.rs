@@ -2,7 +2,7 @@
 //! refinement, side by side, as an orthographic shaded (or wireframe) picture.
 //!
 //! Projection, back-face culling, painter's-order sorting and head-light
-//! shading come from [`crate::mesh::projection`]; both panels share one scale.
+//! shading come from `crate::mesh::projection`; both panels share one scale.
 //!
 //! ```toml
 //! [[figure]]

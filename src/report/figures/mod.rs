@@ -11,10 +11,10 @@
 //!    the spec parser and never reach it);
 //! 2. a `pub(crate) const KIND: FigureKind` naming the kind, its default title,
 //!    a one-line summary and its `parse` function. `parse` receives a
-//!    [`FigureSpec`]: call [`FigureSpec::parse`] to deserialize the keys (errors
+//!    `FigureSpec`: call `FigureSpec::parse` to deserialize the keys (errors
 //!    then carry line and key), validate every value there (use
-//!    [`FigureSpec::error_at`] with a `toml::Spanned` field so the message names
-//!    the line; configurations go through [`super::config::ConfigSpec`]), and
+//!    `FigureSpec::error_at` with a `toml::Spanned` field so the message names
+//!    the line; configurations go through `super::config::ConfigSpec`), and
 //!    return a boxed [`Figure`]. A spec that parses must not fail later on bad
 //!    input;
 //! 3. the [`Figure`] impl: `compute` does the numerics (through the library's
@@ -24,7 +24,7 @@
 //! 4. the [`FigureOutput`] impl: `tables` returns the data behind the figure
 //!    (written as `<id>.csv`, or `<id>-<name>.csv` for named tables), `draw`
 //!    draws it on an [`Area`] (the same code renders SVG and PNG; use the
-//!    helpers of [`super::plot`] for fonts, colours, markers and colour bars,
+//!    helpers of `super::plot` for fonts, colours, markers and colour bars,
 //!    and draw only what `tables` contains, so the CSV is exactly the data
 //!    plotted), and optionally `html` adds an HTML fragment to index.html (e.g.
 //!    a table). A kind without a picture returns `false` from `has_plot`.

@@ -62,7 +62,7 @@
 pub mod fourier;
 mod layout;
 pub mod limit;
-pub mod linear;
+pub(crate) mod linear;
 
 pub use layout::{PatchLayout, SubPatch};
 

@@ -90,7 +90,7 @@ impl KernelWorkspace {
     /// [`last_eigenvalues`](Self::last_eigenvalues).
     ///
     /// ```
-    /// use subdiv_lab::spectral::kernel::{KernelWorkspace, BATCH};
+    /// use subdiv_lab::spectral::{KernelWorkspace, BATCH};
     /// let mut ws: Vec<KernelWorkspace> = (0..BATCH).map(|_| KernelWorkspace::new()).collect();
     /// for (i, w) in ws.iter_mut().enumerate() {
     ///     // diag(1, 2, 3) + i times the cyclic shift
