@@ -180,8 +180,13 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
         .out
         .clone()
         .unwrap_or_else(|| Path::new(DEFAULT_ROOT).join(&spec.name));
-    // Refuse a bad --out before the (long) generation.
+    // Refuse a bad --out before the (long) generation: its kind, and the
+    // files every report writes (the figures' names are checked again when
+    // the report is installed).
     let target = check_target(&out)?;
+    if let Target::Existing { previous } = &target {
+        refuse_foreign(&out, ALWAYS_WRITTEN, previous)?;
+    }
     // Input files of the figures (sweep CSVs): relative paths are read from
     // the spec's directory. The library checks their columns before any
     // figure is computed.
@@ -246,6 +251,25 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
     Ok(())
 }
 
+/// The files every report writes.
+const ALWAYS_WRITTEN: &[&str] = &["index.html", "manifest.json"];
+
+/// Refuses (exit 2) if one of `names` exists in `out` and is not a file of
+/// the previous report: the tool never overwrites what it did not create.
+fn refuse_foreign(out: &Path, names: &[&str], previous: &BTreeSet<String>) -> CliResult {
+    for name in names {
+        let p = out.join(name);
+        let taken = std::fs::symlink_metadata(&p).is_ok();
+        if taken && !previous.contains(*name) {
+            return Err(CliError::usage(anyhow!(
+                "{} exists and is not part of the previous report; move it away or choose another --out",
+                p.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Writes `files` into a new temporary sibling of `out` (created by this
 /// run), then renames it to `out`; on failure the temporary is removed.
 fn write_new_dir(out: &Path, files: &[OutputFile]) -> CliResult {
@@ -282,16 +306,8 @@ fn write_new_dir(out: &Path, files: &[OutputFile]) -> CliResult {
 /// files of the `previous` report that the new one no longer has. A new file
 /// whose name is taken by a file not in `previous` is refused (exit 2).
 fn write_into_dir(out: &Path, files: &[OutputFile], previous: &BTreeSet<String>) -> CliResult {
-    for f in files {
-        let p = out.join(&f.path);
-        let taken = std::fs::symlink_metadata(&p).is_ok();
-        if taken && !previous.contains(&f.path) {
-            return Err(CliError::usage(anyhow!(
-                "{} exists and is not part of the previous report; move it away or choose another --out",
-                p.display()
-            )));
-        }
-    }
+    let names: Vec<&str> = files.iter().map(|f| f.path.as_str()).collect();
+    refuse_foreign(out, &names, previous)?;
     let mut ordered: Vec<(PathBuf, Vec<u8>)> = files
         .iter()
         .filter(|f| f.path != "manifest.json")
