@@ -1,7 +1,6 @@
 //! Orthographic projection of a mesh for pictures: shaded, depth-sorted
-//! polygons (painter's algorithm) and wireframe segments, in 2-D screen
-//! coordinates. Pure data; drawing is left to the caller (the report's mesh
-//! picture figure).
+//! polygons (painter's algorithm), in 2-D screen coordinates. Pure data;
+//! drawing is left to the caller (the report's mesh picture figure).
 //!
 //! The viewer looks from direction `v = (cos e cos a, cos e sin a, sin e)`
 //! (azimuth `a`, elevation `e`) towards the origin; screen axes are
@@ -9,13 +8,6 @@
 //! (Newell's method) points away from the viewer are culled (the mesh is
 //! closed and outward oriented); the rest are sorted back to front and shaded
 //! `0.25 + 0.75 max(0, n . v)` (a head light).
-//!
-//! ```
-//! use subdiv_lab::mesh::{generators, projection::{project, View}};
-//! let p = project(&generators::cube(), &View::default());
-//! assert!(p.faces.len() == 3);           // three faces of a cube are visible
-//! assert!(p.faces.windows(2).all(|w| w[0].depth <= w[1].depth));
-//! ```
 
 use super::Mesh;
 
@@ -135,4 +127,19 @@ pub fn project(mesh: &Mesh, view: &View) -> Projected {
     }
     faces.sort_by(|a, b| a.depth.total_cmp(&b.depth));
     Projected { faces, bounds }
+}
+
+#[cfg(test)]
+mod doc_examples {
+    //! The example of this private module (not a doctest: the module is not
+    //! public).
+    use super::*;
+    use crate::mesh::generators;
+
+    #[test]
+    fn three_faces_of_a_cube_are_visible_back_to_front() {
+        let p = project(&generators::cube(), &View::default());
+        assert!(p.faces.len() == 3);
+        assert!(p.faces.windows(2).all(|w| w[0].depth <= w[1].depth));
+    }
 }
