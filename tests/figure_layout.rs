@@ -39,7 +39,7 @@ const CANVAS_SLACK: f64 = 2.0;
 const ASPECT_TOL: f64 = 0.02;
 
 /// Kinds whose plots promise an equal aspect ratio.
-const EQUAL_ASPECT: &[&str] = &["spectrum", "knot-map"];
+const EQUAL_ASPECT: &[&str] = &["spectrum", "knot-map", "certified-map"];
 
 /// Advance width of a character of DejaVu Sans, in em (rounded up by class).
 fn char_width(c: char) -> f64 {
@@ -305,6 +305,13 @@ height = 450
 slices = [[0.5]]
 grid = 15
 color_by = "angle"
+
+[[figure]]
+kind = "certified-map"
+id = "certified-map-small"
+slices = [0.3, 0.7]
+min_width = 0.0625
+grid = 12
 
 [[figure]]
 kind = "sweep"
