@@ -231,7 +231,7 @@ const LEGEND: &[&str] = &[
 ];
 
 impl Output {
-    /// Certified area share per verdict over all slices.
+    /// Area share per verdict over all slices (verdicts with no area left out).
     fn shares(&self) -> Vec<(&'static str, f64)> {
         let [a, b] = self.range;
         let total = (b - a) * (b - a) * self.slices.len() as f64;
@@ -245,8 +245,10 @@ impl Output {
                     .filter(|c| c.2 == v)
                     .map(|(lo, hi, _)| (hi[0] - lo[0]) * (hi[1] - lo[1]))
                     .sum();
-                (v, area / total)
+                // 0.0 + : an empty float sum is -0.0
+                (v, 0.0 + area / total)
             })
+            .filter(|(_, f)| *f > 0.0)
             .collect()
     }
 }
