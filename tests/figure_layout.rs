@@ -39,7 +39,7 @@ const CANVAS_SLACK: f64 = 2.0;
 const ASPECT_TOL: f64 = 0.02;
 
 /// Kinds whose plots promise an equal aspect ratio.
-const EQUAL_ASPECT: &[&str] = &["spectrum", "knot-map", "certified-map"];
+const EQUAL_ASPECT: &[&str] = &["spectrum", "knot-map"];
 
 /// Advance width of a character of DejaVu Sans, in em (rounded up by class).
 fn char_width(c: char) -> f64 {
