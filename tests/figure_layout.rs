@@ -307,6 +307,13 @@ grid = 15
 color_by = "angle"
 
 [[figure]]
+kind = "certified-map"
+id = "certified-map-small"
+slices = [0.3, 0.7]
+min_width = 0.0625
+grid = 12
+
+[[figure]]
 kind = "sweep"
 id = "sweep-default"
 path = "sweep.csv"

@@ -1493,6 +1493,129 @@ fn cases() -> Vec<Case> {
             &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
             "--out",
         ),
+        bad_with(
+            "report-certified-map-no-slices",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"certified-map\"\nslices = []\n",
+            )],
+            "figure[0].slices: give 1 to 3 values of r_2",
+        ),
+        bad_with(
+            "report-certified-map-slice-outside",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"certified-map\"\nslices = [0.5, 1.0]\n",
+            )],
+            "figure[0].slices[1]: edge ratio r_2 must lie strictly between 0 and 1",
+        ),
+        bad_with(
+            "report-certified-map-too-many-slices",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"certified-map\"\nslices = [0.2, 0.4, 0.6, 0.8]\n",
+            )],
+            "give 1 to 3 values of r_2, got 4",
+        ),
+        bad_with(
+            "report-certified-map-range-reversed",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"certified-map\"\nslices = [0.5]\nrange = [0.9, 0.1]\n",
+            )],
+            "figure[0].range: range must satisfy 0 < lo < hi < 1",
+        ),
+        bad_with(
+            "report-certified-map-min-width-tiny",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"certified-map\"\nslices = [0.5]\nmin_width = 1e-9\n",
+            )],
+            "figure[0].min_width: min_width must lie in",
+        ),
+        bad_with(
+            "report-certified-map-grid-huge",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"certified-map\"\nslices = [0.5]\ngrid = 100000\n",
+            )],
+            "figure[0].grid: grid must be between 4 and 200",
+        ),
+        bad_with(
+            "report-certified-map-unknown-key",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"certified-map\"\nslices = [0.5]\nbogus = 1\n",
+            )],
+            "bogus",
+        ),
+        bad_with(
+            "verify-p-box-without-q-box",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nproperties = [\"class\"]\np_box = [[1, 2], [1, 2], [1, 2]]\n")],
+            "q_box: missing",
+        ),
+        bad_with(
+            "verify-q-box-without-p-box",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nproperties = [\"class\"]\nq_box = [[1, 2], [1, 2], [1, 2]]\n")],
+            "p_box: missing",
+        ),
+        bad_with(
+            "verify-box-and-p-box",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nproperties = [\"class\"]\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\np_box = [[1, 2], [1, 2], [1, 2]]\nq_box = [[1, 2], [1, 2], [1, 2]]\n")],
+            "not both",
+        ),
+        bad_with(
+            "verify-p-box-count",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nproperties = [\"class\"]\np_box = [[1, 2], [1, 2]]\nq_box = [[1, 2], [1, 2], [1, 2]]\n")],
+            "p_box must have one [lo, hi] per corner",
+        ),
+        bad_with(
+            "verify-q-box-zero",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nproperties = [\"class\"]\np_box = [[1, 2], [1, 2], [1, 2]]\nq_box = [[1, 2], [0, 2], [1, 2]]\n")],
+            "q_box[1]: knot intervals must be positive",
+        ),
+        bad_with(
+            "verify-p-box-reversed",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nproperties = [\"class\"]\np_box = [[1, 2], [1, 2], [3, 2]]\nq_box = [[1, 2], [1, 2], [1, 2]]\n")],
+            "p_box[2]: lower bound 3 must be below",
+        ),
+        bad_with(
+            "verify-p-box-nan",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nproperties = [\"class\"]\np_box = [[1, 2], [1, nan], [1, 2]]\nq_box = [[1, 2], [1, 2], [1, 2]]\n")],
+            "p_box[1]: knot intervals must be positive and finite",
+        ),
+        bad_with(
+            "verify-q-box-three-numbers",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nproperties = [\"class\"]\np_box = [[1, 2], [1, 2], [1, 2]]\nq_box = [[1, 2, 3], [1, 2], [1, 2]]\n")],
+            "q_box[0] must be [lower, upper]",
+        ),
+        bad_with(
+            "verify-corner-ratio-rounds-to-one",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nproperties = [\"class\"]\np_box = [[1e-300, 2e-300], [1, 2], [1, 2]]\nq_box = [[1, 2], [1e300, 1.1e300], [1, 2]]\n")],
+            "must lie strictly inside (0, 1)",
+        ),
+        bad_with(
+            "verify-p-box-for-cc",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"adjustable-cc\"\nvalence = 5\nc_range = [0.1, 0.9]\nproperties = [\"class\"]\np_box = [[1, 2], [1, 2], [1, 2]]\n")],
+            "p_box is for scheme",
+        ),
     ]);
     // (end of section verify)
 

@@ -44,6 +44,7 @@
 //! off-diagonal part keeps each disc of the actual matrix inside ours).
 
 use super::interval::{Ci, Disc, Iv};
+use super::taylor::Taylor;
 use crate::spectral::eigen::{Eigen, EigenOptions};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -65,6 +66,9 @@ pub enum Tamper {
     /// Omit the variation over the cell (`G = 0`): the discs only hold at
     /// the centre.
     DropVariation,
+    /// The sound enclosure without the second-order scaled discs (plain
+    /// Gershgorin discs; for comparisons).
+    PlainGershgorin,
 }
 
 /// An affine matrix family `C(x) = C_0 + sum_k x_k C_k` of size `m`.
@@ -201,6 +205,9 @@ pub struct Enclosure {
     pub rows: Vec<Disc>,
     /// Discs from its columns.
     pub cols: Vec<Disc>,
+    /// Per parameter `k`: `h_k sum_ab |Y C_k V|_ab`, its share of the
+    /// radii, used to choose the split coordinate (never for a verdict).
+    pub scores: Vec<f64>,
 }
 
 /// Encloses the spectrum of the family over the box (module docs).
@@ -293,6 +300,7 @@ pub fn enclose(family: &AffineFamily, lo: &[f64], hi: &[f64], tamper: Tamper) ->
     }
     // G = sum_k h_k |Y C_k V|
     let mut g = vec![0.0f64; m * m];
+    let mut scores = vec![0.0f64; k];
     if tamper != Tamper::DropVariation {
         for (kk, t) in family.terms.iter().enumerate() {
             if t.is_empty() {
@@ -308,7 +316,9 @@ pub fn enclose(family: &AffineFamily, lo: &[f64], hi: &[f64], tamper: Tamper) ->
                 }
             }
             for (gi, pi) in g.iter_mut().zip(&p) {
-                *gi = super::interval::up(*gi + Iv::point(h[kk]).mul(Iv::point(pi.mag())).hi);
+                let v = Iv::point(h[kk]).mul(Iv::point(pi.mag())).hi;
+                *gi = super::interval::up(*gi + v);
+                scores[kk] += v;
             }
         }
     }
@@ -319,143 +329,315 @@ pub fn enclose(family: &AffineFamily, lo: &[f64], hi: &[f64], tamper: Tamper) ->
     };
     let mut rows = Vec::with_capacity(m);
     let mut cols = Vec::with_capacity(m);
+    // diagonal discs (centre and own radius) and off-diagonal bounds F
+    let mut diag = Vec::with_capacity(m);
+    let mut f = vec![0.0f64; m * m];
+    for a in 0..m {
+        diag.push(disc(a, 0.0));
+        for b in 0..m {
+            if b != a {
+                f[a * m + b] = super::interval::up(m0[a * m + b].mag() + g[a * m + b]);
+            }
+        }
+    }
     for a in 0..m {
         let mut off_r = 0.0;
         let mut off_c = 0.0;
         for b in 0..m {
             if b != a {
-                off_r = super::interval::up(
-                    off_r + super::interval::up(m0[a * m + b].mag() + g[a * m + b]),
-                );
-                off_c = super::interval::up(
-                    off_c + super::interval::up(m0[b * m + a].mag() + g[b * m + a]),
-                );
+                off_r = super::interval::up(off_r + f[a * m + b]);
+                off_c = super::interval::up(off_c + f[b * m + a]);
             }
         }
         rows.push(disc(a, off_r));
         cols.push(disc(a, off_c));
     }
+    if tamper != Tamper::PlainGershgorin {
+        if let Some(t) = scaled_discs(&diag, &f, m, false) {
+            rows = t;
+        }
+        if let Some(t) = scaled_discs(&diag, &f, m, true) {
+            cols = t;
+        }
+    }
     let finite = rows
         .iter()
         .chain(&cols)
         .all(|d| d.re.is_finite() && d.im.is_finite() && d.radius.is_finite());
-    finite.then_some(Enclosure { rows, cols })
+    finite.then_some(Enclosure { rows, cols, scores })
 }
 
-/// `[lo, hi]^2` (exact range of the square, rounded outward).
-fn sqr(x: Iv) -> Iv {
-    if x.lo >= 0.0 {
-        x.mul(x)
-    } else if x.hi <= 0.0 {
-        x.neg().mul(x.neg())
-    } else {
-        let m = x.mag();
-        Iv::new(0.0, Iv::point(m).mul(Iv::point(m)).hi)
+/// Second-order isolation discs by diagonal scaling (math doc section 15).
+///
+/// `diag[a]` is the disc of the diagonal entry `a` (centre `z_a`, radius
+/// `rho_a`), `f[a m + b]` bounds the off-diagonal entry `(a, b)`
+/// (`transpose`: use columns). For each `a`, the similarity
+/// `D^{-1} M D` with `D = diag(s, .., 1 (at a), .., s)`, `0 < s <= 1`, has
+/// the Gershgorin discs
+///
+/// ```text
+/// row a:  |z - z_a| <= rho_a + s sum_{b != a} F_ab
+/// row b:  |z - z_b| <= rho_b + F_ba / s + sum_{j != a, b} F_bj
+/// ```
+///
+/// If the disc of row `a` is disjoint from those of all rows `b`, it holds
+/// exactly one eigenvalue of every matrix of the interval family
+/// (Gershgorin's count). `s = max_b 2 F_ba / gap_b` (capped at 1), `gap_b`
+/// the room left between the two discs at `s = 1` without the `F_ab, F_ba`
+/// terms, makes the disc of row `a` shrink to `rho_a + O(|F|^2 / gap)`
+/// (`sqrt(s)` and `1` are tried next). The
+/// result is returned only when every row is isolated: then the discs are
+/// pairwise disjoint (each lies inside its unscaled disc, which the scaled
+/// discs of the other rows contain), each holds exactly one eigenvalue, and
+/// together all `m`. Otherwise `None` (the unscaled discs are used).
+fn scaled_discs(diag: &[Disc], f: &[f64], m: usize, transpose: bool) -> Option<Vec<Disc>> {
+    use super::interval::{down, up};
+    let fa = |a: usize, b: usize| {
+        if transpose {
+            f[b * m + a]
+        } else {
+            f[a * m + b]
+        }
+    };
+    let mut out = Vec::with_capacity(m);
+    for a in 0..m {
+        let r_a = (0..m)
+            .filter(|&b| b != a)
+            .fold(0.0, |s, b| up(s + fa(a, b)));
+        // rest_b = sum_{j != a, b} F_bj
+        let rest = |b: usize| {
+            (0..m)
+                .filter(|&j| j != a && j != b)
+                .fold(0.0, |s, j| up(s + fa(b, j)))
+        };
+        let mut s = 0.0f64;
+        for b in (0..m).filter(|&b| b != a) {
+            let fb = fa(b, a);
+            if fb == 0.0 {
+                continue;
+            }
+            // lower bound of the distance between the centres
+            let probe = Disc {
+                re: diag[b].re,
+                im: diag[b].im,
+                radius: 0.0,
+            };
+            let centre_a = Disc {
+                radius: 0.0,
+                ..diag[a]
+            };
+            let dist = lower_distance(&centre_a, &probe);
+            let gap = down(down(down(dist - diag[a].radius) - diag[b].radius) - rest(b));
+            if !(gap > 0.0) {
+                return None;
+            }
+            s = s.max(up(up(2.0 * fb) / gap));
+        }
+        let s = s.clamp(f64::MIN_POSITIVE, 1.0);
+        // the first scaling (s, then sqrt(s), then 1: the unscaled disc)
+        // whose disc of row a misses every other row's disc
+        let isolated = |s: f64| -> Option<Disc> {
+            let tight = Disc {
+                radius: up(diag[a].radius + up(s * r_a)),
+                ..diag[a]
+            };
+            for b in (0..m).filter(|&b| b != a) {
+                let fb = fa(b, a);
+                let grown = if fb == 0.0 { 0.0 } else { up(fb / s) };
+                let other = Disc {
+                    radius: up(up(diag[b].radius + grown) + rest(b)),
+                    ..diag[b]
+                };
+                if !tight.disjoint(&other) {
+                    return None;
+                }
+            }
+            Some(tight)
+        };
+        let tight = isolated(s)
+            .or_else(|| isolated(s.sqrt().clamp(s, 1.0)))
+            .or_else(|| isolated(1.0))?;
+        out.push(tight);
     }
+    Some(out)
+}
+
+/// A lower bound of the distance between the centres of two discs.
+fn lower_distance(a: &Disc, b: &Disc) -> f64 {
+    // disjoint() with zero radii compares the distance against up(0) > 0;
+    // compute the bound directly with the same rounding
+    use super::interval::down;
+    let dx = Iv::point(a.re).sub(Iv::point(b.re));
+    let dy = Iv::point(a.im).sub(Iv::point(b.im));
+    let low = |x: Iv| {
+        if x.lo > 0.0 {
+            x.lo
+        } else if x.hi < 0.0 {
+            -x.hi
+        } else {
+            0.0
+        }
+    };
+    let (x, y) = (low(dx), low(dy));
+    down(down(down(x * x) + down(y * y)).max(0.0).sqrt())
 }
 
 impl AffineFamily {
-    /// The range of the affine combination `sum_t w_t C_t(x)_{entry_t}`
-    /// over the box, rounded outward (each parameter enters once, so the
-    /// interval evaluation is the exact range up to rounding).
-    fn affine_range(&self, entries: &[(usize, f64)], lo: &[f64], hi: &[f64]) -> Iv {
-        let mut acc = Iv::point(0.0);
-        for &(e, w) in entries {
-            acc = acc.add(Iv::point(self.c0[e]).mul(Iv::point(w)));
-        }
+    /// Entry `e` (row-major) of `C(x0 + d)` as an affine Taylor form around
+    /// the centre `x0` (the constant in interval arithmetic, the gradient the
+    /// family's exact coefficients).
+    fn entry_taylor(&self, e: usize, x0: &[f64]) -> Taylor {
+        let mut c = Iv::point(self.c0[e]);
+        let mut g = vec![0.0; self.params()];
         for (k, t) in self.terms.iter().enumerate() {
-            let mut coef = Iv::point(0.0);
             for &(a, b, v) in t {
-                for &(e, w) in entries {
-                    if e == a * self.m + b {
-                        coef = coef.add(Iv::point(v).mul(Iv::point(w)));
-                    }
+                if a * self.m + b == e {
+                    c = c.add(Iv::point(v).mul(Iv::point(x0[k])));
+                    g[k] += v;
                 }
             }
-            acc = acc.add(coef.mul(Iv::new(lo[k], hi[k])));
         }
-        acc
+        Taylor::affine(c, &g)
     }
 }
 
-/// The exact 2 x 2 route (`n = 3`, and `n = 4` after the removal of `1/4`):
-/// eigenvalues `t/2 +- sqrt(disc)` with `t = C00 + C11` and
-/// `disc = ((C00 - C11)/2)^2 + C01 C10`, both ranges over the cell in
-/// interval arithmetic (`t` and `C00 - C11` affine: exact ranges; the
-/// product `C01 C10` overestimates only to second order in the width).
-/// `None` unless the family is 2 x 2. Verdicts as [`super::decide::decide`].
+/// The closed 2 x 2 route (`n = 3`, and `n = 4` after the removal of
+/// `1/4`): with `t = C00 + C11` and `det = C00 C11 - C01 C10`, the
+/// eigenvalues are the roots of `p(z) = z^2 - t z + det`. Every verdict is a
+/// sign condition on a quadratic polynomial in the parameters, enclosed by a
+/// first-order Taylor form with a rigorous remainder over the cell
+/// ([`Taylor`]):
+///
+/// * `disc = t^2/4 - det > 0`: real and distinct. Both roots `< 1` iff
+///   `p(1) > 0` and `t/2 < 1`; both `> 1/4` iff `p(1/4) > 0` and `t/2 > 1/4`
+///   (`real_distinct`, separation certified); the smaller root in
+///   `(-1/4, 1/4)` iff `p(1/4) < 0 < p(-1/4)`, or `p(+-1/4) > 0` and
+///   `|t/2| < 1/4` (`not_separated`: the pair would include the fixed `1/4`).
+/// * `disc < 0`: a complex pair of modulus `sqrt(det)`: `det < 1` needed;
+///   `det > 1/16`: `complex_pair`; `det < 1/16`: `not_separated`.
+///
+/// Otherwise the cell is undecided, and the second value gives, per
+/// parameter, the share of the undecided quantity's uncertainty
+/// ([`Taylor::scores`]) to choose the split coordinate. `None` unless the
+/// family is 2 x 2.
 pub fn decide_2x2(
     family: &AffineFamily,
     lo: &[f64],
     hi: &[f64],
     tamper: Tamper,
-) -> Option<super::decide::SpectralVerdict> {
+) -> Option<(super::decide::SpectralVerdict, Option<Vec<f64>>)> {
     use super::decide::{SpectralVerdict, Status, FIXED_MODULUS};
     use crate::spectral::ClassName;
-    if family.m != 2 || lo.len() != family.params() || hi.len() != family.params() {
+    let k = family.params();
+    if family.m != 2 || lo.len() != k || hi.len() != k {
         return None;
     }
-    let centre: Vec<f64> = lo.iter().zip(hi).map(|(a, b)| 0.5 * a + 0.5 * b).collect();
-    let (lo, hi) = match tamper {
-        Tamper::DropVariation => (centre.as_slice(), centre.as_slice()),
-        Tamper::None => (lo, hi),
-    };
-    let half_t = family
-        .affine_range(&[(0, 1.0), (3, 1.0)], lo, hi)
-        .mul(Iv::point(0.5));
-    let half_diff = family
-        .affine_range(&[(0, 1.0), (3, -1.0)], lo, hi)
-        .mul(Iv::point(0.5));
-    let c01 = family.affine_range(&[(1, 1.0)], lo, hi);
-    let c10 = family.affine_range(&[(2, 1.0)], lo, hi);
-    let disc = sqr(half_diff).add(c01.mul(c10));
-    let undecided = SpectralVerdict {
-        separation: Status::Undecided,
-        class: None,
-    };
-    let not_separated = SpectralVerdict {
-        separation: Status::Refuted,
-        class: Some(ClassName::NotSeparated),
-    };
-    if disc.lo > 0.0 {
-        // real, distinct: lambda_- < lambda_+
-        let root = Iv::new(
-            super::interval::down(disc.lo.sqrt()),
-            super::interval::up(disc.hi.sqrt()),
-        );
-        let plus = half_t.add(root);
-        let minus = half_t.sub(root);
-        if !(plus.hi < 1.0) {
-            return Some(undecided);
-        }
-        if minus.lo > FIXED_MODULUS {
-            return Some(SpectralVerdict {
-                separation: Status::Certified,
-                class: Some(ClassName::RealDistinct),
-            });
-        }
-        if minus.lo > -FIXED_MODULUS && minus.hi < FIXED_MODULUS {
-            return Some(not_separated);
-        }
-        Some(undecided)
-    } else if disc.hi < 0.0 {
-        // complex pair, |lambda|^2 = (t/2)^2 - disc
-        let mod2 = sqr(half_t).sub(disc);
-        let q = FIXED_MODULUS * FIXED_MODULUS;
-        if !(mod2.hi < 1.0) {
-            return Some(undecided);
-        }
-        if mod2.lo > q {
-            return Some(SpectralVerdict {
-                separation: Status::Certified,
-                class: Some(ClassName::ComplexPair),
-            });
-        }
-        if mod2.hi < q {
-            return Some(not_separated);
-        }
-        Some(undecided)
-    } else {
-        Some(undecided)
+    let (x0, mut h) = centre_and_half_widths(lo, hi);
+    if tamper == Tamper::DropVariation {
+        h = vec![0.0; k];
     }
+    let c00 = family.entry_taylor(0, &x0);
+    let c01 = family.entry_taylor(1, &x0);
+    let c10 = family.entry_taylor(2, &x0);
+    let c11 = family.entry_taylor(3, &x0);
+    let t = c00.add(&c11);
+    let det = c00.mul(&c11, &h).sub(&c01.mul(&c10, &h));
+    // disc = (t/2)^2 - det; t/2 is exact scaling by a power of two
+    let half_t = t.scale(0.5);
+    let disc = half_t.mul(&half_t, &h).sub(&det);
+    let q = FIXED_MODULUS;
+    // p(z) = z^2 - t z + det at z = 1, 1/4, -1/4
+    let p_at = |z: f64| {
+        // z in {1, 1/4, -1/4}: z^2 is exact
+        Taylor::constant(z * z, k).sub(&t.scale(z)).add(&det)
+    };
+    let undecided = |why: &Taylor| {
+        Some((
+            SpectralVerdict {
+                separation: Status::Undecided,
+                class: None,
+            },
+            Some(why.scores(&h)),
+        ))
+    };
+    let not_separated = Some((
+        SpectralVerdict {
+            separation: Status::Refuted,
+            class: Some(ClassName::NotSeparated),
+        },
+        None,
+    ));
+    let dr = disc.range(&h);
+    if dr.lo > 0.0 {
+        let p1 = p_at(1.0);
+        let ht = half_t.range(&h);
+        if !(p1.range(&h).lo > 0.0 && ht.hi < 1.0) {
+            return undecided(&p1);
+        }
+        let pq = p_at(q);
+        let pmq = p_at(-q);
+        let (pqr, pmqr) = (pq.range(&h), pmq.range(&h));
+        if pqr.lo > 0.0 && ht.lo > q {
+            return Some((
+                SpectralVerdict {
+                    separation: Status::Certified,
+                    class: Some(ClassName::RealDistinct),
+                },
+                None,
+            ));
+        }
+        if pqr.hi < 0.0 && pmqr.lo > 0.0 {
+            return not_separated;
+        }
+        if pqr.lo > 0.0 && pmqr.lo > 0.0 && ht.lo > -q && ht.hi < q {
+            return not_separated;
+        }
+        if !(pqr.lo > 0.0 || pqr.hi < 0.0) {
+            undecided(&pq)
+        } else if !(pmqr.lo > 0.0 || pmqr.hi < 0.0) {
+            undecided(&pmq)
+        } else {
+            undecided(&half_t)
+        }
+    } else if dr.hi < 0.0 {
+        let d = det.range(&h);
+        if !(d.hi < 1.0) {
+            return undecided(&det);
+        }
+        let q2 = q * q; // 1/16, exact
+        if d.lo > q2 {
+            return Some((
+                SpectralVerdict {
+                    separation: Status::Certified,
+                    class: Some(ClassName::ComplexPair),
+                },
+                None,
+            ));
+        }
+        if d.hi < q2 {
+            return not_separated;
+        }
+        undecided(&det)
+    } else {
+        undecided(&disc)
+    }
+}
+
+/// The float centre of a cell and half-widths `h` with
+/// `[lo, hi] ⊂ [x0 - h, x0 + h]` (each the larger distance to an end,
+/// rounded up).
+pub fn centre_and_half_widths(lo: &[f64], hi: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let x0: Vec<f64> = lo.iter().zip(hi).map(|(a, b)| 0.5 * a + 0.5 * b).collect();
+    let h = lo
+        .iter()
+        .zip(hi)
+        .zip(&x0)
+        .map(|((a, b), m)| {
+            Iv::point(*b)
+                .sub(Iv::point(*m))
+                .hi
+                .max(Iv::point(*m).sub(Iv::point(*a)).hi)
+        })
+        .collect();
+    (x0, h)
 }

@@ -29,6 +29,7 @@ pub mod decide;
 pub mod enclose;
 pub mod interval;
 pub mod spec;
+pub mod taylor;
 
 use crate::spectral::ClassName;
 use decide::Status;
@@ -134,8 +135,10 @@ fn attempted(region: &Region, p: Property) -> bool {
     }
 }
 
-/// A cell's class (when proven) and the status of each requested property.
-type Evaluation = (Option<ClassName>, Vec<(Property, Status)>);
+/// A cell's class (when proven), the status of each requested property and,
+/// when the enclosure knows it, each parameter's share of the uncertainty
+/// (the split coordinate is chosen by it).
+type Evaluation = (Option<ClassName>, Vec<(Property, Status)>, Option<Vec<f64>>);
 
 /// Evaluates one cell.
 fn evaluate(
@@ -145,22 +148,27 @@ fn evaluate(
     hi: &[f64],
     tamper: Tamper,
 ) -> Evaluation {
-    let (separation, class) = match (&spec.region, family) {
-        (Region::Ratios { .. }, Some(f)) if f.dim() == 2 => {
+    let (separation, class, scores) = match (&spec.region, family) {
+        (Region::Ratios { .. } | Region::Corners { .. }, Some(f)) if f.dim() == 2 => {
             match enclose::decide_2x2(f, lo, hi, tamper) {
-                Some(v) => (v.separation, v.class),
-                None => (Status::Undecided, None),
+                Some((v, scores)) => (v.separation, v.class, scores),
+                None => (Status::Undecided, None, None),
             }
         }
-        (Region::Ratios { .. }, Some(f)) => match enclose::enclose(f, lo, hi, tamper) {
-            Some(e) => {
-                let v = decide::decide_either(&e.rows, &e.cols);
-                (v.separation, v.class)
+        (Region::Ratios { .. } | Region::Corners { .. }, Some(f)) => {
+            match enclose::enclose(f, lo, hi, tamper) {
+                Some(e) => {
+                    let v = decide::decide_either(&e.rows, &e.cols);
+                    (v.separation, v.class, Some(e.scores))
+                }
+                None => (Status::Undecided, None, None),
             }
-            None => (Status::Undecided, None),
-        },
-        (Region::Shape { valence, .. }, _) => cc::verdict(*valence, lo[0], hi[0]),
-        _ => (Status::Undecided, None),
+        }
+        (Region::Shape { valence, .. }, _) => {
+            let (s, c) = cc::verdict(*valence, lo[0], hi[0]);
+            (s, c, None)
+        }
+        _ => (Status::Undecided, None, None),
     };
     let status = spec
         .properties
@@ -178,7 +186,7 @@ fn evaluate(
                 // Theorem 1 holds for every ratio vector in (0, 1)^n (math doc
                 // section 5): the box lies in (0, 1)^n (checked by the spec).
                 Property::Theorem1 => match spec.region {
-                    Region::Ratios { .. } => Status::Certified,
+                    Region::Ratios { .. } | Region::Corners { .. } => Status::Certified,
                     Region::Shape { .. } => Status::Undecided,
                 },
                 Property::Charmap => Status::Undecided,
@@ -186,7 +194,7 @@ fn evaluate(
             (p, s)
         })
         .collect();
-    (class, status)
+    (class, status, scores)
 }
 
 fn decided(spec: &VerifySpec, class: Option<ClassName>, status: &[(Property, Status)]) -> bool {
@@ -199,15 +207,66 @@ fn decided(spec: &VerifySpec, class: Option<ClassName>, status: &[(Property, Sta
     })
 }
 
+/// The coordinate to bisect and the bisection point, or `None` when the
+/// cell is not split: only sides wider than `min_width` whose float midpoint
+/// lies strictly inside are candidates (so a cell whose widest side is at
+/// most `min_width` is never split, and the halves tile the cell). Among the
+/// candidates, the one with the largest uncertainty share `scores[k]` (from
+/// the enclosure) is chosen, ties and missing scores going to the widest side
+/// and then the lowest index. The choice affects only efficiency, never a
+/// verdict. With `log_split` (corner-interval boxes) the bisection point is
+/// the ratio at the midpoint of the log ratio `ln((1 - r) / r)` when that
+/// float lies strictly inside, else the ordinary midpoint.
+fn split_coordinate(
+    a: &[f64],
+    b: &[f64],
+    scores: Option<&[f64]>,
+    min_width: f64,
+    log_split: bool,
+) -> Option<(usize, f64)> {
+    let mut best: Option<(usize, f64, f64, f64)> = None; // (k, mid, score, width)
+    for k in 0..a.len() {
+        let w = b[k] - a[k];
+        let mut mid = 0.5 * a[k] + 0.5 * b[k];
+        if log_split {
+            // the midpoint of the log ratio t = ln((1 - r) / r): any float
+            // strictly inside tiles the cell, so rounding is harmless
+            let g = (((1.0 - a[k]) / a[k]) * ((1.0 - b[k]) / b[k])).sqrt();
+            let m = 1.0 / (1.0 + g);
+            if a[k] < m && m < b[k] {
+                mid = m;
+            }
+        }
+        if !(w > min_width && a[k] < mid && mid < b[k]) {
+            continue;
+        }
+        let sc = scores
+            .and_then(|s| s.get(k).copied())
+            .filter(|x| x.is_finite())
+            .unwrap_or(0.0);
+        let better = match best {
+            None => true,
+            Some((_, _, bs, bw)) => sc > bs || (sc == bs && w > bw),
+        };
+        if better {
+            best = Some((k, mid, sc, w));
+        }
+    }
+    best.map(|(k, mid, _, _)| (k, mid))
+}
+
 /// Runs the branch and bound (parallel over the cells of a level on the
 /// current rayon pool; the result does not depend on the thread count).
 pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
     let start = Instant::now();
     let family = match spec.region {
-        Region::Ratios { .. } => Some(enclose::AffineFamily::nurds(spec.valence())),
+        Region::Ratios { .. } | Region::Corners { .. } => {
+            Some(enclose::AffineFamily::nurds(spec.valence()))
+        }
         Region::Shape { .. } => None,
     };
     let (lo, hi) = spec.bounds();
+    let log_split = matches!(spec.region, Region::Corners { .. });
     let mut frontier: Vec<(Vec<f64>, Vec<f64>)> = vec![(lo, hi)];
     let mut cells = Vec::new();
     let mut evaluated: u64 = 0;
@@ -219,21 +278,15 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
             .map(|(a, b)| evaluate(spec, family.as_ref(), a, b, limits.tamper))
             .collect();
         evaluated += frontier.len() as u64;
-        let splittable = |a: &[f64], b: &[f64]| -> Option<(usize, f64)> {
-            let (mut k, mut w) = (0, -1.0);
-            for i in 0..a.len() {
-                if b[i] - a[i] > w {
-                    w = b[i] - a[i];
-                    k = i;
-                }
-            }
-            let mid = 0.5 * a[k] + 0.5 * b[k];
-            (w > spec.min_width && a[k] < mid && mid < b[k]).then_some((k, mid))
+        let splittable = |a: &[f64], b: &[f64], scores: Option<&Vec<f64>>| {
+            split_coordinate(a, b, scores.map(Vec::as_slice), spec.min_width, log_split)
         };
         let open: usize = frontier
             .iter()
             .zip(&results)
-            .filter(|((a, b), (c, s))| !decided(spec, *c, s) && splittable(a, b).is_some())
+            .filter(|((a, b), (c, s, sc))| {
+                !decided(spec, *c, s) && splittable(a, b, sc.as_ref()).is_some()
+            })
             .count();
         if open > 0 && stopped.is_none() {
             if evaluated + 2 * open as u64 > limits.max_cells {
@@ -246,9 +299,9 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
             }
         }
         let mut next = Vec::with_capacity(2 * open);
-        for ((a, b), (class, status)) in frontier.into_iter().zip(results) {
+        for ((a, b), (class, status, scores)) in frontier.into_iter().zip(results) {
             let split = if stopped.is_none() && !decided(spec, class, &status) {
-                splittable(&a, &b)
+                splittable(&a, &b, scores.as_ref())
             } else {
                 None
             };
@@ -286,7 +339,7 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
 pub fn csv_header(spec: &VerifySpec) -> Vec<String> {
     let mut h = Vec::new();
     match spec.region {
-        Region::Ratios { .. } => {
+        Region::Ratios { .. } | Region::Corners { .. } => {
             let n = spec.valence();
             h.extend((0..n).map(|i| format!("lo{i}")));
             h.extend((0..n).map(|i| format!("hi{i}")));

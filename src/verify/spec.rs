@@ -78,6 +78,23 @@ pub enum Region {
         /// Upper ends.
         hi: Vec<f64>,
     },
+    /// NURDS of valence `p.len()` over a box of corner knot intervals
+    /// `p_i in p[i]`, `q_i in q[i]` (math doc section 15): each ratio
+    /// `r_i = q_{i+1} / (p_i + q_{i+1})` depends on its own pair, increasing
+    /// in `q_{i+1}` and decreasing in `p_i`, so the box maps onto the ratio
+    /// box `[q_lo / (p_hi + q_lo), q_hi / (p_lo + q_hi)]` per edge; `lo`,
+    /// `hi` enclose it (rounded outward). Cells are bisected at the midpoint
+    /// of the log ratio `ln(p_i / q_{i+1})` (log-scaled).
+    Corners {
+        /// `[lo, hi]` of each `p_i`.
+        p: Vec<[f64; 2]>,
+        /// `[lo, hi]` of each `q_i`.
+        q: Vec<[f64; 2]>,
+        /// Lower ends of the enclosing ratio box.
+        lo: Vec<f64>,
+        /// Upper ends of the enclosing ratio box.
+        hi: Vec<f64>,
+    },
     /// The adjustable Catmull-Clark scheme of valence `valence`, `c` in `[lo, hi]`.
     Shape {
         /// Valence.
@@ -108,7 +125,7 @@ impl VerifySpec {
     /// Valence of the configuration.
     pub fn valence(&self) -> usize {
         match &self.region {
-            Region::Ratios { lo, .. } => lo.len(),
+            Region::Ratios { lo, .. } | Region::Corners { lo, .. } => lo.len(),
             Region::Shape { valence, .. } => *valence,
         }
     }
@@ -116,7 +133,7 @@ impl VerifySpec {
     /// The scheme's spec name.
     pub fn scheme(&self) -> &'static str {
         match &self.region {
-            Region::Ratios { .. } => "nurds",
+            Region::Ratios { .. } | Region::Corners { .. } => "nurds",
             Region::Shape { .. } => "adjustable-cc",
         }
     }
@@ -124,7 +141,7 @@ impl VerifySpec {
     /// The box as `(lo, hi)` vectors (one entry for the `c` path).
     pub fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
         match &self.region {
-            Region::Ratios { lo, hi } => (lo.clone(), hi.clone()),
+            Region::Ratios { lo, hi } | Region::Corners { lo, hi, .. } => (lo.clone(), hi.clone()),
             Region::Shape { lo, hi, .. } => (vec![*lo], vec![*hi]),
         }
     }
@@ -156,26 +173,40 @@ impl VerifySpec {
                 if let Some(c) = &raw.c_range {
                     return ctx.err("c_range", Some(c.span()), "c_range is for scheme \"adjustable-cc\"; a nurds spec gives box".into());
                 }
-                let Some(b) = &raw.r#box else {
-                    return ctx.err("box", None, "box: missing (required key for scheme \"nurds\")".into());
-                };
                 let n = v as usize;
-                if b.get_ref().len() != n {
-                    return ctx.err(
-                        "box",
-                        Some(b.span()),
-                        format!("box must have one [lo, hi] per edge ratio ({n} for valence {n}), got {}", b.get_ref().len()),
-                    );
+                match (&raw.r#box, &raw.p_box, &raw.q_box) {
+                    (Some(b), None, None) => {
+                        if b.get_ref().len() != n {
+                            return ctx.err(
+                                "box",
+                                Some(b.span()),
+                                format!("box must have one [lo, hi] per edge ratio ({n} for valence {n}), got {}", b.get_ref().len()),
+                            );
+                        }
+                        let mut lo = Vec::with_capacity(n);
+                        let mut hi = Vec::with_capacity(n);
+                        for (i, r) in b.get_ref().iter().enumerate() {
+                            let key = format!("box[{i}]");
+                            let (a, z) = range(&ctx, &key, r, false)?;
+                            lo.push(a);
+                            hi.push(z);
+                        }
+                        Region::Ratios { lo, hi }
+                    }
+                    (Some(b), _, _) => {
+                        return ctx.err("box", Some(b.span()), "box: give either box (edge ratios) or p_box and q_box (corner intervals), not both".into());
+                    }
+                    (None, Some(pb), Some(qb)) => corners(&ctx, n, pb, qb)?,
+                    (None, Some(pb), None) => {
+                        return ctx.err("q_box", Some(pb.span()), "q_box: missing (p_box and q_box give a corner-interval box together)".into());
+                    }
+                    (None, None, Some(qb)) => {
+                        return ctx.err("p_box", Some(qb.span()), "p_box: missing (p_box and q_box give a corner-interval box together)".into());
+                    }
+                    (None, None, None) => {
+                        return ctx.err("box", None, "box: missing (required key for scheme \"nurds\", or p_box and q_box)".into());
+                    }
                 }
-                let mut lo = Vec::with_capacity(n);
-                let mut hi = Vec::with_capacity(n);
-                for (i, r) in b.get_ref().iter().enumerate() {
-                    let key = format!("box[{i}]");
-                    let (a, z) = range(&ctx, &key, r, false)?;
-                    lo.push(a);
-                    hi.push(z);
-                }
-                Region::Ratios { lo, hi }
             }
             "adjustable-cc" => {
                 if !(3..=MAX_CC_VALENCE as i64).contains(&v) {
@@ -187,6 +218,11 @@ impl VerifySpec {
                 }
                 if let Some(b) = &raw.r#box {
                     return ctx.err("box", Some(b.span()), "box is for scheme \"nurds\"; an adjustable-cc spec gives c_range".into());
+                }
+                for (key, b) in [("p_box", &raw.p_box), ("q_box", &raw.q_box)] {
+                    if let Some(b) = b {
+                        return ctx.err(key, Some(b.span()), format!("{key} is for scheme \"nurds\"; an adjustable-cc spec gives c_range"));
+                    }
                 }
                 let Some(c) = &raw.c_range else {
                     return ctx.err("c_range", None, "c_range: missing (required key for scheme \"adjustable-cc\")".into());
@@ -291,6 +327,8 @@ struct RawSpec {
     scheme: Spanned<String>,
     valence: Spanned<i64>,
     r#box: Option<Spanned<Vec<Spanned<Vec<f64>>>>>,
+    p_box: Option<Spanned<Vec<Spanned<Vec<f64>>>>>,
+    q_box: Option<Spanned<Vec<Spanned<Vec<f64>>>>>,
     c_range: Option<Spanned<Vec<f64>>>,
     properties: Spanned<Vec<Spanned<String>>>,
     min_width: Option<Spanned<f64>>,
@@ -363,6 +401,77 @@ fn range(
         );
     }
     Ok((a, b))
+}
+
+type Boxes = Spanned<Vec<Spanned<Vec<f64>>>>;
+
+/// The corner-interval box `p_box`, `q_box` and its enclosing ratio box
+/// (see [`Region::Corners`]).
+fn corners(ctx: &Ctx, n: usize, pb: &Boxes, qb: &Boxes) -> Result<Region, SweepError> {
+    use super::interval::{down, up};
+    let mut sides = Vec::with_capacity(2);
+    for (name, b) in [("p_box", pb), ("q_box", qb)] {
+        if b.get_ref().len() != n {
+            return ctx.err(
+                name,
+                Some(b.span()),
+                format!(
+                    "{name} must have one [lo, hi] per corner ({n} for valence {n}), got {}",
+                    b.get_ref().len()
+                ),
+            );
+        }
+        let mut v = Vec::with_capacity(n);
+        for (i, r) in b.get_ref().iter().enumerate() {
+            let key = format!("{name}[{i}]");
+            let span = Some(r.span());
+            let x = r.get_ref();
+            if x.len() != 2 {
+                return ctx.err(
+                    &key,
+                    span,
+                    format!("{key} must be [lower, upper], got {} values", x.len()),
+                );
+            }
+            let (a, z) = (x[0], x[1]);
+            if !(a.is_finite() && z.is_finite() && a > 0.0) {
+                return ctx.err(
+                    &key,
+                    span,
+                    format!("{key}: knot intervals must be positive and finite, got [{a}, {z}]"),
+                );
+            }
+            if a >= z {
+                return ctx.err(
+                    &key,
+                    span,
+                    format!("{key}: lower bound {a} must be below upper bound {z}"),
+                );
+            }
+            v.push([a, z]);
+        }
+        sides.push(v);
+    }
+    let q = sides.pop().unwrap_or_default();
+    let p = sides.pop().unwrap_or_default();
+    let mut lo = Vec::with_capacity(n);
+    let mut hi = Vec::with_capacity(n);
+    for i in 0..n {
+        let (pi, qn) = (p[i], q[(i + 1) % n]);
+        // r_i = q / (p + q): smallest at (p_hi, q_lo), largest at (p_lo, q_hi)
+        let a = down(qn[0] / up(pi[1] + qn[0]));
+        let z = up(qn[1] / down(pi[0] + qn[1]));
+        if !(a > 0.0 && a < z && z < 1.0) {
+            return ctx.err(
+                "p_box",
+                Some(pb.span()),
+                format!("p_box, q_box: the ratio r_{i} = q_{} / (p_{i} + q_{}) spans [{a}, {z}], which must lie strictly inside (0, 1)", (i + 1) % n, (i + 1) % n),
+            );
+        }
+        lo.push(a);
+        hi.push(z);
+    }
+    Ok(Region::Corners { p, q, lo, hi })
 }
 
 /// A deserializer error naming the key path and the line.

@@ -286,3 +286,132 @@ fn cc_path_agrees_with_cc_study() {
         );
     }
 }
+
+#[test]
+fn taylor_products_contain_sampled_values() {
+    use super::interval::Iv;
+    use super::taylor::Taylor;
+    let mut rng = SplitMix64::new(21);
+    for _ in 0..200 {
+        let k = 3;
+        let h: Vec<f64> = (0..k).map(|_| rng.uniform(0.0, 0.5)).collect();
+        let mut forms = Vec::new();
+        let mut coefs = Vec::new();
+        for _ in 0..3 {
+            let c = rng.uniform(-2.0, 2.0);
+            let g: Vec<f64> = (0..k).map(|_| rng.uniform(-2.0, 2.0)).collect();
+            forms.push(Taylor::affine(Iv::point(c), &g));
+            coefs.push((c, g));
+        }
+        // q = f0 f1 - f2 f2 / 2 + f0
+        let q = forms[0]
+            .mul(&forms[1], &h)
+            .sub(&forms[2].mul(&forms[2], &h).scale(0.5))
+            .add(&forms[0]);
+        let r = q.range(&h);
+        let eval = |i: usize, d: &[f64]| {
+            coefs[i].0 + coefs[i].1.iter().zip(d).map(|(g, x)| g * x).sum::<f64>()
+        };
+        let mut seen = (f64::INFINITY, f64::NEG_INFINITY);
+        for _ in 0..50 {
+            // corners and interior points
+            let d: Vec<f64> = h
+                .iter()
+                .map(|&hk| {
+                    let t = rng.uniform(-1.0, 1.0);
+                    hk * if t.abs() > 0.7 { t.signum() } else { t }
+                })
+                .collect();
+            let v = eval(0, &d) * eval(1, &d) - eval(2, &d) * eval(2, &d) / 2.0 + eval(0, &d);
+            assert!(r.lo - 1e-12 <= v && v <= r.hi + 1e-12, "{v} outside {r:?}");
+            seen = (seen.0.min(v), seen.1.max(v));
+        }
+        // and the enclosure is not vacuous: at most the sampled range plus
+        // the second-order remainder and a first-order slack
+        let lin = q.linear_bound(&h);
+        assert!(r.hi - r.lo <= 2.0 * (lin + q.rem) + 1e-9);
+        let _ = seen;
+    }
+}
+
+#[test]
+fn scaled_discs_are_sound_and_tighter_than_plain_gershgorin() {
+    let mut rng = SplitMix64::new(13);
+    let (mut tight, mut plain, mut cases) = (0.0, 0.0, 0);
+    for n in 5..=8 {
+        let f = AffineFamily::nurds(n);
+        for _ in 0..20 {
+            let lo: Vec<f64> = (0..n).map(|_| rng.uniform(0.05, 0.9)).collect();
+            let hi: Vec<f64> = lo.iter().map(|x| x + 0.004).collect();
+            let (Some(e), Some(p)) = (
+                enclose(&f, &lo, &hi, Tamper::None),
+                enclose(&f, &lo, &hi, Tamper::PlainGershgorin),
+            ) else {
+                continue;
+            };
+            for _ in 0..5 {
+                let r: Vec<f64> = lo
+                    .iter()
+                    .zip(&hi)
+                    .map(|(a, b)| rng.uniform(*a, *b))
+                    .collect();
+                let m = f.dim();
+                let c = DMatrix::from_row_slice(m, m, &f.at(&r));
+                let values = Eigen::new(&c, EigenOptions::VALUES).unwrap();
+                // every tight row disc holds exactly one eigenvalue
+                for d in &e.rows {
+                    let inside = values
+                        .values()
+                        .iter()
+                        .filter(|z| {
+                            ((z.re - d.re).powi(2) + (z.im - d.im).powi(2)).sqrt()
+                                <= d.radius + 1e-12
+                        })
+                        .count();
+                    assert!(inside >= 1, "n={n}: an empty disc {d:?}");
+                }
+            }
+            cases += 1;
+            tight += e.rows.iter().map(|d| d.radius).sum::<f64>();
+            plain += p.rows.iter().map(|d| d.radius).sum::<f64>();
+        }
+    }
+    assert!(cases > 20, "{cases}");
+    assert!(tight < 0.8 * plain, "scaled {tight} vs plain {plain}");
+}
+
+#[test]
+fn corner_box_encloses_its_ratios_and_its_cells_agree_with_the_exact_classifier() {
+    use crate::knots::CornerIntervals;
+    let text = "scheme = \"nurds\"\nvalence = 3\np_box = [[0.5, 2.0], [1.0, 4.0], [0.25, 1.0]]\nq_box = [[1.0, 2.0], [0.5, 1.0], [2.0, 8.0]]\nproperties = [\"class\", \"separation\"]\nmin_width = 0.03\n";
+    let spec = VerifySpec::parse(text).unwrap();
+    let Region::Corners { p, q, lo, hi } = &spec.region else {
+        panic!("not a corner box: {:?}", spec.region)
+    };
+    // every corner-interval vector of the box has its ratios inside the ratio box
+    let mut rng = SplitMix64::new(17);
+    for _ in 0..200 {
+        let pv: Vec<f64> = p.iter().map(|[a, b]| rng.uniform(*a, *b)).collect();
+        let qv: Vec<f64> = q.iter().map(|[a, b]| rng.uniform(*a, *b)).collect();
+        let r = CornerIntervals::new(pv, qv).unwrap().ratios().unwrap();
+        for (i, x) in r.as_slice().iter().enumerate() {
+            assert!(
+                lo[i] <= *x && *x <= hi[i],
+                "r_{i} = {x} outside [{}, {}]",
+                lo[i],
+                hi[i]
+            );
+        }
+    }
+    // the extreme corners reach the ends (up to the outward rounding)
+    assert!((lo[0] - 0.5 / 2.5).abs() < 1e-15 && (hi[0] - 1.0 / 1.5).abs() < 1e-15);
+    let out = run(&spec, &Limits::default());
+    assert!(out.cells.iter().any(|c| c.class.is_some()));
+    // log-scaled bisection: a split point is not the arithmetic midpoint
+    assert!(out
+        .cells
+        .iter()
+        .any(|c| (0..3).any(|k| c.lo[k] != lo[k] && c.lo[k] != 0.5 * lo[k] + 0.5 * hi[k])));
+    let (bad, checks) = disagreements(&spec, &out, 200, 9);
+    assert!(checks == 200 && bad == 0, "{bad} disagreements in {checks}");
+}

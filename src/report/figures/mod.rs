@@ -40,6 +40,7 @@ use super::figure_spec::{Common, FigureSpec};
 pub mod cc_c1_interval;
 pub mod cc_eigenvalues;
 pub mod ccss_bound;
+pub mod certified_map;
 pub mod charmap_ring;
 pub mod config_table;
 pub mod convergence;
@@ -80,6 +81,7 @@ pub const REGISTRY: &[FigureKind] = &[
     curvature::KIND,
     curvature_tuning::KIND,
     sweep::KIND,
+    certified_map::KIND,
 ];
 
 /// The kind named `name`.

@@ -1,0 +1,425 @@
+//! `kind = "certified-map"`: certified cells of the NURDS ratio space beside
+//! the sampled knot map (issue 20; math doc section 15).
+//!
+//! For `n = 3` and each fixed `r_2` of `slices`, the branch and bound of
+//! [`crate::verify`] runs over the square `(r_0, r_1)` in `[lo, hi]^2` with
+//! `r_2` held at the slice's float (class + separation): every coloured cell
+//! on the left is *proven* to have that subdominant class for every
+//! `(r_0, r_1)` in it; grey cells are `undecided` at `min_width` (the class
+//! boundaries). On the right, the same square is sampled at `grid x grid`
+//! cell centres with the pointwise classifier, as in `knot-map`.
+//!
+//! Tables: `<id>-cells.csv` (`slice, r2, r0_lo, r0_hi, r1_lo, r1_hi,
+//! verdict`, end points in shortest round-trip form) and `<id>-samples.csv`
+//! (`slice, r2, r0, r1, class`).
+//!
+//! ```toml
+//! [[figure]]
+//! kind = "certified-map"
+//! slices = [0.3, 0.7]       # r_2 per row of panels (1 to 3 values)
+//! range = [0.01, 0.99]      # the square [lo, hi]^2 of (r_0, r_1) (default)
+//! min_width = 0.015625      # cells this narrow are not split (default 1/64)
+//! grid = 41                 # sampled cells per axis (default 41)
+//! ```
+
+use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use crate::knots::EdgeRatios;
+use crate::report::backend::Area;
+use crate::report::error::ReportError;
+use crate::report::figure_spec::{Common, FigureSpec};
+use crate::report::plot::{class_color, draw_err, subscript, tick, titled, Theme};
+use crate::schemes::LocalScheme;
+use crate::spectral::classify_scheme;
+use crate::verify::spec::{Property, Region, VerifySpec};
+use crate::verify::{run, Limits};
+use plotters::prelude::*;
+use rayon::prelude::*;
+use serde::Deserialize;
+use toml::Spanned;
+
+/// Most slices (rows of panel pairs).
+pub const MAX_SLICES: usize = 3;
+/// Sampled grid resolution bounds (cells per axis).
+pub const GRID_RANGE: (usize, usize) = (4, 200);
+/// Smallest accepted `min_width`: `2^-10` (about 10^4 cells per slice at
+/// most along the class boundaries, well under a second).
+pub const MIN_WIDTH_FLOOR: f64 = 1.0 / 1024.0;
+/// Cap on the cells evaluated per slice (refinement stops before a level
+/// that would exceed it; the open cells stay undecided).
+pub const MAX_CELLS_PER_SLICE: u64 = 200_000;
+
+/// The kind.
+pub(crate) const KIND: FigureKind = FigureKind {
+    name: "certified-map",
+    default_title: "Certified classes over the ratio space (n = 3)",
+    summary: "certified (r_0, r_1) cells at fixed r_2 beside the sampled knot map",
+    parse,
+};
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Params {
+    slices: Spanned<Vec<f64>>,
+    range: Option<Spanned<[f64; 2]>>,
+    min_width: Option<Spanned<f64>>,
+    grid: Option<Spanned<usize>>,
+}
+
+struct CertifiedMap {
+    slices: Vec<f64>,
+    range: [f64; 2],
+    min_width: f64,
+    grid: usize,
+}
+
+fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
+    let p: Params = fs.parse()?;
+    let slices = p.slices.get_ref().clone();
+    if slices.is_empty() || slices.len() > MAX_SLICES {
+        return Err(fs.error_at(
+            &p.slices,
+            "slices",
+            format!("give 1 to {MAX_SLICES} values of r_2, got {}", slices.len()),
+        ));
+    }
+    if let Some((i, x)) = slices
+        .iter()
+        .enumerate()
+        .find(|(_, x)| !(**x > 0.0 && **x < 1.0))
+    {
+        return Err(fs.error_at(
+            &p.slices,
+            &format!("slices[{i}]"),
+            format!("edge ratio r_2 must lie strictly between 0 and 1, got {x}"),
+        ));
+    }
+    let range = match &p.range {
+        None => [0.01, 0.99],
+        Some(r) => {
+            let [a, b] = *r.get_ref();
+            if !(a > 0.0 && a < b && b < 1.0) {
+                return Err(fs.error_at(
+                    r,
+                    "range",
+                    format!("range must satisfy 0 < lo < hi < 1, got [{a}, {b}]"),
+                ));
+            }
+            [a, b]
+        }
+    };
+    let min_width = match &p.min_width {
+        None => 1.0 / 64.0,
+        Some(w) => {
+            let v = *w.get_ref();
+            if !(MIN_WIDTH_FLOOR..=1.0).contains(&v) {
+                return Err(fs.error_at(
+                    w,
+                    "min_width",
+                    format!("min_width must lie in [{MIN_WIDTH_FLOOR}, 1], got {v}"),
+                ));
+            }
+            v
+        }
+    };
+    let grid = match &p.grid {
+        None => 41,
+        Some(g) if (GRID_RANGE.0..=GRID_RANGE.1).contains(g.get_ref()) => *g.get_ref(),
+        Some(g) => {
+            return Err(fs.error_at(
+                g,
+                "grid",
+                format!(
+                    "grid must be between {} and {}, got {}",
+                    GRID_RANGE.0,
+                    GRID_RANGE.1,
+                    g.get_ref()
+                ),
+            ))
+        }
+    };
+    Ok(Box::new(CertifiedMap {
+        slices,
+        range,
+        min_width,
+        grid,
+    }))
+}
+
+/// One slice: the certified cells `(lo, hi, verdict)` in `(r_0, r_1)` and
+/// the sampled classes (row-major, `r_1` outer).
+struct Slice {
+    r2: f64,
+    cells: Vec<([f64; 2], [f64; 2], &'static str)>,
+    samples: Vec<String>,
+}
+
+impl Figure for CertifiedMap {
+    fn work(&self) -> u64 {
+        (self.slices.len() * (self.grid + 1)) as u64
+    }
+
+    fn compute(&self, ctx: &Context<'_>) -> Result<Box<dyn FigureOutput>, ReportError> {
+        let [a, b] = self.range;
+        let g = self.grid;
+        let mut out = Vec::new();
+        for &r2 in &self.slices {
+            // r_2 is held at the float r2 (a zero-width side is never split)
+            let spec = VerifySpec {
+                name: "certified-map".into(),
+                region: Region::Ratios {
+                    lo: vec![a, a, r2],
+                    hi: vec![b, b, r2],
+                },
+                properties: vec![Property::Class, Property::Separation],
+                min_width: self.min_width,
+                time_budget: None,
+            };
+            let limits = Limits {
+                max_cells: MAX_CELLS_PER_SLICE,
+                ..Limits::default()
+            };
+            let outcome = run(&spec, &limits);
+            ctx.tick(1);
+            let cells = outcome
+                .cells
+                .iter()
+                .map(|c| ([c.lo[0], c.lo[1]], [c.hi[0], c.hi[1]], c.verdict()))
+                .collect();
+            let rows = (0..g)
+                .into_par_iter()
+                .map(|j| {
+                    let r1 = a + (b - a) * (j as f64 + 0.5) / g as f64;
+                    let mut row = Vec::with_capacity(g);
+                    for i in 0..g {
+                        let r0 = a + (b - a) * (i as f64 + 0.5) / g as f64;
+                        let ratios = EdgeRatios::new(vec![r0, r1, r2]).map_err(|e| ctx.err(e))?;
+                        let sub =
+                            classify_scheme(&LocalScheme::nurds(ratios)).map_err(|e| ctx.err(e))?;
+                        row.push(sub.class.name().to_owned());
+                    }
+                    ctx.tick(1);
+                    Ok(row)
+                })
+                .collect::<Result<Vec<_>, ReportError>>()?;
+            out.push(Slice {
+                r2,
+                cells,
+                samples: rows.into_iter().flatten().collect(),
+            });
+        }
+        Ok(Box::new(Output {
+            slices: out,
+            range: self.range,
+            grid: g,
+        }))
+    }
+}
+
+struct Output {
+    slices: Vec<Slice>,
+    range: [f64; 2],
+    grid: usize,
+}
+
+/// Legend order (the classes a NURDS cell can be certified with, then
+/// undecided).
+const LEGEND: &[&str] = &[
+    "real_distinct",
+    "complex_pair",
+    "not_separated",
+    "undecided",
+];
+
+impl Output {
+    /// Area share per verdict over all slices (verdicts with no area left out).
+    fn shares(&self) -> Vec<(&'static str, f64)> {
+        let [a, b] = self.range;
+        let total = (b - a) * (b - a) * self.slices.len() as f64;
+        LEGEND
+            .iter()
+            .map(|&v| {
+                let area: f64 = self
+                    .slices
+                    .iter()
+                    .flat_map(|s| s.cells.iter())
+                    .filter(|c| c.2 == v)
+                    .map(|(lo, hi, _)| (hi[0] - lo[0]) * (hi[1] - lo[1]))
+                    .sum();
+                // 0.0 + : an empty float sum is -0.0
+                (v, 0.0 + area / total)
+            })
+            .filter(|(_, f)| *f > 0.0)
+            .collect()
+    }
+}
+
+impl FigureOutput for Output {
+    fn tables(&self) -> Vec<DataTable> {
+        let mut cells = DataTable::new(
+            Some("cells"),
+            &["slice", "r2", "r0_lo", "r0_hi", "r1_lo", "r1_hi", "verdict"],
+        );
+        let mut samples = DataTable::new(Some("samples"), &["slice", "r2", "r0", "r1", "class"]);
+        let [a, b] = self.range;
+        let g = self.grid as f64;
+        for (s, sl) in self.slices.iter().enumerate() {
+            for (lo, hi, v) in &sl.cells {
+                cells.push(vec![
+                    s.to_string(),
+                    format!("{:?}", sl.r2),
+                    format!("{:?}", lo[0]),
+                    format!("{:?}", hi[0]),
+                    format!("{:?}", lo[1]),
+                    format!("{:?}", hi[1]),
+                    (*v).to_owned(),
+                ]);
+            }
+            for (k, class) in sl.samples.iter().enumerate() {
+                let (i, j) = (k % self.grid, k / self.grid);
+                samples.push(vec![
+                    s.to_string(),
+                    num(sl.r2),
+                    num(a + (b - a) * (i as f64 + 0.5) / g),
+                    num(a + (b - a) * (j as f64 + 0.5) / g),
+                    class.clone(),
+                ]);
+            }
+        }
+        vec![cells, samples]
+    }
+
+    fn draw(&self, area: &Area<'_>, common: &Common) -> Result<(), ReportError> {
+        let th = Theme::for_size(common.size);
+        let body = titled(area, &common.title, &th)?;
+        let (w, _) = body.dim_in_pixel();
+        let legend: Vec<(String, &'static str)> = self
+            .shares()
+            .into_iter()
+            .map(|(v, f)| (format!("{} ({:.1}%)", v.replace('_', " "), 100.0 * f), v))
+            .collect();
+        let widest = legend
+            .iter()
+            .map(|(t, _)| {
+                body.estimate_text_size(t, &th.font(th.legend))
+                    .map_or(0, |s| s.0)
+            })
+            .max()
+            .unwrap_or(0)
+            .max(
+                body.estimate_text_size("certified area", &th.font(th.label))
+                    .map_or(0, |s| s.0),
+            );
+        let side_w = (widest + th.legend * 4 + th.tick * 2).clamp(w / 8, w / 3);
+        let (maps, side) = body.split_horizontally(w - side_w);
+        let rows = maps.split_evenly((self.slices.len(), 2));
+        let [a, b] = self.range;
+        let g = self.grid as f64;
+        for (s, sl) in self.slices.iter().enumerate() {
+            for half in 0..2 {
+                let pa = &rows[2 * s + half];
+                let caption = format!(
+                    "{}: {} = {}",
+                    if half == 0 { "certified" } else { "sampled" },
+                    subscript("r", 2),
+                    sl.r2
+                );
+                let (pw, ph) = pa.dim_in_pixel();
+                let xl = th.label * 3;
+                let yl = th.label * 3;
+                let (ml, mr) = (th.tick / 2, th.tick);
+                let cap = th.label * 2;
+                let est = pw
+                    .saturating_sub(yl + ml + mr)
+                    .min(ph.saturating_sub(xl + cap));
+                let pad0 = ph.saturating_sub(xl + cap + est) / 2;
+                let pa = pa.margin(pad0, pad0, 0, 0);
+                let pa = pa.titled(&caption, th.font(th.label)).map_err(draw_err)?;
+                let (pw, ph) = pa.dim_in_pixel();
+                let avail_w = pw.saturating_sub(yl + ml + mr);
+                let avail_h = ph.saturating_sub(xl);
+                let plot_w = avail_w.min(avail_h).max(1);
+                let pad_h = avail_w.saturating_sub(plot_w) / 2;
+                let pad_v = avail_h.saturating_sub(plot_w);
+                let mut chart = ChartBuilder::on(&pa)
+                    .margin_left((ml + pad_h) as i32)
+                    .margin_right((mr + avail_w.saturating_sub(plot_w + pad_h)) as i32)
+                    .margin_top((pad_v / 2) as i32)
+                    .margin_bottom((pad_v - pad_v / 2) as i32)
+                    .x_label_area_size(xl)
+                    .y_label_area_size(yl)
+                    .build_cartesian_2d(a..b, a..b)
+                    .map_err(draw_err)?;
+                chart
+                    .configure_mesh()
+                    .disable_mesh()
+                    .x_desc("r₀")
+                    .y_desc("r₁")
+                    .x_labels(3)
+                    .y_labels(3)
+                    .label_style(th.font(th.tick))
+                    .axis_desc_style(th.font(th.label))
+                    .x_label_formatter(&|x| tick(*x))
+                    .y_label_formatter(&|y| tick(*y))
+                    .draw()
+                    .map_err(draw_err)?;
+                if half == 0 {
+                    chart
+                        .draw_series(sl.cells.iter().map(|(lo, hi, v)| {
+                            Rectangle::new(
+                                [(lo[0], lo[1]), (hi[0], hi[1])],
+                                class_color(v).filled(),
+                            )
+                        }))
+                        .map_err(draw_err)?;
+                } else {
+                    let gi = self.grid;
+                    let step = (b - a) / g;
+                    let mut rects = Vec::new();
+                    for j in 0..gi {
+                        let row = &sl.samples[j * gi..(j + 1) * gi];
+                        let mut start = 0;
+                        while start < gi {
+                            let mut end = start + 1;
+                            while end < gi && row[end] == row[start] {
+                                end += 1;
+                            }
+                            rects.push(Rectangle::new(
+                                [
+                                    (a + start as f64 * step, a + j as f64 * step),
+                                    (a + end as f64 * step, a + (j + 1) as f64 * step),
+                                ],
+                                class_color(&row[start]).filled(),
+                            ));
+                            start = end;
+                        }
+                    }
+                    chart.draw_series(rects).map_err(draw_err)?;
+                }
+            }
+        }
+        let x = th.tick as i32;
+        let sz = th.legend as i32;
+        let mut y = th.label as i32 * 3;
+        side.draw(&Text::new(
+            "certified area",
+            (x, y - th.label as i32 * 2),
+            th.font(th.label),
+        ))
+        .map_err(draw_err)?;
+        for (text, name) in legend {
+            let bx = [(x, y), (x + sz * 2, y + sz * 2)];
+            side.draw(&Rectangle::new(bx, class_color(name).filled()))
+                .map_err(draw_err)?;
+            side.draw(&Rectangle::new(bx, BLACK.stroke_width(1)))
+                .map_err(draw_err)?;
+            side.draw(&Text::new(
+                text,
+                (x + sz * 3, y + sz / 3),
+                th.font(th.legend),
+            ))
+            .map_err(draw_err)?;
+            y += sz * 3;
+        }
+        Ok(())
+    }
+}
