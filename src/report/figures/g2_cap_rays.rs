@@ -163,7 +163,7 @@ impl FigureOutput for Output {
                 .map_err(draw_err)?;
             chart
                 .configure_mesh()
-                .x_desc("t: distance along the ray in the patch (log scale)")
+                .x_desc("t along the ray (log scale)")
                 .y_desc(if q == 0 {
                     "Gaussian curvature K"
                 } else {
