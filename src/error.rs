@@ -98,6 +98,9 @@ pub enum Error {
     /// A sweep spec, resume or merge error.
     #[error(transparent)]
     Sweep(#[from] crate::sweep::SweepError),
+    /// The G2 cap construction refused its input or its result.
+    #[error(transparent)]
+    G2Cap(#[from] crate::g2cap::G2CapError),
 }
 
 /// Shorthand for results of the library core.

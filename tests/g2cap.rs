@@ -6,8 +6,9 @@
 // Index loops mirror the subscripts of the formulas.
 #![allow(clippy::needless_range_loop)]
 
+use subdiv_lab::g2cap::plain::PlainSurface;
 use subdiv_lab::g2cap::ring::{Point, TwoRing};
-use subdiv_lab::g2cap::{G2Cap, RESIDUAL_TOL};
+use subdiv_lab::g2cap::{G2Cap, Solver, RESIDUAL_TOL};
 use subdiv_lab::mesh::{catmull_clark::refine_cc, generators};
 
 type Net = [[Point; 8]; 8];
@@ -325,4 +326,211 @@ fn bad_vertices_are_refused_by_name() {
     assert!(e.to_string().contains("not all quads"), "{e}");
     let e = TwoRing::from_polygons(&pts, &faces, 999).unwrap_err();
     assert!(e.to_string().contains("999"), "{e}");
+    // The centre itself on the boundary: one face of its fan missing.
+    let open: Vec<Vec<usize>> = faces[1..].to_vec();
+    let e = TwoRing::from_polygons(&pts, &open, 0).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("vertex 0 (OBJ 1) is a boundary vertex"),
+        "{e}"
+    );
+    // A pentagon (one extra corner, incidences unchanged), or a missing
+    // face, in the outer part of the 2-ring: the message names the centre,
+    // not the neighbour where it was found.
+    let mut more = pts.clone();
+    more.push([9.0, 9.0, 9.0]);
+    for f in [1, 2, 3, 6, 15] {
+        let mut outer_penta = faces.clone();
+        outer_penta[f].insert(2, pts.len());
+        let e = TwoRing::from_polygons(&more, &outer_penta, 0).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("2-ring of vertex 0 (OBJ 1) is not all quads"),
+            "face {f}: {e}"
+        );
+        let mut missing = faces.clone();
+        missing.remove(f);
+        let e = TwoRing::from_polygons(&pts, &missing, 0).unwrap_err();
+        assert!(e.to_string().contains("vertex 0 (OBJ 1)"), "face {f}: {e}");
+    }
+}
+
+/// Agreement of the dense and the DFT solve, relative to the diameter `L`
+/// of the control points. The minimiser is unique (the energy is positive
+/// definite on the free points), so the two paths differ by their rounding
+/// errors only. Those were measured by the rotation test below: the DFT path
+/// keeps the problem's rotational symmetry to `3e-14 L`, the dense path to
+/// `7e-10 L` at `n = 6` (`6e-11 L` at `n = 11`; elsewhere below `4e-13 L`;
+/// its kept singular values and the energy are well conditioned, `< 5e4`
+/// and `< 25`, so the loss is in the dense SVD's null-space basis, root
+/// cause not pinned down). `1e-8` is ten times the dense path's worst
+/// measured error and far below what a wrong rank decision or a missing
+/// condition does (control points move by `1e-3 L` and more; residuals
+/// above `1e-5`).
+const SOLVER_TOL: f64 = 1e-8;
+
+/// The DFT path's symmetry error bound: relabelling the sectors (sector
+/// `i + 1` becomes sector `i`) must relabel the patches. Rounding of a
+/// well-conditioned solve (`eps` times condition `< 5e4`, data of size 1)
+/// is below `1e-11`; measured `3e-14`.
+const SYMMETRY_TOL: f64 = 1e-11;
+
+fn max_diff(a: &[Net], b: &[Net], shift: usize) -> f64 {
+    let n = a.len();
+    let l = scale(a);
+    let mut worst: f64 = 0.0;
+    for i in 0..n {
+        let (p, q) = (&a[(i + shift) % n], &b[i]);
+        for j in 0..8 {
+            for k in 0..8 {
+                worst = worst.max(dist(&p[j][k], &q[j][k]) / l);
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn the_dft_solve_gives_the_dense_solve_s_control_points() {
+    for n in 3..=16 {
+        for &c in &[0.25, 0.5, 0.8, 1.0] {
+            let ring = TwoRing::random(n, 5 + n as u64).unwrap();
+            let dense = G2Cap::build_with(&ring, c, Solver::Dense).unwrap();
+            let dft = G2Cap::build_with(&ring, c, Solver::Dft).unwrap();
+            dense
+                .check()
+                .unwrap_or_else(|e| panic!("n={n} c={c}: dense cap refused: {e}"));
+            dft.check()
+                .unwrap_or_else(|e| panic!("n={n} c={c}: DFT cap refused: {e}"));
+            assert_eq!(
+                dense.rank_and_freedom(),
+                dft.rank_and_freedom(),
+                "n={n} c={c}"
+            );
+            let worst = max_diff(dense.patches(), dft.patches(), 0);
+            assert!(worst < SOLVER_TOL, "n={n} c={c}: {worst:e}");
+            let de = (dense.energy() - dft.energy()).abs() / dense.energy();
+            assert!(de < 1e-9, "n={n} c={c}: energies differ by {de:e}");
+            // Independent measurement of both caps.
+            if n <= 8 {
+                for cap in [&dense, &dft] {
+                    let (inner, outer) = independent_check(cap);
+                    assert!(inner.iter().chain(&outer).all(|&x| x < TOL), "n={n} c={c}");
+                }
+            }
+        }
+    }
+}
+
+/// The ring with its sectors relabelled: sector `i + 1` becomes sector `i`.
+fn rotated(ring: &TwoRing) -> TwoRing {
+    let n = ring.valence();
+    let pts = ring.points();
+    let spokes = (0..n)
+        .map(|k| {
+            let k = (k + 1) % n;
+            [pts[1 + 2 * k], pts[2 + 2 * k]]
+        })
+        .collect();
+    let inner = (0..n)
+        .map(|i| {
+            let b = 1 + 2 * n + 4 * ((i + 1) % n);
+            [[pts[b], pts[b + 1]], [pts[b + 2], pts[b + 3]]]
+        })
+        .collect();
+    TwoRing::new(pts[0], spokes, inner).unwrap()
+}
+
+#[test]
+fn relabelling_the_sectors_relabels_the_patches() {
+    for n in 3..=16 {
+        let ring = TwoRing::random(n, 3).unwrap();
+        let a = G2Cap::build(&ring, 0.5).unwrap();
+        let b = G2Cap::build(&rotated(&ring), 0.5).unwrap();
+        let e = max_diff(a.patches(), b.patches(), 1);
+        assert!(e < SYMMETRY_TOL, "n={n}: {e:e}");
+        // Not vacuous: without the relabelling the patches differ.
+        assert!(max_diff(a.patches(), b.patches(), 0) > 1e-3, "n={n}");
+    }
+}
+
+#[test]
+fn the_plain_surface_nets_are_the_mesh_refinements() {
+    // The cube refined once: vertex 0 has valence 3 and regular 1-rings up
+    // to the levels used. R_m of the plain surface against the mesh rule
+    // applied m + 1 more times.
+    for c in [0.5, 0.8] {
+        let cube1 = refine_cc(&generators::cube(), 0.5).unwrap();
+        let polys = |m: &subdiv_lab::mesh::Mesh| -> Vec<Vec<usize>> {
+            (0..m.face_count())
+                .map(|f| m.face_vertices(f).collect())
+                .collect()
+        };
+        let (r, _) = TwoRing::from_polygons(cube1.positions(), &polys(&cube1), 0).unwrap();
+        let plain = PlainSurface::new(&r, c, 3).unwrap();
+        let mut mesh = cube1.clone();
+        for m in 0..=3 {
+            mesh = refine_cc(&mesh, c).unwrap();
+            let (rm, _) = TwoRing::from_polygons(mesh.positions(), &polys(&mesh), 0).unwrap();
+            let mut worst: f64 = 0.0;
+            for i in 0..3 {
+                for a in 0..=2 {
+                    for b in 0..=2 {
+                        worst = worst.max(dist(&plain.net(m).point(i, a, b), &rm.point(i, a, b)));
+                    }
+                }
+            }
+            assert!(worst < 1e-14, "c={c} level {m}: {worst}");
+        }
+    }
+}
+
+/// `(K, H)` jump between two evaluations, relative to the curvature scale
+/// `k` (as the library's residuals).
+fn kh_jump(a: (f64, f64), b: (f64, f64), k: f64) -> f64 {
+    ((a.0 - b.0).abs() / (k * k)).max((a.1 - b.1).abs() / k)
+}
+
+#[test]
+fn the_plain_surface_is_c2_at_c_one_half_and_meets_the_cap_on_the_outer_edge() {
+    for n in [3, 5, 7] {
+        let ring = TwoRing::random(n, 21).unwrap();
+        let cap = G2Cap::build(&ring, 0.5).unwrap();
+        let plain = PlainSurface::new(&ring, 0.5, 6).unwrap();
+        let ks = cap.curvature_scale();
+        let (mut rings, mut outer): (f64, f64) = (0.0, 0.0);
+        for s in 0..=20 {
+            let t = s as f64 / 20.0;
+            for i in 0..n {
+                // Across the ring boundaries max(u, v) = 1/2 and 1/4.
+                for edge in [0.5, 0.25] {
+                    let h = 1e-12;
+                    let (a, b) = (
+                        plain.curvature_at(i, edge * (1.0 + h), t * edge).unwrap(),
+                        plain.curvature_at(i, edge * (1.0 - h), t * edge).unwrap(),
+                    );
+                    rings = rings.max(kh_jump(a, b, ks));
+                }
+                // The outer edge u = 1 of the cap.
+                let (a, b) = (
+                    cap.curvature_at(i, 1.0, t).unwrap(),
+                    plain.curvature_at(i, 1.0, t).unwrap(),
+                );
+                outer = outer.max(kh_jump(a, b, ks));
+            }
+        }
+        assert!(rings < 1e-8, "n={n}: ring jump {rings:e}");
+        assert!(outer < 1e-9, "n={n}: cap vs surface on u = 1: {outer:e}");
+    }
+    // Away from c = 1/2 the B-spline reading of consecutive levels does
+    // not join (the adjustable scheme's regular limit is only C1): the
+    // check above would see it.
+    let ring = TwoRing::random(5, 21).unwrap();
+    let plain = PlainSurface::new(&ring, 0.8, 4).unwrap();
+    let cap = G2Cap::build(&ring, 0.8).unwrap();
+    let (a, b) = (
+        plain.curvature_at(0, 0.5 + 1e-12, 0.2).unwrap(),
+        plain.curvature_at(0, 0.5 - 1e-12, 0.2).unwrap(),
+    );
+    assert!(kh_jump(a, b, cap.curvature_scale()) > 1e-4);
 }

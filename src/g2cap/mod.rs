@@ -24,7 +24,8 @@
 //!    B-spline cells continued into the cap: a C2 join in the natural
 //!    parametrisation. The remaining `25 n` points minimise a discrete
 //!    thin-plate energy subject to the conditions (math doc sections
-//!    14.3-14.5).
+//!    14.3-14.5), solved by [`dft`] (the paper's discrete Fourier transform
+//!    over the patch index) and checked against the dense [`solve`].
 //! 3. [`residual`]: jumps of the normal and of `K` and `H` across the
 //!    internal edges and the outer boundary, sampled densely; above
 //!    [`RESIDUAL_TOL`] the cap is refused ([`G2Cap::check`]).
@@ -42,6 +43,8 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod bernstein;
+pub mod dft;
+pub mod plain;
 pub mod residual;
 pub mod ring;
 pub mod solve;
@@ -157,6 +160,14 @@ pub enum G2CapError {
         /// The vertex.
         vertex: usize,
     },
+    /// A number of refinement levels outside `1..=max`.
+    #[error("levels = {levels} is outside the supported range 1..={max}")]
+    Levels {
+        /// The value.
+        levels: usize,
+        /// The largest accepted.
+        max: usize,
+    },
     /// A linear-algebra step failed.
     #[error("numerical failure in the G2 cap: {0}")]
     Numerical(&'static str),
@@ -180,6 +191,24 @@ impl G2CapError {
     }
 }
 
+/// How the constrained least squares of the free points is solved (math
+/// doc section 14.5). Both give the same control points up to rounding
+/// (`tests/g2cap.rs` cross-checks them); the DFT path is the more accurate
+/// (it keeps the rotational symmetry of the problem to `~1e-14 L`, the
+/// dense path to `~1e-9 L` at `n = 6`) and the faster one, so it is the
+/// default.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Solver {
+    /// The paper's route: a discrete Fourier transform over the patch index
+    /// makes the block-circulant system block diagonal, `n` small complex
+    /// solves ([`dft::solve_dft`]).
+    #[default]
+    Dft,
+    /// One SVD of the whole constraint matrix ([`solve::solve`]), kept as
+    /// the independent check.
+    Dense,
+}
+
 /// The cap and its measurements.
 #[derive(Clone, Debug)]
 pub struct G2Cap {
@@ -194,20 +223,41 @@ pub struct G2Cap {
     curvature_scale: f64,
     rank: usize,
     freedom: usize,
+    condition: f64,
+    energy_condition: f64,
     refined: RefinedRing,
 }
 
 impl G2Cap {
-    /// Builds the cap of `ring` with shape parameter `c` in `[0, 1]`.
-    /// Residuals are measured, not checked: call [`G2Cap::check`].
+    /// Builds the cap of `ring` with shape parameter `c` in `[0, 1]` (the
+    /// default [`Solver`], the DFT path). Residuals are measured, not
+    /// checked: call [`G2Cap::check`].
     pub fn build(ring: &TwoRing, c: f64) -> Result<G2Cap, G2CapError> {
+        G2Cap::build_with(ring, c, Solver::Dft)
+    }
+
+    /// [`G2Cap::build`] with a choice of solver.
+    ///
+    /// ```
+    /// use subdiv_lab::g2cap::{ring::TwoRing, G2Cap, Solver};
+    /// let ring = TwoRing::random(5, 3).unwrap();
+    /// let dense = G2Cap::build_with(&ring, 0.8, Solver::Dense).unwrap();
+    /// let dft = G2Cap::build(&ring, 0.8).unwrap();
+    /// dft.check().unwrap();
+    /// let d = (dense.patches()[2][1][3][0] - dft.patches()[2][1][3][0]).abs();
+    /// assert!(d < 1e-9 * dense.length_scale());
+    /// ```
+    pub fn build_with(ring: &TwoRing, c: f64, solver: Solver) -> Result<G2Cap, G2CapError> {
         if !(0.0..=1.0).contains(&c) {
             return Err(G2CapError::ShapeParameter { c });
         }
         let n = ring.valence();
         let refined = RefinedRing::new(ring, c);
         let (fixed, corner_mismatch) = solve::fixed_nets(&refined, n);
-        let solved = solve::solve(&fixed)?;
+        let solved = match solver {
+            Solver::Dense => solve::solve(&fixed)?,
+            Solver::Dft => dft::solve_dft(&fixed)?,
+        };
         let scale = residual::length_scale(&solved.nets);
         let inner_pairs = residual::internal(&solved.nets);
         let outer_pairs = residual::outer(&solved.nets, &refined);
@@ -227,6 +277,8 @@ impl G2Cap {
             curvature_scale,
             rank: solved.rank,
             freedom: solved.freedom,
+            condition: solved.condition,
+            energy_condition: solved.energy_condition,
             refined,
         })
     }
@@ -309,6 +361,17 @@ impl G2Cap {
     pub fn rank_and_freedom(&self) -> (usize, usize) {
         (self.rank, self.freedom)
     }
+    /// `sigma_max / sigma_min` of the singular values of the constraint
+    /// matrix kept by the rank decision (both solvers see the same values).
+    pub fn constraint_condition(&self) -> f64 {
+        self.condition
+    }
+    /// `sigma_max / sigma_min` of the energy restricted to the solution
+    /// space of the constraints: the control points are determined to
+    /// rounding times this number (math doc section 14.5).
+    pub fn energy_condition(&self) -> f64 {
+        self.energy_condition
+    }
     /// The refined ring (the mixed subdivision) the cap joins.
     pub fn refined(&self) -> &RefinedRing {
         &self.refined
@@ -317,6 +380,20 @@ impl G2Cap {
     /// A point or derivative of patch `i`.
     pub fn eval(&self, i: usize, u: f64, v: f64, du: usize, dv: usize) -> Point {
         eval_net(&self.nets[i % self.nets.len()], u, v, du, dv)
+    }
+
+    /// Gaussian and mean curvature `(K, H)` of patch `i` at `(u, v)`, the
+    /// normal `P_u x P_v / |P_u x P_v|` ([`residual::shape`]); `None` where
+    /// the tangents are parallel.
+    pub fn curvature_at(&self, i: usize, u: f64, v: f64) -> Option<(f64, f64)> {
+        let d = [
+            self.eval(i, u, v, 1, 0),
+            self.eval(i, u, v, 0, 1),
+            self.eval(i, u, v, 2, 0),
+            self.eval(i, u, v, 1, 1),
+            self.eval(i, u, v, 0, 2),
+        ];
+        residual::shape(&d).map(|(_, k, h)| (k, h))
     }
 
     /// The cap sampled on an `m x m` grid of quads per patch: points and

@@ -285,7 +285,8 @@ impl TwoRing {
         if !(MIN_VALENCE..=MAX_VALENCE).contains(&n) {
             return Err(G2CapError::VertexValence { vertex, valence: n });
         }
-        // Sector grids of mesh indices.
+        // Sector grids of mesh indices. Errors on the outer faces name the
+        // centre vertex, whose 2-ring is refused.
         let mut grid = vec![[[usize::MAX; 3]; 3]; n];
         for (i, f) in fan.iter().enumerate() {
             let (e0, fi, e1) = (f[1], f[2], f[3]);
@@ -299,9 +300,9 @@ impl TwoRing {
                     });
                 }
             }
-            let a = quad_from(fi, e0, fi)?; // [f_i, e_i, S(2,0), S(2,1)]
-            let b = quad_from(e1, fi, fi)?; // [e_{i+1}, f_i, S(1,2), S(0,2)]
-            let d = quad_from(fi, a[3], fi)?; // [f_i, S(2,1), S(2,2), S(1,2)]
+            let a = quad_from(fi, e0, vertex)?; // [f_i, e_i, S(2,0), S(2,1)]
+            let b = quad_from(e1, fi, vertex)?; // [e_{i+1}, f_i, S(1,2), S(0,2)]
+            let d = quad_from(fi, a[3], vertex)?; // [f_i, S(2,1), S(2,2), S(1,2)]
             if d[3] != b[2] {
                 return Err(G2CapError::IrregularOneRing {
                     vertex,
@@ -478,6 +479,36 @@ impl RefinedRing {
     /// al, be - 1)`.
     pub fn grid_u(&self, i: usize) -> [[Point; 4]; 4] {
         std::array::from_fn(|al| std::array::from_fn(|be| self.point(i, al as i32, be as i32 - 1)))
+    }
+
+    /// The grid of the diagonal cell `[1,2] x [1,2]` of sector `i`:
+    /// `G[al][be] = T(i, al, be)`.
+    pub fn grid_corner(&self, i: usize) -> [[Point; 4]; 4] {
+        std::array::from_fn(|al| std::array::from_fn(|be| self.point(i, al as i32, be as i32)))
+    }
+
+    /// The 2-ring of the refined vertex (the points `T(i, A, B)`, `A, B <=
+    /// 2`): refining it again gives the next level of the subdivision
+    /// surface ([`super::plain`]). Refused only if a point overflowed.
+    pub fn two_ring(&self) -> Result<TwoRing, G2CapError> {
+        let n = self.n;
+        let spokes = (0..n)
+            .map(|k| [self.point(k, 1, 0), self.point(k, 2, 0)])
+            .collect();
+        let inner = (0..n)
+            .map(|i| {
+                [
+                    [self.point(i, 1, 1), self.point(i, 1, 2)],
+                    [self.point(i, 2, 1), self.point(i, 2, 2)],
+                ]
+            })
+            .collect();
+        TwoRing::new(self.point(0, 0, 0), spokes, inner)
+    }
+
+    /// The valence.
+    pub fn valence(&self) -> usize {
+        self.n
     }
 
     /// The grid of the cell across the cap's `v = 1` edge (cell `[0,1] x

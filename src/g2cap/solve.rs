@@ -95,15 +95,17 @@ pub fn fixed_nets(refined: &RefinedRing, n: usize) -> (Vec<Net>, f64) {
 
 /// A linear system in the free points: `rows x (25 n)` matrix and
 /// `rows x 3` right-hand side.
-struct System<'a> {
+pub(super) struct System<'a> {
     fixed: &'a [Net],
     n: usize,
-    coef: Vec<Vec<(usize, f64)>>,
-    rhs: Vec<[f64; 3]>,
+    /// Sparse rows: (column, weight).
+    pub(super) coef: Vec<Vec<(usize, f64)>>,
+    /// Right-hand sides.
+    pub(super) rhs: Vec<[f64; 3]>,
 }
 
 impl<'a> System<'a> {
-    fn new(fixed: &'a [Net]) -> Self {
+    pub(super) fn new(fixed: &'a [Net]) -> Self {
         System {
             fixed,
             n: fixed.len(),
@@ -143,7 +145,7 @@ impl<'a> System<'a> {
     fn row(&mut self, terms: &[(usize, usize, usize, f64)]) {
         self.row_scaled(terms, false);
     }
-    fn matrices(&self) -> (DMatrix<f64>, DMatrix<f64>) {
+    pub(super) fn matrices(&self) -> (DMatrix<f64>, DMatrix<f64>) {
         let cols = self.n * FREE * FREE;
         let mut a = DMatrix::zeros(self.coef.len(), cols);
         let mut r = DMatrix::zeros(self.coef.len(), 3);
@@ -173,7 +175,7 @@ pub fn index(patch: usize, j: usize, k: usize) -> usize {
 /// G1: P_(i+1)^v(t,0) + P_i^u(0,t) - b(t) P_i^v(0,t) = 0
 /// G2: P_(i+1)^vv(t,0) - P_i^uu(0,t) + 2 b(t) P_i^uv(0,t) - b(t)^2 P_i^vv(0,t) = 0
 /// ```
-fn add_edge_conditions(sys: &mut System, i: usize) {
+pub(super) fn add_edge_conditions(sys: &mut System, i: usize) {
     let n = sys.n;
     let ip = i + 1;
     for k in 0..=DEGREE {
@@ -224,24 +226,30 @@ fn add_edge_conditions(sys: &mut System, i: usize) {
 /// p_(j,k+1) + p_jk|^2 + |p_(j,k+1) - 2 p_jk + p_(j,k-1)|^2` over all patches,
 /// as rows of a least-squares system.
 fn add_energy_rows(sys: &mut System) {
-    let s2 = std::f64::consts::SQRT_2;
     for p in 0..sys.n {
-        for j in 0..=DEGREE {
-            for k in 0..=DEGREE {
-                if j + 2 <= DEGREE {
-                    sys.row(&[(p, j, k, 1.0), (p, j + 1, k, -2.0), (p, j + 2, k, 1.0)]);
-                }
-                if k + 2 <= DEGREE {
-                    sys.row(&[(p, j, k, 1.0), (p, j, k + 1, -2.0), (p, j, k + 2, 1.0)]);
-                }
-                if j < DEGREE && k < DEGREE {
-                    sys.row(&[
-                        (p, j, k, s2),
-                        (p, j + 1, k, -s2),
-                        (p, j, k + 1, -s2),
-                        (p, j + 1, k + 1, s2),
-                    ]);
-                }
+        add_patch_energy_rows(sys, p);
+    }
+}
+
+/// The energy rows of patch `p` alone (the same coefficients for every
+/// patch: the energy is block diagonal in the patch index).
+pub(super) fn add_patch_energy_rows(sys: &mut System, p: usize) {
+    let s2 = std::f64::consts::SQRT_2;
+    for j in 0..=DEGREE {
+        for k in 0..=DEGREE {
+            if j + 2 <= DEGREE {
+                sys.row(&[(p, j, k, 1.0), (p, j + 1, k, -2.0), (p, j + 2, k, 1.0)]);
+            }
+            if k + 2 <= DEGREE {
+                sys.row(&[(p, j, k, 1.0), (p, j, k + 1, -2.0), (p, j, k + 2, 1.0)]);
+            }
+            if j < DEGREE && k < DEGREE {
+                sys.row(&[
+                    (p, j, k, s2),
+                    (p, j + 1, k, -s2),
+                    (p, j, k + 1, -s2),
+                    (p, j + 1, k + 1, s2),
+                ]);
             }
         }
     }
@@ -259,6 +267,15 @@ pub struct Solved {
     pub rank: usize,
     /// Dimension of the solution space before the energy picks one.
     pub freedom: usize,
+    /// `sigma_max / sigma_min` over the singular values of the constraint
+    /// matrix kept by the rank decision: how much rounding in the data can
+    /// be amplified in the particular solution.
+    pub condition: f64,
+    /// `sigma_max / sigma_min` of the energy rows restricted to the solution
+    /// space of the constraints: how flat the energy is along its flattest
+    /// feasible direction (the minimiser is determined to rounding times
+    /// this number).
+    pub energy_condition: f64,
 }
 
 /// Constrained least squares: minimise the energy subject to the edge
@@ -285,9 +302,11 @@ pub fn solve(fixed: &[Net]) -> Result<Solved, G2CapError> {
     let mut xp = DMatrix::<f64>::zeros(cols, 3);
     let mut null_rows = Vec::new();
     let mut rank = 0;
+    let mut smin = f64::INFINITY;
     for (q, &s) in svd.singular_values.iter().enumerate() {
         if s > tol {
             rank += 1;
+            smin = smin.min(s);
             let coeff = u.column(q).transpose() * &r / s; // 1 x 3
             xp += vt.row(q).transpose() * coeff;
         } else {
@@ -308,9 +327,9 @@ pub fn solve(fixed: &[Net]) -> Result<Solved, G2CapError> {
     let (l, lr) = en.matrices();
     let m = &l * &basis;
     let target = &lr - &l * &xp;
-    let y = m
-        .clone()
-        .svd(true, true)
+    let esvd = m.clone().svd(true, true);
+    let energy_condition = esvd.singular_values.max() / esvd.singular_values.min();
+    let y = esvd
         .solve(&target, 1e-14)
         .map_err(|_| G2CapError::Numerical("least squares of the energy"))?;
     let mut x = &xp + &basis * y;
@@ -349,5 +368,7 @@ pub fn solve(fixed: &[Net]) -> Result<Solved, G2CapError> {
         constraint_residual,
         rank,
         freedom: d,
+        condition: smax / smin,
+        energy_condition,
     })
 }

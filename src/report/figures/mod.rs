@@ -46,6 +46,8 @@ pub mod config_table;
 pub mod convergence;
 pub mod curvature;
 pub mod curvature_tuning;
+pub mod g2_cap_curvature;
+pub mod g2_cap_rays;
 pub mod knot_map;
 pub mod mesh_convergence;
 pub mod mesh_picture;
@@ -80,6 +82,8 @@ pub const REGISTRY: &[FigureKind] = &[
     cc_c1_interval::KIND,
     curvature::KIND,
     curvature_tuning::KIND,
+    g2_cap_curvature::KIND,
+    g2_cap_rays::KIND,
     sweep::KIND,
     certified_map::KIND,
 ];
