@@ -49,9 +49,11 @@ struct RaysFigure {
     setup: CapSetup,
 }
 
+/// A ray: `(u, v)` at parameter `t`.
+type Ray = fn(f64) -> (f64, f64);
+
 /// The two rays: name and `(u, v)` at parameter `t`.
-const RAYS: [(&str, fn(f64) -> (f64, f64)); 2] =
-    [("diagonal", |t| (t, t)), ("spoke", |t| (t, 0.0))];
+const RAYS: [(&str, Ray); 2] = [("diagonal", |t| (t, t)), ("spoke", |t| (t, 0.0))];
 
 /// One sample: ray, surface (0 cap, 1 subdivision), t, K, H.
 struct Sample {
