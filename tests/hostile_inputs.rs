@@ -1221,10 +1221,28 @@ fn cases() -> Vec<Case> {
             "--width",
         ),
         bad_with(
-            "plot-parquet-not-yet",
+            "plot-parquet-truncated",
             &["plot", "s.parquet", "-o", "f.svg"],
             &[("s.parquet", "PAR1")],
-            "Parquet input is not yet supported",
+            "s.parquet: not a Parquet file, or torn",
+        ),
+        bad_with(
+            "plot-parquet-cut-before-footer",
+            &["plot", "s.parquet", "-o", "f.svg"],
+            &[("s.parquet", "PAR1\u{15}\u{4}\u{15}\u{80}\u{2}\u{15}\u{80}\u{2}L\u{15}")],
+            "s.parquet: not a Parquet file, or torn",
+        ),
+        bad_with(
+            "plot-parquet-damaged-footer",
+            &["plot", "s.parquet", "-o", "f.svg"],
+            &[("s.parquet", "PAR1 some bytes, not a footer \u{8}\u{0}\u{0}\u{0}PAR1")],
+            "s.parquet: parquet:",
+        ),
+        bad_with(
+            "plot-parquet-not-parquet",
+            &["plot", "s.parquet", "-o", "f.svg"],
+            &[("s.parquet", "id,valence\n0,3\n")],
+            "s.parquet: not a Parquet file",
         ),
         bad_with(
             "report-sweep-missing-file",
@@ -1257,10 +1275,10 @@ fn cases() -> Vec<Case> {
             "unknown plot \"pie\"",
         ),
         bad_with(
-            "report-sweep-parquet",
+            "report-sweep-parquet-truncated",
             &["report", "d/s.toml", "--out", "r"],
-            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\npath = \"s.parquet\"\n")],
-            "Parquet input is not yet supported",
+            &[("d/s.toml", "name = \"h\"\n[[figure]]\nkind = \"sweep\"\npath = \"s.parquet\"\n"), ("d/s.parquet", "PAR1")],
+            "not a Parquet file, or torn",
         ),
         bad_with(
             "report-sweep-empty-path",

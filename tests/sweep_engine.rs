@@ -353,3 +353,82 @@ points_per_axis = 3
     let stam = subdiv_lab::schemes::catmull_clark::fourier::stam_subdominant(3);
     assert!((num(&h, &rows[0], "lambda1_re") - stam).abs() < 1e-14);
 }
+
+/// Corner-interval sweeps write the edge ratios `r_i` the scheme is built
+/// from (issue 19), after the intervals: `r_i = q_(i+1) / (p_i + q_(i+1))`,
+/// empty beyond the row's valence; and a ratios-space evaluation of those
+/// `r_i` gives the row's spectrum (an independent route to the same matrix).
+#[test]
+fn corner_interval_sweeps_write_the_edge_ratios() {
+    let spec = r#"
+scheme = "nurds"
+valences = [3, 5]
+[space]
+kind = "corner-intervals"
+interval_range = [0.05, 20.0]
+[sampler]
+kind = "random"
+count = 25
+seed = 11
+"#;
+    let (h, rows, summary) = sweep_csv(spec);
+    let names: Vec<&str> = h.iter().map(String::as_str).collect();
+    assert_eq!(
+        &names[..17],
+        &[
+            "id", "valence", "p0", "p1", "p2", "p3", "p4", "q0", "q1", "q2", "q3", "q4", "r0",
+            "r1", "r2", "r3", "r4"
+        ]
+    );
+    assert_eq!(names[17], "class");
+    // The r_i enter the summary's extremes like the other numeric columns.
+    let json = serde_json::to_value(&summary).unwrap();
+    assert!(json["columns"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|c| c["name"] == "r4" && c["count"] == 25));
+    // Relative error of the r_i against the formula evaluated here: the two
+    // evaluations may round differently (a division and an addition, each
+    // within half an ulp), so 4 ulps of 2^-52.
+    const REL_TOL: f64 = 4.0 * f64::EPSILON;
+    let mut checked = 0;
+    for row in &rows {
+        let n: usize = get(&h, row, "valence").parse().unwrap();
+        let f = |name: String| get(&h, row, &name).parse::<f64>().unwrap();
+        let mut r = Vec::new();
+        for i in 0..5 {
+            let cell = get(&h, row, &format!("r{i}"));
+            if i >= n {
+                assert_eq!(cell, "", "r{i} beyond valence {n}");
+                continue;
+            }
+            let (p, q) = (f(format!("p{i}")), f(format!("q{}", (i + 1) % n)));
+            let want = q / (p + q);
+            let got: f64 = cell.parse().unwrap();
+            assert!(
+                (got - want).abs() <= REL_TOL * want,
+                "r{i}: {got} vs {want}"
+            );
+            r.push(got);
+            checked += 1;
+        }
+        // The same matrix through the ratios: the same subdominant spectrum.
+        let s = LocalScheme::nurds(EdgeRatios::new(r).unwrap());
+        let structured = AnalyzeOptions {
+            path: SpectrumPath::Structured,
+            ..AnalyzeOptions::default()
+        };
+        let a = spectral::analyze(&s, &structured).unwrap();
+        let l1 = num(&h, row, "lambda1_re");
+        // Ratios rebuilt from their rounded values (s_i = 1 - r_i recomputed):
+        // the matrix differs by rounding, a simple eigenvalue by a few 1e-16;
+        // 1e-12 leaves a wide margin, and the engine's error radius covers a
+        // near-double one.
+        const EIG_TOL: f64 = 1e-12;
+        let tol = EIG_TOL.max(2.0 * a.subdominant.radii[0]);
+        let got = a.subdominant.lambda1.re;
+        assert!((got - l1).abs() <= tol, "{got} vs {l1}");
+    }
+    assert_eq!(checked, 25 * 3 + 25 * 5);
+}

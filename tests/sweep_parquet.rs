@@ -507,3 +507,151 @@ fn parquet_shards_merge_to_the_unsharded_file() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("another spec"));
     assert!(!out2.exists());
 }
+
+/// A 2-D slice of n = 4 with the special classes (the `standard` point and
+/// lines of `not_separated`), and the exact certificate (booleans).
+const SLICE: &str = r#"
+name = "pq-slice"
+scheme = "nurds"
+valences = [4]
+[space]
+kind = "ratios"
+ratio_range = [0.1, 0.9]
+fixed = { r2 = 0.5, r3 = 0.5 }
+[sampler]
+kind = "grid"
+points_per_axis = 9
+[columns]
+exact_certificate = true
+"#;
+
+/// `plot` draws the same figure from a sweep's Parquet file as from its CSV
+/// (issue 21), for the default (a class map of the slice) and every kind.
+#[test]
+fn plot_from_parquet_equals_plot_from_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "s.toml", SLICE);
+    let csv = dir.path().join("s.csv");
+    let pq = dir.path().join("s.parquet");
+    ok(&["sweep", s(&spec), "--out", s(&csv), "--quiet"]);
+    ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&pq),
+        "--format",
+        "parquet",
+        "--quiet",
+    ]);
+    let cases: &[&[&str]] = &[
+        &[],
+        &["--kind", "fractions", "--x", "r0"],
+        &[
+            "--kind",
+            "histogram",
+            "--x",
+            "lambda1_re",
+            "--color",
+            "class",
+        ],
+        &[
+            "--kind",
+            "scatter",
+            "--x",
+            "r0",
+            "--y",
+            "contraction_rate",
+            "--color",
+            "exact_agrees",
+        ],
+        &["--kind", "map", "--x", "r0", "--y", "r1", "--color", "gap"],
+    ];
+    for (k, extra) in cases.iter().enumerate() {
+        let a = dir.path().join(format!("a{k}.svg"));
+        let b = dir.path().join(format!("b{k}.svg"));
+        let mut args = vec!["plot", s(&csv), "-o", s(&a)];
+        args.extend_from_slice(extra);
+        ok(&args);
+        let mut args = vec!["plot", s(&pq), "-o", s(&b)];
+        args.extend_from_slice(extra);
+        ok(&args);
+        let (a, b) = (fs::read(&a).unwrap(), fs::read(&b).unwrap());
+        assert!(a.len() > 1000, "{extra:?}");
+        assert!(a == b, "{extra:?}: the SVGs differ");
+    }
+    // PNG too.
+    let a = dir.path().join("a.png");
+    let b = dir.path().join("b.png");
+    ok(&["plot", s(&csv), "-o", s(&a)]);
+    ok(&["plot", s(&pq), "-o", s(&b)]);
+    assert!(fs::read(&a).unwrap() == fs::read(&b).unwrap());
+}
+
+/// Bad Parquet input to `plot` exits 2 with one line naming the problem and
+/// writes nothing: a missing column, a text column for an axis, a truncated
+/// file (cut inside a row group, so no footer at its end).
+#[test]
+fn plot_refuses_bad_parquet_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "s.toml", SLICE);
+    let pq = dir.path().join("s.parquet");
+    ok(&[
+        "sweep",
+        s(&spec),
+        "--out",
+        s(&pq),
+        "--format",
+        "parquet",
+        "--quiet",
+    ]);
+    let bytes = fs::read(&pq).unwrap();
+    let cut = dir.path().join("cut.parquet");
+    fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
+    let out = dir.path().join("f.svg");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["plot", s(&pq), "-o", s(&out), "--x", "nope"],
+            "no column \"nope\"",
+        ),
+        (
+            vec![
+                "plot",
+                s(&pq),
+                "-o",
+                s(&out),
+                "--kind",
+                "scatter",
+                "--x",
+                "r0",
+                "--y",
+                "class",
+            ],
+            "column \"class\" is not numeric",
+        ),
+        (
+            vec![
+                "plot",
+                s(&pq),
+                "-o",
+                s(&out),
+                "--kind",
+                "histogram",
+                "--x",
+                "exact_agrees",
+            ],
+            "column \"exact_agrees\" is not numeric",
+        ),
+        (
+            vec!["plot", s(&cut), "-o", s(&out)],
+            "cut.parquet: not a Parquet file, or torn",
+        ),
+    ];
+    for (args, needle) in cases {
+        let o = run(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!out.exists());
+    }
+}

@@ -1,4 +1,4 @@
-//! `subdiv-lab plot SWEEP.csv -o FIG.svg|FIG.png [--x COL] [--y COL]
+//! `subdiv-lab plot SWEEP.csv|SWEEP.parquet -o FIG.svg|FIG.png [--x COL] [--y COL]
 //! [--color COL] [--kind fractions|histogram|scatter|map]`: a figure of a
 //! sweep's results (parse -> validate -> library call; the plot kinds and
 //! defaults are documented in `subdiv_lab::report::sweep_plot`).
@@ -20,7 +20,7 @@ use subdiv_lab::report::{MAX_PIXELS, MIN_PIXELS};
 
 #[derive(Args, Debug)]
 pub(crate) struct PlotArgs {
-    /// Sweep results: a CSV written by `subdiv-lab sweep` (or any CSV with a header line).
+    /// Sweep results: a CSV written by `subdiv-lab sweep` (or any CSV with a header line), or its Parquet file (NAME.parquet).
     input: PathBuf,
     /// Output figure: FIG.svg or FIG.png.
     #[arg(short = 'o', long = "out")]
@@ -78,15 +78,11 @@ pub(crate) fn run(args: PlotArgs) -> CliResult {
         }
     }
     let in_name = args.input.display().to_string();
-    if args.input.extension().and_then(|e| e.to_str()) == Some("parquet") {
-        return Err(CliError::usage(anyhow!(
-            "{in_name}: Parquet input is not yet supported; give the sweep's CSV"
-        )));
-    }
     check_distinct(&[("-o", &args.out)], &[("input", &args.input)])?;
     let bytes = std::fs::read(&args.input)
         .map_err(|e| CliError::usage(anyhow!("cannot read {in_name}: {e}")))?;
-    let table = Table::from_csv(&bytes).map_err(|e| CliError::usage(anyhow!("{in_name}: {e}")))?;
+    let table = Table::from_named_bytes(&in_name, &bytes)
+        .map_err(|e| CliError::usage(anyhow!("{in_name}: {e}")))?;
     super::budget::check(
         "plot",
         &in_name,

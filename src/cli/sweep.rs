@@ -238,27 +238,6 @@ enum Sink {
     Parquet(Box<super::sweep_parquet::ParquetSink>),
 }
 
-impl Write for Sink {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        match self {
-            Sink::Csv(w) => w.write(buf),
-            Sink::Parquet(p) => p.write(buf),
-        }
-    }
-    fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
-        match self {
-            Sink::Csv(w) => w.write_all(buf),
-            Sink::Parquet(p) => p.write_all(buf),
-        }
-    }
-    fn flush(&mut self) -> std::io::Result<()> {
-        match self {
-            Sink::Csv(w) => w.flush(),
-            Sink::Parquet(p) => p.flush(),
-        }
-    }
-}
-
 /// Progress lines for batch jobs (stderr not a terminal, e.g. a Slurm log): a
 /// thread that prints `sweep: K/N rows (P%), R configurations/s, elapsed E,
 /// ETA T` when the run starts, then every [`PROGRESS_EVERY`] during the first
@@ -518,21 +497,33 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     };
     let start = Instant::now();
     let ids = (done..expected).map(|j| shard.id(j));
-    let result = pool.install(|| {
-        output::run_counting(
+    let mut moved = |k| {
+        if let Some(pb) = &bar {
+            pb.set_position(done + k);
+        }
+    };
+    let result = pool.install(|| match &mut sink {
+        // Parquet: the typed path (cells straight into column buffers).
+        Sink::Parquet(p) => output::run_parquet(
             &plan,
             &layout,
             &eval,
             ids,
-            &mut sink,
+            p.rows_mut(),
             &mut summary,
-            &mut |k| {
-                if let Some(pb) = &bar {
-                    pb.set_position(done + k);
-                }
-            },
+            &mut moved,
             &counter,
-        )
+        ),
+        Sink::Csv(w) => output::run_counting(
+            &plan,
+            &layout,
+            &eval,
+            ids,
+            w,
+            &mut summary,
+            &mut moved,
+            &counter,
+        ),
     });
     if let Some(r) = reporter {
         r.finish();

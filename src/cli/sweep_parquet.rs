@@ -33,6 +33,11 @@ pub(crate) struct ParquetSink {
 }
 
 impl ParquetSink {
+    /// The rows (for the sweep driver's typed path).
+    pub(crate) fn rows_mut(&mut self) -> &mut ParquetRows<CommitFn> {
+        &mut self.rows
+    }
+
     /// Commits the last group and removes the journal (the file is complete).
     pub(crate) fn finish(self) -> anyhow::Result<()> {
         self.rows.finish().map_err(|e| anyhow!("{e}"))?;
@@ -41,15 +46,6 @@ impl ParquetSink {
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
             Err(e) => Err(anyhow!("removing {}: {e}", self.journal.display())),
         }
-    }
-}
-
-impl Write for ParquetSink {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.rows.write(buf)
-    }
-    fn flush(&mut self) -> std::io::Result<()> {
-        self.rows.flush()
     }
 }
 

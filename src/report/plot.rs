@@ -316,6 +316,11 @@ impl<DB: DrawingBackend> Drawable<DB> for LegendGlyph {
             }
         }
         if let Some((m, s)) = self.marker {
+            if self.boxed {
+                // On a box of its own colour: a white halo, as on the maps.
+                m.at((), s + 2, WHITE)
+                    .draw(std::iter::once((x + w / 2, y)), backend, size)?;
+            }
             m.at((), s, self.color)
                 .draw(std::iter::once((x + w / 2, y)), backend, size)?;
         }

@@ -12,7 +12,11 @@
 //! * `scatter`: `y` against `x`, coloured by `color` (categories: colour and
 //!   marker per category; numbers: viridis with a colour bar);
 //! * `map`: a 2-D slice, one cell per row centred at `(x, y)` with the grid
-//!   spacing of the data, coloured by `color` (default `class`).
+//!   spacing of the data, coloured by `color` (default `class`); a category
+//!   with fewer than 2% of the cells (a measure-zero set such as the
+//!   `standard` or `not_separated` lines and points) also gets an enlarged
+//!   marker with a white halo on each of its cells, drawn on top, and the
+//!   marker in its legend box, as the knot map of the reports does.
 //!
 //! With no kind the data decides ([`choose`]): class fractions against the
 //! valence for a multi-valence sweep with a `class` column; a class map when
@@ -112,16 +116,25 @@ pub struct PlotRequest {
 }
 
 /// The parameter columns of a sweep table: numeric columns between `valence`
-/// and `class` if both exist, else every numeric column except `id` and `valence`.
+/// and `class` if both exist, else every numeric column except `id` and
+/// `valence`. In a corner-interval sweep (columns `p0` and `q0`) the edge
+/// ratios `r_i` are derived from the intervals, not parameters, and are left
+/// out.
 pub fn parameter_columns(t: &Table) -> Vec<String> {
     let names = t.names();
     let range = match (t.index("valence"), t.index("class")) {
         (Some(v), Some(c)) if v < c => v + 1..c,
         _ => 0..names.len(),
     };
+    let corner = t.has("p0") && t.has("q0");
+    let derived = |n: &str| {
+        corner
+            && n.strip_prefix('r')
+                .is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+    };
     names[range]
         .iter()
-        .filter(|n| *n != "id" && *n != "valence" && t.is_numeric(n))
+        .filter(|n| *n != "id" && *n != "valence" && !derived(n) && t.is_numeric(n))
         .cloned()
         .collect()
 }
@@ -619,7 +632,18 @@ impl SweepPlot {
                 series_color(i, cats.len())
             }
         };
-        let legend = |cats: &[String], marker: bool| -> Result<(), ReportError> {
+        // The enlarged marker of a rare category of a map (drawn on top).
+        let rare_marker = |cats: &[String], i: usize| -> Marker {
+            if cats
+                .iter()
+                .all(|c| super::figures::knot_map::CLASSES.contains(&c.as_str()))
+            {
+                super::figures::knot_map::rare_marker(&cats[i])
+            } else {
+                Marker::nth(i)
+            }
+        };
+        let legend = |cats: &[String], marker: bool, rare: &[bool]| -> Result<(), ReportError> {
             let entries: Vec<(LegendGlyph, Vec<String>)> = cats
                 .iter()
                 .enumerate()
@@ -628,6 +652,10 @@ impl SweepPlot {
                     let g = if marker {
                         LegendGlyph::line((0, 0), &th, col, th.line)
                             .marker(Marker::nth(i), th.marker)
+                    } else if rare.get(i) == Some(&true) {
+                        LegendGlyph::line((0, 0), &th, col, 0)
+                            .boxed()
+                            .marker(rare_marker(cats, i), th.marker)
                     } else {
                         LegendGlyph::line((0, 0), &th, col, 0).boxed()
                     };
@@ -693,7 +721,7 @@ impl SweepPlot {
                         .draw_series(pts.iter().map(|p| Marker::nth(ci).at(*p, ms.max(2), col)))
                         .map_err(draw_err)?;
                 }
-                legend(cats, true)
+                legend(cats, true, &[])
             }
             Data::Histogram {
                 edges,
@@ -733,7 +761,7 @@ impl SweepPlot {
                     }
                 }
                 if cats.len() > 1 || self.color.is_some() {
-                    legend(cats, false)?;
+                    legend(cats, false, &[])?;
                 }
                 Ok(())
             }
@@ -778,6 +806,10 @@ impl SweepPlot {
                     }
                 };
                 let dense = xs.len() > DENSE_POINTS;
+                let rare = match (colors, cell) {
+                    (Colors::Categories(idx, cats), Some(_)) => rare_categories(idx, cats.len()),
+                    _ => Vec::new(),
+                };
                 match cell {
                     Some((dx, dy)) => {
                         chart
@@ -791,6 +823,29 @@ impl SweepPlot {
                                 )
                             }))
                             .map_err(draw_err)?;
+                        if let Colors::Categories(idx, cats) = colors {
+                            // Measure-zero sets on top, as on the knot map:
+                            // enlarged markers (a cell wide, at least a
+                            // marker) with a white halo.
+                            let (ax, _) = chart.backend_coord(&(x0, y0));
+                            let (bx, _) = chart.backend_coord(&(x0 + dx, y0));
+                            let ms = (((bx - ax).abs() as f64) * 0.9).max(th.marker as f64) as i32;
+                            for (c, _) in cats.iter().enumerate().filter(|(c, _)| rare[*c]) {
+                                let m = rare_marker(cats, c);
+                                let at: Vec<(f64, f64)> = (0..xs.len())
+                                    .filter(|&i| idx[i] == c)
+                                    .map(|i| (xs[i], ys[i]))
+                                    .collect();
+                                chart
+                                    .draw_series(at.iter().map(|p| m.at(*p, ms + 2, WHITE)))
+                                    .map_err(draw_err)?;
+                                chart
+                                    .draw_series(
+                                        at.iter().map(|p| m.at(*p, ms, cat_color(cats, c))),
+                                    )
+                                    .map_err(draw_err)?;
+                            }
+                        }
                     }
                     None => {
                         let marker = |i: usize| match colors {
@@ -812,7 +867,7 @@ impl SweepPlot {
                 }
                 match colors {
                     Colors::None => Ok(()),
-                    Colors::Categories(_, cats) => legend(cats, cell.is_none() && !dense),
+                    Colors::Categories(_, cats) => legend(cats, cell.is_none() && !dense, &rare),
                     Colors::Values(_, (lo, hi)) => colorbar(
                         &side,
                         *lo,
@@ -825,6 +880,24 @@ impl SweepPlot {
             }
         }
     }
+}
+
+/// Which of `count` categories (the category of each cell in `idx`) a map
+/// draws as measure-zero sets: those with fewer than
+/// [`RARE_SHARE`](super::figures::knot_map::RARE_SHARE) of the cells, as on
+/// the knot map (special classes such as `standard` or `not_separated` are
+/// points and curves of the parameter space, too thin to see as fill).
+fn rare_categories(idx: &[usize], count: usize) -> Vec<bool> {
+    let mut n = vec![0usize; count];
+    for &i in idx {
+        if let Some(c) = n.get_mut(i) {
+            *c += 1;
+        }
+    }
+    let total = idx.len() as f64;
+    n.iter()
+        .map(|&k| k > 0 && (k as f64) < super::figures::knot_map::RARE_SHARE * total)
+        .collect()
 }
 
 /// Axes, tick labels (no negative zero) and axis descriptions.
@@ -951,5 +1024,77 @@ mod tests {
         assert!(e.contains("\"nope\""), "{e}");
         let e = SweepPlot::build(&tab, &req("v")).unwrap_err().to_string();
         assert!(e.contains("\"v\"") && e.contains("not numeric"), "{e}");
+    }
+
+    /// A corner-interval table: its `r_i` are derived, not parameters, so a
+    /// slice of two intervals is still a class map.
+    #[test]
+    fn derived_ratios_are_not_parameters() {
+        let tab = t("id,valence,p0,p1,p2,q0,q1,q2,r0,r1,r2,class\n0,3,1,1,1,1,1,1,0.5,0.5,0.5,a\n1,3,2,1,1,1,1,1,0.3,0.5,0.5,b\n2,3,1,1,1,1,2,1,0.6,0.5,0.5,a\n");
+        assert_eq!(
+            parameter_columns(&tab),
+            ["p0", "p1", "p2", "q0", "q1", "q2"]
+        );
+        let (k, r) = choose(&tab, &PlotRequest::default()).unwrap();
+        assert_eq!(
+            (k, r.x.as_deref(), r.y.as_deref()),
+            (PlotKind::Map, Some("p0"), Some("q1"))
+        );
+        // Without intervals, r columns are the parameters.
+        let ratios = t("id,valence,r0,r1,class\n0,3,0.1,0.1,a\n1,3,0.2,0.1,b\n");
+        assert_eq!(parameter_columns(&ratios), ["r0", "r1"]);
+    }
+
+    /// A map draws a class below 2% of its cells (a measure-zero set) as
+    /// enlarged markers on top, one per cell, and marks its legend box; a
+    /// common class gets none (issue 21).
+    #[test]
+    fn map_marks_rare_classes() {
+        assert_eq!(rare_categories(&[0, 0, 1, 0], 3), [false, false, false]);
+        let mut idx = vec![0usize; 99];
+        idx.push(1);
+        assert_eq!(rare_categories(&idx, 3), [false, true, false]);
+        // A 10 x 10 grid: one `standard` cell, three `not_separated` cells
+        // (3%: common enough to be seen as fill), the rest real_distinct.
+        let mut s = String::from("r0,r1,class\n");
+        for i in 0..10 {
+            for j in 0..10 {
+                let class = match (i, j) {
+                    (4, 5) => "standard",
+                    (_, 0) if i < 3 => "not_separated",
+                    _ => "real_distinct",
+                };
+                s.push_str(&format!(
+                    "{},{},{class}\n",
+                    i as f64 / 10.0,
+                    j as f64 / 10.0
+                ));
+            }
+        }
+        let tab = t(&s);
+        let p = SweepPlot::build(&tab, &PlotRequest::default()).unwrap();
+        assert_eq!(p.kind(), PlotKind::Map);
+        let svg = |p: &SweepPlot| {
+            crate::report::render_svg((800, 500), &|a: &Area<'_>| p.draw(a, "t", (800, 500)))
+                .unwrap()
+        };
+        // The standard point's marker (a diamond: a 4-point polygon) in its
+        // colour, over a white halo, on the map and in the legend.
+        let std_color = {
+            let c = class_color("standard");
+            format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2)
+        };
+        let with = svg(&p);
+        let polygons_in = |svg: &str, color: &str| {
+            svg.lines()
+                .filter(|l| l.contains("<polygon") && l.contains(color))
+                .count()
+        };
+        assert_eq!(polygons_in(&with, &std_color), 2, "map and legend");
+        // The same table without the rare cell: no marker of that colour.
+        let common = t(&s.replace("standard", "real_distinct"));
+        let without = svg(&SweepPlot::build(&common, &PlotRequest::default()).unwrap());
+        assert_eq!(polygons_in(&without, &std_color), 0);
+        assert!(with.len() > without.len());
     }
 }

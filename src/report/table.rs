@@ -110,6 +110,10 @@ pub enum TableError {
     /// No plot kind fits the columns and none was asked for.
     #[error("cannot choose a plot: {0}; give --kind and the columns (--x, --y, --color)")]
     NoDefault(String),
+    /// A Parquet file that cannot be read as a sweep's (not Parquet, torn,
+    /// or a column of a type a sweep does not write).
+    #[error("{0}")]
+    Parquet(String),
     /// The input format is not supported (yet).
     #[error("{0}")]
     Unsupported(String),
@@ -194,6 +198,71 @@ impl Table {
             }
         }
         Table::new(names, columns)
+    }
+
+    /// Reads a sweep's Parquet file from its bytes (the library does no I/O:
+    /// the caller reads the file) with
+    /// [`read_table`](crate::sweep::output::parquet::read_table). The cells are
+    /// those [`from_csv`](Self::from_csv) reads from the CSV of the same rows:
+    /// `id`, `valence` and floats are numbers (a null is missing), booleans are
+    /// the text `true` / `false`, and a string is read as a CSV field is (a
+    /// number if it parses as one, missing if empty), so a figure drawn from
+    /// the Parquet file equals the one drawn from the CSV.
+    ///
+    /// ```
+    /// use subdiv_lab::report::table::Table;
+    /// let e = Table::from_parquet(b"PAR1".to_vec()).unwrap_err().to_string();
+    /// assert!(e.contains("not a Parquet file, or torn"), "{e}");
+    /// ```
+    pub fn from_parquet(bytes: Vec<u8>) -> Result<Self, TableError> {
+        use crate::sweep::output::parquet::{read_table, Column};
+        // The reader's problems are reported as they are (not as a write).
+        let t = read_table(bytes).map_err(|e| match e {
+            crate::sweep::SweepError::Io(m) => TableError::Parquet(m),
+            other => TableError::Parquet(other.to_string()),
+        })?;
+        if t.names.is_empty() {
+            return Err(TableError::Empty);
+        }
+        let text = |s: &Option<String>| match s.as_deref().map(str::trim) {
+            None | Some("") => Value::Missing,
+            Some(f) => match f.parse::<f64>() {
+                Ok(x) => Value::Number(x),
+                Err(_) => Value::Text(f.to_owned()),
+            },
+        };
+        let columns = t
+            .columns
+            .iter()
+            .map(|c| match c {
+                Column::U64(v) => v.iter().map(|&x| Value::Number(x as f64)).collect(),
+                Column::U32(v) => v.iter().map(|&x| Value::Number(f64::from(x))).collect(),
+                Column::F64(v) => v
+                    .iter()
+                    .map(|x| x.map_or(Value::Missing, Value::Number))
+                    .collect(),
+                Column::Str(v) => v.iter().map(text).collect(),
+                Column::Bool(v) => v
+                    .iter()
+                    .map(|b| match b {
+                        None => Value::Missing,
+                        Some(b) => Value::Text(b.to_string()),
+                    })
+                    .collect(),
+            })
+            .collect();
+        Table::new(t.names.clone(), columns)
+    }
+
+    /// Reads `bytes` as Parquet when `name` ends in `.parquet`, as CSV
+    /// otherwise ([`from_parquet`](Self::from_parquet),
+    /// [`from_csv`](Self::from_csv)).
+    pub fn from_named_bytes(name: &str, bytes: &[u8]) -> Result<Self, TableError> {
+        if name.ends_with(".parquet") {
+            Table::from_parquet(bytes.to_vec())
+        } else {
+            Table::from_csv(bytes)
+        }
     }
 
     /// Column names in order.

@@ -149,6 +149,43 @@ impl Plan {
             .collect()
     }
 
+    /// Names of the columns derived from the coordinates, written after them:
+    /// for a corner-interval space the edge ratios `r0..r{N-1}` (`N` the
+    /// largest valence) the scheme is built from, `r_i = q_{i+1} / (p_i +
+    /// q_{i+1})` (math doc section 2); none for the other spaces (a `ratios`
+    /// space samples the `r_i` themselves).
+    pub fn derived_columns(&self) -> Vec<String> {
+        match self.spec.space.kind {
+            SpaceKind::CornerIntervals => {
+                (0..self.max_valence()).map(|i| format!("r{i}")).collect()
+            }
+            _ => Vec::new(),
+        }
+    }
+
+    /// The derived cells of configuration `c` ([`derived_columns`](Self::derived_columns))
+    /// into `out` (one per derived column): the edge ratios of a corner-interval
+    /// configuration, computed as [`scheme`](Self::scheme) computes them (so
+    /// they are the `r_i` of its matrix bit for bit); `None` beyond the valence,
+    /// and for every cell when the intervals give no ratios (the row then
+    /// carries the error).
+    pub fn derived_into(&self, c: &Configuration, out: &mut [Option<f64>]) {
+        out.fill(None);
+        if self.spec.space.kind != SpaceKind::CornerIntervals {
+            return;
+        }
+        let n = c.valence;
+        if c.coordinates.len() != 2 * n {
+            return;
+        }
+        let (p, q) = c.coordinates.split_at(n);
+        if let Ok(r) = CornerIntervals::new(p.to_vec(), q.to_vec()).and_then(|k| k.ratios()) {
+            for (o, x) in out.iter_mut().zip(r.as_slice()) {
+                *o = Some(*x);
+            }
+        }
+    }
+
     /// Column position of coordinate `k` of a valence-`n` configuration.
     pub fn coordinate_column(&self, n: usize, k: usize) -> usize {
         let big = self.max_valence();

@@ -234,8 +234,9 @@ struct Output {
 /// see as fill alone).
 pub const RARE_SHARE: f64 = 0.02;
 
-/// The marker of a rare class in the class map (and its legend).
-fn rare_marker(class: &str) -> Marker {
+/// The marker of a rare class in the class map (and its legend; the sweep
+/// plot's `map` uses the same).
+pub(crate) fn rare_marker(class: &str) -> Marker {
     match class {
         "standard" => Marker::Diamond,
         "defective" => Marker::Square,

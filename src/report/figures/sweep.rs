@@ -1,4 +1,4 @@
-//! `kind = "sweep"`: a plot of a sweep CSV (written by `subdiv-lab sweep`),
+//! `kind = "sweep"`: a plot of a sweep CSV or Parquet file (written by `subdiv-lab sweep`),
 //! the same figure as `subdiv-lab plot` draws (see
 //! [`crate::report::sweep_plot`] for the plot kinds and the defaults).
 //!
@@ -57,16 +57,6 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     if p.path.get_ref().trim().is_empty() {
         return Err(fs.error_at(&p.path, "path", "path is empty"));
     }
-    if p.path.get_ref().ends_with(".parquet") {
-        return Err(fs.error_at(
-            &p.path,
-            "path",
-            format!(
-                "{}: Parquet input is not yet supported; give the sweep's CSV",
-                p.path.get_ref()
-            ),
-        ));
-    }
     let kind = match &p.plot {
         None => None,
         Some(k) => Some(PlotKind::from_name(k.get_ref()).ok_or_else(|| {
@@ -101,7 +91,8 @@ impl Sweep {
         let bytes = inputs
             .get(&self.path)
             .ok_or_else(|| err("not read (the caller passed no such input)".to_owned()))?;
-        let table = Table::from_csv(bytes).map_err(|e: TableError| err(e.to_string()))?;
+        let table = Table::from_named_bytes(&self.path, bytes)
+            .map_err(|e: TableError| err(e.to_string()))?;
         SweepPlot::build(&table, &self.request).map_err(|e| err(e.to_string()))
     }
 }

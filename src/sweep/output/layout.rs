@@ -33,6 +33,8 @@ pub struct Layout {
     pub(super) names: Vec<String>,
     pub(super) kinds: Vec<Kind>,
     pub(super) coordinates: usize,
+    /// Derived cells among the coordinate cells (the last ones).
+    pub(super) derived: usize,
     pub(super) class: Option<usize>,
     pub(super) numeric: Vec<(usize, String)>,
     /// The type of each cell's column (coordinates: `Float`).
@@ -89,6 +91,18 @@ impl Layout {
             kinds.push(Kind::Numeric);
             types.push(ColumnType::Float);
         }
+        let derived = plan.derived_columns().len();
+        for c in plan.derived_columns() {
+            docs.push(doc(
+                &c,
+                "f64",
+                "edge ratio r_i = q_(i+1) / (p_i + q_(i+1)) derived from the corner intervals, the r_i of the scheme's matrix (math doc section 2); empty beyond the row's valence",
+                "1",
+            ));
+            names.push(c);
+            kinds.push(Kind::Numeric);
+            types.push(ColumnType::Float);
+        }
         let coordinates = names.len();
         for c in result_columns(&plan.spec().columns) {
             docs.push(doc(&c.name, c.ty.name(), &c.meaning, c.unit));
@@ -114,6 +128,7 @@ impl Layout {
             names,
             kinds,
             coordinates,
+            derived,
             class,
             numeric,
             types,
@@ -252,12 +267,31 @@ impl Layout {
         })
     }
 
-    fn coordinate_row(&self, plan: &Plan, c: &crate::sweep::Configuration) -> Vec<Cell> {
-        let mut cells = vec![Cell::Empty; self.coordinates];
+    /// The coordinate cells of configuration `c` (by column, `None`: empty)
+    /// into `out`: the coordinates of the space, then the derived columns
+    /// ([`Plan::derived_columns`]). The one placement of coordinates, for the
+    /// driver, the verifier and [`row`](Self::row).
+    pub(super) fn coordinates_into(
+        &self,
+        plan: &Plan,
+        c: &crate::sweep::Configuration,
+        out: &mut Vec<Option<f64>>,
+    ) {
+        out.clear();
+        out.resize(self.coordinates, None);
         for (k, x) in c.coordinates.iter().enumerate() {
-            cells[plan.coordinate_column(c.valence, k)] = Cell::Num(*x);
+            out[plan.coordinate_column(c.valence, k)] = Some(*x);
         }
-        cells
+        let sampled = self.coordinates - self.derived;
+        plan.derived_into(c, &mut out[sampled..]);
+    }
+
+    fn coordinate_row(&self, plan: &Plan, c: &crate::sweep::Configuration) -> Vec<Cell> {
+        let mut v = Vec::new();
+        self.coordinates_into(plan, c, &mut v);
+        v.into_iter()
+            .map(|x| x.map_or(Cell::Empty, Cell::Num))
+            .collect()
     }
 
     /// Evaluates configuration `id` into a row.

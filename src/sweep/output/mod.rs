@@ -37,7 +37,7 @@ mod verify;
 pub use csv::{format_number, split_csv_line};
 pub use layout::{ColumnDoc, Layout, Row};
 pub use merge::{merge, MergeSource};
-pub use run::{run, run_counting, CHUNK, SUB_CHUNK};
+pub use run::{run, run_counting, run_parquet, CHUNK, SUB_CHUNK};
 pub use verify::{
     check_fingerprint, fingerprint_digest, fingerprint_line, fingerprint_shard, LineFault,
     Verifier, PIECE_BYTES, RECHECK_SAMPLE,

@@ -253,6 +253,209 @@ impl Values {
         }
         Ok(())
     }
+
+    /// Appends rows `rows` of `src` (a column of the same type), whose first
+    /// value (of the non-null ones) is `src`'s value `*at`; advances `*at`.
+    fn append_rows(&mut self, src: &Values, rows: std::ops::Range<usize>, at: &mut usize) {
+        fn take<T: Clone>(v: &mut Vec<T>, d: &mut Vec<i16>, sv: &[T], sd: &[i16], at: &mut usize) {
+            let k = sd.iter().filter(|&&x| x == 1).count();
+            d.extend_from_slice(sd);
+            v.extend_from_slice(&sv[*at..*at + k]);
+            *at += k;
+        }
+        match (self, src) {
+            (Values::U64(v), Values::U64(s)) => v.extend_from_slice(&s[rows]),
+            (Values::U32(v), Values::U32(s)) => v.extend_from_slice(&s[rows]),
+            (Values::F64(v, d), Values::F64(sv, sd)) => take(v, d, sv, &sd[rows], at),
+            (Values::Str(v, d), Values::Str(sv, sd)) => take(v, d, sv, &sd[rows], at),
+            (Values::Bool(v, d), Values::Bool(sv, sd)) => take(v, d, sv, &sd[rows], at),
+            // Blocks are built from the same layout as the rows (same types).
+            _ => unreachable!("a block column of another type"),
+        }
+    }
+}
+
+/// `t` as the CSV holds it after unquoting: line breaks become spaces (a CSV
+/// line is one row), everything else is kept.
+fn csv_text(t: &str) -> std::borrow::Cow<'_, str> {
+    if t.contains(['\n', '\r']) {
+        std::borrow::Cow::Owned(t.replace(['\n', '\r'], " "))
+    } else {
+        std::borrow::Cow::Borrowed(t)
+    }
+}
+
+/// The rows of one task of the sweep driver as typed column buffers (the
+/// typed path of `sweep --format parquet`, math doc section 16.2): the
+/// evaluator's cells go straight into the buffers, with the values the CSV
+/// of the same rows holds once read back. A number in a float column is the
+/// `f64` itself (its CSV text is its shortest round trip, which reads back to
+/// the same bits; a NaN is the canonical NaN, as the text `NaN` reads back);
+/// a label is its text with line breaks as spaces (as the CSV writes it);
+/// `true` / `false` in a boolean column are booleans. A cell of another kind
+/// than its column's (not written by the built-in evaluator) goes through its
+/// CSV text, as in [`ParquetRows`]' [`Write`](std::io::Write) path, and a cell
+/// that text does not fit is reported by [`ParquetRows::push_block`].
+pub struct TypedBlock {
+    values: Vec<Values>,
+    /// Column of the next cell.
+    col: usize,
+    rows: usize,
+    /// Id of the current row.
+    id: u64,
+    /// Per label column: the labels seen in this block (cheap clones).
+    labels: Vec<Vec<ByteArray>>,
+    /// The first cell that does not fit its column: (id, column, CSV text).
+    fault: Option<(u64, usize, String)>,
+    number: String,
+    digits: zmij::Buffer,
+}
+
+impl std::fmt::Debug for TypedBlock {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("TypedBlock")
+            .field("rows", &self.rows)
+            .field("fault", &self.fault)
+            .finish()
+    }
+}
+
+impl TypedBlock {
+    /// Appends the CSV text `f` of the next cell through [`Values::push`].
+    fn push_text_cell(&mut self, f: &str) {
+        let k = self.col;
+        if self.values[k]
+            .push(f, "", &mut self.number, &mut self.digits)
+            .is_err()
+        {
+            // Keep the columns aligned; the block is refused when written.
+            self.values[k]
+                .push("", "", &mut self.number, &mut self.digits)
+                .ok();
+            if self.fault.is_none() {
+                self.fault = Some((self.id, k, f.to_owned()));
+            }
+        }
+        self.col += 1;
+    }
+
+    fn label(&mut self, k: usize, t: &str) -> ByteArray {
+        let seen = &mut self.labels[k];
+        if let Some(b) = seen.iter().find(|b| b.data() == t.as_bytes()) {
+            return b.clone();
+        }
+        let b = ByteArray::from(t);
+        if seen.len() < 64 {
+            seen.push(b.clone());
+        }
+        b
+    }
+}
+
+impl super::run::RowBlock for TypedBlock {
+    fn with_rows(layout: &Layout, rows: usize) -> Self {
+        let cols = columns_of(layout);
+        let values = cols
+            .iter()
+            .map(|c| match c {
+                Col::Id => Values::U64(Vec::with_capacity(rows)),
+                Col::Valence => Values::U32(Vec::with_capacity(rows)),
+                Col::Float => Values::F64(Vec::with_capacity(rows), Vec::with_capacity(rows)),
+                Col::Label | Col::Error => Values::Str(Vec::new(), Vec::with_capacity(rows)),
+                Col::Bool => Values::Bool(Vec::new(), Vec::with_capacity(rows)),
+            })
+            .collect();
+        TypedBlock {
+            values,
+            col: 0,
+            rows: 0,
+            id: 0,
+            labels: vec![Vec::new(); cols.len()],
+            fault: None,
+            number: String::new(),
+            digits: zmij::Buffer::new(),
+        }
+    }
+
+    fn start(&mut self, id: u64, valence: usize) {
+        self.id = id;
+        if let Values::U64(v) = &mut self.values[0] {
+            v.push(id as i64);
+        }
+        if let Values::U32(v) = &mut self.values[1] {
+            match u32::try_from(valence) {
+                Ok(n) => v.push(n as i32),
+                Err(_) => {
+                    v.push(0);
+                    if self.fault.is_none() {
+                        self.fault = Some((id, 1, valence.to_string()));
+                    }
+                }
+            }
+        }
+        self.col = 2;
+    }
+
+    fn empty(&mut self) {
+        match &mut self.values[self.col] {
+            Values::F64(_, d) | Values::Str(_, d) | Values::Bool(_, d) => d.push(0),
+            // Only id and valence are required, and they are not cells.
+            Values::U64(_) | Values::U32(_) => {}
+        }
+        self.col += 1;
+    }
+
+    fn num(&mut self, x: f64) {
+        if let Values::F64(v, d) = &mut self.values[self.col] {
+            v.push(if x.is_nan() { f64::NAN } else { x });
+            d.push(1);
+            self.col += 1;
+        } else {
+            let mut t = String::new();
+            push_number(&mut t, &mut self.digits, x);
+            self.push_text_cell(&t);
+        }
+    }
+
+    fn text(&mut self, t: &str) {
+        let k = self.col;
+        match &mut self.values[k] {
+            // An empty text is an empty CSV cell: a null.
+            Values::Str(_, d) if t.is_empty() => {
+                d.push(0);
+                self.col += 1;
+            }
+            Values::Str(..) => {
+                let b = self.label(k, &csv_text(t));
+                if let Values::Str(v, d) = &mut self.values[k] {
+                    v.push(b);
+                    d.push(1);
+                }
+                self.col += 1;
+            }
+            Values::Bool(v, d) if t == "true" || t == "false" => {
+                v.push(t == "true");
+                d.push(1);
+                self.col += 1;
+            }
+            _ => self.push_text_cell(&csv_text(t)),
+        }
+    }
+
+    fn end(&mut self, error: Option<&str>) {
+        let k = self.col;
+        if let Values::Str(v, d) = &mut self.values[k] {
+            match error {
+                Some(e) if !e.is_empty() => {
+                    v.push(ByteArray::from(csv_text(e).as_ref()));
+                    d.push(1);
+                }
+                _ => d.push(0),
+            }
+        }
+        self.col = 0;
+        self.rows += 1;
+    }
 }
 
 /// One committed row group, handed to the caller of [`ParquetRows`]: write
@@ -379,6 +582,45 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
         self.rows_in_group += 1;
         if self.rows_in_group == ROW_GROUP_ROWS {
             self.commit_group()?;
+        }
+        Ok(())
+    }
+
+    /// Appends the rows of `block` (built by the sweep driver for this
+    /// layout), committing each group as it fills. A cell that does not fit
+    /// its column is refused with a message naming the configuration, the
+    /// column and the value.
+    pub fn push_block(&mut self, block: &TypedBlock) -> Result<(), SweepError> {
+        if let Some((id, k, f)) = &block.fault {
+            let name = self.names.get(*k).map_or("?", String::as_str);
+            let what = match self.values.get(*k) {
+                Some(Values::F64(..)) => "a number",
+                Some(Values::Bool(..)) => "true or false",
+                _ => "an unsigned integer",
+            };
+            return Err(SweepError::Io(format!(
+                "parquet: configuration {id}: {name} = {f:?} is not {what}"
+            )));
+        }
+        if block.values.len() != self.values.len() {
+            return Err(SweepError::Io(format!(
+                "parquet: a block of {} columns for {} columns",
+                block.values.len(),
+                self.values.len()
+            )));
+        }
+        let mut at = vec![0usize; self.values.len()];
+        let mut start = 0;
+        while start < block.rows {
+            let take = (block.rows - start).min(ROW_GROUP_ROWS - self.rows_in_group);
+            for ((dst, src), at) in self.values.iter_mut().zip(&block.values).zip(&mut at) {
+                dst.append_rows(src, start..start + take, at);
+            }
+            start += take;
+            self.rows_in_group += take;
+            if self.rows_in_group == ROW_GROUP_ROWS {
+                self.commit_group()?;
+            }
         }
         Ok(())
     }

@@ -2,7 +2,8 @@
 //! without allocation, written in id order while the next chunk is evaluated.
 
 use super::csv::{itoa_buf, push_number, push_text, small_uint};
-use super::layout::{Kind, Layout};
+use super::layout::Kind;
+use super::layout::Layout;
 use crate::spectral::kernel::BATCH;
 use crate::sweep::eval::{CellSink, Evaluate};
 use crate::sweep::plan::{Configuration, Plan};
@@ -93,15 +94,85 @@ impl Staged {
 /// driver evaluates configurations in batches, [`Evaluate::write_results_batch`]).
 pub(super) struct Scratch {
     rows: [Staged; BATCH],
-    digits: zmij::Buffer,
 }
 
 impl Scratch {
     pub(super) fn new() -> Self {
         Scratch {
             rows: std::array::from_fn(|_| Staged::new()),
+        }
+    }
+}
+
+/// The rows of one driver task in the output's form, built cell by cell: for
+/// each row [`start`](Self::start), one call per cell (coordinates then
+/// results, in column order), then [`end`](Self::end). [`CsvBlock`] makes the
+/// CSV lines; the Parquet form appends to typed column buffers
+/// ([`super::parquet::TypedBlock`]), so that no number goes through text.
+pub(crate) trait RowBlock: Send {
+    /// An empty block for about `rows` rows of `layout`.
+    fn with_rows(layout: &Layout, rows: usize) -> Self;
+    /// Starts the row of configuration `id` (valence `valence`; 0 when the
+    /// configuration could not be enumerated).
+    fn start(&mut self, id: u64, valence: usize);
+    /// The next cell is empty.
+    fn empty(&mut self);
+    /// The next cell is the number `x`.
+    fn num(&mut self, x: f64);
+    /// The next cell is the text `t`.
+    fn text(&mut self, t: &str);
+    /// Ends the row with its `error` cell.
+    fn end(&mut self, error: Option<&str>);
+}
+
+/// The CSV lines of a task (the sweep's CSV text, byte for byte that of
+/// [`Layout::format_into`]).
+pub(crate) struct CsvBlock {
+    /// The lines, each ending in `\n`.
+    pub(crate) text: String,
+    digits: zmij::Buffer,
+}
+
+impl CsvBlock {
+    /// An empty block.
+    pub(crate) fn new() -> Self {
+        CsvBlock {
+            text: String::new(),
             digits: zmij::Buffer::new(),
         }
+    }
+}
+
+impl RowBlock for CsvBlock {
+    fn with_rows(layout: &Layout, rows: usize) -> Self {
+        CsvBlock {
+            text: String::with_capacity(rows * (32 + 24 * layout.cells())),
+            digits: zmij::Buffer::new(),
+        }
+    }
+    fn start(&mut self, id: u64, valence: usize) {
+        let mut ibuf = itoa_buf();
+        self.text.push_str(small_uint(id, &mut ibuf));
+        self.text.push(',');
+        self.text.push_str(small_uint(valence as u64, &mut ibuf));
+    }
+    fn empty(&mut self) {
+        self.text.push(',');
+    }
+    fn num(&mut self, x: f64) {
+        self.text.push(',');
+        push_number(&mut self.text, &mut self.digits, x);
+    }
+    fn text(&mut self, t: &str) {
+        self.text.push(',');
+        push_text(&mut self.text, t);
+    }
+    fn end(&mut self, error: Option<&str>) {
+        self.text.push(',');
+        if let Some(e) = error {
+            push_text(&mut self.text, e);
+        }
+        self.text.push('\n');
     }
 }
 
@@ -110,13 +181,13 @@ impl Layout {
     /// its CSV line to `text` and adds it to `part`. Equal, byte for byte and
     /// for the summary, to [`row`](Self::row) + [`format_into`](Self::format_into)
     /// + [`Summary::add`] (a test checks it), but allocation-free after warm-up.
-    pub(super) fn append_row<E: Evaluate + ?Sized>(
+    pub(super) fn append_row<E: Evaluate + ?Sized, B: RowBlock>(
         &self,
         plan: &Plan,
         eval: &E,
         id: u64,
         sc: &mut Scratch,
-        text: &mut String,
+        out: &mut B,
         part: &mut PartialSummary,
     ) {
         let row = &mut sc.rows[0];
@@ -124,19 +195,19 @@ impl Layout {
             let r = eval.write_results(plan, &row.config, &*scheme, &mut row.stage);
             self.check_results(row, r);
         }
-        self.emit(id, row, &mut sc.digits, text, part);
+        self.emit(id, row, out, part);
     }
 
     /// [`append_row`](Self::append_row) for [`BATCH`] configurations, evaluated
     /// together by [`Evaluate::write_results_batch`]; the lines are those of
     /// `append_row` calls (evaluators must give equal cells either way).
-    fn append_batch<E: Evaluate + ?Sized>(
+    fn append_batch<E: Evaluate + ?Sized, B: RowBlock>(
         &self,
         plan: &Plan,
         eval: &E,
         ids: [u64; BATCH],
         sc: &mut Scratch,
-        text: &mut String,
+        out: &mut B,
         part: &mut PartialSummary,
     ) {
         let rows = &mut sc.rows;
@@ -166,7 +237,7 @@ impl Layout {
             }
         }
         for (row, &id) in rows.iter_mut().zip(&ids) {
-            self.emit(id, row, &mut sc.digits, text, part);
+            self.emit(id, row, out, part);
         }
     }
 
@@ -186,9 +257,7 @@ impl Layout {
             Ok(()) => {
                 let c = &row.config;
                 row.valence = c.valence;
-                for (k, x) in c.coordinates.iter().enumerate() {
-                    row.coordinates[plan.coordinate_column(c.valence, k)] = Some(*x);
-                }
+                self.coordinates_into(plan, c, &mut row.coordinates);
                 match plan.scheme(c) {
                     Ok(s) => Some(s),
                     Err(e) => {
@@ -227,32 +296,24 @@ impl Layout {
         }
     }
 
-    /// Appends the CSV line of the staged `row` (configuration `id`) to `text`
-    /// and adds it to `part`.
-    fn emit(
-        &self,
-        id: u64,
-        row: &Staged,
-        digits: &mut zmij::Buffer,
-        text: &mut String,
-        part: &mut PartialSummary,
-    ) {
+    /// Appends the row of the staged `row` (configuration `id`) to `out` and
+    /// adds it to `part`.
+    fn emit<B: RowBlock>(&self, id: u64, row: &Staged, out: &mut B, part: &mut PartialSummary) {
         let n_results = self.names.len() - self.coordinates;
         let valence = row.valence;
         let error = &row.error;
-        let mut ibuf = itoa_buf();
-        text.push_str(small_uint(id, &mut ibuf));
-        text.push(',');
-        text.push_str(small_uint(valence as u64, &mut ibuf));
+        out.start(id, valence);
         let mut numeric = 0usize;
         for (pos, x) in row.coordinates.iter().enumerate() {
-            text.push(',');
             let is_num = self.kinds[pos] == Kind::Numeric;
-            if let Some(x) = x {
-                push_number(text, digits, *x);
-                if is_num {
-                    part.push(numeric, *x, id);
+            match x {
+                Some(x) => {
+                    out.num(*x);
+                    if is_num {
+                        part.push(numeric, *x, id);
+                    }
                 }
+                None => out.empty(),
             }
             if is_num {
                 numeric += 1;
@@ -261,24 +322,23 @@ impl Layout {
         let mut class: Option<&str> = None;
         if row.stage.slots.is_empty() {
             for _ in 0..n_results {
-                text.push(',');
+                out.empty();
             }
         } else {
             for (k, slot) in row.stage.slots.iter().enumerate() {
                 let pos = self.coordinates + k;
-                text.push(',');
                 let is_num = self.kinds[pos] == Kind::Numeric;
                 match *slot {
-                    Slot::Empty => {}
+                    Slot::Empty => out.empty(),
                     Slot::Num(x) => {
-                        push_number(text, digits, x);
+                        out.num(x);
                         if is_num {
                             part.push(numeric, x, id);
                         }
                     }
                     Slot::Text(a, b) => {
                         let t = &row.stage.text[a..b];
-                        push_text(text, t);
+                        out.text(t);
                         if self.class == Some(pos) {
                             class = Some(t);
                         }
@@ -289,13 +349,42 @@ impl Layout {
                 }
             }
         }
-        text.push(',');
-        if let Some(e) = &error {
-            push_text(text, e);
-        }
-        text.push('\n');
+        out.end(error.as_deref());
         let class = class.unwrap_or(if error.is_some() { "error" } else { "all" });
         part.count_row(valence, class, error.is_some());
+    }
+}
+
+/// Where the driver writes the blocks of rows, in id order.
+trait BlockWriter<B> {
+    /// Writes one block.
+    fn write_block(&mut self, block: &B) -> Result<(), SweepError>;
+    /// Called after the blocks of a chunk are written.
+    fn flush(&mut self) -> Result<(), SweepError>;
+}
+
+/// CSV text to a [`Write`].
+struct CsvWriter<'a, W>(&'a mut W);
+
+impl<W: Write> BlockWriter<CsvBlock> for CsvWriter<'_, W> {
+    fn write_block(&mut self, block: &CsvBlock) -> Result<(), SweepError> {
+        self.0.write_all(block.text.as_bytes())?;
+        Ok(())
+    }
+    fn flush(&mut self) -> Result<(), SweepError> {
+        self.0.flush()?;
+        Ok(())
+    }
+}
+
+impl<F: FnMut(super::parquet::Commit<'_>) -> std::io::Result<()>>
+    BlockWriter<super::parquet::TypedBlock> for super::parquet::ParquetRows<F>
+{
+    fn write_block(&mut self, block: &super::parquet::TypedBlock) -> Result<(), SweepError> {
+        self.push_block(block)
+    }
+    fn flush(&mut self) -> Result<(), SweepError> {
+        Ok(())
     }
 }
 
@@ -351,13 +440,71 @@ where
     W: Write,
     I: IntoIterator<Item = u64>,
 {
+    drive::<E, CsvBlock, _, I>(
+        plan,
+        layout,
+        eval,
+        ids,
+        &mut CsvWriter(out),
+        summary,
+        progress,
+        evaluated,
+    )
+}
+
+/// [`run_counting`] for a Parquet file: the rows go straight from the
+/// evaluator's cells into typed column buffers (no CSV text in between; math
+/// doc section 16.2), which `rows` cuts into row groups and commits. The file
+/// and the summary are those of the CSV path's rows turned into Parquet (a
+/// test compares them byte for byte).
+#[allow(clippy::too_many_arguments)]
+pub fn run_parquet<E, F, I>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    ids: I,
+    rows: &mut super::parquet::ParquetRows<F>,
+    summary: &mut Summary,
+    progress: &mut dyn FnMut(u64),
+    evaluated: &std::sync::atomic::AtomicU64,
+) -> Result<u64, SweepError>
+where
+    E: Evaluate + ?Sized,
+    F: FnMut(super::parquet::Commit<'_>) -> std::io::Result<()>,
+    I: IntoIterator<Item = u64>,
+{
+    drive::<E, super::parquet::TypedBlock, _, I>(
+        plan, layout, eval, ids, rows, summary, progress, evaluated,
+    )
+}
+
+/// The driver behind [`run_counting`] and [`run_parquet`]: chunks evaluated
+/// on the pool into blocks `B`, written in order by `out` while the next
+/// chunk is evaluated.
+#[allow(clippy::too_many_arguments)]
+fn drive<E, B, O, I>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    ids: I,
+    out: &mut O,
+    summary: &mut Summary,
+    progress: &mut dyn FnMut(u64),
+    evaluated: &std::sync::atomic::AtomicU64,
+) -> Result<u64, SweepError>
+where
+    E: Evaluate + ?Sized,
+    B: RowBlock,
+    O: BlockWriter<B>,
+    I: IntoIterator<Item = u64>,
+{
     let mut ids = ids.into_iter();
     let threads = rayon::current_num_threads().max(1);
     let numeric = layout.numeric.len();
     let chunk_len = chunk_len(layout);
     let mut written = 0u64;
-    // Rows evaluated but not yet written: (text, partial summary) per task.
-    let mut pending: Vec<(String, PartialSummary)> = Vec::new();
+    // Rows evaluated but not yet written: (block, partial summary) per task.
+    let mut pending: Vec<(B, PartialSummary)> = Vec::new();
     let mut next: Vec<u64> = Vec::with_capacity(chunk_len);
     loop {
         next.clear();
@@ -365,7 +512,7 @@ where
         if next.is_empty() && pending.is_empty() {
             break;
         }
-        let mut fresh: Vec<(String, PartialSummary)> = Vec::new();
+        let mut fresh: Vec<(B, PartialSummary)> = Vec::new();
         let mut wrote: Result<u64, SweepError> = Ok(0);
         rayon::in_place_scope(|scope| {
             if !next.is_empty() {
@@ -378,8 +525,8 @@ where
             // Meanwhile, on this thread: write the previous chunk in order.
             wrote = (|| {
                 let mut rows = 0u64;
-                for (text, part) in &pending {
-                    out.write_all(text.as_bytes())?;
+                for (block, part) in &pending {
+                    out.write_block(block)?;
                     summary.absorb_partial(part);
                     rows += part.rows();
                 }
@@ -407,9 +554,9 @@ fn chunk_len(layout: &Layout) -> usize {
 }
 
 /// Evaluates one chunk on the current pool: tasks of consecutive
-/// configurations, each formatting its rows into one buffer and keeping a
+/// configurations, each appending its rows to one block and keeping a
 /// partial summary, returned in order.
-fn evaluate_chunk<E: Evaluate + ?Sized>(
+fn evaluate_chunk<E: Evaluate + ?Sized, B: RowBlock>(
     plan: &Plan,
     layout: &Layout,
     eval: &E,
@@ -417,24 +564,24 @@ fn evaluate_chunk<E: Evaluate + ?Sized>(
     threads: usize,
     numeric: usize,
     evaluated: &std::sync::atomic::AtomicU64,
-) -> Vec<(String, PartialSummary)> {
+) -> Vec<(B, PartialSummary)> {
     let sub = (chunk.len() / (8 * threads)).clamp(1, SUB_CHUNK);
     chunk
         .par_chunks(sub)
         .map(|ids| {
-            let mut text = String::with_capacity(ids.len() * (32 + 24 * layout.cells()));
+            let mut block = B::with_rows(layout, ids.len());
             let mut part = PartialSummary::new(numeric);
             let mut scratch = Scratch::new();
             let mut batches = ids.chunks_exact(BATCH);
             for b in &mut batches {
                 let b: [u64; BATCH] = b.try_into().expect("chunks of BATCH");
-                layout.append_batch(plan, eval, b, &mut scratch, &mut text, &mut part);
+                layout.append_batch(plan, eval, b, &mut scratch, &mut block, &mut part);
             }
             for &id in batches.remainder() {
-                layout.append_row(plan, eval, id, &mut scratch, &mut text, &mut part);
+                layout.append_row(plan, eval, id, &mut scratch, &mut block, &mut part);
             }
             evaluated.fetch_add(ids.len() as u64, std::sync::atomic::Ordering::Relaxed);
-            (text, part)
+            (block, part)
         })
         .collect()
 }
@@ -487,12 +634,13 @@ mod tests {
             layout.format_into(&r, &mut want);
             want_summary.add(&layout, &r);
         }
-        let mut got = String::new();
+        let mut got = CsvBlock::new();
         let mut part = PartialSummary::new(layout.numeric.len());
         let mut scratch = Scratch::new();
         for &id in &ids {
             layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
         }
+        let got = got.text;
         let mut got_summary = Summary::new(&plan, &layout, Shard::ALL, None);
         got_summary.absorb_partial(&part);
         assert_eq!(got, want);
@@ -501,7 +649,7 @@ mod tests {
         // phase of the batches (lone first rows shift every batch).
         for skip in [0, 1, BATCH / 2 + 1, BATCH - 1] {
             let skip = skip.min(ids.len());
-            let mut got = String::new();
+            let mut got = CsvBlock::new();
             let mut part = PartialSummary::new(layout.numeric.len());
             for &id in &ids[..skip] {
                 layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
@@ -516,7 +664,7 @@ mod tests {
             }
             let mut got_summary = Summary::new(&plan, &layout, Shard::ALL, None);
             got_summary.absorb_partial(&part);
-            assert_eq!(got, want, "batches from row {skip}");
+            assert_eq!(got.text, want, "batches from row {skip}");
             assert_eq!(got_summary, want_summary);
         }
         for threads in [1, 2, 3] {
@@ -571,5 +719,236 @@ mod tests {
             "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"face-ep\"\ninterval_range = [0.01, 100.0]\n[sampler]\nkind = \"halton\"\ncount = 120\n",
             |p: &Plan| Faulty(SpectralEvaluator::new(p.spec().columns)),
         );
+    }
+
+    /// Cells of every kind from the id alone (no eigenvalues: cheap enough
+    /// for several row groups): labels with commas, quotes, line breaks and
+    /// empty text, NaN (with a payload), -0, infinities, booleans; the class
+    /// is one of a few values.
+    struct Synthetic;
+
+    impl Evaluate for Synthetic {
+        fn evaluate(
+            &self,
+            _plan: &Plan,
+            c: &Configuration,
+            _scheme: &dyn crate::scheme::Scheme,
+        ) -> crate::Result<Vec<Cell>> {
+            let id = c.id;
+            if id % 997 == 13 {
+                return Err(crate::Error::InvalidParameter {
+                    name: "test",
+                    value: format!("id {id}"),
+                    reason: "a failure with a comma, \"quotes\"\nand a line break",
+                });
+            }
+            let class = [
+                "standard",
+                "real_distinct",
+                "complex_pair",
+                "a,b",
+                "q\"uote",
+                "x\ny",
+                "",
+            ];
+            let num = |k: u64| match (id + k) % 11 {
+                0 => Cell::Empty,
+                1 => Cell::Num(f64::from_bits(0x7ff8_0000_0000_0abc)),
+                2 => Cell::Num(-0.0),
+                3 => Cell::Num(f64::INFINITY),
+                4 => Cell::Num(f64::NEG_INFINITY),
+                5 => Cell::Num(1e-300 * (id as f64)),
+                _ => Cell::Num((id as f64 + k as f64).sqrt() / 7.0),
+            };
+            let mut v = vec![Cell::Text(class[(id % 7) as usize].to_owned())];
+            v.extend((0..10).map(num));
+            v.push(Cell::Text(
+                ["undecided", "standard"][(id % 2) as usize].to_owned(),
+            ));
+            v.push(match id % 3 {
+                0 => Cell::Text("true".into()),
+                1 => Cell::Text("false".into()),
+                _ => Cell::Empty,
+            });
+            Ok(v)
+        }
+    }
+
+    /// A Parquet file in memory, the rows after each commit, the summary.
+    type Written = (Vec<u8>, Vec<u64>, Summary);
+
+    /// The Parquet file of `run_parquet` (the typed path) and of `run`'s CSV
+    /// lines fed to `ParquetRows` as text (the path merge uses), with their
+    /// summaries and commits.
+    fn both_paths<E: Evaluate>(
+        plan: &Plan,
+        layout: &Layout,
+        eval: &E,
+        ids: &[u64],
+        threads: usize,
+    ) -> (Written, Written) {
+        use super::super::parquet::{Commit, ParquetRows, MAGIC};
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let file = |typed: bool| {
+            let mut bytes = MAGIC.to_vec();
+            let mut commits = Vec::new();
+            let mut summary = Summary::new(plan, layout, Shard::ALL, None);
+            let commit = |c: Commit<'_>| {
+                bytes.truncate(c.offset as usize);
+                bytes.extend_from_slice(c.group);
+                bytes.extend_from_slice(c.footer);
+                commits.push(c.rows);
+                Ok(())
+            };
+            let fp = super::super::fingerprint_line(plan, Shard::ALL);
+            let mut rows = ParquetRows::new(layout, &fp, Vec::new(), 4, commit).unwrap();
+            pool.install(|| {
+                if typed {
+                    run_parquet(
+                        plan,
+                        layout,
+                        eval,
+                        ids.iter().copied(),
+                        &mut rows,
+                        &mut summary,
+                        &mut |_| {},
+                        &std::sync::atomic::AtomicU64::new(0),
+                    )
+                } else {
+                    run(
+                        plan,
+                        layout,
+                        eval,
+                        ids.iter().copied(),
+                        &mut rows,
+                        &mut summary,
+                        &mut |_| {},
+                    )
+                }
+            })
+            .unwrap();
+            rows.finish().unwrap();
+            (bytes, commits, summary)
+        };
+        (file(true), file(false))
+    }
+
+    /// The typed path writes the bytes the CSV-text path writes (values,
+    /// nulls, labels, booleans, errors, row groups and footers), with the
+    /// same summary, for any thread count; across several row groups.
+    #[test]
+    fn typed_parquet_path_equals_the_csv_text_path() {
+        let spec = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = 140000\n[columns]\nexact_certificate = true\n";
+        let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+        let layout = Layout::new(&plan);
+        // Rows of a resumed run start mid-sweep; an out-of-range id is an error row.
+        let ids: Vec<u64> = (5..plan.total()).chain([plan.total() + 3]).collect();
+        for threads in [1, 3] {
+            let (typed, text) = both_paths(&plan, &layout, &Synthetic, &ids, threads);
+            assert_eq!(typed.1, text.1, "commits");
+            assert_eq!(typed.1.len(), 3);
+            assert!(typed.0 == text.0, "the two paths' bytes differ");
+            assert_eq!(typed.2, text.2);
+            let t = super::super::parquet::read_table(typed.0).unwrap();
+            assert_eq!(t.rows(), ids.len());
+            // Line breaks are spaces in both forms; NaN reads back as NaN.
+            assert!(t.csv_lines(0, 20).contains("x y"));
+        }
+        // The built-in evaluator, and error rows of a faulty one.
+        let small = "scheme = \"nurds\"\nvalences = [3, 5]\n[space]\nkind = \"corner-intervals\"\ninterval_range = [0.001, 1000.0]\n[sampler]\nkind = \"random\"\ncount = 300\nseed = 5\n[columns]\neigenvalues = 4\nexact_certificate = true\n";
+        let plan = Plan::new(crate::sweep::SweepSpec::from_toml(small).unwrap());
+        let layout = Layout::new(&plan);
+        let ids: Vec<u64> = (0..plan.total()).collect();
+        let eval = SpectralEvaluator::new(plan.spec().columns);
+        let (typed, text) = both_paths(&plan, &layout, &eval, &ids, 2);
+        assert!(typed.0 == text.0);
+        assert_eq!(typed.2, text.2);
+        let (typed, text) = both_paths(&plan, &layout, &Faulty(eval), &ids, 2);
+        assert!(typed.0 == text.0);
+        assert_eq!(typed.2, text.2);
+    }
+
+    /// A cell that does not fit its column is refused by both paths; the
+    /// typed path names the configuration, the column and the value.
+    #[test]
+    fn typed_parquet_path_refuses_a_cell_of_the_wrong_kind() {
+        struct TextInFloat;
+        impl Evaluate for TextInFloat {
+            fn evaluate(
+                &self,
+                _plan: &Plan,
+                c: &Configuration,
+                _scheme: &dyn crate::scheme::Scheme,
+            ) -> crate::Result<Vec<Cell>> {
+                let mut v = vec![Cell::Text("standard".into())];
+                v.extend((0..5).map(|_| Cell::Num(0.5)));
+                v[2] = if c.id == 4 {
+                    Cell::Text("oops".into())
+                } else {
+                    Cell::Text("0.25".into())
+                };
+                Ok(v)
+            }
+        }
+        let spec = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n[columns]\ngap = false\ncontraction = false\n";
+        let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+        let layout = Layout::new(&plan);
+        // Ids 0..4: a number as text in a float column reads as the number.
+        let ids: Vec<u64> = (0..4).collect();
+        let (typed, text) = both_paths(&plan, &layout, &TextInFloat, &ids, 1);
+        assert!(typed.0 == text.0);
+        let t = super::super::parquet::read_table(typed.0).unwrap();
+        assert_eq!(
+            t.column("lambda1_im"),
+            Some(&super::super::parquet::Column::F64(vec![Some(0.25); 4]))
+        );
+        // Id 4: "oops" is not a number.
+        let mut rows = super::super::parquet::ParquetRows::new(
+            &layout,
+            "fp",
+            Vec::new(),
+            4,
+            |_: super::super::parquet::Commit<'_>| Ok(()),
+        )
+        .unwrap();
+        let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+        let e = run_parquet(
+            &plan,
+            &layout,
+            &TextInFloat,
+            0..8u64,
+            &mut rows,
+            &mut summary,
+            &mut |_| {},
+            &std::sync::atomic::AtomicU64::new(0),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("configuration 4") && e.contains("lambda1_im") && e.contains("\"oops\""),
+            "{e}"
+        );
+        let mut out = super::super::parquet::ParquetRows::new(
+            &layout,
+            "fp",
+            Vec::new(),
+            4,
+            |_: super::super::parquet::Commit<'_>| Ok(()),
+        )
+        .unwrap();
+        let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+        assert!(run(
+            &plan,
+            &layout,
+            &TextInFloat,
+            0..8u64,
+            &mut out,
+            &mut summary,
+            &mut |_| {}
+        )
+        .is_err());
     }
 }

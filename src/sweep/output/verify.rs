@@ -70,7 +70,7 @@
 
 use super::csv::{canonical_number, push_number, small_uint, split_csv_line};
 use super::layout::{Kind, Layout};
-use super::run::Scratch;
+use super::run::{CsvBlock, Scratch};
 use crate::sweep::eval::Evaluate;
 use crate::sweep::plan::{Configuration, Plan, Shard};
 use crate::sweep::sampler::mix64;
@@ -528,11 +528,7 @@ impl<'a> Verifier<'a> {
                 field(1)
             ));
         }
-        self.coordinates.clear();
-        self.coordinates.resize(layout.coordinates, None);
-        for (k, x) in self.config.coordinates.iter().enumerate() {
-            self.coordinates[plan.coordinate_column(valence, k)] = Some(*x);
-        }
+        layout.coordinates_into(plan, &self.config, &mut self.coordinates);
         let mut numeric = 0usize;
         for pos in 0..layout.coordinates {
             let f = field(2 + pos);
@@ -638,14 +634,14 @@ impl<'a> Verifier<'a> {
     pub fn recheck<E: Evaluate + ?Sized>(&self, eval: &E) -> Result<(), (u64, String)> {
         let mut scratch = Scratch::new();
         let mut part = PartialSummary::new(self.layout.numeric.len());
-        let mut text = String::new();
+        let mut block = CsvBlock::new();
         let mut kept: Vec<&Kept> = self.kept.iter().collect();
         kept.sort_by_key(|k| k.lineno);
         for k in kept {
-            text.clear();
+            block.text.clear();
             self.layout
-                .append_row(self.plan, eval, k.id, &mut scratch, &mut text, &mut part);
-            let fresh = text.trim_end_matches('\n');
+                .append_row(self.plan, eval, k.id, &mut scratch, &mut block, &mut part);
+            let fresh = block.text.trim_end_matches('\n');
             if fresh != k.line {
                 let what = match (split_csv_line(fresh), split_csv_line(&k.line)) {
                     (Ok(a), Ok(b)) => {
