@@ -31,13 +31,16 @@ pub(crate) mod csv;
 pub(crate) mod layout;
 mod merge;
 pub mod parquet;
+#[cfg(test)]
+mod parquet_tests;
 mod run;
 mod verify;
 
 pub use csv::{format_number, split_csv_line};
 pub use layout::{ColumnDoc, Layout, Row};
 pub use merge::{merge, MergeSource};
-pub use run::{run, run_counting, run_parquet, CHUNK, SUB_CHUNK};
+pub use parquet::run_parquet;
+pub use run::{run, run_counting, CHUNK, SUB_CHUNK};
 pub use verify::{
     check_fingerprint, fingerprint_digest, fingerprint_line, fingerprint_shard, LineFault,
     Verifier, PIECE_BYTES, RECHECK_SAMPLE,

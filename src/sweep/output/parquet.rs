@@ -39,7 +39,9 @@
 
 use super::csv::{canonical_number, push_number, push_text, split_csv_line};
 use super::layout::Layout;
-use crate::sweep::eval::ColumnType;
+use crate::sweep::eval::{ColumnType, Evaluate};
+use crate::sweep::plan::Plan;
+use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
 use bytes::Bytes;
 use parquet::basic::{IntType, LogicalType, Repetition, Type as PhysicalType};
@@ -1138,4 +1140,41 @@ pub fn parse_journal(bytes: &[u8]) -> Result<(u64, Vec<u8>), String> {
         return Err("the commit journal names no valid commit".into());
     }
     Ok((end, footer.to_vec()))
+}
+
+impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> super::run::BlockWriter<TypedBlock>
+    for ParquetRows<F>
+{
+    fn write_block(&mut self, block: &TypedBlock) -> Result<(), SweepError> {
+        self.push_block(block)
+    }
+    fn flush(&mut self) -> Result<(), SweepError> {
+        Ok(())
+    }
+}
+
+/// [`run_counting`](super::run_counting) for a Parquet file: the rows go
+/// straight from the evaluator's cells into typed column buffers (no CSV text in between; math
+/// doc section 16.2), which `rows` cuts into row groups and commits. The file
+/// and the summary are those of the CSV path's rows turned into Parquet (a
+/// test compares them byte for byte).
+#[allow(clippy::too_many_arguments)]
+pub fn run_parquet<E, F, I>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    ids: I,
+    rows: &mut ParquetRows<F>,
+    summary: &mut Summary,
+    progress: &mut dyn FnMut(u64),
+    evaluated: &std::sync::atomic::AtomicU64,
+) -> Result<u64, SweepError>
+where
+    E: Evaluate + ?Sized,
+    F: FnMut(Commit<'_>) -> std::io::Result<()>,
+    I: IntoIterator<Item = u64>,
+{
+    super::run::drive::<E, TypedBlock, _, I>(
+        plan, layout, eval, ids, rows, summary, progress, evaluated,
+    )
 }

@@ -356,7 +356,7 @@ impl Layout {
 }
 
 /// Where the driver writes the blocks of rows, in id order.
-trait BlockWriter<B> {
+pub(super) trait BlockWriter<B> {
     /// Writes one block.
     fn write_block(&mut self, block: &B) -> Result<(), SweepError>;
     /// Called after the blocks of a chunk are written.
@@ -373,17 +373,6 @@ impl<W: Write> BlockWriter<CsvBlock> for CsvWriter<'_, W> {
     }
     fn flush(&mut self) -> Result<(), SweepError> {
         self.0.flush()?;
-        Ok(())
-    }
-}
-
-impl<F: FnMut(super::parquet::Commit<'_>) -> std::io::Result<()>>
-    BlockWriter<super::parquet::TypedBlock> for super::parquet::ParquetRows<F>
-{
-    fn write_block(&mut self, block: &super::parquet::TypedBlock) -> Result<(), SweepError> {
-        self.push_block(block)
-    }
-    fn flush(&mut self) -> Result<(), SweepError> {
         Ok(())
     }
 }
@@ -452,37 +441,11 @@ where
     )
 }
 
-/// [`run_counting`] for a Parquet file: the rows go straight from the
-/// evaluator's cells into typed column buffers (no CSV text in between; math
-/// doc section 16.2), which `rows` cuts into row groups and commits. The file
-/// and the summary are those of the CSV path's rows turned into Parquet (a
-/// test compares them byte for byte).
-#[allow(clippy::too_many_arguments)]
-pub fn run_parquet<E, F, I>(
-    plan: &Plan,
-    layout: &Layout,
-    eval: &E,
-    ids: I,
-    rows: &mut super::parquet::ParquetRows<F>,
-    summary: &mut Summary,
-    progress: &mut dyn FnMut(u64),
-    evaluated: &std::sync::atomic::AtomicU64,
-) -> Result<u64, SweepError>
-where
-    E: Evaluate + ?Sized,
-    F: FnMut(super::parquet::Commit<'_>) -> std::io::Result<()>,
-    I: IntoIterator<Item = u64>,
-{
-    drive::<E, super::parquet::TypedBlock, _, I>(
-        plan, layout, eval, ids, rows, summary, progress, evaluated,
-    )
-}
-
-/// The driver behind [`run_counting`] and [`run_parquet`]: chunks evaluated
+/// The driver behind [`run_counting`] and [`run_parquet`](super::parquet::run_parquet): chunks evaluated
 /// on the pool into blocks `B`, written in order by `out` while the next
 /// chunk is evaluated.
 #[allow(clippy::too_many_arguments)]
-fn drive<E, B, O, I>(
+pub(super) fn drive<E, B, O, I>(
     plan: &Plan,
     layout: &Layout,
     eval: &E,
@@ -587,14 +550,14 @@ fn evaluate_chunk<E: Evaluate + ?Sized, B: RowBlock>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::sweep::eval::{Cell, SpectralEvaluator};
     use crate::sweep::plan::Shard;
 
     /// An evaluator that returns the wrong number of cells for odd ids and fails
     /// for ids divisible by 5, to exercise the error rows of the fast path.
-    struct Faulty(SpectralEvaluator);
+    pub(crate) struct Faulty(pub(crate) SpectralEvaluator);
 
     impl Evaluate for Faulty {
         fn evaluate(
@@ -719,236 +682,5 @@ mod tests {
             "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"face-ep\"\ninterval_range = [0.01, 100.0]\n[sampler]\nkind = \"halton\"\ncount = 120\n",
             |p: &Plan| Faulty(SpectralEvaluator::new(p.spec().columns)),
         );
-    }
-
-    /// Cells of every kind from the id alone (no eigenvalues: cheap enough
-    /// for several row groups): labels with commas, quotes, line breaks and
-    /// empty text, NaN (with a payload), -0, infinities, booleans; the class
-    /// is one of a few values.
-    struct Synthetic;
-
-    impl Evaluate for Synthetic {
-        fn evaluate(
-            &self,
-            _plan: &Plan,
-            c: &Configuration,
-            _scheme: &dyn crate::scheme::Scheme,
-        ) -> crate::Result<Vec<Cell>> {
-            let id = c.id;
-            if id % 997 == 13 {
-                return Err(crate::Error::InvalidParameter {
-                    name: "test",
-                    value: format!("id {id}"),
-                    reason: "a failure with a comma, \"quotes\"\nand a line break",
-                });
-            }
-            let class = [
-                "standard",
-                "real_distinct",
-                "complex_pair",
-                "a,b",
-                "q\"uote",
-                "x\ny",
-                "",
-            ];
-            let num = |k: u64| match (id + k) % 11 {
-                0 => Cell::Empty,
-                1 => Cell::Num(f64::from_bits(0x7ff8_0000_0000_0abc)),
-                2 => Cell::Num(-0.0),
-                3 => Cell::Num(f64::INFINITY),
-                4 => Cell::Num(f64::NEG_INFINITY),
-                5 => Cell::Num(1e-300 * (id as f64)),
-                _ => Cell::Num((id as f64 + k as f64).sqrt() / 7.0),
-            };
-            let mut v = vec![Cell::Text(class[(id % 7) as usize].to_owned())];
-            v.extend((0..10).map(num));
-            v.push(Cell::Text(
-                ["undecided", "standard"][(id % 2) as usize].to_owned(),
-            ));
-            v.push(match id % 3 {
-                0 => Cell::Text("true".into()),
-                1 => Cell::Text("false".into()),
-                _ => Cell::Empty,
-            });
-            Ok(v)
-        }
-    }
-
-    /// A Parquet file in memory, the rows after each commit, the summary.
-    type Written = (Vec<u8>, Vec<u64>, Summary);
-
-    /// The Parquet file of `run_parquet` (the typed path) and of `run`'s CSV
-    /// lines fed to `ParquetRows` as text (the path merge uses), with their
-    /// summaries and commits.
-    fn both_paths<E: Evaluate>(
-        plan: &Plan,
-        layout: &Layout,
-        eval: &E,
-        ids: &[u64],
-        threads: usize,
-    ) -> (Written, Written) {
-        use super::super::parquet::{Commit, ParquetRows, MAGIC};
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        let file = |typed: bool| {
-            let mut bytes = MAGIC.to_vec();
-            let mut commits = Vec::new();
-            let mut summary = Summary::new(plan, layout, Shard::ALL, None);
-            let commit = |c: Commit<'_>| {
-                bytes.truncate(c.offset as usize);
-                bytes.extend_from_slice(c.group);
-                bytes.extend_from_slice(c.footer);
-                commits.push(c.rows);
-                Ok(())
-            };
-            let fp = super::super::fingerprint_line(plan, Shard::ALL);
-            let mut rows = ParquetRows::new(layout, &fp, Vec::new(), 4, commit).unwrap();
-            pool.install(|| {
-                if typed {
-                    run_parquet(
-                        plan,
-                        layout,
-                        eval,
-                        ids.iter().copied(),
-                        &mut rows,
-                        &mut summary,
-                        &mut |_| {},
-                        &std::sync::atomic::AtomicU64::new(0),
-                    )
-                } else {
-                    run(
-                        plan,
-                        layout,
-                        eval,
-                        ids.iter().copied(),
-                        &mut rows,
-                        &mut summary,
-                        &mut |_| {},
-                    )
-                }
-            })
-            .unwrap();
-            rows.finish().unwrap();
-            (bytes, commits, summary)
-        };
-        (file(true), file(false))
-    }
-
-    /// The typed path writes the bytes the CSV-text path writes (values,
-    /// nulls, labels, booleans, errors, row groups and footers), with the
-    /// same summary, for any thread count; across several row groups.
-    #[test]
-    fn typed_parquet_path_equals_the_csv_text_path() {
-        let spec = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = 140000\n[columns]\nexact_certificate = true\n";
-        let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
-        let layout = Layout::new(&plan);
-        // Rows of a resumed run start mid-sweep; an out-of-range id is an error row.
-        let ids: Vec<u64> = (5..plan.total()).chain([plan.total() + 3]).collect();
-        for threads in [1, 3] {
-            let (typed, text) = both_paths(&plan, &layout, &Synthetic, &ids, threads);
-            assert_eq!(typed.1, text.1, "commits");
-            assert_eq!(typed.1.len(), 3);
-            assert!(typed.0 == text.0, "the two paths' bytes differ");
-            assert_eq!(typed.2, text.2);
-            let t = super::super::parquet::read_table(typed.0).unwrap();
-            assert_eq!(t.rows(), ids.len());
-            // Line breaks are spaces in both forms; NaN reads back as NaN.
-            assert!(t.csv_lines(0, 20).contains("x y"));
-        }
-        // The built-in evaluator, and error rows of a faulty one.
-        let small = "scheme = \"nurds\"\nvalences = [3, 5]\n[space]\nkind = \"corner-intervals\"\ninterval_range = [0.001, 1000.0]\n[sampler]\nkind = \"random\"\ncount = 300\nseed = 5\n[columns]\neigenvalues = 4\nexact_certificate = true\n";
-        let plan = Plan::new(crate::sweep::SweepSpec::from_toml(small).unwrap());
-        let layout = Layout::new(&plan);
-        let ids: Vec<u64> = (0..plan.total()).collect();
-        let eval = SpectralEvaluator::new(plan.spec().columns);
-        let (typed, text) = both_paths(&plan, &layout, &eval, &ids, 2);
-        assert!(typed.0 == text.0);
-        assert_eq!(typed.2, text.2);
-        let (typed, text) = both_paths(&plan, &layout, &Faulty(eval), &ids, 2);
-        assert!(typed.0 == text.0);
-        assert_eq!(typed.2, text.2);
-    }
-
-    /// A cell that does not fit its column is refused by both paths; the
-    /// typed path names the configuration, the column and the value.
-    #[test]
-    fn typed_parquet_path_refuses_a_cell_of_the_wrong_kind() {
-        struct TextInFloat;
-        impl Evaluate for TextInFloat {
-            fn evaluate(
-                &self,
-                _plan: &Plan,
-                c: &Configuration,
-                _scheme: &dyn crate::scheme::Scheme,
-            ) -> crate::Result<Vec<Cell>> {
-                let mut v = vec![Cell::Text("standard".into())];
-                v.extend((0..5).map(|_| Cell::Num(0.5)));
-                v[2] = if c.id == 4 {
-                    Cell::Text("oops".into())
-                } else {
-                    Cell::Text("0.25".into())
-                };
-                Ok(v)
-            }
-        }
-        let spec = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n[columns]\ngap = false\ncontraction = false\n";
-        let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
-        let layout = Layout::new(&plan);
-        // Ids 0..4: a number as text in a float column reads as the number.
-        let ids: Vec<u64> = (0..4).collect();
-        let (typed, text) = both_paths(&plan, &layout, &TextInFloat, &ids, 1);
-        assert!(typed.0 == text.0);
-        let t = super::super::parquet::read_table(typed.0).unwrap();
-        assert_eq!(
-            t.column("lambda1_im"),
-            Some(&super::super::parquet::Column::F64(vec![Some(0.25); 4]))
-        );
-        // Id 4: "oops" is not a number.
-        let mut rows = super::super::parquet::ParquetRows::new(
-            &layout,
-            "fp",
-            Vec::new(),
-            4,
-            |_: super::super::parquet::Commit<'_>| Ok(()),
-        )
-        .unwrap();
-        let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
-        let e = run_parquet(
-            &plan,
-            &layout,
-            &TextInFloat,
-            0..8u64,
-            &mut rows,
-            &mut summary,
-            &mut |_| {},
-            &std::sync::atomic::AtomicU64::new(0),
-        )
-        .unwrap_err()
-        .to_string();
-        assert!(
-            e.contains("configuration 4") && e.contains("lambda1_im") && e.contains("\"oops\""),
-            "{e}"
-        );
-        let mut out = super::super::parquet::ParquetRows::new(
-            &layout,
-            "fp",
-            Vec::new(),
-            4,
-            |_: super::super::parquet::Commit<'_>| Ok(()),
-        )
-        .unwrap();
-        let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
-        assert!(run(
-            &plan,
-            &layout,
-            &TextInFloat,
-            0..8u64,
-            &mut out,
-            &mut summary,
-            &mut |_| {}
-        )
-        .is_err());
     }
 }

@@ -1,0 +1,227 @@
+//! Tests of the typed Parquet path against the CSV text path (a module of
+//! its own: it uses the CSV driver, the Parquet writer and the fingerprint,
+//! which do not depend on one another).
+
+use super::parquet::{read_table, run_parquet, Column, Commit, ParquetRows, MAGIC};
+use super::run::run;
+use super::run::tests::Faulty;
+use super::Layout;
+use crate::sweep::eval::{Cell, Evaluate, SpectralEvaluator};
+use crate::sweep::plan::{Configuration, Plan, Shard};
+use crate::sweep::summary::Summary;
+
+/// Cells of every kind from the id alone (no eigenvalues: cheap enough
+/// for several row groups): labels with commas, quotes, line breaks and
+/// empty text, NaN (with a payload), -0, infinities, booleans; the class
+/// is one of a few values.
+struct Synthetic;
+
+impl Evaluate for Synthetic {
+    fn evaluate(
+        &self,
+        _plan: &Plan,
+        c: &Configuration,
+        _scheme: &dyn crate::scheme::Scheme,
+    ) -> crate::Result<Vec<Cell>> {
+        let id = c.id;
+        if id % 997 == 13 {
+            return Err(crate::Error::InvalidParameter {
+                name: "test",
+                value: format!("id {id}"),
+                reason: "a failure with a comma, \"quotes\"\nand a line break",
+            });
+        }
+        let class = [
+            "standard",
+            "real_distinct",
+            "complex_pair",
+            "a,b",
+            "q\"uote",
+            "x\ny",
+            "",
+        ];
+        let num = |k: u64| match (id + k) % 11 {
+            0 => Cell::Empty,
+            1 => Cell::Num(f64::from_bits(0x7ff8_0000_0000_0abc)),
+            2 => Cell::Num(-0.0),
+            3 => Cell::Num(f64::INFINITY),
+            4 => Cell::Num(f64::NEG_INFINITY),
+            5 => Cell::Num(1e-300 * (id as f64)),
+            _ => Cell::Num((id as f64 + k as f64).sqrt() / 7.0),
+        };
+        let mut v = vec![Cell::Text(class[(id % 7) as usize].to_owned())];
+        v.extend((0..10).map(num));
+        v.push(Cell::Text(
+            ["undecided", "standard"][(id % 2) as usize].to_owned(),
+        ));
+        v.push(match id % 3 {
+            0 => Cell::Text("true".into()),
+            1 => Cell::Text("false".into()),
+            _ => Cell::Empty,
+        });
+        Ok(v)
+    }
+}
+
+/// A Parquet file in memory, the rows after each commit, the summary.
+type Written = (Vec<u8>, Vec<u64>, Summary);
+
+/// The Parquet file of `run_parquet` (the typed path) and of `run`'s CSV
+/// lines fed to `ParquetRows` as text (the path merge uses), with their
+/// summaries and commits.
+fn both_paths<E: Evaluate>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    ids: &[u64],
+    threads: usize,
+) -> (Written, Written) {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    let file = |typed: bool| {
+        let mut bytes = MAGIC.to_vec();
+        let mut commits = Vec::new();
+        let mut summary = Summary::new(plan, layout, Shard::ALL, None);
+        let commit = |c: Commit<'_>| {
+            bytes.truncate(c.offset as usize);
+            bytes.extend_from_slice(c.group);
+            bytes.extend_from_slice(c.footer);
+            commits.push(c.rows);
+            Ok(())
+        };
+        let fp = super::fingerprint_line(plan, Shard::ALL);
+        let mut rows = ParquetRows::new(layout, &fp, Vec::new(), 4, commit).unwrap();
+        pool.install(|| {
+            if typed {
+                run_parquet(
+                    plan,
+                    layout,
+                    eval,
+                    ids.iter().copied(),
+                    &mut rows,
+                    &mut summary,
+                    &mut |_| {},
+                    &std::sync::atomic::AtomicU64::new(0),
+                )
+            } else {
+                run(
+                    plan,
+                    layout,
+                    eval,
+                    ids.iter().copied(),
+                    &mut rows,
+                    &mut summary,
+                    &mut |_| {},
+                )
+            }
+        })
+        .unwrap();
+        rows.finish().unwrap();
+        (bytes, commits, summary)
+    };
+    (file(true), file(false))
+}
+
+/// The typed path writes the bytes the CSV-text path writes (values,
+/// nulls, labels, booleans, errors, row groups and footers), with the
+/// same summary, for any thread count; across several row groups.
+#[test]
+fn typed_parquet_path_equals_the_csv_text_path() {
+    let spec = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = 140000\n[columns]\nexact_certificate = true\n";
+    let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+    let layout = Layout::new(&plan);
+    // Rows of a resumed run start mid-sweep; an out-of-range id is an error row.
+    let ids: Vec<u64> = (5..plan.total()).chain([plan.total() + 3]).collect();
+    for threads in [1, 3] {
+        let (typed, text) = both_paths(&plan, &layout, &Synthetic, &ids, threads);
+        assert_eq!(typed.1, text.1, "commits");
+        assert_eq!(typed.1.len(), 3);
+        assert!(typed.0 == text.0, "the two paths' bytes differ");
+        assert_eq!(typed.2, text.2);
+        let t = read_table(typed.0).unwrap();
+        assert_eq!(t.rows(), ids.len());
+        // Line breaks are spaces in both forms; NaN reads back as NaN.
+        assert!(t.csv_lines(0, 20).contains("x y"));
+    }
+    // The built-in evaluator, and error rows of a faulty one.
+    let small = "scheme = \"nurds\"\nvalences = [3, 5]\n[space]\nkind = \"corner-intervals\"\ninterval_range = [0.001, 1000.0]\n[sampler]\nkind = \"random\"\ncount = 300\nseed = 5\n[columns]\neigenvalues = 4\nexact_certificate = true\n";
+    let plan = Plan::new(crate::sweep::SweepSpec::from_toml(small).unwrap());
+    let layout = Layout::new(&plan);
+    let ids: Vec<u64> = (0..plan.total()).collect();
+    let eval = SpectralEvaluator::new(plan.spec().columns);
+    let (typed, text) = both_paths(&plan, &layout, &eval, &ids, 2);
+    assert!(typed.0 == text.0);
+    assert_eq!(typed.2, text.2);
+    let (typed, text) = both_paths(&plan, &layout, &Faulty(eval), &ids, 2);
+    assert!(typed.0 == text.0);
+    assert_eq!(typed.2, text.2);
+}
+
+/// A cell that does not fit its column is refused by both paths; the
+/// typed path names the configuration, the column and the value.
+#[test]
+fn typed_parquet_path_refuses_a_cell_of_the_wrong_kind() {
+    struct TextInFloat;
+    impl Evaluate for TextInFloat {
+        fn evaluate(
+            &self,
+            _plan: &Plan,
+            c: &Configuration,
+            _scheme: &dyn crate::scheme::Scheme,
+        ) -> crate::Result<Vec<Cell>> {
+            let mut v = vec![Cell::Text("standard".into())];
+            v.extend((0..5).map(|_| Cell::Num(0.5)));
+            v[2] = if c.id == 4 {
+                Cell::Text("oops".into())
+            } else {
+                Cell::Text("0.25".into())
+            };
+            Ok(v)
+        }
+    }
+    let spec = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n[columns]\ngap = false\ncontraction = false\n";
+    let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+    let layout = Layout::new(&plan);
+    // Ids 0..4: a number as text in a float column reads as the number.
+    let ids: Vec<u64> = (0..4).collect();
+    let (typed, text) = both_paths(&plan, &layout, &TextInFloat, &ids, 1);
+    assert!(typed.0 == text.0);
+    let t = read_table(typed.0).unwrap();
+    assert_eq!(
+        t.column("lambda1_im"),
+        Some(&Column::F64(vec![Some(0.25); 4]))
+    );
+    // Id 4: "oops" is not a number.
+    let mut rows = ParquetRows::new(&layout, "fp", Vec::new(), 4, |_: Commit<'_>| Ok(())).unwrap();
+    let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+    let e = run_parquet(
+        &plan,
+        &layout,
+        &TextInFloat,
+        0..8u64,
+        &mut rows,
+        &mut summary,
+        &mut |_| {},
+        &std::sync::atomic::AtomicU64::new(0),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("configuration 4") && e.contains("lambda1_im") && e.contains("\"oops\""),
+        "{e}"
+    );
+    let mut out = ParquetRows::new(&layout, "fp", Vec::new(), 4, |_: Commit<'_>| Ok(())).unwrap();
+    let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+    assert!(run(
+        &plan,
+        &layout,
+        &TextInFloat,
+        0..8u64,
+        &mut out,
+        &mut summary,
+        &mut |_| {}
+    )
+    .is_err());
+}
