@@ -97,7 +97,8 @@ pub struct FigureRecord {
     pub svg: Option<String>,
     /// PNG file, if the figure has a picture.
     pub png: Option<String>,
-    /// CSV files.
+    /// CSV files. A table whose bytes equal an earlier figure's CSV is not
+    /// written again: its entry names the earlier file.
     pub csv: Vec<String>,
     /// Wall-clock seconds of the analyses.
     pub compute_seconds: f64,
@@ -355,9 +356,32 @@ pub fn generate_with(
     let mut files = Vec::new();
     let mut records = Vec::new();
     let mut fragments = Vec::new();
+    // A CSV with the same bytes as an earlier figure's (figures that show
+    // other columns of one computation, such as the knot maps coloured by
+    // class, modulus ratio and angle) is written once: the later figure's
+    // record names the earlier file.
+    let mut csv_names: std::collections::HashMap<Vec<u8>, String> = Default::default();
     for part in parts {
-        let part = part?;
-        files.extend(part.files);
+        let mut part = part?;
+        for f in part.files {
+            if !f.path.ends_with(".csv") {
+                files.push(f);
+                continue;
+            }
+            match csv_names.get(&f.bytes) {
+                Some(first) => {
+                    for name in &mut part.record.csv {
+                        if *name == f.path {
+                            name.clone_from(first);
+                        }
+                    }
+                }
+                None => {
+                    csv_names.insert(f.bytes.clone(), f.path.clone());
+                    files.push(f);
+                }
+            }
+        }
         records.push(part.record);
         fragments.push(part.fragment);
     }
