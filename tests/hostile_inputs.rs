@@ -1126,6 +1126,65 @@ fn cases() -> Vec<Case> {
             stdout: Stdout::Pipe,
         },
     ]);
+    // The audit of issue 16 item 2: sweep and merge never overwrite a file
+    // they did not write (the summary beside --out, the spec, an input
+    // shard's summary, an existing --out), and a missing --out directory is
+    // bad input (exit 2), not a failure while running.
+    v.extend([
+        bad_with(
+            "sweep-summary-path-holds-a-user-file",
+            &["sweep", "{A}/sweep-n3-grid.toml", "--out", "u.csv", "--limit", "3"],
+            &[("u.summary.json", "mine")],
+            "u.summary.json exists",
+        ),
+        bad_with(
+            "sweep-summary-path-is-the-spec",
+            &["sweep", "s.summary.json", "--out", "s.csv", "--limit", "3"],
+            &[("s.summary.json", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n")],
+            "is also the spec s.summary.json",
+        ),
+        bad(
+            "sweep-out-directory-missing",
+            &["sweep", "{A}/sweep-n3-grid.toml", "--out", "nodir/x.csv"],
+            "directory nodir does not exist",
+        ),
+        bad_with(
+            "sweep-out-is-a-directory",
+            &["sweep", "{A}/sweep-n3-grid.toml", "--out", "d"],
+            &[("d/keep.txt", "mine")],
+            "--out d is a directory",
+        ),
+        bad_with(
+            "merge-out-is-an-input-summary",
+            &["merge", "--spec", "h.toml", "--out", "a.summary.json", "a.csv"],
+            &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"), ("a.csv", "x"), ("a.summary.json", "y")],
+            "--out a.summary.json exists",
+        ),
+        bad_with(
+            "merge-out-is-an-existing-user-file",
+            &["merge", "--spec", "h.toml", "--out", "q.txt", "a.csv"],
+            &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"), ("a.csv", "x"), ("a.summary.json", "y"), ("q.txt", "mine")],
+            "--out q.txt exists",
+        ),
+        bad_with(
+            "merge-summary-of-out-exists",
+            &["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
+            &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"), ("a.csv", "x"), ("a.summary.json", "y"), ("m.summary.json", "mine")],
+            "m.summary.json exists",
+        ),
+        bad_with(
+            "merge-summary-of-out-is-the-spec",
+            &["merge", "--spec", "h.summary.json", "--out", "h.csv", "a.csv"],
+            &[("h.summary.json", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"), ("a.csv", "x"), ("a.summary.json", "y")],
+            "is also the spec h.summary.json",
+        ),
+        bad_with(
+            "merge-missing-input-is-named",
+            &["merge", "--spec", "h.toml", "--out", "m3.csv", "m.csv"],
+            &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n")],
+            "m.summary.json",
+        ),
+    ]);
     // (end of section sweep-resume-merge)
     //
     //
@@ -1832,7 +1891,30 @@ fn cases() -> Vec<Case> {
                 "0.5",
             ],
         ),
-    ]);
+            // Degenerate 2-rings (all points on one point, or on one line) are
+        // bad input naming the vertex (they used to fail as a NaN residual,
+        // exit 1).
+        bad_with(
+            "g2cap-ring-on-one-point",
+            &["g2-cap", "pt.obj", "--vertex", "0", "--c", "0.5"],
+            &[("pt.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 9 21 12\nf 3 10 21 9\nf 4 11 21 10\nf 2 12 21 11\nf 5 13 22 16\nf 6 14 22 13\nf 8 15 22 14\nf 7 16 22 15\nf 1 12 23 18\nf 2 17 23 12\nf 6 13 23 17\nf 5 18 23 13\nf 3 19 24 10\nf 7 15 24 19\nf 8 20 24 15\nf 4 10 24 20\nf 1 18 25 9\nf 5 16 25 18\nf 7 19 25 16\nf 3 9 25 19\nf 2 11 26 17\nf 4 20 26 11\nf 8 14 26 20\nf 6 17 26 14\n")],
+            "the 2-ring of vertex 0 (OBJ 1) is degenerate",
+        ),
+        bad_with(
+            "g2cap-ring-on-one-line",
+            &["g2-cap", "line.obj", "--vertex", "0", "--c", "0.5"],
+            &[("line.obj", "v -0.5555555555555556 0 0\nv 0.5555555555555556 0 0\nv -0.5555555555555556 0 0\nv 0.5555555555555556 0 0\nv -0.5555555555555556 0 0\nv 0.5555555555555556 0 0\nv -0.5555555555555556 0 0\nv 0.5555555555555556 0 0\nv -0.75 0 0\nv 0.0 0 0\nv 0.75 0 0\nv 0.0 0 0\nv 0.0 0 0\nv 0.75 0 0\nv 0.0 0 0\nv -0.75 0 0\nv 0.75 0 0\nv -0.75 0 0\nv -0.75 0 0\nv 0.75 0 0\nv 0.0 0 0\nv 0.0 0 0\nv 0.0 0 0\nv 0.0 0 0\nv -1.0 0 0\nv 1.0 0 0\nf 1 9 21 12\nf 3 10 21 9\nf 4 11 21 10\nf 2 12 21 11\nf 5 13 22 16\nf 6 14 22 13\nf 8 15 22 14\nf 7 16 22 15\nf 1 12 23 18\nf 2 17 23 12\nf 6 13 23 17\nf 5 18 23 13\nf 3 19 24 10\nf 7 15 24 19\nf 8 20 24 15\nf 4 10 24 20\nf 1 18 25 9\nf 5 16 25 18\nf 7 19 25 16\nf 3 9 25 19\nf 2 11 26 17\nf 4 20 26 11\nf 8 14 26 20\nf 6 17 26 14\n")],
+            "the 2-ring of vertex 0 (OBJ 1) is degenerate",
+        ),
+        // ccss-bound: a tolerance below what f64 resolves for the net is bad
+        // input naming it (it used to run 200 steps and fail as an LP, exit 1).
+        bad_with(
+            "ccss-bound-epsilon-below-resolution",
+            &["ccss-bound", "--valence", "5", "--net", "net.txt", "--epsilon", "1e-300"],
+            &[("net.txt", "0 0 0\n1 2 1\n2 4 0\n0 1 1\n1 3 0\n2 0 1\n0 2 0\n1 4 1\n2 1 0\n0 3 1\n1 0 0\n2 2 1\n0 4 0\n1 1 1\n2 3 0\n0 0 1\n1 2 0\n2 4 1\n")],
+            "epsilon = 1e-300 is below what f64 resolves",
+        ),
+]);
     // (end of section g2-cap)
 
     let _ = full; // used by the cli-io section

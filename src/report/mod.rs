@@ -122,6 +122,12 @@ pub struct Manifest {
     /// `manifest.json` included): what a later run replacing this report
     /// may remove, and nothing else.
     pub files: Vec<String>,
+    /// The FNV-1a 64 digest ([`crate::hash::fnv1a64`], 16 hex digits) of
+    /// every file but `manifest.json`: a later run replaces or removes a
+    /// listed file only if it still has these bytes, so a file the user
+    /// edited, or put under a listed name, or added to an edited list, is
+    /// never lost.
+    pub digests: std::collections::BTreeMap<String, String>,
     /// Report name.
     pub name: String,
     /// Base seed.
@@ -132,6 +138,13 @@ pub struct Manifest {
     pub figures: Vec<FigureRecord>,
     /// Wall-clock seconds of the whole generation.
     pub total_seconds: f64,
+}
+
+/// The digest of a report file recorded in [`Manifest::digests`]: FNV-1a 64
+/// of its bytes as 16 lower-case hex digits (a guard against accidents, not
+/// against an adversary).
+pub fn file_digest(bytes: &[u8]) -> String {
+    format!("{:016x}", crate::hash::fnv1a64(bytes))
 }
 
 /// A generated report, in memory.
@@ -352,12 +365,36 @@ pub fn generate_with(
         .par_iter()
         .map(|entry| figure_part(entry, progress, options))
         .collect::<Vec<_>>();
-    let mut files = Vec::new();
+    let mut files: Vec<OutputFile> = Vec::new();
     let mut records = Vec::new();
     let mut fragments = Vec::new();
+    // (digest, index in `files`) of every CSV written so far.
+    let mut csv_seen: Vec<(u64, usize)> = Vec::new();
     for part in parts {
-        let part = part?;
-        files.extend(part.files);
+        let mut part = part?;
+        for f in part.files {
+            // A data file with the bytes of an earlier figure's (the knot
+            // maps of one grid, coloured by class, modulus ratio and angle,
+            // share one table) is written once: the later figure's record
+            // names the earlier file.
+            if f.path.ends_with(".csv") {
+                let h = crate::hash::fnv1a64(&f.bytes);
+                let same = csv_seen
+                    .iter()
+                    .find(|&&(g, k)| g == h && files[k].bytes == f.bytes)
+                    .map(|&(_, k)| files[k].path.clone());
+                if let Some(first) = same {
+                    for c in &mut part.record.csv {
+                        if *c == f.path {
+                            c.clone_from(&first);
+                        }
+                    }
+                    continue;
+                }
+                csv_seen.push((h, files.len()));
+            }
+            files.push(f);
+        }
         records.push(part.record);
         fragments.push(part.fragment);
     }
@@ -375,6 +412,7 @@ pub fn generate_with(
             .map(|f| f.path.clone())
             .chain(["index.html".to_owned(), "manifest.json".to_owned()])
             .collect(),
+        digests: std::collections::BTreeMap::new(),
         name: spec.name.clone(),
         seed: spec.seed,
         spec: spec.source.clone(),
@@ -385,6 +423,11 @@ pub fn generate_with(
         path: "index.html".into(),
         bytes: html::index(spec, &manifest, &fragments).into_bytes(),
     });
+    let mut manifest = manifest;
+    manifest.digests = files
+        .iter()
+        .map(|f| (f.path.clone(), file_digest(&f.bytes)))
+        .collect();
     let json = serde_json::to_vec_pretty(&manifest).map_err(|e| ReportError::Render {
         figure: String::new(),
         message: format!("manifest: {e}"),

@@ -254,11 +254,16 @@ impl Table {
         Table::new(t.names.clone(), columns)
     }
 
-    /// Reads `bytes` as Parquet when `name` ends in `.parquet`, as CSV
+    /// Reads `bytes` as Parquet when `name` ends in `.parquet` or the bytes
+    /// begin and end with the Parquet magic `PAR1` (a Parquet file under
+    /// another name, e.g. `sweep --format parquet --out x.csv`), as CSV
     /// otherwise ([`from_parquet`](Self::from_parquet),
     /// [`from_csv`](Self::from_csv)).
     pub fn from_named_bytes(name: &str, bytes: &[u8]) -> Result<Self, TableError> {
-        if name.ends_with(".parquet") {
+        let magic = b"PAR1";
+        let parquet_bytes =
+            bytes.len() >= 2 * magic.len() && bytes.starts_with(magic) && bytes.ends_with(magic);
+        if name.ends_with(".parquet") || parquet_bytes {
             Table::from_parquet(bytes.to_vec())
         } else {
             Table::from_csv(bytes)

@@ -26,7 +26,8 @@ use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
-    draw_err, legend_rows, legend_rows_height, titled, viridis, LegendGlyph, Marker, Theme,
+    draw_err, legend_rows, legend_rows_height, log_tick, titled, viridis, LegendGlyph, Marker,
+    Theme,
 };
 use plotters::coord::combinators::IntoLogRange;
 use plotters::prelude::*;
@@ -262,15 +263,5 @@ impl FigureOutput for Output {
         }
         legend_rows(&legend_area.margin(th.legend / 2, 0, 0, 0), &entries, &th)?;
         Ok(())
-    }
-}
-
-/// A tick label of the log axis: the power of ten (`1e-5`), or the decimal
-/// form from 0.01 on (`0.1`, `1`).
-fn log_tick(y: f64) -> String {
-    if y >= 0.01 {
-        crate::report::plot::tick((y * 1e6).round() / 1e6)
-    } else {
-        format!("{y:.0e}")
     }
 }
