@@ -92,6 +92,15 @@ const fn full(name: &'static str, args: &'static [&'static str]) -> Case {
     }
 }
 
+/// A valid one-shard sweep of the spec [`MERGE_SPEC`] (rows, and the summary
+/// beside them), for merge rows whose refusal must come before a merge that
+/// would otherwise succeed.
+const MERGE_SPEC: &str = "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n";
+/// The rows of [`MERGE_SPEC`]'s single shard.
+const MERGE_A_CSV: &str = "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n";
+/// The summary of [`MERGE_A_CSV`].
+const MERGE_A_SUMMARY: &str = "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe5\",\"total_configurations\":8,\"shard\":{\"index\":0,\"count\":1},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}";
+
 fn cases() -> Vec<Case> {
     let mut v = Vec::new();
 
@@ -1157,31 +1166,31 @@ fn cases() -> Vec<Case> {
         bad_with(
             "merge-out-is-an-input-summary",
             &["merge", "--spec", "h.toml", "--out", "a.summary.json", "a.csv"],
-            &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"), ("a.csv", "x"), ("a.summary.json", "y")],
+            &[("h.toml", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY)],
             "--out a.summary.json exists",
         ),
         bad_with(
             "merge-out-is-an-existing-user-file",
             &["merge", "--spec", "h.toml", "--out", "q.txt", "a.csv"],
-            &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"), ("a.csv", "x"), ("a.summary.json", "y"), ("q.txt", "mine")],
+            &[("h.toml", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY), ("q.txt", "mine")],
             "--out q.txt exists",
         ),
         bad_with(
             "merge-summary-of-out-exists",
             &["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
-            &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"), ("a.csv", "x"), ("a.summary.json", "y"), ("m.summary.json", "mine")],
+            &[("h.toml", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY), ("m.summary.json", "mine")],
             "m.summary.json exists",
         ),
         bad_with(
             "merge-summary-of-out-is-the-spec",
             &["merge", "--spec", "h.summary.json", "--out", "h.csv", "a.csv"],
-            &[("h.summary.json", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"), ("a.csv", "x"), ("a.summary.json", "y")],
+            &[("h.summary.json", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY)],
             "is also the spec h.summary.json",
         ),
         bad_with(
             "merge-missing-input-is-named",
             &["merge", "--spec", "h.toml", "--out", "m3.csv", "m.csv"],
-            &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n")],
+            &[("h.toml", MERGE_SPEC)],
             "m.summary.json",
         ),
     ]);
