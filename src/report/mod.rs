@@ -122,7 +122,7 @@ pub struct Manifest {
     /// `manifest.json` included): what a later run replacing this report
     /// may remove, and nothing else.
     pub files: Vec<String>,
-    /// The FNV-1a 64 digest ([`crate::hash::fnv1a64`], 16 hex digits) of
+    /// The FNV-1a 64 digest ([`file_digest`], 16 hex digits) of
     /// every file but `manifest.json`: a later run replaces or removes a
     /// listed file only if it still has these bytes, so a file the user
     /// edited, or put under a listed name, or added to an edited list, is
@@ -141,8 +141,12 @@ pub struct Manifest {
 }
 
 /// The digest of a report file recorded in [`Manifest::digests`]: FNV-1a 64
-/// of its bytes as 16 lower-case hex digits (a guard against accidents, not
-/// against an adversary).
+/// of its bytes (the crate's one FNV-1a) as 16 lower-case hex digits (a
+/// guard against accidents, not against an adversary).
+///
+/// ```
+/// assert_eq!(subdiv_lab::report::file_digest(b""), "cbf29ce484222325");
+/// ```
 pub fn file_digest(bytes: &[u8]) -> String {
     format!("{:016x}", crate::hash::fnv1a64(bytes))
 }

@@ -69,9 +69,9 @@ impl Scheme for LoopScheme {
     }
 
     /// The exact two-ring matrix at `n` in {3, 4, 6}, where every weight is
-    /// a multiple of `1/256` ([`EXACT_DENOMINATOR`]): the `f64` matrix with
-    /// every entry rounded to that grid (each checked within
-    /// [`EXACT_ROUNDING_CHECK`]; rows then sum to 1 exactly). `None` at other
+    /// a multiple of `1/256` (`EXACT_DENOMINATOR` of this module): the `f64`
+    /// matrix with every entry rounded to that grid (each checked within
+    /// `EXACT_ROUNDING_CHECK`; rows then sum to 1 exactly). `None` at other
     /// valences (irrational weights). This lets the curvature verdict certify
     /// `mu = lambda^2` exactly at `n` = 4 and 6 (math doc section 13).
     fn exact_local_matrix(&self) -> Option<Result<LocalMatrix<Rational>>> {
