@@ -1141,6 +1141,12 @@ fn cases() -> Vec<Case> {
     // bad input (exit 2), not a failure while running.
     v.extend([
         bad_with(
+            "sweep-exact-certificate-doo-sabin-irrational-valence",
+            &["sweep", "d.toml", "--limit", "2"],
+            &[("d.toml", "name = \"d\"\nscheme = \"doo-sabin\"\nvalences = [3, 5]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\nexact_certificate = true\n")],
+            "irrational at valence 5",
+        ),
+        bad_with(
             "sweep-summary-path-holds-a-user-file",
             &["sweep", "{A}/sweep-n3-grid.toml", "--out", "u.csv", "--limit", "3"],
             &[("u.summary.json", "mine")],
@@ -1967,6 +1973,20 @@ fn cases() -> Vec<Case> {
             &["report", "s.toml", "--out", "r"],
             &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature-tuning\"\nvalence = [2, 5]\n")],
             "valence range must satisfy 3 <= lo <= hi <= 64, got [2, 5]",
+        ),
+        // Report figures whose largest settings ran for hours without a
+        // word (issue 16 item 5): refused at parse time with the estimate.
+        bad_with(
+            "report-cc-c1-interval-heavy",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"cc-c1-interval\"\nvalence = [3, 64]\nsamples = 1000\ntol = 1e-12\n")],
+            "figure[0].samples: the C1 and standard intervals of 62 valences up to 64 with 1000 samples",
+        ),
+        bad_with(
+            "report-subdominant-vs-valence-heavy",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"subdominant-vs-valence\"\nvalence = [3, 256]\nsamples = 1000\n")],
+            "figure[0].samples: 254254 classifications of up to 256 x 256 face blocks take",
         ),
         bad_with(
             "sweep-columns-curvature-not-bool",
