@@ -1234,6 +1234,26 @@ fn cases() -> Vec<Case> {
             &[("s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
             "no column \"colour\"",
         ),
+        // Values near the f64 limit: the axis range overflowed and the tick
+        // search looped for ever (a hang); now refused naming the column.
+        bad_with(
+            "plot-x-beyond-plot-range",
+            &["plot", "h.csv", "-o", "f.svg", "--kind", "histogram", "--x", "a"],
+            &[("h.csv", "a,b\n1e308,2\n-1e308,4\n")],
+            "column \"a\" has the value 1e308, beyond",
+        ),
+        bad_with(
+            "plot-y-beyond-plot-range",
+            &["plot", "h.csv", "-o", "f.svg", "--kind", "scatter", "--x", "b", "--y", "a"],
+            &[("h.csv", "a,b\n1e308,2\n-1e308,4\n")],
+            "column \"a\" has the value 1e308, beyond",
+        ),
+        bad_with(
+            "plot-color-beyond-plot-range",
+            &["plot", "h.csv", "-o", "f.svg", "--kind", "scatter", "--x", "b", "--y", "b", "--color", "a"],
+            &[("h.csv", "a,b\n1.5e308,2\n-1e308,4\n2.5,3\n")],
+            "column \"a\" has the value 1.5e308, beyond",
+        ),
         bad_with(
             "plot-empty-file",
             &["plot", "e.csv", "-o", "f.svg"],
@@ -1987,6 +2007,12 @@ fn cases() -> Vec<Case> {
             &["report", "s.toml", "--out", "r"],
             &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"subdominant-vs-valence\"\nvalence = [3, 256]\nsamples = 1000\n")],
             "figure[0].samples: 254254 classifications of up to 256 x 256 face blocks take",
+        ),
+        bad_with(
+            "report-table-heavy-configurations",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme = \"nurds\", valence = 256, random_knots = 4.0 }, { scheme = \"nurds\", valence = 256, random_knots = 4.0 }]\n")],
+            "figure[0].configs: analysing these 2 configurations (valences up to 256) takes",
         ),
         bad_with(
             "sweep-columns-curvature-not-bool",

@@ -93,6 +93,17 @@ pub enum TableError {
     /// A numeric column has no finite value to plot.
     #[error("column {0:?} has no finite values")]
     NoFiniteValues(String),
+    /// A numeric column with a value too large to plot (the axis arithmetic
+    /// would overflow f64).
+    #[error("column {name:?} has the value {value:e}, beyond the {max:e} a plot axis can span (its range and ticks would overflow f64); rescale the column")]
+    TooLargeToPlot {
+        /// Column name.
+        name: String,
+        /// The offending value.
+        value: f64,
+        /// The largest accepted magnitude.
+        max: f64,
+    },
     /// A column has too many distinct values for the plot kind.
     #[error("column {name:?} has {count} distinct values, more than the {max} a {kind} plot accepts; {hint}")]
     TooManyValues {
