@@ -100,6 +100,12 @@ pub enum G2CapError {
         /// Its index in [`TwoRing::points`].
         index: usize,
     },
+    /// The 2-ring's points lie on one point or one line (no tangent plane).
+    #[error("the 2-ring{} is degenerate: its points lie on one point or one line", degenerate_at(.vertex))]
+    Degenerate {
+        /// The centre vertex, when the ring comes from a mesh.
+        vertex: Option<usize>,
+    },
     /// The shape parameter outside `[0, 1]`.
     #[error("shape parameter c = {c} is outside [0, 1]")]
     ShapeParameter {
@@ -183,6 +189,26 @@ pub enum G2CapError {
     },
 }
 
+fn degenerate_at(vertex: &Option<usize>) -> String {
+    vertex.map_or_else(String::new, |v| format!(" of vertex {v} (OBJ {})", v + 1))
+}
+
+/// Rings whose largest coordinate magnitude `m` has `|log2 m|` above this are
+/// built on a copy scaled by a power of two (exact: every step of the
+/// construction is homogeneous in the points, and binary scaling commutes
+/// with rounding) and scaled back: the curvature evaluation squares lengths
+/// twice (`|N|^2 ~ L^4`), which overflows near `L = 1e77` and underflows near
+/// `L = 1e-77`. Within `2^-64 ..= 2^64` nothing is scaled, so ordinary inputs
+/// take the unscaled path bit for bit.
+pub const NORMALIZE_EXPONENT: i32 = 64;
+
+/// `x 2^k` for `|k|` up to about 2000, in two exact steps (each factor is a
+/// normal power of two).
+fn scale_pow2(x: f64, k: i32) -> f64 {
+    let h = k / 2;
+    x * 2f64.powi(h) * 2f64.powi(k - h)
+}
+
 impl G2CapError {
     /// Whether the error is about the input (the CLI's exit 2) rather than a
     /// failure of the construction (exit 1).
@@ -251,6 +277,38 @@ impl G2Cap {
         if !(0.0..=1.0).contains(&c) {
             return Err(G2CapError::ShapeParameter { c });
         }
+        let m = ring
+            .points()
+            .iter()
+            .flat_map(|p| p.iter())
+            .fold(0.0f64, |a, x| a.max(x.abs()));
+        let e = if m > 0.0 { m.log2().floor() as i32 } else { 0 };
+        if e.abs() > NORMALIZE_EXPONENT {
+            let unit = ring.map(|p| p.map(|x| scale_pow2(x, -e)));
+            return Ok(G2Cap::build_unscaled(&unit, c, solver)?.rescaled(ring, e));
+        }
+        G2Cap::build_unscaled(ring, c, solver)
+    }
+
+    /// The cap of a ring scaled by `2^-k`, scaled back by `2^k` to be the cap
+    /// of `ring` (the residuals are relative, so unchanged).
+    fn rescaled(mut self, ring: &TwoRing, k: i32) -> G2Cap {
+        for net in &mut self.nets {
+            for row in net.iter_mut() {
+                for p in row.iter_mut() {
+                    *p = p.map(|x| scale_pow2(x, k));
+                }
+            }
+        }
+        self.energy = scale_pow2(self.energy, 2 * k);
+        self.scale = scale_pow2(self.scale, k);
+        self.curvature_scale = scale_pow2(self.curvature_scale, -k);
+        self.refined = RefinedRing::new(ring, self.c);
+        self
+    }
+
+    /// [`G2Cap::build_with`] without the scaling of extreme coordinates.
+    fn build_unscaled(ring: &TwoRing, c: f64, solver: Solver) -> Result<G2Cap, G2CapError> {
         let n = ring.valence();
         let refined = RefinedRing::new(ring, c);
         let (fixed, corner_mismatch) = solve::fixed_nets(&refined, n);

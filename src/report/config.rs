@@ -232,6 +232,40 @@ pub fn resolve_all(
         .collect()
 }
 
+/// Refuses (naming `configs`) a figure whose configurations together would
+/// take longer than [`crate::budget::TIME_LIMIT_SECONDS`] to analyse: the
+/// sum of the `analyze` estimates ([`crate::budget::analyze`], full path) of
+/// every configuration. A table of a few NURDS faces of valence 256 (about
+/// 30 s each) ran for minutes without a word (issue 16 item 5).
+pub fn check_analysis_budget(
+    fs: &FigureSpec<'_>,
+    specs: &Spanned<Vec<ConfigSpec>>,
+    configs: &[Configuration],
+) -> Result<(), ReportError> {
+    let seconds: f64 = configs
+        .iter()
+        .map(|c| crate::budget::analyze(c.scheme.kind(), c.scheme.valence(), false).seconds)
+        .sum();
+    if seconds > crate::budget::TIME_LIMIT_SECONDS {
+        let largest = configs
+            .iter()
+            .map(|c| c.scheme.valence())
+            .max()
+            .unwrap_or(0);
+        return Err(fs.error_at(
+            specs,
+            "configs",
+            format!(
+                "analysing these {} configurations (valences up to {largest}) takes ~{} (limit {} s); use fewer or smaller configurations",
+                configs.len(),
+                crate::budget::format_seconds(seconds),
+                crate::budget::TIME_LIMIT_SECONDS
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Rejects configurations outside the Doo-Sabin family for figures built on
 /// its notions (face contraction, the 9n-point characteristic ring); the
 /// error names `configs[i].scheme` and its line.

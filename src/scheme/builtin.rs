@@ -51,6 +51,10 @@ impl Scheme for LocalScheme<f64> {
                 })
                 .collect::<Result<Vec<_>>>()
                 .and_then(|v| Ok(LocalScheme::nurds(crate::knots::EdgeRatios::new(v)?))),
+            // Original Doo-Sabin is rational where cos(2 pi / n) is (n = 3, 4, 6).
+            LocalScheme::DooSabin { valence } if matches!(valence, 3 | 4 | 6) => {
+                LocalScheme::doo_sabin(*valence)
+            }
             LocalScheme::CcVariant { valence } => LocalScheme::cc_variant(*valence),
             LocalScheme::CatmullClark { valence } => LocalScheme::catmull_clark(*valence),
             LocalScheme::AdjustableCc { valence, c } => match f64_to_rational(*c) {
