@@ -52,8 +52,11 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     }
     let resolved = args.scheme.resolve(args.exact)?;
     let n = resolved.scheme.valence();
-    let estimate =
-        subdiv_lab::budget::analyze(resolved.kind, n, matches!(args.path, Path::Structured));
+    let estimate = subdiv_lab::budget::analyze(
+        &resolved.scheme.cost_model(),
+        n,
+        matches!(args.path, Path::Structured),
+    );
     super::budget::check(
         "analyze",
         &format!("valence {n}"),
@@ -62,19 +65,10 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         args.force,
     )?;
     if let Some(exact) = &resolved.exact {
-        let ratio_bits = match exact {
-            subdiv_lab::schemes::LocalScheme::Nurds(r) => r
-                .as_slice()
-                .iter()
-                .map(|x| x.numer().bits() + x.denom().bits())
-                .max()
-                .unwrap_or(0),
-            _ => 0,
-        };
         super::budget::check(
             "analyze --exact",
             &format!("valence {n}"),
-            &subdiv_lab::budget::analyze_exact(n, ratio_bits),
+            &subdiv_lab::budget::analyze_exact(n, exact.parameter_bits()),
             subdiv_lab::budget::TIME_LIMIT_SECONDS,
             args.force,
         )?;

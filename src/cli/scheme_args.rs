@@ -7,7 +7,7 @@ use clap::Args;
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
 use subdiv_lab::scalar::{parse_exact, Rational, Scalar};
 use subdiv_lab::scheme::choice::{validate, Choice, ChoiceError};
-use subdiv_lab::schemes::{LocalScheme, SchemeKind};
+use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::Scheme;
 
 /// Scheme selection flags.
@@ -35,8 +35,6 @@ pub(crate) struct SchemeArgs {
 
 /// The validated configuration, in f64 and (when requested and possible) exactly.
 pub(crate) struct Resolved {
-    /// The scheme's kind (for the work estimates).
-    pub kind: SchemeKind,
     /// The shape parameter `c`, if given (`f64` value).
     pub c: Option<f64>,
     /// The configuration, through the scheme abstraction.
@@ -267,7 +265,6 @@ impl SchemeArgs {
             None
         };
         Ok(Resolved {
-            kind,
             c: cf,
             scheme,
             exact,

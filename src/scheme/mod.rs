@@ -21,6 +21,7 @@
 //! | [`face_contraction`](Scheme::face_contraction) | none: no Theorem 1 section | `analyze`, sweeps' `contraction` |
 //! | [`characteristic_map`](Scheme::characteristic_map) | none: `no_charmap` | sweeps' `charmap`, reports |
 //! | [`fourier_spectrum`](Scheme::fourier_spectrum) | none: the curvature's `mu_mode` is `null` | `analyze`'s `curvature` |
+//! | [`cost_model`](Scheme::cost_model) | [`CostModel::dense`] at the local matrix's size | the work estimates of [`crate::budget`] |
 //!
 //! The built-in families implement it: [`LocalScheme`](crate::schemes::LocalScheme)
 //! (NURDS, Doo-Sabin, the Catmull-Clark variant, Catmull-Clark and the
@@ -63,6 +64,7 @@
 //! assert!((r.eigenvalues[0][0] - 1.0).abs() < 1e-12);
 //! ```
 
+use crate::budget::CostModel;
 use crate::charmap::figure::RingPlot;
 use crate::charmap::report::{AnyPatchId, CharmapReport};
 use crate::contraction::{Certificate, MeasureOptions, Measured};
@@ -208,6 +210,19 @@ pub trait Scheme: fmt::Debug + Send + Sync {
     /// math doc sections 6, 11 and 13).
     fn fourier_spectrum(&self) -> Option<Result<FourierSpectrum>> {
         None
+    }
+
+    /// The work model of the heavy steps ([`crate::budget`]: the local
+    /// matrix's dimension as a function of the valence and the constants of
+    /// its analysis), so that a front end can estimate and refuse work before
+    /// it starts. Default: [`CostModel::dense`] with the dimension of
+    /// [`local_matrix`](Self::local_matrix) at this valence (which builds the
+    /// matrix once: a scheme whose matrix is itself large at the valences
+    /// users ask for should override it, as the built-in schemes do).
+    fn cost_model(&self) -> CostModel {
+        let n = self.valence().max(1);
+        let d = self.local_matrix().map_or(0, |m| m.rows().len());
+        CostModel::dense(d as f64 / n as f64, 0.0)
     }
 
     /// The characteristic-map check with the plot data of the ring and

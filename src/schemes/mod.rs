@@ -30,7 +30,7 @@ pub use assembly::{Assembler, LocalMatrix, PointLabel, Role, ROW_SUM_TOL};
 
 use crate::error::{Error, Result};
 use crate::knots::{face_weights, EdgeRatios};
-use crate::scalar::Scalar;
+use crate::scalar::{Rational, Scalar};
 use nalgebra::DMatrix;
 use std::fmt;
 use std::str::FromStr;
@@ -351,6 +351,55 @@ impl<T: Scalar> LocalScheme<T> {
                 catmull_clark::one_ring_named(self.kind().name(), *valence, c)
             }
             _ => doo_sabin::assemble(self.kind().name(), &self.face_block()?, &self.ratios()),
+        }
+    }
+}
+
+impl LocalScheme<Rational> {
+    /// The most bits a knot parameter needs: numerator plus denominator of
+    /// the largest NURDS edge ratio (0 for the schemes without knot
+    /// intervals), which sizes the exact path's work estimate
+    /// ([`crate::budget::analyze_exact`]).
+    pub fn parameter_bits(&self) -> u64 {
+        match self {
+            LocalScheme::Nurds(r) => r
+                .as_slice()
+                .iter()
+                .map(|x| x.numer().bits() + x.denom().bits())
+                .max()
+                .unwrap_or(0),
+            _ => 0,
+        }
+    }
+}
+
+impl LocalScheme<f64> {
+    /// The legend label reports generate for this configuration: NURDS with
+    /// its knots (`NURDS n=3, r=(0.300, 0.600, 0.500)` up to `n = 6`,
+    /// `NURDS n=8, non-uniform` beyond, `NURDS n=5, uniform`), the adjustable
+    /// scheme with its `c`, the others by name and valence. A non-empty
+    /// `suffix` (how random knots were drawn, `", random knots <= 4"`)
+    /// replaces the description of non-uniform knots.
+    ///
+    /// ```
+    /// use subdiv_lab::knots::EdgeRatios;
+    /// use subdiv_lab::schemes::LocalScheme;
+    /// let s = LocalScheme::nurds(EdgeRatios::new(vec![0.3, 0.6, 0.5]).unwrap());
+    /// assert_eq!(s.legend_label(""), "NURDS n=3, r=(0.300, 0.600, 0.500)");
+    /// assert_eq!(LocalScheme::<f64>::doo_sabin(5).unwrap().legend_label(""), "doo-sabin n=5");
+    /// ```
+    pub fn legend_label(&self, suffix: &str) -> String {
+        let n = self.valence();
+        match self {
+            LocalScheme::Nurds(r) if r.is_uniform() => format!("NURDS n={n}, uniform"),
+            LocalScheme::Nurds(r) if suffix.is_empty() && n <= 6 => {
+                let parts: Vec<String> = r.as_slice().iter().map(|x| format!("{x:.3}")).collect();
+                format!("NURDS n={n}, r=({})", parts.join(", "))
+            }
+            LocalScheme::Nurds(_) if suffix.is_empty() => format!("NURDS n={n}, non-uniform"),
+            LocalScheme::Nurds(_) => format!("NURDS n={n}{suffix}"),
+            LocalScheme::AdjustableCc { c, .. } => format!("adjustable-cc n={n}, c={c}"),
+            other => format!("{} n={n}", other.kind()),
         }
     }
 }
