@@ -29,6 +29,32 @@
 //! A scheme defined outside the crate implements it the same way; see the
 //! tutorial in `examples/own_scheme.rs` and the doctest below.
 //!
+//! Names become implementations in one place, [`registry`] (configurations,
+//! mesh rules, cost models); the validation of a scheme choice is [`choice`].
+//! The front ends (`analyze`, `matrix`, `sweep`, `report`, `subdivide`, the
+//! testing kit) dispatch there once and then only ask for capabilities.
+//! Code that *is* one family's implementation lives in that family's modules,
+//! and is reached only through the trait or the registry:
+//!
+//! * the Doo-Sabin family: [`crate::schemes::doo_sabin`]; its mesh
+//!   refinement and limit points [`crate::mesh::refine`] and
+//!   [`crate::mesh::limit`] (behind [`crate::mesh::rules::FaceSplit`]; the
+//!   [`SchemeKind`](crate::schemes::SchemeKind) they take selects the member
+//!   of the family, other schemes are refused); Theorem 1,
+//!   [`crate::contraction`] (behind [`Scheme::face_contraction`]); the
+//!   `9n`-point ring of [`crate::charmap`] (behind
+//!   [`Scheme::characteristic_map`]); the exact face-block verdicts of
+//!   [`crate::spectral::exact`] (`analyze --exact`, the sweeps'
+//!   `exact_certificate`);
+//! * the Catmull-Clark family: [`crate::schemes::catmull_clark`],
+//!   [`crate::mesh::catmull_clark`], [`crate::charmap::catmull_clark`];
+//! * Loop: [`crate::schemes::loop_subdivision`] (all of it).
+//!
+//! Studies of one particular scheme build the configurations they study
+//! directly: [`crate::cc_study`], `curvature::tuning` and the `c` intervals
+//! of [`crate::verify`] (the adjustable Catmull-Clark scheme), the ratio
+//! boxes of `verify` (NURDS), [`crate::ccss_bound`] (Catmull-Clark).
+//!
 //! ```
 //! use subdiv_lab::schemes::{Assembler, LocalMatrix, PointLabel, Role};
 //! use subdiv_lab::Scheme;

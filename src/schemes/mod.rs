@@ -66,6 +66,29 @@ impl SchemeKind {
         SchemeKind::Loop,
     ];
 
+    /// Every known scheme's name, in [`SchemeKind::ALL`] order, joined by
+    /// `sep` except the last two, which are joined by `last` when given
+    /// (`names_or` for help texts: `"nurds, ..., adjustable-cc or loop"`).
+    ///
+    /// ```
+    /// use subdiv_lab::schemes::SchemeKind;
+    /// assert!(SchemeKind::names(", ").starts_with("nurds, doo-sabin, "));
+    /// assert!(SchemeKind::names_or().ends_with(" or loop"));
+    /// ```
+    pub fn names(sep: &str) -> String {
+        let names: Vec<&str> = SchemeKind::ALL.iter().map(|k| k.name()).collect();
+        names.join(sep)
+    }
+
+    /// Every known scheme's name, `"a, b, ... or z"` (help texts).
+    pub fn names_or() -> String {
+        let names: Vec<&str> = SchemeKind::ALL.iter().map(|k| k.name()).collect();
+        match names.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+            _ => names.join(", "),
+        }
+    }
+
     /// The scheme's command-line name.
     pub fn name(self) -> &'static str {
         match self {
@@ -117,7 +140,7 @@ impl fmt::Display for SchemeKind {
 
 /// Error for an unknown scheme name.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown scheme {0:?} (known: nurds, doo-sabin, cc-variant, catmull-clark, adjustable-cc, loop)")]
+#[error("unknown scheme {name:?} (known: {known})", name = .0, known = SchemeKind::names(", "))]
 pub struct UnknownScheme(pub String);
 
 impl FromStr for SchemeKind {
