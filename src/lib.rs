@@ -48,7 +48,7 @@ pub mod ccss_bound;
 pub mod charmap;
 pub mod contraction;
 pub mod curvature;
-pub mod error;
+pub(crate) mod error;
 pub mod g2cap;
 pub(crate) mod hash;
 pub mod knots;
