@@ -10,7 +10,7 @@
 //!    the shape-adjustable Catmull-Clark rules with parameter `c`, after
 //!    which the hole is the `n` refined quads at the vertex and the cells
 //!    around it are bicubic B-spline patches (math doc section 14.2).
-//! 2. [`solve`]: patch `i` lies between spokes `i` and `i + 1`, `P_i(0,0)` is
+//! 2. `solve`: patch `i` lies between spokes `i` and `i + 1`, `P_i(0,0)` is
 //!    the centre and `P_i(0, t) = P_(i+1)(t, 0)`. Across each internal edge
 //!    the patches meet G2 under the transition map
 //!
@@ -24,9 +24,9 @@
 //!    B-spline cells continued into the cap: a C2 join in the natural
 //!    parametrisation. The remaining `25 n` points minimise a discrete
 //!    thin-plate energy subject to the conditions (math doc sections
-//!    14.3-14.5), solved by [`dft`] (the paper's discrete Fourier transform
-//!    over the patch index) and checked against the dense [`solve`].
-//! 3. [`residual`]: jumps of the normal and of `K` and `H` across the
+//!    14.3-14.5), solved by `dft` (the paper's discrete Fourier transform
+//!    over the patch index) and checked against the dense `solve`.
+//! 3. `residual`: jumps of the normal and of `K` and `H` across the
 //!    internal edges and the outer boundary, sampled densely; above
 //!    [`RESIDUAL_TOL`] the cap is refused ([`G2Cap::check`]).
 //!
@@ -42,15 +42,17 @@
 // Index loops mirror the subscripts of the formulas in the math doc.
 #![allow(clippy::needless_range_loop)]
 
-pub mod bernstein;
-pub mod dft;
+pub(crate) mod bernstein;
+pub(crate) mod dft;
 pub mod plain;
-pub mod residual;
+pub(crate) mod residual;
 pub mod ring;
-pub mod solve;
+pub(crate) mod solve;
 
-use bernstein::{eval_net, Net, DEGREE};
-use residual::Jumps;
+pub use bernstein::{Net, DEGREE};
+pub use residual::Jumps;
+
+use bernstein::eval_net;
 use ring::{Point, RefinedRing, TwoRing};
 
 /// Largest accepted residual (internal G1 and G2, outer boundary): the jump
@@ -227,10 +229,10 @@ impl G2CapError {
 pub enum Solver {
     /// The paper's route: a discrete Fourier transform over the patch index
     /// makes the block-circulant system block diagonal, `n` small complex
-    /// solves ([`dft::solve_dft`]).
+    /// solves (`dft::solve_dft`).
     #[default]
     Dft,
-    /// One SVD of the whole constraint matrix ([`solve::solve`]), kept as
+    /// One SVD of the whole constraint matrix (`solve::solve`), kept as
     /// the independent check.
     Dense,
 }
@@ -441,7 +443,7 @@ impl G2Cap {
     }
 
     /// Gaussian and mean curvature `(K, H)` of patch `i` at `(u, v)`, the
-    /// normal `P_u x P_v / |P_u x P_v|` ([`residual::shape`]); `None` where
+    /// normal `P_u x P_v / |P_u x P_v|` (`residual::shape`); `None` where
     /// the tangents are parallel.
     pub fn curvature_at(&self, i: usize, u: f64, v: f64) -> Option<(f64, f64)> {
         let d = [

@@ -21,7 +21,7 @@ use crate::rng::{log_uniform, SplitMix64};
 use crate::scheme::choice::{validate, Choice, ChoiceError};
 use crate::scheme::registry::Builtin;
 use crate::scheme::SpectralStructure;
-use crate::schemes::{LocalScheme, SchemeKind};
+use crate::schemes::SchemeKind;
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -55,12 +55,6 @@ pub struct Configuration {
     pub label: String,
     /// The configuration (a [`Scheme`](crate::Scheme) through `Deref`).
     pub scheme: Builtin,
-}
-
-/// Short text of a ratio list for labels.
-pub fn ratios_text(r: &EdgeRatios<f64>) -> String {
-    let parts: Vec<String> = r.as_slice().iter().map(|x| format!("{x:.3}")).collect();
-    format!("({})", parts.join(", "))
 }
 
 impl ConfigSpec {
@@ -188,22 +182,10 @@ impl ConfigSpec {
     }
 }
 
-/// The generated legend label of a configuration.
+/// The generated legend label of a configuration
+/// ([`Builtin::legend_label`]).
 pub fn default_label(scheme: &Builtin, suffix: &str) -> String {
-    let Some(scheme) = scheme.as_local() else {
-        return scheme.label();
-    };
-    let n = scheme.valence();
-    match scheme {
-        LocalScheme::Nurds(r) if r.is_uniform() => format!("NURDS n={n}, uniform"),
-        LocalScheme::Nurds(r) if suffix.is_empty() && n <= 6 => {
-            format!("NURDS n={n}, r={}", ratios_text(r))
-        }
-        LocalScheme::Nurds(_) if suffix.is_empty() => format!("NURDS n={n}, non-uniform"),
-        LocalScheme::Nurds(_) => format!("NURDS n={n}{suffix}"),
-        LocalScheme::AdjustableCc { c, .. } => format!("adjustable-cc n={n}, c={c}"),
-        other => format!("{} n={n}", other.kind()),
-    }
+    scheme.legend_label(suffix)
 }
 
 /// Validates the `configs` list of a figure: between 1 and `max` entries (a

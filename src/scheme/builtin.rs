@@ -7,6 +7,7 @@
 //! family: the analysis engine only sees the capabilities.
 
 use super::{FaceContraction, Scheme, SpectralStructure};
+use crate::budget::CostModel;
 use crate::charmap::{
     self,
     figure::RingPlot,
@@ -148,6 +149,18 @@ impl Scheme for LocalScheme<f64> {
             charmap::catmull_clark::check_classified(self.valence(), c, subdominant, certificate)
                 .map(|r| r.map_patches(AnyPatchId::CatmullClark)),
         )
+    }
+
+    /// [`doo_sabin::COST_MODEL`] or [`catmull_clark::COST_MODEL`].
+    fn cost_model(&self) -> CostModel {
+        match self {
+            LocalScheme::Nurds(_)
+            | LocalScheme::DooSabin { .. }
+            | LocalScheme::CcVariant { .. } => doo_sabin::COST_MODEL,
+            LocalScheme::CatmullClark { .. } | LocalScheme::AdjustableCc { .. } => {
+                catmull_clark::COST_MODEL
+            }
+        }
     }
 
     fn characteristic_plot(

@@ -3,6 +3,7 @@
 //! module behind the scheme abstraction (math doc sections 11 and 12).
 
 use super::{charmap, fourier, limit_weights, matrix, validate};
+use crate::budget::CostModel;
 use crate::charmap::report::{AnyPatchId, CharmapReport};
 use crate::error::Result;
 use crate::scalar::Rational;
@@ -131,6 +132,11 @@ impl Scheme for LoopScheme {
                 .map(|l| fourier::block_eigenvalues(self.n, l).map(|e| (l, e)))
                 .collect(),
         )
+    }
+
+    /// [`super::COST_MODEL`].
+    fn cost_model(&self) -> CostModel {
+        super::COST_MODEL
     }
 
     /// The certified ring of [`charmap::check`] when the classification is
