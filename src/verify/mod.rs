@@ -25,6 +25,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod cc;
+pub mod charmap;
 pub mod decide;
 pub mod enclose;
 pub mod interval;
@@ -128,8 +129,6 @@ pub struct Outcome {
 /// `undecided` without driving the refinement).
 fn attempted(region: &Region, p: Property) -> bool {
     match (region, p) {
-        // not implemented over cells yet (math doc section 15)
-        (_, Property::Charmap) => false,
         (Region::Shape { .. }, Property::Theorem1) => false,
         _ => true,
     }
@@ -170,6 +169,26 @@ fn evaluate(
         }
         _ => (Status::Undecided, None, None),
     };
+    // the characteristic map over the cell (math doc section 15), only when requested
+    let (charmap, charmap_scores) = if spec.properties.contains(&Property::Charmap) {
+        let ct = match tamper {
+            Tamper::DropSubspaceVariation => charmap::CellTamper::DropSubspaceVariation,
+            _ => charmap::CellTamper::None,
+        };
+        charmap::cell_status(&spec.region, class, lo, hi, ct)
+    } else {
+        (Status::Undecided, None)
+    };
+    // once the spectral part is decided, the open charmap drives the split
+    let scores = if charmap == Status::Undecided
+        && class.is_some()
+        && separation != Status::Undecided
+        && charmap_scores.is_some()
+    {
+        charmap_scores
+    } else {
+        scores
+    };
     let status = spec
         .properties
         .iter()
@@ -189,7 +208,7 @@ fn evaluate(
                     Region::Ratios { .. } | Region::Corners { .. } => Status::Certified,
                     Region::Shape { .. } => Status::Undecided,
                 },
-                Property::Charmap => Status::Undecided,
+                Property::Charmap => charmap,
             };
             (p, s)
         })
