@@ -845,3 +845,117 @@ pub fn certified(lo: &[f64], hi: &[f64], tamper: CellTamper) -> (bool, Option<Ve
     };
     (ok, scores)
 }
+
+impl RatioRing {
+    /// The ring at one ratio vector `r` of the cell, in floating point, in
+    /// the normalisation `Q [I; P(r)]` of this enclosure (for the soundness
+    /// tests): `(||P(r)||_F, the 9n ring points)`. The pair's eigenvectors of
+    /// `W(r)` (the two largest moduli other than `3/4`) give `P` by
+    /// `[Z_1; Z_2] = Q^{-1} B`, `P = Z_2 Z_1^{-1}`; the restriction is
+    /// `N = T11 + T12 P` of `Q^{-1} W(r) Q`; the lift is
+    /// [`crate::charmap::basis::lift_subspace`] and the ring
+    /// [`crate::charmap::ring::ring_points`].
+    pub fn pointwise(&self, r: &[f64]) -> crate::error::Result<(f64, Vec<[f64; 2]>)> {
+        use crate::charmap::extended::ExtendedMatrix;
+        use crate::error::Error;
+        use crate::knots::EdgeRatios;
+        use crate::schemes::LocalScheme;
+        let n = r.len();
+        let bad = |reason: &str| Error::Numerical {
+            routine: "pointwise ring in the cell normalisation",
+            reason: reason.to_owned(),
+        };
+        if n != self.q.nrows() {
+            return Err(bad("valence differs from the enclosure's"));
+        }
+        let (c0, terms) = w_terms(n);
+        let mut w = DMatrix::zeros(n, n);
+        for &(i, j, v) in &c0 {
+            w[(i, j)] += v;
+        }
+        for (k, t) in terms.iter().enumerate() {
+            for &(i, j, v) in t {
+                w[(i, j)] += v * r[k];
+            }
+        }
+        let eig = Eigen::new(
+            &w,
+            EigenOptions {
+                right: true,
+                left: false,
+            },
+        )
+        .map_err(|e| bad(&e.to_string()))?;
+        let vals = eig.values();
+        let vecs = eig.right().ok_or_else(|| bad("no eigenvectors"))?;
+        let k34 = (0..n)
+            .min_by(|&a, &b| (vals[a] - 0.75).norm().total_cmp(&(vals[b] - 0.75).norm()))
+            .ok_or_else(|| bad("empty spectrum"))?;
+        let order: Vec<usize> = (0..n).filter(|&k| k != k34).collect();
+        let (a, b) = (order[0], order[1]);
+        let real = |k: usize| -> Vec<f64> {
+            let big = (0..n)
+                .map(|i| vecs[(i, k)])
+                .max_by(|x, y| x.norm().total_cmp(&y.norm()))
+                .unwrap_or(Complex64::new(1.0, 0.0));
+            let ph = big.conj() / big.norm();
+            (0..n).map(|i| (vecs[(i, k)] * ph).re).collect()
+        };
+        let bmat = if vals[a].im.abs() > REAL_TOL * vals[a].norm().max(1.0) {
+            DMatrix::from_fn(n, 2, |i, j| {
+                if j == 0 {
+                    vecs[(i, a)].re
+                } else {
+                    vecs[(i, a)].im
+                }
+            })
+        } else {
+            let (va, vb) = (real(a), real(b));
+            DMatrix::from_fn(n, 2, |i, j| if j == 0 { va[i] } else { vb[i] })
+        };
+        let qinv = self
+            .q
+            .clone()
+            .try_inverse()
+            .ok_or_else(|| bad("Q is singular"))?;
+        let z = &qinv * &bmat;
+        let z1 = z
+            .rows(0, 2)
+            .into_owned()
+            .try_inverse()
+            .ok_or_else(|| bad("the pair is not a graph over Q's first two columns"))?;
+        let p = z.rows(2, n - 2).into_owned() * z1;
+        let mut ip = DMatrix::zeros(n, 2);
+        ip[(0, 0)] = 1.0;
+        ip[(1, 1)] = 1.0;
+        ip.rows_mut(2, n - 2).copy_from(&p);
+        let basis = &self.q * ip;
+        let t = &qinv * &w * &self.q;
+        let nmat = t.view((0, 0), (2, 2)).into_owned() + t.view((0, 2), (2, n - 2)) * &p;
+        let scheme = LocalScheme::nurds(EdgeRatios::new(r.to_vec())?);
+        let sn = scheme.matrix()?.into_matrix();
+        let wa: Vec<[f64; 2]> = (0..n).map(|i| [basis[(i, 0)], basis[(i, 1)]]).collect();
+        let m = [[nmat[(0, 0)], nmat[(0, 1)]], [nmat[(1, 0)], nmat[(1, 1)]]];
+        let full = crate::charmap::basis::lift_subspace(&sn, &wa, m)?;
+        let w1: Vec<f64> = full.iter().map(|x| x[0]).collect();
+        let w2: Vec<f64> = full.iter().map(|x| x[1]).collect();
+        let ext = ExtendedMatrix::new(&scheme)?;
+        Ok((p.norm(), crate::charmap::ring::ring_points(&ext, &w1, &w2)?))
+    }
+
+    /// How many coordinates of the pointwise ring `pts` lie outside the
+    /// enclosure by more than `tol (1 + |x|)`, plus one if `p_norm` exceeds
+    /// `rho` by more than the same tolerance.
+    pub fn misses(&self, p_norm: f64, pts: &[[f64; 2]], tol: f64) -> usize {
+        let mut bad = usize::from(p_norm > self.rho + tol * (1.0 + self.rho));
+        for (p, e) in pts.iter().zip(&self.points) {
+            for k in 0..2 {
+                let t = tol * (1.0 + p[k].abs());
+                if !(e[k].lo - t <= p[k] && p[k] <= e[k].hi + t) {
+                    bad += 1;
+                }
+            }
+        }
+        bad + self.points.len().abs_diff(pts.len())
+    }
+}

@@ -436,3 +436,48 @@ pub fn certified(n: usize, lo: f64, hi: f64, tamper: CellTamper) -> bool {
     };
     outer_winding(&ring, &wt, n, sigma) == Some(1)
 }
+
+/// The sector-0 windows at one `c`, in floating point, in the normalisation
+/// of [`shape_ring`] (for the soundness tests: they must lie in the
+/// enclosure of every cell containing `c`): the patch eigenvector of
+/// [`crate::schemes::catmull_clark::fourier::mode_patch_eigenvectors`]
+/// (mode 1) under the extended matrix.
+pub fn pointwise_windows(n: usize, c: f64) -> crate::error::Result<[[[[f64; 2]; 4]; 4]; 3]> {
+    use crate::schemes::catmull_clark::{extended_matrix, fourier};
+    let (_, [xc, xs]) = fourier::mode_patch_eigenvectors(n, c, 1)?;
+    let ext = extended_matrix::<f64>(n, &c)?.into_matrix();
+    let lay = PatchLayout::new(n)?;
+    let pt = |i: usize| -> [f64; 2] {
+        let row = ext.row(i);
+        [
+            row.iter().zip(xc.iter()).map(|(a, b)| a * b).sum(),
+            row.iter().zip(xs.iter()).map(|(a, b)| a * b).sum(),
+        ]
+    };
+    Ok(std::array::from_fn(|m| {
+        let idx = lay.sub_patch(SubPatch::ALL[m]);
+        std::array::from_fn(|a| std::array::from_fn(|b| pt(idx[a][b])))
+    }))
+}
+
+impl ShapeRing {
+    /// How many window coordinates of `w` lie outside the enclosure by more
+    /// than `tol (1 + |x|)` (the pointwise computation's own rounding).
+    pub fn misses(&self, w: &[[[[f64; 2]; 4]; 4]; 3], tol: f64) -> usize {
+        let mut bad = 0;
+        for m in 0..3 {
+            for a in 0..4 {
+                for b in 0..4 {
+                    for k in 0..2 {
+                        let (x, iv) = (w[m][a][b][k], self.windows[m][a][b][k]);
+                        let t = tol * (1.0 + x.abs());
+                        if !(iv.lo - t <= x && x <= iv.hi + t) {
+                            bad += 1;
+                        }
+                    }
+                }
+            }
+        }
+        bad
+    }
+}
