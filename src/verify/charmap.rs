@@ -26,6 +26,9 @@
 //! anywhere in the cell), and otherwise `undecided` when a test fails: the
 //! cell is then split like any open cell.
 
+// Index loops over small fixed-size matrices read more clearly than iterator chains here.
+#![allow(clippy::needless_range_loop)]
+
 pub mod af;
 pub mod ivla;
 pub mod ratios;

@@ -6,7 +6,8 @@
 //! every parameter in it ([`enclose`] for NURDS: the closed 2 x 2 form for
 //! `n = 3, 4`, Gershgorin discs in the eigenvector basis above; [`cc`] for the `c` path), in
 //! interval arithmetic with outward rounding ([`interval`]); [`decide`] turns
-//! the enclosure into verdicts. A cell whose requested properties are not all
+//! the enclosure into verdicts; [`charmap`] proves the characteristic map
+//! regular and injective over the cell. A cell whose requested properties are not all
 //! decided is bisected across its widest side, down to `min_width`; what is
 //! still open there is `undecided`. Bisection points are floats strictly
 //! inside their cells, so the cells tile the box exactly.
@@ -128,10 +129,7 @@ pub struct Outcome {
 /// Whether a property can be attempted for this region (the others stay
 /// `undecided` without driving the refinement).
 fn attempted(region: &Region, p: Property) -> bool {
-    match (region, p) {
-        (Region::Shape { .. }, Property::Theorem1) => false,
-        _ => true,
-    }
+    !matches!((region, p), (Region::Shape { .. }, Property::Theorem1))
 }
 
 /// A cell's class (when proven), the status of each requested property and,

@@ -284,14 +284,11 @@ mod tests {
             }
         }
         // an interval system: every matrix of the family and every rhs
-        let ai: Vec<Iv> = a.iter().map(|_| Iv::point(0.0)).collect::<Vec<_>>();
-        let ai: Vec<Iv> = ai
-            .iter()
-            .enumerate()
-            .map(|(t, _)| Iv::point(a[(t / 3, t % 3)]).widen(1e-3))
+        let ai: Vec<Iv> = (0..9)
+            .map(|t| Iv::point(a[(t / 3, t % 3)]).widen(1e-3))
             .collect();
         let b = vec![Iv::new(1.0, 1.01), Iv::point(-2.0), Iv::new(0.5, 0.6)];
-        let sol = solve(&ai, &[b.clone()], 3).unwrap();
+        let sol = solve(&ai, &[b], 3).unwrap();
         for k in 0..50 {
             let t = k as f64 / 49.0;
             let am = DMatrix::from_fn(3, 3, |i, j| {

@@ -94,8 +94,11 @@ pub struct RatioRing {
     pub half_width: Vec<f64>,
 }
 
-/// `W(r) = W_0 + sum_k r_k W_k` as sparse terms `(row, col, value)`.
-fn w_terms(n: usize) -> (Vec<(usize, usize, f64)>, Vec<Vec<(usize, usize, f64)>>) {
+/// Sparse matrix entries `(row, col, value)`.
+type Sparse = Vec<(usize, usize, f64)>;
+
+/// `W(r) = W_0 + sum_k r_k W_k` as sparse terms: `(W_0, [W_k])`.
+fn w_terms(n: usize) -> (Sparse, Vec<Sparse>) {
     let mut c0 = Vec::new();
     let mut terms = vec![Vec::new(); n];
     for i in 0..n {

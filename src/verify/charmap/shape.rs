@@ -267,19 +267,13 @@ impl Diffs {
             }
         }
         let mut du = t1;
-        for i in 0..3 {
-            let r = wt.refine4(t1[i]);
-            for j in 0..4 {
-                du[i][j] = r[j + sv];
-            }
+        for (d, t) in du.iter_mut().zip(&t1) {
+            d.copy_from_slice(&wt.refine4(*t)[sv..sv + 4]);
         }
         // dv: derived rule along t, the rule along s
         let mut t2 = [[self.dv[0][0]; 3]; 4];
-        for i in 0..4 {
-            let r = wt.refine_diff3(self.dv[i]);
-            for j in 0..3 {
-                t2[i][j] = r[j + sv];
-            }
+        for (t, d) in t2.iter_mut().zip(&self.dv) {
+            t.copy_from_slice(&wt.refine_diff3(*d)[sv..sv + 3]);
         }
         let mut dv = t2;
         for j in 0..3 {
