@@ -420,6 +420,56 @@ pub fn verify(
     }
 }
 
+/// Additional seconds per evaluated cell of `verify` on a NURDS box when the
+/// `charmap` property is requested, per `n^3` (the centre eigen-decomposition
+/// of `W`, the verified inverse and Stewart's bound, `n` interval Sylvester
+/// solves and `3n` Jacobian nets in affine forms with `3n - 4` symbols).
+/// Measured: the `n = 3` target (`benches/specs/verify-charmap-n3.toml`)
+/// took 198 s of CPU for 1 178 991 evaluated cells at load 12, about 170
+/// microseconds per cell, most of them with a charmap evaluation; single cells
+/// took 0.5 ms (`n = 3`), 0.9 ms (`n = 4`), 1.4 ms (`n = 5`) of wall time at
+/// that load. `1.2e-5 n^3` (0.32 ms at `n = 3`, 1.5 ms at `n = 5`) is an
+/// upper estimate for a run in which every cell gets a charmap evaluation.
+pub const VERIFY_CHARMAP_SECONDS_PER_CELL_N3: f64 = 1.2e-5;
+
+/// Additional seconds per evaluated cell of `verify` on an interval of `c`
+/// when `charmap` is requested, per `n` (one 7 x 7 interval solve, the cone
+/// test on three cells, `4n` boundary curves). Measured: 0.01-0.02 s of CPU
+/// for 100-300 evaluated cells at `n = 3..16`.
+pub const VERIFY_CHARMAP_SECONDS_PER_CELL_N_CC: f64 = 1.0e-5;
+
+/// [`verify`] with the `charmap` property requested: the same bound on the
+/// memory, the time per cell raised by [`VERIFY_CHARMAP_SECONDS_PER_CELL_N3`]
+/// `n^3` (NURDS) or [`VERIFY_CHARMAP_SECONDS_PER_CELL_N_CC`] `n` (the `c`
+/// path).
+///
+/// ```
+/// let plain = subdiv_lab::budget::verify(3, true, 1_000_000, None, 2);
+/// let cm = subdiv_lab::budget::verify_charmap(3, true, 1_000_000, None, 2);
+/// assert!(cm.seconds > plain.seconds && cm.bytes == plain.bytes);
+/// ```
+pub fn verify_charmap(
+    n: usize,
+    nurds: bool,
+    max_cells: u64,
+    time_budget: Option<f64>,
+    threads: usize,
+) -> Estimate {
+    let mut e = verify(n, nurds, max_cells, None, threads);
+    let nf = n as f64;
+    let extra = if nurds {
+        VERIFY_CHARMAP_SECONDS_PER_CELL_N3 * nf.powi(3)
+    } else {
+        VERIFY_CHARMAP_SECONDS_PER_CELL_N_CC * nf
+    };
+    e.seconds += max_cells as f64 * extra / threads.max(1) as f64;
+    if let Some(t) = time_budget {
+        e.seconds = e.seconds.min(2.0 * t);
+    }
+    e.what = format!("{} (with the charmap property)", e.what);
+    e
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

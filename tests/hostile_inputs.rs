@@ -1582,6 +1582,14 @@ fn cases() -> Vec<Case> {
             "--force",
         ),
         bad_with(
+            // the charmap property's own cost estimate (budget::verify_charmap):
+            // the same spec without charmap is within the limits
+            "verify-charmap-over-budget",
+            &["verify", "v.toml", "--out", "o", "--threads", "1"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 5\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\", \"charmap\"]\n")],
+            "--force",
+        ),
+        bad_with(
             "verify-out-is-file",
             &["verify", "v.toml", "--out", "o"],
             &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n"), ("o", "x")],
