@@ -226,7 +226,10 @@ pub fn check_analysis_budget(
 ) -> Result<(), ReportError> {
     let seconds: f64 = configs
         .iter()
-        .map(|c| crate::budget::analyze(c.scheme.kind(), c.scheme.valence(), false).seconds)
+        .map(|c| {
+            let model = crate::scheme::registry::cost_model(c.scheme.kind());
+            crate::budget::analyze(&model, c.scheme.valence(), false).seconds
+        })
         .sum();
     if seconds > crate::budget::TIME_LIMIT_SECONDS {
         let largest = configs
