@@ -7,4 +7,5 @@
 pub use crate::spectral::curvature::*;
 
 pub mod measured;
+pub mod measured_scheme;
 pub mod tuning;
