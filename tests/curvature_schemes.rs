@@ -205,3 +205,82 @@ fn bad_levels_are_refused() {
         );
     }
 }
+
+#[test]
+fn the_curvature_figure_draws_any_scheme() {
+    use subdiv_lab::report::figures::NoProgress;
+    use subdiv_lab::report::{generate, ReportSpec, RunInfo};
+    let spec = ReportSpec::parse(
+        r#"
+name = "c"
+seed = 2
+[[figure]]
+kind = "curvature"
+id = "loop"
+width = 600
+height = 400
+scheme = "loop"
+valences = [3, 8]
+levels = 24
+[[figure]]
+kind = "curvature"
+id = "nurds"
+width = 600
+height = 400
+scheme = "nurds"
+knots = [[1, 2], [2, 1], [1, 1]]
+levels = 24
+"#,
+    )
+    .unwrap();
+    let r = generate(&spec, &RunInfo::default(), &NoProgress).unwrap();
+    let file = |name: &str| {
+        r.files
+            .iter()
+            .find(|f| f.path == name)
+            .unwrap_or_else(|| panic!("{name}"))
+            .bytes
+            .clone()
+    };
+    let rows = |name: &str| -> Vec<Vec<String>> {
+        let bytes = file(name);
+        let mut rd = csv::Reader::from_reader(&bytes[..]);
+        let h: Vec<String> = rd.headers().unwrap().iter().map(str::to_owned).collect();
+        assert_eq!(h[1], "scheme", "{name}: the scheme column replaces c");
+        rd.records()
+            .map(|x| x.unwrap().iter().map(str::to_owned).collect())
+            .collect()
+    };
+    let loop_rows = rows("loop.csv");
+    assert_eq!(loop_rows.len(), 2 * 25);
+    for (n, block) in [(3usize, &loop_rows[..25]), (8, &loop_rows[25..])] {
+        let lambda = 0.375 + 0.25 * (2.0 * PI / n as f64).cos();
+        let mu = if n == 3 {
+            0.125
+        } else {
+            0.375 + 0.25 * (4.0 * PI / 8.0).cos()
+        };
+        let pred: f64 = block[0][9].parse().unwrap();
+        assert!((pred - mu / (lambda * lambda)).abs() < 1e-10, "n={n}");
+        assert_eq!(block[0][1], format!("Loop n={n}"));
+        let max = |k: usize| block[k][7].parse::<f64>().unwrap();
+        let rate = max(24) / max(23);
+        assert!(
+            (rate - pred).abs() < RATE_TOL * pred,
+            "n={n}: {rate} vs {pred}"
+        );
+    }
+    // Knot intervals [p, q] per corner become edge ratios (a split pair).
+    let s = LocalScheme::nurds(
+        subdiv_lab::knots::CornerIntervals::new(vec![1.0, 2.0, 1.0], vec![2.0, 1.0, 1.0])
+            .unwrap()
+            .ratios()
+            .unwrap(),
+    );
+    let m = measure_scheme(&s, 24, 0).unwrap();
+    let nurds_rows = rows("nurds.csv");
+    assert_eq!(nurds_rows.len(), 25);
+    let pred: f64 = nurds_rows[0][9].parse().unwrap();
+    assert!((pred - m.predicted_rate).abs() < 1e-12 * pred);
+    assert!(!file("loop.svg").is_empty() && !file("nurds.svg").is_empty());
+}
