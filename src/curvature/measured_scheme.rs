@@ -13,7 +13,7 @@
 //!    `lambda`, the left eigenspace of `lambda` and the left eigenvector
 //!    `l_0` of 1 (normalised to sum 1) are the null spaces of `S - lambda I`,
 //!    `(S - lambda I)^T` and `(S - I)^T`, from the Jacobi SVD
-//!    ([`crate::spectral::svd::jacobi_svd`]).
+//!    (`spectral::svd::jacobi_svd`, math doc section 10).
 //! 2. The initial net: point `i` sits in the plane at `(x_i, y_i)`, the two
 //!    right subdominant eigenvectors whitened (their `2 x 2` second-moment
 //!    matrix over the points made the identity, so a rotationally symmetric
@@ -259,7 +259,7 @@ fn null_space(a: &DMatrix<f64>, dim: usize, what: &str) -> Result<Vec<Vec<f64>>>
     let scale = sv.first().copied().unwrap_or(0.0).max(1.0);
     let small = sv[d - dim..].iter().fold(0.0f64, |m, &x| m.max(x));
     let next = if d > dim { sv[d - dim - 1] } else { scale };
-    if !(small <= NULL_SPACE_RATIO * next) {
+    if small.is_nan() || small > NULL_SPACE_RATIO * next {
         return Err(Error::Numerical {
             routine: "measured curvature",
             reason: format!(
@@ -273,7 +273,7 @@ fn null_space(a: &DMatrix<f64>, dim: usize, what: &str) -> Result<Vec<Vec<f64>>>
 }
 
 /// How far the `dim` smallest singular values of `S - lambda I` must lie below
-/// the next one for [`null_space`] to accept them as an eigenspace: the
+/// the next one for the null-space step to accept them as an eigenspace: the
 /// standard class already certified the eigenspace's dimension; this guards
 /// only against an eigenvalue so ill-conditioned that its vectors are
 /// meaningless (the null singular values are at the rounding level, `1e-16`
@@ -281,10 +281,24 @@ fn null_space(a: &DMatrix<f64>, dim: usize, what: &str) -> Result<Vec<Vec<f64>>>
 /// configuration the figures take).
 pub const NULL_SPACE_RATIO: f64 = 1e-6;
 
+/// Smallest `|sum|` relative to the Euclidean norm that the left eigenvector
+/// of 1 may have: for an affine-invariant scheme it is normalisable to sum 1
+/// (the limit weights, mostly non-negative, sum to a sizeable fraction of
+/// their norm); a sum at `1e-8` of the norm is rounding noise (`d eps` with
+/// `d <= MAX_DIM`, times a margin) of a vector whose true sum is 0.
+pub const AFFINE_SUM_FLOOR: f64 = 1e-8;
+
+/// Smallest ratio of the two eigenvalues of the subdominant vectors'
+/// second-moment matrix for the layout (step 2): below it the two vectors are
+/// parallel to rounding accuracy (for a 2-dimensional eigenspace the SVD
+/// returns orthonormal vectors, ratio near 1; split pairs have two
+/// independent eigenvectors, ratio far above `1e-12`).
+pub const PARALLEL_FLOOR: f64 = 1e-12;
+
 fn normalise_sum(v: &[f64]) -> Result<Vec<f64>> {
     let s: f64 = v.iter().sum();
     let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-    if !(s.abs() > 1e-8 * norm) {
+    if s.is_nan() || s.abs() <= AFFINE_SUM_FLOOR * norm {
         return Err(Error::Numerical {
             routine: "measured curvature",
             reason: "the left eigenvector of 1 sums to zero: the scheme is not affine invariant"
@@ -307,7 +321,7 @@ fn planar_layout(x: &[f64], y: &[f64]) -> Result<Vec<[f64; 2]>> {
     let tr = 0.5 * (sxx + syy);
     let disc = (0.25 * (sxx - syy).powi(2) + sxy * sxy).sqrt();
     let (e1, e2) = (tr + disc, tr - disc);
-    if !(e2 > 1e-12 * e1) {
+    if e2.is_nan() || e2 <= PARALLEL_FLOOR * e1 {
         return Err(Error::Numerical {
             routine: "measured curvature",
             reason: "the subdominant eigenvectors are (nearly) parallel".to_owned(),
