@@ -28,6 +28,13 @@
 //!
 //! The bound 3/4 is attained by the row sums, but the asymptotic rate is
 //! `|lambda_1|` of `A`, `< 3/4` and tending to 3/4 as `n` grows.
+//!
+//! Theorem 1 is a statement about the Doo-Sabin family (a central face whose
+//! corners contract towards its face point), so this module is part of that
+//! family's implementation: the analysis reaches it through the capability
+//! [`Scheme::face_contraction`](crate::Scheme::face_contraction), and its
+//! functions take a [`LocalScheme`] and refuse the other families with
+//! [`Error::NotApplicable`](crate::Error::NotApplicable).
 
 use crate::error::Result;
 use crate::scalar::Scalar;

@@ -119,14 +119,22 @@ fn loop_verdicts_from_its_closed_form_spectrum() {
         let mu = (lambda * lambda).max(block2.abs()).max(0.125);
         let c = curvature(&LoopScheme::new(n).unwrap()).unwrap();
         assert!((c.mu - mu).abs() < 1e-12, "n={n}");
+        let rational = matches!(n, 3 | 4 | 6);
         let expected = if mu - lambda * lambda > 1e-6 {
             CurvatureVerdict::Unbounded
+        } else if rational {
+            // mu = lambda^2 in closed form, and the two-ring matrix is
+            // rational (cos(2 pi/n) in {-1/2, 0, 1/2}): certified exactly.
+            CurvatureVerdict::Bounded
         } else {
-            // mu = lambda^2 in closed form; Loop has no exact matrix here, so
-            // the float verdict must not guess.
+            // mu = lambda^2 in closed form; the weights are irrational, so
+            // there is no exact matrix and the float verdict must not guess.
             CurvatureVerdict::Indeterminate
         };
         assert_eq!(c.verdict, expected, "n={n}: {}", c.reason);
+        if expected == CurvatureVerdict::Bounded {
+            assert_eq!(c.evidence, CurvatureEvidence::Exact, "n={n}");
+        }
         assert!(c.mu_mode.is_some());
     }
 }
@@ -143,10 +151,22 @@ fn uniform_doo_sabin_family_is_certified_where_rational() {
         assert_eq!(c.evidence, CurvatureEvidence::Exact);
         assert!(c.mu_mode.is_none());
     }
-    // Original Doo-Sabin has irrational weights: no exact matrix, and its
-    // mu = lambda^2 = 1/4 stays indeterminate.
+    // Original Doo-Sabin at n = 5 has irrational weights: no exact matrix, and
+    // its mu = lambda^2 = 1/4 stays indeterminate.
     let ds = curvature(&LocalScheme::<f64>::doo_sabin(5).unwrap()).unwrap();
     assert_eq!(ds.verdict, CurvatureVerdict::Indeterminate, "{}", ds.reason);
+    // At n = 3, 4, 6 its weights are rational (cos(2 pi/n) in {-1/2, 0, 1/2}):
+    // lambda = 1/2 and mu = 1/4 are certified, so bounded.
+    for n in [3, 4, 6] {
+        let ds = curvature(&LocalScheme::<f64>::doo_sabin(n).unwrap()).unwrap();
+        assert_eq!(
+            ds.verdict,
+            CurvatureVerdict::Bounded,
+            "n={n}: {}",
+            ds.reason
+        );
+        assert_eq!(ds.evidence, CurvatureEvidence::Exact, "n={n}");
+    }
 }
 
 #[test]

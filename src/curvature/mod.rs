@@ -1,6 +1,6 @@
 //! Second order at an extraordinary point (math doc section 13): the
-//! curvature verdict of every scheme ([`crate::spectral::curvature`], which
-//! `analyze` computes; re-exported here), the measured curvature of refined
+//! curvature verdict of every scheme (computed by `analyze` in the spectral
+//! module, whose items are re-exported here), the measured curvature of refined
 //! nets ([`measured`]) and the certified tuning of the shape-adjustable
 //! scheme ([`tuning`]).
 

@@ -43,8 +43,10 @@
 //!    fails a check and leaves the verdict `indeterminate`; it never makes a
 //!    wrong one. This certifies `bounded` for the rational cases (Catmull-Clark
 //!    at `n = 4`, the uniform Doo-Sabin-family schemes where their spectrum
-//!    is rational); irrational equalities (Loop at `n = 5`, the adjustable
-//!    scheme at its tuned `c`) stay `indeterminate` here.
+//!    is rational, original Doo-Sabin and Loop at `n` = 3, 4, 6 where
+//!    `cos(2 pi / n)` is rational); irrational equalities (Loop and original
+//!    Doo-Sabin at `n = 5`, the adjustable scheme at its tuned `c`) stay
+//!    `indeterminate` here.
 //!
 //! ```
 //! use subdiv_lab::curvature::{curvature, CurvatureVerdict};
@@ -306,7 +308,7 @@ pub fn summarize<S: Scheme + ?Sized>(
         return Ok(out);
     }
     let exact = match scheme.exact_local_matrix() {
-        None => Err("no exact (rational) local matrix for this scheme".to_owned()),
+        None => Err("no exact (rational) local matrix for this configuration".to_owned()),
         Some(m) => {
             let m = m?;
             if m.matrix().nrows() > EXACT_MAX_DIM {

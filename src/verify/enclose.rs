@@ -69,6 +69,10 @@ pub enum Tamper {
     /// The sound enclosure without the second-order scaled discs (plain
     /// Gershgorin discs; for comparisons).
     PlainGershgorin,
+    /// The sound spectral enclosure, but the `charmap` certificate drops the
+    /// variation of the invariant subspace over the cell
+    /// ([`super::charmap::CellTamper::DropSubspaceVariation`]).
+    DropSubspaceVariation,
 }
 
 /// An affine matrix family `C(x) = C_0 + sum_k x_k C_k` of size `m`.

@@ -6,7 +6,8 @@
 //! every parameter in it ([`enclose`] for NURDS: the closed 2 x 2 form for
 //! `n = 3, 4`, Gershgorin discs in the eigenvector basis above; [`cc`] for the `c` path), in
 //! interval arithmetic with outward rounding ([`interval`]); [`decide`] turns
-//! the enclosure into verdicts. A cell whose requested properties are not all
+//! the enclosure into verdicts; [`charmap`] proves the characteristic map
+//! regular and injective over the cell. A cell whose requested properties are not all
 //! decided is bisected across its widest side, down to `min_width`; what is
 //! still open there is `undecided`. Bisection points are floats strictly
 //! inside their cells, so the cells tile the box exactly.
@@ -25,6 +26,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod cc;
+pub mod charmap;
 pub mod decide;
 pub mod enclose;
 pub mod interval;
@@ -127,12 +129,7 @@ pub struct Outcome {
 /// Whether a property can be attempted for this region (the others stay
 /// `undecided` without driving the refinement).
 fn attempted(region: &Region, p: Property) -> bool {
-    match (region, p) {
-        // not implemented over cells yet (math doc section 15)
-        (_, Property::Charmap) => false,
-        (Region::Shape { .. }, Property::Theorem1) => false,
-        _ => true,
-    }
+    !matches!((region, p), (Region::Shape { .. }, Property::Theorem1))
 }
 
 /// A cell's class (when proven), the status of each requested property and,
@@ -170,6 +167,26 @@ fn evaluate(
         }
         _ => (Status::Undecided, None, None),
     };
+    // the characteristic map over the cell (math doc section 15), only when requested
+    let (charmap, charmap_scores) = if spec.properties.contains(&Property::Charmap) {
+        let ct = match tamper {
+            Tamper::DropSubspaceVariation => charmap::CellTamper::DropSubspaceVariation,
+            _ => charmap::CellTamper::None,
+        };
+        charmap::cell_status(&spec.region, class, lo, hi, ct)
+    } else {
+        (Status::Undecided, None)
+    };
+    // once the spectral part is decided, the open charmap drives the split
+    let scores = if charmap == Status::Undecided
+        && class.is_some()
+        && separation != Status::Undecided
+        && charmap_scores.is_some()
+    {
+        charmap_scores
+    } else {
+        scores
+    };
     let status = spec
         .properties
         .iter()
@@ -189,7 +206,7 @@ fn evaluate(
                     Region::Ratios { .. } | Region::Corners { .. } => Status::Certified,
                     Region::Shape { .. } => Status::Undecided,
                 },
-                Property::Charmap => Status::Undecided,
+                Property::Charmap => charmap,
             };
             (p, s)
         })

@@ -201,7 +201,7 @@ impl FigureOutput for Output {
             .x_desc("level k")
             .y_desc("largest principal curvature on ring k")
             .x_label_formatter(&|x| format!("{x:.0}"))
-            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .y_label_formatter(&|y| crate::report::plot::log_tick(*y))
             .label_style(th.font(th.tick))
             .axis_desc_style(th.font(th.label))
             .light_line_style(WHITE.mix(0.0))
@@ -236,7 +236,9 @@ impl FigureOutput for Output {
                 .iter()
                 .map(|l| (l.level as f64, Self::predicted(m, l.level)))
                 .collect();
-            let (d, g) = dash(1, &th);
+            // Pattern 0 is the dashed one (pattern 1 reads as dotted), as
+            // the module docs and the default caption say.
+            let (d, g) = dash(0, &th);
             chart
                 .draw_series(DashedLineSeries::new(
                     pred,
