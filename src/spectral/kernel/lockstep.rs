@@ -108,8 +108,7 @@ fn clear_bulges(a: &mut [Lanes], s: usize, st: &[Hqr; BATCH], chasing: [bool; BA
         let ii = [i as i64; BATCH];
         // (i, i - 2) where m + 2 <= i <= nu, (i, i - 3) where m + 3 <= i <= nu.
         let two: Mask = std::array::from_fn(|l| -((lo[l] + 2 <= ii[l] && ii[l] <= nu[l]) as i64));
-        let three: Mask =
-            std::array::from_fn(|l| -((lo[l] + 3 <= ii[l] && ii[l] <= nu[l]) as i64));
+        let three: Mask = std::array::from_fn(|l| -((lo[l] + 3 <= ii[l] && ii[l] <= nu[l]) as i64));
         let e2 = i + (i - 2) * s;
         let x = u!(a[e2]);
         *um!(a[e2]) = pick(two, [0.0; BATCH], x);
@@ -526,9 +525,8 @@ fn sweep(
         // the entries this row's reflector would write: its block starts
         // below row k, or its reflector is degenerate (the scalar code skips
         // it).
-        let keep: Mask = std::array::from_fn(|l| {
-            chase[l] & ((-((kk[l] < lo[l]) as i64)) | (blk[l] & !act[l]))
-        });
+        let keep: Mask =
+            std::array::from_fn(|l| chase[l] & ((-((kk[l] < lo[l]) as i64)) | (blk[l] & !act[l])));
         if !any(keep) {
             let r = Reflector {
                 k,
