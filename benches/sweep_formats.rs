@@ -18,7 +18,8 @@
 //!
 //!     cargo bench --bench sweep_formats            # RUNS=5 SCALE=1
 //!
-//! `SCALE` (environment, default 1) scales the configuration counts.
+//! `SCALE` (environment, default 1) scales the configuration counts;
+//! `VALENCES` (environment, e.g. `"3 5"`) picks some of the valences.
 
 use subdiv_lab::sweep::output::parquet::{Commit, ParquetRows};
 use subdiv_lab::sweep::{output, Layout, Plan, Shard, SpectralEvaluator, Summary, SweepSpec};
@@ -113,7 +114,13 @@ fn main() {
     println!();
     println!("| n | configurations | evaluation alone | csv (text, no I/O) | parquet (no I/O) | csv / evaluation | parquet / evaluation |");
     println!("|---|---|---|---|---|---|---|");
+    let only: Option<Vec<usize>> = std::env::var("VALENCES")
+        .ok()
+        .map(|v| v.split_whitespace().filter_map(|x| x.parse().ok()).collect());
     for (n, count) in [(3, 400_000u64), (5, 200_000), (8, 100_000), (16, 40_000)] {
+        if only.as_ref().is_some_and(|o| !o.contains(&n)) {
+            continue;
+        }
         let count = ((count as f64 * scale) as u64).max(1);
         let plan = plan(n, count);
         let layout = Layout::new(&plan);
