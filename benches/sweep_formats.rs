@@ -114,9 +114,11 @@ fn main() {
     println!();
     println!("| n | configurations | evaluation alone | csv (text, no I/O) | parquet (no I/O) | csv / evaluation | parquet / evaluation |");
     println!("|---|---|---|---|---|---|---|");
-    let only: Option<Vec<usize>> = std::env::var("VALENCES")
-        .ok()
-        .map(|v| v.split_whitespace().filter_map(|x| x.parse().ok()).collect());
+    let only: Option<Vec<usize>> = std::env::var("VALENCES").ok().map(|v| {
+        v.split_whitespace()
+            .filter_map(|x| x.parse().ok())
+            .collect()
+    });
     for (n, count) in [(3, 400_000u64), (5, 200_000), (8, 100_000), (16, 40_000)] {
         if only.as_ref().is_some_and(|o| !o.contains(&n)) {
             continue;

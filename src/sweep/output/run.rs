@@ -766,6 +766,13 @@ pub(super) mod tests {
             assert!(calls.windows(2).all(|w| w[0] < w[1]));
             assert_eq!(String::from_utf8(out).unwrap(), want);
             assert_eq!(summary, want_summary);
+            // Evaluation alone: the same summary, no rows.
+            let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+            let n = pool
+                .install(|| run_discard(&plan, &layout, &eval, ids.iter().copied(), &mut summary))
+                .unwrap();
+            assert_eq!(n, ids.len() as u64);
+            assert_eq!(summary, want_summary);
         }
     }
 
@@ -791,6 +798,13 @@ pub(super) mod tests {
         assert_fast_path_matches(
             "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"face-ep\"\ninterval_range = [0.01, 100.0]\n[sampler]\nkind = \"halton\"\ncount = 120\n",
             |p: &Plan| Faulty(SpectralEvaluator::new(p.spec().columns)),
+        );
+        // Five chunks: from the third on, the driver writes into recycled
+        // row blocks.
+        const { assert!(5 * CHUNK > 18_000 && 4 * CHUNK < 18_000) };
+        assert_fast_path_matches(
+            "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = 18000\n",
+            spectral,
         );
     }
 }
