@@ -214,11 +214,15 @@ pub fn certify_face_block<T: Scalar>(
     w: DMatrix<T>,
 ) -> Result<Certificate<T>> {
     let n = a.nrows();
-    if a.ncols() != n || w.nrows() != n || w.ncols() != n || c.len() != n {
+    // The first count that disagrees with the face block's `n` rows.
+    let wrong = [a.ncols(), w.nrows(), w.ncols(), c.len()]
+        .into_iter()
+        .find(|&k| k != n);
+    if let Some(got) = wrong {
         return Err(crate::error::Error::CountMismatch {
             what: "Theorem 1 certificate: face block, weights and face-point weights must be n x n, n x n and n",
             expected: n,
-            got: if c.len() != n { c.len() } else { w.nrows() },
+            got,
         });
     }
     let quarter = T::frac(1, 4);
