@@ -192,7 +192,8 @@ pub fn measure(n: usize, c: f64, levels: usize, seed: u64) -> Result<MeasuredCur
 }
 
 /// `sum_i w_i P_i` over the first `w.len()` rows of `net` (`n x 3`).
-fn apply(w: &[f64], net: &DMatrix<f64>) -> Vector3<f64> {
+/// `sum_i w_i P_i` (also used by `measured_scheme`).
+pub(super) fn apply(w: &[f64], net: &DMatrix<f64>) -> Vector3<f64> {
     let mut s = Vector3::zeros();
     for (i, &wi) in w.iter().enumerate() {
         for k in 0..3 {
@@ -206,8 +207,9 @@ fn row(net: &DMatrix<f64>, i: usize) -> Vector3<f64> {
     Vector3::new(net[(i, 0)], net[(i, 1)], net[(i, 2)])
 }
 
-/// The smooth height of the initial net.
-fn height(x: f64, y: f64) -> f64 {
+/// The smooth height of the initial net (also used by
+/// `measured_scheme`).
+pub(super) fn height(x: f64, y: f64) -> f64 {
     0.3 * x * x - 0.2 * x * y + 0.1 * y * y + 0.05 * x * x * x - 0.03 * y * y * y
 }
 

@@ -49,7 +49,7 @@
 //! the better method there; this one works for it too (its local matrix is
 //! square).
 
-use super::measured::{MeasuredLevel, PERTURBATION};
+use super::measured::{apply, height, MeasuredLevel, PERTURBATION};
 use crate::error::{Error, Result};
 use crate::rng::SplitMix64;
 use crate::scheme::Scheme;
@@ -351,11 +351,6 @@ fn planar_layout(x: &[f64], y: &[f64]) -> Result<Vec<[f64; 2]>> {
     Ok(pts.iter().map(|p| [p[0] / r, p[1] / r]).collect())
 }
 
-/// The smooth height of the initial net.
-fn height(x: f64, y: f64) -> f64 {
-    0.3 * x * x - 0.2 * x * y + 0.1 * y * y + 0.05 * x * x * x - 0.03 * y * y * y
-}
-
 fn initial_net(
     layout: &[[f64; 2]],
     seed: u64,
@@ -370,17 +365,6 @@ fn initial_net(
         m[(i, 2)] = height(p[0], p[1]) + perturbation * rng.uniform(-1.0, 1.0);
     }
     m
-}
-
-/// `sum_i w_i P_i`.
-fn apply(w: &[f64], net: &DMatrix<f64>) -> Vector3<f64> {
-    let mut s = Vector3::zeros();
-    for (i, &wi) in w.iter().enumerate() {
-        for k in 0..3 {
-            s[k] += wi * net[(i, k)];
-        }
-    }
-    s
 }
 
 fn centre(net: &mut DMatrix<f64>, l0: &[f64]) {
