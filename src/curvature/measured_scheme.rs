@@ -49,7 +49,7 @@
 //! the better method there; this one works for it too (its local matrix is
 //! square).
 
-use super::measured::{apply, height, MeasuredLevel, PERTURBATION};
+use super::measured::{apply, height, level_from_fit, tangent_frame, MeasuredLevel, PERTURBATION};
 use crate::error::{Error, Result};
 use crate::rng::SplitMix64;
 use crate::scheme::Scheme;
@@ -388,14 +388,8 @@ fn measure_level(
     };
     let a1 = apply(u1, net);
     let a2 = apply(u2, net);
-    let normal = a1.cross(&a2);
-    let nn = normal.norm();
-    if !(nn > 0.0 && nn.is_finite()) {
-        return Err(degenerate("degenerate tangent plane"));
-    }
-    let nrm = normal / nn;
-    let e1 = a1.normalize();
-    let e2 = nrm.cross(&e1);
+    let (e1, e2, nrm) =
+        tangent_frame(&a1, &a2).ok_or_else(|| degenerate("degenerate tangent plane"))?;
     let pts: Vec<Vector3<f64>> = (0..net.nrows())
         .map(|i| Vector3::new(net[(i, 0)], net[(i, 1)], net[(i, 2)]))
         .collect();
@@ -434,19 +428,13 @@ fn measure_level(
         .sum::<f64>()
         / rows.len() as f64)
         .sqrt();
-    let (qa, qb, qc) = (coef[0] / radius, coef[1] / radius, coef[2] / radius);
-    let gaussian = 4.0 * qa * qc - qb * qb;
-    let mean = qa + qc;
-    let twist = (mean * mean - gaussian).max(0.0).sqrt();
-    Ok(MeasuredLevel {
+    Ok(level_from_fit(
         level,
-        ring_radius: radius,
-        gaussian,
-        mean,
-        twist,
-        max_principal: mean.abs() + twist,
-        fit_residual: if zmax > 0.0 { rms / zmax } else { 0.0 },
-    })
+        radius,
+        [coef[0], coef[1], coef[2]],
+        rms,
+        zmax,
+    ))
 }
 
 #[cfg(test)]
