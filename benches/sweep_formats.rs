@@ -19,7 +19,9 @@
 //!     cargo bench --bench sweep_formats            # RUNS=5 SCALE=1
 //!
 //! `SCALE` (environment, default 1) scales the configuration counts;
-//! `VALENCES` (environment, e.g. `"3 5"`) picks some of the valences.
+//! `VALENCES` (environment, e.g. `"3 5"`) picks some of the valences;
+//! `MODES` (environment, e.g. `"discard parquet"`) some of the modes (for a
+//! profile of one mode; skipped cells print as `-`).
 
 use subdiv_lab::sweep::output::parquet::{Commit, ParquetRows};
 use subdiv_lab::sweep::{output, Layout, Plan, Shard, SpectralEvaluator, Summary, SweepSpec};
@@ -47,6 +49,17 @@ enum Mode {
     Discard,
     Csv,
     Parquet,
+}
+
+impl Mode {
+    /// The name `MODES` selects it by.
+    fn name(self) -> &'static str {
+        match self {
+            Mode::Discard => "discard",
+            Mode::Csv => "csv",
+            Mode::Parquet => "parquet",
+        }
+    }
 }
 
 /// One sweep of `plan` in `mode`; returns the CPU seconds it took.
@@ -119,6 +132,12 @@ fn main() {
             .filter_map(|x| x.parse().ok())
             .collect()
     });
+    let modes: Option<Vec<String>> = std::env::var("MODES")
+        .ok()
+        .map(|v| v.split_whitespace().map(str::to_owned).collect());
+    let modes: Option<Vec<&str>> = modes
+        .as_ref()
+        .map(|m| m.iter().map(String::as_str).collect());
     for (n, count) in [(3, 400_000u64), (5, 200_000), (8, 100_000), (16, 40_000)] {
         if only.as_ref().is_some_and(|o| !o.contains(&n)) {
             continue;
@@ -133,18 +152,34 @@ fn main() {
                 .into_iter()
                 .enumerate()
             {
+                if modes.as_ref().is_some_and(|m| !m.contains(&mode.name())) {
+                    continue;
+                }
                 let dt = pool.install(|| one(&plan, &layout, &eval, mode));
                 best[k] = best[k].min(dt);
             }
         }
-        let rate = |t: f64| count as f64 / t / 1e3;
+        let rate = |t: f64| {
+            if t.is_finite() {
+                format!("{:.0}k/s", count as f64 / t / 1e3)
+            } else {
+                "-".to_owned()
+            }
+        };
+        let over = |t: f64| {
+            if t.is_finite() && best[0].is_finite() {
+                format!("{:.2}", t / best[0])
+            } else {
+                "-".to_owned()
+            }
+        };
         println!(
-            "| {n} | {count} | {:.0}k/s | {:.0}k/s | {:.0}k/s | {:.2} | {:.2} |",
+            "| {n} | {count} | {} | {} | {} | {} | {} |",
             rate(best[0]),
             rate(best[1]),
             rate(best[2]),
-            best[1] / best[0],
-            best[2] / best[0]
+            over(best[1]),
+            over(best[2])
         );
     }
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
