@@ -767,3 +767,100 @@ mod doc_examples {
         assert_eq!(((a, b), (c, d)), ((-0.5, 1.5), (0.0, 1.0)));
     }
 }
+
+/// A square chart over `[lo, hi]^2` with axes `r₀`, `r₁` (the knot-space
+/// maps: `knot-map` and `certified-map`), inside the panel `pa` under the
+/// caption `caption`. The panel is first centred vertically for an
+/// estimated caption height, the caption drawn, then the longer side padded
+/// so that the plot area is exactly square (equal aspect on the square).
+/// `y_tick` formats the `r₁` tick labels. Returns the chart and the side of
+/// its plot area in pixels.
+pub fn square_ratio_panel<'a>(
+    pa: &Area<'a>,
+    caption: &str,
+    th: &Theme,
+    [lo, hi]: [f64; 2],
+    y_tick: &dyn Fn(&f64) -> String,
+) -> Result<
+    (
+        ChartContext<
+            'a,
+            super::backend::AnyBackend<'a>,
+            Cartesian2d<
+                plotters::coord::types::RangedCoordf64,
+                plotters::coord::types::RangedCoordf64,
+            >,
+        >,
+        u32,
+    ),
+    ReportError,
+> {
+    let (pw, ph) = pa.dim_in_pixel();
+    let xl = th.label * 3;
+    let yl = th.label * 3;
+    let (ml, mr) = (th.tick / 2, th.tick);
+    let cap = th.label * 2;
+    let est = pw
+        .saturating_sub(yl + ml + mr)
+        .min(ph.saturating_sub(xl + cap));
+    let pad0 = ph.saturating_sub(xl + cap + est) / 2;
+    let pa = pa.margin(pad0, pad0, 0, 0);
+    let pa = pa.titled(caption, th.font(th.label)).map_err(draw_err)?;
+    let (pw, ph) = pa.dim_in_pixel();
+    let avail_w = pw.saturating_sub(yl + ml + mr);
+    let avail_h = ph.saturating_sub(xl);
+    let plot_w = avail_w.min(avail_h).max(1);
+    let pad_h = avail_w.saturating_sub(plot_w) / 2;
+    let pad_v = avail_h.saturating_sub(plot_w);
+    let mut chart = ChartBuilder::on(&pa)
+        .margin_left((ml + pad_h) as i32)
+        .margin_right((mr + avail_w.saturating_sub(plot_w + pad_h)) as i32)
+        .margin_top((pad_v / 2) as i32)
+        .margin_bottom((pad_v - pad_v / 2) as i32)
+        .x_label_area_size(xl)
+        .y_label_area_size(yl)
+        .build_cartesian_2d(lo..hi, lo..hi)
+        .map_err(draw_err)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("r₀")
+        .y_desc("r₁")
+        .x_labels(3)
+        .y_labels(3)
+        .label_style(th.font(th.tick))
+        .axis_desc_style(th.font(th.label))
+        .x_label_formatter(&|x| tick(*x))
+        .y_label_formatter(y_tick)
+        .draw()
+        .map_err(draw_err)?;
+    Ok((chart, plot_w))
+}
+
+/// The cells of a `grid x grid` map as filled rectangles, the runs of equal
+/// colour along each row merged into one rectangle (fewer SVG elements):
+/// `color(i, j)` is the colour of cell `i` of row `j` (`r₁` cell `j`), and
+/// cell boundary `k` lies at `at(k)` on both axes.
+pub fn row_runs(
+    grid: usize,
+    at: impl Fn(usize) -> f64,
+    color: impl Fn(usize, usize) -> RGBColor,
+) -> Vec<Rectangle<(f64, f64)>> {
+    let mut rects = Vec::new();
+    for j in 0..grid {
+        let mut start = 0;
+        while start < grid {
+            let col = color(start, j);
+            let mut end = start + 1;
+            while end < grid && color(end, j) == col {
+                end += 1;
+            }
+            rects.push(Rectangle::new(
+                [(at(start), at(j)), (at(end), at(j + 1))],
+                col.filled(),
+            ));
+            start = end;
+        }
+    }
+    rects
+}

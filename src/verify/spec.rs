@@ -12,6 +12,7 @@
 //!
 //! Errors name the key and the line (the rules of the sweep specs).
 
+use crate::sweep::spec::raw::{bounds, Ctx, Domain};
 use crate::sweep::SweepError;
 use crate::toml_location::{key_path_at, key_path_in_tree, Location};
 use serde::Deserialize;
@@ -187,7 +188,7 @@ impl VerifySpec {
                         let mut hi = Vec::with_capacity(n);
                         for (i, r) in b.get_ref().iter().enumerate() {
                             let key = format!("box[{i}]");
-                            let (a, z) = range(&ctx, &key, r, false)?;
+                            let (a, z) = bounds(&ctx, &key, r, Domain::Ratio, "")?;
                             lo.push(a);
                             hi.push(z);
                         }
@@ -227,7 +228,7 @@ impl VerifySpec {
                 let Some(c) = &raw.c_range else {
                     return ctx.err("c_range", None, "c_range: missing (required key for scheme \"adjustable-cc\")".into());
                 };
-                let (lo, hi) = range(&ctx, "c_range", c, true)?;
+                let (lo, hi) = bounds(&ctx, "c_range", c, Domain::Shape, "")?;
                 Region::Shape {
                     valence: v as usize,
                     lo,
@@ -333,74 +334,6 @@ struct RawSpec {
     properties: Spanned<Vec<Spanned<String>>>,
     min_width: Option<Spanned<f64>>,
     time_budget: Option<Spanned<f64>>,
-}
-
-struct Ctx<'a> {
-    text: &'a str,
-}
-
-impl Ctx<'_> {
-    fn err<T>(
-        &self,
-        key: &str,
-        span: Option<std::ops::Range<usize>>,
-        message: String,
-    ) -> Result<T, SweepError> {
-        Err(SweepError::Spec {
-            key: key.to_owned(),
-            line: span.map(|s| Location::of(self.text, s.start).line),
-            message,
-        })
-    }
-}
-
-fn range(
-    ctx: &Ctx,
-    key: &str,
-    v: &Spanned<Vec<f64>>,
-    shape: bool,
-) -> Result<(f64, f64), SweepError> {
-    let span = Some(v.span());
-    let r = v.get_ref();
-    if r.len() != 2 {
-        return ctx.err(
-            key,
-            span,
-            format!("{key} must be [lower, upper], got {} values", r.len()),
-        );
-    }
-    let (a, b) = (r[0], r[1]);
-    if !(a.is_finite() && b.is_finite()) {
-        return ctx.err(
-            key,
-            span,
-            format!("{key}: bounds must be finite, got [{a}, {b}]"),
-        );
-    }
-    for x in [a, b] {
-        if shape && !(0.0..=1.0).contains(&x) {
-            return ctx.err(
-                key,
-                span,
-                format!("{key}: bound {x} is outside [0, 1], the range of the shape parameter c"),
-            );
-        }
-        if !shape && (x <= 0.0 || x >= 1.0) {
-            return ctx.err(
-                key,
-                span,
-                format!("{key}: bound {x} is outside the open interval (0, 1) of edge ratios"),
-            );
-        }
-    }
-    if a >= b {
-        return ctx.err(
-            key,
-            span,
-            format!("{key}: lower bound {a} must be below upper bound {b}"),
-        );
-    }
-    Ok((a, b))
 }
 
 type Boxes = Spanned<Vec<Spanned<Vec<f64>>>>;

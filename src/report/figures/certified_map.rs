@@ -27,7 +27,9 @@ use crate::knots::EdgeRatios;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
-use crate::report::plot::{class_color, draw_err, subscript, tick, titled, Theme};
+use crate::report::plot::{
+    class_color, draw_err, row_runs, square_ratio_panel, subscript, tick, titled, Theme,
+};
 use crate::schemes::LocalScheme;
 use crate::spectral::classify_scheme;
 use crate::verify::spec::{Property, Region, VerifySpec};
@@ -323,45 +325,7 @@ impl FigureOutput for Output {
                     subscript("r", 2),
                     sl.r2
                 );
-                let (pw, ph) = pa.dim_in_pixel();
-                let xl = th.label * 3;
-                let yl = th.label * 3;
-                let (ml, mr) = (th.tick / 2, th.tick);
-                let cap = th.label * 2;
-                let est = pw
-                    .saturating_sub(yl + ml + mr)
-                    .min(ph.saturating_sub(xl + cap));
-                let pad0 = ph.saturating_sub(xl + cap + est) / 2;
-                let pa = pa.margin(pad0, pad0, 0, 0);
-                let pa = pa.titled(&caption, th.font(th.label)).map_err(draw_err)?;
-                let (pw, ph) = pa.dim_in_pixel();
-                let avail_w = pw.saturating_sub(yl + ml + mr);
-                let avail_h = ph.saturating_sub(xl);
-                let plot_w = avail_w.min(avail_h).max(1);
-                let pad_h = avail_w.saturating_sub(plot_w) / 2;
-                let pad_v = avail_h.saturating_sub(plot_w);
-                let mut chart = ChartBuilder::on(&pa)
-                    .margin_left((ml + pad_h) as i32)
-                    .margin_right((mr + avail_w.saturating_sub(plot_w + pad_h)) as i32)
-                    .margin_top((pad_v / 2) as i32)
-                    .margin_bottom((pad_v - pad_v / 2) as i32)
-                    .x_label_area_size(xl)
-                    .y_label_area_size(yl)
-                    .build_cartesian_2d(a..b, a..b)
-                    .map_err(draw_err)?;
-                chart
-                    .configure_mesh()
-                    .disable_mesh()
-                    .x_desc("r₀")
-                    .y_desc("r₁")
-                    .x_labels(3)
-                    .y_labels(3)
-                    .label_style(th.font(th.tick))
-                    .axis_desc_style(th.font(th.label))
-                    .x_label_formatter(&|x| tick(*x))
-                    .y_label_formatter(&|y| tick(*y))
-                    .draw()
-                    .map_err(draw_err)?;
+                let (mut chart, _) = square_ratio_panel(pa, &caption, &th, [a, b], &|y| tick(*y))?;
                 if half == 0 {
                     chart
                         .draw_series(sl.cells.iter().map(|(lo, hi, v)| {
@@ -374,25 +338,11 @@ impl FigureOutput for Output {
                 } else {
                     let gi = self.grid;
                     let step = (b - a) / g;
-                    let mut rects = Vec::new();
-                    for j in 0..gi {
-                        let row = &sl.samples[j * gi..(j + 1) * gi];
-                        let mut start = 0;
-                        while start < gi {
-                            let mut end = start + 1;
-                            while end < gi && row[end] == row[start] {
-                                end += 1;
-                            }
-                            rects.push(Rectangle::new(
-                                [
-                                    (a + start as f64 * step, a + j as f64 * step),
-                                    (a + end as f64 * step, a + (j + 1) as f64 * step),
-                                ],
-                                class_color(&row[start]).filled(),
-                            ));
-                            start = end;
-                        }
-                    }
+                    let rects = row_runs(
+                        gi,
+                        |k| a + k as f64 * step,
+                        |i, j| class_color(&sl.samples[j * gi + i]),
+                    );
                     chart.draw_series(rects).map_err(draw_err)?;
                 }
             }

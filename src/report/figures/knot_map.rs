@@ -27,7 +27,8 @@ use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
-    class_color, colorbar, draw_err, subscript, tick, titled, viridis, Marker, Theme,
+    class_color, colorbar, draw_err, row_runs, square_ratio_panel, subscript, tick, titled,
+    viridis, Marker, Theme,
 };
 use crate::schemes::LocalScheme;
 use crate::spectral::classify_scheme;
@@ -404,74 +405,13 @@ impl FigureOutput for Output {
         let areas = maps.split_evenly((1, k));
         let g = self.grid as f64;
         for ((fixed, cells), pa) in self.panels.iter().zip(areas.iter()) {
-            // Square plot area (equal aspect on the unit square): centre the
-            // panel with an estimated caption height, draw the caption, then
-            // pad the longer side so that the plot area is exactly square.
-            let (pw, ph) = pa.dim_in_pixel();
-            let xl = th.label * 3;
-            let yl = th.label * 3;
-            let (ml, mr) = (th.tick / 2, th.tick);
-            let cap = th.label * 2;
-            let est = pw
-                .saturating_sub(yl + ml + mr)
-                .min(ph.saturating_sub(xl + cap));
-            let pad0 = ph.saturating_sub(xl + cap + est) / 2;
-            let pa = pa.margin(pad0, pad0, 0, 0);
-            let pa = pa
-                .titled(&fixed_text(fixed), th.font(th.label))
-                .map_err(draw_err)?;
-            let (pw, ph) = pa.dim_in_pixel();
-            let avail_w = pw.saturating_sub(yl + ml + mr);
-            let avail_h = ph.saturating_sub(xl);
-            let plot_w = avail_w.min(avail_h).max(1);
-            let pad_h = avail_w.saturating_sub(plot_w) / 2;
-            let pad_v = avail_h.saturating_sub(plot_w);
-            let mut chart = ChartBuilder::on(&pa)
-                .margin_left((ml + pad_h) as i32)
-                .margin_right((mr + avail_w.saturating_sub(plot_w + pad_h)) as i32)
-                .margin_top((pad_v / 2) as i32)
-                .margin_bottom((pad_v - pad_v / 2) as i32)
-                .x_label_area_size(xl)
-                .y_label_area_size(yl)
-                .build_cartesian_2d(0.0..1.0, 0.0..1.0)
-                .map_err(draw_err)?;
-            chart
-                .configure_mesh()
-                .disable_mesh()
-                .x_desc("r₀")
-                .y_desc("r₁")
-                .x_labels(3)
-                .y_labels(3)
-                .label_style(th.font(th.tick))
-                .axis_desc_style(th.font(th.label))
-                .x_label_formatter(&|x| tick(*x))
-                // The corner's 0 is written once, on the r₀ axis (two
-                // zeros there would collide).
-                .y_label_formatter(&|y| if *y == 0.0 { String::new() } else { tick(*y) })
-                .draw()
-                .map_err(draw_err)?;
-            // Merge runs of equal colour along each row into one rectangle.
-            let mut rects = Vec::new();
+            // The corner's 0 is written once, on the r₀ axis (two zeros there
+            // would collide).
+            let y_tick = |y: &f64| if *y == 0.0 { String::new() } else { tick(*y) };
+            let (mut chart, plot_w) =
+                square_ratio_panel(pa, &fixed_text(fixed), &th, [0.0, 1.0], &y_tick)?;
             let gi = self.grid;
-            for j in 0..gi {
-                let row = &cells[j * gi..(j + 1) * gi];
-                let mut start = 0;
-                while start < gi {
-                    let col = self.color(&row[start]);
-                    let mut end = start + 1;
-                    while end < gi && self.color(&row[end]) == col {
-                        end += 1;
-                    }
-                    rects.push(Rectangle::new(
-                        [
-                            (start as f64 / g, j as f64 / g),
-                            (end as f64 / g, (j + 1) as f64 / g),
-                        ],
-                        col.filled(),
-                    ));
-                    start = end;
-                }
-            }
+            let rects = row_runs(gi, |k| k as f64 / g, |i, j| self.color(&cells[j * gi + i]));
             chart.draw_series(rects).map_err(draw_err)?;
             if self.color_by == ColorBy::Class {
                 // Measure-zero sets on top: enlarged markers with a white halo.

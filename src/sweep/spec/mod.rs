@@ -64,7 +64,7 @@
 //! [`SweepSpec`]'s own.
 
 mod columns;
-mod raw;
+pub(crate) mod raw;
 mod sampler;
 mod scheme;
 mod space;

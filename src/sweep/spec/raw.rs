@@ -89,12 +89,12 @@ pub(super) fn deserialize_error(text: &str, e: &toml::de::Error) -> SweepError {
     }
 }
 
-pub(super) struct Ctx<'a> {
-    pub(super) text: &'a str,
+pub(crate) struct Ctx<'a> {
+    pub(crate) text: &'a str,
 }
 
 impl Ctx<'_> {
-    pub(super) fn err<T>(
+    pub(crate) fn err<T>(
         &self,
         key: &str,
         span: Option<std::ops::Range<usize>>,
@@ -128,7 +128,7 @@ pub(super) fn at_least(
 
 /// The domain a range key lives in.
 #[derive(Clone, Copy, PartialEq, Eq)]
-pub(super) enum Domain {
+pub(crate) enum Domain {
     /// Edge ratios: the open interval (0, 1).
     Ratio,
     /// Knot intervals: positive.
@@ -137,11 +137,32 @@ pub(super) enum Domain {
     Shape,
 }
 
+/// A sweep's `[lower, upper]` range of `domain` (an empty range names
+/// `space.fixed`, which fixes a coordinate).
 pub(super) fn range(
     ctx: &Ctx,
     key: &str,
     v: &Spanned<Vec<f64>>,
     domain: Domain,
+) -> Result<(f64, f64), SweepError> {
+    bounds(
+        ctx,
+        key,
+        v,
+        domain,
+        "; fix a coordinate with space.fixed instead",
+    )
+}
+
+/// A `[lower, upper]` range of `domain` from spec key `key`: two finite
+/// bounds inside the domain, lower below upper (the sweep's and the
+/// verifier's ranges); `empty_hint` ends the message of an empty range.
+pub(crate) fn bounds(
+    ctx: &Ctx,
+    key: &str,
+    v: &Spanned<Vec<f64>>,
+    domain: Domain,
+    empty_hint: &str,
 ) -> Result<(f64, f64), SweepError> {
     let span = Some(v.span());
     let r = v.get_ref();
@@ -204,7 +225,7 @@ pub(super) fn range(
         return ctx.err(
             key,
             span,
-            format!("{key}: empty range [{a}, {b}] (lower bound = upper bound); fix a coordinate with space.fixed instead"),
+            format!("{key}: empty range [{a}, {b}] (lower bound = upper bound){empty_hint}"),
         );
     }
     Ok((a, b))
