@@ -1143,3 +1143,51 @@ fn classify_thresholds_and_reasons_on_exact_evidence() {
         (ClassName::Standard, ClassName::RealDistinct)
     );
 }
+
+/// The indeterminate real/complex verdict names the quantity that is
+/// undecided: lambda_1's imaginary part in its grey zone, lambda_2's in its
+/// grey zone (lambda_1 certainly real), or a certainly non-real lambda_2
+/// against a certainly real lambda_1 (hand-made, inconsistent evidence).
+#[test]
+fn real_or_complex_reason_names_the_undecided_eigenvalue() {
+    use subdiv_lab::spectral::classify::{classify, Evidence, SEPARATION_FACTOR};
+    let c = |re: f64, im: f64| Complex64::new(re, im);
+    let e = 1e-12;
+    let grey = 0.5 * (1.0 + SEPARATION_FACTOR) * e;
+    let clear = 10.0 * SEPARATION_FACTOR * e;
+    let reason = |im1: f64, im2: f64| {
+        let v = [c(1.0, 0.0), c(0.6, im1), c(0.5, im2), c(0.25, 0.0)];
+        let r = [e; 4];
+        let s = classify(
+            &Evidence {
+                values: &v,
+                radii: &r,
+                eta: 1e-16,
+            },
+            &mut |_| panic!("rank test must not run for distinct eigenvalues"),
+        )
+        .unwrap();
+        match s.class {
+            SubdominantClass::Indeterminate { between, reason } => {
+                assert_eq!(between, (ClassName::RealDistinct, ClassName::ComplexPair));
+                reason
+            }
+            other => panic!("{other:?}"),
+        }
+    };
+    let r = reason(grey, 0.0);
+    assert!(
+        r.starts_with("|Im lambda_1| = ") && r.contains("grey zone"),
+        "{r}"
+    );
+    let r = reason(0.0, grey);
+    assert!(
+        r.starts_with("|Im lambda_2| = ") && r.contains("grey zone"),
+        "{r}"
+    );
+    let r = reason(0.0, clear);
+    assert!(
+        r.starts_with("lambda_1 is real") && r.contains(&format!("{clear:.3e}")),
+        "{r}"
+    );
+}

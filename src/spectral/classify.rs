@@ -356,13 +356,31 @@ pub fn classify(
             Decision::Zero if decide(l2.im.abs(), e2) == Decision::Zero => {
                 (SubdominantClass::RealDistinct, None)
             }
-            _ => (
+            d1 => (
                 SubdominantClass::Indeterminate {
                     between: (ClassName::RealDistinct, ClassName::ComplexPair),
-                    reason: format!(
-                        "|Im lambda_1| = {:.3e} is in the grey zone of its error radius {e1:.3e}",
-                        l1.im.abs()
-                    ),
+                    // Name the quantity that is undecided: lambda_1's imaginary
+                    // part, or (lambda_1 certainly real) lambda_2's, which is
+                    // in its grey zone or, against a real lambda_1, certainly
+                    // non-zero (inconsistent evidence: only hand-made evidence
+                    // gets here, a real matrix's non-real eigenvalues pair up).
+                    reason: if d1 == Decision::Grey {
+                        format!(
+                            "|Im lambda_1| = {:.3e} is in the grey zone of its error radius {e1:.3e}",
+                            l1.im.abs()
+                        )
+                    } else if decide(l2.im.abs(), e2) == Decision::Grey {
+                        format!(
+                            "|Im lambda_2| = {:.3e} is in the grey zone of its error radius {e2:.3e}",
+                            l2.im.abs()
+                        )
+                    } else {
+                        format!(
+                            "lambda_1 is real (|Im lambda_1| = {:.3e} within its error radius {e1:.3e}) but |Im lambda_2| = {:.3e} exceeds its error radius {e2:.3e}",
+                            l1.im.abs(),
+                            l2.im.abs()
+                        )
+                    },
                 },
                 None,
             ),
