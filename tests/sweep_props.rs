@@ -124,3 +124,34 @@ proptest! {
         prop_assert!(x.iter().all(|v| (0.0..1.0).contains(v)));
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// `Plan::scheme_reusing` (a sweep's per-lane scheme reuse) gives the scheme
+    /// `Plan::scheme` builds, or the same error, whatever scheme it is handed:
+    /// another valence, another ratio vector, or nothing; ratios outside
+    /// (0, 1) included (errors of `EdgeRatios::refilled` and `new` agree).
+    #[test]
+    fn reused_schemes_equal_fresh_ones(
+        steps in proptest::collection::vec(
+            (3usize..7, proptest::collection::vec(-0.2f64..1.2, 7), any::<bool>()),
+            1..12,
+        )
+    ) {
+        use subdiv_lab::sweep::Configuration;
+        let plan = Plan::new(SweepSpec::from_toml(
+            "scheme = \"nurds\"\nvalences = [3, 4, 5, 6]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"random\"\ncount = 4\nseed = 1\n",
+        ).unwrap());
+        let mut kept = None;
+        for (k, (n, r, drop)) in steps.into_iter().enumerate() {
+            let c = Configuration { id: k as u64, valence: n, coordinates: r[..n].to_vec() };
+            let fresh = plan.scheme(&c).map_err(|e| e.to_string());
+            let reused = plan
+                .scheme_reusing(&c, if drop { None } else { kept.take() })
+                .map_err(|e| e.to_string());
+            prop_assert_eq!(&reused, &fresh);
+            kept = reused.ok();
+        }
+    }
+}

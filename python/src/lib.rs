@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
+use subdiv_lab::scheme::registry::Builtin;
 use subdiv_lab::schemes::SchemeKind;
 use subdiv_lab::spectral::json::AnalysisInput;
 use subdiv_lab::spectral::BATCH;
@@ -544,6 +545,7 @@ fn classify_batch<'py>(
                             coordinates: Vec::with_capacity(n),
                         });
                     let mut lanes: [LaneRow; BATCH] = Default::default();
+                    let mut kept: [Option<Builtin>; BATCH] = Default::default();
                     for (bi, group) in chunk.chunks(BATCH * n).enumerate() {
                         let width = group.len() / n;
                         let base = (ci * CHUNK + bi * BATCH) as u64;
@@ -552,10 +554,11 @@ fn classify_batch<'py>(
                             configs[l].coordinates.clear();
                             configs[l].coordinates.extend_from_slice(r);
                         }
+                        // Each lane's scheme reuses the storage of its last one.
                         let mut schemes = Vec::with_capacity(width);
-                        for c in &configs[..width] {
+                        for (c, old) in configs[..width].iter().zip(&mut kept) {
                             schemes.push(
-                                plan.scheme(c)
+                                plan.scheme_reusing(c, old.take())
                                     .map_err(|e| value_err(format!("ratios row {}: {e}", c.id)))?,
                             );
                         }
@@ -590,6 +593,9 @@ fn classify_batch<'py>(
                                     Err(e) => cols.push_row(Err(&e.to_string())),
                                 }
                             }
+                        }
+                        for (k, s) in kept.iter_mut().zip(schemes) {
+                            *k = Some(s);
                         }
                     }
                     Ok(cols)

@@ -188,6 +188,28 @@ impl<T: Scalar> EdgeRatios<T> {
         Ok(Self { r, s })
     }
 
+    /// [`new`](Self::new) from `values`, reusing this value's storage (a
+    /// sweep builds one scheme per configuration; this saves the two
+    /// allocations). The same validation and the same result as
+    /// `EdgeRatios::new(values.to_vec())`; on an error the old ratios are
+    /// dropped.
+    pub fn refilled(mut self, values: &[T]) -> Result<Self> {
+        check_valence(values.len())?;
+        for (i, v) in values.iter().enumerate() {
+            if !(v.is_finite_value() && *v > T::zero() && *v < T::one()) {
+                return Err(Error::InvalidRatio {
+                    index: i,
+                    value: v.to_text(),
+                });
+            }
+        }
+        self.r.clear();
+        self.r.extend_from_slice(values);
+        self.s.clear();
+        self.s.extend(values.iter().map(|x| T::one() - x.clone()));
+        Ok(self)
+    }
+
     /// Ratios from the two intervals of each edge: `r_i = b_i / (a_i + b_i)`,
     /// `s_i = a_i / (a_i + b_i)`; both computed directly ([`Scalar::edge_ratio`]:
     /// exact for rationals, with unbounded exponents for `f64`), so each keeps

@@ -29,6 +29,7 @@ use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::scalar::{Rational, Scalar};
 use crate::scheme::registry::Builtin;
 use crate::schemes::LocalScheme;
+use crate::schemes::SchemeKind;
 use std::fmt;
 use std::str::FromStr;
 
@@ -323,6 +324,29 @@ impl Plan {
     pub fn scheme(&self, c: &Configuration) -> crate::Result<Builtin> {
         let (ratios, shape) = self.parameters_in(c)?;
         Builtin::from_kind(self.spec.scheme, c.valence, ratios, shape)
+    }
+
+    /// [`scheme`](Self::scheme), reusing the storage of `old` (the scheme of
+    /// an earlier configuration) where it can: NURDS over edge ratios of the
+    /// same valence refills `old`'s ratios
+    /// ([`EdgeRatios::refilled`](crate::knots::EdgeRatios::refilled)), saving
+    /// the allocations of a new scheme per configuration; anything else is
+    /// built anew. The result equals `self.scheme(c)`.
+    pub fn scheme_reusing(
+        &self,
+        c: &Configuration,
+        old: Option<Builtin>,
+    ) -> crate::Result<Builtin> {
+        if self.spec.space.kind == SpaceKind::Ratios && self.spec.scheme == SchemeKind::Nurds {
+            if let Some(Builtin::Local(LocalScheme::Nurds(r))) = old {
+                if r.valence() == c.valence && c.coordinates.len() == c.valence {
+                    return Ok(Builtin::Local(LocalScheme::Nurds(
+                        r.refilled(&c.coordinates)?,
+                    )));
+                }
+            }
+        }
+        self.scheme(c)
     }
 
     /// The scheme of a configuration in exact rational arithmetic (every `f64`

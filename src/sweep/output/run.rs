@@ -71,6 +71,9 @@ struct Staged {
     coordinates: Vec<Option<f64>>,
     error: Option<String>,
     valence: usize,
+    /// The scheme of the last row, whose storage the next row's reuses
+    /// ([`Plan::scheme_reusing`]).
+    scheme: Option<crate::scheme::registry::Builtin>,
 }
 
 impl Staged {
@@ -86,6 +89,7 @@ impl Staged {
             coordinates: Vec::new(),
             error: None,
             valence: 0,
+            scheme: None,
         }
     }
 }
@@ -200,6 +204,7 @@ impl Layout {
         if let Some(scheme) = self.load(plan, id, row) {
             let r = eval.write_results(plan, &row.config, &*scheme, &mut row.stage);
             self.check_results(row, r);
+            row.scheme = Some(scheme);
         }
         self.emit(id, row, out, part);
     }
@@ -231,14 +236,16 @@ impl Layout {
                 )
             });
             let res = eval.write_results_batch(plan, items);
-            for (row, r) in rows.iter_mut().zip(res) {
+            for ((row, r), s) in rows.iter_mut().zip(res).zip(schemes) {
                 self.check_results(row, r);
+                row.scheme = Some(s);
             }
         } else {
             for (row, s) in rows.iter_mut().zip(schemes) {
                 if let Some(s) = s {
                     let r = eval.write_results(plan, &row.config, &*s, &mut row.stage);
                     self.check_results(row, r);
+                    row.scheme = Some(s);
                 }
             }
         }
@@ -264,7 +271,7 @@ impl Layout {
                 let c = &row.config;
                 row.valence = c.valence;
                 self.coordinates_into(plan, c, &mut row.coordinates);
-                match plan.scheme(c) {
+                match plan.scheme_reusing(c, row.scheme.take()) {
                     Ok(s) => Some(s),
                     Err(e) => {
                         row.error = Some(e.to_string());
