@@ -22,6 +22,19 @@ pub(super) fn condition_numbers(
     }
     let tiny = f64::EPSILON * hess_norm.max(f64::MIN_POSITIVE);
     let hess = &hess_form[..n * n];
+    if n == 2 {
+        // Closed form (valence 3 and 4 face blocks): no inverse iteration.
+        let mut all = true;
+        for (i, &z) in lambdas.iter().enumerate() {
+            match kappa_2x2(hess, z, tiny) {
+                Some(k) => out[i] = k,
+                None => all = false,
+            }
+        }
+        if all {
+            return;
+        }
+    }
     // Real eigenvalues of a real matrix: real arithmetic throughout (the
     // LU, pivots and vectors the complex path computes, up to rounding,
     // at about a quarter of the cost; tested below).
@@ -47,6 +60,48 @@ pub(super) fn condition_numbers(
     }
     lanes(n, hess, &real[..nr], tiny, st_real, out);
     lanes(n, hess, &complex[..nc], tiny, st_complex, out);
+}
+
+/// The condition number `kappa = ||x|| ||u|| / |u^T x|` of the eigenvalue
+/// `lam` of the 2 x 2 matrix `h` (column major) in closed form, or `None`
+/// when `h - lam I` is negligible (`h` a multiple of the identity: every
+/// vector is an eigenvector; the caller's inverse iteration decides).
+///
+/// With `h = [[a, b], [c, d]]` and `lam` an eigenvalue, `h - lam I` has rank
+/// one, so a right eigenvector is orthogonal (in the bilinear sense) to
+/// either row: `x = (b, lam - a)` or `(lam - d, c)`; a left eigenvector
+/// (`u^T h = lam u^T`) to either column: `u = (c, lam - a)` or `(lam - d, b)`.
+/// Of each pair the one of larger norm is taken (the other may vanish). For
+/// a complex `lam` the left eigenvector of the Hermitian definition is
+/// `conj(u)`, so `|y^H x| = |u^T x|`. This is the quantity the inverse
+/// iteration estimates (math doc section 10), computed exactly up to
+/// rounding; `tests.rs` compares the two.
+pub(super) fn kappa_2x2(h: &[f64], lam: Complex64, tiny: f64) -> Option<f64> {
+    let (a, c, b, d) = (h[0], h[1], h[2], h[3]);
+    let la = lam - a;
+    let ld = lam - d;
+    let pick = |p: [Complex64; 2], q: [Complex64; 2]| {
+        let np = p[0].norm_sqr() + p[1].norm_sqr();
+        let nq = q[0].norm_sqr() + q[1].norm_sqr();
+        if np >= nq {
+            (p, np.sqrt())
+        } else {
+            (q, nq.sqrt())
+        }
+    };
+    let re = |v: f64| Complex64::new(v, 0.0);
+    let (x, nx) = pick([re(b), la], [ld, re(c)]);
+    let (u, nu) = pick([re(c), la], [ld, re(b)]);
+    if !(nx > tiny && nu > tiny && nx.is_finite() && nu.is_finite()) {
+        return None;
+    }
+    let dot = u[0] * x[0] + u[1] * x[1];
+    let s = dot.norm() / nx / nu;
+    Some(if s == 0.0 || !s.is_finite() {
+        f64::INFINITY
+    } else {
+        (1.0 / s).max(1.0)
+    })
 }
 
 /// Most inverse iterations [`condition_numbers`] interleaves.

@@ -1,7 +1,7 @@
 //! Tests of the kernel: cross-checks against faer and of the lock-step and
 //! interleaved paths against lone calls, bit for bit.
 
-use super::condition::{inverse_iteration_kappa, LaneStorage};
+use super::condition::{inverse_iteration_kappa, kappa_2x2, LaneStorage};
 use super::*;
 use num_complex::Complex64;
 
@@ -93,6 +93,58 @@ fn eig_of(ws: &mut KernelWorkspace, a: &[f64], n: usize) -> Vec<Complex64> {
         .collect();
     v.sort_by(super::super::eigen::spectral_order);
     v
+}
+
+/// The closed-form condition number of a 2 x 2 block equals the
+/// inverse-iteration estimate (two independent methods), for real and complex
+/// eigenvalues, including nearly defective blocks (large kappa), and a
+/// multiple of the identity is left to inverse iteration.
+#[test]
+fn closed_form_2x2_condition_numbers_equal_inverse_iteration() {
+    let mut rng = crate::rng::SplitMix64::new(11);
+    let mut ws = KernelWorkspace::new();
+    let (mut real, mut complex, mut large) = (0, 0, 0);
+    for trial in 0..400 {
+        let mut a = random_matrix(&mut rng, 2);
+        if trial % 4 == 3 {
+            // Nearly a Jordan block: [[l, 1], [t, l]] with tiny t.
+            let t = 10f64.powi(-(2 + (trial % 9) as i32));
+            a = vec![0.3, t * (a[1].signum()), 1.0, 0.3 + 1e-3 * a[3]];
+        }
+        let values = eig_of(&mut ws, &a, 2);
+        let tiny = f64::EPSILON * ws.hess_norm.max(f64::MIN_POSITIVE);
+        for z in &values {
+            let closed = kappa_2x2(&ws.hess[..4], *z, tiny).expect("not a multiple of I");
+            let iterated = inverse_iteration_kappa::<Complex64, 1>(
+                2,
+                &ws.hess[..4],
+                [*z],
+                tiny,
+                &mut LaneStorage::default(),
+            )[0];
+            assert!(
+                (closed - iterated).abs() <= 1e-8 * iterated,
+                "a = {a:?}, lambda = {z}: {closed} vs {iterated}"
+            );
+            if z.im == 0.0 {
+                real += 1;
+            } else {
+                complex += 1;
+            }
+            if closed > 1e3 {
+                large += 1;
+            }
+        }
+    }
+    assert!(
+        real > 100 && complex > 100 && large > 20,
+        "{real} {complex} {large}"
+    );
+    // A multiple of the identity: no closed form.
+    assert_eq!(
+        kappa_2x2(&[0.5, 0.0, 0.0, 0.5], Complex64::new(0.5, 0.0), 1e-16),
+        None
+    );
 }
 
 #[test]
