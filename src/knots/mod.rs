@@ -175,15 +175,7 @@ pub struct EdgeRatios<T = f64> {
 impl<T: Scalar> EdgeRatios<T> {
     /// Validates `n >= 3` and `0 < r_i < 1` (finite).
     pub fn new(r: Vec<T>) -> Result<Self> {
-        check_valence(r.len())?;
-        for (i, v) in r.iter().enumerate() {
-            if !(v.is_finite_value() && *v > T::zero() && *v < T::one()) {
-                return Err(Error::InvalidRatio {
-                    index: i,
-                    value: v.to_text(),
-                });
-            }
-        }
+        Self::check(&r)?;
         let s = r.iter().map(|x| T::one() - x.clone()).collect();
         Ok(Self { r, s })
     }
@@ -194,6 +186,17 @@ impl<T: Scalar> EdgeRatios<T> {
     /// `EdgeRatios::new(values.to_vec())`; on an error the old ratios are
     /// dropped.
     pub fn refilled(mut self, values: &[T]) -> Result<Self> {
+        Self::check(values)?;
+        self.r.clear();
+        self.r.extend_from_slice(values);
+        self.s.clear();
+        self.s.extend(values.iter().map(|x| T::one() - x.clone()));
+        Ok(self)
+    }
+
+    /// The validation of [`new`](Self::new): `n >= 3` values, each finite and
+    /// inside `(0, 1)`; the first bad value is named.
+    fn check(values: &[T]) -> Result<()> {
         check_valence(values.len())?;
         for (i, v) in values.iter().enumerate() {
             if !(v.is_finite_value() && *v > T::zero() && *v < T::one()) {
@@ -203,11 +206,7 @@ impl<T: Scalar> EdgeRatios<T> {
                 });
             }
         }
-        self.r.clear();
-        self.r.extend_from_slice(values);
-        self.s.clear();
-        self.s.extend(values.iter().map(|x| T::one() - x.clone()));
-        Ok(self)
+        Ok(())
     }
 
     /// Ratios from the two intervals of each edge: `r_i = b_i / (a_i + b_i)`,
