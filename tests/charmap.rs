@@ -12,13 +12,13 @@ use subdiv_lab::charmap::regularity::{
     check_bezier_patches, check_regularity, RegularityVerdict, MAX_DEPTH,
 };
 use subdiv_lab::charmap::ring::{PatchKind, Ring, RingPatchId};
-use subdiv_lab::charmap::winding::winding_number;
+use subdiv_lab::charmap::winding::{winding_number, HullCurve, ANGLE_MARGIN, MAX_SPLIT_DEPTH};
 use subdiv_lab::charmap::{
     check, check_basis, CharmapReport, Eigenstructure, PlanarBasis, Verdict,
 };
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
 use subdiv_lab::rng::Lcg64;
-use subdiv_lab::scalar::{Rational, Scalar};
+use subdiv_lab::scalar::{f64_to_rational, Rational, Scalar};
 use subdiv_lab::schemes::LocalScheme;
 
 /// Independent eigen-decomposition (faer directly) of S_n: the subdominant pair's
@@ -1004,4 +1004,304 @@ fn a_negative_jacobian_at_a_corner_is_reported_at_that_corner() {
     assert_eq!((reg.pieces, reg.max_depth), (1, 0), "{reg:?}");
     // relative to the largest Jacobian coefficient (7/4 at t = 1)
     assert!((v + 0.25 / 1.75).abs() < 1e-12, "{v}");
+}
+
+// ---------------------------------------------------------------------------
+// The winding certificate on hand-made chains (issue 22: the mutation run of
+// `src/charmap/winding.rs` against this target and `charmap_cc` showed which
+// of its error allowances and branches no ring test reaches).
+
+/// The quadrant chain: four quadratic Bezier arcs through `(1, 0)`, `(0, 1)`,
+/// `(-1, 0)`, `(0, -1)` with control points `(+-1, +-1)`, scaled by `s`
+/// (exact points, exact joins: no bridge).
+fn quadrant_polygons(s: f64) -> Vec<Vec<[f64; 2]>> {
+    let q = [
+        [[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+        [[0.0, 1.0], [-1.0, 1.0], [-1.0, 0.0]],
+        [[-1.0, 0.0], [-1.0, -1.0], [0.0, -1.0]],
+        [[0.0, -1.0], [1.0, -1.0], [1.0, 0.0]],
+    ];
+    q.iter()
+        .map(|c| c.iter().map(|p| [s * p[0], s * p[1]]).collect())
+        .collect()
+}
+
+/// A curve for the winding certificate whose error allowances are declared
+/// numbers, relative to the chain's magnitude (`split_error = split * scale`,
+/// `hull_error = hull * scale`): large and exact, so that the certificate's
+/// error accounting decides the outcome. The hull is a Bezier control polygon.
+#[derive(Clone, Debug)]
+struct Declared {
+    curve: BezierCurve,
+    split: f64,
+    hull: f64,
+}
+
+impl Declared {
+    fn chain(polygons: &[Vec<[f64; 2]>], split: f64, hull: &[f64]) -> Vec<Declared> {
+        polygons
+            .iter()
+            .zip(hull)
+            .map(|(p, &hull)| Declared {
+                curve: BezierCurve::new(p.clone()),
+                split,
+                hull,
+            })
+            .collect()
+    }
+}
+
+impl HullCurve for Declared {
+    fn hull(&self) -> Vec<[f64; 2]> {
+        self.curve.points.clone()
+    }
+    fn halves(&self) -> (Self, Self) {
+        let (l, r) = self.curve.split(0.5);
+        let half = |curve| Declared {
+            curve,
+            split: self.split,
+            hull: self.hull,
+        };
+        (half(l), half(r))
+    }
+    fn split_error(&self, scale: f64) -> f64 {
+        self.split * scale
+    }
+    fn hull_error(&self, scale: f64) -> f64 {
+        self.hull * scale
+    }
+}
+
+/// `BezierCurve::split_error`, the certificate's allowance for one midpoint
+/// split, bounds the rounding of `halves()` against the exact de Casteljau
+/// split of the same control points (every `f64` is a dyadic rational), at
+/// degrees 1 to 5 and magnitudes `1e-3` to `1e3`; and the splits do round, so
+/// that a zero or negative allowance, or one not proportional to the
+/// magnitude, is wrong.
+#[test]
+fn bezier_split_error_bounds_the_rounding_of_a_midpoint_split() {
+    use num_traits::Signed;
+    let to_q = |x: f64| f64_to_rational(x).expect("finite");
+    let half = rat(1, 2);
+    let mut rng = Lcg64::new(22);
+    let mut rounded = 0;
+    for degree in 1..=5usize {
+        for scale in [1e-3, 1.0, 1e3] {
+            for _ in 0..10 {
+                let pts: Vec<[f64; 2]> = (0..=degree)
+                    .map(|_| {
+                        [
+                            scale * (2.0 * rng.next_f64() - 1.0),
+                            scale * (2.0 * rng.next_f64() - 1.0),
+                        ]
+                    })
+                    .collect();
+                let m = pts
+                    .iter()
+                    .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+                let c = BezierCurve::new(pts.clone());
+                let bound = to_q(c.split_error(m));
+                let (l, r) = c.halves();
+                for d in 0..2 {
+                    // exact de Casteljau at 1/2
+                    let mut t: Vec<Rational> = pts.iter().map(|p| to_q(p[d])).collect();
+                    let k = t.len();
+                    let mut lo = Vec::with_capacity(k);
+                    let mut hi = vec![Rational::from_integer(0.into()); k];
+                    for level in 0..k {
+                        lo.push(t[0].clone());
+                        hi[k - 1 - level] = t[k - 1 - level].clone();
+                        for i in 0..k - 1 - level {
+                            t[i] = (&t[i] + &t[i + 1]) * &half;
+                        }
+                    }
+                    for (computed, exact) in
+                        l.points.iter().zip(&lo).chain(r.points.iter().zip(&hi))
+                    {
+                        let err = (to_q(computed[d]) - exact).abs();
+                        assert!(
+                            err <= bound,
+                            "degree {degree}, scale {scale}: rounding {err} above the allowance"
+                        );
+                        if err > Rational::from_integer(0.into()) {
+                            rounded += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        rounded > 0,
+        "no split rounded: the test would not see a zero allowance"
+    );
+}
+
+/// The data error of Bezier hull points is the caller's `eps` alone (their
+/// control points are the data): the quadrant chain, whose end points lie at
+/// distance 1 from the origin, is certified with `eps = 0.99` (after splits)
+/// and undecided with `eps = 1`.
+#[test]
+fn a_bezier_chain_within_its_data_error_of_the_origin_is_undecided() {
+    let chain: Vec<BezierCurve> = quadrant_polygons(1.0)
+        .into_iter()
+        .map(BezierCurve::new)
+        .collect();
+    assert_eq!(winding_number(&chain, 0.0), Some(1));
+    assert_eq!(winding_number(&chain, 0.99), Some(1));
+    assert_eq!(winding_number(&chain, 1.0), None);
+}
+
+/// The allowance of a piece at split depth `k` is `eps + hull_error + k *
+/// split_error`, and a point's direction is widened by `asin(e / r)`. On the
+/// quadrant chain (end points at distance 1, each arc a right angle) every
+/// piece at depth 0, 1, 2 is certified iff the allowance is below about
+/// 0.7071, 0.9487, 0.9899, and none at 1 or more. Hull error 0.75 and split
+/// error 0.1 certify at depth 1 (0.75, then 0.85); hull error 0.75 and split
+/// error 0.25 never do (0.75, 1.0, 1.25, ...); hull error 0.5 plus `eps = 0.2`
+/// certifies at depth 0, plus `eps = 0.5` never. The same chain scaled by 2
+/// with hull error 1 (relative 0.5) is certified: the widening at its end
+/// points is `asin(1/2)`, not `asin(1)`.
+#[test]
+fn the_winding_allowance_grows_with_the_split_depth_and_is_relative_to_the_distance() {
+    let unit = quadrant_polygons(1.0);
+    assert_eq!(
+        winding_number(&Declared::chain(&unit, 0.1, &[0.75; 4]), 0.0),
+        Some(1)
+    );
+    assert_eq!(
+        winding_number(&Declared::chain(&unit, 0.25, &[0.75; 4]), 0.0),
+        None
+    );
+    assert_eq!(
+        winding_number(&Declared::chain(&unit, 0.0, &[0.5; 4]), 0.2),
+        Some(1)
+    );
+    assert_eq!(
+        winding_number(&Declared::chain(&unit, 0.0, &[0.5; 4]), 0.5),
+        None
+    );
+    let double = quadrant_polygons(2.0);
+    assert_eq!(
+        winding_number(&Declared::chain(&double, 0.0, &[0.5; 4]), 0.0),
+        Some(1)
+    );
+}
+
+/// Curves that do not join are bridged by the principal angle between the end
+/// of one and the start of the next, both points uncertain by `eps`, the
+/// larger hull error of the two curves, and the splits' rounding (`40` times
+/// the largest split error). Three segments `(1,0)-(0,1)`, `(-1,0)-(0,-1)`,
+/// `(0,-1)-(1,0)` leave one gap, a right angle from `(0,1)` to `(-1,0)`, next
+/// to the curve with the larger hull error (0.2): with `eps = 0.1` the bridge's
+/// allowance is `0.3 + 40 split`, certified (winding 1) for split `0.005` (0.5)
+/// and not for `0.0125` (0.8; a right angle at distance 1 needs less than about 0.707).
+#[test]
+fn gaps_between_curves_are_bridged_with_the_larger_allowance_of_their_curves() {
+    let segments = vec![
+        vec![[1.0, 0.0], [0.0, 1.0]],
+        vec![[-1.0, 0.0], [0.0, -1.0]],
+        vec![[0.0, -1.0], [1.0, 0.0]],
+    ];
+    let hull = [0.0, 0.2, 0.0];
+    assert_eq!(
+        winding_number(&Declared::chain(&segments, 0.005, &hull), 0.1),
+        Some(1)
+    );
+    assert_eq!(
+        winding_number(&Declared::chain(&segments, 0.0125, &hull), 0.1),
+        None
+    );
+}
+
+/// A point that is not a number never certifies: the quadrant chain with one
+/// NaN control point is undecided (its other hull points alone lie in a cone).
+#[test]
+fn a_nan_control_point_leaves_the_winding_number_undecided() {
+    let mut polygons = quadrant_polygons(1.0);
+    polygons[1][1] = [f64::NAN, 1.0];
+    let chain: Vec<BezierCurve> = polygons.into_iter().map(BezierCurve::new).collect();
+    assert_eq!(winding_number(&chain, 0.0), None);
+}
+
+/// A bridge (two points, never split) is certified only if its opening,
+/// widened by the points' uncertainty, stays below `pi - ANGLE_MARGIN`. The
+/// chain `(1,0)-(0,1)`, gap to `b = (-t, -1)` (just past `-pi/2`), `b-(1,0)`:
+/// the gap turns by `pi - t` counter-clockwise (across the negative x-axis),
+/// so that the total is one turn. Certified for `t = 2^-29` (about
+/// `1.9 ANGLE_MARGIN`), undecided for `t = 2^-31` (about `0.47 ANGLE_MARGIN`);
+/// the same for the mirror image (`y -> -y`), which turns clockwise: winding -1.
+#[test]
+fn a_gap_of_almost_half_a_turn_is_bridged_only_outside_the_angle_margin() {
+    let chain = |t: f64, y: f64| {
+        vec![
+            BezierCurve::new(vec![[1.0, 0.0], [0.0, y]]),
+            BezierCurve::new(vec![[-t, -y], [1.0, 0.0]]),
+        ]
+    };
+    let wide = 2f64.powi(-29);
+    let narrow = 2f64.powi(-31);
+    assert!(wide > 1.5 * ANGLE_MARGIN && narrow < 0.5 * ANGLE_MARGIN);
+    assert_eq!(winding_number(&chain(wide, 1.0), 0.0), Some(1));
+    assert_eq!(winding_number(&chain(narrow, 1.0), 0.0), None);
+    assert_eq!(winding_number(&chain(wide, -1.0), 0.0), Some(-1));
+    assert_eq!(winding_number(&chain(narrow, -1.0), 0.0), None);
+}
+
+/// Every point's direction is widened by `asin(e / r)` plus `4 EPSILON` (the
+/// rounding of `atan2` and of the difference of two angles), also where `e`
+/// is only rounding. In the chain of the previous test (segments: no data or
+/// hull error) the bridge's allowance is the splits' rounding alone, `e = 40
+/// split_error`, so the gap is refused iff `t <= ANGLE_MARGIN + 2 (asin(e) +
+/// 4 EPSILON)`; without the `4 EPSILON` the bound would be `8 EPSILON` (4 ulps
+/// of the angle) lower. `t` halfway between the two is refused, `t` 3 ulps of
+/// the angle above the bound is bridged.
+#[test]
+fn the_angle_rounding_allowance_widens_every_point() {
+    let segment = BezierCurve::new(vec![[1.0, 0.0], [0.0, 1.0]]);
+    let chain = |t: f64| {
+        vec![
+            segment.clone(),
+            BezierCurve::new(vec![[-t, -1.0], [1.0, 0.0]]),
+        ]
+    };
+    // the chain's magnitude is 1; every curve is of degree 1
+    let e = MAX_SPLIT_DEPTH as f64 * segment.split_error(1.0);
+    let bound = ANGLE_MARGIN + 2.0 * (e.asin() + 4.0 * f64::EPSILON);
+    assert_eq!(
+        winding_number(&chain(bound - 4.0 * f64::EPSILON), 0.0),
+        None
+    );
+    assert_eq!(
+        winding_number(&chain(bound + 6.0 * f64::EPSILON), 0.0),
+        Some(1)
+    );
+}
+
+/// Both halves of a split piece carry the allowance of their own depth. On
+/// quarter arcs with control point `(1, 1/2)` (rotated by right angles) the
+/// right half is the harder one: a whole arc is certified below an allowance
+/// of 0.707, its left half below 0.894, its right half below 0.832 and the
+/// right half's halves below 0.859 and 0.868. Hull error 0.75 with split
+/// error 0.05 certifies both halves at depth 1 (0.80); with split error 0.12
+/// the left half is certified at depth 1 (0.87) but the right half is not,
+/// nor its halves at depth 2 (0.99): undecided.
+#[test]
+fn the_right_half_of_a_split_carries_the_allowance_of_its_depth() {
+    let arc = [[1.0, 0.0], [1.0, 0.5], [0.0, 1.0]];
+    let quarter_turns: Vec<Vec<[f64; 2]>> = (0..4)
+        .map(|k| {
+            arc.iter()
+                .map(|&p| (0..k).fold(p, |[x, y], _| [-y, x]))
+                .collect()
+        })
+        .collect();
+    assert_eq!(
+        winding_number(&Declared::chain(&quarter_turns, 0.05, &[0.75; 4]), 0.0),
+        Some(1)
+    );
+    assert_eq!(
+        winding_number(&Declared::chain(&quarter_turns, 0.12, &[0.75; 4]), 0.0),
+        None
+    );
 }
