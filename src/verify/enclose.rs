@@ -69,6 +69,10 @@ pub enum Tamper {
     /// The sound enclosure without the second-order scaled discs (plain
     /// Gershgorin discs; for comparisons).
     PlainGershgorin,
+    /// The factor route's verdict ranges from the linear part of the Taylor
+    /// forms alone (quadratic terms and remainders dropped): first-order
+    /// exact, but not an enclosure.
+    FirstOrder,
 }
 
 /// An affine matrix family `C(x) = C_0 + sum_k x_k C_k` of size `m`.
@@ -77,6 +81,10 @@ pub struct AffineFamily {
     m: usize,
     c0: Vec<f64>,
     terms: Vec<Vec<(usize, usize, f64)>>,
+    /// The characteristic polynomial for the factor route (`m >= 4`).
+    charpoly: Option<Box<super::factor::CharPoly>>,
+    /// Its invariants, when fewer than the parameters.
+    invariants: Option<Box<super::invariants::Invariants>>,
 }
 
 impl AffineFamily {
@@ -159,7 +167,42 @@ impl AffineFamily {
                 t
             })
             .collect();
-        AffineFamily { m, c0, terms }
+        let mut family = AffineFamily {
+            m,
+            c0,
+            terms,
+            charpoly: None,
+            invariants: None,
+        };
+        family.charpoly = super::factor::CharPoly::new(&family).map(Box::new);
+        family.invariants = family
+            .charpoly
+            .as_deref()
+            .and_then(super::invariants::Invariants::new)
+            .map(Box::new);
+        family
+    }
+
+    /// The invariants of the characteristic polynomial, when the invariant
+    /// route applies.
+    pub fn invariants(&self) -> Option<&super::invariants::Invariants> {
+        self.invariants.as_deref()
+    }
+
+    /// The characteristic polynomial of the family when the factor route
+    /// applies (`4 <= m <=` [`super::factor::MAX_FACTOR_DIM`]).
+    pub fn charpoly(&self) -> Option<&super::factor::CharPoly> {
+        self.charpoly.as_deref()
+    }
+
+    /// Entry `(a, b)` of `C_0`.
+    pub fn constant(&self, a: usize, b: usize) -> f64 {
+        self.c0[a * self.m + b]
+    }
+
+    /// Per parameter `k`, the nonzero entries `(a, b, value)` of `C_k`.
+    pub fn terms(&self) -> &[Vec<(usize, usize, f64)>] {
+        &self.terms
     }
 
     /// Matrix size.

@@ -27,7 +27,9 @@
 pub mod cc;
 pub mod decide;
 pub mod enclose;
+pub mod factor;
 pub mod interval;
+pub mod invariants;
 pub mod spec;
 pub mod taylor;
 
@@ -156,12 +158,23 @@ fn evaluate(
             }
         }
         (Region::Ratios { .. } | Region::Corners { .. }, Some(f)) => {
-            match enclose::enclose(f, lo, hi, tamper) {
-                Some(e) => {
-                    let v = decide::decide_either(&e.rows, &e.cols);
-                    (v.separation, v.class, Some(e.scores))
-                }
-                None => (Status::Undecided, None, None),
+            // the invariant route, the factor route, the disc route: the
+            // first that applies
+            match f
+                .invariants()
+                .and_then(|inv| invariants::decide(inv, lo, hi, tamper))
+                .or_else(|| {
+                    f.charpoly()
+                        .and_then(|p| factor::decide(p, f, lo, hi, tamper))
+                }) {
+                Some((v, scores)) => (v.separation, v.class, scores),
+                None => match enclose::enclose(f, lo, hi, tamper) {
+                    Some(e) => {
+                        let v = decide::decide_either(&e.rows, &e.cols);
+                        (v.separation, v.class, Some(e.scores))
+                    }
+                    None => (Status::Undecided, None, None),
+                },
             }
         }
         (Region::Shape { valence, .. }, _) => {
@@ -225,6 +238,15 @@ fn split_coordinate(
     log_split: bool,
 ) -> Option<(usize, f64)> {
     let mut best: Option<(usize, f64, f64, f64)> = None; // (k, mid, score, width)
+    let score_of = |k: usize| {
+        scores
+            .and_then(|s| s.get(k).copied())
+            .filter(|x| x.is_finite())
+            .unwrap_or(0.0)
+    };
+    let top = (0..a.len()).map(score_of).fold(0.0, f64::max);
+    static SHARE: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
+    let share: f64 = *SHARE.get_or_init(|| std::env::var("VP_SHARE").ok().and_then(|s| s.parse().ok()).unwrap_or(0.0));
     for k in 0..a.len() {
         let w = b[k] - a[k];
         let mut mid = 0.5 * a[k] + 0.5 * b[k];
@@ -240,10 +262,10 @@ fn split_coordinate(
         if !(w > min_width && a[k] < mid && mid < b[k]) {
             continue;
         }
-        let sc = scores
-            .and_then(|s| s.get(k).copied())
-            .filter(|x| x.is_finite())
-            .unwrap_or(0.0);
+        let sc = score_of(k);
+        if top > 0.0 && !(sc >= share * top) {
+            continue;
+        }
         let better = match best {
             None => true,
             Some((_, _, bs, bw)) => sc > bs || (sc == bs && w > bw),

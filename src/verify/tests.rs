@@ -222,6 +222,58 @@ fn gershgorin_path_agrees_with_the_exact_classifier_and_its_weakening_is_caught(
     );
 }
 
+fn spec_n(n: usize, lo: Vec<f64>, hi: Vec<f64>, min_width: f64) -> VerifySpec {
+    assert_eq!(lo.len(), n);
+    VerifySpec {
+        name: format!("t{n}"),
+        region: Region::Ratios { lo, hi },
+        properties: vec![Property::Class, Property::Separation],
+        min_width,
+        time_budget: None,
+    }
+}
+
+#[test]
+fn factor_route_agrees_with_the_exact_classifier_for_n_6_to_8() {
+    let mut rng = SplitMix64::new(15);
+    let mut certified = 0;
+    for n in 6..=8 {
+        for _ in 0..3 {
+            let lo: Vec<f64> = (0..n).map(|_| rng.uniform(0.05, 0.9)).collect();
+            let hi: Vec<f64> = lo.iter().map(|x| x + 0.04).collect();
+            let spec = spec_n(n, lo, hi, 0.02);
+            let out = run(&spec, &Limits::default());
+            certified += out.cells.iter().filter(|c| c.class.is_some()).count();
+            let (bad, checks) = disagreements(&spec, &out, 8, 5);
+            assert!(bad == 0, "n = {n}: {bad} disagreements in {checks}");
+        }
+    }
+    assert!(certified > 0, "no n = 6..8 cell was certified");
+}
+
+#[test]
+fn a_first_order_factor_route_is_caught() {
+    // around the uniform ratios the subdominant pair's discriminant has a
+    // saddle (zero gradient): ranges from the linear part alone certify
+    // cells that hold both classes
+    let spec = spec_n(5, vec![0.4; 5], vec![0.6; 5], 0.05);
+    let sound = run(&spec, &Limits::default());
+    let (bad, checks) = disagreements(&spec, &sound, 400, 7);
+    assert!(bad == 0, "{bad} disagreements in {checks}");
+    let weak = run(
+        &spec,
+        &Limits {
+            tamper: Tamper::FirstOrder,
+            ..Limits::default()
+        },
+    );
+    let (bad, checks) = disagreements(&spec, &weak, 400, 7);
+    assert!(
+        bad > 0,
+        "the first-order factor route went unnoticed in {checks} checks"
+    );
+}
+
 #[test]
 fn cells_tile_the_box_exactly() {
     let spec = spec3([0.05, 0.2, 0.3], [0.95, 0.7, 0.9], 1.0 / 16.0);
