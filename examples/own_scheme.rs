@@ -13,6 +13,13 @@
 //!
 //! (Catmull-Clark: `beta = 3/(2n)`, `gamma = 1/(4n)`; math doc section 8).
 //! Run with `cargo run --release --example own_scheme [OUT.svg]`.
+//!
+//! Only [`Scheme::local_matrix`] is required. Everything else is an optional
+//! capability with a documented default (the table in the docs of
+//! `subdiv_lab::scheme`): a closed-form limit stencil, an exact matrix, a
+//! structured or Fourier spectrum, a characteristic ring, and the cost model
+//! the work estimates use ([`Scheme::cost_model`]; the default measures the
+//! local matrix once, enough for this scheme).
 
 use subdiv_lab::schemes::{Assembler, LocalMatrix, PointLabel, Role};
 use subdiv_lab::spectral::{analyze, AnalyzeOptions};
@@ -121,6 +128,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         s.label(),
         a.subdominant.class.name(),
         a.subdominant.lambda1.re
+    );
+
+    // Heavy work is estimated first: the scheme's cost model at a valence
+    // far beyond this machine is refused before anything is built.
+    let too_big = subdiv_lab::budget::analyze(&s.cost_model(), 100_000, false);
+    println!(
+        "n = 100000 would need {} ({})",
+        subdiv_lab::budget::format_bytes(too_big.bytes),
+        too_big.what
     );
 
     // A sweep over beta at n = 5 (gamma fixed at Catmull-Clark's).

@@ -15,16 +15,23 @@
 //! are meant to be conservative by up to a factor of about 2) and are only
 //! used to refuse work, never to decide a verdict.
 //!
+//! The per-scheme part of the models (the local matrix's dimension and the
+//! constants of its analysis) is a [`CostModel`] that each scheme provides
+//! ([`Scheme::cost_model`](crate::Scheme::cost_model); by name before any
+//! configuration exists, [`crate::scheme::registry::cost_model`]): this
+//! module never asks which scheme it is estimating.
+//!
 //! ```
 //! use subdiv_lab::budget::{self, MEMORY_LIMIT_BYTES, TIME_LIMIT_SECONDS};
-//! use subdiv_lab::schemes::SchemeKind;
-//! let e = budget::analyze(SchemeKind::CatmullClark, 100_000, false);
+//! use subdiv_lab::schemes::LocalScheme;
+//! use subdiv_lab::Scheme;
+//! let cc = LocalScheme::<f64>::catmull_clark(100_000).unwrap();
+//! let e = budget::analyze(&cc.cost_model(), 100_000, false);
 //! assert!(e.bytes > 300e9 && e.bytes > MEMORY_LIMIT_BYTES);
-//! let small = budget::analyze(SchemeKind::Nurds, 5, false);
+//! let ds = LocalScheme::<f64>::doo_sabin(5).unwrap();
+//! let small = budget::analyze(&ds.cost_model(), 5, false);
 //! assert!(small.within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
 //! ```
-
-use crate::schemes::SchemeKind;
 
 /// Memory a single command may use without `--force`: 4 GB (a sixth of the
 /// 24 GB reference machine, so that several runs fit side by side).
@@ -66,12 +73,6 @@ pub const ANALYZE_SECONDS_PER_N3_DS_STRUCTURED: f64 = 5.0e-7;
 /// Seconds per `n^3` of `analyze`, Catmull-Clark family (either path).
 /// Measured 1.9e-7 to 2.1e-7 at `n = 200, 400`.
 pub const ANALYZE_SECONDS_PER_N3_CC: f64 = 2.5e-7;
-
-/// Seconds per `n^3` of `analyze`, Loop (the dense `(3n+1)` decomposition
-/// with vectors and the characteristic-map certificate). Measured 1.4e-6 at
-/// `n = 100` and `n = 200` (1.40 s, 11.1 s) on the 2-core machine while other
-/// builds ran (load 9); rounded up.
-pub const ANALYZE_SECONDS_PER_N3_LOOP: f64 = 2.0e-6;
 
 /// Bytes per printed matrix entry of `matrix` (the entry, its text and the
 /// per-cell `String` of the text/JSON renderers); exact rationals need about
@@ -173,39 +174,91 @@ fn round_2(x: f64) -> String {
     }
 }
 
-/// Dimension of the local matrix of `kind` at valence `n`: `4n` (Doo-Sabin
-/// family), `2n + 1` (Catmull-Clark family), `3n + 1` (Loop).
-pub fn local_dimension(kind: SchemeKind, n: usize) -> f64 {
-    let n = n as f64;
-    if kind == SchemeKind::Loop {
-        3.0 * n + 1.0
-    } else if kind.is_catmull_clark_family() {
-        2.0 * n + 1.0
-    } else {
-        4.0 * n
+/// How a scheme's heavy steps scale: the dimension of its local matrix and
+/// the measured constants of its analysis, from which the estimates of
+/// [`analyze`], [`matrix`] and the sweep estimate are computed. A scheme
+/// provides it ([`Scheme::cost_model`](crate::Scheme::cost_model)); the
+/// constants of the built-in families are this module's `ANALYZE_*` and
+/// `SWEEP_*` constants.
+///
+/// ```
+/// use subdiv_lab::budget::CostModel;
+/// // a vertex-centred one-ring scheme: (2n + 1) x (2n + 1)
+/// let m = CostModel::dense(2.0, 1.0);
+/// assert_eq!(m.dimension(5), 11.0);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CostModel {
+    /// The local matrix of valence `n` is `d x d` with
+    /// `d = dimension_per_valence * n + dimension_offset`.
+    pub dimension_per_valence: f64,
+    /// See [`dimension_per_valence`](Self::dimension_per_valence).
+    pub dimension_offset: f64,
+    /// Peak bytes per entry `d^2` of `analyze`.
+    pub analyze_bytes_per_entry: f64,
+    /// Seconds per `n^3` of `analyze`, full path.
+    pub analyze_seconds_per_n3_full: f64,
+    /// Seconds per `n^3` of `analyze`, structured path.
+    pub analyze_seconds_per_n3_structured: f64,
+    /// Seconds per `n^3` of one sweep configuration's classification on top
+    /// of [`SWEEP_SECONDS_BASE`] and the `4e-9 n^3` of the face-block kernel
+    /// (zero when the scheme classifies through that kernel).
+    pub sweep_classify_seconds_per_n3: f64,
+    /// Whether a sweep's classification (without the characteristic map)
+    /// works on the `n x n` face block (64 bytes per entry `n^2`) rather than
+    /// the `d x d` local matrix (64 bytes per entry `d^2`).
+    pub sweep_classify_on_face_block: bool,
+    /// Seconds per `n^3` of a sweep's characteristic-map check (plus 1 ms).
+    pub sweep_charmap_seconds_per_n3: f64,
+}
+
+impl CostModel {
+    /// The model of a scheme analysed by the dense general method only: the
+    /// local matrix has `per_valence * n + offset` rows, and every step costs
+    /// what the largest measured built-in constant per `d^3` gives
+    /// ([`DENSE_SECONDS_PER_D3`]), the analysis and a sweep's classification
+    /// alike (the default of
+    /// [`Scheme::cost_model`](crate::Scheme::cost_model)).
+    pub fn dense(per_valence: f64, offset: f64) -> CostModel {
+        // seconds per n^3 = DENSE_SECONDS_PER_D3 * (d / n)^3, d / n taken at n = 3 (its largest)
+        let ratio = per_valence + offset.max(0.0) / 3.0;
+        let per_n3 = DENSE_SECONDS_PER_D3 * ratio * ratio * ratio;
+        CostModel {
+            dimension_per_valence: per_valence,
+            dimension_offset: offset,
+            analyze_bytes_per_entry: ANALYZE_BYTES_PER_ENTRY_DS.max(ANALYZE_BYTES_PER_ENTRY_CC),
+            analyze_seconds_per_n3_full: per_n3,
+            analyze_seconds_per_n3_structured: per_n3,
+            sweep_classify_seconds_per_n3: per_n3,
+            sweep_classify_on_face_block: false,
+            sweep_charmap_seconds_per_n3: per_n3,
+        }
+    }
+
+    /// The dimension `d` of the local matrix at valence `n`.
+    pub fn dimension(&self, n: usize) -> f64 {
+        self.dimension_per_valence * n as f64 + self.dimension_offset
     }
 }
 
-/// `subdiv-lab analyze` of `kind` at valence `n` (`structured`: the
-/// structured path). Without `--exact`; the exact verdicts have their own
-/// bounds.
-pub fn analyze(kind: SchemeKind, n: usize, structured: bool) -> Estimate {
-    let d = local_dimension(kind, n);
+/// Seconds per `d^3` of a `d x d` local matrix for [`CostModel::dense`]: the
+/// largest of the built-in families' measured constants converted to `d^3`
+/// (Loop's analysis, `2e-6 / 27`), rounded up.
+pub const DENSE_SECONDS_PER_D3: f64 = 1e-7;
+
+/// `subdiv-lab analyze` of a scheme with the cost model `model` at valence
+/// `n` (`structured`: the structured path). Without `--exact`; the exact
+/// verdicts have their own bounds.
+pub fn analyze(model: &CostModel, n: usize, structured: bool) -> Estimate {
+    let d = model.dimension(n);
     let nf = n as f64;
-    let (per_entry, per_n3) = if kind == SchemeKind::Loop {
-        (ANALYZE_BYTES_PER_ENTRY_CC, ANALYZE_SECONDS_PER_N3_LOOP)
-    } else if kind.is_catmull_clark_family() {
-        (ANALYZE_BYTES_PER_ENTRY_CC, ANALYZE_SECONDS_PER_N3_CC)
-    } else if structured {
-        (
-            ANALYZE_BYTES_PER_ENTRY_DS,
-            ANALYZE_SECONDS_PER_N3_DS_STRUCTURED,
-        )
+    let per_n3 = if structured {
+        model.analyze_seconds_per_n3_structured
     } else {
-        (ANALYZE_BYTES_PER_ENTRY_DS, ANALYZE_SECONDS_PER_N3_DS_FULL)
+        model.analyze_seconds_per_n3_full
     };
     Estimate {
-        bytes: per_entry * d * d,
+        bytes: model.analyze_bytes_per_entry * d * d,
         seconds: per_n3 * nf * nf * nf,
         what: format!("the {d} x {d} matrix and its decompositions"),
     }
@@ -238,10 +291,11 @@ pub fn analyze_exact(n: usize, ratio_bits: u64) -> Estimate {
     }
 }
 
-/// `subdiv-lab matrix` of `kind` at valence `n` (`face`: the `n x n` face
-/// block only; the full matrix is still assembled).
-pub fn matrix(kind: SchemeKind, n: usize, face: bool, exact: bool) -> Estimate {
-    let d = local_dimension(kind, n);
+/// `subdiv-lab matrix` of a scheme with the cost model `model` at valence
+/// `n` (`face`: the `n x n` face block only; the full matrix is still
+/// assembled).
+pub fn matrix(model: &CostModel, n: usize, face: bool, exact: bool) -> Estimate {
+    let d = model.dimension(n);
     let printed = if face { (n as f64).powi(2) } else { d * d };
     let factor = if exact { 2.0 } else { 1.0 };
     Estimate {
@@ -366,42 +420,85 @@ pub fn verify(
     }
 }
 
+/// Additional seconds per evaluated cell of `verify` on a NURDS box when the
+/// `charmap` property is requested, per `n^3` (the centre eigen-decomposition
+/// of `W`, the verified inverse and Stewart's bound, `n` interval Sylvester
+/// solves and `3n` Jacobian nets in affine forms with `3n - 4` symbols).
+/// Measured: the `n = 3` target (`benches/specs/verify-charmap-n3.toml`)
+/// took 198 s of CPU for 1 178 991 evaluated cells at load 12, about 170
+/// microseconds per cell, most of them with a charmap evaluation; single cells
+/// took 0.5 ms (`n = 3`), 0.9 ms (`n = 4`), 1.4 ms (`n = 5`) of wall time at
+/// that load. `1.2e-5 n^3` (0.32 ms at `n = 3`, 1.5 ms at `n = 5`) is an
+/// upper estimate for a run in which every cell gets a charmap evaluation.
+pub const VERIFY_CHARMAP_SECONDS_PER_CELL_N3: f64 = 1.2e-5;
+
+/// Additional seconds per evaluated cell of `verify` on an interval of `c`
+/// when `charmap` is requested, per `n` (one 7 x 7 interval solve, the cone
+/// test on three cells, `4n` boundary curves). Measured: 0.01-0.02 s of CPU
+/// for 100-300 evaluated cells at `n = 3..16`.
+pub const VERIFY_CHARMAP_SECONDS_PER_CELL_N_CC: f64 = 1.0e-5;
+
+/// [`verify`] with the `charmap` property requested: the same bound on the
+/// memory, the time per cell raised by [`VERIFY_CHARMAP_SECONDS_PER_CELL_N3`]
+/// `n^3` (NURDS) or [`VERIFY_CHARMAP_SECONDS_PER_CELL_N_CC`] `n` (the `c`
+/// path).
+///
+/// ```
+/// let plain = subdiv_lab::budget::verify(3, true, 1_000_000, None, 2);
+/// let cm = subdiv_lab::budget::verify_charmap(3, true, 1_000_000, None, 2);
+/// assert!(cm.seconds > plain.seconds && cm.bytes == plain.bytes);
+/// ```
+pub fn verify_charmap(
+    n: usize,
+    nurds: bool,
+    max_cells: u64,
+    time_budget: Option<f64>,
+    threads: usize,
+) -> Estimate {
+    let mut e = verify(n, nurds, max_cells, None, threads);
+    let nf = n as f64;
+    let extra = if nurds {
+        VERIFY_CHARMAP_SECONDS_PER_CELL_N3 * nf.powi(3)
+    } else {
+        VERIFY_CHARMAP_SECONDS_PER_CELL_N_CC * nf
+    };
+    e.seconds += max_cells as f64 * extra / threads.max(1) as f64;
+    if let Some(t) = time_budget {
+        e.seconds = e.seconds.min(2.0 * t);
+    }
+    e.what = format!("{} (with the charmap property)", e.what);
+    e
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn issue_16_sizes_exceed_the_limits_and_small_ones_do_not() {
-        for kind in [
-            SchemeKind::Nurds,
-            SchemeKind::DooSabin,
-            SchemeKind::CcVariant,
-            SchemeKind::CatmullClark,
-            SchemeKind::AdjustableCc,
-        ] {
-            for structured in [false, true] {
-                let big = analyze(kind, 100_000, structured);
-                assert!(big.bytes > MEMORY_LIMIT_BYTES, "{kind}");
-                assert!(analyze(kind, 20_000, structured).bytes > MEMORY_LIMIT_BYTES);
-                assert!(analyze(kind, 1000, structured).seconds > TIME_LIMIT_SECONDS);
-                let small = analyze(kind, 64, structured);
-                assert!(small.within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
-            }
-            assert!(matrix(kind, 100_000, false, false).bytes > MEMORY_LIMIT_BYTES);
-            assert!(
-                matrix(kind, 64, false, true).within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES)
-            );
-        }
-        // the CC one-ring at n = 100000 is the issue's 320 GB matrix
-        let cc = analyze(SchemeKind::CatmullClark, 100_000, false);
-        assert!(cc.bytes >= 8.0 * 200_001f64.powi(2));
-        assert!(cc.what.contains("200001 x 200001"));
+        // (the per-scheme sizes: scheme::registry's tests, over every built-in cost model)
         assert!(ccss_bound(1000, 4).seconds > TIME_LIMIT_SECONDS);
         assert!(ccss_bound(50, 4).seconds < 10.0);
         assert!(ccss_bound(100_000, 4).bytes > MEMORY_LIMIT_BYTES);
         // 720k quads, 5 levels
         assert!(subdivide(4 * 720_000 * 1024).bytes > MEMORY_LIMIT_BYTES);
         assert!(subdivide(4 * 720_000).within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
+    }
+
+    #[test]
+    fn the_dense_default_model_is_at_least_as_costly_per_entry_as_the_built_in_ones() {
+        // a (3n + 1)-dimensional scheme: d / n is largest at n = 3
+        let m = CostModel::dense(3.0, 1.0);
+        assert_eq!(m.dimension(4), 13.0);
+        let ratio = 3.0 + 1.0 / 3.0;
+        let per_n3 = DENSE_SECONDS_PER_D3 * ratio * ratio * ratio;
+        assert_eq!(m.analyze_seconds_per_n3_full, per_n3);
+        assert!(m.analyze_bytes_per_entry >= ANALYZE_BYTES_PER_ENTRY_DS);
+        assert!(!m.sweep_classify_on_face_block);
+        let e = analyze(&m, 10, true);
+        assert_eq!(e.bytes, m.analyze_bytes_per_entry * 31.0 * 31.0);
+        assert!((e.seconds - per_n3 * 1000.0).abs() <= 1e-15 * e.seconds);
+        assert!(e.what.contains("31 x 31"));
     }
 
     #[test]

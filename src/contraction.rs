@@ -28,6 +28,13 @@
 //!
 //! The bound 3/4 is attained by the row sums, but the asymptotic rate is
 //! `|lambda_1|` of `A`, `< 3/4` and tending to 3/4 as `n` grows.
+//!
+//! Theorem 1 is a statement about the Doo-Sabin family (a central face whose
+//! corners contract towards its face point), so this module is part of that
+//! family's implementation: the analysis reaches it through the capability
+//! [`Scheme::face_contraction`](crate::Scheme::face_contraction), and its
+//! functions take a [`LocalScheme`] and refuse the other families with
+//! [`Error::NotApplicable`](crate::Error::NotApplicable).
 
 use crate::error::Result;
 use crate::scalar::Scalar;
@@ -207,11 +214,15 @@ pub fn certify_face_block<T: Scalar>(
     w: DMatrix<T>,
 ) -> Result<Certificate<T>> {
     let n = a.nrows();
-    if a.ncols() != n || w.nrows() != n || w.ncols() != n || c.len() != n {
+    // The first count that disagrees with the face block's `n` rows.
+    let wrong = [a.ncols(), w.nrows(), w.ncols(), c.len()]
+        .into_iter()
+        .find(|&k| k != n);
+    if let Some(got) = wrong {
         return Err(crate::error::Error::CountMismatch {
             what: "Theorem 1 certificate: face block, weights and face-point weights must be n x n, n x n and n",
             expected: n,
-            got: if c.len() != n { c.len() } else { w.nrows() },
+            got,
         });
     }
     let quarter = T::frac(1, 4);

@@ -124,7 +124,12 @@ impl Error {
             | E::NotApplicable { .. }
             | E::Mesh(_) => true,
             E::Numerical { .. } => false,
-            E::CcssBound(c) => matches!(c, C::InvalidTolerance(_) | C::NonFinitePoint { .. }),
+            E::CcssBound(c) => matches!(
+                c,
+                C::InvalidTolerance(_)
+                    | C::NonFinitePoint { .. }
+                    | C::ToleranceBelowResolution { .. }
+            ),
             E::Spectral(s) => matches!(s, S::NotDooSabinFamily { .. }),
             E::Sweep(w) => !matches!(w, W::Io(_)),
             _ => false,

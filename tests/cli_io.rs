@@ -49,3 +49,65 @@ fn closed_pipe_ends_quietly() {
 fn libc_sigpipe() -> i32 {
     13
 }
+
+/// Audit of issue 16 item 2: an output path that is a special file (a
+/// device such as `/dev/null`, here a FIFO in a scratch directory, so that a
+/// regression cannot harm the machine) is written in place, never replaced
+/// by a rename: `subdivide -o /dev/null` used to replace the device node with
+/// a regular file when run as root. `sweep --out` and `merge --out` refuse
+/// it (their CSV is resumable and has a summary beside it).
+#[cfg(target_os = "linux")]
+#[test]
+fn special_output_files_are_written_in_place_never_replaced() {
+    use std::io::Read as _;
+    use std::os::unix::fs::{FileTypeExt as _, OpenOptionsExt as _};
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("out.obj");
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    // A non-blocking reader, so that the writer's open succeeds at once and
+    // (the output being far below a pipe buffer) its writes do not block.
+    let mut reader = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(&fifo)
+        .unwrap();
+    let cube = concat!(env!("CARGO_MANIFEST_DIR"), "/analysis/meshes/cube.obj");
+    let out = Command::new(env!("CARGO_BIN_EXE_subdiv-lab"))
+        .args(["subdivide", cube, "--scheme", "nurds", "-o"])
+        .arg(&fifo)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
+    assert!(kind.is_fifo(), "the FIFO was replaced by {kind:?}");
+    let mut text = String::new();
+    reader.read_to_string(&mut text).unwrap();
+    assert!(text.contains("\nf "), "the mesh went through the FIFO");
+    let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert_eq!(names.len(), 1, "no temporary left beside it");
+    // sweep and merge refuse it, naming it, and leave it alone.
+    let spec = concat!(env!("CARGO_MANIFEST_DIR"), "/analysis/sweep-n3-grid.toml");
+    for args in [
+        vec!["sweep", spec, "--limit", "3", "--out"],
+        vec!["merge", "--spec", spec, "x.csv", "--out"],
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_subdiv-lab"))
+            .args(&args)
+            .arg(&fifo)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("is not a regular file"), "{args:?}: {err}");
+        assert!(std::fs::symlink_metadata(&fifo)
+            .unwrap()
+            .file_type()
+            .is_fifo());
+    }
+}

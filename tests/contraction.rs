@@ -304,3 +304,83 @@ proptest! {
         prop_assert!(sub.lambda1.norm() <= 0.75 + 1e-12);
     }
 }
+
+/// Issue #22 (mutation run of `contraction.rs`): every dimension of the
+/// certificate's input is checked on its own, and the error reports the
+/// count that disagrees with the face block's `n` rows.
+#[test]
+fn certify_face_block_checks_every_dimension() {
+    use subdiv_lab::Error;
+    let (a, c, w) = genuine_block();
+    let bad = |r: subdiv_lab::Result<_>| match r {
+        Err(Error::CountMismatch { expected, got, .. }) => (expected, got),
+        other => panic!("expected a count mismatch, got {other:?}"),
+    };
+    let cols = |m: &DMatrix<Rational>, k: usize| m.columns(0, k).into_owned();
+    let rows = |m: &DMatrix<Rational>, k: usize| m.rows(0, k).into_owned();
+    // the face block not square
+    assert_eq!(bad(certify_face_block(&cols(&a, 4), &c, w.clone())), (5, 4));
+    // the weights with a row or a column too few
+    assert_eq!(bad(certify_face_block(&a, &c, rows(&w, 4))), (5, 4));
+    assert_eq!(bad(certify_face_block(&a, &c, cols(&w, 4))), (5, 4));
+    // the face-point weights too short or too long
+    assert_eq!(bad(certify_face_block(&a, &c[..4], w.clone())), (5, 4));
+    let mut long = c.clone();
+    long.push(Rational::frac(0, 1));
+    assert_eq!(bad(certify_face_block(&a, &long, w.clone())), (5, 6));
+    assert!(certify_face_block(&a, &c, w).unwrap().holds());
+}
+
+/// Issue #22 (mutation run of `contraction.rs`): the measured rate with no
+/// level (nothing to fit: rate 0, no ratio) and with one level (the ratio is
+/// `m_1 / m_0`, and the fitted rate over the one level is that ratio).
+#[test]
+fn measured_rate_with_zero_and_one_level() {
+    let s = LocalScheme::nurds(EdgeRatios::new(vec![0.2, 0.7, 0.4, 0.9, 0.5]).unwrap());
+    let opts = |levels| MeasureOptions {
+        levels,
+        ..MeasureOptions::default()
+    };
+    let m = measure(&s, &opts(0)).unwrap();
+    assert_eq!(m.distances.len(), 1);
+    assert!(m.distances[0] > 0.0);
+    assert!(m.ratios.is_empty());
+    assert_eq!((m.max_ratio, m.fitted_rate), (0.0, 0.0));
+    let m = measure(&s, &opts(1)).unwrap();
+    assert_eq!(m.distances.len(), 2);
+    assert_eq!(m.ratios, vec![m.distances[1] / m.distances[0]]);
+    assert_eq!(m.max_ratio, m.ratios[0]);
+    assert_eq!(m.fitted_rate, m.ratios[0]);
+    assert!(m.max_ratio > 0.0 && m.max_ratio <= 0.75);
+}
+
+/// Issue #22 (mutation run of `contraction.rs`): `Measured::ratios` is
+/// NaN-free; it stops at the first level where `m_k = 0`. Enough levels
+/// drive the distances below the smallest subnormal (`|lambda_1| = 3/8` for
+/// the valence-3 Catmull-Clark variant: `(3/8)^k < 2^-1074` from `k = 760`);
+/// from there on they are exactly 0 (the face corners move only among
+/// themselves, towards the invariant face point), and the fitted rate of a
+/// window that ends at 0 is 0.
+#[test]
+fn measured_ratios_stop_where_the_distance_underflows_to_zero() {
+    let s = LocalScheme::<f64>::cc_variant(3).unwrap();
+    let m = measure(
+        &s,
+        &MeasureOptions {
+            levels: 1000,
+            ..MeasureOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(m.distances.len(), 1001);
+    let first_zero = m
+        .distances
+        .iter()
+        .position(|&d| d == 0.0)
+        .expect("the distances underflow to 0");
+    assert!(first_zero > 100, "{first_zero}");
+    assert!(m.distances[first_zero..].iter().all(|&d| d == 0.0));
+    assert_eq!(m.ratios.len(), first_zero);
+    assert!(m.ratios.iter().all(|r| r.is_finite() && *r >= 0.0));
+    assert_eq!(m.fitted_rate, 0.0);
+}

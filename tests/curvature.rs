@@ -119,14 +119,22 @@ fn loop_verdicts_from_its_closed_form_spectrum() {
         let mu = (lambda * lambda).max(block2.abs()).max(0.125);
         let c = curvature(&LoopScheme::new(n).unwrap()).unwrap();
         assert!((c.mu - mu).abs() < 1e-12, "n={n}");
+        let rational = matches!(n, 3 | 4 | 6);
         let expected = if mu - lambda * lambda > 1e-6 {
             CurvatureVerdict::Unbounded
+        } else if rational {
+            // mu = lambda^2 in closed form, and the two-ring matrix is
+            // rational (cos(2 pi/n) in {-1/2, 0, 1/2}): certified exactly.
+            CurvatureVerdict::Bounded
         } else {
-            // mu = lambda^2 in closed form; Loop has no exact matrix here, so
-            // the float verdict must not guess.
+            // mu = lambda^2 in closed form; the weights are irrational, so
+            // there is no exact matrix and the float verdict must not guess.
             CurvatureVerdict::Indeterminate
         };
         assert_eq!(c.verdict, expected, "n={n}: {}", c.reason);
+        if expected == CurvatureVerdict::Bounded {
+            assert_eq!(c.evidence, CurvatureEvidence::Exact, "n={n}");
+        }
         assert!(c.mu_mode.is_some());
     }
 }
@@ -143,10 +151,72 @@ fn uniform_doo_sabin_family_is_certified_where_rational() {
         assert_eq!(c.evidence, CurvatureEvidence::Exact);
         assert!(c.mu_mode.is_none());
     }
-    // Original Doo-Sabin has irrational weights: no exact matrix, and its
-    // mu = lambda^2 = 1/4 stays indeterminate.
+    // Original Doo-Sabin at n = 5 has irrational weights: no exact matrix, and
+    // its mu = lambda^2 = 1/4 stays indeterminate.
     let ds = curvature(&LocalScheme::<f64>::doo_sabin(5).unwrap()).unwrap();
     assert_eq!(ds.verdict, CurvatureVerdict::Indeterminate, "{}", ds.reason);
+    // At n = 3, 4, 6 its weights are rational (cos(2 pi/n) in {-1/2, 0, 1/2}):
+    // lambda = 1/2 and mu = 1/4 = lambda^2 are certified. At n = 3, 4 the
+    // eigenvalue 1/4 is non-defective: bounded. At n = 6 it has a Jordan
+    // block (the curvature grows like the level k): unbounded, certified.
+    for n in [3, 4, 6] {
+        let ds = curvature(&LocalScheme::<f64>::doo_sabin(n).unwrap()).unwrap();
+        let expected = if n == 6 {
+            CurvatureVerdict::Unbounded
+        } else {
+            CurvatureVerdict::Bounded
+        };
+        assert_eq!(ds.verdict, expected, "n={n}: {}", ds.reason);
+        assert_eq!(ds.evidence, CurvatureEvidence::Exact, "n={n}");
+        assert_eq!(
+            ds.reason.contains("defective"),
+            n == 6,
+            "n={n}: {}",
+            ds.reason
+        );
+    }
+}
+
+/// Geometric multiplicity of `mu` from an SVD of `S - mu I` in floating
+/// point, independent of the exact rank used by the certificate: the number
+/// of singular values below `1e-9` (the others are of order 1e-2 or more for
+/// these small rational matrices).
+fn float_eigenvectors(s: &nalgebra::DMatrix<f64>, mu: f64) -> usize {
+    let n = s.nrows();
+    let a = s - nalgebra::DMatrix::<f64>::identity(n, n) * mu;
+    a.svd(false, false)
+        .singular_values
+        .iter()
+        .filter(|&&x| x < 1e-9)
+        .count()
+}
+
+#[test]
+fn the_exact_certificate_counts_eigenvectors_of_mu() {
+    // Original Doo-Sabin, mu = 1/4: the certificate's eigenvector count is
+    // the float SVD's null-space dimension, and below the multiplicity
+    // (a Jordan block) exactly at n = 6.
+    for n in [3, 4, 6] {
+        let s = LocalScheme::<f64>::doo_sabin(n).unwrap();
+        let m = s.exact_local_matrix().unwrap().unwrap();
+        let x = certify_rational(m.matrix(), 0.5, 0.25, 1e-12, 1e-12).unwrap();
+        let f = s.local_matrix().unwrap();
+        assert_eq!(
+            x.mu_eigenvectors,
+            float_eigenvectors(f.matrix(), 0.25),
+            "n={n}"
+        );
+        assert_eq!(
+            x.mu_eigenvectors < x.mu_multiplicity,
+            n == 6,
+            "n={n}: {x:?}"
+        );
+    }
+    // Catmull-Clark at n = 4 (the regular case): bounded, non-defective.
+    let s = LocalScheme::<f64>::catmull_clark(4).unwrap();
+    let m = s.exact_local_matrix().unwrap().unwrap();
+    let x = certify_rational(m.matrix(), 0.5, 0.25, 1e-12, 1e-12).unwrap();
+    assert_eq!(x.mu_eigenvectors, x.mu_multiplicity);
 }
 
 #[test]

@@ -256,7 +256,8 @@ fn aspect_problems(name: &str, boxes: &[TextBox]) -> Vec<String> {
     problems
 }
 
-/// A small sweep CSV: valences 3 and 4 over a 2-D ratio grid.
+/// A small sweep CSV: valences 3 and 4 over a 2-D ratio grid, with one
+/// cell of a long class name.
 fn sweep_csv() -> String {
     let mut s =
         String::from("# subdiv-lab sweep: test data\nid,valence,r0,r1,r2,class,contraction_rate\n");
@@ -265,7 +266,11 @@ fn sweep_csv() -> String {
         for i in 0..9 {
             for j in 0..9 {
                 let (r0, r1) = (0.05 + 0.1 * i as f64, 0.05 + 0.1 * j as f64);
-                let class = if (r0 - 0.45f64).abs() < 1e-9 {
+                // One cell of the long class name the classifier writes
+                // (its legend entry must wrap inside the canvas).
+                let class = if i == 8 && j == 8 {
+                    "indeterminate:standard/defective"
+                } else if (r0 - 0.45f64).abs() < 1e-9 {
                     "defective"
                 } else if (r0 < 0.5) == (r1 < 0.5) {
                     "complex_pair"

@@ -274,6 +274,46 @@ fn the_cap_commutes_with_affine_maps_of_the_net() {
     }
 }
 
+/// Audit of issue 16/18: a net scaled by a power of two gives the cap scaled
+/// by it, with the same residuals, for any magnitude: coordinates near 1e100
+/// (or 1e-100) used to give an infinite residual (the curvature evaluation
+/// squares lengths twice) and a failure exit, though the cap is the same.
+#[test]
+fn the_cap_of_a_net_of_any_magnitude_is_the_scaled_cap() {
+    let ring = TwoRing::random(5, 11).unwrap();
+    let a = G2Cap::build(&ring, 0.5).unwrap();
+    for k in [-700, -340, 340, 700] {
+        let f = 2f64.powi(k / 2) * 2f64.powi(k - k / 2);
+        let b = G2Cap::build(&ring.map(|p| p.map(|x| x * f)), 0.5).unwrap();
+        b.check().unwrap();
+        assert_eq!(b.g1_residual(), a.g1_residual(), "2^{k}");
+        assert_eq!(b.g2_residual(), a.g2_residual(), "2^{k}");
+        for (na, nb) in a.patches().iter().zip(b.patches()) {
+            for j in 0..8 {
+                for k2 in 0..8 {
+                    assert_eq!(na[j][k2].map(|x| x * f), nb[j][k2], "2^{k}");
+                }
+            }
+        }
+    }
+}
+
+/// A 2-ring on one line (or one point) has no tangent plane: bad input.
+#[test]
+fn a_degenerate_ring_is_refused_as_input() {
+    let ring = TwoRing::random(5, 2).unwrap();
+    let (pts, faces) = ring.to_polygons();
+    for squash in [|p: &Point| [p[0], 0.0, 0.0], |_: &Point| [1.0, 2.0, 3.0]] {
+        let flat: Vec<Point> = pts.iter().map(squash).collect();
+        let e = TwoRing::from_polygons(&flat, &faces, 0).unwrap_err();
+        assert!(e.is_input_error(), "{e}");
+        assert!(
+            e.to_string().contains("of vertex 0 (OBJ 1) is degenerate"),
+            "{e}"
+        );
+    }
+}
+
 #[test]
 fn polygons_round_trip_and_the_mixed_subdivision_matches_the_mesh_rule() {
     let ring = TwoRing::random(5, 4).unwrap();

@@ -92,6 +92,15 @@ const fn full(name: &'static str, args: &'static [&'static str]) -> Case {
     }
 }
 
+/// A valid one-shard sweep of the spec [`MERGE_SPEC`] (rows, and the summary
+/// beside them), for merge rows whose refusal must come before a merge that
+/// would otherwise succeed.
+const MERGE_SPEC: &str = "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n";
+/// The rows of [`MERGE_SPEC`]'s single shard.
+const MERGE_A_CSV: &str = "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n";
+/// The summary of [`MERGE_A_CSV`].
+const MERGE_A_SUMMARY: &str = "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe5\",\"total_configurations\":8,\"shard\":{\"index\":0,\"count\":1},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}";
+
 fn cases() -> Vec<Case> {
     let mut v = Vec::new();
 
@@ -1126,6 +1135,71 @@ fn cases() -> Vec<Case> {
             stdout: Stdout::Pipe,
         },
     ]);
+    // The audit of issue 16 item 2: sweep and merge never overwrite a file
+    // they did not write (the summary beside --out, the spec, an input
+    // shard's summary, an existing --out), and a missing --out directory is
+    // bad input (exit 2), not a failure while running.
+    v.extend([
+        bad_with(
+            "sweep-exact-certificate-doo-sabin-irrational-valence",
+            &["sweep", "d.toml", "--limit", "2"],
+            &[("d.toml", "name = \"d\"\nscheme = \"doo-sabin\"\nvalences = [3, 5]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\nexact_certificate = true\n")],
+            "irrational at valence 5",
+        ),
+        bad_with(
+            "sweep-summary-path-holds-a-user-file",
+            &["sweep", "{A}/sweep-n3-grid.toml", "--out", "u.csv", "--limit", "3"],
+            &[("u.summary.json", "mine")],
+            "u.summary.json exists",
+        ),
+        bad_with(
+            "sweep-summary-path-is-the-spec",
+            &["sweep", "s.summary.json", "--out", "s.csv", "--limit", "3"],
+            &[("s.summary.json", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n")],
+            "is also the spec s.summary.json",
+        ),
+        bad(
+            "sweep-out-directory-missing",
+            &["sweep", "{A}/sweep-n3-grid.toml", "--out", "nodir/x.csv"],
+            "directory nodir does not exist",
+        ),
+        bad_with(
+            "sweep-out-is-a-directory",
+            &["sweep", "{A}/sweep-n3-grid.toml", "--out", "d"],
+            &[("d/keep.txt", "mine")],
+            "--out d is a directory",
+        ),
+        bad_with(
+            "merge-out-is-an-input-summary",
+            &["merge", "--spec", "h.toml", "--out", "a.summary.json", "a.csv"],
+            &[("h.toml", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY)],
+            "--out a.summary.json exists",
+        ),
+        bad_with(
+            "merge-out-is-an-existing-user-file",
+            &["merge", "--spec", "h.toml", "--out", "q.txt", "a.csv"],
+            &[("h.toml", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY), ("q.txt", "mine")],
+            "--out q.txt exists",
+        ),
+        bad_with(
+            "merge-summary-of-out-exists",
+            &["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
+            &[("h.toml", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY), ("m.summary.json", "mine")],
+            "m.summary.json exists",
+        ),
+        bad_with(
+            "merge-summary-of-out-is-the-spec",
+            &["merge", "--spec", "h.summary.json", "--out", "h.csv", "a.csv"],
+            &[("h.summary.json", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY)],
+            "is also the spec h.summary.json",
+        ),
+        bad_with(
+            "merge-missing-input-is-named",
+            &["merge", "--spec", "h.toml", "--out", "m3.csv", "m.csv"],
+            &[("h.toml", MERGE_SPEC)],
+            "m.summary.json",
+        ),
+    ]);
     // (end of section sweep-resume-merge)
     //
     //
@@ -1159,6 +1233,26 @@ fn cases() -> Vec<Case> {
             &["plot", "s.csv", "-o", "f.svg", "--color", "colour"],
             &[("s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
             "no column \"colour\"",
+        ),
+        // Values near the f64 limit: the axis range overflowed and the tick
+        // search looped for ever (a hang); now refused naming the column.
+        bad_with(
+            "plot-x-beyond-plot-range",
+            &["plot", "h.csv", "-o", "f.svg", "--kind", "histogram", "--x", "a"],
+            &[("h.csv", "a,b\n1e308,2\n-1e308,4\n")],
+            "column \"a\" has the value 1e308, beyond",
+        ),
+        bad_with(
+            "plot-y-beyond-plot-range",
+            &["plot", "h.csv", "-o", "f.svg", "--kind", "scatter", "--x", "b", "--y", "a"],
+            &[("h.csv", "a,b\n1e308,2\n-1e308,4\n")],
+            "column \"a\" has the value 1e308, beyond",
+        ),
+        bad_with(
+            "plot-color-beyond-plot-range",
+            &["plot", "h.csv", "-o", "f.svg", "--kind", "scatter", "--x", "b", "--y", "b", "--color", "a"],
+            &[("h.csv", "a,b\n1.5e308,2\n-1e308,4\n2.5,3\n")],
+            "column \"a\" has the value 1.5e308, beyond",
         ),
         bad_with(
             "plot-empty-file",
@@ -1485,6 +1579,14 @@ fn cases() -> Vec<Case> {
             "verify-max-cells-huge",
             &["verify", "v.toml", "--out", "o", "--max-cells", "100000000000"],
             &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],
+            "--force",
+        ),
+        bad_with(
+            // the charmap property's own cost estimate (budget::verify_charmap):
+            // the same spec without charmap is within the limits
+            "verify-charmap-over-budget",
+            &["verify", "v.toml", "--out", "o", "--threads", "1"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 5\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\", \"charmap\"]\n")],
             "--force",
         ),
         bad_with(
@@ -1832,7 +1934,30 @@ fn cases() -> Vec<Case> {
                 "0.5",
             ],
         ),
-    ]);
+            // Degenerate 2-rings (all points on one point, or on one line) are
+        // bad input naming the vertex (they used to fail as a NaN residual,
+        // exit 1).
+        bad_with(
+            "g2cap-ring-on-one-point",
+            &["g2-cap", "pt.obj", "--vertex", "0", "--c", "0.5"],
+            &[("pt.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 9 21 12\nf 3 10 21 9\nf 4 11 21 10\nf 2 12 21 11\nf 5 13 22 16\nf 6 14 22 13\nf 8 15 22 14\nf 7 16 22 15\nf 1 12 23 18\nf 2 17 23 12\nf 6 13 23 17\nf 5 18 23 13\nf 3 19 24 10\nf 7 15 24 19\nf 8 20 24 15\nf 4 10 24 20\nf 1 18 25 9\nf 5 16 25 18\nf 7 19 25 16\nf 3 9 25 19\nf 2 11 26 17\nf 4 20 26 11\nf 8 14 26 20\nf 6 17 26 14\n")],
+            "the 2-ring of vertex 0 (OBJ 1) is degenerate",
+        ),
+        bad_with(
+            "g2cap-ring-on-one-line",
+            &["g2-cap", "line.obj", "--vertex", "0", "--c", "0.5"],
+            &[("line.obj", "v -0.5555555555555556 0 0\nv 0.5555555555555556 0 0\nv -0.5555555555555556 0 0\nv 0.5555555555555556 0 0\nv -0.5555555555555556 0 0\nv 0.5555555555555556 0 0\nv -0.5555555555555556 0 0\nv 0.5555555555555556 0 0\nv -0.75 0 0\nv 0.0 0 0\nv 0.75 0 0\nv 0.0 0 0\nv 0.0 0 0\nv 0.75 0 0\nv 0.0 0 0\nv -0.75 0 0\nv 0.75 0 0\nv -0.75 0 0\nv -0.75 0 0\nv 0.75 0 0\nv 0.0 0 0\nv 0.0 0 0\nv 0.0 0 0\nv 0.0 0 0\nv -1.0 0 0\nv 1.0 0 0\nf 1 9 21 12\nf 3 10 21 9\nf 4 11 21 10\nf 2 12 21 11\nf 5 13 22 16\nf 6 14 22 13\nf 8 15 22 14\nf 7 16 22 15\nf 1 12 23 18\nf 2 17 23 12\nf 6 13 23 17\nf 5 18 23 13\nf 3 19 24 10\nf 7 15 24 19\nf 8 20 24 15\nf 4 10 24 20\nf 1 18 25 9\nf 5 16 25 18\nf 7 19 25 16\nf 3 9 25 19\nf 2 11 26 17\nf 4 20 26 11\nf 8 14 26 20\nf 6 17 26 14\n")],
+            "the 2-ring of vertex 0 (OBJ 1) is degenerate",
+        ),
+        // ccss-bound: a tolerance below what f64 resolves for the net is bad
+        // input naming it (it used to run 200 steps and fail as an LP, exit 1).
+        bad_with(
+            "ccss-bound-epsilon-below-resolution",
+            &["ccss-bound", "--valence", "5", "--net", "net.txt", "--epsilon", "1e-300"],
+            &[("net.txt", "0 0 0\n1 2 1\n2 4 0\n0 1 1\n1 3 0\n2 0 1\n0 2 0\n1 4 1\n2 1 0\n0 3 1\n1 0 0\n2 2 1\n0 4 0\n1 1 1\n2 3 0\n0 0 1\n1 2 0\n2 4 1\n")],
+            "epsilon = 1e-300 is below what f64 resolves",
+        ),
+]);
     // (end of section g2-cap)
 
     let _ = full; // used by the cli-io section
@@ -1866,6 +1991,60 @@ fn cases() -> Vec<Case> {
             "valence",
         ),
         bad_with(
+            "report-curvature-unknown-scheme",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nscheme = \"butterfly\"\n")],
+            "butterfly",
+        ),
+        bad_with(
+            "report-curvature-ratios-for-loop",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nscheme = \"loop\"\nratios = [0.3, 0.6, 0.5]\n")],
+            "scheme loop takes no knot intervals",
+        ),
+        bad_with(
+            "report-curvature-c-for-doo-sabin",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nscheme = \"doo-sabin\"\nc = 0.5\n")],
+            "scheme doo-sabin takes no shape parameter c",
+        ),
+        bad_with(
+            "report-curvature-adjustable-without-c",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nscheme = \"adjustable-cc\"\n")],
+            "needs the shape parameter c",
+        ),
+        bad_with(
+            "report-curvature-ratio-out-of-range",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nscheme = \"nurds\"\nratios = [0.3, 1.6, 0.5]\n")],
+            "figure[0].ratios: edge ratio r_1 must lie strictly between 0 and 1",
+        ),
+        bad_with(
+            "report-curvature-ratios-and-knots",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nscheme = \"nurds\"\nratios = [0.3, 0.6, 0.5]\nknots = [[1, 2], [2, 1], [1, 1]]\n")],
+            "give at most one of ratios and knots",
+        ),
+        bad_with(
+            "report-curvature-knots-not-positive",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nscheme = \"nurds\"\nknots = [[1, 2], [0, 1], [1, 1]]\n")],
+            "figure[0].knots: knot interval p_1 must be finite and > 0",
+        ),
+        bad_with(
+            "report-curvature-valences-do-not-match-ratios",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nscheme = \"nurds\"\nratios = [0.3, 0.6, 0.5]\nvalences = [4]\n")],
+            "valences [4] do not match the 3 knot values given",
+        ),
+        bad_with(
+            "report-curvature-too-many-ratios",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nscheme = \"nurds\"\nratios = [0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5]\n")],
+            "the curvature figure takes valences 3..=16, got 17 knot values",
+        ),
+        bad_with(
             "report-curvature-tuning-grid-zero",
             &["report", "s.toml", "--out", "r"],
             &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature-tuning\"\ngrid = 0\n")],
@@ -1876,6 +2055,26 @@ fn cases() -> Vec<Case> {
             &["report", "s.toml", "--out", "r"],
             &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature-tuning\"\nvalence = [2, 5]\n")],
             "valence range must satisfy 3 <= lo <= hi <= 64, got [2, 5]",
+        ),
+        // Report figures whose largest settings ran for hours without a
+        // word (issue 16 item 5): refused at parse time with the estimate.
+        bad_with(
+            "report-cc-c1-interval-heavy",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"cc-c1-interval\"\nvalence = [3, 64]\nsamples = 1000\ntol = 1e-12\n")],
+            "figure[0].samples: the C1 and standard intervals of 62 valences up to 64 with 1000 samples",
+        ),
+        bad_with(
+            "report-subdominant-vs-valence-heavy",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"subdominant-vs-valence\"\nvalence = [3, 256]\nsamples = 1000\n")],
+            "figure[0].samples: 254254 classifications of up to 256 x 256 face blocks take",
+        ),
+        bad_with(
+            "report-table-heavy-configurations",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme = \"nurds\", valence = 256, random_knots = 4.0 }, { scheme = \"nurds\", valence = 256, random_knots = 4.0 }]\n")],
+            "figure[0].configs: analysing these 2 configurations (valences up to 256) takes",
         ),
         bad_with(
             "sweep-columns-curvature-not-bool",

@@ -115,3 +115,19 @@ fn spectrum_figure_renders() {
             .unwrap();
     assert!(svg.starts_with("<svg") && svg.contains("n=4"));
 }
+
+#[test]
+fn the_default_cost_model_fits_the_matrix_and_sizes_the_estimates() {
+    // (2n + 1) x (2n + 1) at n = 7, measured from the scheme's own matrix
+    let model = VertexWeightCc::catmull_clark(7).cost_model();
+    assert_eq!(model.dimension(7), 15.0);
+    let e = subdiv_lab::budget::analyze(&model, 7, false);
+    assert!(e.what.contains("15 x 15"), "{}", e.what);
+    assert!(e.within_limits(
+        subdiv_lab::budget::TIME_LIMIT_SECONDS,
+        subdiv_lab::budget::MEMORY_LIMIT_BYTES
+    ));
+    // a valence a front end must refuse before building anything
+    let big = subdiv_lab::budget::analyze(&model, 100_000, false);
+    assert!(big.bytes > subdiv_lab::budget::MEMORY_LIMIT_BYTES);
+}

@@ -378,6 +378,106 @@ fn rerun_replaces_only_the_previous_reports_files() {
     assert_eq!(tree(tmp.path()), before);
 }
 
+/// Item 2 (audit): the manifest is not trusted blindly. A user file added
+/// to an edited manifest's list is never removed, a report file the user
+/// edited is never overwritten (exit 2, naming it, nothing touched), and a
+/// manifest without digests (an older version, or edited) owns no file.
+#[test]
+fn rerun_never_touches_files_the_manifest_does_not_vouch_for() {
+    let tmp = tempfile::tempdir().unwrap();
+    let spec = write_spec(tmp.path(), TINY_SPEC);
+    let out = tmp.path().join("out");
+    let o = run_report(&spec, &out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let manifest_path = out.join("manifest.json");
+    let edit = |f: &dyn Fn(&mut serde_json::Value)| {
+        let mut m: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&manifest_path).unwrap()).unwrap();
+        f(&mut m);
+        std::fs::write(&manifest_path, serde_json::to_vec(&m).unwrap()).unwrap();
+    };
+    // 1. A user file added to the list (with or without a made-up digest):
+    //    the rerun succeeds and the file stays.
+    std::fs::write(out.join("precious.txt"), "mine").unwrap();
+    edit(&|m| {
+        m["files"]
+            .as_array_mut()
+            .unwrap()
+            .push("precious.txt".into());
+        m["digests"]["precious.txt"] = "0000000000000000".into();
+    });
+    let o = run_report(&spec, &out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        std::fs::read_to_string(out.join("precious.txt")).unwrap(),
+        "mine"
+    );
+    // 2. A report file the user edited: refused by name, nothing touched.
+    std::fs::write(out.join("a.csv"), "my annotated copy").unwrap();
+    let before = tree(tmp.path());
+    let o = run_report(&spec, &out);
+    assert_eq!(o.status.code(), Some(2));
+    let line = stderr_line(&o);
+    assert!(line.contains("a.csv") && line.contains("changed"), "{line}");
+    assert_eq!(tree(tmp.path()), before);
+    // 3. A manifest without digests owns nothing: index.html is refused.
+    std::fs::remove_file(out.join("a.csv")).unwrap();
+    edit(&|m| {
+        m.as_object_mut().unwrap().remove("digests");
+    });
+    let before = tree(tmp.path());
+    let o = run_report(&spec, &out);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr_line(&o).contains("index.html"));
+    assert_eq!(tree(tmp.path()), before);
+}
+
+/// Item 3 (audit): a report whose closing line cannot be written (stdout
+/// is /dev/full) exits 1 and installs nothing: no new directory, and an
+/// existing report is left as it was.
+#[test]
+fn report_with_a_failing_stdout_installs_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let spec = write_spec(tmp.path(), TINY_SPEC);
+    let out = tmp.path().join("out");
+    let full = || {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap()
+    };
+    let before = tree(tmp.path());
+    let o = bin()
+        .args([
+            "report",
+            spec.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .stdout(full())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr_line(&o).contains("stdout"));
+    assert_eq!(tree(tmp.path()), before, "a new report was installed");
+    // Into a previous report: it stays as it was.
+    let o = run_report(&spec, &out);
+    assert!(o.status.success());
+    let before = tree(tmp.path());
+    let o = bin()
+        .args([
+            "report",
+            spec.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .stdout(full())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(tree(tmp.path()), before, "the previous report was replaced");
+}
+
 /// Item 17: the default report works from any directory (the spec is built
 /// into the binary; its meshes are generated in code) and records the
 /// version and the build-time git revision.
@@ -425,6 +525,37 @@ fn default_report_runs_from_another_directory() {
         files.len(),
         std::fs::read_dir(tmp.path().join("r")).unwrap().count()
     );
+    // Issue 21: the default report is at most 8 MB, and no data file is
+    // written twice (the three knot maps of one grid share one CSV, named by
+    // each figure's record).
+    let mut total = 0u64;
+    let mut csvs: Vec<Vec<u8>> = Vec::new();
+    for f in files {
+        let name = f.as_str().unwrap();
+        let bytes = std::fs::read(tmp.path().join("r").join(name)).unwrap();
+        total += bytes.len() as u64;
+        if name.ends_with(".csv") {
+            assert!(!csvs.contains(&bytes), "{name} repeats another CSV");
+            csvs.push(bytes);
+        }
+    }
+    assert!(total <= 8 << 20, "the default report has {total} bytes");
+    for fig in manifest["figures"].as_array().unwrap() {
+        for c in fig["csv"].as_array().unwrap() {
+            assert!(
+                files.contains(c),
+                "{} names {c}, not a report file",
+                fig["id"]
+            );
+        }
+    }
+    let angle = manifest["figures"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["id"] == "knot-map-angle")
+        .unwrap();
+    assert_eq!(angle["csv"], serde_json::json!(["knot-map-class.csv"]));
 }
 
 /// (spec text, substrings the error must contain).

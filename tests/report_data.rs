@@ -382,3 +382,77 @@ fn cc_figures_csv_is_the_parameter_study() {
         }
     }
 }
+
+/// Figures that show other columns of one computation (knot maps of the same
+/// slices coloured by class and by angle) write their CSV once: the second
+/// figure's record names the first figure's file, no file is written twice,
+/// and every CSV a record names is among the written files.
+#[test]
+fn figures_with_the_same_table_share_one_csv_file() {
+    let spec = r#"
+name = "shared"
+seed = 3
+
+[[figure]]
+kind = "knot-map"
+id = "a"
+width = 400
+height = 400
+slices = [[0.4]]
+grid = 5
+color_by = "class"
+
+[[figure]]
+kind = "knot-map"
+id = "b"
+width = 400
+height = 400
+slices = [[0.4]]
+grid = 5
+color_by = "angle"
+
+[[figure]]
+kind = "knot-map"
+id = "c"
+width = 400
+height = 400
+slices = [[0.6]]
+grid = 5
+color_by = "angle"
+"#;
+    let spec = ReportSpec::parse(spec).unwrap();
+    let r = generate(&spec, &RunInfo::default(), &NoProgress).unwrap();
+    let written: Vec<&str> = r.files.iter().map(|f| f.path.as_str()).collect();
+    let csvs: Vec<&str> = written
+        .iter()
+        .copied()
+        .filter(|p| p.ends_with(".csv"))
+        .collect();
+    // a and b computed the same table: one file; c another slice: its own.
+    assert_eq!(csvs, ["a.csv", "c.csv"], "written: {written:?}");
+    let records: HashMap<&str, &Vec<String>> = r
+        .manifest
+        .figures
+        .iter()
+        .map(|f| (f.id.as_str(), &f.csv))
+        .collect();
+    assert_eq!(records["a"], &["a.csv"]);
+    assert_eq!(records["b"], &["a.csv"]);
+    assert_eq!(records["c"], &["c.csv"]);
+    for names in records.values() {
+        for n in names.iter() {
+            assert!(
+                written.contains(&n.as_str()),
+                "{n} is named but not written"
+            );
+        }
+    }
+    assert_eq!(
+        r.manifest
+            .files
+            .iter()
+            .filter(|f| f.ends_with(".csv"))
+            .count(),
+        2
+    );
+}

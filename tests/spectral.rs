@@ -907,3 +907,239 @@ fn spectral_bound_near_three_quarters_is_not_a_false_alarm() {
     );
     assert_eq!(BoundCheck::of(0.75 - 1e-9, 1e-15, 0.75), BoundCheck::Holds);
 }
+
+/// Issue #22 (mutation run of `classify.rs` against this target): the names
+/// written to CSV, reports and JSON, and `is_indeterminate`, checked from the
+/// outside (the lib's unit tests check them too, but a mutation run of this
+/// target alone does not build them).
+#[test]
+fn class_names_and_indeterminate_flag() {
+    let all = [
+        (ClassName::Standard, SubdominantClass::Standard, "standard"),
+        (
+            ClassName::RealDistinct,
+            SubdominantClass::RealDistinct,
+            "real_distinct",
+        ),
+        (
+            ClassName::ComplexPair,
+            SubdominantClass::ComplexPair,
+            "complex_pair",
+        ),
+        (
+            ClassName::Defective,
+            SubdominantClass::Defective,
+            "defective",
+        ),
+        (
+            ClassName::NotSeparated,
+            SubdominantClass::NotSeparated,
+            "not_separated",
+        ),
+    ];
+    for (short, full, text) in all {
+        assert_eq!(short.as_str(), text);
+        assert_eq!(full.name(), text);
+        assert!(!full.is_indeterminate(), "{text}");
+    }
+    let ind = SubdominantClass::Indeterminate {
+        between: (ClassName::Standard, ClassName::Defective),
+        reason: "r".into(),
+    };
+    assert!(ind.is_indeterminate());
+    assert_eq!(ind.name(), "indeterminate");
+}
+
+/// Evidence for `classify` from values, radii and `eta`.
+fn classify_evidence(
+    v: &[Complex64],
+    r: &[f64],
+    eta: f64,
+    rank: &mut dyn FnMut(f64) -> Result<f64, subdiv_lab::spectral::SpectralError>,
+) -> subdiv_lab::spectral::Subdominant {
+    use subdiv_lab::spectral::classify::{classify, Evidence};
+    classify(
+        &Evidence {
+            values: v,
+            radii: r,
+            eta,
+        },
+        rank,
+    )
+    .unwrap()
+}
+
+/// The indeterminate verdict's candidates and reason, or a panic.
+fn indeterminate(s: &SubdominantClass) -> ((ClassName, ClassName), &str) {
+    match s {
+        SubdominantClass::Indeterminate { between, reason } => (*between, reason.as_str()),
+        other => panic!("expected indeterminate, got {other:?}"),
+    }
+}
+
+/// Issue #22 (mutation run of `classify.rs`): every decision of `classify`
+/// at and around its thresholds (`decide`'s `d <= e` and
+/// `d > SEPARATION_FACTOR * e`, the linear-regime limit `sqrt(eta)`, the
+/// rank-test radius `RANK_FACTOR (e_1 + e_2 + eta)`), on hand-made evidence
+/// whose floats make the comparisons exact (powers of two times small
+/// integers), and the numbers each indeterminate reason quotes.
+#[test]
+fn classify_thresholds_and_reasons_on_exact_evidence() {
+    use subdiv_lab::spectral::classify::{
+        decide, equality_limit, Decision, RANK_FACTOR, SEPARATION_FACTOR,
+    };
+    type Sp = subdiv_lab::spectral::SpectralError;
+    let c = |re: f64, im: f64| Complex64::new(re, im);
+    let never = &mut |_: f64| -> Result<f64, Sp> { panic!("no rank test for distinct values") };
+    // decide: exactly SEPARATION_FACTOR * e is still grey; e itself is zero.
+    assert_eq!(decide(SEPARATION_FACTOR, 1.0), Decision::Grey);
+    assert_eq!(decide(1.0, 1.0), Decision::Zero);
+    assert_eq!(
+        decide(SEPARATION_FACTOR * 1.0000001, 1.0),
+        Decision::NonZero
+    );
+
+    // Exact evidence at the thresholds, with radii consistent with the radius
+    // model (`e_k >= eta` for computed values): `u = 2^-60`,
+    // `eta = 100 u`, so `limit = sqrt(eta) = 10 * 2^-30` exactly.
+    let u = 2f64.powi(-60);
+    let eta = 100.0 * u;
+    let limit = 10.0 * 2f64.powi(-30);
+    assert_eq!(equality_limit(eta), limit);
+    assert_eq!(RANK_FACTOR, 10.0);
+
+    // A double eigenvalue `lam = SEPARATION_FACTOR * (e_1 + e_2)` whose
+    // rank-test radius `RANK_FACTOR (e_1 + e_2 + eta)` equals the limit
+    // (not beyond it): not certainly positive, so not_separated with its note.
+    let e = (2f64.powi(30) - 100.0) * u / 2.0;
+    let lam = SEPARATION_FACTOR * (e + e);
+    let v = [c(1.0, 0.0), c(lam, 0.0), c(lam, 0.0), c(0.0, 0.0)];
+    let mut at = Vec::new();
+    let s = classify_evidence(&v, &[0.0, e, e, 0.0], eta, &mut |l| {
+        at.push(l);
+        Ok(0.0)
+    });
+    assert_eq!(at, [lam], "the rank test runs at the double value");
+    assert_eq!(s.class, SubdominantClass::NotSeparated, "{s:?}");
+    assert_eq!(
+        s.note,
+        Some("the double subdominant eigenvalue is not (certainly) positive")
+    );
+
+    // The rank test of a double `0.25` with `e_1 = e_2 = eta` (condition 1):
+    // its radius is `RANK_FACTOR * 3 eta = 3000 u`. A second singular value
+    // up to the radius is a 2-dimensional eigenspace (standard, ratio 1), up
+    // to SEPARATION_FACTOR times it grey, beyond it defective (ratio 1).
+    let v = [c(1.0, 0.0), c(0.25, 0.0), c(0.25, 0.0), c(0.1, 0.0)];
+    let r = [0.0, eta, eta, eta];
+    let s = classify_evidence(&v, &r, eta, &mut |_| Ok(3000.0 * u));
+    assert_eq!(s.class, SubdominantClass::Standard, "{s:?}");
+    assert_eq!(
+        (s.ratio, s.rho, s.theta, s.note),
+        (Some(1.0), None, None, None)
+    );
+    let s = classify_evidence(&v, &r, eta, &mut |_| Ok(3001.0 * u));
+    assert_eq!(
+        indeterminate(&s.class).0,
+        (ClassName::Standard, ClassName::Defective)
+    );
+    let s = classify_evidence(&v, &r, eta, &mut |_| Ok(300_000.0 * u));
+    assert_eq!(
+        indeterminate(&s.class).0,
+        (ClassName::Standard, ClassName::Defective)
+    );
+    let s = classify_evidence(&v, &r, eta, &mut |_| Ok(300_001.0 * u));
+    assert_eq!(s.class, SubdominantClass::Defective, "{s:?}");
+    assert_eq!(s.ratio, Some(1.0));
+
+    // |lambda_2| = |lambda_3| with `e_2 + e_3` exactly at the limit: definite.
+    let v = [c(1.0, 0.0), c(0.6, 0.0), c(0.25, 0.0), c(0.25, 0.0)];
+    let s = classify_evidence(&v, &[0.0, eta, eta, limit - eta], eta, never);
+    assert_eq!(s.class, SubdominantClass::NotSeparated, "{s:?}");
+    assert_eq!(s.note, Some("|lambda_2| = |lambda_3|"));
+    // ... beyond the limit: indeterminate, and the reason says why.
+    let s = classify_evidence(&v, &[1e-14; 4], 1e-30, never);
+    let (between, reason) = indeterminate(&s.class);
+    assert_eq!(between, (ClassName::RealDistinct, ClassName::NotSeparated));
+    assert!(
+        reason.starts_with(
+            "|lambda_2| - |lambda_3| = 0.000e0 is within the error radius 2.000e-14, which exceeds the linear-regime limit"
+        ),
+        "{reason}"
+    );
+
+    // |lambda_1| = |lambda_0| = 1: lambda_0 is not simple.
+    let r = [1e-14; 4];
+    let v = [c(1.0, 0.0), c(1.0, 0.0), c(0.5, 0.0), c(0.25, 0.0)];
+    let s = classify_evidence(&v, &r, 1e-15, never);
+    assert_eq!(s.class, SubdominantClass::NotSeparated, "{s:?}");
+    assert_eq!(
+        s.note,
+        Some("lambda_0 = 1 is not simple (|lambda_1| = |lambda_0|)")
+    );
+    // |lambda_0| - |lambda_1| in the grey zone (25 radii).
+    let v = [c(1.0, 0.0), c(1.0 - 5e-13, 0.0), c(0.5, 0.0), c(0.25, 0.0)];
+    let s = classify_evidence(&v, &r, 1e-15, never);
+    let (between, reason) = indeterminate(&s.class);
+    assert_eq!(between, (ClassName::RealDistinct, ClassName::NotSeparated));
+    assert_eq!(
+        reason,
+        "|lambda_0| - |lambda_1| = 5.000e-13 is in the grey zone of the error radius 2.000e-14"
+    );
+    // |lambda_2| - |lambda_3| in the grey zone.
+    let v = [c(1.0, 0.0), c(0.6, 0.0), c(0.5, 0.0), c(0.5 - 5e-13, 0.0)];
+    let s = classify_evidence(&v, &r, 1e-15, never);
+    let (between, reason) = indeterminate(&s.class);
+    assert_eq!(between, (ClassName::RealDistinct, ClassName::NotSeparated));
+    assert_eq!(
+        reason,
+        "|lambda_2| - |lambda_3| = 5.000e-13 is in the grey zone of the error radius 2.000e-14"
+    );
+    assert!((s.gap - 5e-13).abs() < 1e-15, "{}", s.gap);
+
+    // lambda_1 certainly real, lambda_2 certainly not: real_distinct or
+    // complex_pair cannot be decided.
+    let v = [c(1.0, 0.0), c(0.6, 0.0), c(0.5, 1e-3), c(0.25, 0.0)];
+    let s = classify_evidence(&v, &r, 1e-15, never);
+    let (between, _) = indeterminate(&s.class);
+    assert_eq!(between, (ClassName::RealDistinct, ClassName::ComplexPair));
+
+    // |lambda_1 - lambda_2| in the grey zone: the double-eigenvalue candidate
+    // comes from the rank test at the mean of the two (defective here) ...
+    let v = [
+        c(1.0, 0.0),
+        c(0.6 + 5e-13, 0.0),
+        c(0.6 - 5e-13, 0.0),
+        c(0.25, 0.0),
+    ];
+    let mut at = Vec::new();
+    let s = classify_evidence(&v, &r, 1e-15, &mut |lam| {
+        at.push(lam);
+        Ok(0.3)
+    });
+    assert_eq!(at.len(), 1);
+    assert!((at[0] - 0.6).abs() < 1e-15, "{at:?}");
+    assert_eq!(
+        indeterminate(&s.class).0,
+        (ClassName::Defective, ClassName::RealDistinct)
+    );
+    // ... the distinct candidate is complex when lambda_2 is not certainly real ...
+    let v = [
+        c(1.0, 0.0),
+        c(0.6 + 5e-13, 0.0),
+        c(0.6 - 5e-13, 2e-13),
+        c(0.25, 0.0),
+    ];
+    let s = classify_evidence(&v, &r, 1e-15, &mut |_| Ok(1e-16));
+    assert_eq!(
+        indeterminate(&s.class).0,
+        (ClassName::Standard, ClassName::ComplexPair)
+    );
+    // ... and a double value that is not certainly positive is named standard.
+    let v = [c(1.0, 0.0), c(1.5e-12, 0.0), c(0.5e-12, 0.0), c(0.0, 0.0)];
+    let s = classify_evidence(&v, &r, 1e-15, &mut |_| Ok(1e-16));
+    assert_eq!(
+        indeterminate(&s.class).0,
+        (ClassName::Standard, ClassName::RealDistinct)
+    );
+}

@@ -69,6 +69,16 @@ pub enum CcssBoundError {
     /// A tolerance that is not finite and positive.
     #[error("tolerance epsilon must be finite and > 0, got {0}")]
     InvalidTolerance(f64),
+    /// A tolerance below what `f64` resolves for the net's coordinates.
+    #[error("tolerance epsilon = {epsilon:e} is below what f64 resolves for this control net (coordinates up to {magnitude:e}: distances below {floor:e} are rounding noise); choose epsilon >= {floor:e}")]
+    ToleranceBelowResolution {
+        /// The tolerance.
+        epsilon: f64,
+        /// The largest coordinate magnitude of the net.
+        magnitude: f64,
+        /// The smallest accepted tolerance.
+        floor: f64,
+    },
     /// A control net coordinate that is not finite.
     #[error("control point {index} has a non-finite coordinate")]
     NonFinitePoint {

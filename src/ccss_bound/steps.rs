@@ -134,6 +134,42 @@ pub fn contraction_with(
 /// Largest number of steps [`steps_needed`] examines before giving up.
 pub const MAX_STEPS: u32 = 200;
 
+/// The smallest `epsilon` [`steps_needed`] accepts, relative to the largest
+/// coordinate magnitude `m` of the net: the refined points carry rounding
+/// errors of order `1e-16 m`, so their second differences stop shrinking
+/// near that level and a smaller `epsilon` is never reached (it used to run
+/// [`MAX_STEPS`] steps and fail as if an LP had). `1e-12` leaves a margin of
+/// ten thousand over the rounding floor; with `rho <= 0.66` for every valence
+/// it is reached in well under [`MAX_STEPS`] steps.
+pub const EPSILON_FLOOR_RELATIVE: f64 = 1e-12;
+
+/// The net scaled by `2^-e` so that its largest coordinate magnitude lies in
+/// `[1, 2)` (exact: binary scaling commutes with rounding), and `e`; the
+/// distance bounds are homogeneous of degree 1 in the net, so they are
+/// computed on the scaled net and scaled back (no overflow of the squared
+/// differences for coordinates near `1e300`). A zero net is returned as is.
+fn normalized(net: &[Vec<f64>]) -> (Vec<Vec<f64>>, i32) {
+    let m = net
+        .iter()
+        .flat_map(|p| p.iter())
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+    if m == 0.0 {
+        return (net.to_vec(), 0);
+    }
+    let e = m.log2().floor() as i32;
+    let scaled = net
+        .iter()
+        .map(|p| p.iter().map(|&x| scale_pow2(x, -e)).collect())
+        .collect();
+    (scaled, e)
+}
+
+/// `x 2^k` in two exact steps (each factor a normal power of two).
+fn scale_pow2(x: f64, k: i32) -> f64 {
+    let h = k / 2;
+    x * 2f64.powi(h) * 2f64.powi(k - h)
+}
+
 /// What [`steps_needed`] found.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct StepsReport {
@@ -174,6 +210,36 @@ pub fn steps_needed(
     if let Some(index) = net.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
         return Err(CcssBoundError::NonFinitePoint { index }.into());
     }
+    let magnitude = net
+        .iter()
+        .flat_map(|p| p.iter())
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+    let floor = EPSILON_FLOOR_RELATIVE * magnitude;
+    if epsilon < floor {
+        return Err(CcssBoundError::ToleranceBelowResolution {
+            epsilon,
+            magnitude,
+            floor,
+        }
+        .into());
+    }
+    let (net, e) = normalized(net);
+    let mut report = steps_needed_unit(patch, family, beta, &net, scale_pow2(epsilon, -e))?;
+    report.bound = scale_pow2(report.bound, e);
+    for m in report.m_ev.iter_mut().chain(report.m_sub.iter_mut()) {
+        *m = scale_pow2(*m, e);
+    }
+    Ok(report)
+}
+
+/// [`steps_needed`] on a net of magnitude about 1.
+fn steps_needed_unit(
+    patch: &ExtraordinaryPatch,
+    family: &DifferenceFamily,
+    beta: f64,
+    net: &[Vec<f64>],
+    epsilon: f64,
+) -> Result<StepsReport> {
     let len = patch.len();
     let mut cur: Vec<Vec<f64>> = net.to_vec();
     let mut m_ev = vec![family.max_norm(&cur)?];
@@ -242,7 +308,12 @@ pub fn steps_a_priori(c: &Contraction, net: &[Vec<f64>], epsilon: f64) -> Result
         return Err(CcssBoundError::NonFinitePoint { index }.into());
     }
     let family = default_family(c.valence)?;
-    let m0 = family.max_norm(net)?;
+    // On the net scaled to magnitude about 1 (an unscaled M_0 can overflow to
+    // infinity, and `inf * rho` never drops below epsilon).
+    let (unit, e) = normalized(net);
+    let m0_unit = family.max_norm(&unit)?;
+    let epsilon = scale_pow2(epsilon, -e);
+    let m0 = scale_pow2(m0_unit, e);
     if c.rho.is_nan() || c.rho >= 1.0 {
         return Err(CcssBoundError::Lp {
             what: "contraction factor".to_owned(),
@@ -251,7 +322,7 @@ pub fn steps_a_priori(c: &Contraction, net: &[Vec<f64>], epsilon: f64) -> Result
         .into());
     }
     let mut k = 0u32;
-    let mut bound = c.constant * m0;
+    let mut bound = c.constant * m0_unit;
     while bound > epsilon {
         bound *= c.rho;
         k += 1;

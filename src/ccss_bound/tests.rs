@@ -293,6 +293,42 @@ fn steps_needed_bounds_the_refined_distance() {
     assert!(steps_needed(&patch, &family, c.beta, &net, f64::NAN).is_err());
 }
 
+/// Issue 16 (audit): the step counts are homogeneous in the net, so a net
+/// scaled by 2^k (here up to coordinates near 1e300, whose squared
+/// differences overflow) gives the same steps and bounds scaled by 2^k; a
+/// tolerance below the f64 resolution of the net is refused by name (it used
+/// to run MAX_STEPS steps and fail as an LP); `steps_a_priori` terminates
+/// (an infinite M_0 looped for ever).
+#[test]
+fn step_counts_are_scale_invariant_and_refuse_unresolvable_tolerances() {
+    let n = 5;
+    let c = contraction(n, 3).unwrap();
+    let patch = ExtraordinaryPatch::new(n).unwrap();
+    let family = default_family(n).unwrap();
+    let net: Vec<Vec<f64>> = (0..patch.len())
+        .map(|k| vec![(k as f64).cos(), (k as f64).sin(), 0.1 * k as f64])
+        .collect();
+    let eps = 1e-3;
+    let base = steps_needed(&patch, &family, c.beta, &net, eps).unwrap();
+    let (k0, m0) = steps_a_priori(&c, &net, eps).unwrap();
+    for k in [-1000, -300, 300, 996] {
+        let f = 2f64.powi(k / 2) * 2f64.powi(k - k / 2);
+        let big: Vec<Vec<f64>> = net
+            .iter()
+            .map(|p| p.iter().map(|x| x * f).collect())
+            .collect();
+        let r = steps_needed(&patch, &family, c.beta, &big, eps * f).unwrap();
+        assert_eq!(r.steps, base.steps, "2^{k}");
+        assert_eq!(r.bound, base.bound * f, "2^{k}");
+        let (ka, ma) = steps_a_priori(&c, &big, eps * f).unwrap();
+        assert_eq!(ka, k0, "2^{k}");
+        assert_eq!(ma, m0 * f, "2^{k}");
+    }
+    let e = steps_needed(&patch, &family, c.beta, &net, 1e-300).unwrap_err();
+    assert!(e.to_string().contains("below what f64 resolves"), "{e}");
+    assert!(e.is_input_error(), "{e}");
+}
+
 /// Derived: at the extraordinary vertex M shrinks by lambda_1 per step on
 /// subdominant eigenvector data (not by 4); at n = 4 by exactly 4 on generic data.
 #[test]

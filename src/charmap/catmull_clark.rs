@@ -70,7 +70,9 @@
 //! assert_eq!(check(7, 0.3).unwrap().verdict, Verdict::C1Standard);
 //! ```
 
-use super::regularity::{check_bezier_patches, gamma, DomainPoint, Regularity, RegularityVerdict};
+use super::regularity::{
+    check_bezier_patches, gamma, Coefficients, DomainPoint, Regularity, RegularityVerdict,
+};
 pub use super::report::CcPatchId;
 use super::winding::{winding_number, HullCurve};
 use super::{assemble_report, CharmapReport, Eigenstructure, PlanarBasis};
@@ -377,6 +379,7 @@ pub fn check_cone_regularity(
         }
     }
     let mut out = Regularity::initial(sigma, min_coeff, min_location, model.det_bound(0), cmax);
+    out.coefficients = Coefficients::DerivativeCones;
     if out.verdict == RegularityVerdict::Indeterminate {
         return Ok(out);
     }

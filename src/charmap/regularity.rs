@@ -123,6 +123,28 @@ impl RegularityVerdict {
     }
 }
 
+/// What the certificate coefficients of a [`Regularity`] are (how its
+/// `min_coeff` reads).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Coefficients {
+    /// Bezier coefficients of the Jacobian (polynomial patches).
+    BezierJacobian,
+    /// Pairwise determinants of the derivative cones of the cells (the cone
+    /// test of [`super::catmull_clark`], non-polynomial cells).
+    DerivativeCones,
+}
+
+impl Coefficients {
+    /// `Bezier coefficient` or `derivative-cone determinant` (text output).
+    pub fn describe(self) -> &'static str {
+        match self {
+            Coefficients::BezierJacobian => "Bezier coefficient",
+            Coefficients::DerivativeCones => "derivative-cone determinant",
+        }
+    }
+}
+
 /// A point of the ring's domain: patch and local parameters. The patch
 /// identifier is [`RingPatchId`] for the Doo-Sabin family and
 /// [`super::catmull_clark::CcPatchId`] for the Catmull-Clark family.
@@ -163,6 +185,10 @@ pub struct Regularity<P = RingPatchId> {
     pub pieces: usize,
     /// Deepest subdivision level used.
     pub max_depth: u32,
+    /// What the coefficients are (not part of the JSON output, whose
+    /// `min_coeff` is described by the scheme).
+    #[serde(skip)]
+    pub coefficients: Coefficients,
 }
 
 impl<P: Copy> Regularity<P> {
@@ -192,6 +218,7 @@ impl<P: Copy> Regularity<P> {
             undecided: degenerate.then_some(min_location),
             pieces: 0,
             max_depth: 0,
+            coefficients: Coefficients::BezierJacobian,
         }
     }
 }
@@ -214,6 +241,7 @@ impl<P> Regularity<P> {
             undecided: self.undecided.map(dp),
             pieces: self.pieces,
             max_depth: self.max_depth,
+            coefficients: self.coefficients,
         }
     }
 }

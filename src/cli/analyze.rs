@@ -52,8 +52,11 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     }
     let resolved = args.scheme.resolve(args.exact)?;
     let n = resolved.scheme.valence();
-    let estimate =
-        subdiv_lab::budget::analyze(resolved.kind, n, matches!(args.path, Path::Structured));
+    let estimate = subdiv_lab::budget::analyze(
+        &resolved.scheme.cost_model(),
+        n,
+        matches!(args.path, Path::Structured),
+    );
     super::budget::check(
         "analyze",
         &format!("valence {n}"),
@@ -62,19 +65,10 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         args.force,
     )?;
     if let Some(exact) = &resolved.exact {
-        let ratio_bits = match exact {
-            subdiv_lab::schemes::LocalScheme::Nurds(r) => r
-                .as_slice()
-                .iter()
-                .map(|x| x.numer().bits() + x.denom().bits())
-                .max()
-                .unwrap_or(0),
-            _ => 0,
-        };
         super::budget::check(
             "analyze --exact",
             &format!("valence {n}"),
-            &subdiv_lab::budget::analyze_exact(n, ratio_bits),
+            &subdiv_lab::budget::analyze_exact(n, exact.parameter_bits()),
             subdiv_lab::budget::TIME_LIMIT_SECONDS,
             args.force,
         )?;
@@ -113,22 +107,14 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         let lm = resolved.scheme.local_matrix().map_err(CliError::lib)?;
         let m = MatrixText::of(lm.rows(), n, resolved.scheme.spectral_structure());
         let mut text = summary(&result, &m);
-        // which certificate the coefficients belong to (charmap::check_classified's choice)
-        let cone = resolved.c.is_some_and(|c| {
-            charmap::catmull_clark::Certificate::for_c(c)
-                == charmap::catmull_clark::Certificate::Cone
-        });
-        text += &charmap_summary(&charmap, cone);
+        text += &charmap_summary(&charmap);
         write_stdout(text.as_bytes())?;
     }
     Ok(())
 }
 
 /// Human-readable characteristic-map lines.
-fn charmap_summary(
-    c: &subdiv_lab::Result<charmap::CharmapReport<charmap::AnyPatchId>>,
-    cone: bool,
-) -> String {
+fn charmap_summary(c: &subdiv_lab::Result<charmap::CharmapReport<charmap::AnyPatchId>>) -> String {
     let r = match c {
         Ok(r) => r,
         Err(e) => return format!("characteristic map: not computed ({e})\n"),
@@ -138,11 +124,7 @@ fn charmap_summary(
         out += &format!(
             "  Jacobian: {} (min {} {:.6e} relative to the largest, at {} s={:.3} t={:.3}; error bound {:.1e}; {} pieces, depth {})\n",
             g.verdict.as_str(),
-            if cone {
-                "derivative-cone determinant"
-            } else {
-                "Bezier coefficient"
-            },
+            g.coefficients.describe(),
             g.min_coeff,
             g.min_location.patch,
             g.min_location.s,
@@ -195,12 +177,15 @@ impl MatrixText {
     fn of(labels: &[PointLabel], n: usize, structure: SpectralStructure) -> Self {
         let vertex = labels.first().is_some_and(|l| l.role == Role::Vertex);
         let d = labels.len();
-        let full = if d == 4 * n {
-            "full 4n x 4n".to_owned()
-        } else if d == 2 * n + 1 {
-            "full (2n+1) one-ring".to_owned()
-        } else if d == 3 * n + 1 {
-            "full (3n+1) two-ring".to_owned()
+        // the size as `a n + b` (`b < n`): `4n x 4n` around a face, `(2n+1)
+        // one-ring` / `(3n+1) two-ring` around a vertex (by the labels' roles)
+        let (a, b) = (d / n.max(1), d % n.max(1));
+        let two_ring = labels.iter().any(|l| l.role == Role::SecondRing);
+        let full = if !vertex && b == 0 && a > 0 {
+            format!("full {a}n x {a}n")
+        } else if vertex && a > 0 && b > 0 {
+            let ring = if two_ring { "two-ring" } else { "one-ring" };
+            format!("full ({a}n+{b}) {ring}")
         } else {
             format!("full {d} x {d}")
         };

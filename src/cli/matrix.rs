@@ -43,7 +43,7 @@ pub(crate) fn run(args: MatrixArgs) -> CliResult {
     let resolved = args.scheme.resolve(args.exact)?;
     let n = resolved.scheme.valence();
     let estimate = subdiv_lab::budget::matrix(
-        resolved.kind,
+        &resolved.scheme.cost_model(),
         n,
         matches!(args.block, Block::Face),
         args.exact,

@@ -137,18 +137,39 @@ pub(crate) fn create_temp_dir(dir: &Path, name: &str) -> std::io::Result<PathBuf
     create_at_free_temp_name(dir, name, |p| fs::create_dir(p)).map(|((), p)| p)
 }
 
+/// Whether `p` exists and is neither a regular file nor a directory (after
+/// following symbolic links): a character or block device such as
+/// `/dev/null`, a FIFO or a socket. Such a target is written in place, never
+/// replaced by a rename (replacing `/dev/null` with a regular file would
+/// destroy something the tool did not create).
+pub(crate) fn is_special(p: &Path) -> bool {
+    fs::metadata(p).is_ok_and(|m| !m.is_file() && !m.is_dir())
+}
+
 /// Output files written to temporaries, not yet in place. Dropping it without
 /// [`Staged::commit`] removes the temporaries (which the tool created).
+/// Outputs that are special files ([`is_special`], e.g. `-o /dev/null`) are
+/// kept in memory and written in place by [`Staged::commit`], before any
+/// rename.
 pub(crate) struct Staged {
     /// (temporary, target, the target existed before).
     files: Vec<(PathBuf, PathBuf, bool)>,
+    /// Special-file targets and their bytes.
+    special: Vec<(PathBuf, Vec<u8>)>,
 }
 
 impl Staged {
     /// Writes every `(target, bytes)` to a temporary file next to its target.
     pub(crate) fn write(outputs: &[(PathBuf, Vec<u8>)]) -> CliResult<Staged> {
-        let mut staged = Staged { files: Vec::new() };
+        let mut staged = Staged {
+            files: Vec::new(),
+            special: Vec::new(),
+        };
         for (target, data) in outputs {
+            if is_special(target) {
+                staged.special.push((target.clone(), data.clone()));
+                continue;
+            }
             let name = target
                 .file_name()
                 .ok_or_else(|| CliError::usage(anyhow!("{} is not a file path", target.display())))?
@@ -172,6 +193,16 @@ impl Staged {
     /// the tool's own); a target that existed before and was already replaced
     /// stays replaced (reported in the error).
     pub(crate) fn commit(mut self) -> CliResult {
+        // Special files first: a failed write there (`/dev/full`) leaves
+        // every temporary unrenamed (removed on drop), so no new file.
+        for (target, data) in &self.special {
+            OpenOptions::new()
+                .write(true)
+                .open(target)
+                .and_then(|mut f| f.write_all(data))
+                .with_context(|| format!("cannot write {}", target.display()))
+                .map_err(CliError::failure)?;
+        }
         let files = std::mem::take(&mut self.files);
         for (i, (tmp, target, _)) in files.iter().enumerate() {
             if let Err(e) = fs::rename(tmp, target) {
@@ -208,18 +239,26 @@ impl Drop for Staged {
     }
 }
 
-/// Writes `bytes` to `path` atomically (temporary file + rename).
+/// Writes `bytes` to `path` atomically: a new temporary file of this run
+/// ([`create_temp_file`], so no existing file is truncated), then a rename.
 pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let tmp = path.with_file_name(format!(
-        ".{}.tmp",
-        path.file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default()
-    ));
-    fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
-    fs::rename(&tmp, path)
-        .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
-    Ok(())
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let (mut f, tmp) = create_temp_file(&parent_dir(path), &name)
+        .with_context(|| format!("writing {}", path.display()))?;
+    let result = f
+        .write_all(bytes)
+        .with_context(|| format!("writing {}", tmp.display()))
+        .and_then(|()| {
+            fs::rename(&tmp, path)
+                .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))
+        });
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result
 }
 
 /// Data lines of one shard CSV (or of a Parquet shard, as CSV lines).

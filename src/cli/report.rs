@@ -13,9 +13,13 @@
 //!   filled;
 //! * a previous report (recognised by its manifest) is replaced, which is the
 //!   documented default so that the main job can simply be run again: only
-//!   the files its manifest lists are overwritten or removed; every other file
-//!   in the directory is kept, and a new file that would overwrite one of them
-//!   is refused (exit 2).
+//!   the files its manifest lists **with their bytes unchanged** (the
+//!   manifest's FNV-1a digests) are overwritten or removed; every other file
+//!   in the directory is kept (a file the user edited, added, or listed by
+//!   editing the manifest), and a new file that would overwrite one of them
+//!   is refused (exit 2);
+//! * nothing is installed until the summary line is on standard output, so a
+//!   failed write there (exit 1) leaves no new report.
 
 use super::outfiles::{create_temp_dir, parent_dir, Staged};
 use super::{write_stdout, CliError, CliResult};
@@ -49,8 +53,8 @@ pub(crate) struct ReportArgs {
     /// Output directory (default: reports/<name>/ with the spec's name). A new
     /// or empty directory is written; a previous report (recognised by its
     /// manifest.json) is replaced, touching only the files its manifest lists
-    /// (other files in the directory are kept); a file or any other non-empty
-    /// directory is refused (exit 2).
+    /// whose bytes are unchanged (other files in the directory are kept); a
+    /// file or any other non-empty directory is refused (exit 2).
     #[arg(long)]
     out: Option<PathBuf>,
     /// No progress bar and no summary line.
@@ -75,8 +79,12 @@ enum Target {
     /// Does not exist: written as a temporary sibling, renamed into place.
     New,
     /// An existing directory: empty, or a previous report;
-    /// `previous` are the files its manifest lists that exist.
-    Existing { previous: BTreeSet<String> },
+    /// `previous` are the files its manifest lists that exist with the bytes
+    /// it recorded, `changed` those listed that no longer have them (kept).
+    Existing {
+        previous: BTreeSet<String>,
+        changed: BTreeSet<String>,
+    },
 }
 
 /// A plain file name inside the report directory (no separators, not `.`/`..`).
@@ -84,35 +92,51 @@ fn plain_name(s: &str) -> bool {
     !s.is_empty() && s != "." && s != ".." && !s.contains(['/', '\\']) && !s.contains('\0')
 }
 
-/// The files a previous report's `manifest.json` lists, if `dir` holds one
-/// written by this tool (`"tool": "subdiv-lab"`). Older manifests without a
-/// `files` list are read from their figures (SVG, PNG, CSV) plus `index.html`
-/// and `manifest.json`.
-fn previous_report_files(dir: &Path) -> Option<BTreeSet<String>> {
+/// The files of a previous report in `dir`, if it holds a `manifest.json`
+/// written by this tool (`"tool": "subdiv-lab"`): `(previous, changed)`,
+/// the listed plain file names whose current bytes match the manifest's
+/// digest, and those listed whose bytes do not (or that have no digest: a
+/// manifest of an older version, or an edited one). Only `previous` and
+/// `manifest.json` itself are the tool's to replace.
+fn previous_report_files(dir: &Path) -> Option<(BTreeSet<String>, BTreeSet<String>)> {
     let bytes = std::fs::read(dir.join("manifest.json")).ok()?;
     let m: serde_json::Value = serde_json::from_slice(&bytes).ok()?;
     if m.get("tool")?.as_str()? != "subdiv-lab" {
         return None;
     }
-    let mut files = BTreeSet::new();
-    if let Some(list) = m.get("files").and_then(|f| f.as_array()) {
-        files.extend(list.iter().filter_map(|v| v.as_str()).map(str::to_owned));
-    } else {
-        for f in m.get("figures")?.as_array()? {
-            for key in ["svg", "png"] {
-                if let Some(name) = f.get(key).and_then(|v| v.as_str()) {
-                    files.insert(name.to_owned());
-                }
-            }
-            if let Some(csv) = f.get("csv").and_then(|v| v.as_array()) {
-                files.extend(csv.iter().filter_map(|v| v.as_str()).map(str::to_owned));
-            }
+    let listed: BTreeSet<String> = m
+        .get("files")
+        .and_then(|f| f.as_array())
+        .map(|list| {
+            list.iter()
+                .filter_map(|v| v.as_str())
+                .map(str::to_owned)
+                .collect()
+        })
+        .unwrap_or_default();
+    let digests = m.get("digests").and_then(|d| d.as_object());
+    let mut previous = BTreeSet::new();
+    let mut changed = BTreeSet::new();
+    for name in listed {
+        if !plain_name(&name) || name == "manifest.json" {
+            continue;
         }
-        files.insert("index.html".to_owned());
+        let path = dir.join(&name);
+        if !std::fs::symlink_metadata(&path).is_ok_and(|m| m.file_type().is_file()) {
+            continue;
+        }
+        let recorded = digests.and_then(|d| d.get(&name)).and_then(|v| v.as_str());
+        let unchanged = recorded.is_some_and(|want| {
+            std::fs::read(&path).is_ok_and(|b| subdiv_lab::report::file_digest(&b) == want)
+        });
+        if unchanged {
+            previous.insert(name);
+        } else {
+            changed.insert(name);
+        }
     }
-    files.insert("manifest.json".to_owned());
-    files.retain(|f| plain_name(f));
-    Some(files)
+    previous.insert("manifest.json".to_owned());
+    Some((previous, changed))
 }
 
 /// Checks `--out` before any work: exit 2 for a file or a non-empty
@@ -148,19 +172,16 @@ fn check_target(out: &Path) -> CliResult<Target> {
     if entries.next().is_none() {
         return Ok(Target::Existing {
             previous: BTreeSet::new(),
+            changed: BTreeSet::new(),
         });
     }
-    let Some(listed) = previous_report_files(out) else {
+    let Some((previous, changed)) = previous_report_files(out) else {
         return Err(CliError::usage(anyhow!(
             "--out {} is not empty and holds no previous subdiv-lab report (no manifest.json of this tool); give a new or empty directory",
             out.display()
         )));
     };
-    let previous = listed
-        .into_iter()
-        .filter(|f| std::fs::symlink_metadata(out.join(f)).is_ok_and(|m| m.file_type().is_file()))
-        .collect();
-    Ok(Target::Existing { previous })
+    Ok(Target::Existing { previous, changed })
 }
 
 pub(crate) fn run(args: ReportArgs) -> CliResult {
@@ -184,8 +205,8 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
     // files every report writes (the figures' names are checked again when
     // the report is installed).
     let target = check_target(&out)?;
-    if let Target::Existing { previous } = &target {
-        refuse_foreign(&out, ALWAYS_WRITTEN, previous)?;
+    if let Target::Existing { previous, changed } = &target {
+        refuse_foreign(&out, ALWAYS_WRITTEN, previous, changed)?;
     }
     // Input files of the figures (sweep CSVs): relative paths are read from
     // the spec's directory. The library checks their columns before any
@@ -234,11 +255,12 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
         generate_with(&spec, &run, &NoProgress, &options)
     }
     .map_err(|e| CliError::report(e).context(spec_name.clone()))?;
-    match target {
-        Target::New => write_new_dir(&out, &report.files)?,
-        Target::Existing { previous } => write_into_dir(&out, &report.files, &previous)?,
-    }
-    if !args.quiet {
+    // The summary line goes out before the report is installed: if standard
+    // output fails (exit 1), no new report is left behind.
+    let announce = || -> CliResult {
+        if args.quiet {
+            return Ok(());
+        }
         let line = format!(
             "wrote {} files to {} in {:.1} s; open {}\n",
             report.files.len(),
@@ -246,23 +268,39 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
             start.elapsed().as_secs_f64(),
             out.join("index.html").display()
         );
-        write_stdout(line.as_bytes())?;
+        write_stdout(line.as_bytes())
+    };
+    match target {
+        Target::New => write_new_dir(&out, &report.files, announce),
+        Target::Existing { previous, changed } => {
+            write_into_dir(&out, &report.files, &previous, &changed, announce)
+        }
     }
-    Ok(())
 }
 
 /// The files every report writes.
 const ALWAYS_WRITTEN: &[&str] = &["index.html", "manifest.json"];
 
-/// Refuses (exit 2) if one of `names` exists in `out` and is not a file of
-/// the previous report: the tool never overwrites what it did not create.
-fn refuse_foreign(out: &Path, names: &[&str], previous: &BTreeSet<String>) -> CliResult {
+/// Refuses (exit 2) if one of `names` exists in `out` and is not an
+/// unchanged file of the previous report: the tool never overwrites what it
+/// did not create.
+fn refuse_foreign(
+    out: &Path,
+    names: &[&str],
+    previous: &BTreeSet<String>,
+    changed: &BTreeSet<String>,
+) -> CliResult {
     for name in names {
         let p = out.join(name);
         let taken = std::fs::symlink_metadata(&p).is_ok();
         if taken && !previous.contains(*name) {
+            let why = if changed.contains(*name) {
+                "has changed since the previous report wrote it (or manifest.json records no digest of it)"
+            } else {
+                "is not part of the previous report"
+            };
             return Err(CliError::usage(anyhow!(
-                "{} exists and is not part of the previous report; move it away or choose another --out",
+                "{} exists and {why}; move it away or choose another --out",
                 p.display()
             )));
         }
@@ -271,8 +309,13 @@ fn refuse_foreign(out: &Path, names: &[&str], previous: &BTreeSet<String>) -> Cl
 }
 
 /// Writes `files` into a new temporary sibling of `out` (created by this
-/// run), then renames it to `out`; on failure the temporary is removed.
-fn write_new_dir(out: &Path, files: &[OutputFile]) -> CliResult {
+/// run), calls `announce` (the summary line), then renames it to `out`; on
+/// failure the temporary is removed.
+fn write_new_dir(
+    out: &Path,
+    files: &[OutputFile],
+    announce: impl FnOnce() -> CliResult,
+) -> CliResult {
     let name = out
         .file_name()
         .ok_or_else(|| CliError::usage(anyhow!("--out {} has no directory name", out.display())))?
@@ -285,29 +328,40 @@ fn write_new_dir(out: &Path, files: &[OutputFile]) -> CliResult {
     let tmp = create_temp_dir(&parent, &name)
         .with_context(|| format!("cannot create a directory in {}", parent.display()))
         .map_err(CliError::failure)?;
-    let result = (|| -> anyhow::Result<()> {
+    let result = (|| -> CliResult {
         for f in files {
             let p = tmp.join(&f.path);
             std::fs::write(&p, &f.bytes)
-                .with_context(|| format!("cannot write {}", p.display()))?;
+                .with_context(|| format!("cannot write {}", p.display()))
+                .map_err(CliError::failure)?;
         }
+        announce()?;
         // rename(2) onto an existing non-empty directory fails, so a directory
         // that appeared meanwhile is never replaced.
-        std::fs::rename(&tmp, out).with_context(|| format!("cannot create {}", out.display()))
+        std::fs::rename(&tmp, out)
+            .with_context(|| format!("cannot create {}", out.display()))
+            .map_err(CliError::failure)
     })();
     if result.is_err() {
         let _ = std::fs::remove_dir_all(&tmp);
     }
-    result.map_err(CliError::failure)
+    result
 }
 
 /// Writes `files` into the existing directory `out`: each to a temporary file
-/// of this run, renamed into place (manifest.json last); then removes the
-/// files of the `previous` report that the new one no longer has. A new file
-/// whose name is taken by a file not in `previous` is refused (exit 2).
-fn write_into_dir(out: &Path, files: &[OutputFile], previous: &BTreeSet<String>) -> CliResult {
+/// of this run; after `announce` (the summary line) they are renamed into
+/// place (manifest.json last); then removes the files of the `previous`
+/// report that the new one no longer has. A new file whose name is taken by a
+/// file not in `previous` is refused (exit 2).
+fn write_into_dir(
+    out: &Path,
+    files: &[OutputFile],
+    previous: &BTreeSet<String>,
+    changed: &BTreeSet<String>,
+    announce: impl FnOnce() -> CliResult,
+) -> CliResult {
     let names: Vec<&str> = files.iter().map(|f| f.path.as_str()).collect();
-    refuse_foreign(out, &names, previous)?;
+    refuse_foreign(out, &names, previous, changed)?;
     let mut ordered: Vec<(PathBuf, Vec<u8>)> = files
         .iter()
         .filter(|f| f.path != "manifest.json")
@@ -319,7 +373,9 @@ fn write_into_dir(out: &Path, files: &[OutputFile], previous: &BTreeSet<String>)
             .filter(|f| f.path == "manifest.json")
             .map(|f| (out.join(&f.path), f.bytes.clone())),
     );
-    Staged::write(&ordered)?.commit()?;
+    let staged = Staged::write(&ordered)?;
+    announce()?;
+    staged.commit()?;
     let new: BTreeSet<&str> = files.iter().map(|f| f.path.as_str()).collect();
     for old in previous {
         if !new.contains(old.as_str()) {

@@ -13,8 +13,7 @@ use subdiv_lab::Scheme;
 /// Scheme selection flags.
 #[derive(Args, Debug, Clone)]
 pub(crate) struct SchemeArgs {
-    /// Scheme: nurds, doo-sabin, cc-variant, catmull-clark, adjustable-cc or loop.
-    #[arg(long, default_value = "nurds")]
+    #[arg(long, default_value = "nurds", help = scheme_help())]
     pub scheme: String,
     /// Valence n >= 3 of the extraordinary face (inferred from --knots/--ratios if omitted).
     #[arg(long)]
@@ -33,12 +32,14 @@ pub(crate) struct SchemeArgs {
     pub c: Option<String>,
 }
 
+/// The help text of `--scheme`: every known scheme (from
+/// [`SchemeKind::ALL`], so that a new scheme needs no edit here).
+pub(crate) fn scheme_help() -> String {
+    format!("Scheme: {}", SchemeKind::names_or())
+}
+
 /// The validated configuration, in f64 and (when requested and possible) exactly.
 pub(crate) struct Resolved {
-    /// The scheme's kind (for the work estimates).
-    pub kind: SchemeKind,
-    /// The shape parameter `c`, if given (`f64` value).
-    pub c: Option<f64>,
     /// The configuration, through the scheme abstraction.
     pub scheme: Box<dyn Scheme>,
     /// The exact configuration (`--exact`).
@@ -267,8 +268,6 @@ impl SchemeArgs {
             None
         };
         Ok(Resolved {
-            kind,
-            c: cf,
             scheme,
             exact,
             input: subdiv_lab::spectral::json::AnalysisInput {

@@ -26,8 +26,7 @@ use subdiv_lab::schemes::SchemeKind;
 pub(crate) struct SubdivideArgs {
     /// Input mesh (closed, oriented OBJ).
     input: PathBuf,
-    /// Scheme: nurds, doo-sabin, cc-variant, catmull-clark, adjustable-cc or loop.
-    #[arg(long)]
+    #[arg(long, help = super::scheme_args::scheme_help())]
     scheme: String,
     /// Shape parameter c in [0, 1] of --scheme adjustable-cc (0.3, 1/3, 25e-2).
     #[arg(long)]

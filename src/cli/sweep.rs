@@ -94,6 +94,41 @@ fn summary_path(csv: &Path) -> PathBuf {
     csv.with_file_name(format!("{stem}.summary.json"))
 }
 
+/// Checks the output paths of `sweep --out` and `merge --out` before any work
+/// (exit 2): the output must not be a special file (a device such as
+/// `/dev/null`, a FIFO: the CSV is resumable and its summary goes beside it),
+/// the output and its summary must differ from every input (the spec, the
+/// shards and their summaries), and an existing file at the summary path is
+/// refused unless `resuming` (continuing an existing output, whose summary it
+/// replaces) or it is itself a sweep summary (an earlier run's, e.g. of
+/// `NAME.csv` beside `NAME.parquet`): the tool never overwrites a file it did
+/// not write.
+fn check_out_paths(
+    command: &str,
+    out: &Path,
+    inputs: &[(&str, &Path)],
+    resuming: bool,
+) -> CliResult {
+    if super::outfiles::is_special(out) {
+        return Err(CliError::usage(anyhow!(
+            "--out {} is not a regular file: {command} writes a CSV (or Parquet) file and a summary beside it; to discard the rows, leave out --out and redirect standard output",
+            out.display()
+        )));
+    }
+    let spath = summary_path(out);
+    super::outfiles::check_distinct(&[("--out", out), ("its summary", &spath)], inputs)?;
+    let a_summary =
+        || fs::read_to_string(&spath).is_ok_and(|t| serde_json::from_str::<Summary>(&t).is_ok());
+    if !resuming && fs::symlink_metadata(&spath).is_ok() && !a_summary() {
+        return Err(CliError::usage(anyhow!(
+            "{} exists and is not a sweep summary (the summary --out {} would write); remove it or choose another --out",
+            spath.display(),
+            out.display()
+        )));
+    }
+    Ok(())
+}
+
 fn write_summary(path: &Path, summary: &Summary) -> CliResult {
     let json = serde_json::to_string_pretty(summary).map_err(CliError::failure)? + "\n";
     write_atomic(path, json.as_bytes()).map_err(CliError::failure)
@@ -250,6 +285,8 @@ struct Reporter {
 
 /// Interval of the progress lines during the first minute.
 const PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_secs(5);
+/// Shortest elapsed time over which a progress line states a rate.
+const RATE_MIN_SECONDS: f64 = 0.5;
 /// Interval of the progress lines after the first minute.
 const PROGRESS_EVERY_LATER: std::time::Duration = std::time::Duration::from_secs(30);
 
@@ -288,15 +325,20 @@ impl Reporter {
                 };
                 let k = counter.load(std::sync::atomic::Ordering::Relaxed);
                 let secs = start.elapsed().as_secs_f64();
-                let rate = k as f64 / secs.max(1e-9);
                 let pos = (done + k).min(expected);
-                let eta = if rate > 0.0 {
-                    format_duration((expected - pos) as f64 / rate)
+                // A rate over less than RATE_MIN_SECONDS (the opening line)
+                // would be noise: billions of configurations per second.
+                let (rate, eta) = if secs >= RATE_MIN_SECONDS && k > 0 {
+                    let r = k as f64 / secs;
+                    (
+                        format!("{r:.1} configurations/s"),
+                        format_duration((expected - pos) as f64 / r),
+                    )
                 } else {
-                    "unknown".into()
+                    ("rate not yet measured".to_owned(), "unknown".to_owned())
                 };
                 eprintln!(
-                    "sweep: {pos}/{expected} rows ({:.1}%), {rate:.1} configurations/s, elapsed {}, ETA {eta}",
+                    "sweep: {pos}/{expected} rows ({:.1}%), {rate}, elapsed {}, ETA {eta}",
                     100.0 * pos as f64 / expected.max(1) as f64,
                     format_duration(secs)
                 );
@@ -348,6 +390,10 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         return Err(CliError::usage(anyhow!(
             "--format parquet needs --out FILE.parquet (Parquet is not written to standard output)"
         )));
+    }
+    if let Some(out) = &args.out {
+        let resuming = args.resume && out.exists();
+        check_out_paths("sweep", out, &[("the spec", &args.spec)], resuming)?;
     }
     let shard = args.shard.unwrap_or(Shard::ALL);
     let plan = Plan::new(spec);
@@ -667,16 +713,21 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     let layout = Layout::new(&plan);
     let eval = SpectralEvaluator::new(plan.spec().columns);
     let digest = plan.spec().digest();
-    if args
-        .inputs
-        .iter()
-        .any(|p| fs::canonicalize(p).ok() == fs::canonicalize(&args.out).ok())
-    {
+    // The output and its summary are new files, distinct from the spec, every
+    // shard and every shard's summary.
+    if fs::symlink_metadata(&args.out).is_ok() && !super::outfiles::is_special(&args.out) {
         return Err(CliError::usage(anyhow!(
-            "--out {} is one of the inputs",
+            "--out {} exists; remove it or choose another --out",
             args.out.display()
         )));
     }
+    let shard_summaries: Vec<PathBuf> = args.inputs.iter().map(|p| summary_path(p)).collect();
+    let mut inputs: Vec<(&str, &Path)> = vec![("the spec", args.spec.as_path())];
+    for (p, sp) in args.inputs.iter().zip(&shard_summaries) {
+        inputs.push(("the input", p.as_path()));
+        inputs.push(("the summary of an input", sp.as_path()));
+    }
+    check_out_paths("merge", &args.out, &inputs, false)?;
     // Summaries first: each must be of this spec (they give the throughput, and
     // are compared with the rows).
     let mut summaries = Vec::new();
@@ -742,14 +793,13 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
         sources.push(src);
         counters.push(c);
     }
-    // Write to a temporary file; rename only when every check passed.
-    let tmp = args.out.with_file_name(format!(
-        ".{}.partial",
-        args.out
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default()
-    ));
+    // Write to a new temporary file of this run; rename only when every
+    // check passed.
+    let out_name = args
+        .out
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let parquet = args
         .inputs
         .iter()
@@ -760,10 +810,11 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
             "the shards mix CSV and Parquet files; merge shards of one format"
         )));
     }
-    let result = (|| -> CliResult<Vec<Summary>> {
-        let file = File::create(&tmp)
-            .with_context(|| format!("creating {}", tmp.display()))
+    let (file, tmp) =
+        super::outfiles::create_temp_file(&super::outfiles::parent_dir(&args.out), &out_name)
+            .with_context(|| format!("creating a temporary file for {}", args.out.display()))
             .map_err(CliError::failure)?;
+    let result = (|| -> CliResult<Vec<Summary>> {
         if parquet[0] {
             let mut w = super::sweep_parquet::merge_sink(file, &plan, &layout)?;
             let parts = output::merge(&plan, &layout, &eval, sources, &mut w, salt()).map_err(

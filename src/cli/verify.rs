@@ -135,7 +135,12 @@ pub(crate) fn run(args: VerifyArgs) -> CliResult {
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    let estimate = subdiv_lab::budget::verify(
+    let estimate_fn = if spec.properties.contains(&verify::spec::Property::Charmap) {
+        subdiv_lab::budget::verify_charmap
+    } else {
+        subdiv_lab::budget::verify
+    };
+    let estimate = estimate_fn(
         spec.valence(),
         spec.scheme() == "nurds",
         max_cells,

@@ -192,7 +192,8 @@ pub fn measure(n: usize, c: f64, levels: usize, seed: u64) -> Result<MeasuredCur
 }
 
 /// `sum_i w_i P_i` over the first `w.len()` rows of `net` (`n x 3`).
-fn apply(w: &[f64], net: &DMatrix<f64>) -> Vector3<f64> {
+/// `sum_i w_i P_i` (also used by `measured_scheme`).
+pub(super) fn apply(w: &[f64], net: &DMatrix<f64>) -> Vector3<f64> {
     let mut s = Vector3::zeros();
     for (i, &wi) in w.iter().enumerate() {
         for k in 0..3 {
@@ -206,8 +207,9 @@ fn row(net: &DMatrix<f64>, i: usize) -> Vector3<f64> {
     Vector3::new(net[(i, 0)], net[(i, 1)], net[(i, 2)])
 }
 
-/// The smooth height of the initial net.
-fn height(x: f64, y: f64) -> f64 {
+/// The smooth height of the initial net (also used by
+/// `measured_scheme`).
+pub(super) fn height(x: f64, y: f64) -> f64 {
     0.3 * x * x - 0.2 * x * y + 0.1 * y * y + 0.05 * x * x * x - 0.03 * y * y * y
 }
 
@@ -312,18 +314,11 @@ fn measure_level(
     let p0 = apply(stencil, &nets[0]);
     let a1 = apply(t1, &nets[0]);
     let a2 = apply(t2, &nets[0]);
-    let normal = a1.cross(&a2);
     let degenerate = || Error::Numerical {
         routine: "measured curvature",
         reason: format!("degenerate tangent plane at level {level}"),
     };
-    let nn = normal.norm();
-    if nn.is_nan() || nn <= 0.0 || nn.is_infinite() {
-        return Err(degenerate());
-    }
-    let nrm = normal / nn;
-    let e1 = a1.normalize();
-    let e2 = nrm.cross(&e1);
+    let (e1, e2, nrm) = tangent_frame(&a1, &a2).ok_or_else(degenerate)?;
     let mut pts = Vec::with_capacity(2 * nets.len());
     for net in nets {
         pts.push(regular_limit(net, lay, c, (2, 1))? - p0);
@@ -361,19 +356,56 @@ fn measure_level(
         .sum::<f64>()
         / rows.len() as f64)
         .sqrt();
-    // Back to unscaled coordinates: z/R = a (x/R)^2 + .. gives curvatures / R.
-    let (qa, qb, qc) = (coef[0] / radius, coef[1] / radius, coef[2] / radius);
+    Ok(level_from_fit(
+        level,
+        radius,
+        [coef[0], coef[1], coef[2]],
+        rms,
+        zmax,
+    ))
+}
+
+/// The orthonormal frame `(e1, e2, n)` of the tangent plane spanned by `a1`,
+/// `a2` (`e1` along `a1`, `n = a1 x a2 / |a1 x a2|`); `None` when the plane
+/// is degenerate. Shared with `measured_scheme`.
+pub(super) fn tangent_frame(
+    a1: &Vector3<f64>,
+    a2: &Vector3<f64>,
+) -> Option<(Vector3<f64>, Vector3<f64>, Vector3<f64>)> {
+    let normal = a1.cross(a2);
+    let nn = normal.norm();
+    if nn.is_nan() || nn <= 0.0 || nn.is_infinite() {
+        return None;
+    }
+    let nrm = normal / nn;
+    let e1 = a1.normalize();
+    let e2 = nrm.cross(&e1);
+    Some((e1, e2, nrm))
+}
+
+/// The level's curvatures from the quadric `z = a x^2 + b xy + c y^2 (+ d)`
+/// fitted in coordinates scaled by the ring radius `radius` (`abc` are the
+/// scaled coefficients; `z/R = a (x/R)^2 + ..` gives curvatures `/ R`):
+/// `K = 4ac - b^2`, `H = a + c`, twist `sqrt(H^2 - K)`; `rms / zmax` is the
+/// relative fit residual. Shared with `measured_scheme`.
+pub(super) fn level_from_fit(
+    level: usize,
+    radius: f64,
+    abc: [f64; 3],
+    rms: f64,
+    zmax: f64,
+) -> MeasuredLevel {
+    let (qa, qb, qc) = (abc[0] / radius, abc[1] / radius, abc[2] / radius);
     let gaussian = 4.0 * qa * qc - qb * qb;
     let mean = qa + qc;
     let twist = (mean * mean - gaussian).max(0.0).sqrt();
-    let max_principal = mean.abs() + twist;
-    Ok(MeasuredLevel {
+    MeasuredLevel {
         level,
         ring_radius: radius,
         gaussian,
         mean,
         twist,
-        max_principal,
+        max_principal: mean.abs() + twist,
         fit_residual: if zmax > 0.0 { rms / zmax } else { 0.0 },
-    })
+    }
 }

@@ -428,7 +428,8 @@ pub fn tune(n: usize, grid: usize) -> Result<Tuning> {
     Ok(Tuning { n, curve, roots })
 }
 
-/// Whether the exact certificate proves `mu = lambda^2` at `c`.
+/// Whether the exact certificate proves bounded curvature at `c`: `mu =
+/// lambda^2` with `mu` non-defective (math doc section 13.1).
 fn exact_bounded_at(n: usize, c: f64) -> Result<bool> {
     let s = LocalScheme::adjustable_cc(n, c)?;
     let r = crate::spectral::curvature::curvature(&s)?;

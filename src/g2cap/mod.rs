@@ -10,7 +10,7 @@
 //!    the shape-adjustable Catmull-Clark rules with parameter `c`, after
 //!    which the hole is the `n` refined quads at the vertex and the cells
 //!    around it are bicubic B-spline patches (math doc section 14.2).
-//! 2. [`solve`]: patch `i` lies between spokes `i` and `i + 1`, `P_i(0,0)` is
+//! 2. `solve`: patch `i` lies between spokes `i` and `i + 1`, `P_i(0,0)` is
 //!    the centre and `P_i(0, t) = P_(i+1)(t, 0)`. Across each internal edge
 //!    the patches meet G2 under the transition map
 //!
@@ -24,9 +24,9 @@
 //!    B-spline cells continued into the cap: a C2 join in the natural
 //!    parametrisation. The remaining `25 n` points minimise a discrete
 //!    thin-plate energy subject to the conditions (math doc sections
-//!    14.3-14.5), solved by [`dft`] (the paper's discrete Fourier transform
-//!    over the patch index) and checked against the dense [`solve`].
-//! 3. [`residual`]: jumps of the normal and of `K` and `H` across the
+//!    14.3-14.5), solved by `dft` (the paper's discrete Fourier transform
+//!    over the patch index) and checked against the dense `solve`.
+//! 3. `residual`: jumps of the normal and of `K` and `H` across the
 //!    internal edges and the outer boundary, sampled densely; above
 //!    [`RESIDUAL_TOL`] the cap is refused ([`G2Cap::check`]).
 //!
@@ -42,15 +42,17 @@
 // Index loops mirror the subscripts of the formulas in the math doc.
 #![allow(clippy::needless_range_loop)]
 
-pub mod bernstein;
-pub mod dft;
+pub(crate) mod bernstein;
+pub(crate) mod dft;
 pub mod plain;
-pub mod residual;
+pub(crate) mod residual;
 pub mod ring;
-pub mod solve;
+pub(crate) mod solve;
 
-use bernstein::{eval_net, Net, DEGREE};
-use residual::Jumps;
+pub use bernstein::{Net, DEGREE};
+pub use residual::Jumps;
+
+use bernstein::eval_net;
 use ring::{Point, RefinedRing, TwoRing};
 
 /// Largest accepted residual (internal G1 and G2, outer boundary): the jump
@@ -99,6 +101,12 @@ pub enum G2CapError {
     NonFinitePoint {
         /// Its index in [`TwoRing::points`].
         index: usize,
+    },
+    /// The 2-ring's points lie on one point or one line (no tangent plane).
+    #[error("the 2-ring{} is degenerate: its points lie on one point or one line", degenerate_at(.vertex))]
+    Degenerate {
+        /// The centre vertex, when the ring comes from a mesh.
+        vertex: Option<usize>,
     },
     /// The shape parameter outside `[0, 1]`.
     #[error("shape parameter c = {c} is outside [0, 1]")]
@@ -183,6 +191,26 @@ pub enum G2CapError {
     },
 }
 
+fn degenerate_at(vertex: &Option<usize>) -> String {
+    vertex.map_or_else(String::new, |v| format!(" of vertex {v} (OBJ {})", v + 1))
+}
+
+/// Rings whose largest coordinate magnitude `m` has `|log2 m|` above this are
+/// built on a copy scaled by a power of two (exact: every step of the
+/// construction is homogeneous in the points, and binary scaling commutes
+/// with rounding) and scaled back: the curvature evaluation squares lengths
+/// twice (`|N|^2 ~ L^4`), which overflows near `L = 1e77` and underflows near
+/// `L = 1e-77`. Within `2^-64 ..= 2^64` nothing is scaled, so ordinary inputs
+/// take the unscaled path bit for bit.
+pub const NORMALIZE_EXPONENT: i32 = 64;
+
+/// `x 2^k` for `|k|` up to about 2000, in two exact steps (each factor is a
+/// normal power of two).
+fn scale_pow2(x: f64, k: i32) -> f64 {
+    let h = k / 2;
+    x * 2f64.powi(h) * 2f64.powi(k - h)
+}
+
 impl G2CapError {
     /// Whether the error is about the input (the CLI's exit 2) rather than a
     /// failure of the construction (exit 1).
@@ -201,10 +229,10 @@ impl G2CapError {
 pub enum Solver {
     /// The paper's route: a discrete Fourier transform over the patch index
     /// makes the block-circulant system block diagonal, `n` small complex
-    /// solves ([`dft::solve_dft`]).
+    /// solves (`dft::solve_dft`).
     #[default]
     Dft,
-    /// One SVD of the whole constraint matrix ([`solve::solve`]), kept as
+    /// One SVD of the whole constraint matrix (`solve::solve`), kept as
     /// the independent check.
     Dense,
 }
@@ -251,6 +279,38 @@ impl G2Cap {
         if !(0.0..=1.0).contains(&c) {
             return Err(G2CapError::ShapeParameter { c });
         }
+        let m = ring
+            .points()
+            .iter()
+            .flat_map(|p| p.iter())
+            .fold(0.0f64, |a, x| a.max(x.abs()));
+        let e = if m > 0.0 { m.log2().floor() as i32 } else { 0 };
+        if e.abs() > NORMALIZE_EXPONENT {
+            let unit = ring.map(|p| p.map(|x| scale_pow2(x, -e)));
+            return Ok(G2Cap::build_unscaled(&unit, c, solver)?.rescaled(ring, e));
+        }
+        G2Cap::build_unscaled(ring, c, solver)
+    }
+
+    /// The cap of a ring scaled by `2^-k`, scaled back by `2^k` to be the cap
+    /// of `ring` (the residuals are relative, so unchanged).
+    fn rescaled(mut self, ring: &TwoRing, k: i32) -> G2Cap {
+        for net in &mut self.nets {
+            for row in net.iter_mut() {
+                for p in row.iter_mut() {
+                    *p = p.map(|x| scale_pow2(x, k));
+                }
+            }
+        }
+        self.energy = scale_pow2(self.energy, 2 * k);
+        self.scale = scale_pow2(self.scale, k);
+        self.curvature_scale = scale_pow2(self.curvature_scale, -k);
+        self.refined = RefinedRing::new(ring, self.c);
+        self
+    }
+
+    /// [`G2Cap::build_with`] without the scaling of extreme coordinates.
+    fn build_unscaled(ring: &TwoRing, c: f64, solver: Solver) -> Result<G2Cap, G2CapError> {
         let n = ring.valence();
         let refined = RefinedRing::new(ring, c);
         let (fixed, corner_mismatch) = solve::fixed_nets(&refined, n);
@@ -383,7 +443,7 @@ impl G2Cap {
     }
 
     /// Gaussian and mean curvature `(K, H)` of patch `i` at `(u, v)`, the
-    /// normal `P_u x P_v / |P_u x P_v|` ([`residual::shape`]); `None` where
+    /// normal `P_u x P_v / |P_u x P_v|` (`residual::shape`); `None` where
     /// the tangents are parallel.
     pub fn curvature_at(&self, i: usize, u: f64, v: f64) -> Option<(f64, f64)> {
         let d = [

@@ -61,7 +61,7 @@ fn grid_derivs(grid: &[[Point; 4]; 4], u: f64, v: f64) -> [Point; 5] {
 
 /// Largest jumps along a family of sample pairs: `(normal, curvature)`,
 /// with the curvature jump `max(|K_1 - K_2| / k_s^2, |H_1 - H_2| / k_s)`
-/// relative to the curvature scale `k_s` ([`curvature_scale`]). A singular
+/// relative to the curvature scale `k_s` (`curvature_scale`). A singular
 /// sample is an infinite jump.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Jumps {

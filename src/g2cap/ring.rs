@@ -32,6 +32,14 @@ pub struct TwoRing {
     inner: Vec<[[Point; 2]; 2]>,
 }
 
+/// A 2-ring whose points satisfy `max |(p - c) x (q - c)| <= DEGENERATE_RTOL
+/// max |p - c|^2` lies on one line through its centre `c` (or on one point):
+/// it has no tangent plane and is refused as bad input. `1e-12` is far
+/// above the rounding of the cross products (`~1e-16` relative) and far
+/// below the spread of any net a mesh would give (a sector of opening angle
+/// `2 pi / 16` has a relative cross product of about 0.4).
+pub const DEGENERATE_RTOL: f64 = 1e-12;
+
 /// Smallest valence the construction accepts.
 pub const MIN_VALENCE: usize = 3;
 /// Largest valence the construction accepts (the residual targets are
@@ -75,7 +83,53 @@ impl TwoRing {
         if let Some(k) = ring.points().iter().position(|p| !finite(p)) {
             return Err(G2CapError::NonFinitePoint { index: k });
         }
+        if !ring.spans_a_plane() {
+            return Err(G2CapError::Degenerate { vertex: None });
+        }
         Ok(ring)
+    }
+
+    /// Whether the points span a plane: some `|(p - c) x (q - c)|` exceeds
+    /// [`DEGENERATE_RTOL`] times `max |p - c|^2` (`c` the centre), computed
+    /// on the points scaled by a power of two so that nothing overflows.
+    fn spans_a_plane(&self) -> bool {
+        let pts = self.points();
+        let m = pts
+            .iter()
+            .flat_map(|p| p.iter())
+            .fold(0.0f64, |a, x| a.max(x.abs()));
+        if m == 0.0 {
+            return false;
+        }
+        let k = -(m.log2().floor() as i32);
+        let f = |x: f64| x * 2f64.powi(k / 2) * 2f64.powi(k - k / 2);
+        let c = self.center.map(f);
+        let d: Vec<Point> = pts
+            .iter()
+            .map(|p| {
+                let q = p.map(f);
+                [q[0] - c[0], q[1] - c[1], q[2] - c[2]]
+            })
+            .collect();
+        let r2 = d
+            .iter()
+            .map(|v| v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+            .fold(0.0f64, f64::max);
+        if r2 == 0.0 {
+            return false;
+        }
+        let mut best = 0.0f64;
+        for (i, a) in d.iter().enumerate() {
+            for b in &d[..i] {
+                let x = [
+                    a[1] * b[2] - a[2] * b[1],
+                    a[2] * b[0] - a[0] * b[2],
+                    a[0] * b[1] - a[1] * b[0],
+                ];
+                best = best.max((x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt());
+            }
+        }
+        best > DEGENERATE_RTOL * r2
     }
 
     /// The valence `n`.
@@ -353,7 +407,12 @@ impl TwoRing {
             .iter()
             .map(|g| [[p(g[1][1]), p(g[1][2])], [p(g[2][1]), p(g[2][2])]])
             .collect();
-        let ring = TwoRing::new(p(vertex), spokes, inner)?;
+        let ring = TwoRing::new(p(vertex), spokes, inner).map_err(|e| match e {
+            G2CapError::Degenerate { vertex: None } => G2CapError::Degenerate {
+                vertex: Some(vertex),
+            },
+            other => other,
+        })?;
         Ok((ring, idx))
     }
 }

@@ -1,4 +1,13 @@
-//! Limit points, the limit mesh, and per-level convergence statistics.
+//! Limit points, the limit mesh, and per-level convergence statistics of the
+//! Doo-Sabin family (NURDS, original Doo-Sabin, the Catmull-Clark variant).
+//!
+//! With [`super::refine`] this is that family's implementation of the mesh
+//! rules: the library reaches it only through
+//! [`FaceSplit`](super::rules::FaceSplit) (and so through
+//! [`crate::scheme::registry::mesh_rules`]); the [`SchemeKind`] the functions
+//! take selects the member of the family (NURDS uses the knot intervals, the
+//! others are uniform). [`convergence_series`] and the statistics types are
+//! scheme-independent.
 //!
 //! * **Face limit point** (math doc section 5): the face point
 //!   `F = sum_j c_j P_j` is invariant under refinement (`c^T A = c^T`, and the

@@ -18,10 +18,13 @@
 //! `q_i = knot(twin(h_{i-1}))`.
 //!
 //! Submodules: [`obj`] (OBJ text in and out), [`knot_file`] (the knot-interval
-//! sidecar), [`refine`] (one step of each scheme), [`limit`] (limit points,
-//! limit meshes, per-level convergence statistics), [`generators`] (the small
-//! closed meshes shipped under `analysis/meshes/`), [`neighbourhood`] (the `4n`
-//! points of `S_n` around a face), `projection` (orthographic pictures).
+//! sidecar), [`rules`] (a scheme's mesh rules behind one trait, the way the
+//! library refines: [`crate::scheme::registry::mesh_rules`]), [`refine`] and
+//! [`limit`] (the Doo-Sabin family's rules: one step, limit points, limit
+//! meshes, per-level convergence statistics), [`catmull_clark`] (the
+//! Catmull-Clark family's rules), [`generators`] (the small closed meshes
+//! shipped under `analysis/meshes/`), [`neighbourhood`] (the `4n` points of
+//! `S_n` around a face), `projection` (orthographic pictures).
 //!
 //! ```
 //! use subdiv_lab::mesh::{generators, refine::refine};

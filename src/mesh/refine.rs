@@ -1,5 +1,11 @@
 //! One refinement step of the Doo-Sabin family on a whole mesh (math doc section 3).
 //!
+//! This is that family's implementation of the mesh rules (with
+//! [`super::limit`]), reached in the library only through
+//! [`FaceSplit`](super::rules::FaceSplit); [`refine`] refuses any scheme
+//! outside the family ([`MeshError::UnsupportedScheme`]), and the
+//! [`SchemeKind`] selects the member (weights below).
+//!
 //! For every face `f` with corners `P_0..P_{n-1}` a new vertex per corner:
 //!
 //! * **NURDS**: edge points `E_i = r_i P_i + (1 - r_i) P_{i+1}` with

@@ -18,9 +18,10 @@
 //! assert!(rules.level_stats(&once, 1, None).is_none());
 //! ```
 
-use super::limit::{level_stats, limit_mesh, LevelStats};
+use super::limit::{face_local_scheme, level_stats, limit_mesh, LevelStats};
 use super::refine::refine;
 use super::{Mesh, MeshError};
+use crate::scheme::Scheme;
 use crate::schemes::SchemeKind;
 use std::fmt;
 
@@ -80,6 +81,36 @@ pub trait MeshRules: fmt::Debug + Send + Sync {
         }
         Ok(m)
     }
+
+    /// `levels` steps of [`refine`](Self::refine) with the
+    /// [`level_stats`](Self::level_stats) of every level `0..=levels`; `None`
+    /// when the scheme has no per-level statistics.
+    fn refine_with_stats(
+        &self,
+        mesh: &Mesh,
+        levels: usize,
+    ) -> Option<Result<(Mesh, Vec<LevelStats>), MeshError>> {
+        let mut stats = vec![self.level_stats(mesh, 0, None)?];
+        let mut m = mesh.clone();
+        for level in 1..=levels {
+            m = match self.refine(&m) {
+                Ok(m) => m,
+                Err(e) => return Some(Err(e)),
+            };
+            let s = self.level_stats(&m, level, stats.last())?;
+            stats.push(s);
+        }
+        Some(Ok((m, stats)))
+    }
+
+    /// The local configuration that governs face `f` of `mesh` under these
+    /// rules, for face-centred schemes whose extraordinary faces persist
+    /// under refinement (the Doo-Sabin family: the face's own edge ratios
+    /// for NURDS, its valence for the uniform schemes); default none.
+    fn face_scheme(&self, mesh: &Mesh, f: usize) -> Option<crate::Result<Box<dyn Scheme>>> {
+        let _ = (mesh, f);
+        None
+    }
 }
 
 /// The Doo-Sabin family's rules (NURDS, original Doo-Sabin, the
@@ -132,5 +163,9 @@ impl MeshRules for FaceSplit {
 
     fn has_level_stats(&self) -> bool {
         true
+    }
+
+    fn face_scheme(&self, mesh: &Mesh, f: usize) -> Option<crate::Result<Box<dyn Scheme>>> {
+        Some(face_local_scheme(mesh, f, self.0).map(|s| Box::new(s) as Box<dyn Scheme>))
     }
 }

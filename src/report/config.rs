@@ -21,7 +21,7 @@ use crate::rng::{log_uniform, SplitMix64};
 use crate::scheme::choice::{validate, Choice, ChoiceError};
 use crate::scheme::registry::Builtin;
 use crate::scheme::SpectralStructure;
-use crate::schemes::{LocalScheme, SchemeKind};
+use crate::schemes::SchemeKind;
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -55,12 +55,6 @@ pub struct Configuration {
     pub label: String,
     /// The configuration (a [`Scheme`](crate::Scheme) through `Deref`).
     pub scheme: Builtin,
-}
-
-/// Short text of a ratio list for labels.
-pub fn ratios_text(r: &EdgeRatios<f64>) -> String {
-    let parts: Vec<String> = r.as_slice().iter().map(|x| format!("{x:.3}")).collect();
-    format!("({})", parts.join(", "))
 }
 
 impl ConfigSpec {
@@ -188,22 +182,10 @@ impl ConfigSpec {
     }
 }
 
-/// The generated legend label of a configuration.
+/// The generated legend label of a configuration
+/// ([`Builtin::legend_label`]).
 pub fn default_label(scheme: &Builtin, suffix: &str) -> String {
-    let Some(scheme) = scheme.as_local() else {
-        return scheme.label();
-    };
-    let n = scheme.valence();
-    match scheme {
-        LocalScheme::Nurds(r) if r.is_uniform() => format!("NURDS n={n}, uniform"),
-        LocalScheme::Nurds(r) if suffix.is_empty() && n <= 6 => {
-            format!("NURDS n={n}, r={}", ratios_text(r))
-        }
-        LocalScheme::Nurds(_) if suffix.is_empty() => format!("NURDS n={n}, non-uniform"),
-        LocalScheme::Nurds(_) => format!("NURDS n={n}{suffix}"),
-        LocalScheme::AdjustableCc { c, .. } => format!("adjustable-cc n={n}, c={c}"),
-        other => format!("{} n={n}", other.kind()),
-    }
+    scheme.legend_label(suffix)
 }
 
 /// Validates the `configs` list of a figure: between 1 and `max` entries (a
@@ -230,6 +212,43 @@ pub fn resolve_all(
         .enumerate()
         .map(|(i, c)| c.resolve(fs, &format!("configs[{i}]"), &mut rng))
         .collect()
+}
+
+/// Refuses (naming `configs`) a figure whose configurations together would
+/// take longer than [`crate::budget::TIME_LIMIT_SECONDS`] to analyse: the
+/// sum of the `analyze` estimates ([`crate::budget::analyze`], full path) of
+/// every configuration. A table of a few NURDS faces of valence 256 (about
+/// 30 s each) ran for minutes without a word (issue 16 item 5).
+pub fn check_analysis_budget(
+    fs: &FigureSpec<'_>,
+    specs: &Spanned<Vec<ConfigSpec>>,
+    configs: &[Configuration],
+) -> Result<(), ReportError> {
+    let seconds: f64 = configs
+        .iter()
+        .map(|c| {
+            let model = crate::scheme::registry::cost_model(c.scheme.kind());
+            crate::budget::analyze(&model, c.scheme.valence(), false).seconds
+        })
+        .sum();
+    if seconds > crate::budget::TIME_LIMIT_SECONDS {
+        let largest = configs
+            .iter()
+            .map(|c| c.scheme.valence())
+            .max()
+            .unwrap_or(0);
+        return Err(fs.error_at(
+            specs,
+            "configs",
+            format!(
+                "analysing these {} configurations (valences up to {largest}) takes ~{} (limit {} s); use fewer or smaller configurations",
+                configs.len(),
+                crate::budget::format_seconds(seconds),
+                crate::budget::TIME_LIMIT_SECONDS
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Rejects configurations outside the Doo-Sabin family for figures built on

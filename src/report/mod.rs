@@ -97,7 +97,8 @@ pub struct FigureRecord {
     pub svg: Option<String>,
     /// PNG file, if the figure has a picture.
     pub png: Option<String>,
-    /// CSV files.
+    /// CSV files. A table whose bytes equal an earlier figure's CSV is not
+    /// written again: its entry names the earlier file.
     pub csv: Vec<String>,
     /// Wall-clock seconds of the analyses.
     pub compute_seconds: f64,
@@ -122,6 +123,12 @@ pub struct Manifest {
     /// `manifest.json` included): what a later run replacing this report
     /// may remove, and nothing else.
     pub files: Vec<String>,
+    /// The FNV-1a 64 digest ([`file_digest`], 16 hex digits) of
+    /// every file but `manifest.json`: a later run replaces or removes a
+    /// listed file only if it still has these bytes, so a file the user
+    /// edited, or put under a listed name, or added to an edited list, is
+    /// never lost.
+    pub digests: std::collections::BTreeMap<String, String>,
     /// Report name.
     pub name: String,
     /// Base seed.
@@ -132,6 +139,17 @@ pub struct Manifest {
     pub figures: Vec<FigureRecord>,
     /// Wall-clock seconds of the whole generation.
     pub total_seconds: f64,
+}
+
+/// The digest of a report file recorded in [`Manifest::digests`]: FNV-1a 64
+/// of its bytes (the crate's one FNV-1a) as 16 lower-case hex digits (a
+/// guard against accidents, not against an adversary).
+///
+/// ```
+/// assert_eq!(subdiv_lab::report::file_digest(b""), "cbf29ce484222325");
+/// ```
+pub fn file_digest(bytes: &[u8]) -> String {
+    format!("{:016x}", crate::hash::fnv1a64(bytes))
 }
 
 /// A generated report, in memory.
@@ -352,12 +370,35 @@ pub fn generate_with(
         .par_iter()
         .map(|entry| figure_part(entry, progress, options))
         .collect::<Vec<_>>();
-    let mut files = Vec::new();
+    let mut files: Vec<OutputFile> = Vec::new();
     let mut records = Vec::new();
     let mut fragments = Vec::new();
+    // A CSV with the same bytes as an earlier figure's (figures that show
+    // other columns of one computation, such as the knot maps coloured by
+    // class, modulus ratio and angle) is written once: the later figure's
+    // record names the earlier file.
+    let mut csv_names: std::collections::HashMap<Vec<u8>, String> = Default::default();
     for part in parts {
-        let part = part?;
-        files.extend(part.files);
+        let mut part = part?;
+        for f in part.files {
+            if !f.path.ends_with(".csv") {
+                files.push(f);
+                continue;
+            }
+            match csv_names.get(&f.bytes) {
+                Some(first) => {
+                    for name in &mut part.record.csv {
+                        if *name == f.path {
+                            name.clone_from(first);
+                        }
+                    }
+                }
+                None => {
+                    csv_names.insert(f.bytes.clone(), f.path.clone());
+                    files.push(f);
+                }
+            }
+        }
         records.push(part.record);
         fragments.push(part.fragment);
     }
@@ -375,6 +416,7 @@ pub fn generate_with(
             .map(|f| f.path.clone())
             .chain(["index.html".to_owned(), "manifest.json".to_owned()])
             .collect(),
+        digests: std::collections::BTreeMap::new(),
         name: spec.name.clone(),
         seed: spec.seed,
         spec: spec.source.clone(),
@@ -385,6 +427,11 @@ pub fn generate_with(
         path: "index.html".into(),
         bytes: html::index(spec, &manifest, &fragments).into_bytes(),
     });
+    let mut manifest = manifest;
+    manifest.digests = files
+        .iter()
+        .map(|f| (f.path.clone(), file_digest(&f.bytes)))
+        .collect();
     let json = serde_json::to_vec_pretty(&manifest).map_err(|e| ReportError::Render {
         figure: String::new(),
         message: format!("manifest: {e}"),

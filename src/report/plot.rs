@@ -339,10 +339,22 @@ pub fn side_legend(
     let x = theme.tick as i32;
     let line_h = theme.legend as i32 * 5 / 4;
     let mut y = theme.label as i32 * 2;
+    let (w, _) = area.dim_in_pixel();
+    let font = theme.font(theme.legend);
     for (glyph, lines) in entries {
         let mut g = *glyph;
         g.at = (x, y + theme.legend as i32 / 2);
         area.draw(&g).map_err(draw_err)?;
+        // Text that would leave the area is wrapped at its separators.
+        let room = (w as i32 - x - g.width - theme.legend as i32).max(1) as u32;
+        let lines: Vec<String> = lines
+            .iter()
+            .flat_map(|t| {
+                wrap_text(t, room, |s| {
+                    area.estimate_text_size(s, &font).map_or(0, |d| d.0)
+                })
+            })
+            .collect();
         for (k, text) in lines.iter().enumerate() {
             area.draw(&Text::new(
                 text.clone(),
@@ -354,6 +366,53 @@ pub fn side_legend(
         y += line_h * lines.len().max(1) as i32 + theme.legend as i32 / 2;
     }
     Ok(())
+}
+
+/// Splits `text` into lines no wider than `room` pixels (by `width`), breaking
+/// after a space, `:`, `/`, `,` or `_`; a piece without a break point that is
+/// still too wide stays whole. Text that fits is one line.
+pub fn wrap_text(text: &str, room: u32, width: impl Fn(&str) -> u32) -> Vec<String> {
+    if width(text) <= room {
+        return vec![text.to_owned()];
+    }
+    // Pieces ending at a break character (kept with the piece before it).
+    let mut pieces = Vec::new();
+    let mut start = 0;
+    for (i, c) in text.char_indices() {
+        if matches!(c, ' ' | ':' | '/' | ',' | '_') {
+            pieces.push(&text[start..i + c.len_utf8()]);
+            start = i + c.len_utf8();
+        }
+    }
+    if start < text.len() {
+        pieces.push(&text[start..]);
+    }
+    let mut out: Vec<String> = Vec::new();
+    let mut cur = String::new();
+    for p in pieces {
+        let joined = format!("{cur}{p}");
+        if !cur.is_empty() && width(joined.trim_end()) > room {
+            out.push(cur.trim_end().to_owned());
+            cur = p.to_owned();
+        } else {
+            cur = joined;
+        }
+    }
+    if !cur.trim_end().is_empty() {
+        out.push(cur.trim_end().to_owned());
+    }
+    out
+}
+
+/// A tick label of a log axis: the decimal form from 0.01 to below 10^4
+/// (`0.1`, `1`, `10`), the power of ten outside (`1e-5`, `1e5`); never
+/// `1e0`.
+pub fn log_tick(y: f64) -> String {
+    if (0.01..1e4).contains(&y.abs()) {
+        tick((y * 1e6).round() / 1e6)
+    } else {
+        format!("{y:.0e}")
+    }
 }
 
 /// Dash patterns for reference lines: (dash length, gap) in pixels, scaled by the line width.
@@ -655,6 +714,33 @@ mod doc_examples {
     //! The examples of this private module's items (not doctests: the module is
     //! not public).
     use super::*;
+
+    #[test]
+    fn log_ticks_are_decimal_near_one() {
+        assert_eq!(log_tick(1.0), "1");
+        assert_eq!(log_tick(10.0), "10");
+        assert_eq!(log_tick(0.01), "0.01");
+        assert_eq!(log_tick(1e-3), "1e-3");
+        assert_eq!(log_tick(1e5), "1e5");
+    }
+
+    #[test]
+    fn wrap_text_breaks_at_separators_only_when_needed() {
+        let w = |s: &str| 10 * s.chars().count() as u32;
+        assert_eq!(wrap_text("standard", 80, w), ["standard"]);
+        assert_eq!(
+            wrap_text("indeterminate:standard/defective", 200, w),
+            ["indeterminate:", "standard/defective"]
+        );
+        assert_eq!(
+            wrap_text("indeterminate:standard/defective", 100, w),
+            ["indeterminate:", "standard/", "defective"]
+        );
+        assert_eq!(
+            wrap_text("unbreakablelongword", 50, w),
+            ["unbreakablelongword"]
+        );
+    }
 
     #[test]
     fn tick_examples() {

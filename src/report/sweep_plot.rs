@@ -335,6 +335,28 @@ fn grid_step(v: &[f64]) -> Option<f64> {
         .min_by(f64::total_cmp)
 }
 
+/// Largest magnitude of a value on a plot axis or colour scale: the axis
+/// range is padded by a few percent and divided into ticks, so the span and
+/// the padded ends must stay finite (values of `+-1e308` made the tick
+/// search loop for ever). `1e300` leaves a wide margin below `f64::MAX`.
+pub const MAX_PLOT_MAGNITUDE: f64 = 1e300;
+
+/// Refuses a column with a finite value beyond [`MAX_PLOT_MAGNITUDE`].
+fn check_magnitude(name: &str, values: &[Option<f64>]) -> Result<(), TableError> {
+    match values
+        .iter()
+        .flatten()
+        .find(|v| v.is_finite() && v.abs() > MAX_PLOT_MAGNITUDE)
+    {
+        Some(&value) => Err(TableError::TooLargeToPlot {
+            name: name.to_owned(),
+            value,
+            max: MAX_PLOT_MAGNITUDE,
+        }),
+        None => Ok(()),
+    }
+}
+
 impl SweepPlot {
     /// Builds the plot: chooses what `req` leaves open ([`choose`]) and
     /// extracts the data; errors name the offending column.
@@ -345,6 +367,7 @@ impl SweepPlot {
         if !xs.iter().flatten().any(|v| v.is_finite()) {
             return Err(TableError::NoFiniteValues(x));
         }
+        check_magnitude(&x, &xs)?;
         let color_labels = match &req.color {
             Some(c) => Some(t.labels(c)?),
             None => None,
@@ -446,6 +469,7 @@ impl SweepPlot {
             PlotKind::Scatter | PlotKind::Map => {
                 let y = req.y.clone().unwrap_or_default();
                 let ys = t.numeric(&y)?;
+                check_magnitude(&y, &ys)?;
                 let keep = finite_pairs(&xs, &ys);
                 if keep.is_empty() {
                     return Err(TableError::NoFiniteValues(format!("{x}\" and \"{y}")));
@@ -459,6 +483,7 @@ impl SweepPlot {
                             .is_ok_and(|v| v.iter().flatten().all(|x| x.fract() == 0.0));
                         if t.is_numeric(c) && (!whole || t.distinct_numbers(c) > MAX_CATEGORIES) {
                             let v = t.numeric(c)?;
+                            check_magnitude(c, &v)?;
                             let vals: Vec<f64> =
                                 keep.iter().map(|&i| v[i].unwrap_or(f64::NAN)).collect();
                             let fin = vals.iter().copied().filter(|v| v.is_finite());

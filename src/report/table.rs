@@ -93,6 +93,17 @@ pub enum TableError {
     /// A numeric column has no finite value to plot.
     #[error("column {0:?} has no finite values")]
     NoFiniteValues(String),
+    /// A numeric column with a value too large to plot (the axis arithmetic
+    /// would overflow f64).
+    #[error("column {name:?} has the value {value:e}, beyond the {max:e} a plot axis can span (its range and ticks would overflow f64); rescale the column")]
+    TooLargeToPlot {
+        /// Column name.
+        name: String,
+        /// The offending value.
+        value: f64,
+        /// The largest accepted magnitude.
+        max: f64,
+    },
     /// A column has too many distinct values for the plot kind.
     #[error("column {name:?} has {count} distinct values, more than the {max} a {kind} plot accepts; {hint}")]
     TooManyValues {
@@ -254,11 +265,16 @@ impl Table {
         Table::new(t.names.clone(), columns)
     }
 
-    /// Reads `bytes` as Parquet when `name` ends in `.parquet`, as CSV
+    /// Reads `bytes` as Parquet when `name` ends in `.parquet` or the bytes
+    /// begin and end with the Parquet magic `PAR1` (a Parquet file under
+    /// another name, e.g. `sweep --format parquet --out x.csv`), as CSV
     /// otherwise ([`from_parquet`](Self::from_parquet),
     /// [`from_csv`](Self::from_csv)).
     pub fn from_named_bytes(name: &str, bytes: &[u8]) -> Result<Self, TableError> {
-        if name.ends_with(".parquet") {
+        let magic = b"PAR1";
+        let parquet_bytes =
+            bytes.len() >= 2 * magic.len() && bytes.starts_with(magic) && bytes.ends_with(magic);
+        if name.ends_with(".parquet") || parquet_bytes {
             Table::from_parquet(bytes.to_vec())
         } else {
             Table::from_csv(bytes)

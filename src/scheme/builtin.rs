@@ -7,6 +7,7 @@
 //! family: the analysis engine only sees the capabilities.
 
 use super::{FaceContraction, Scheme, SpectralStructure};
+use crate::budget::CostModel;
 use crate::charmap::{
     self,
     figure::RingPlot,
@@ -51,6 +52,10 @@ impl Scheme for LocalScheme<f64> {
                 })
                 .collect::<Result<Vec<_>>>()
                 .and_then(|v| Ok(LocalScheme::nurds(crate::knots::EdgeRatios::new(v)?))),
+            // Original Doo-Sabin is rational where cos(2 pi / n) is (n = 3, 4, 6).
+            LocalScheme::DooSabin { valence } if matches!(valence, 3 | 4 | 6) => {
+                LocalScheme::doo_sabin(*valence)
+            }
             LocalScheme::CcVariant { valence } => LocalScheme::cc_variant(*valence),
             LocalScheme::CatmullClark { valence } => LocalScheme::catmull_clark(*valence),
             LocalScheme::AdjustableCc { valence, c } => match f64_to_rational(*c) {
@@ -144,6 +149,18 @@ impl Scheme for LocalScheme<f64> {
             charmap::catmull_clark::check_classified(self.valence(), c, subdominant, certificate)
                 .map(|r| r.map_patches(AnyPatchId::CatmullClark)),
         )
+    }
+
+    /// [`doo_sabin::COST_MODEL`] or [`catmull_clark::COST_MODEL`].
+    fn cost_model(&self) -> CostModel {
+        match self {
+            LocalScheme::Nurds(_)
+            | LocalScheme::DooSabin { .. }
+            | LocalScheme::CcVariant { .. } => doo_sabin::COST_MODEL,
+            LocalScheme::CatmullClark { .. } | LocalScheme::AdjustableCc { .. } => {
+                catmull_clark::COST_MODEL
+            }
+        }
     }
 
     fn characteristic_plot(

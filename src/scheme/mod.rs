@@ -21,12 +21,39 @@
 //! | [`face_contraction`](Scheme::face_contraction) | none: no Theorem 1 section | `analyze`, sweeps' `contraction` |
 //! | [`characteristic_map`](Scheme::characteristic_map) | none: `no_charmap` | sweeps' `charmap`, reports |
 //! | [`fourier_spectrum`](Scheme::fourier_spectrum) | none: the curvature's `mu_mode` is `null` | `analyze`'s `curvature` |
+//! | [`cost_model`](Scheme::cost_model) | [`CostModel::dense`] at the local matrix's size | the work estimates of [`crate::budget`] |
 //!
 //! The built-in families implement it: [`LocalScheme`](crate::schemes::LocalScheme)
 //! (NURDS, Doo-Sabin, the Catmull-Clark variant, Catmull-Clark and the
 //! shape-adjustable scheme) and [`LoopScheme`](crate::schemes::loop_subdivision::LoopScheme).
 //! A scheme defined outside the crate implements it the same way; see the
 //! tutorial in `examples/own_scheme.rs` and the doctest below.
+//!
+//! Names become implementations in one place, [`registry`] (configurations,
+//! mesh rules, cost models); the validation of a scheme choice is [`choice`].
+//! The front ends (`analyze`, `matrix`, `sweep`, `report`, `subdivide`, the
+//! testing kit) dispatch there once and then only ask for capabilities.
+//! Code that *is* one family's implementation lives in that family's modules,
+//! and is reached only through the trait or the registry:
+//!
+//! * the Doo-Sabin family: [`crate::schemes::doo_sabin`]; its mesh
+//!   refinement and limit points [`crate::mesh::refine`] and
+//!   [`crate::mesh::limit`] (behind [`crate::mesh::rules::FaceSplit`]; the
+//!   [`SchemeKind`](crate::schemes::SchemeKind) they take selects the member
+//!   of the family, other schemes are refused); Theorem 1,
+//!   [`crate::contraction`] (behind [`Scheme::face_contraction`]); the
+//!   `9n`-point ring of [`crate::charmap`] (behind
+//!   [`Scheme::characteristic_map`]); the exact face-block verdicts of
+//!   [`crate::spectral::exact`] (`analyze --exact`, the sweeps'
+//!   `exact_certificate`);
+//! * the Catmull-Clark family: [`crate::schemes::catmull_clark`],
+//!   [`crate::mesh::catmull_clark`], [`crate::charmap::catmull_clark`];
+//! * Loop: [`crate::schemes::loop_subdivision`] (all of it).
+//!
+//! Studies of one particular scheme build the configurations they study
+//! directly: [`crate::cc_study`], `curvature::tuning` and the `c` intervals
+//! of [`crate::verify`] (the adjustable Catmull-Clark scheme), the ratio
+//! boxes of `verify` (NURDS), [`crate::ccss_bound`] (Catmull-Clark).
 //!
 //! ```
 //! use subdiv_lab::schemes::{Assembler, LocalMatrix, PointLabel, Role};
@@ -63,6 +90,7 @@
 //! assert!((r.eigenvalues[0][0] - 1.0).abs() < 1e-12);
 //! ```
 
+use crate::budget::CostModel;
 use crate::charmap::figure::RingPlot;
 use crate::charmap::report::{AnyPatchId, CharmapReport};
 use crate::contraction::{Certificate, MeasureOptions, Measured};
@@ -208,6 +236,19 @@ pub trait Scheme: fmt::Debug + Send + Sync {
     /// math doc sections 6, 11 and 13).
     fn fourier_spectrum(&self) -> Option<Result<FourierSpectrum>> {
         None
+    }
+
+    /// The work model of the heavy steps ([`crate::budget`]: the local
+    /// matrix's dimension as a function of the valence and the constants of
+    /// its analysis), so that a front end can estimate and refuse work before
+    /// it starts. Default: [`CostModel::dense`] with the dimension of
+    /// [`local_matrix`](Self::local_matrix) at this valence (which builds the
+    /// matrix once: a scheme whose matrix is itself large at the valences
+    /// users ask for should override it, as the built-in schemes do).
+    fn cost_model(&self) -> CostModel {
+        let n = self.valence().max(1);
+        let d = self.local_matrix().map_or(0, |m| m.rows().len());
+        CostModel::dense(d as f64 / n as f64, 0.0)
     }
 
     /// The characteristic-map check with the plot data of the ring and

@@ -10,13 +10,14 @@
 //! never need to be repeated here.
 
 use super::Scheme;
+use crate::budget::CostModel;
 use crate::error::{Error, Result};
 use crate::knots::EdgeRatios;
 use crate::mesh::catmull_clark::CatmullClarkRules;
 use crate::mesh::rules::{FaceSplit, MeshRules};
 use crate::schemes::loop_subdivision::mesh::LoopRules;
-use crate::schemes::loop_subdivision::LoopScheme;
-use crate::schemes::{LocalScheme, SchemeKind};
+use crate::schemes::loop_subdivision::{self, LoopScheme};
+use crate::schemes::{catmull_clark, doo_sabin, LocalScheme, SchemeKind};
 use std::ops::Deref;
 
 /// One configuration of a built-in scheme: the face- and one-ring families
@@ -92,6 +93,16 @@ impl Builtin {
         }
     }
 
+    /// The legend label reports generate ([`LocalScheme::legend_label`]; a
+    /// scheme without knots or parameters: [`Scheme::label`]); `suffix`
+    /// describes how random knots were drawn.
+    pub fn legend_label(&self, suffix: &str) -> String {
+        match self {
+            Builtin::Local(s) => s.legend_label(suffix),
+            Builtin::Loop(s) => s.label(),
+        }
+    }
+
     /// The [`LocalScheme`] of the face- and one-ring families (`None` for Loop).
     pub fn as_local(&self) -> Option<&LocalScheme<f64>> {
         match self {
@@ -137,6 +148,25 @@ pub fn from_kind(
     })
 }
 
+/// The work model of a built-in scheme, by kind ([`Scheme::cost_model`] of
+/// its configurations, which does not depend on the parameters): for the
+/// estimates a front end makes before any configuration exists (a sweep's
+/// plan).
+///
+/// ```
+/// use subdiv_lab::scheme::registry::cost_model;
+/// use subdiv_lab::schemes::SchemeKind;
+/// assert_eq!(cost_model(SchemeKind::Nurds).dimension(5), 20.0);
+/// assert_eq!(cost_model(SchemeKind::Loop).dimension(5), 16.0);
+/// ```
+pub fn cost_model(kind: SchemeKind) -> CostModel {
+    match kind {
+        SchemeKind::Nurds | SchemeKind::DooSabin | SchemeKind::CcVariant => doo_sabin::COST_MODEL,
+        SchemeKind::CatmullClark | SchemeKind::AdjustableCc => catmull_clark::COST_MODEL,
+        SchemeKind::Loop => loop_subdivision::COST_MODEL,
+    }
+}
+
 /// The mesh refinement rules of a built-in scheme, by kind: the one place
 /// where a scheme name becomes [`MeshRules`] (`subdivide` and the mesh
 /// figures dispatch here). `c` is the shape parameter of the adjustable
@@ -175,4 +205,54 @@ pub fn mesh_rules(kind: SchemeKind, c: Option<f64>) -> Result<Box<dyn MeshRules>
         (_, None) => Box::new(FaceSplit::new(kind).map_err(Error::from)?),
     };
     Ok(rules)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::budget::{self, MEMORY_LIMIT_BYTES, TIME_LIMIT_SECONDS};
+
+    /// A configuration of every built-in scheme (`c = 0.3` where it is needed).
+    fn every_builtin(n: usize) -> Vec<Builtin> {
+        SchemeKind::ALL
+            .iter()
+            .map(|&k| Builtin::from_kind(k, n, None, k.takes_c().then_some(0.3)).unwrap())
+            .collect()
+    }
+
+    #[test]
+    fn the_cost_model_by_kind_is_the_configurations_and_fits_its_matrix() {
+        for s in every_builtin(5) {
+            let m = cost_model(s.kind());
+            assert_eq!(m, s.cost_model(), "{}", s.name());
+            let d = s.local_matrix().unwrap().rows().len();
+            assert_eq!(m.dimension(5), d as f64, "{}", s.name());
+        }
+    }
+
+    // Moved from budget.rs (issue 16), now over every built-in cost model.
+    #[test]
+    fn issue_16_sizes_exceed_the_limits_and_small_ones_do_not() {
+        for s in every_builtin(3) {
+            let kind = s.kind();
+            let model = s.cost_model();
+            for structured in [false, true] {
+                let big = budget::analyze(&model, 100_000, structured);
+                assert!(big.bytes > MEMORY_LIMIT_BYTES, "{kind}");
+                assert!(budget::analyze(&model, 20_000, structured).bytes > MEMORY_LIMIT_BYTES);
+                assert!(budget::analyze(&model, 1000, structured).seconds > TIME_LIMIT_SECONDS);
+                let small = budget::analyze(&model, 64, structured);
+                assert!(small.within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
+            }
+            assert!(budget::matrix(&model, 100_000, false, false).bytes > MEMORY_LIMIT_BYTES);
+            assert!(budget::matrix(&model, 64, false, true)
+                .within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
+        }
+        // the CC one-ring at n = 100000 is the issue's 320 GB matrix
+        let cc = budget::analyze(&cost_model(SchemeKind::CatmullClark), 100_000, false);
+        assert!(cc.bytes >= 8.0 * 200_001f64.powi(2));
+        assert!(cc.what.contains("200001 x 200001"));
+        let lp = budget::analyze(&cost_model(SchemeKind::Loop), 100_000, false);
+        assert!(lp.what.contains("300001 x 300001"));
+    }
 }

@@ -28,11 +28,30 @@
 //!   `P'_i = 1/2 P_i + 1/8 (P_{i-1} + P_{i+1}) + F/4`.
 
 use super::assembly::{Assembler, LocalMatrix, PointLabel, Role};
+use crate::budget::{
+    CostModel, ANALYZE_BYTES_PER_ENTRY_DS, ANALYZE_SECONDS_PER_N3_DS_FULL,
+    ANALYZE_SECONDS_PER_N3_DS_STRUCTURED,
+};
 use crate::error::{Error, Result};
 use crate::knots::{face_weights, EdgeRatios};
 use crate::scalar::Scalar;
 use crate::schemes::LocalScheme;
 use nalgebra::DMatrix;
+
+/// The work model of the family ([`crate::budget`]): the `4n x 4n` matrix
+/// `S_n`; the classification works on the `n x n` face block (its `O(n^3)`
+/// kernel is part of the sweep's base cost), the characteristic map like
+/// `analyze --path structured`.
+pub const COST_MODEL: CostModel = CostModel {
+    dimension_per_valence: 4.0,
+    dimension_offset: 0.0,
+    analyze_bytes_per_entry: ANALYZE_BYTES_PER_ENTRY_DS,
+    analyze_seconds_per_n3_full: ANALYZE_SECONDS_PER_N3_DS_FULL,
+    analyze_seconds_per_n3_structured: ANALYZE_SECONDS_PER_N3_DS_STRUCTURED,
+    sweep_classify_seconds_per_n3: 0.0,
+    sweep_classify_on_face_block: true,
+    sweep_charmap_seconds_per_n3: ANALYZE_SECONDS_PER_N3_DS_STRUCTURED,
+};
 
 /// Point labels of the `4n` configuration, in the order of math doc section 4.
 pub fn labels(n: usize) -> Vec<PointLabel> {

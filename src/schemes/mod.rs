@@ -30,7 +30,7 @@ pub use assembly::{Assembler, LocalMatrix, PointLabel, Role, ROW_SUM_TOL};
 
 use crate::error::{Error, Result};
 use crate::knots::{face_weights, EdgeRatios};
-use crate::scalar::Scalar;
+use crate::scalar::{Rational, Scalar};
 use nalgebra::DMatrix;
 use std::fmt;
 use std::str::FromStr;
@@ -65,6 +65,29 @@ impl SchemeKind {
         SchemeKind::AdjustableCc,
         SchemeKind::Loop,
     ];
+
+    /// Every known scheme's name, in [`SchemeKind::ALL`] order, joined by
+    /// `sep` except the last two, which are joined by `last` when given
+    /// (`names_or` for help texts: `"nurds, ..., adjustable-cc or loop"`).
+    ///
+    /// ```
+    /// use subdiv_lab::schemes::SchemeKind;
+    /// assert!(SchemeKind::names(", ").starts_with("nurds, doo-sabin, "));
+    /// assert!(SchemeKind::names_or().ends_with(" or loop"));
+    /// ```
+    pub fn names(sep: &str) -> String {
+        let names: Vec<&str> = SchemeKind::ALL.iter().map(|k| k.name()).collect();
+        names.join(sep)
+    }
+
+    /// Every known scheme's name, `"a, b, ... or z"` (help texts).
+    pub fn names_or() -> String {
+        let names: Vec<&str> = SchemeKind::ALL.iter().map(|k| k.name()).collect();
+        match names.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+            _ => names.join(", "),
+        }
+    }
 
     /// The scheme's command-line name.
     pub fn name(self) -> &'static str {
@@ -117,7 +140,7 @@ impl fmt::Display for SchemeKind {
 
 /// Error for an unknown scheme name.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown scheme {0:?} (known: nurds, doo-sabin, cc-variant, catmull-clark, adjustable-cc, loop)")]
+#[error("unknown scheme {name:?} (known: {known})", name = .0, known = SchemeKind::names(", "))]
 pub struct UnknownScheme(pub String);
 
 impl FromStr for SchemeKind {
@@ -351,6 +374,55 @@ impl<T: Scalar> LocalScheme<T> {
                 catmull_clark::one_ring_named(self.kind().name(), *valence, c)
             }
             _ => doo_sabin::assemble(self.kind().name(), &self.face_block()?, &self.ratios()),
+        }
+    }
+}
+
+impl LocalScheme<Rational> {
+    /// The most bits a knot parameter needs: numerator plus denominator of
+    /// the largest NURDS edge ratio (0 for the schemes without knot
+    /// intervals), which sizes the exact path's work estimate
+    /// ([`crate::budget::analyze_exact`]).
+    pub fn parameter_bits(&self) -> u64 {
+        match self {
+            LocalScheme::Nurds(r) => r
+                .as_slice()
+                .iter()
+                .map(|x| x.numer().bits() + x.denom().bits())
+                .max()
+                .unwrap_or(0),
+            _ => 0,
+        }
+    }
+}
+
+impl LocalScheme<f64> {
+    /// The legend label reports generate for this configuration: NURDS with
+    /// its knots (`NURDS n=3, r=(0.300, 0.600, 0.500)` up to `n = 6`,
+    /// `NURDS n=8, non-uniform` beyond, `NURDS n=5, uniform`), the adjustable
+    /// scheme with its `c`, the others by name and valence. A non-empty
+    /// `suffix` (how random knots were drawn, `", random knots <= 4"`)
+    /// replaces the description of non-uniform knots.
+    ///
+    /// ```
+    /// use subdiv_lab::knots::EdgeRatios;
+    /// use subdiv_lab::schemes::LocalScheme;
+    /// let s = LocalScheme::nurds(EdgeRatios::new(vec![0.3, 0.6, 0.5]).unwrap());
+    /// assert_eq!(s.legend_label(""), "NURDS n=3, r=(0.300, 0.600, 0.500)");
+    /// assert_eq!(LocalScheme::<f64>::doo_sabin(5).unwrap().legend_label(""), "doo-sabin n=5");
+    /// ```
+    pub fn legend_label(&self, suffix: &str) -> String {
+        let n = self.valence();
+        match self {
+            LocalScheme::Nurds(r) if r.is_uniform() => format!("NURDS n={n}, uniform"),
+            LocalScheme::Nurds(r) if suffix.is_empty() && n <= 6 => {
+                let parts: Vec<String> = r.as_slice().iter().map(|x| format!("{x:.3}")).collect();
+                format!("NURDS n={n}, r=({})", parts.join(", "))
+            }
+            LocalScheme::Nurds(_) if suffix.is_empty() => format!("NURDS n={n}, non-uniform"),
+            LocalScheme::Nurds(_) => format!("NURDS n={n}{suffix}"),
+            LocalScheme::AdjustableCc { c, .. } => format!("adjustable-cc n={n}, c={c}"),
+            other => format!("{} n={n}", other.kind()),
         }
     }
 }

@@ -14,8 +14,8 @@
 //! | verdict | condition | curvature at the extraordinary point |
 //! |---|---|---|
 //! | `zero` | `mu < lambda^2` | tends to 0 (a flat spot) |
-//! | `bounded` | `mu = lambda^2` | bounded, generically non-zero |
-//! | `unbounded` | `mu > lambda^2` | generically unbounded |
+//! | `bounded` | `mu = lambda^2`, `mu` non-defective | bounded, generically non-zero |
+//! | `unbounded` | `mu > lambda^2`, or `mu = lambda^2` with a Jordan block | generically unbounded |
 //! | `indeterminate` | `|mu - lambda^2|` not certainly non-zero | - |
 //! | `not_applicable` | subdominant structure not standard | see the reason |
 //!
@@ -39,12 +39,22 @@
 //!    modulus `>= mu_q` (the Schur-Cohn count of
 //!    `crate::spectral::poly::roots_outside`, which refuses
 //!    roots on the circle). Then `lambda = lambda_q` and `mu = mu_q` exactly
-//!    and `mu_q` is compared with `lambda_q^2` in rationals. A wrong candidate
+//!    and `mu_q` is compared with `lambda_q^2` in rationals. Equality is
+//!    `bounded` only when `mu` is *non-defective*: the exact rank of
+//!    `S - mu I` (and of `S + mu I` where `-mu` is a root) equals the
+//!    dimension minus the algebraic multiplicity. A Jordan block of size
+//!    `j >= 2` at `mu` puts `k^(j-1) mu^k` into the heights, so the curvature
+//!    grows like `k^(j-1)` and the verdict is `unbounded` (original Doo-Sabin
+//!    at `n = 6`: `1/4` is a root of multiplicity 11 with 7 eigenvectors;
+//!    math doc section 13.1 **\[derived\]**). A wrong candidate
 //!    fails a check and leaves the verdict `indeterminate`; it never makes a
 //!    wrong one. This certifies `bounded` for the rational cases (Catmull-Clark
 //!    at `n = 4`, the uniform Doo-Sabin-family schemes where their spectrum
-//!    is rational); irrational equalities (Loop at `n = 5`, the adjustable
-//!    scheme at its tuned `c`) stay `indeterminate` here.
+//!    is rational, original Doo-Sabin at `n` = 3, 4 and Loop at `n` = 3, 4, 6
+//!    where `cos(2 pi / n)` is rational) and `unbounded` for original
+//!    Doo-Sabin at `n = 6` (defective `mu`); irrational equalities (Loop and original
+//!    Doo-Sabin at `n = 5`, the adjustable scheme at its tuned `c`) stay
+//!    `indeterminate` here.
 //!
 //! ```
 //! use subdiv_lab::curvature::{curvature, CurvatureVerdict};
@@ -306,7 +316,7 @@ pub fn summarize<S: Scheme + ?Sized>(
         return Ok(out);
     }
     let exact = match scheme.exact_local_matrix() {
-        None => Err("no exact (rational) local matrix for this scheme".to_owned()),
+        None => Err("no exact (rational) local matrix for this configuration".to_owned()),
         Some(m) => {
             let m = m?;
             if m.matrix().nrows() > EXACT_MAX_DIM {
@@ -323,6 +333,9 @@ pub fn summarize<S: Scheme + ?Sized>(
             let sq = &x.lambda * &x.lambda;
             out.verdict = match x.mu.cmp(&sq) {
                 std::cmp::Ordering::Less => CurvatureVerdict::Zero,
+                std::cmp::Ordering::Equal if x.mu_eigenvectors < x.mu_multiplicity => {
+                    CurvatureVerdict::Unbounded
+                }
                 std::cmp::Ordering::Equal => CurvatureVerdict::Bounded,
                 std::cmp::Ordering::Greater => CurvatureVerdict::Unbounded,
             };
@@ -330,9 +343,14 @@ pub fn summarize<S: Scheme + ?Sized>(
             out.radius = 0.0;
             out.mu_multiplicity = x.mu_multiplicity;
             out.reason = format!(
-                "certified exactly: lambda = {}, mu = {} (multiplicity {}), lambda^2 = {}",
-                x.lambda, x.mu, x.mu_multiplicity, sq
+                "certified exactly: lambda = {}, mu = {} (multiplicity {}, {} eigenvectors), lambda^2 = {}",
+                x.lambda, x.mu, x.mu_multiplicity, x.mu_eigenvectors, sq
             );
+            if x.mu_eigenvectors < x.mu_multiplicity {
+                out.reason.push_str(
+                    "; mu = lambda^2 is defective (a Jordan block), so the curvature grows like a power of the level k",
+                );
+            }
         }
         Err(why) => {
             out.verdict = CurvatureVerdict::Indeterminate;
@@ -397,6 +415,48 @@ pub struct ExactCurvature {
     pub mu: Rational,
     /// Number of roots equal to `mu` or `-mu`.
     pub mu_multiplicity: usize,
+    /// Number of independent eigenvectors for `mu` and `-mu` together (the
+    /// exact geometric multiplicity); below `mu_multiplicity` exactly when
+    /// `mu` or `-mu` has a Jordan block.
+    pub mu_eigenvectors: usize,
+}
+
+/// The exact rank of `a` (fraction-based Gaussian elimination).
+fn rank_rational(mut a: DMatrix<Rational>) -> usize {
+    let (rows, cols) = a.shape();
+    let mut rank = 0;
+    for col in 0..cols {
+        let Some(p) = (rank..rows).find(|&r| !a[(r, col)].is_zero()) else {
+            continue;
+        };
+        a.swap_rows(rank, p);
+        let pivot = a[(rank, col)].clone();
+        for r in rank + 1..rows {
+            if a[(r, col)].is_zero() {
+                continue;
+            }
+            let f = &a[(r, col)] / &pivot;
+            for c in col..cols {
+                let t = &f * &a[(rank, c)];
+                a[(r, c)] -= t;
+            }
+        }
+        rank += 1;
+        if rank == rows {
+            break;
+        }
+    }
+    rank
+}
+
+/// The number of independent eigenvectors of `s` for the eigenvalue `r`:
+/// `dim - rank(s - r I)`, exactly.
+fn eigenvectors_for(s: &DMatrix<Rational>, r: &Rational) -> usize {
+    let mut a = s.clone();
+    for i in 0..a.nrows().min(a.ncols()) {
+        a[(i, i)] -= r.clone();
+    }
+    s.nrows() - rank_rational(a)
 }
 
 /// The rational number with denominator at most [`RATIONAL_DENOMINATOR_LIMIT`]
@@ -514,9 +574,17 @@ pub fn certify_rational(
             ))
         }
     }
+    let mut mu_eigenvectors = 0;
+    if mp > 0 {
+        mu_eigenvectors += eigenvectors_for(s, &mq);
+    }
+    if mm > 0 {
+        mu_eigenvectors += eigenvectors_for(s, &-mq.clone());
+    }
     Ok(ExactCurvature {
         lambda: lq,
         mu: mq,
         mu_multiplicity: mp + mm,
+        mu_eigenvectors,
     })
 }

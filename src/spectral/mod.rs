@@ -34,7 +34,7 @@
 
 pub(crate) mod certify;
 pub mod classify;
-pub mod curvature;
+pub(crate) mod curvature;
 pub mod eigen;
 pub mod exact;
 pub mod json;

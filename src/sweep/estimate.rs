@@ -3,29 +3,20 @@
 
 use super::Plan;
 use crate::budget::*;
+use crate::scheme::registry::cost_model;
 
 /// Seconds of one sweep configuration at valence `n` with the columns of
 /// `plan` (structured classification `O(n^3)` with a small constant; the
 /// characteristic map like `analyze --path structured`; the exact
 /// certificate grows fastest, `n^3` with a larger constant for floating-point
 /// knots).
-fn sweep_seconds_per_configuration(plan: &Plan, n: usize) -> f64 {
+fn sweep_seconds_per_configuration(plan: &Plan, model: &CostModel, n: usize) -> f64 {
     let c = plan.spec().columns;
-    let cc = plan.spec().scheme.is_catmull_clark_family();
     let nf = n as f64;
     let mut s = SWEEP_SECONDS_BASE + 4e-9 * nf * nf * nf;
-    if cc {
-        s += ANALYZE_SECONDS_PER_N3_CC * nf * nf * nf;
-    }
+    s += model.sweep_classify_seconds_per_n3 * nf * nf * nf;
     if c.charmap {
-        s += 1e-3
-            + if cc {
-                ANALYZE_SECONDS_PER_N3_CC
-            } else {
-                ANALYZE_SECONDS_PER_N3_DS_STRUCTURED
-            } * nf
-                * nf
-                * nf;
+        s += 1e-3 + model.sweep_charmap_seconds_per_n3 * nf * nf * nf;
     }
     if c.exact_certificate {
         let per_n3 = if plan.spec().space.kind == super::SpaceKind::Uniform {
@@ -42,7 +33,11 @@ fn sweep_seconds_per_configuration(plan: &Plan, n: usize) -> f64 {
 /// `rows` configurations, computed per valence block without visiting each id
 /// (`count_for(n)` configurations of valence `n`, in the order of the spec,
 /// a shard taking every `shard_count`-th).
+///
+/// The per-scheme constants are the scheme's [`CostModel`]
+/// ([`crate::scheme::registry::cost_model`] of the spec's scheme).
 pub fn sweep_rows(plan: &Plan, rows: u64, shard_count: u64, threads: usize) -> Estimate {
+    let model = cost_model(plan.spec().scheme);
     let mut left = rows;
     let mut seconds = 0.0;
     let mut max_n = 3;
@@ -54,18 +49,19 @@ pub fn sweep_rows(plan: &Plan, rows: u64, shard_count: u64, threads: usize) -> E
         let take = block.min(left);
         left -= take;
         max_n = max_n.max(n);
-        seconds += take as f64 * sweep_seconds_per_configuration(plan, n);
+        seconds += take as f64 * sweep_seconds_per_configuration(plan, &model, n);
     }
-    let d = local_dimension(plan.spec().scheme, max_n);
-    // the characteristic map works on S_n (d x d); the classification alone
-    // on the n x n face block (Doo-Sabin family) or the one-ring (d x d)
+    let d = model.dimension(max_n);
+    // the characteristic map works on the local matrix (d x d); the
+    // classification alone on the n x n face block (when the scheme
+    // classifies through it) or on the local matrix
     let nf = max_n as f64;
     let per_thread = if plan.spec().columns.charmap {
-        ANALYZE_BYTES_PER_ENTRY_DS * d * d
-    } else if plan.spec().scheme.is_catmull_clark_family() {
-        64.0 * d * d
-    } else {
+        model.analyze_bytes_per_entry * d * d
+    } else if model.sweep_classify_on_face_block {
         64.0 * nf * nf
+    } else {
+        64.0 * d * d
     };
     Estimate {
         bytes: threads as f64 * per_thread + 64e6,

@@ -368,7 +368,18 @@ pub fn check_mesh_contraction(
         mesh.face_count(),
         mesh.vertex_count()
     );
-    let (_, stats) = crate::mesh::limit::refine_with_stats(mesh, scheme, levels)
+    // the scheme's mesh rules, through the one dispatch
+    let rules = crate::scheme::registry::mesh_rules(scheme, None)
+        .map_err(|e| Violation::new(check, &describe, format!("no mesh rules: {e}")))?;
+    let (_, stats) = rules
+        .refine_with_stats(mesh, levels)
+        .ok_or_else(|| {
+            Violation::new(
+                check,
+                &describe,
+                "the scheme has no per-level statistics of extraordinary faces".to_owned(),
+            )
+        })?
         .map_err(|e| Violation::new(check, &describe, format!("refinement failed: {e}")))?;
     for level in &stats {
         for face in &level.extraordinary {

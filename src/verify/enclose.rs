@@ -73,6 +73,10 @@ pub enum Tamper {
     /// forms alone (quadratic terms and remainders dropped): first-order
     /// exact, but not an enclosure.
     FirstOrder,
+    /// The sound spectral enclosure, but the `charmap` certificate drops the
+    /// variation of the invariant subspace over the cell
+    /// ([`super::charmap::CellTamper::DropSubspaceVariation`]).
+    DropSubspaceVariation,
 }
 
 /// An affine matrix family `C(x) = C_0 + sum_k x_k C_k` of size `m`.
@@ -81,10 +85,6 @@ pub struct AffineFamily {
     m: usize,
     c0: Vec<f64>,
     terms: Vec<Vec<(usize, usize, f64)>>,
-    /// The characteristic polynomial for the factor route (`m >= 4`).
-    charpoly: Option<Box<super::factor::CharPoly>>,
-    /// Its invariants, when fewer than the parameters.
-    invariants: Option<Box<super::invariants::Invariants>>,
 }
 
 impl AffineFamily {
@@ -167,32 +167,7 @@ impl AffineFamily {
                 t
             })
             .collect();
-        let mut family = AffineFamily {
-            m,
-            c0,
-            terms,
-            charpoly: None,
-            invariants: None,
-        };
-        family.charpoly = super::factor::CharPoly::new(&family).map(Box::new);
-        family.invariants = family
-            .charpoly
-            .as_deref()
-            .and_then(super::invariants::Invariants::new)
-            .map(Box::new);
-        family
-    }
-
-    /// The invariants of the characteristic polynomial, when the invariant
-    /// route applies.
-    pub fn invariants(&self) -> Option<&super::invariants::Invariants> {
-        self.invariants.as_deref()
-    }
-
-    /// The characteristic polynomial of the family when the factor route
-    /// applies (`4 <= m <=` [`super::factor::MAX_FACTOR_DIM`]).
-    pub fn charpoly(&self) -> Option<&super::factor::CharPoly> {
-        self.charpoly.as_deref()
+        AffineFamily { m, c0, terms }
     }
 
     /// Entry `(a, b)` of `C_0`.

@@ -27,11 +27,12 @@
 
 use super::decide::{SpectralVerdict, Status};
 use super::enclose::{centre_and_half_widths, Tamper};
-use super::factor::{combo, companion_roots, monomial_form, solve, verdict, CharPoly, Cell};
+use super::factor::{combo, companion_roots, monomial_form, solve, verdict, Cell, CharPoly};
 use super::interval::{down, up, Iv};
-use super::taylor::{Taylor, STRADDLE_SLACK};
+use super::taylor2::Taylor;
 use crate::scalar::{f64_to_rational, rational_to_f64, Rational};
 use num_traits::{One, Zero};
+use rayon::prelude::*;
 use std::collections::BTreeMap;
 
 /// Most bisections of an invariant box within one cell's evaluation: deep
@@ -52,8 +53,6 @@ pub struct Invariants {
     a: Vec<Iv>,
     /// `b_ji`, enclosed (row `j`).
     b: Vec<Vec<Iv>>,
-    #[doc(hidden)]
-    pub scale: Vec<f64>,
 }
 
 /// An interval containing a rational.
@@ -73,6 +72,7 @@ fn enclose_rational(x: &Rational) -> Iv {
 type Vector = BTreeMap<Vec<u8>, Rational>;
 
 /// Solves `sum_i x_i basis_i = v` exactly; `None` when `v` is not in the span.
+#[allow(clippy::needless_range_loop)] // index-heavy linear algebra
 fn solve_in_span(basis: &[Vector], v: &Vector) -> Option<Vec<Rational>> {
     let t = basis.len();
     let mut keys: Vec<&Vec<u8>> = v.keys().collect();
@@ -127,34 +127,6 @@ fn solve_in_span(basis: &[Vector], v: &Vector) -> Option<Vec<Rational>> {
     Some(x)
 }
 
-/// Scratch: (decided, undecided leaves) of a uniform refinement to `depth`.
-#[doc(hidden)]
-pub fn scratch_tree(inv: &Invariants, lo: &[f64], hi: &[f64], depth: u32) -> (usize, usize, usize) {
-    let v = inv.decide_box(lo, hi, 0, false);
-    if v.complete() { return (1, 0, 0); }
-    if depth == 0 { return (0, 1, usize::from(v.normal.is_some())); }
-    let i = if (hi[0] - lo[0]) / inv.scale[0] >= (hi[1] - lo[1]) / inv.scale[1] { 0 } else { 1 };
-    let mid = 0.5 * lo[i] + 0.5 * hi[i];
-    let mut h1 = hi.to_vec(); h1[i] = mid; let mut l2 = lo.to_vec(); l2[i] = mid;
-    let a = scratch_tree(inv, lo, &h1, depth - 1);
-    let b = scratch_tree(inv, &l2, hi, depth - 1);
-    (a.0 + b.0, a.1 + b.1, a.2 + b.2)
-}
-
-/// What one invariant box proves: the verdicts that hold on all of it
-/// (`Undecided` / `None` where not), and the gradient in invariant space of
-/// a quantity that left them open.
-struct BoxVerdict {
-    verdict: SpectralVerdict,
-    normal: Option<Vec<f64>>,
-}
-
-impl BoxVerdict {
-    fn complete(&self) -> bool {
-        self.verdict.separation != Status::Undecided && self.verdict.class.is_some()
-    }
-}
-
 impl Invariants {
     /// The invariants of a characteristic polynomial; `None` when there
     /// are as many as parameters (no gain) or a coefficient is not exact.
@@ -162,8 +134,9 @@ impl Invariants {
     /// ```
     /// use subdiv_lab::verify::enclose::AffineFamily;
     /// use subdiv_lab::verify::invariants::Invariants;
+    /// use subdiv_lab::verify::factor::CharPoly;
     /// let f = AffineFamily::nurds(5);
-    /// let inv = Invariants::new(f.charpoly().unwrap()).unwrap();
+    /// let inv = Invariants::new(&CharPoly::new(&f).unwrap()).unwrap();
     /// assert_eq!(inv.count(), 2);
     /// ```
     pub fn new(poly: &CharPoly) -> Option<Self> {
@@ -218,7 +191,7 @@ impl Invariants {
             .collect();
         // a_j sums exact dyadic constants: exact unless the sum rounded
         debug_assert!(a.iter().all(|v| v.lo == v.hi));
-        Some(Invariants { m, k, phi, a, b, scale: vec![1.0; t] })
+        Some(Invariants { m, k, phi, a, b })
     }
 
     /// The number `t` of invariants.
@@ -245,161 +218,573 @@ impl Invariants {
             .collect()
     }
 
-    /// `p_j(phi0 + d) = a_j + sum_i b_ji (phi0_i + d_i)` as exact affine
-    /// forms over the invariant box `[phi0 - h, phi0 + h]`.
-    fn coefficient_forms(&self, phi0: &[f64]) -> Vec<Taylor> {
+    /// `p_j(psi0 + d) = a_j + sum_i b_ji (psi0_i + d_i)` as affine forms
+    /// over the box `[psi0 - h, psi0 + h]` of coordinates `psi` in which
+    /// the coefficients have the slopes `b` (`self.b` for the invariants
+    /// themselves).
+    fn coefficient_forms(&self, b: &[Vec<Iv>], psi0: &[f64]) -> Vec<Taylor> {
         let t = self.count();
         (0..self.m)
             .map(|j| {
                 let mut c = self.a[j];
                 for i in 0..t {
-                    c = c.add(self.b[j][i].mul(Iv::point(phi0[i])));
+                    c = c.add(b[j][i].mul(Iv::point(psi0[i])));
                 }
-                Taylor::from_parts(
-                    c,
-                    self.b[j].clone(),
-                    vec![Iv::point(0.0); t * (t + 1) / 2],
-                    0.0,
-                )
+                Taylor::from_parts(c, b[j].clone(), vec![Iv::point(0.0); t * (t + 1) / 2], 0.0)
             })
             .collect()
     }
 
-    /// The verdicts that hold for every `P~(.; phi)`, `phi` in the box.
-    fn decide_box(&self, lo: &[f64], hi: &[f64], depth: u32, first_order: bool) -> BoxVerdict {
-        let open = BoxVerdict {
-            verdict: SpectralVerdict {
-                separation: Status::Undecided,
-                class: None,
-            },
-            normal: None,
-        };
-        if lo.iter().zip(hi).any(|(a, b)| !(a.is_finite() && b.is_finite() && a <= b)) {
-            return open;
+    /// The factor route's verdicts for every `P~`, over the box of
+    /// coordinates with slopes `b` (a node of the [`Tree`]).
+    fn node_verdict(
+        &self,
+        b: &[Vec<Iv>],
+        lo: &[f64],
+        hi: &[f64],
+        first_order: bool,
+    ) -> SpectralVerdict {
+        if lo
+            .iter()
+            .zip(hi)
+            .any(|(a, b)| !(a.is_finite() && b.is_finite() && a <= b))
+        {
+            return OPEN;
         }
         let (c, h) = centre_and_half_widths(lo, hi);
-        let p = self.coefficient_forms(&c);
+        let p = self.coefficient_forms(b, &c);
         let mids: Vec<f64> = p.iter().map(|t| 0.5 * t.c.lo + 0.5 * t.c.hi).collect();
-        let mut why: Option<Taylor> = None;
-        if let Some(f) = companion_roots(&mids).and_then(|v| solve(p, h.clone(), v)) {
-            let cell = Cell {
-                h: &h,
-                first_order,
-            };
-            let (v, w) = verdict(&f.factors, &f.moduli, &cell);
-            let out = BoxVerdict {
-                verdict: v,
-                normal: w
-                    .as_ref()
-                    .map(|t| t.g.iter().map(|g| 0.5 * g.lo + 0.5 * g.hi).collect()),
-            };
-            if out.complete() {
-                return out;
+        match companion_roots(&mids).and_then(|v| solve(p, h.clone(), v)) {
+            Some(f) => {
+                let cell = Cell { h: &h, first_order };
+                verdict(&f.factors, &f.moduli, &cell).0
             }
-            // a quantity that changes sign in the box: its parts cannot agree
-            if let Some(t) = &w {
-                let centre = 0.5 * t.c.lo + 0.5 * t.c.hi;
-                if centre.abs() + t.quadratic_bound(&h) + t.rem
-                    <= STRADDLE_SLACK * t.linear_bound(&h)
-                {
-                    return out;
-                }
-            }
-            why = w;
-        }
-        if depth == 0 {
-            return BoxVerdict {
-                normal: why
-                    .as_ref()
-                    .map(|t| t.g.iter().map(|g| 0.5 * g.lo + 0.5 * g.hi).collect()),
-                ..open
-            };
-        }
-        // bisect: the side with the largest share of the open quantity, else
-        // the side that moves the coefficients most
-        let scores: Vec<f64> = match &why {
-            Some(t) => t.scores(&h),
-            None => (0..h.len())
-                .map(|i| self.b.iter().map(|row| row[i].mag()).sum::<f64>() * h[i])
-                .collect(),
-        };
-        let Some((i, mid)) = (0..h.len())
-            .filter_map(|i| {
-                let mid = 0.5 * lo[i] + 0.5 * hi[i];
-                (lo[i] < mid && mid < hi[i]).then_some((i, mid))
-            })
-            .max_by(|x, y| scores[x.0].total_cmp(&scores[y.0]))
-        else {
-            return open;
-        };
-        let mut hi1 = hi.to_vec();
-        hi1[i] = mid;
-        let mut lo2 = lo.to_vec();
-        lo2[i] = mid;
-        let first = self.decide_box(lo, &hi1, depth - 1, first_order);
-        let sep_open = first.verdict.separation == Status::Undecided;
-        if sep_open && first.verdict.class.is_none() {
-            return first;
-        }
-        let second = self.decide_box(&lo2, hi, depth - 1, first_order);
-        let separation = if first.verdict.separation == second.verdict.separation {
-            first.verdict.separation
-        } else {
-            Status::Undecided
-        };
-        let class = if first.verdict.class == second.verdict.class {
-            first.verdict.class
-        } else {
-            None
-        };
-        BoxVerdict {
-            verdict: SpectralVerdict { separation, class },
-            normal: first.normal.or(second.normal),
+            None => OPEN,
         }
     }
 }
 
-/// The verdicts of the invariant route over a cell of ratios, and the
-/// split shares when they are open; `None` when the route gives nothing
-/// (the caller then tries the routes in ratio space).
-pub fn decide(
-    inv: &Invariants,
-    lo: &[f64],
-    hi: &[f64],
-    tamper: Tamper,
-) -> Option<(SpectralVerdict, Option<Vec<f64>>)> {
-    if lo.len() != inv.k || hi.len() != inv.k {
-        return None;
+/// Most invariants for which [`super::run`] uses the [`Tree`]: with three
+/// (`n = 7, 8`) the grid at [`tree_level`] decided no cell of
+/// `[0.05, 0.95]^7` in 90 s of CPU (measured), and the ratio-space routes
+/// are used instead.
+pub const MAX_TREE_INVARIANTS: usize = 2;
+
+/// Levels of the [`Tree`]'s finest grid per number of invariants `t`: the
+/// grid has `2^level` cells along every invariant (`2^(t level)` in all,
+/// at most 2^21), fine enough that the factor route proves cells of the
+/// grid away from the class boundaries (the quadratic factors are
+/// ill-conditioned over larger boxes of invariants at `n = 5`).
+pub fn tree_level(t: usize) -> u32 {
+    match t {
+        0 | 1 => 16,
+        2 => 10,
+        3 => 6,
+        4 => 5,
+        _ => 4,
     }
-    let (x0, mut h) = centre_and_half_widths(lo, hi);
-    if tamper == Tamper::DropVariation {
-        h = vec![0.0; inv.k];
+}
+
+/// Subdivisions per side of the ratio box when its invariants are
+/// enclosed for the root of the [`Tree`]: the union of the enclosures of
+/// the parts is much tighter than the enclosure of the whole box.
+fn root_splits(k: usize) -> usize {
+    match k {
+        0..=6 => 4,
+        7..=8 => 3,
+        _ => 2,
     }
-    let first_order = tamper == Tamper::FirstOrder;
-    let forms = inv.forms(&x0, &h);
-    let (blo, bhi): (Vec<f64>, Vec<f64>) = forms
-        .iter()
-        .map(|t| {
-            let r = if first_order {
-                t.c.widen(t.linear_bound(&h))
-            } else {
-                t.range(&h)
+}
+
+/// Relative margin of the [`Tree`]'s root around the enclosure of the
+/// invariants over the ratio box: a cell's own enclosure, which is not
+/// always inside the box's, leaves the root less often (a cell whose
+/// enclosure leaves it is not decided by the tree, never misjudged).
+const ROOT_MARGIN: f64 = 0.25;
+
+/// Verdicts in invariant space, proven once per run over a dyadic grid and
+/// queried in constant time by every cell (math doc section 15, "the
+/// invariant raster").
+///
+/// The root is a box `R` that contains the invariants of every ratio
+/// vector of the region. The node of level `l` and index `a` is
+/// `[e(l, a_i), e(l, a_i + 1)]` along invariant `i`, with
+/// `e(l, a) = lo_i + w_i * (a / 2^l)` in floating point. As `a / 2^l` is
+/// an exact dyadic, a child's end points are its parent's and the midpoint
+/// bit for bit, and `e` is non-decreasing in `a / 2^l` (both rounded
+/// operations are monotone), so the nodes of one level cover `R` with no
+/// gap. Starting from `R`, a node the factor route decides (the affine
+/// family `P~` in the invariants over the node) gives its verdict to all
+/// grid cells (nodes of level [`tree_level`]) inside it; an open node is
+/// split into its `2^t` children down to the grid. Per verdict the grid
+/// carries a table of prefix sums (summed-area table).
+///
+/// A cell of ratios encloses its invariants in a box `B`; the grid cells
+/// that meet `B` (closed boxes) form an index range, and the prefix sums
+/// tell which verdicts occur in it: the cell gets the verdicts that all of
+/// them prove alike.
+#[derive(Debug)]
+pub struct Tree<'a> {
+    inv: &'a Invariants,
+    /// `G`: unit lower triangular, exact floats; the tree's coordinates
+    /// are `psi = G phi`.
+    g: Vec<Vec<f64>>,
+    /// The slopes of the coefficients in `psi`: `b G^-1`, enclosed.
+    b: Vec<Vec<Iv>>,
+    lo: Vec<f64>,
+    w: Vec<f64>,
+    level: u32,
+    first_order: bool,
+    /// The distinct verdicts of the grid; index 0 is the open verdict.
+    verdicts: Vec<SpectralVerdict>,
+    /// Per verdict, the prefix sums over the grid: `(N + 1)^t` entries,
+    /// `N = 2^level`, entry `s` = number of grid cells with index `< s`
+    /// (componentwise) that carry the verdict.
+    sums: Vec<Vec<u32>>,
+}
+
+const OPEN: SpectralVerdict = SpectralVerdict {
+    separation: Status::Undecided,
+    class: None,
+};
+
+impl<'a> Tree<'a> {
+    /// Proves the grid for the cells of the box `[lo, hi]` of ratios (type
+    /// docs); `None` when the root cannot be formed.
+    pub fn new(inv: &'a Invariants, lo: &[f64], hi: &[f64], tamper: Tamper) -> Option<Self> {
+        let k = inv.k;
+        if lo.len() != k || hi.len() != k {
+            return None;
+        }
+        let t = inv.count();
+        let first_order = tamper == Tamper::FirstOrder;
+        let g = decorrelation(inv, lo, hi);
+        let b = slopes_in(inv, &g);
+        // the root: the union of the enclosures over the parts of the box
+        let s = root_splits(k);
+        let mut rlo = vec![f64::INFINITY; t];
+        let mut rhi = vec![f64::NEG_INFINITY; t];
+        let mut idx = vec![0usize; k];
+        loop {
+            let plo: Vec<f64> = (0..k)
+                .map(|i| lo[i] + (hi[i] - lo[i]) * (idx[i] as f64 / s as f64))
+                .collect();
+            let phi: Vec<f64> = (0..k)
+                .map(|i| lo[i] + (hi[i] - lo[i]) * ((idx[i] + 1) as f64 / s as f64))
+                .collect();
+            // the parts overlap a little where the rounded end points differ:
+            // widen by one unit in the last place to keep the box covered
+            let plo: Vec<f64> = plo.iter().zip(lo).map(|(a, b)| down(*a).max(*b)).collect();
+            let phi: Vec<f64> = phi.iter().zip(hi).map(|(a, b)| up(*a).min(*b)).collect();
+            let (x0, h) = centre_and_half_widths(&plo, &phi);
+            for (i, f) in psi_forms(&g, &inv.forms(&x0, &h)).iter().enumerate() {
+                let r = f.range(&h);
+                rlo[i] = rlo[i].min(r.lo);
+                rhi[i] = rhi[i].max(r.hi);
+            }
+            let mut d = 0;
+            while d < k {
+                idx[d] += 1;
+                if idx[d] < s {
+                    break;
+                }
+                idx[d] = 0;
+                d += 1;
+            }
+            if d == k {
+                break;
+            }
+        }
+        let mut root_lo = Vec::with_capacity(t);
+        let mut w = Vec::with_capacity(t);
+        for i in 0..t {
+            let width = up(rhi[i] - rlo[i]);
+            if !(width.is_finite() && width > 0.0) {
+                return None;
+            }
+            let l = down(rlo[i] - ROOT_MARGIN * width);
+            // the root's upper end e(0, 1) = l + w_i must reach rhi + margin
+            let span = up(up(rhi[i] - l) + ROOT_MARGIN * width);
+            if !(l + span >= rhi[i]) {
+                return None;
+            }
+            root_lo.push(l);
+            w.push(span);
+        }
+        let level = tree_level(t);
+        let mut tree = Tree {
+            inv,
+            g,
+            b,
+            lo: root_lo,
+            w,
+            level,
+            first_order,
+            verdicts: vec![OPEN],
+            sums: Vec::new(),
+        };
+        // prove the nodes, then fill the grid
+        let leaves = tree.prove(0, vec![0; t]);
+        let n = 1usize << level;
+        let mut grid = vec![0u8; n.pow(t as u32)];
+        for (lv, ix, v) in leaves {
+            let code = match tree.verdicts.iter().position(|x| *x == v) {
+                Some(c) => c,
+                None => {
+                    tree.verdicts.push(v);
+                    tree.verdicts.len() - 1
+                }
             };
-            (r.lo, r.hi)
-        })
-        .unzip();
-    let v = inv.decide_box(&blo, &bhi, MAX_INVARIANT_DEPTH, first_order);
-    if v.verdict.separation == Status::Undecided && v.verdict.class.is_none() && v.normal.is_none()
-    {
-        return None;
+            let span = 1usize << (level - lv);
+            // fill the block of grid cells of the node
+            let mut off = vec![0usize; t];
+            loop {
+                let mut flat = 0;
+                for i in (0..t).rev() {
+                    flat = flat * n + (ix[i] as usize * span + off[i]);
+                }
+                grid[flat] = code as u8;
+                let mut d = 0;
+                while d < t {
+                    off[d] += 1;
+                    if off[d] < span {
+                        break;
+                    }
+                    off[d] = 0;
+                    d += 1;
+                }
+                if d == t {
+                    break;
+                }
+            }
+        }
+        tree.sums = (0..tree.verdicts.len())
+            .map(|c| prefix_sums(&grid, n, t, c as u8))
+            .collect();
+        Some(tree)
     }
-    // split shares: the open quantity's gradient in invariant space, carried
-    // to the ratios through the invariants' forms
-    let scores = v.normal.as_ref().map(|nu| {
-        let parts: Vec<(f64, &Taylor)> = nu.iter().copied().zip(forms.iter()).collect();
-        combo(&parts, Iv::point(0.0)).scores(&h)
-    });
-    Some((v.verdict, scores))
+
+    /// `e(level, a)` along invariant `i` (type docs).
+    fn end(&self, i: usize, level: u32, a: u64) -> f64 {
+        self.lo[i] + self.w[i] * (a as f64 / 2f64.powi(level as i32))
+    }
+
+    /// The decided nodes below `(level, ix)` and the open grid cells, each
+    /// with its verdict (children in parallel near the root).
+    fn prove(&self, level: u32, ix: Vec<u64>) -> Vec<(u32, Vec<u64>, SpectralVerdict)> {
+        let t = ix.len();
+        let lo: Vec<f64> = ix
+            .iter()
+            .enumerate()
+            .map(|(i, &a)| self.end(i, level, a))
+            .collect();
+        let hi: Vec<f64> = ix
+            .iter()
+            .enumerate()
+            .map(|(i, &a)| self.end(i, level, a + 1))
+            .collect();
+        let v = self.inv.node_verdict(&self.b, &lo, &hi, self.first_order);
+        let complete = v.separation != Status::Undecided && v.class.is_some();
+        if complete || level >= self.level {
+            return vec![(level, ix, v)];
+        }
+        let children: Vec<Vec<u64>> = (0..(1u64 << t))
+            .map(|c| {
+                ix.iter()
+                    .enumerate()
+                    .map(|(i, &a)| 2 * a + ((c >> i) & 1))
+                    .collect()
+            })
+            .collect();
+        if level < 4 {
+            children
+                .into_par_iter()
+                .flat_map_iter(|c| self.prove(level + 1, c))
+                .collect()
+        } else {
+            children
+                .into_iter()
+                .flat_map(|c| self.prove(level + 1, c))
+                .collect()
+        }
+    }
+
+    /// The index range `[a0, a1]` of grid cells along invariant `i` that
+    /// meet `[b0, b1]`, or `None` when `[b0, b1]` is not inside the root.
+    fn index_range(&self, i: usize, b0: f64, b1: f64) -> Option<(u64, u64)> {
+        let n = 1u64 << self.level;
+        if !(self.lo[i] <= b0 && b0 <= b1 && b1 <= self.end(i, 0, 1)) {
+            return None;
+        }
+        let guess = |x: f64| -> u64 {
+            let g = ((x - self.lo[i]) / self.w[i] * n as f64).floor();
+            (g.max(0.0) as u64).min(n - 1)
+        };
+        // a0: the first cell with e(a0 + 1) >= b0
+        let mut a0 = guess(b0);
+        while a0 > 0 && self.end(i, self.level, a0) >= b0 {
+            a0 -= 1;
+        }
+        while a0 + 1 < n && self.end(i, self.level, a0 + 1) < b0 {
+            a0 += 1;
+        }
+        // a1: the last cell with e(a1) <= b1
+        let mut a1 = guess(b1).max(a0);
+        while a1 + 1 < n && self.end(i, self.level, a1 + 1) <= b1 {
+            a1 += 1;
+        }
+        while a1 > a0 && self.end(i, self.level, a1) > b1 {
+            a1 -= 1;
+        }
+        Some((a0, a1))
+    }
+
+    /// The verdicts that hold for every invariant vector in the box
+    /// `[blo, bhi]` (open when it leaves the root).
+    fn query(&self, blo: &[f64], bhi: &[f64]) -> SpectralVerdict {
+        let t = self.lo.len();
+        let mut ranges = Vec::with_capacity(t);
+        for i in 0..t {
+            match self.index_range(i, blo[i], bhi[i]) {
+                Some(r) => ranges.push(r),
+                None => return OPEN,
+            }
+        }
+        let total: u64 = ranges.iter().map(|(a, b)| b - a + 1).product();
+        let n = (1usize << self.level) + 1;
+        let mut agreed: Option<SpectralVerdict> = None;
+        let mut separation = None;
+        let mut class = None;
+        for (c, sums) in self.sums.iter().enumerate() {
+            // inclusion-exclusion over the 2^t corners
+            let mut count: i64 = 0;
+            for corner in 0..(1usize << t) {
+                let mut flat = 0usize;
+                let mut sign = 1i64;
+                for i in (0..t).rev() {
+                    let (a0, a1) = ranges[i];
+                    let x = if corner >> i & 1 == 1 {
+                        a1 as usize + 1
+                    } else {
+                        sign = -sign;
+                        a0 as usize
+                    };
+                    flat = flat * n + x;
+                }
+                count += sign * i64::from(sums[flat]);
+            }
+            if count == 0 {
+                continue;
+            }
+            let v = self.verdicts[c];
+            if count as u64 == total {
+                agreed = Some(v);
+            }
+            separation = Some(match separation {
+                None => v.separation,
+                Some(s) if s == v.separation => s,
+                Some(_) => Status::Undecided,
+            });
+            class = Some(match class {
+                None => v.class,
+                Some(k) if k == v.class => k,
+                Some(_) => None,
+            });
+        }
+        agreed.unwrap_or(SpectralVerdict {
+            separation: separation.unwrap_or(Status::Undecided),
+            class: class.flatten(),
+        })
+    }
+
+    /// The verdicts of the invariant route over a cell of ratios (type
+    /// docs), and the split shares: each ratio's contribution to the
+    /// invariants' enclosure, relative to the root.
+    pub fn decide(
+        &self,
+        lo: &[f64],
+        hi: &[f64],
+        tamper: Tamper,
+    ) -> Option<(SpectralVerdict, Option<Vec<f64>>)> {
+        let inv = self.inv;
+        if lo.len() != inv.k || hi.len() != inv.k {
+            return None;
+        }
+        let (x0, mut h) = centre_and_half_widths(lo, hi);
+        if tamper == Tamper::DropVariation {
+            h = vec![0.0; inv.k];
+        }
+        let forms = psi_forms(&self.g, &inv.forms(&x0, &h));
+        let (blo, bhi): (Vec<f64>, Vec<f64>) = forms
+            .iter()
+            .map(|t| {
+                let r = if self.first_order {
+                    t.c.widen(t.linear_bound(&h))
+                } else {
+                    t.range(&h)
+                };
+                (r.lo, r.hi)
+            })
+            .unzip();
+        let v = self.query(&blo, &bhi);
+        let scores = (0..inv.k)
+            .map(|k| {
+                forms
+                    .iter()
+                    .zip(&self.w)
+                    .map(|(f, w)| f.g[k].mag() * h[k] / w)
+                    .sum()
+            })
+            .collect();
+        Some((v, Some(scores)))
+    }
+}
+
+/// The coordinates `psi = G phi` of the [`Tree`] as Taylor forms, from the
+/// invariants' forms (exact float multipliers, outward rounding).
+fn psi_forms(g: &[Vec<f64>], phi: &[Taylor]) -> Vec<Taylor> {
+    g.iter()
+        .map(|row| {
+            let parts: Vec<(f64, &Taylor)> = row
+                .iter()
+                .zip(phi)
+                .filter(|(c, _)| **c != 0.0)
+                .map(|(c, f)| (*c, f))
+                .collect();
+            combo(&parts, Iv::point(0.0))
+        })
+        .collect()
+}
+
+/// Sample points per ratio for [`decorrelation`].
+const DECORRELATION_SAMPLES: usize = 512;
+
+/// A unit lower triangular `G` (exact floats) that decorrelates the
+/// invariants over the box: `L` of `Sigma = L D L^T`, `Sigma` the
+/// covariance of the invariants at quasi-random points of the box, and
+/// `G = L^-1` rounded to floats. Any `G` of this shape is sound (the tree
+/// encloses `G^-1` exactly); a good one makes the box hulls of the cells'
+/// images, which are thin slanted strips in `phi`, small in `psi`.
+#[allow(clippy::needless_range_loop)] // index-heavy linear algebra
+fn decorrelation(inv: &Invariants, lo: &[f64], hi: &[f64]) -> Vec<Vec<f64>> {
+    let t = inv.count();
+    let k = inv.k;
+    let mut rng = crate::rng::SplitMix64::new(0x5eed);
+    let zero = vec![0.0; k];
+    let pts: Vec<Vec<f64>> = (0..DECORRELATION_SAMPLES)
+        .map(|_| {
+            let r: Vec<f64> = lo
+                .iter()
+                .zip(hi)
+                .map(|(a, b)| rng.uniform(*a, *b))
+                .collect();
+            inv.forms(&r, &zero)
+                .iter()
+                .map(|f| 0.5 * f.c.lo + 0.5 * f.c.hi)
+                .collect()
+        })
+        .collect();
+    let mean: Vec<f64> = (0..t)
+        .map(|i| pts.iter().map(|p| p[i]).sum::<f64>() / pts.len() as f64)
+        .collect();
+    let mut cov = vec![vec![0.0; t]; t];
+    for p in &pts {
+        for i in 0..t {
+            for j in 0..t {
+                cov[i][j] += (p[i] - mean[i]) * (p[j] - mean[j]);
+            }
+        }
+    }
+    // L D L^T
+    let mut l = vec![vec![0.0; t]; t];
+    let mut d = vec![0.0; t];
+    for j in 0..t {
+        l[j][j] = 1.0;
+        d[j] = cov[j][j] - (0..j).map(|s| l[j][s] * l[j][s] * d[s]).sum::<f64>();
+        for i in j + 1..t {
+            let v = cov[i][j] - (0..j).map(|s| l[i][s] * l[j][s] * d[s]).sum::<f64>();
+            l[i][j] = if d[j] > 0.0 { v / d[j] } else { 0.0 };
+        }
+    }
+    // G = L^-1 by forward substitution (floats: G is then exact by definition)
+    let mut g = vec![vec![0.0; t]; t];
+    for j in 0..t {
+        g[j][j] = 1.0;
+        for i in j + 1..t {
+            g[i][j] = -(j..i).map(|s| l[i][s] * g[s][j]).sum::<f64>();
+        }
+    }
+    if g.iter().flatten().any(|v| !v.is_finite()) {
+        return (0..t)
+            .map(|i| (0..t).map(|j| if i == j { 1.0 } else { 0.0 }).collect())
+            .collect();
+    }
+    g
+}
+
+/// The slopes `b G^-1` of the coefficients in `psi = G phi`: `G^-1` of the
+/// unit lower triangular `G` by forward substitution in interval
+/// arithmetic (`X_ii = 1`, `X_ij = -sum_{j <= s < i} G_is X_sj`).
+#[allow(clippy::needless_range_loop)] // index-heavy linear algebra
+fn slopes_in(inv: &Invariants, g: &[Vec<f64>]) -> Vec<Vec<Iv>> {
+    let t = g.len();
+    let mut x = vec![vec![Iv::point(0.0); t]; t];
+    for j in 0..t {
+        x[j][j] = Iv::point(1.0);
+        for i in j + 1..t {
+            let mut acc = Iv::point(0.0);
+            for s in j..i {
+                acc = acc.add(Iv::point(g[i][s]).mul(x[s][j]));
+            }
+            x[i][j] = acc.neg();
+        }
+    }
+    inv.b
+        .iter()
+        .map(|row| {
+            (0..t)
+                .map(|l| (0..t).fold(Iv::point(0.0), |acc, i| acc.add(row[i].mul(x[i][l]))))
+                .collect()
+        })
+        .collect()
+}
+
+/// The summed-area table of the grid cells carrying `code` (`n` cells
+/// along each of `t` axes, first axis fastest): `(n + 1)^t` entries.
+fn prefix_sums(grid: &[u8], n: usize, t: usize, code: u8) -> Vec<u32> {
+    let m = n + 1;
+    let mut s = vec![0u32; m.pow(t as u32)];
+    // place the indicator at index + 1 along every axis
+    let mut idx = vec![0usize; t];
+    for &g in grid {
+        if g == code {
+            let mut flat = 0;
+            for i in (0..t).rev() {
+                flat = flat * m + idx[i] + 1;
+            }
+            s[flat] = 1;
+        }
+        let mut d = 0;
+        while d < t {
+            idx[d] += 1;
+            if idx[d] < n {
+                break;
+            }
+            idx[d] = 0;
+            d += 1;
+        }
+    }
+    // cumulative sums along each axis
+    let mut stride = 1;
+    for _ in 0..t {
+        for flat in 0..s.len() {
+            if (flat / stride) % m != 0 {
+                s[flat] += s[flat - stride];
+            }
+        }
+        stride *= m;
+    }
+    s
 }
 
 #[cfg(test)]
@@ -415,7 +800,7 @@ mod tests {
         let mut rng = SplitMix64::new(2);
         for n in 5..=8 {
             let f = AffineFamily::nurds(n);
-            let p = f.charpoly().unwrap();
+            let p = &CharPoly::new(&f).unwrap();
             let Some(inv) = Invariants::new(p) else {
                 continue;
             };
@@ -432,7 +817,105 @@ mod tests {
                         + (0..inv.count())
                             .map(|i| inv.b[j][i].lo * phi[i])
                             .sum::<f64>();
-                    assert!((want - got).abs() < 1e-12, "n = {n}, p_{j}: {want} vs {got}");
+                    assert!(
+                        (want - got).abs() < 1e-12,
+                        "n = {n}, p_{j}: {want} vs {got}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The index range of a query holds exactly the grid cells whose
+    /// closed boxes meet the query interval (brute force at a small level),
+    /// and the prefix sums count the cells of a code in a block.
+    #[test]
+    fn index_ranges_and_prefix_sums_are_exact() {
+        let f = AffineFamily::nurds(5);
+        let p = &CharPoly::new(&f).unwrap();
+        let inv = &Invariants::new(p).unwrap();
+        let mut tree = Tree::new(inv, &[0.3; 5], &[0.32; 5], Tamper::None).unwrap();
+        tree.level = 5;
+        let n = 1u64 << tree.level;
+        let mut rng = SplitMix64::new(12);
+        for i in 0..2 {
+            let (r0, r1) = (tree.end(i, 0, 0), tree.end(i, 0, 1));
+            for _ in 0..300 {
+                let mut b0 = rng.uniform(r0, r1);
+                let mut b1 = rng.uniform(r0, r1);
+                if b1 < b0 {
+                    std::mem::swap(&mut b0, &mut b1);
+                }
+                // end points exactly on grid lines too
+                if rng.uniform(0.0, 1.0) < 0.3 {
+                    b0 = tree.end(i, tree.level, (b0 - r0) as u64 % n);
+                }
+                let (a0, a1) = tree.index_range(i, b0, b1).unwrap();
+                for a in 0..n {
+                    let meets =
+                        tree.end(i, tree.level, a) <= b1 && b0 <= tree.end(i, tree.level, a + 1);
+                    assert_eq!(
+                        meets,
+                        a0 <= a && a <= a1,
+                        "cell {a} of [{b0}, {b1}]: {a0}..{a1}"
+                    );
+                }
+            }
+            assert!(tree.index_range(i, r0 - 1.0, r1).is_none());
+        }
+        // prefix sums of a 2-d grid against direct counts
+        let m = 6;
+        let grid: Vec<u8> = (0..m * m)
+            .map(|_| (rng.uniform(0.0, 3.0) as u8).min(2))
+            .collect();
+        let sums = prefix_sums(&grid, m, 2, 1);
+        for y0 in 0..m {
+            for y1 in y0..m {
+                for x0 in 0..m {
+                    for x1 in x0..m {
+                        let direct = (y0..=y1)
+                            .flat_map(|y| (x0..=x1).map(move |x| (x, y)))
+                            .filter(|&(x, y)| grid[y * m + x] == 1)
+                            .count() as i64;
+                        let at = |x: usize, y: usize| i64::from(sums[y * (m + 1) + x]);
+                        let got = at(x1 + 1, y1 + 1) - at(x0, y1 + 1) - at(x1 + 1, y0) + at(x0, y0);
+                        assert_eq!(got, direct);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The coordinates of the tree: `G^-1` enclosed against `G`, and the
+    /// coefficients through `psi = G phi` equal to those through `phi`.
+    #[test]
+    fn tree_coordinates_reproduce_the_coefficients() {
+        let mut rng = SplitMix64::new(6);
+        for n in [5, 7] {
+            let f = AffineFamily::nurds(n);
+            let p = &CharPoly::new(&f).unwrap();
+            let inv = &Invariants::new(p).unwrap();
+            let (lo, hi) = (vec![0.05; n], vec![0.95; n]);
+            let g = decorrelation(inv, &lo, &hi);
+            let b = slopes_in(inv, &g);
+            for _ in 0..5 {
+                let r: Vec<f64> = (0..n).map(|_| rng.uniform(0.05, 0.95)).collect();
+                let zero = vec![0.0; n];
+                let phi = inv.forms(&r, &zero);
+                let psi: Vec<f64> = psi_forms(&g, &phi)
+                    .iter()
+                    .map(|t| 0.5 * t.c.lo + 0.5 * t.c.hi)
+                    .collect();
+                let direct =
+                    inv.coefficient_forms(&inv.b, &phi.iter().map(|t| t.c.lo).collect::<Vec<_>>());
+                let through = inv.coefficient_forms(&b, &psi);
+                for j in 0..inv.m {
+                    assert!(
+                        (direct[j].c.lo - through[j].c.lo).abs() < 1e-12,
+                        "n = {n}, p_{j}: {:?} vs {:?}",
+                        direct[j].c,
+                        through[j].c
+                    );
                 }
             }
         }

@@ -6,7 +6,8 @@
 //! every parameter in it ([`enclose`] for NURDS: the closed 2 x 2 form for
 //! `n = 3, 4`, Gershgorin discs in the eigenvector basis above; [`cc`] for the `c` path), in
 //! interval arithmetic with outward rounding ([`interval`]); [`decide`] turns
-//! the enclosure into verdicts. A cell whose requested properties are not all
+//! the enclosure into verdicts; [`charmap`] proves the characteristic map
+//! regular and injective over the cell. A cell whose requested properties are not all
 //! decided is bisected across its widest side, down to `min_width`; what is
 //! still open there is `undecided`. Bisection points are floats strictly
 //! inside their cells, so the cells tile the box exactly.
@@ -25,6 +26,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod cc;
+pub mod charmap;
 pub mod decide;
 pub mod enclose;
 pub mod factor;
@@ -32,6 +34,7 @@ pub mod interval;
 pub mod invariants;
 pub mod spec;
 pub mod taylor;
+pub mod taylor2;
 
 use crate::spectral::ClassName;
 use decide::Status;
@@ -129,12 +132,7 @@ pub struct Outcome {
 /// Whether a property can be attempted for this region (the others stay
 /// `undecided` without driving the refinement).
 fn attempted(region: &Region, p: Property) -> bool {
-    match (region, p) {
-        // not implemented over cells yet (math doc section 15)
-        (_, Property::Charmap) => false,
-        (Region::Shape { .. }, Property::Theorem1) => false,
-        _ => true,
-    }
+    !matches!((region, p), (Region::Shape { .. }, Property::Theorem1))
 }
 
 /// A cell's class (when proven), the status of each requested property and,
@@ -146,6 +144,8 @@ type Evaluation = (Option<ClassName>, Vec<(Property, Status)>, Option<Vec<f64>>)
 fn evaluate(
     spec: &VerifySpec,
     family: Option<&enclose::AffineFamily>,
+    charpoly: Option<&factor::CharPoly>,
+    tree: Option<&invariants::Tree>,
     lo: &[f64],
     hi: &[f64],
     tamper: Tamper,
@@ -160,13 +160,10 @@ fn evaluate(
         (Region::Ratios { .. } | Region::Corners { .. }, Some(f)) => {
             // the invariant route, the factor route, the disc route: the
             // first that applies
-            match f
-                .invariants()
-                .and_then(|inv| invariants::decide(inv, lo, hi, tamper))
-                .or_else(|| {
-                    f.charpoly()
-                        .and_then(|p| factor::decide(p, f, lo, hi, tamper))
-                }) {
+            match tree
+                .and_then(|t| t.decide(lo, hi, tamper))
+                .or_else(|| charpoly.and_then(|p| factor::decide(p, f, lo, hi, tamper)))
+            {
                 Some((v, scores)) => (v.separation, v.class, scores),
                 None => match enclose::enclose(f, lo, hi, tamper) {
                     Some(e) => {
@@ -182,6 +179,26 @@ fn evaluate(
             (s, c, None)
         }
         _ => (Status::Undecided, None, None),
+    };
+    // the characteristic map over the cell (math doc section 15), only when requested
+    let (charmap, charmap_scores) = if spec.properties.contains(&Property::Charmap) {
+        let ct = match tamper {
+            Tamper::DropSubspaceVariation => charmap::CellTamper::DropSubspaceVariation,
+            _ => charmap::CellTamper::None,
+        };
+        charmap::cell_status(&spec.region, class, lo, hi, ct)
+    } else {
+        (Status::Undecided, None)
+    };
+    // once the spectral part is decided, the open charmap drives the split
+    let scores = if charmap == Status::Undecided
+        && class.is_some()
+        && separation != Status::Undecided
+        && charmap_scores.is_some()
+    {
+        charmap_scores
+    } else {
+        scores
     };
     let status = spec
         .properties
@@ -202,7 +219,7 @@ fn evaluate(
                     Region::Ratios { .. } | Region::Corners { .. } => Status::Certified,
                     Region::Shape { .. } => Status::Undecided,
                 },
-                Property::Charmap => Status::Undecided,
+                Property::Charmap => charmap,
             };
             (p, s)
         })
@@ -238,15 +255,6 @@ fn split_coordinate(
     log_split: bool,
 ) -> Option<(usize, f64)> {
     let mut best: Option<(usize, f64, f64, f64)> = None; // (k, mid, score, width)
-    let score_of = |k: usize| {
-        scores
-            .and_then(|s| s.get(k).copied())
-            .filter(|x| x.is_finite())
-            .unwrap_or(0.0)
-    };
-    let top = (0..a.len()).map(score_of).fold(0.0, f64::max);
-    static SHARE: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
-    let share: f64 = *SHARE.get_or_init(|| std::env::var("VP_SHARE").ok().and_then(|s| s.parse().ok()).unwrap_or(0.0));
     for k in 0..a.len() {
         let w = b[k] - a[k];
         let mut mid = 0.5 * a[k] + 0.5 * b[k];
@@ -262,10 +270,10 @@ fn split_coordinate(
         if !(w > min_width && a[k] < mid && mid < b[k]) {
             continue;
         }
-        let sc = score_of(k);
-        if top > 0.0 && !(sc >= share * top) {
-            continue;
-        }
+        let sc = scores
+            .and_then(|s| s.get(k).copied())
+            .filter(|x| x.is_finite())
+            .unwrap_or(0.0);
         let better = match best {
             None => true,
             Some((_, _, bs, bw)) => sc > bs || (sc == bs && w > bw),
@@ -288,6 +296,12 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
         Region::Shape { .. } => None,
     };
     let (lo, hi) = spec.bounds();
+    let charpoly = family.as_ref().and_then(factor::CharPoly::new);
+    let invariants = charpoly.as_ref().and_then(invariants::Invariants::new);
+    let tree = invariants
+        .as_ref()
+        .filter(|inv| inv.count() <= invariants::MAX_TREE_INVARIANTS)
+        .and_then(|inv| invariants::Tree::new(inv, &lo, &hi, limits.tamper));
     let log_split = matches!(spec.region, Region::Corners { .. });
     let mut frontier: Vec<(Vec<f64>, Vec<f64>)> = vec![(lo, hi)];
     let mut cells = Vec::new();
@@ -297,7 +311,17 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
     while !frontier.is_empty() {
         let results: Vec<Evaluation> = frontier
             .par_iter()
-            .map(|(a, b)| evaluate(spec, family.as_ref(), a, b, limits.tamper))
+            .map(|(a, b)| {
+                evaluate(
+                    spec,
+                    family.as_ref(),
+                    charpoly.as_ref(),
+                    tree.as_ref(),
+                    a,
+                    b,
+                    limits.tamper,
+                )
+            })
             .collect();
         evaluated += frontier.len() as u64;
         let splittable = |a: &[f64], b: &[f64], scores: Option<&Vec<f64>>| {

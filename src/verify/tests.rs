@@ -251,26 +251,66 @@ fn factor_route_agrees_with_the_exact_classifier_for_n_6_to_8() {
     assert!(certified > 0, "no n = 6..8 cell was certified");
 }
 
+/// Exact tiling of the box by the cells, in rationals: every cell inside
+/// the box, interiors pairwise disjoint, volumes summing to the box's.
+fn assert_tiles(spec: &VerifySpec, out: &Outcome) {
+    let q = |x: f64| f64_to_rational(x).unwrap();
+    let (lo, hi) = spec.bounds();
+    let k = lo.len();
+    let total: Rational = lo.iter().zip(&hi).map(|(a, b)| q(*b) - q(*a)).product();
+    let mut sum = Rational::zero();
+    for (i, c) in out.cells.iter().enumerate() {
+        for d in 0..k {
+            assert!(lo[d] <= c.lo[d] && c.lo[d] < c.hi[d] && c.hi[d] <= hi[d]);
+        }
+        sum +=
+            c.lo.iter()
+                .zip(&c.hi)
+                .map(|(a, b)| q(*b) - q(*a))
+                .product::<Rational>();
+        for e in &out.cells[..i] {
+            assert!((0..k).any(|d| c.hi[d] <= e.lo[d] || e.hi[d] <= c.lo[d]));
+        }
+    }
+    assert_eq!(sum, total);
+}
+
 #[test]
-fn a_first_order_factor_route_is_caught() {
-    // around the uniform ratios the subdominant pair's discriminant has a
-    // saddle (zero gradient): ranges from the linear part alone certify
-    // cells that hold both classes
+fn invariant_tree_route_at_n5_agrees_with_the_exact_classifier_and_tiles() {
+    // n = 5 goes through the invariant tree (math doc section 15): a box
+    // across the complex / real boundary
+    let f = AffineFamily::nurds(5);
+    let p = &factor::CharPoly::new(&f).unwrap();
+    let inv = &invariants::Invariants::new(p).expect("n = 5 has invariants");
     let spec = spec_n(5, vec![0.4; 5], vec![0.6; 5], 0.05);
-    let sound = run(&spec, &Limits::default());
-    let (bad, checks) = disagreements(&spec, &sound, 400, 7);
-    assert!(bad == 0, "{bad} disagreements in {checks}");
+    let (lo, hi) = spec.bounds();
+    assert!(invariants::Tree::new(inv, &lo, &hi, Tamper::None).is_some());
+    let out = run(&spec, &Limits::default());
+    // the box crosses the complex / real boundary (a_shrunk_invariant_enclosure_at_n5_is_caught)
+    assert!(
+        out.cells.iter().any(|c| c.class.is_some()),
+        "nothing certified"
+    );
+    let (bad, checks) = disagreements(&spec, &out, 300, 21);
+    assert!(checks == 300 && bad == 0, "{bad} disagreements in {checks}");
+    assert_tiles(&spec, &out);
+}
+
+#[test]
+fn a_shrunk_invariant_enclosure_at_n5_is_caught() {
+    // the invariants enclosed at the centre of each cell only (G = 0)
+    let spec = spec_n(5, vec![0.4; 5], vec![0.6; 5], 0.05);
     let weak = run(
         &spec,
         &Limits {
-            tamper: Tamper::FirstOrder,
+            tamper: Tamper::DropVariation,
             ..Limits::default()
         },
     );
-    let (bad, checks) = disagreements(&spec, &weak, 400, 7);
+    let (bad, checks) = disagreements(&spec, &weak, 300, 21);
     assert!(
         bad > 0,
-        "the first-order factor route went unnoticed in {checks} checks"
+        "the shrunk invariant enclosure went unnoticed in {checks} checks"
     );
 }
 

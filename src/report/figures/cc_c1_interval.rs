@@ -26,7 +26,8 @@ use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
-    draw_err, legend_rows, legend_rows_height, titled, viridis, LegendGlyph, Marker, Theme,
+    draw_err, legend_rows, legend_rows_height, log_tick, titled, viridis, LegendGlyph, Marker,
+    Theme,
 };
 use plotters::coord::combinators::IntoLogRange;
 use plotters::prelude::*;
@@ -38,6 +39,27 @@ use toml::Spanned;
 pub const MAX_VALENCE: usize = 64;
 /// Most grid cells in `c`.
 pub const MAX_SAMPLES: usize = 1000;
+
+/// CPU seconds per evaluated point (classification and cone certificate of
+/// the `(2n + 1)`-square one-ring) per `d^3`, `d = 2n + 1`: measured 2.4e-9
+/// (n = 60..64 and n = 3..32, 2-core reference machine under load), doubled.
+pub const SECONDS_PER_POINT_D3: f64 = 5e-9;
+/// Fixed CPU seconds per evaluated point.
+pub const SECONDS_PER_POINT: f64 = 1e-4;
+
+/// Estimated CPU seconds of the figure: two studies (C1 and standard), each
+/// evaluating `samples + 1` grid points and, at each of about 4 interval
+/// ends, `log2(1 / (samples tol))` bisection points, per valence.
+pub fn estimate_seconds(lo: usize, hi: usize, samples: usize, tol: f64) -> f64 {
+    let steps = (1.0 / (samples as f64 * tol)).log2().max(1.0);
+    let points = samples as f64 + 1.0 + 4.0 * steps;
+    (lo..=hi)
+        .map(|n| {
+            let d = 2.0 * n as f64 + 1.0;
+            2.0 * points * (SECONDS_PER_POINT + SECONDS_PER_POINT_D3 * d * d * d)
+        })
+        .sum()
+}
 
 /// The kind.
 pub(crate) const KIND: FigureKind = FigureKind {
@@ -77,6 +99,23 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
             ))
         }
     };
+    // Heavy work is refused with its estimate (issue 16): the largest
+    // settings ran for hours without a word.
+    let seconds = estimate_seconds(lo, hi, samples, tol);
+    if seconds > crate::budget::TIME_LIMIT_SECONDS {
+        let what = format!(
+            "the C1 and standard intervals of {} valences up to {hi} with {samples} samples and tol {tol:e} take ~{} (limit {} s); lower samples, the valence range or raise tol",
+            hi - lo + 1,
+            crate::budget::format_seconds(seconds),
+            crate::budget::TIME_LIMIT_SECONDS
+        );
+        return Err(match (&p.samples, &p.valence, &p.tol) {
+            (Some(s), _, _) => fs.error_at(s, "samples", what),
+            (None, Some(v), _) => fs.error_at(v, "valence", what),
+            (None, None, Some(t)) => fs.error_at(t, "tol", what),
+            (None, None, None) => fs.error(what),
+        });
+    }
     Ok(Box::new(CcC1Interval {
         lo,
         hi,
@@ -262,15 +301,5 @@ impl FigureOutput for Output {
         }
         legend_rows(&legend_area.margin(th.legend / 2, 0, 0, 0), &entries, &th)?;
         Ok(())
-    }
-}
-
-/// A tick label of the log axis: the power of ten (`1e-5`), or the decimal
-/// form from 0.01 on (`0.1`, `1`).
-fn log_tick(y: f64) -> String {
-    if y >= 0.01 {
-        crate::report::plot::tick((y * 1e6).round() / 1e6)
-    } else {
-        format!("{y:.0e}")
     }
 }

@@ -29,7 +29,7 @@ use crate::charmap::figure::RingPlot;
 use crate::charmap::AnyPatchId;
 use crate::charmap::{plot_data, CharmapReport};
 use crate::report::backend::Area;
-use crate::report::config::{resolve_all, ConfigSpec, Configuration};
+use crate::report::config::{check_analysis_budget, resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
@@ -75,6 +75,7 @@ struct Charmap {
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
     let configs = resolve_all(fs, &p.configs, Some(MAX_PANELS))?;
+    check_analysis_budget(fs, &p.configs, &configs)?;
     let count = configs.len();
     let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 3)?;
     let samples = bounded(fs, &p.samples, "samples", 2, MAX_SAMPLES, 6)?;

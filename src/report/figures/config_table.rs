@@ -12,7 +12,7 @@
 use super::{eigenvalues, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::contraction::MeasureOptions;
 use crate::report::backend::Area;
-use crate::report::config::{resolve_all, ConfigSpec, Configuration};
+use crate::report::config::{check_analysis_budget, resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::html::escape;
@@ -53,6 +53,7 @@ struct Table {
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
     let configs = resolve_all(fs, &p.configs, None)?;
+    check_analysis_budget(fs, &p.configs, &configs)?;
     Ok(Box::new(Table { configs }))
 }
 

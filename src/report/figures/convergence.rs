@@ -1,6 +1,8 @@
 //! `kind = "convergence"`: max_i |P^k_i - F| against the step k on a log scale.
 //!
-//! The distances come from [`crate::contraction::measure`]: the 4n points of
+//! The distances come from the scheme's Theorem 1 capability
+//! ([`Scheme::face_contraction`](crate::Scheme::face_contraction), for the
+//! Doo-Sabin family [`crate::contraction::measure`]): the 4n points of
 //! the local neighbourhood (random in [-1, 1)^3, seed derived from the
 //! figure's seed and the configuration index) are refined with S_n, and
 //! max_i |P^k_i - F| over the face points is recorded relative to k = 0. Drawn with the
@@ -16,7 +18,7 @@
 //! ```
 
 use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
-use crate::contraction::{measure, MeasureOptions};
+use crate::contraction::MeasureOptions;
 use crate::report::backend::Area;
 use crate::report::config::{require_doo_sabin_family, resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
@@ -93,13 +95,20 @@ impl Figure for Convergence {
                     seed: derive_seed(ctx.common.seed, &i.to_string()),
                     dim: 3,
                 };
-                let local = c.scheme.as_local().ok_or_else(|| {
-                    ctx.err(crate::Error::NotApplicable {
-                        scheme: c.scheme.name().to_owned(),
-                        operation: "the face contraction of Theorem 1 (a Doo-Sabin-family notion)",
-                    })
-                })?;
-                let m = measure(local, &options).map_err(|e| ctx.err(e))?;
+                // the scheme's Theorem 1 capability (the figure's configurations
+                // were checked to have a face block when the spec was parsed)
+                let m = c
+                    .scheme
+                    .face_contraction(&options)
+                    .ok_or_else(|| {
+                        ctx.err(crate::Error::NotApplicable {
+                            scheme: c.scheme.name().to_owned(),
+                            operation:
+                                "the face contraction of Theorem 1 (a Doo-Sabin-family notion)",
+                        })
+                    })?
+                    .map_err(|e| ctx.err(e))?
+                    .measured;
                 let d0 = m.distances.first().copied().unwrap_or(0.0);
                 let points: Vec<(usize, f64)> = m
                     .distances

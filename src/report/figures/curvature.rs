@@ -1,15 +1,24 @@
 //! `kind = "curvature"`: measured curvature of the limit surface on the ring
-//! of level `k` around an extraordinary vertex of the Catmull-Clark family,
-//! against `k`, next to the predicted rate `(mu / lambda^2)^k` (math doc
-//! section 13.2).
+//! of level `k` around an extraordinary point, against `k`, next to the
+//! predicted rate `(mu / lambda^2)^k` (math doc sections 13.2 and 13.4).
 //!
-//! Drawn from [`crate::curvature::measured::measure`] (limit points of the
-//! refined net, then a fitted quadric; see there): per valence, the largest
+//! The Catmull-Clark family (no `scheme`, or `scheme = "catmull-clark"` /
+//! `"adjustable-cc"`) is drawn from [`crate::curvature::measured::measure`]
+//! (limit points of the refined patch nets, then a fitted quadric); every
+//! other built-in scheme (`nurds` with optional `ratios` or `knots`,
+//! `doo-sabin`, `cc-variant`, `loop`) from
+//! [`crate::curvature::measured_scheme::measure_scheme`] (the level-`k`
+//! control points of the local net, a quadric with a constant term; the
+//! rate there is `mu / lambda_2^2`, which is `mu / lambda^2` except for a
+//! split subdominant pair). The scheme choice goes through the shared
+//! validator [`crate::scheme::choice`]. Per valence, the largest
 //! principal curvature (solid, markers) and the prediction
 //! `kappa_K (mu / lambda^2)^(k - K)` anchored at the last level `K` (dashed).
 //! The CSV has every level's Gaussian curvature `K`, mean curvature `H`, the
 //! half difference of the principal curvatures, the largest one and the
-//! prediction.
+//! prediction (for schemes other than the Catmull-Clark family the column
+//! `c` is replaced by `scheme`, the configuration's label, and
+//! `ring_radius` is the radius of the level-`k` net).
 //!
 //! ```toml
 //! [[figure]]
@@ -17,16 +26,31 @@
 //! valences = [3, 4, 5, 8]   # default; each in 3..=16
 //! c = 0.5                   # shape parameter in [0, 1] (default 1/2: Catmull-Clark)
 //! levels = 16               # 1..=24 (default 16)
+//!
+//! [[figure]]
+//! kind = "curvature"
+//! scheme = "loop"           # any built-in scheme (default: the Catmull-Clark family)
+//! valences = [3, 5, 7]
+//!
+//! [[figure]]
+//! kind = "curvature"
+//! scheme = "nurds"
+//! ratios = [0.3, 0.6, 0.5]  # or knots = [[p, q], ..]; fixes the valence
 //! ```
 
 use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
-use crate::curvature::measured::{measure, MeasuredCurvature};
+use crate::curvature::measured::{measure, MeasuredLevel};
+use crate::curvature::measured_scheme::measure_scheme;
+use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
     dash, draw_err, inner_legend, series_color, titled, LegendGlyph, Marker, Theme,
 };
+use crate::scheme::choice::{validate, Choice, ChoiceError};
+use crate::scheme::registry::Builtin;
+use crate::schemes::SchemeKind;
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Deserialize;
@@ -51,21 +75,31 @@ pub(crate) const KIND: FigureKind = FigureKind {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Params {
+    scheme: Option<Spanned<String>>,
     valences: Option<Spanned<Vec<usize>>>,
+    ratios: Option<Spanned<Vec<f64>>>,
+    knots: Option<Spanned<Vec<[f64; 2]>>>,
     c: Option<Spanned<f64>>,
     levels: Option<Spanned<usize>>,
 }
 
+/// What is measured.
+enum Measured {
+    /// The Catmull-Clark family at shape parameter `c`, per valence.
+    CcFamily { valences: Vec<usize>, c: f64 },
+    /// Any other built-in scheme: one configuration per valence.
+    Scheme(Vec<Builtin>),
+}
+
 struct CurvatureFigure {
-    valences: Vec<usize>,
-    c: f64,
+    what: Measured,
     levels: usize,
 }
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
     let valences = match &p.valences {
-        None => vec![3, 4, 5, 8],
+        None => None,
         Some(v) => {
             let list = v.get_ref();
             if list.is_empty()
@@ -80,12 +114,12 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
                     ),
                 ));
             }
-            list.clone()
+            Some(list.clone())
         }
     };
     let c = match &p.c {
-        None => 0.5,
-        Some(c) if (0.0..=1.0).contains(c.get_ref()) => *c.get_ref(),
+        None => None,
+        Some(c) if (0.0..=1.0).contains(c.get_ref()) => Some(*c.get_ref()),
         Some(c) => {
             return Err(fs.error_at(
                 c,
@@ -95,39 +129,179 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
         }
     };
     let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 16)?;
-    Ok(Box::new(CurvatureFigure {
-        valences,
-        c,
-        levels,
-    }))
+    let kind = match &p.scheme {
+        None => None,
+        Some(s) => Some((s, scheme_kind(fs, s, &p)?)),
+    };
+    let what = match kind {
+        // No scheme: the Catmull-Clark family at c (default 1/2), as before
+        // the key existed.
+        None | Some((_, SchemeKind::CatmullClark | SchemeKind::AdjustableCc)) => {
+            Measured::CcFamily {
+                valences: valences.unwrap_or_else(|| vec![3, 4, 5, 8]),
+                c: c.unwrap_or(0.5),
+            }
+        }
+        Some((at, kind)) => Measured::Scheme(configurations(fs, at, kind, &p, valences)?),
+    };
+    Ok(Box::new(CurvatureFigure { what, levels }))
+}
+
+/// The scheme through the shared rules ([`crate::scheme::choice`]); the
+/// error names the key of the wrong part.
+fn scheme_kind(
+    fs: &FigureSpec<'_>,
+    s: &Spanned<String>,
+    p: &Params,
+) -> Result<SchemeKind, ReportError> {
+    let choice = Choice {
+        name: s.get_ref(),
+        knots: p.ratios.is_some() || p.knots.is_some(),
+        c: p.c.is_some(),
+    };
+    validate(&choice).map_err(|e| match (&e, &p.c, &p.ratios, &p.knots) {
+        (ChoiceError::TakesNoC(_), Some(c), _, _) => fs.error_at(c, "c", e.to_string()),
+        (ChoiceError::TakesNoKnots(_), _, Some(r), _) => fs.error_at(r, "ratios", e.to_string()),
+        (ChoiceError::TakesNoKnots(_), _, _, Some(k)) => fs.error_at(k, "knots", e.to_string()),
+        (ChoiceError::NeedsC(_), _, _, _) => fs.error_at(s, "c", e.to_string()),
+        _ => fs.error_at(s, "scheme", e.to_string()),
+    })
+}
+
+/// One configuration per valence; `ratios` or `knots` (NURDS) fix the
+/// valence, and `valences`, if given, must be that one.
+fn configurations(
+    fs: &FigureSpec<'_>,
+    at: &Spanned<String>,
+    kind: SchemeKind,
+    p: &Params,
+    valences: Option<Vec<usize>>,
+) -> Result<Vec<Builtin>, ReportError> {
+    let ratios = match (&p.ratios, &p.knots) {
+        (Some(_), Some(k)) => {
+            return Err(fs.error_at(k, "knots", "give at most one of ratios and knots"))
+        }
+        (Some(r), None) => Some(
+            EdgeRatios::new(r.get_ref().clone())
+                .map_err(|e| fs.error_at(r, "ratios", e.to_string()))?,
+        ),
+        (None, Some(k)) => {
+            let pp: Vec<f64> = k.get_ref().iter().map(|x| x[0]).collect();
+            let qq: Vec<f64> = k.get_ref().iter().map(|x| x[1]).collect();
+            let ci =
+                CornerIntervals::new(pp, qq).map_err(|e| fs.error_at(k, "knots", e.to_string()))?;
+            Some(
+                ci.ratios()
+                    .map_err(|e| fs.error_at(k, "knots", e.to_string()))?,
+            )
+        }
+        (None, None) => None,
+    };
+    // An error about the knot data, at whichever key gave it.
+    let at_knots = |msg: String| match (&p.ratios, &p.knots) {
+        (Some(r), _) => fs.error_at(r, "ratios", msg),
+        (_, Some(k)) => fs.error_at(k, "knots", msg),
+        _ => fs.error_at(at, "scheme", msg),
+    };
+    let valences = match &ratios {
+        Some(r) => {
+            let n = r.valence();
+            if !(3..=MAX_VALENCE).contains(&n) {
+                return Err(at_knots(format!(
+                    "the curvature figure takes valences 3..={MAX_VALENCE}, got {n} knot values"
+                )));
+            }
+            if let (Some(v), Some(key)) = (&valences, &p.valences) {
+                if v[..] != [n] {
+                    return Err(fs.error_at(
+                        key,
+                        "valences",
+                        format!("valences {v:?} do not match the {n} knot values given"),
+                    ));
+                }
+            }
+            vec![n]
+        }
+        None => valences.unwrap_or_else(|| vec![3, 4, 5, 8]),
+    };
+    valences
+        .iter()
+        .map(|&n| {
+            Builtin::from_kind(kind, n, ratios.clone(), None)
+                .map_err(|e| fs.error_at(at, "scheme", e.to_string()))
+        })
+        .collect()
 }
 
 impl Figure for CurvatureFigure {
     fn work(&self) -> u64 {
-        self.valences.len() as u64
+        match &self.what {
+            Measured::CcFamily { valences, .. } => valences.len() as u64,
+            Measured::Scheme(s) => s.len() as u64,
+        }
     }
 
     fn compute(&self, ctx: &Context<'_>) -> Result<Box<dyn FigureOutput>, ReportError> {
-        let runs = self
-            .valences
-            .par_iter()
-            .map(|&n| {
-                let m = measure(n, self.c, self.levels, ctx.common.seed).map_err(|e| ctx.err(e))?;
-                ctx.tick(1);
-                Ok(m)
-            })
-            .collect::<Result<Vec<_>, ReportError>>()?;
-        Ok(Box::new(Output { runs }))
+        let seed = ctx.common.seed;
+        let runs = match &self.what {
+            Measured::CcFamily { valences, c } => valences
+                .par_iter()
+                .map(|&n| {
+                    let m = measure(n, *c, self.levels, seed).map_err(|e| ctx.err(e))?;
+                    ctx.tick(1);
+                    Ok(Run {
+                        n: m.n,
+                        column: num(m.c),
+                        legend: format!("n = {}", m.n),
+                        predicted_rate: m.predicted_rate,
+                        levels: m.levels,
+                    })
+                })
+                .collect::<Result<Vec<_>, ReportError>>()?,
+            Measured::Scheme(schemes) => schemes
+                .par_iter()
+                .map(|s| {
+                    let m = measure_scheme(&**s, self.levels, seed).map_err(|e| ctx.err(e))?;
+                    ctx.tick(1);
+                    let label = s.legend_label("");
+                    Ok(Run {
+                        n: m.n,
+                        column: label.clone(),
+                        legend: label,
+                        predicted_rate: m.predicted_rate,
+                        levels: m.levels,
+                    })
+                })
+                .collect::<Result<Vec<_>, ReportError>>()?,
+        };
+        let column = match self.what {
+            Measured::CcFamily { .. } => "c",
+            Measured::Scheme(_) => "scheme",
+        };
+        Ok(Box::new(Output { runs, column }))
     }
 }
 
+/// One measured configuration.
+struct Run {
+    n: usize,
+    /// The value of the second CSV column (`c` or the scheme's label).
+    column: String,
+    /// The legend's text before the rate.
+    legend: String,
+    predicted_rate: f64,
+    levels: Vec<MeasuredLevel>,
+}
+
 struct Output {
-    runs: Vec<MeasuredCurvature>,
+    runs: Vec<Run>,
+    /// The second CSV column's name.
+    column: &'static str,
 }
 
 impl Output {
     /// The prediction anchored at the last level.
-    fn predicted(m: &MeasuredCurvature, k: usize) -> f64 {
+    fn predicted(m: &Run, k: usize) -> f64 {
         let last = m.levels.last().map_or(f64::NAN, |l| l.max_principal);
         let kk = m.levels.len() as i32 - 1;
         last * m.predicted_rate.powi(k as i32 - kk)
@@ -140,7 +314,7 @@ impl FigureOutput for Output {
             None,
             &[
                 "n",
-                "c",
+                self.column,
                 "level",
                 "ring_radius",
                 "gaussian",
@@ -156,7 +330,7 @@ impl FigureOutput for Output {
             for l in &m.levels {
                 t.push(vec![
                     m.n.to_string(),
-                    num(m.c),
+                    m.column.clone(),
                     l.level.to_string(),
                     num(l.ring_radius),
                     num(l.gaussian),
@@ -201,7 +375,7 @@ impl FigureOutput for Output {
             .x_desc("level k")
             .y_desc("largest principal curvature on ring k")
             .x_label_formatter(&|x| format!("{x:.0}"))
-            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .y_label_formatter(&|y| crate::report::plot::log_tick(*y))
             .label_style(th.font(th.tick))
             .axis_desc_style(th.font(th.label))
             .light_line_style(WHITE.mix(0.0))
@@ -224,8 +398,8 @@ impl FigureOutput for Output {
                 .draw_series(LineSeries::new(pts.clone(), col.stroke_width(lw)))
                 .map_err(draw_err)?
                 .label(format!(
-                    "n = {} (mu/lambda^2 = {:.4})",
-                    m.n, m.predicted_rate
+                    "{} (mu/lambda^2 = {:.4})",
+                    m.legend, m.predicted_rate
                 ))
                 .legend(move |p| LegendGlyph::line(p, &th, col, lw).marker(marker, size));
             chart
@@ -236,7 +410,9 @@ impl FigureOutput for Output {
                 .iter()
                 .map(|l| (l.level as f64, Self::predicted(m, l.level)))
                 .collect();
-            let (d, g) = dash(1, &th);
+            // Pattern 0 is the dashed one (pattern 1 reads as dotted), as
+            // the module docs and the default caption say.
+            let (d, g) = dash(0, &th);
             chart
                 .draw_series(DashedLineSeries::new(
                     pred,

@@ -130,7 +130,9 @@ impl FigureOutput for Output {
         let body = titled(area, &common.title, &th)?;
         let lw = th.line;
         let colors = [series_color(0, 2), series_color(1, 2)];
-        let d = dash(1, &th);
+        // Pattern 0 is the dashed one (pattern 1 reads as dotted), as the
+        // module docs and the default caption say.
+        let d = dash(0, &th);
         let mut entries = Vec::new();
         for (r, (name, _)) in RAYS.iter().enumerate() {
             entries.push((
@@ -173,7 +175,7 @@ impl FigureOutput for Output {
                 })
                 .x_labels(5)
                 .y_labels(6)
-                .x_label_formatter(&|x| format!("{x:.0e}"))
+                .x_label_formatter(&|x| crate::report::plot::log_tick(*x))
                 .y_label_formatter(&|y| crate::report::plot::tick(*y))
                 .label_style(th.font(th.tick))
                 .axis_desc_style(th.font(th.label))

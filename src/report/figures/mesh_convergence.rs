@@ -23,7 +23,7 @@
 
 use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::mesh::generators;
-use crate::mesh::limit::{convergence_series, face_local_scheme, refine_with_stats};
+use crate::mesh::limit::convergence_series;
 use crate::mesh::rules::MeshRules;
 use crate::mesh::Mesh;
 use crate::report::backend::Area;
@@ -35,7 +35,6 @@ use crate::report::plot::{
 use crate::rng::{log_uniform, SplitMix64};
 use crate::scheme::choice::{validate, Choice, ChoiceError};
 use crate::scheme::registry::mesh_rules;
-use crate::schemes::SchemeKind;
 use crate::spectral::classify_scheme;
 use plotters::prelude::*;
 use serde::Deserialize;
@@ -114,7 +113,7 @@ pub(crate) fn mesh_scheme(
     fs: &FigureSpec<'_>,
     s: &Spanned<String>,
     random_knots: Option<&Spanned<f64>>,
-) -> Result<(SchemeKind, Box<dyn MeshRules>), ReportError> {
+) -> Result<Box<dyn MeshRules>, ReportError> {
     let choice = Choice {
         name: s.get_ref(),
         knots: random_knots.is_some(),
@@ -129,26 +128,25 @@ pub(crate) fn mesh_scheme(
         ),
         _ => fs.error_at(s, "scheme", e.to_string()),
     })?;
-    let rules = mesh_rules(kind, None).map_err(|e| fs.error_at(s, "scheme", e.to_string()))?;
-    Ok((kind, rules))
+    mesh_rules(kind, None).map_err(|e| fs.error_at(s, "scheme", e.to_string()))
 }
 
 struct MeshConvergence {
     mesh: Mesh,
     mesh_name: String,
-    scheme: SchemeKind,
+    rules: Box<dyn MeshRules>,
     levels: usize,
     max_faces: usize,
 }
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    let (scheme, rules) = mesh_scheme(fs, &p.scheme, p.random_knots.as_ref())?;
+    let rules = mesh_scheme(fs, &p.scheme, p.random_knots.as_ref())?;
     if !rules.has_level_stats() {
         return Err(fs.error_at(
             &p.scheme,
             "scheme",
-            format!("scheme {scheme} has no per-level statistics of extraordinary faces, which mesh-convergence plots (use mesh-picture)"),
+            format!("scheme {} has no per-level statistics of extraordinary faces, which mesh-convergence plots (use mesh-picture)", rules.name()),
         ));
     }
     let mesh = built_in_mesh(fs, &p.mesh, p.random_knots.as_ref())?;
@@ -166,7 +164,7 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     Ok(Box::new(MeshConvergence {
         mesh,
         mesh_name: p.mesh.get_ref().clone(),
-        scheme,
+        rules,
         levels,
         max_faces,
     }))
@@ -203,13 +201,27 @@ impl Curve {
     }
 }
 
+impl MeshConvergence {
+    /// The error of rules without per-face statistics or configurations
+    /// (refused when the spec is parsed, so not reached).
+    fn no_faces(&self) -> crate::Error {
+        crate::Error::NotApplicable {
+            scheme: self.rules.name().to_owned(),
+            operation: "the statistics and local configurations of extraordinary faces",
+        }
+    }
+}
+
 impl Figure for MeshConvergence {
     fn work(&self) -> u64 {
         self.levels as u64 + 1
     }
 
     fn compute(&self, ctx: &Context<'_>) -> Result<Box<dyn FigureOutput>, ReportError> {
-        let (last, stats) = refine_with_stats(&self.mesh, self.scheme, self.levels)
+        let (last, stats) = self
+            .rules
+            .refine_with_stats(&self.mesh, self.levels)
+            .ok_or_else(|| ctx.err(self.no_faces()))?
             .map_err(|e| ctx.err(e.into()))?;
         ctx.tick(self.levels as u64);
         let mut series = convergence_series(&stats);
@@ -234,8 +246,12 @@ impl Figure for MeshConvergence {
         let mut curves = Vec::new();
         for i in chosen {
             let s = &series[i];
-            let local = face_local_scheme(&last, s.face, self.scheme).map_err(|e| ctx.err(e))?;
-            let lambda1 = classify_scheme(&local)
+            let local = self
+                .rules
+                .face_scheme(&last, s.face)
+                .ok_or_else(|| ctx.err(self.no_faces()))?
+                .map_err(|e| ctx.err(e))?;
+            let lambda1 = classify_scheme(&*local)
                 .map_err(|e| ctx.err(e))?
                 .lambda1
                 .norm();
@@ -262,7 +278,9 @@ impl Figure for MeshConvergence {
             levels: self.levels,
             title_note: format!(
                 "{}, {}, {} levels",
-                self.mesh_name, self.scheme, self.levels
+                self.mesh_name,
+                self.rules.name(),
+                self.levels
             ),
         }))
     }

@@ -25,7 +25,6 @@ use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{draw_err, titled, Theme};
-use crate::schemes::SchemeKind;
 use plotters::prelude::*;
 use serde::Deserialize;
 use toml::Spanned;
@@ -55,7 +54,6 @@ struct Params {
 
 struct MeshPicture {
     mesh: Mesh,
-    scheme: SchemeKind,
     rules: Box<dyn MeshRules>,
     levels: usize,
     view: View,
@@ -64,7 +62,7 @@ struct MeshPicture {
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    let (scheme, rules) = mesh_scheme(fs, &p.scheme, p.random_knots.as_ref())?;
+    let rules = mesh_scheme(fs, &p.scheme, p.random_knots.as_ref())?;
     let mesh = built_in_mesh(fs, &p.mesh, p.random_knots.as_ref())?;
     let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 2)?;
     let angle = |a: &Option<Spanned<f64>>, key: &str, default: f64, lim: f64| match a {
@@ -100,7 +98,6 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     };
     Ok(Box::new(MeshPicture {
         mesh,
-        scheme,
         rules,
         levels,
         view,
@@ -128,7 +125,7 @@ impl Figure for MeshPicture {
                 (
                     format!(
                         "{} x{}: {} faces",
-                        self.scheme,
+                        self.rules.name(),
                         self.levels,
                         refined.face_count()
                     ),

@@ -12,7 +12,7 @@
 
 use super::{eigenvalues, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::report::backend::Area;
-use crate::report::config::{resolve_all, ConfigSpec, Configuration};
+use crate::report::config::{check_analysis_budget, resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
@@ -54,6 +54,7 @@ struct Spectrum {
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
     let configs = resolve_all(fs, &p.configs, Some(MAX_PANELS))?;
+    check_analysis_budget(fs, &p.configs, &configs)?;
     let count = configs.len();
     let columns = match &p.columns {
         None => count.min(3),

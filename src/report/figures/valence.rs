@@ -34,6 +34,23 @@ use toml::Spanned;
 /// Most random samples per valence.
 pub const MAX_SAMPLES: usize = 10_000;
 
+/// CPU seconds per classification of the `n x n` face block, per `n^3`
+/// (measured 1.3e-9 at n = 64..256 on the 2-core reference machine under
+/// load, rounded up), plus a fixed cost per classification.
+pub const SECONDS_PER_N3: f64 = 3e-9;
+/// Fixed CPU seconds per classification (knot drawing, small matrices).
+pub const SECONDS_PER_SAMPLE: f64 = 2e-5;
+
+/// Estimated CPU seconds of the figure: `samples + 1` classifications per
+/// valence in `lo..=hi`.
+pub fn estimate_seconds(lo: usize, hi: usize, samples: usize) -> f64 {
+    (lo..=hi)
+        .map(|n| {
+            (samples as f64 + 1.0) * (SECONDS_PER_SAMPLE + SECONDS_PER_N3 * (n as f64).powi(3))
+        })
+        .sum()
+}
+
 /// The kind.
 pub(crate) const KIND: FigureKind = FigureKind {
     name: "subdominant-vs-valence",
@@ -72,6 +89,22 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
             ))
         }
     };
+    // Heavy work is refused with its estimate (issue 16): valences up to 256
+    // with thousands of samples ran for hours without a word.
+    let seconds = estimate_seconds(lo, hi, samples);
+    if seconds > crate::budget::TIME_LIMIT_SECONDS {
+        let what = format!(
+            "{} classifications of up to {hi} x {hi} face blocks take ~{} (limit {} s); lower samples or the valence range",
+            (samples + 1) * (hi - lo + 1),
+            crate::budget::format_seconds(seconds),
+            crate::budget::TIME_LIMIT_SECONDS
+        );
+        return Err(match (&p.samples, &p.valence) {
+            (Some(s), _) => fs.error_at(s, "samples", what),
+            (None, Some(v)) => fs.error_at(v, "valence", what),
+            (None, None) => fs.error(what),
+        });
+    }
     let max_ratio = match &p.random_knots {
         None => 4.0,
         Some(m) if m.get_ref().is_finite() && *m.get_ref() > 1.0 && *m.get_ref() <= 1e6 => {

@@ -49,12 +49,41 @@ pub mod tri_bezier;
 
 pub use scheme_impl::LoopScheme;
 
-use crate::budget::MEMORY_LIMIT_BYTES;
+use crate::budget::{CostModel, ANALYZE_BYTES_PER_ENTRY_CC, MEMORY_LIMIT_BYTES};
 use crate::error::{Error, Result};
 use crate::schemes::assembly::{PointLabel, Role};
 
 /// Smallest valence of a Loop vertex.
 pub const MIN_VALENCE: usize = 3;
+
+/// Seconds per `n^3` of `analyze` (the dense `(3n+1)` decomposition with
+/// vectors and the characteristic-map certificate, either path). Measured
+/// 1.4e-6 at `n = 100` and `n = 200` (1.40 s, 11.1 s) on the 2-core machine
+/// while other builds ran (load 9); rounded up.
+pub const ANALYZE_SECONDS_PER_N3: f64 = 2.0e-6;
+
+/// Seconds per `n^3` of one sweep configuration's classification (the dense
+/// `(3n+1)` decomposition). Measured 3.9e-7 CPU seconds (one thread; 159 s
+/// for `n = 40..200`, one configuration each) at load 10-13; rounded up.
+pub const SWEEP_CLASSIFY_SECONDS_PER_N3: f64 = 8e-7;
+
+/// Seconds per `n^3` of one sweep configuration's characteristic-map
+/// certificate on top of the classification: measured about 5e-8 (CPU,
+/// `n = 40..120`, load 13); rounded up.
+pub const SWEEP_CHARMAP_SECONDS_PER_N3: f64 = 1e-7;
+
+/// Loop's work model ([`crate::budget`]): the `(3n + 1)` two-ring matrix,
+/// decomposed densely.
+pub const COST_MODEL: CostModel = CostModel {
+    dimension_per_valence: 3.0,
+    dimension_offset: 1.0,
+    analyze_bytes_per_entry: ANALYZE_BYTES_PER_ENTRY_CC,
+    analyze_seconds_per_n3_full: ANALYZE_SECONDS_PER_N3,
+    analyze_seconds_per_n3_structured: ANALYZE_SECONDS_PER_N3,
+    sweep_classify_seconds_per_n3: SWEEP_CLASSIFY_SECONDS_PER_N3,
+    sweep_classify_on_face_block: false,
+    sweep_charmap_seconds_per_n3: SWEEP_CHARMAP_SECONDS_PER_N3,
+};
 
 /// Loop's vertex weight `beta_n = (5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n`
 /// (math doc section 11). `n >= 3` is the caller's business.

@@ -85,6 +85,39 @@ impl HqrMatrix for Lane<'_> {
         // SAFETY: as in `at`.
         unsafe { self.a.get_unchecked_mut(k).get_unchecked_mut(self.lane) }
     }
+    #[inline(always)]
+    fn clear_bulge(&mut self, _m: usize, _nu: usize) {
+        // Done for all lanes at once by `clear_bulges`.
+    }
+}
+
+/// [`HqrMatrix::clear_bulge`] of every chasing lane (its sweep starts at
+/// row `st[l].l` and ends at `st[l].nu`), one lane-interleaved entry at a
+/// time.
+#[inline(always)]
+fn clear_bulges(a: &mut [Lanes], s: usize, st: &[Hqr; BATCH], chasing: [bool; BATCH]) {
+    let lo: [i64; BATCH] =
+        std::array::from_fn(|l| if chasing[l] { st[l].l as i64 } else { i64::MAX });
+    let nu: [i64; BATCH] = std::array::from_fn(|l| if chasing[l] { st[l].nu as i64 } else { -1 });
+    let first = lo.iter().copied().min().unwrap_or(i64::MAX);
+    let last = nu.iter().copied().max().unwrap_or(-1);
+    if first == i64::MAX || first + 2 > last {
+        return;
+    }
+    for i in (first + 2) as usize..=last as usize {
+        let ii = [i as i64; BATCH];
+        // (i, i - 2) where m + 2 <= i <= nu, (i, i - 3) where m + 3 <= i <= nu.
+        let two: Mask = std::array::from_fn(|l| -((lo[l] + 2 <= ii[l] && ii[l] <= nu[l]) as i64));
+        let three: Mask = std::array::from_fn(|l| -((lo[l] + 3 <= ii[l] && ii[l] <= nu[l]) as i64));
+        let e2 = i + (i - 2) * s;
+        let x = u!(a[e2]);
+        *um!(a[e2]) = pick(two, [0.0; BATCH], x);
+        if i >= 3 {
+            let e3 = i + (i - 3) * s;
+            let x = u!(a[e3]);
+            *um!(a[e3]) = pick(three, [0.0; BATCH], x);
+        }
+    }
 }
 
 /// Whether any lane of `m` is set.
@@ -101,6 +134,13 @@ fn mask(m: [bool; BATCH]) -> Mask {
 
 /// The scalar [`hessenberg`](super::hessenberg()) on all lanes of the
 /// interleaved `n x n` matrices `h` (stride `n`); `v`, `w` hold `n` entries.
+///
+/// A step whose reflector is live in every lane (the usual case) stores its
+/// results without lane selects ([`hessenberg_step`] with `ALL = true`): a
+/// select in front of a store is compiled to a masked store, which is slow
+/// on AMD processors. The dot products run two columns (left update) or two
+/// rows (`w = H v`) at a time, each accumulated in the scalar kernel's order,
+/// so that the processor overlaps two dependency chains.
 #[inline(always)]
 pub(super) fn hessenberg(n: usize, h: &mut [Lanes], v: &mut [Lanes], w: &mut [Lanes]) {
     if n < 3 {
@@ -135,46 +175,124 @@ pub(super) fn hessenberg(n: usize, h: &mut [Lanes], v: &mut [Lanes], w: &mut [La
             continue;
         }
         let beta: Lanes = std::array::from_fn(|l| 2.0 / vtv[l]);
-        // Left: rows k+1..n, columns k+1..n.
+        let sub: Lanes = std::array::from_fn(|l| alpha[l] * scale[l]);
+        let step = Step {
+            n,
+            k,
+            live,
+            beta,
+            sub,
+        };
+        if live.iter().all(|&m| m != 0) {
+            hessenberg_step::<true>(&step, h, v, w);
+        } else {
+            hessenberg_step::<false>(&step, h, v, w);
+        }
+    }
+}
+
+/// One reflector of [`hessenberg`]: step `k`, the lanes where it is `live`,
+/// its `beta = 2 / v^T v` and the new subdiagonal entry `sub`.
+struct Step {
+    n: usize,
+    k: usize,
+    live: Mask,
+    beta: Lanes,
+    sub: Lanes,
+}
+
+/// `new` where `m` is set, else `old`; with `ALL` (every lane set) `new`.
+#[inline(always)]
+fn put<const ALL: bool>(m: Mask, new: Lanes, old: Lanes) -> Lanes {
+    if ALL {
+        new
+    } else {
+        pick(m, new, old)
+    }
+}
+
+/// The updates of one [`hessenberg`] step (`ALL`: the step is live in every
+/// lane), in the scalar kernel's arithmetic: left update `H -= beta v (v^T
+/// H)` of rows and columns `k + 1..n`, the new column `k`, right update
+/// `H -= beta (H v) v^T` of all rows, columns `k + 1..n`.
+#[inline(always)]
+fn hessenberg_step<const ALL: bool>(st: &Step, h: &mut [Lanes], v: &[Lanes], w: &mut [Lanes]) {
+    let Step {
+        n,
+        k,
+        live,
+        beta,
+        sub,
+    } = *st;
+    // Left: rows k+1..n, columns k+1..n, two columns at a time. Each column's
+    // `s = (v^T h_j) beta` is summed in row order from -0.0 (`Sum for f64`).
+    let mut j = k + 1;
+    while j + 1 < n {
+        let (c0, c1) = (j * n, (j + 1) * n);
+        let mut s0 = [-0.0f64; BATCH];
+        let mut s1 = [-0.0f64; BATCH];
+        for i in k + 1..n {
+            let (x0, x1, y) = (u!(h[i + c0]), u!(h[i + c1]), u!(v[i]));
+            s0 = std::array::from_fn(|l| s0[l] + x0[l] * y[l]);
+            s1 = std::array::from_fn(|l| s1[l] + x1[l] * y[l]);
+        }
+        let s0: Lanes = std::array::from_fn(|l| s0[l] * beta[l]);
+        let s1: Lanes = std::array::from_fn(|l| s1[l] * beta[l]);
+        for i in k + 1..n {
+            let (x0, x1, y) = (u!(h[i + c0]), u!(h[i + c1]), u!(v[i]));
+            *um!(h[i + c0]) = put::<ALL>(live, std::array::from_fn(|l| x0[l] - s0[l] * y[l]), x0);
+            *um!(h[i + c1]) = put::<ALL>(live, std::array::from_fn(|l| x1[l] - s1[l] * y[l]), x1);
+        }
+        j += 2;
+    }
+    if j < n {
+        let c = j * n;
+        let mut s = [-0.0f64; BATCH];
+        for i in k + 1..n {
+            let (x, y) = (u!(h[i + c]), u!(v[i]));
+            s = std::array::from_fn(|l| s[l] + x[l] * y[l]);
+        }
+        let s: Lanes = std::array::from_fn(|l| s[l] * beta[l]);
+        for i in k + 1..n {
+            let (x, y) = (u!(h[i + c]), u!(v[i]));
+            *um!(h[i + c]) = put::<ALL>(live, std::array::from_fn(|l| x[l] - s[l] * y[l]), x);
+        }
+    }
+    let old = u!(h[k + 1 + k * n]);
+    *um!(h[k + 1 + k * n]) = put::<ALL>(live, sub, old);
+    for i in k + 2..n {
+        let x = u!(h[i + k * n]);
+        *um!(h[i + k * n]) = put::<ALL>(live, [0.0; BATCH], x);
+    }
+    // Right: all rows, columns k+1..n: w = H v (each w_i summed in column
+    // order from 0.0, two rows at a time), H -= beta w v^T.
+    let mut i = 0;
+    while i + 1 < n {
+        let mut w0 = [0.0f64; BATCH];
+        let mut w1 = [0.0f64; BATCH];
         for j in k + 1..n {
-            // `Sum for f64` starts at -0.0.
-            let mut s = [-0.0f64; BATCH];
-            for i in k + 1..n {
-                let (x, y) = (u!(h[i + j * n]), u!(v[i]));
-                s = std::array::from_fn(|l| s[l] + x[l] * y[l]);
-            }
-            let s: Lanes = std::array::from_fn(|l| s[l] * beta[l]);
-            for i in k + 1..n {
-                let (x, y) = (u!(h[i + j * n]), u!(v[i]));
-                let new = std::array::from_fn(|l| x[l] - s[l] * y[l]);
-                *um!(h[i + j * n]) = pick(live, new, x);
-            }
+            let (x0, x1, vj) = (u!(h[i + j * n]), u!(h[i + 1 + j * n]), u!(v[j]));
+            w0 = std::array::from_fn(|l| w0[l] + x0[l] * vj[l]);
+            w1 = std::array::from_fn(|l| w1[l] + x1[l] * vj[l]);
         }
-        let sub = u!(h[k + 1 + k * n]);
-        *um!(h[k + 1 + k * n]) = pick(live, std::array::from_fn(|l| alpha[l] * scale[l]), sub);
-        for i in k + 2..n {
-            let x = u!(h[i + k * n]);
-            *um!(h[i + k * n]) = pick(live, [0.0; BATCH], x);
+        *um!(w[i]) = w0;
+        *um!(w[i + 1]) = w1;
+        i += 2;
+    }
+    if i < n {
+        let mut w0 = [0.0f64; BATCH];
+        for j in k + 1..n {
+            let (x0, vj) = (u!(h[i + j * n]), u!(v[j]));
+            w0 = std::array::from_fn(|l| w0[l] + x0[l] * vj[l]);
         }
-        // Right: all rows, columns k+1..n: w = H v, H -= beta w v^T.
+        *um!(w[i]) = w0;
+    }
+    for j in k + 1..n {
+        let vj = u!(v[j]);
+        let f: Lanes = std::array::from_fn(|l| beta[l] * vj[l]);
         for i in 0..n {
-            *um!(w[i]) = [0.0; BATCH];
-        }
-        for j in k + 1..n {
-            let vj = u!(v[j]);
-            for i in 0..n {
-                let (wi, x) = (u!(w[i]), u!(h[i + j * n]));
-                *um!(w[i]) = std::array::from_fn(|l| wi[l] + x[l] * vj[l]);
-            }
-        }
-        for j in k + 1..n {
-            let vj = u!(v[j]);
-            let f: Lanes = std::array::from_fn(|l| beta[l] * vj[l]);
-            for i in 0..n {
-                let (wi, x) = (u!(w[i]), u!(h[i + j * n]));
-                let new = std::array::from_fn(|l| x[l] - wi[l] * f[l]);
-                *um!(h[i + j * n]) = pick(live, new, x);
-            }
+            let (wi, x) = (u!(w[i]), u!(h[i + j * n]));
+            *um!(h[i + j * n]) = put::<ALL>(live, std::array::from_fn(|l| x[l] - wi[l] * f[l]), x);
         }
     }
 }
@@ -189,6 +307,7 @@ pub(super) fn hqr(
     n: [usize; BATCH],
     stride: usize,
     a: &mut [Lanes],
+    scratch: &mut [Lanes],
     wr: [&mut [f64]; BATCH],
     wi: [&mut [f64]; BATCH],
 ) -> [Result<usize, SpectralError>; BATCH] {
@@ -266,7 +385,8 @@ pub(super) fn hqr(
         if !any(mask(chasing)) {
             break;
         }
-        sweep(a, stride, &st, chasing);
+        clear_bulges(a, stride, &st, chasing);
+        sweep(a, stride, scratch, &st, chasing);
         for (s, &c) in st.iter_mut().zip(&chasing) {
             if c {
                 s.chasing = false;
@@ -306,7 +426,14 @@ fn pick(m: Mask, x: Lanes, y: Lanes) -> Lanes {
 /// applies the reflectors of the scalar `reflector` at rows
 /// `st[l].l..st[l].nu`, and keeps every entry outside them.
 #[inline(always)]
-fn sweep(a: &mut [Lanes], s: usize, st: &[Hqr; BATCH], chasing: [bool; BATCH]) {
+fn sweep(
+    a: &mut [Lanes],
+    s: usize,
+    scratch: &mut [Lanes],
+    st: &[Hqr; BATCH],
+    chasing: [bool; BATCH],
+) {
+    let chase: Mask = mask(chasing);
     // Lanes not chasing get an empty block (lo > hi), so every mask is false.
     let lo: [i64; BATCH] =
         std::array::from_fn(|l| if chasing[l] { st[l].l as i64 } else { i64::MAX });
@@ -369,6 +496,7 @@ fn sweep(a: &mut [Lanes], s: usize, st: &[Hqr; BATCH], chasing: [bool; BATCH]) {
                 .sqrt()
                 .copysign(p[l])
         });
+        let blk = act;
         let act: Mask = std::array::from_fn(|l| act[l] & -((sg[l] != 0.0) as i64));
         if !any(act) {
             continue;
@@ -393,6 +521,33 @@ fn sweep(a: &mut [Lanes], s: usize, st: &[Hqr; BATCH], chasing: [bool; BATCH]) {
         let numax = nua.iter().copied().max().unwrap_or(-1) as usize;
         let lmin = loa.iter().copied().min().unwrap_or(0) as usize;
         let mmax = mma.iter().copied().max().unwrap_or(0) as usize;
+        // The fast path (see `sweep_unmasked`) unless a chasing lane must keep
+        // the entries this row's reflector would write: its block starts
+        // below row k, or its reflector is degenerate (the scalar code skips
+        // it).
+        let keep: Mask =
+            std::array::from_fn(|l| chase[l] & ((-((kk[l] < lo[l]) as i64)) | (blk[l] & !act[l])));
+        if !any(keep) {
+            let r = Reflector {
+                k,
+                numax,
+                lmin,
+                mmax,
+                xx,
+                yy,
+                zz,
+                qq,
+                rr,
+                two,
+                last: std::array::from_fn(|l| chase[l] & -((kk[l] == nu[l]) as i64)),
+            };
+            if any(two) {
+                sweep_unmasked::<true>(a, s, scratch, &r);
+            } else {
+                sweep_unmasked::<false>(a, s, scratch, &r);
+            }
+            continue;
+        }
         // Row modification: rows k..k+2 (k..k+1 for the last reflector) of
         // columns k..=nu.
         for j in k..=numax {
@@ -422,6 +577,106 @@ fn sweep(a: &mut [Lanes], s: usize, st: &[Hqr; BATCH], chasing: [bool; BATCH]) {
             *um!(a[i + (k + 2) * s]) = pick(m3, std::array::from_fn(|l| a2[l] - pr[l] * rr[l]), a2);
             *um!(a[i + (k + 1) * s]) = pick(m, std::array::from_fn(|l| a1[l] - pr[l] * qq[l]), a1);
             *um!(a[i + k * s]) = pick(m, std::array::from_fn(|l| a0[l] - pr[l]), a0);
+        }
+    }
+}
+
+/// One reflector of a lock-step [`sweep`] for [`sweep_unmasked`]: row `k`,
+/// the update ranges (columns `k..=numax`, rows `lmin..=mmax`), the
+/// reflector's coefficients as in the scalar `reflector` (`xx, yy, zz` the
+/// vector over `p + s`, `qq, rr` over `p`), the lanes whose last (two-row)
+/// reflector this is, and the chasing lanes whose block ends at row `k`.
+struct Reflector {
+    k: usize,
+    numax: usize,
+    lmin: usize,
+    mmax: usize,
+    xx: Lanes,
+    yy: Lanes,
+    zz: Lanes,
+    qq: Lanes,
+    rr: Lanes,
+    two: Mask,
+    last: Mask,
+}
+
+/// The row and column modifications of one reflector of [`sweep`] without
+/// lane selects on the stores, when no chasing lane needs to keep an entry
+/// of the update ranges outside its block (`TWO`: some lane applies its
+/// last, two-row reflector).
+///
+/// Why this is exact: the QR iteration computes eigenvalues only, and once
+/// a lane works on its block `l..=nu`, it never again reads an entry in a
+/// row or a column beyond `nu` (deflated, or outside the active block), nor
+/// an entry of rows `< l` in columns `>= l` (the block above is finished
+/// alone and reads only its own rows and columns). Every entry this function
+/// writes for a lane outside the lane's own update is of that kind, with one
+/// exception: a chasing lane whose block ends at row `k` (`last`) would have
+/// column `k` (its last column, rows up to `k`) overwritten, so those rows
+/// are saved in `scratch` first and put back after. Lanes that finished are
+/// never read again at all. A lane whose block starts below row `k` (`k <
+/// l`), or whose reflector is degenerate, takes the masked path of
+/// [`sweep`] instead. The arithmetic of each lane's own update is that of
+/// the scalar `reflector`, operation for operation; the lane's garbage
+/// elsewhere (possibly infinite or NaN) never enters it, because the
+/// two-row reflector's third row and column are selected away in registers.
+#[inline(always)]
+fn sweep_unmasked<const TWO: bool>(
+    a: &mut [Lanes],
+    s: usize,
+    scratch: &mut [Lanes],
+    r: &Reflector,
+) {
+    let Reflector {
+        k,
+        numax,
+        lmin,
+        mmax,
+        xx,
+        yy,
+        zz,
+        qq,
+        rr,
+        two,
+        last,
+    } = *r;
+    let keep_last = any(last);
+    if keep_last {
+        debug_assert!(scratch.len() > k);
+        for i in lmin..=k {
+            *um!(scratch[i]) = u!(a[i + k * s]);
+        }
+    }
+    // Row modification: rows k..k+2 of columns k..=numax (rows k..k+1 for a
+    // lane's last reflector: its third row is selected away).
+    for j in k..=numax {
+        let c = j * s;
+        let (c0, c1, c2) = (u!(a[k + c]), u!(a[k + 1 + c]), u!(a[k + 2 + c]));
+        let t: Lanes = std::array::from_fn(|l| c0[l] + qq[l] * c1[l]);
+        let t3: Lanes = std::array::from_fn(|l| t[l] + rr[l] * c2[l]);
+        let pr = if TWO { pick(two, t, t3) } else { t3 };
+        *um!(a[k + 2 + c]) = std::array::from_fn(|l| c2[l] - pr[l] * zz[l]);
+        *um!(a[k + 1 + c]) = std::array::from_fn(|l| c1[l] - pr[l] * yy[l]);
+        *um!(a[k + c]) = std::array::from_fn(|l| c0[l] - pr[l] * xx[l]);
+    }
+    // Column modification: rows lmin..=mmax of columns k..k+2.
+    for i in lmin..=mmax {
+        let (a0, a1, a2) = (
+            u!(a[i + k * s]),
+            u!(a[i + (k + 1) * s]),
+            u!(a[i + (k + 2) * s]),
+        );
+        let t: Lanes = std::array::from_fn(|l| xx[l] * a0[l] + yy[l] * a1[l]);
+        let t3: Lanes = std::array::from_fn(|l| t[l] + zz[l] * a2[l]);
+        let pr = if TWO { pick(two, t, t3) } else { t3 };
+        *um!(a[i + (k + 2) * s]) = std::array::from_fn(|l| a2[l] - pr[l] * rr[l]);
+        *um!(a[i + (k + 1) * s]) = std::array::from_fn(|l| a1[l] - pr[l] * qq[l]);
+        *um!(a[i + k * s]) = std::array::from_fn(|l| a0[l] - pr[l]);
+    }
+    if keep_last {
+        for i in lmin..=k {
+            let (x, y) = (u!(scratch[i]), u!(a[i + k * s]));
+            *um!(a[i + k * s]) = pick(last, x, y);
         }
     }
 }

@@ -73,6 +73,20 @@ pub(super) trait HqrMatrix {
     fn at(&self, i: usize, j: usize) -> f64;
     /// Mutable entry `(i, j)`.
     fn at_mut(&mut self, i: usize, j: usize) -> &mut f64;
+    /// Zeroes the entries `(i, i - 2)` for `m + 2 <= i <= nu` and `(i, i -
+    /// 3)` for `m + 3 <= i <= nu` (left from the previous sweep's bulge) as a
+    /// sweep starting at row `m` is set up. The lanes of the lock-step
+    /// iteration do nothing here: it zeroes them for all lanes at once
+    /// before the sweep (nothing reads them in between).
+    #[inline(always)]
+    fn clear_bulge(&mut self, m: usize, nu: usize) {
+        for i in m + 2..=nu {
+            *self.at_mut(i, i - 2) = 0.0;
+            if i != m + 2 {
+                *self.at_mut(i, i - 3) = 0.0;
+            }
+        }
+    }
 }
 
 /// A column-major `n x n` matrix (entry `(i, j)` at `i + j n`).
@@ -315,12 +329,7 @@ impl Hqr {
         self.p = p / s;
         self.q = q / s;
         self.r = r / s;
-        for i in m + 2..=nu {
-            *a.at_mut(i, i - 2) = 0.0;
-            if i != m + 2 {
-                *a.at_mut(i, i - 3) = 0.0;
-            }
-        }
+        a.clear_bulge(m, nu);
         self.l = l;
         self.nu = nu;
         self.k = m;

@@ -205,14 +205,16 @@ fn lockstep_cases(rng: &mut crate::rng::SplitMix64, n: usize, trial: usize) -> V
     a
 }
 
-#[test]
-fn lockstep_batches_equal_lone_calls_bit_for_bit() {
+/// Runs `trials` batches (trial number, dimension) through the lock-step
+/// kernel and compares every lane with a lone call, bit for bit; returns
+/// the numbers of lanes compared and of lanes that failed (alone and in the
+/// batch alike).
+fn lockstep_against_lone(trials: impl Iterator<Item = (usize, usize)>) -> (usize, usize) {
     let mut rng = crate::rng::SplitMix64::new(77);
     let mut ws: Vec<KernelWorkspace> = (0..BATCH).map(|_| KernelWorkspace::new()).collect();
     let mut lone = KernelWorkspace::new();
     let (mut compared, mut failed) = (0, 0);
-    for trial in 0..160 {
-        let n = 1 + trial % 24;
+    for (trial, n) in trials {
         let mut inputs = Vec::new();
         for (lane, w) in ws.iter_mut().enumerate() {
             // mostly equal dimensions (the lock-step path), some unequal
@@ -247,12 +249,34 @@ fn lockstep_batches_equal_lone_calls_bit_for_bit() {
             }
         }
     }
+    (compared, failed)
+}
+
+#[test]
+fn lockstep_batches_equal_lone_calls_bit_for_bit() {
+    let (compared, failed) = lockstep_against_lone((0..160).map(|trial| (trial, 1 + trial % 24)));
     // Both branches ran: most lanes compared bit for bit; the failures
     // (the 12 NaN lanes, and overflow of the 2^520-scaled inputs, which
     // fails alone in the same way) matched the lone errors.
     assert_eq!(compared + failed, 160 * BATCH);
     assert!(
         compared > 2000 && failed > 12,
+        "{compared} compared, {failed} failed"
+    );
+}
+
+/// The lock-step sweeps at the dimensions of large valences (up to
+/// `LOCKSTEP_MAX_DIM`), where the lanes' active blocks drift apart: the
+/// unmasked updates (which write outside a lane's block) and the masked
+/// ones both stay bit for bit those of lone calls.
+#[test]
+fn large_lockstep_batches_equal_lone_calls_bit_for_bit() {
+    let dims = |trial: usize| 25 + (trial * 7) % (LOCKSTEP_MAX_DIM - 24);
+    let (compared, failed) = lockstep_against_lone((0..48).map(|trial| (trial, dims(trial))));
+    assert!((0..48).any(|t| dims(t) == LOCKSTEP_MAX_DIM));
+    assert_eq!(compared + failed, 48 * BATCH);
+    assert!(
+        compared > 600 && failed > 3,
         "{compared} compared, {failed} failed"
     );
 }

@@ -128,8 +128,6 @@ impl KernelWorkspace {
             return out;
         };
         let [mut h, mut v, mut w] = std::mem::take(&mut ws[home].as_mut().expect("some").batch);
-        h.clear();
-        h.resize(lockstep::storage_len(n), [0.0; BATCH]);
         v.clear();
         v.resize(n, [0.0; BATCH]);
         w.clear();
@@ -143,9 +141,6 @@ impl KernelWorkspace {
         for (lane, x) in ws.iter_mut().enumerate() {
             if let (Some(x), Some(Ok(()))) = (x, &out[lane]) {
                 dims[lane] = n;
-                for (e, &y) in h.iter_mut().zip(&x.a[..n * n]) {
-                    e[lane] = y;
-                }
                 // Borrow the lane's output buffers for the run.
                 hess[lane] = std::mem::take(&mut x.hess);
                 wr[lane] = std::mem::take(&mut x.wr);
@@ -156,6 +151,20 @@ impl KernelWorkspace {
                 wi[lane].resize(n, 0.0);
             }
         }
+        // Interleave the inputs (one pass over the storage, which is written
+        // once: no zeroing first).
+        let zeros = if dims.iter().all(|&d| d == n) {
+            Vec::new()
+        } else {
+            vec![0.0; n * n]
+        };
+        let src: [&[f64]; BATCH] = std::array::from_fn(|lane| match &ws[lane] {
+            Some(x) if dims[lane] == n => &x.a[..n * n],
+            _ => &zeros[..],
+        });
+        h.clear();
+        h.extend((0..n * n).map(|e| -> lockstep::Lanes { std::array::from_fn(|l| src[l][e]) }));
+        h.resize(lockstep::storage_len(n), [0.0; BATCH]);
         let sweeps = lockstep_run(LockstepRun {
             dims,
             h: &mut h,
@@ -317,11 +326,19 @@ fn lockstep_run(run: LockstepRun<'_>) -> LaneResults {
         } = run;
         let n = dims.iter().copied().max().unwrap_or(0);
         lockstep::hessenberg(n, h, v, w);
-        for (lane, x) in hess.into_iter().enumerate() {
+        // Each lane's Hessenberg form, tile by tile (one pass over the
+        // storage).
+        let mut hess = hess;
+        for x in hess.iter_mut() {
             x.clear();
-            x.extend(h[..n * n].iter().map(|e| e[lane]));
+            x.reserve(n * n);
         }
-        lockstep::hqr(dims, n, h, wr, wi)
+        for tile in h[..n * n].chunks(64) {
+            for (lane, x) in hess.iter_mut().enumerate() {
+                x.extend(tile.iter().map(|e| e[lane]));
+            }
+        }
+        lockstep::hqr(dims, n, h, v, wr, wi)
     }
     #[cfg(target_arch = "x86_64")]
     {

@@ -173,13 +173,15 @@ enum Values {
 }
 
 impl Values {
-    fn new(col: Col) -> Values {
+    /// Empty values of a `col` column, with room for `rows` rows (the
+    /// labels, errors and booleans grow as needed).
+    fn with_rows(col: Col, rows: usize) -> Values {
         match col {
-            Col::Id => Values::U64(Vec::new()),
-            Col::Valence => Values::U32(Vec::new()),
-            Col::Float => Values::F64(Vec::new(), Vec::new()),
-            Col::Label | Col::Error => Values::Str(Vec::new(), Vec::new()),
-            Col::Bool => Values::Bool(Vec::new(), Vec::new()),
+            Col::Id => Values::U64(Vec::with_capacity(rows)),
+            Col::Valence => Values::U32(Vec::with_capacity(rows)),
+            Col::Float => Values::F64(Vec::with_capacity(rows), Vec::with_capacity(rows)),
+            Col::Label | Col::Error => Values::Str(Vec::new(), Vec::with_capacity(rows)),
+            Col::Bool => Values::Bool(Vec::new(), Vec::with_capacity(rows)),
         }
     }
 
@@ -357,16 +359,7 @@ impl TypedBlock {
 impl super::run::RowBlock for TypedBlock {
     fn with_rows(layout: &Layout, rows: usize) -> Self {
         let cols = columns_of(layout);
-        let values = cols
-            .iter()
-            .map(|c| match c {
-                Col::Id => Values::U64(Vec::with_capacity(rows)),
-                Col::Valence => Values::U32(Vec::with_capacity(rows)),
-                Col::Float => Values::F64(Vec::with_capacity(rows), Vec::with_capacity(rows)),
-                Col::Label | Col::Error => Values::Str(Vec::new(), Vec::with_capacity(rows)),
-                Col::Bool => Values::Bool(Vec::new(), Vec::with_capacity(rows)),
-            })
-            .collect();
+        let values = cols.iter().map(|&c| Values::with_rows(c, rows)).collect();
         TypedBlock {
             values,
             col: 0,
@@ -444,6 +437,16 @@ impl super::run::RowBlock for TypedBlock {
         }
     }
 
+    fn clear(&mut self) {
+        for v in &mut self.values {
+            v.clear();
+        }
+        self.col = 0;
+        self.rows = 0;
+        self.id = 0;
+        self.fault = None;
+    }
+
     fn end(&mut self, error: Option<&str>) {
         let k = self.col;
         if let Values::Str(v, d) = &mut self.values[k] {
@@ -491,6 +494,10 @@ pub struct ParquetRows<F> {
     /// End of the last committed group (the file's length without its footer).
     data_end: u64,
     pending: Vec<u8>,
+    /// The in-memory one-group file of the group being committed, reused
+    /// group after group (so that a sweep does not touch fresh memory for
+    /// every group).
+    encoded: Vec<u8>,
     commit: F,
     number: String,
     digits: zmij::Buffer,
@@ -521,7 +528,11 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
         let schema_json = serde_json::to_string(layout.column_docs())
             .map_err(|e| SweepError::Io(e.to_string()))?;
         Ok(ParquetRows {
-            values: cols.iter().map(|c| Values::new(*c)).collect(),
+            values: cols
+                .iter()
+                .map(|c| Values::with_rows(*c, ROW_GROUP_ROWS))
+                .collect(),
+            encoded: Vec::new(),
             names: layout.column_names(),
             schema: schema_of(layout)?,
             props: properties(layout),
@@ -629,7 +640,9 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
 
     /// Encodes the open group, moves it to its place and commits it.
     fn commit_group(&mut self) -> Result<(), SweepError> {
-        let (bytes, meta) = encode_group(&self.schema, &self.props, &self.values)?;
+        let mut encoded = std::mem::take(&mut self.encoded);
+        let (end, meta) = encode_group(&self.schema, &self.props, &self.values, &mut encoded)?;
+        let bytes = &encoded[MAGIC.len()..end];
         let shift = self.data_end as i64 - MAGIC.len() as i64;
         let meta = move_group(&meta, shift, self.groups.len())?;
         let meta = as_read_back(&self.schema, &self.props, meta)?;
@@ -639,11 +652,12 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
         let offset = self.data_end;
         (self.commit)(Commit {
             offset,
-            group: &bytes,
+            group: bytes,
             footer: &footer,
             rows,
         })?;
         self.data_end += bytes.len() as u64;
+        self.encoded = encoded;
         for v in &mut self.values {
             v.clear();
         }
@@ -701,16 +715,19 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> std::io::Write for ParquetRows
     }
 }
 
-/// One group as a one-group Parquet file in memory: its bytes after `PAR1`
-/// up to its footer, and its metadata (offsets within that file).
+/// One group as a one-group Parquet file in memory, written into `buf`
+/// (cleared first; its storage is reused): the end of the group's bytes
+/// (they are `buf[MAGIC.len()..end]`, the footer follows) and its metadata
+/// (offsets within that file).
 fn encode_group(
     schema: &TypePtr,
     props: &Arc<WriterProperties>,
     values: &[Values],
-) -> Result<(Vec<u8>, RowGroupMetaData), SweepError> {
-    let mut buf: Vec<u8> = Vec::new();
+    buf: &mut Vec<u8>,
+) -> Result<(usize, RowGroupMetaData), SweepError> {
+    buf.clear();
     let mut w =
-        SerializedFileWriter::new(&mut buf, schema.clone(), props.clone()).map_err(pq_err)?;
+        SerializedFileWriter::new(&mut *buf, schema.clone(), props.clone()).map_err(pq_err)?;
     let mut rg = w.next_row_group().map_err(pq_err)?;
     for v in values {
         let Some(mut c) = rg.next_column().map_err(pq_err)? else {
@@ -730,7 +747,7 @@ fn encode_group(
     let end = w.bytes_written();
     w.close().map_err(pq_err)?;
     let meta = (*meta).clone();
-    Ok((buf[MAGIC.len()..end].to_vec(), meta))
+    Ok((end, meta))
 }
 
 /// `meta` with every byte offset moved by `shift` and ordinal `ordinal`.

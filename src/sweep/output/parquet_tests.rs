@@ -159,6 +159,41 @@ fn typed_parquet_path_equals_the_csv_text_path() {
     assert_eq!(typed.2, text.2);
 }
 
+/// The driver recycles its row blocks from the third chunk on: over many
+/// chunks, both paths write the bytes of the per-row CSV text
+/// (`Layout::row` + `format_into`, no row blocks) fed to `ParquetRows`.
+#[test]
+fn recycled_row_blocks_write_the_rows_of_the_per_row_path() {
+    use std::io::Write;
+    let spec = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = 18000\n[columns]\neigenvalues = 2\n";
+    let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+    let layout = Layout::new(&plan);
+    let eval = SpectralEvaluator::new(plan.spec().columns);
+    let ids: Vec<u64> = (0..plan.total()).collect();
+    assert!(ids.len() > 4 * super::CHUNK);
+    let mut text = String::new();
+    for &id in &ids {
+        let r = layout.row(&plan, &eval, id);
+        layout.format_into(&r, &mut text);
+    }
+    let mut want = MAGIC.to_vec();
+    let commit = |c: Commit<'_>| {
+        want.truncate(c.offset as usize);
+        want.extend_from_slice(c.group);
+        want.extend_from_slice(c.footer);
+        Ok(())
+    };
+    let fp = super::fingerprint_line(&plan, Shard::ALL);
+    let mut rows = ParquetRows::new(&layout, &fp, Vec::new(), 4, commit).unwrap();
+    rows.write_all(text.as_bytes()).unwrap();
+    rows.finish().unwrap();
+    for threads in [1, 2] {
+        let (typed, csv) = both_paths(&plan, &layout, &eval, &ids, threads);
+        assert!(typed.0 == want, "typed path, {threads} threads");
+        assert!(csv.0 == want, "CSV path, {threads} threads");
+    }
+}
+
 /// A cell that does not fit its column is refused by both paths; the
 /// typed path names the configuration, the column and the value.
 #[test]

@@ -123,6 +123,9 @@ pub(crate) trait RowBlock: Send {
     fn text(&mut self, t: &str);
     /// Ends the row with its `error` cell.
     fn end(&mut self, error: Option<&str>);
+    /// Empties the block for reuse (its storage is kept): the driver recycles
+    /// the blocks of written chunks, so that a task does not allocate.
+    fn clear(&mut self);
 }
 
 /// The CSV lines of a task (the sweep's CSV text, byte for byte that of
@@ -173,6 +176,9 @@ impl RowBlock for CsvBlock {
             push_text(&mut self.text, e);
         }
         self.text.push('\n');
+    }
+    fn clear(&mut self) {
+        self.text.clear();
     }
 }
 
@@ -441,6 +447,74 @@ where
     )
 }
 
+/// No rows: the cells are dropped as they come (the driver of
+/// [`run_discard`]).
+struct NullBlock;
+
+impl RowBlock for NullBlock {
+    fn with_rows(_: &Layout, _: usize) -> Self {
+        NullBlock
+    }
+    fn start(&mut self, _: u64, _: usize) {}
+    fn empty(&mut self) {}
+    fn num(&mut self, _: f64) {}
+    fn text(&mut self, _: &str) {}
+    fn end(&mut self, _: Option<&str>) {}
+    fn clear(&mut self) {}
+}
+
+impl BlockWriter<NullBlock> for () {
+    fn write_block(&mut self, _: &NullBlock) -> Result<(), SweepError> {
+        Ok(())
+    }
+    fn flush(&mut self) -> Result<(), SweepError> {
+        Ok(())
+    }
+}
+
+/// [`run`] without output: the configurations `ids` are enumerated, evaluated
+/// and added to `summary` exactly as by [`run`], but no row is formed (no CSV
+/// text, no Parquet buffers). It is the "evaluation alone" against which the
+/// cost of the output formats is measured (`benches/sweep_formats.rs`);
+/// returns the number of configurations.
+///
+/// ```
+/// use subdiv_lab::sweep::{output, Layout, Plan, Shard, SpectralEvaluator, Summary, SweepSpec};
+/// let spec = SweepSpec::from_toml(
+///     "name = \"d\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\n\
+///      ratio_range = [0.1, 0.9]\n[sampler]\nkind = \"halton\"\ncount = 10\n",
+/// )
+/// .unwrap();
+/// let plan = Plan::new(spec);
+/// let layout = Layout::new(&plan);
+/// let eval = SpectralEvaluator::new(plan.spec().columns);
+/// let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+/// let rows = output::run_discard(&plan, &layout, &eval, 0..plan.total(), &mut summary).unwrap();
+/// assert_eq!(rows, 10);
+/// ```
+pub fn run_discard<E, I>(
+    plan: &Plan,
+    layout: &Layout,
+    eval: &E,
+    ids: I,
+    summary: &mut Summary,
+) -> Result<u64, SweepError>
+where
+    E: Evaluate + ?Sized,
+    I: IntoIterator<Item = u64>,
+{
+    drive::<E, NullBlock, _, I>(
+        plan,
+        layout,
+        eval,
+        ids,
+        &mut (),
+        summary,
+        &mut |_| {},
+        &std::sync::atomic::AtomicU64::new(0),
+    )
+}
+
 /// The driver behind [`run_counting`] and [`run_parquet`](super::parquet::run_parquet): chunks evaluated
 /// on the pool into blocks `B`, written in order by `out` while the next
 /// chunk is evaluated.
@@ -468,6 +542,8 @@ where
     let mut written = 0u64;
     // Rows evaluated but not yet written: (block, partial summary) per task.
     let mut pending: Vec<(B, PartialSummary)> = Vec::new();
+    // Blocks written, for reuse by the next tasks.
+    let spare: std::sync::Mutex<Vec<B>> = std::sync::Mutex::new(Vec::new());
     let mut next: Vec<u64> = Vec::with_capacity(chunk_len);
     loop {
         next.clear();
@@ -481,8 +557,18 @@ where
             if !next.is_empty() {
                 let chunk = &next;
                 let slot = &mut fresh;
+                let spare = &spare;
                 scope.spawn(move |_| {
-                    *slot = evaluate_chunk(plan, layout, eval, chunk, threads, numeric, evaluated);
+                    let work = Work {
+                        plan,
+                        layout,
+                        eval,
+                        threads,
+                        numeric,
+                        evaluated,
+                        spare,
+                    };
+                    *slot = evaluate_chunk(&work, chunk);
                 });
             }
             // Meanwhile, on this thread: write the previous chunk in order.
@@ -504,7 +590,13 @@ where
             written += rows;
             progress(written);
         }
-        pending = fresh;
+        let done = std::mem::replace(&mut pending, fresh);
+        if let Ok(mut s) = spare.lock() {
+            s.extend(done.into_iter().map(|(mut b, _)| {
+                b.clear();
+                b
+            }));
+        }
     }
     Ok(written)
 }
@@ -516,23 +608,41 @@ fn chunk_len(layout: &Layout) -> usize {
     ((8 << 20) / row_bytes).clamp(SUB_CHUNK, CHUNK)
 }
 
-/// Evaluates one chunk on the current pool: tasks of consecutive
-/// configurations, each appending its rows to one block and keeping a
-/// partial summary, returned in order.
-fn evaluate_chunk<E: Evaluate + ?Sized, B: RowBlock>(
-    plan: &Plan,
-    layout: &Layout,
-    eval: &E,
-    chunk: &[u64],
+/// What the tasks of [`evaluate_chunk`] share: the sweep, the pool's thread
+/// count, the number of numeric columns, the count of evaluated
+/// configurations and the written blocks for reuse.
+struct Work<'a, E: ?Sized, B> {
+    plan: &'a Plan,
+    layout: &'a Layout,
+    eval: &'a E,
     threads: usize,
     numeric: usize,
-    evaluated: &std::sync::atomic::AtomicU64,
+    evaluated: &'a std::sync::atomic::AtomicU64,
+    spare: &'a std::sync::Mutex<Vec<B>>,
+}
+
+/// Evaluates one chunk on the current pool: tasks of consecutive
+/// configurations, each appending its rows to one block (a spare one when
+/// there is one) and keeping a partial summary, returned in order.
+fn evaluate_chunk<E: Evaluate + ?Sized, B: RowBlock>(
+    work: &Work<'_, E, B>,
+    chunk: &[u64],
 ) -> Vec<(B, PartialSummary)> {
+    let Work {
+        plan,
+        layout,
+        eval,
+        threads,
+        numeric,
+        evaluated,
+        spare,
+    } = *work;
     let sub = (chunk.len() / (8 * threads)).clamp(1, SUB_CHUNK);
     chunk
         .par_chunks(sub)
         .map(|ids| {
-            let mut block = B::with_rows(layout, ids.len());
+            let reused = spare.lock().ok().and_then(|mut s| s.pop());
+            let mut block = reused.unwrap_or_else(|| B::with_rows(layout, ids.len()));
             let mut part = PartialSummary::new(numeric);
             let mut scratch = Scratch::new();
             let mut batches = ids.chunks_exact(BATCH);
@@ -656,6 +766,13 @@ pub(super) mod tests {
             assert!(calls.windows(2).all(|w| w[0] < w[1]));
             assert_eq!(String::from_utf8(out).unwrap(), want);
             assert_eq!(summary, want_summary);
+            // Evaluation alone: the same summary, no rows.
+            let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+            let n = pool
+                .install(|| run_discard(&plan, &layout, &eval, ids.iter().copied(), &mut summary))
+                .unwrap();
+            assert_eq!(n, ids.len() as u64);
+            assert_eq!(summary, want_summary);
         }
     }
 
@@ -681,6 +798,13 @@ pub(super) mod tests {
         assert_fast_path_matches(
             "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"face-ep\"\ninterval_range = [0.01, 100.0]\n[sampler]\nkind = \"halton\"\ncount = 120\n",
             |p: &Plan| Faulty(SpectralEvaluator::new(p.spec().columns)),
+        );
+        // Five chunks: from the third on, the driver writes into recycled
+        // row blocks.
+        const { assert!(5 * CHUNK > 18_000 && 4 * CHUNK < 18_000) };
+        assert_fast_path_matches(
+            "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = 18000\n",
+            spectral,
         );
     }
 }

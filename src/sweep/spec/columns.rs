@@ -6,11 +6,14 @@ use crate::schemes::SchemeKind;
 use crate::sweep::SweepError;
 
 /// Parses and validates `[columns]` (the exact certificate needs a scheme of
-/// the Doo-Sabin family).
+/// the Doo-Sabin family, and for original Doo-Sabin a valence whose weights
+/// are rational: `cos(2 pi / n)` rational, `n` in {3, 4, 6}; other valences
+/// used to turn every row into an error row, losing its float columns).
 pub(super) fn columns(
     ctx: &Ctx,
     c: &RawColumns,
     scheme: SchemeKind,
+    valences: &[usize],
 ) -> Result<Columns, SweepError> {
     let mut columns = Columns::default();
     if let Some(k) = &c.eigenvalues {
@@ -36,6 +39,15 @@ pub(super) fn columns(
             None,
             format!("columns.exact_certificate: the exact certificate is a face-block method of the Doo-Sabin family; scheme {scheme} has none"),
         );
+    }
+    if columns.exact_certificate && scheme == SchemeKind::DooSabin {
+        if let Some(n) = valences.iter().find(|n| !matches!(n, 3 | 4 | 6)) {
+            return ctx.err(
+                "columns.exact_certificate",
+                None,
+                format!("columns.exact_certificate: original Doo-Sabin weights are irrational at valence {n} (exact arithmetic supports n = 3, 4, 6); sweep those valences without the exact certificate"),
+            );
+        }
     }
 
     Ok(columns)

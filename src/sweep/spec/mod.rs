@@ -322,7 +322,7 @@ impl SweepSpec {
         let fixed = space::fixed(&ctx, &raw.space, kind, min_valence)?;
         let space = Space { kind, range, fixed };
         let sampler = sampler::sampler(&ctx, &raw.sampler)?;
-        let columns = columns::columns(&ctx, &raw.columns, scheme)?;
+        let columns = columns::columns(&ctx, &raw.columns, scheme, &valences)?;
         let spec = SweepSpec {
             name: raw.name.unwrap_or_else(|| "sweep".to_owned()),
             scheme,

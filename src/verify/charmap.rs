@@ -1,0 +1,104 @@
+//! The `charmap` property over a cell: the characteristic map is regular and
+//! injective for *every* parameter of the cell (issue 20; math doc section
+//! 15, "The characteristic map over a cell").
+//!
+//! The pointwise certificates of math doc section 7 ([`crate::charmap`]) are
+//! carried over to a cell by enclosing the planar control net of the
+//! characteristic ring for all parameters at once and running the same
+//! geometric tests on boxes:
+//!
+//! * the adjustable Catmull-Clark scheme over an interval of `c`
+//!   ([`shape`]): the Fourier-mode eigenvector in closed form and one 7 x 7
+//!   interval solve, the cone test on the rule's differences, refined with
+//!   the interval rule;
+//! * NURDS over a box of ratios ([`ratios`]): the subdominant invariant
+//!   subspace of the affine matrix `W(r) = (I + R(r))/4` by Stewart's
+//!   contraction argument around the centre (a ball `||P||_F <= rho` that
+//!   holds for every `r`), the lift to `S_n` by interval solves, the Bezier
+//!   Jacobian coefficients as intervals.
+//!
+//! Injectivity: the winding number of the outer boundary, decided for every
+//! admissible curve by ray crossings with certain signs ([`winding`]).
+//!
+//! The property is only attempted when the cell's class is certified with
+//! a characteristic map (`standard`, `real_distinct` or `complex_pair`); it
+//! is `refuted` when the class is certified `not_separated` (no map exists
+//! anywhere in the cell), and otherwise `undecided` when a test fails: the
+//! cell is then split like any open cell.
+
+// Index loops over small fixed-size matrices read more clearly than iterator chains here.
+#![allow(clippy::needless_range_loop)]
+
+pub mod af;
+pub mod ivla;
+pub mod ratios;
+pub mod shape;
+pub mod winding;
+
+#[cfg(test)]
+mod tests;
+
+use super::decide::Status;
+use super::spec::Region;
+use crate::spectral::ClassName;
+
+/// How the cell certificate may be weakened on purpose, to show that the
+/// soundness tests catch an unsound enclosure. Never set by the CLI.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CellTamper {
+    /// The sound certificate.
+    #[default]
+    None,
+    /// Drop the variation of the invariant subspace over the cell: NURDS
+    /// takes `rho = 0` (the centre's basis for every `r`), the `c` path
+    /// evaluates the eigenvector at the cell's midpoint only.
+    DropSubspaceVariation,
+}
+
+/// The status of the `charmap` property on the cell `[lo, hi]` of `region`
+/// whose certified class is `class` (`None`: not certified), and, for
+/// NURDS, each ratio's share of the enclosure's uncertainty (for the split
+/// rule only).
+///
+/// ```
+/// use subdiv_lab::spectral::ClassName;
+/// use subdiv_lab::verify::charmap::{cell_status, CellTamper};
+/// use subdiv_lab::verify::decide::Status;
+/// use subdiv_lab::verify::spec::Region;
+/// let region = Region::Shape { valence: 5, lo: 0.4, hi: 0.6 };
+/// let (s, _) = cell_status(&region, Some(ClassName::Standard), &[0.45], &[0.46], CellTamper::None);
+/// assert_eq!(s, Status::Certified);
+/// ```
+pub fn cell_status(
+    region: &Region,
+    class: Option<ClassName>,
+    lo: &[f64],
+    hi: &[f64],
+    tamper: CellTamper,
+) -> (Status, Option<Vec<f64>>) {
+    match class {
+        Some(ClassName::NotSeparated) => return (Status::Refuted, None),
+        Some(ClassName::Standard | ClassName::RealDistinct | ClassName::ComplexPair) => {}
+        _ => return (Status::Undecided, None),
+    }
+    let ok = |b: bool| {
+        if b {
+            Status::Certified
+        } else {
+            Status::Undecided
+        }
+    };
+    match region {
+        Region::Shape { valence, .. } => {
+            if class != Some(ClassName::Standard) || lo.len() != 1 || hi.len() != 1 {
+                return (Status::Undecided, None);
+            }
+            (ok(shape::certified(*valence, lo[0], hi[0], tamper)), None)
+        }
+        Region::Ratios { .. } | Region::Corners { .. } => {
+            let (b, scores) = ratios::certified(lo, hi, tamper);
+            (ok(b), scores)
+        }
+    }
+}

@@ -1,0 +1,964 @@
+//! The characteristic map of NURDS over a box of edge ratios (math doc
+//! sections 4, 7 and 15 **\[derived\]**).
+//!
+//! **The invariant subspace without the face weights.** The face block is
+//! `A = (I + R)/4 + 1 c^T / 4` with the face weights `c` (rational in `r`).
+//! `W = (I + R)/4` is affine in `r` with entries that are multiples of `1/4`,
+//! `W 1 = (3/4) 1` and `c^T W = (3/4) c^T`, so `c^perp` is `W`-invariant and
+//! `A = W` on it: `spec(W) = {3/4} U (spec(A) \ {1})`, and the invariant
+//! subspace of the subdominant pair is the same for `A` and `W`.
+//!
+//! **Subspace over the cell (Stewart's argument).** At the centre `r0` the
+//! numerical eigenvectors of `W(r0)` give a real basis
+//! `Q = [q_1 q_2 | 1 | rest]` (the pair, the exact eigenvector `1` of `3/4`,
+//! the others; complex pairs as real and imaginary parts) and an interval
+//! `Y` containing `Q^{-1}` ([`super::ivla::verified_inverse`]). For every `r`
+//! in the cell `T(r) = Q^{-1} W(r) Q` lies in `Y W(r0) Q + sum_k [-h_k, h_k]
+//! |Y W_k Q|`. Split `T` after the first two indices into
+//! `T11, T12, T21, T22`. With `delta` a lower bound of
+//! `sep_F(T11, T22) = sigma_min(T11^T ⊗ I - I ⊗ T22)` over the cell (a
+//! verified inverse of the Kronecker matrix at the interval midpoints, minus
+//! the Frobenius norms of the radii), `gamma >= ||T21||_F`,
+//! `eta >= ||T12||_F` and `4 gamma eta < delta^2`, the map
+//! `P -> L^{-1}(T21 - P T12 P)`, `L(P) = P T11 - T22 P`, is a contraction of
+//! the ball `||P||_F <= rho = 2 gamma / delta` into itself; its fixed point
+//! `P(r)` makes `range(Q [I; P])` invariant with restriction
+//! `N = T11 + T12 P`, and it depends continuously on `r`.
+//!
+//! **It is the subdominant pair.** `T` is similar to
+//! `[[N, T12], [0, T22 - P T12]]`. The column of `T` belonging to `1` is
+//! exactly `(3/4) e` (so that column of `T12` is zero), hence
+//! `spec(T22 - P T12) = {3/4} U spec(K')` with `K'` the rest. When every
+//! eigenvalue of `N` is larger in modulus than a bound of the spectral radius
+//! of `K'` (block norms in the basis of the numerical eigenvectors), the
+//! eigenvalues of `N` are the two largest of `spec(A) \ {1}`: the subdominant
+//! pair (the cell's class, certified separately, says which kind).
+//!
+//! **The ring.** `B = Q [I; P]` (entries within `rho ||Q_{a, rest}||_2` of
+//! `Q`'s first two columns) is lifted to `S_n` by the block equations of
+//! [`crate::charmap::basis`] (a 4 x 4 Sylvester system per edge and a 2 x 2
+//! system per corner, solved as interval systems); the first `4n` ring points
+//! are `w_k N` (`S_n w = w N`), the other `5n` the rows of the E- and V-face
+//! blocks (the E-face weights `(r/2, s/2, s/2, r/2)`, `s = 1 - r`, make them
+//! affine in `r`). The `3n` biquadratic Bezier nets use the spans' exact
+//! conversion weights (`1/2`, `r`, `s`); the Jacobian's Bezier coefficients
+//! (bidegree (3, 3), scaled by the binomial denominators) must have one sign
+//! for every parameter, else they are split by de Casteljau; the outer
+//! boundary's winding number must be 1 after orientation
+//! ([`super::winding`]). Regularity and injectivity do not depend on the
+//! basis of the plane, so `B` serves for every eigenstructure.
+
+use super::af::{self, Af};
+use super::ivla::{mid, norm2_upper, verified_inverse, P2};
+use super::winding::{winding_number, BoxCurve};
+use super::CellTamper;
+use crate::charmap::ring::{patch_grid, PatchKind, RingPatchId};
+use crate::schemes::doo_sabin::Layout;
+use crate::spectral::eigen::{Eigen, EigenOptions};
+use crate::verify::interval::{down, up, Iv};
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+
+/// Most de Casteljau levels of the Jacobian per patch.
+pub const JACOBIAN_DEPTH: u32 = 5;
+
+/// Most Jacobian pieces examined per cell.
+pub const JACOBIAN_PIECES: usize = 4_000;
+
+/// Relative size below which an eigenvalue's imaginary part counts as zero
+/// when the numerical basis `Q` is built (any choice gives a valid basis:
+/// the verified inverse and the bounds make the result rigorous; a bad
+/// choice only makes the cell undecided).
+pub const REAL_TOL: f64 = 1e-9;
+
+/// The enclosure of the characteristic ring over a box of ratios.
+#[derive(Clone, Debug)]
+pub struct RatioRing {
+    /// The centre basis `Q = [q_1 q_2 | 1 | rest]` (`n x n`).
+    pub q: DMatrix<f64>,
+    /// `||P||_F <= rho` for the exact basis `Q [I; P(r)]`.
+    pub rho: f64,
+    /// The restriction `N = T11 + T12 P` (row-major 2 x 2).
+    pub restriction: [Iv; 4],
+    /// The lifted basis (`4n` rows in the order of `S_n`, two columns).
+    pub basis: Vec<P2>,
+    /// The `9n` ring points in the order of the extended matrix (ranges).
+    pub points: Vec<P2>,
+    /// The same as affine forms (symbols: the ratios, then the entries of `P`).
+    pub forms: Vec<[Af; 2]>,
+    /// Per ratio: its share of the subspace variation (for the split rule).
+    pub scores: Vec<f64>,
+    /// The cell's centre `r0` (the ratio `k` is `r0_k + h_k eps_k`).
+    pub centre: Vec<f64>,
+    /// The half-widths `h` (rounded up).
+    pub half_width: Vec<f64>,
+}
+
+/// Sparse matrix entries `(row, col, value)`.
+type Sparse = Vec<(usize, usize, f64)>;
+
+/// `W(r) = W_0 + sum_k r_k W_k` as sparse terms: `(W_0, [W_k])`.
+fn w_terms(n: usize) -> (Sparse, Vec<Sparse>) {
+    let mut c0 = Vec::new();
+    let mut terms = vec![Vec::new(); n];
+    for i in 0..n {
+        let ip = (i + 1) % n;
+        c0.push((i, i, 0.5));
+        c0.push((i, ip, 0.25));
+        // W[i][i] += r_i/4, W[ip][ip] -= r_i/4, W[ip][i] += r_i/4, W[i][ip] -= r_i/4
+        terms[i].push((i, i, 0.25));
+        terms[i].push((ip, ip, -0.25));
+        terms[i].push((ip, i, 0.25));
+        terms[i].push((i, ip, -0.25));
+    }
+    (c0, terms)
+}
+
+/// A real basis of the numerical eigenvectors of `W(r0)`: the pair, `1`,
+/// the rest, and the sizes of the rest's blocks (1 real, 2 complex pair).
+fn centre_basis(w: &DMatrix<f64>) -> Option<(DMatrix<f64>, Vec<usize>)> {
+    let n = w.nrows();
+    let eig = Eigen::new(
+        w,
+        EigenOptions {
+            right: true,
+            left: false,
+        },
+    )
+    .ok()?;
+    let vals = eig.values();
+    let vecs = eig.right()?;
+    // the eigenvalue 3/4 (eigenvector 1) is the one nearest 3/4
+    let k34 =
+        (0..n).min_by(|&a, &b| (vals[a] - 0.75).norm().total_cmp(&(vals[b] - 0.75).norm()))?;
+    let order: Vec<usize> = (0..n).filter(|&k| k != k34).collect();
+    let is_real = |z: Complex64| z.im.abs() <= REAL_TOL * z.norm().max(1.0);
+    let col = |k: usize| -> Vec<Complex64> { (0..n).map(|i| vecs[(i, k)]).collect() };
+    // a real eigenvector: remove the phase of the largest entry
+    let real_vec = |k: usize| -> Vec<f64> {
+        let v = col(k);
+        let big = v
+            .iter()
+            .copied()
+            .max_by(|a, b| a.norm().total_cmp(&b.norm()))
+            .unwrap_or(Complex64::new(1.0, 0.0));
+        let ph = if big.norm() > 0.0 {
+            big.conj() / big.norm()
+        } else {
+            Complex64::new(1.0, 0.0)
+        };
+        v.iter().map(|z| (z * ph).re).collect()
+    };
+    let mut cols: Vec<Vec<f64>> = Vec::with_capacity(n);
+    let mut blocks = Vec::new();
+    let mut used = vec![false; n];
+    // the pair: the first two of `order` (largest moduli after 3/4)
+    let (a, b) = (*order.first()?, *order.get(1)?);
+    if is_real(vals[a]) && is_real(vals[b]) {
+        cols.push(real_vec(a));
+        cols.push(real_vec(b));
+    } else if !is_real(vals[a]) && (vals[a] - vals[b].conj()).norm() <= 1e-6 * vals[a].norm() {
+        let v = col(a);
+        cols.push(v.iter().map(|z| z.re).collect());
+        cols.push(v.iter().map(|z| z.im).collect());
+    } else {
+        return None;
+    }
+    used[a] = true;
+    used[b] = true;
+    used[k34] = true;
+    cols.push(vec![1.0; n]);
+    for &k in &order {
+        if used[k] {
+            continue;
+        }
+        used[k] = true;
+        if is_real(vals[k]) {
+            cols.push(real_vec(k));
+            blocks.push(1);
+        } else {
+            // its conjugate partner
+            let partner = order
+                .iter()
+                .copied()
+                .filter(|&j| !used[j])
+                .min_by(|&x, &y| {
+                    (vals[x] - vals[k].conj())
+                        .norm()
+                        .total_cmp(&(vals[y] - vals[k].conj()).norm())
+                })?;
+            used[partner] = true;
+            let v = col(k);
+            cols.push(v.iter().map(|z| z.re).collect());
+            cols.push(v.iter().map(|z| z.im).collect());
+            blocks.push(2);
+        }
+    }
+    // unit columns (except the exact 1)
+    let mut q = DMatrix::zeros(n, n);
+    for (j, c) in cols.iter().enumerate() {
+        let s = if j == 2 {
+            1.0
+        } else {
+            let nrm = c.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if !(nrm > 0.0) {
+                return None;
+            }
+            nrm
+        };
+        for i in 0..n {
+            q[(i, j)] = if j == 2 { c[i] } else { c[i] / s };
+        }
+    }
+    Some((q, blocks))
+}
+
+/// Upper bound of the spectral radius of every matrix in the interval
+/// matrix `k` (`m x m`, row-major), block diagonal up to the off-block part
+/// with the given block sizes: `max_b ||K_bb||_2 + ||off-block part||_F`.
+fn spectral_radius_upper(k: &[Iv], m: usize, blocks: &[usize]) -> f64 {
+    let mut start = Vec::with_capacity(blocks.len());
+    let mut s = 0;
+    for &b in blocks {
+        start.push(s);
+        s += b;
+    }
+    if s != m {
+        return f64::INFINITY;
+    }
+    let block_of = |i: usize| start.iter().rposition(|&b0| b0 <= i).unwrap_or(0);
+    let mut worst = 0.0f64;
+    for (bi, &b) in blocks.iter().enumerate() {
+        let o = start[bi];
+        let e = |i: usize, j: usize| k[(o + i) * m + o + j];
+        let nb = if b == 1 {
+            e(0, 0).mag()
+        } else {
+            // ||B||_2^2 = (f + sqrt(f^2 - 4 det^2)) / 2, f = ||B||_F^2:
+            // increasing in f, decreasing in |det|
+            let f = norm2_upper([e(0, 0).mag(), e(0, 1).mag(), e(1, 0).mag(), e(1, 1).mag()]);
+            let f2 = up(f * f);
+            let det = e(0, 0).mul(e(1, 1)).sub(e(0, 1).mul(e(1, 0)));
+            let dl = if det.lo > 0.0 {
+                det.lo
+            } else if det.hi < 0.0 {
+                -det.hi
+            } else {
+                0.0
+            };
+            let inner = up(f2 * f2 - down(4.0 * down(dl * dl))).max(0.0);
+            up(up(up(f2 + up(inner.sqrt())) * 0.5).sqrt())
+        };
+        worst = worst.max(nb);
+    }
+    let mut off = Vec::new();
+    for i in 0..m {
+        for j in 0..m {
+            if block_of(i) != block_of(j) {
+                off.push(k[i * m + j].mag());
+            }
+        }
+    }
+    up(worst + norm2_upper(off))
+}
+
+/// Lower bound of the smallest eigenvalue modulus of every matrix in the
+/// interval 2 x 2 matrix `a` (row-major).
+fn min_modulus_2x2(a: &[Iv; 4]) -> f64 {
+    let t = a[0].add(a[3]);
+    let d = a[0].mul(a[3]).sub(a[1].mul(a[2]));
+    let h = t.mul(Iv::point(0.5));
+    let disc = h.mul(h).sub(d);
+    if disc.hi < 0.0 && d.lo > 0.0 {
+        // a complex pair of modulus sqrt(d)
+        return down(d.lo.sqrt());
+    }
+    let dl = if d.lo > 0.0 {
+        d.lo
+    } else if d.hi < 0.0 {
+        -d.hi
+    } else {
+        return 0.0;
+    };
+    // |l1 l2| = |d| and max |l| <= |t|/2 + sqrt(|disc|)
+    let big = up(h.mag() + up(disc.mag().sqrt()));
+    down(dl / big)
+}
+
+/// The enclosure of the ring over the ratio box `[lo, hi]` (module docs),
+/// or `None` when a step fails. With
+/// [`CellTamper::DropSubspaceVariation`] the basis is taken as `Q`'s first
+/// two columns for the whole cell (`rho = 0`, deliberately unsound).
+pub fn ratio_ring(lo: &[f64], hi: &[f64], tamper: CellTamper) -> Option<RatioRing> {
+    let n = lo.len();
+    if n < 3 || hi.len() != n {
+        return None;
+    }
+    let mut r0 = vec![0.0; n];
+    let mut h = vec![0.0; n];
+    for i in 0..n {
+        let m = 0.5 * lo[i] + 0.5 * hi[i];
+        r0[i] = m;
+        h[i] = Iv::point(hi[i])
+            .sub(Iv::point(m))
+            .hi
+            .max(Iv::point(m).sub(Iv::point(lo[i])).hi);
+    }
+    let (c0, terms) = w_terms(n);
+    let mut wc = vec![Iv::point(0.0); n * n];
+    for &(i, j, v) in &c0 {
+        wc[i * n + j] = wc[i * n + j].add(Iv::point(v));
+    }
+    for (k, t) in terms.iter().enumerate() {
+        for &(i, j, v) in t {
+            wc[i * n + j] = wc[i * n + j].add(Iv::point(v).mul(Iv::point(r0[k])));
+        }
+    }
+    let wf = DMatrix::from_fn(n, n, |i, j| mid(wc[i * n + j]));
+    let (q, blocks) = centre_basis(&wf)?;
+    let y = verified_inverse(&q)?;
+    let qi = |i: usize, j: usize| Iv::point(q[(i, j)]);
+    // M0 = Y (W(r0) Q)
+    let mut wq = vec![Iv::point(0.0); n * n];
+    for i in 0..n {
+        for j in 0..n {
+            let mut s = Iv::point(0.0);
+            for l in 0..n {
+                s = s.add(wc[i * n + l].mul(qi(l, j)));
+            }
+            wq[i * n + j] = s;
+        }
+    }
+    let ymul = |x: &[Iv]| -> Vec<Iv> {
+        let mut out = vec![Iv::point(0.0); n * n];
+        for i in 0..n {
+            for j in 0..n {
+                let mut s = Iv::point(0.0);
+                for l in 0..n {
+                    s = s.add(y[i * n + l].mul(x[l * n + j]));
+                }
+                out[i * n + j] = s;
+            }
+        }
+        out
+    };
+    let mut t = ymul(&wq);
+    let mut yterms: Vec<Vec<Iv>> = Vec::with_capacity(n);
+    let mut g = vec![0.0f64; n * n];
+    let mut scores = vec![0.0f64; n];
+    for (k, tk) in terms.iter().enumerate() {
+        let mut wkq = vec![Iv::point(0.0); n * n];
+        for &(i, l, v) in tk {
+            for j in 0..n {
+                wkq[i * n + j] = wkq[i * n + j].add(Iv::point(v).mul(qi(l, j)));
+            }
+        }
+        let p = ymul(&wkq);
+        for (gi, pi) in g.iter_mut().zip(&p) {
+            let v = up(h[k] * pi.mag());
+            *gi = up(*gi + v);
+            scores[k] += v;
+        }
+        yterms.push(p);
+    }
+    let m0 = t.clone();
+    for (ti, gi) in t.iter_mut().zip(&g) {
+        *ti = ti.widen(*gi);
+    }
+    let m = n - 2;
+    let tb = |i: usize, j: usize| t[i * n + j];
+    // sep(T11, T22) over the cell
+    let tm = |i: usize, j: usize| mid(tb(i, j));
+    let tr = |i: usize, j: usize| tb(i, j).mid_rad().1;
+    let kk = DMatrix::from_fn(2 * m, 2 * m, |row, colm| {
+        let (i, j) = (row % m, row / m);
+        let (i2, j2) = (colm % m, colm / m);
+        let mut v = 0.0;
+        if i == i2 {
+            v += tm(j2, j);
+        }
+        if j == j2 {
+            v -= tm(2 + i, 2 + i2);
+        }
+        v
+    });
+    let kinv = verified_inverse(&kk)?;
+    let kinv_f = norm2_upper(kinv.iter().map(|x| x.mag()));
+    let sigma_lo = down(1.0 / kinv_f);
+    let r11 = norm2_upper((0..4).map(|t| tr(t / 2, t % 2)));
+    let r22 = norm2_upper((0..m * m).map(|t| tr(2 + t / m, 2 + t % m)));
+    let delta = down(sigma_lo - up(r11 + r22));
+    if !(delta > 0.0) {
+        return None;
+    }
+    let gamma = norm2_upper((0..2 * m).map(|t| tb(2 + t / 2, t % 2).mag()));
+    let eta = norm2_upper((0..2 * m).map(|t| tb(t / m, 2 + t % m).mag()));
+    if !(up(4.0 * up(gamma * eta)) < down(delta * delta)) {
+        return None;
+    }
+    let rho = if tamper == CellTamper::DropSubspaceVariation {
+        0.0
+    } else {
+        up(2.0 * gamma / delta)
+    };
+    // N = T11 + T12 P
+    let t12_row = |a: usize| norm2_upper((0..m).map(|k| tb(a, 2 + k).mag()));
+    let nb: [Iv; 4] = std::array::from_fn(|ab| {
+        let (a, b) = (ab / 2, ab % 2);
+        tb(a, b).widen(up(rho * t12_row(a)))
+    });
+    // the pair is the subdominant one: min |spec N| > spectral radius of K'
+    if m > 1 {
+        let mk = m - 1;
+        let t12_col = |j: usize| norm2_upper((0..2).map(|a| tb(a, 2 + j).mag()));
+        let kp: Vec<Iv> = (0..mk * mk)
+            .map(|ij| {
+                let (i, j) = (1 + ij / mk, 1 + ij % mk);
+                tb(2 + i, 2 + j).widen(up(rho * t12_col(j)))
+            })
+            .collect();
+        let rad = spectral_radius_upper(&kp, mk, &blocks);
+        if !(min_modulus_2x2(&nb) > rad) {
+            return None;
+        }
+    }
+    // affine forms: symbols 0..n the ratios, n + 2k + j the entries P_kj
+    let ns = n + 2 * m;
+    let t_af = |a: usize, b: usize| -> Af {
+        let (c, r) = m0[a * n + b].mid_rad();
+        let mut f = Af::constant(c, ns);
+        let mut e = r;
+        for (k, p) in yterms.iter().enumerate() {
+            let (pm, pr) = p[a * n + b].mid_rad();
+            let v = h[k] * pm;
+            f.l[k] = v;
+            e = up(up(e + up(h[k] * pr)) + up(up(v.abs() * f64::EPSILON) + f64::MIN_POSITIVE));
+        }
+        f.widen(e)
+    };
+    // P = P^ + D: P^ = L0^{-1}(T21(r)) (first order in the ratios, with
+    // L0(P) = P mid(T11) - mid(T22) P) and ||D||_F <= eps2 (second order)
+    let eps2 = up(up(up(up(r11 + r22) * gamma) / down(delta * sigma_lo))
+        + up(up(eta * up(rho * rho)) / delta));
+    let t21: Vec<Af> = (0..2 * m).map(|v| t_af(2 + v % m, v / m)).collect();
+    let pmat: Vec<Af> = (0..2 * m)
+        .map(|v| {
+            let (k, j) = (v % m, v / m);
+            if tamper == CellTamper::DropSubspaceVariation {
+                return Af::constant(0.0, ns);
+            }
+            let mut acc = Af::symbol(0.0, eps2, n + 2 * k + j, ns);
+            for (u, tu) in t21.iter().enumerate() {
+                acc = acc.add(&tu.mul_iv(kinv[v * 2 * m + u]));
+            }
+            acc
+        })
+        .collect();
+    let pk = |k: usize, j: usize| pmat[k + m * j].clone();
+    let nf: Vec<Af> = (0..4)
+        .map(|ab| {
+            let (a, b) = (ab / 2, ab % 2);
+            let mut acc = t_af(a, b);
+            for k in 0..m {
+                acc = acc.add(&t_af(a, 2 + k).mul(&pk(k, b)));
+            }
+            acc
+        })
+        .collect();
+    let lay = Layout::new(n);
+    let zero = Af::constant(0.0, ns);
+    let mut w: Vec<[Af; 2]> = vec![[zero.clone(), zero.clone()]; 4 * n];
+    for a in 0..n {
+        w[lay.p(a)] = std::array::from_fn(|b| {
+            let mut acc = Af::constant(q[(a, b)], ns);
+            for k in 0..m {
+                acc = acc.add(&pk(k, b).scale(q[(a, 2 + k)]));
+            }
+            acc
+        });
+    }
+    let ratio = |i: usize| Af::symbol(r0[i], h[i], i, ns);
+    let one = Af::constant(1.0, ns);
+    // E parts: B_i X - X N = -G_i [w_{P_i}; w_{P_{i+1}}]
+    for i in 0..n {
+        let r = ratio(i);
+        let bm = [
+            one.add(&r).scale(0.125),
+            one.sub(&r).scale(0.125),
+            r.scale(0.125),
+            Af::constant(2.0, ns).sub(&r).scale(0.125),
+        ];
+        let wp = [w[lay.p(i)].clone(), w[lay.p(i + 1)].clone()];
+        let mut rhs = vec![zero.clone(); 4];
+        for a in 0..2 {
+            for k in 0..2 {
+                let g = bm[2 * a].mul(&wp[0][k]).add(&bm[2 * a + 1].mul(&wp[1][k]));
+                rhs[a + 2 * k] = g.scale(-3.0);
+            }
+        }
+        let mut sys = vec![zero.clone(); 16];
+        for a in 0..2 {
+            for k in 0..2 {
+                let eq = a + 2 * k;
+                for c in 0..2 {
+                    sys[eq * 4 + c + 2 * k] = sys[eq * 4 + c + 2 * k].add(&bm[2 * a + c]);
+                }
+                for l in 0..2 {
+                    sys[eq * 4 + a + 2 * l] = sys[eq * 4 + a + 2 * l].sub(&nf[2 * l + k]);
+                }
+            }
+        }
+        let x = af::solve(&sys, &[rhs], 4)?.pop()?;
+        w[lay.e1(i)] = [x[0].clone(), x[2].clone()];
+        w[lay.e2(i)] = [x[1].clone(), x[3].clone()];
+    }
+    // C parts: X_c (N - I/16) = (9 w_{P_i} + 3 w_{E_i1} + 3 w_{E_{i-1,2}}) / 16
+    let ntm = [
+        nf[0].sub(&Af::constant(0.0625, ns)),
+        nf[2].clone(),
+        nf[1].clone(),
+        nf[3].sub(&Af::constant(0.0625, ns)),
+    ];
+    let rhs_c: Vec<Vec<Af>> = (0..n)
+        .map(|i| {
+            (0..2)
+                .map(|k| {
+                    w[lay.p(i)][k]
+                        .scale(9.0)
+                        .add(&w[lay.e1(i)][k].scale(3.0))
+                        .add(&w[lay.e2(i + n - 1)][k].scale(3.0))
+                        .scale(0.0625)
+                })
+                .collect()
+        })
+        .collect();
+    let xc = af::solve(&ntm, &rhs_c, 2)?;
+    for (i, x) in xc.into_iter().enumerate() {
+        w[lay.c(i)] = [x[0].clone(), x[1].clone()];
+    }
+    // the 9n ring points
+    let mut pts: Vec<[Af; 2]> = Vec::with_capacity(9 * n);
+    for wk in &w {
+        pts.push([
+            wk[0].mul(&nf[0]).add(&wk[1].mul(&nf[2])),
+            wk[0].mul(&nf[1]).add(&wk[1].mul(&nf[3])),
+        ]);
+    }
+    let comb = |terms: &[(Af, &[Af; 2])]| -> [Af; 2] {
+        std::array::from_fn(|k| {
+            let mut acc = zero.clone();
+            for (c, v) in terms {
+                acc = acc.add(&c.mul(&v[k]));
+            }
+            acc
+        })
+    };
+    for i in 0..n {
+        let r = ratio(i);
+        let s = one.sub(&r);
+        let (pi, pn, e1, e2) = (&w[lay.p(i)], &w[lay.p(i + 1)], &w[lay.e1(i)], &w[lay.e2(i)]);
+        // (E_i, E_i1)
+        pts.push(comb(&[
+            (one.add(&r).scale(0.125), pi),
+            (s.scale(0.125), pn),
+            (s.scale(0.375), e2),
+            (one.add(&r).scale(0.375), e1),
+        ]));
+        // (E_i, E_i2)
+        pts.push(comb(&[
+            (r.scale(0.125), pi),
+            (one.add(&s).scale(0.125), pn),
+            (one.add(&s).scale(0.375), e2),
+            (r.scale(0.375), e1),
+        ]));
+    }
+    let c9 = Af::constant(0.5625, ns);
+    let c3 = Af::constant(0.1875, ns);
+    let c1 = Af::constant(0.0625, ns);
+    for i in 0..n {
+        let (pi, e1, ci, e2p) = (
+            &w[lay.p(i)],
+            &w[lay.e1(i)],
+            &w[lay.c(i)],
+            &w[lay.e2(i + n - 1)],
+        );
+        pts.push(comb(&[
+            (c9.clone(), e1),
+            (c3.clone(), pi),
+            (c3.clone(), ci),
+            (c1.clone(), e2p),
+        ]));
+        pts.push(comb(&[
+            (c9.clone(), ci),
+            (c3.clone(), e1),
+            (c3.clone(), e2p),
+            (c1.clone(), pi),
+        ]));
+        pts.push(comb(&[
+            (c9.clone(), e2p),
+            (c3.clone(), ci),
+            (c3.clone(), pi),
+            (c1.clone(), e1),
+        ]));
+    }
+    let boxes =
+        |v: &[[Af; 2]]| -> Vec<P2> { v.iter().map(|p| [p[0].range(), p[1].range()]).collect() };
+    Some(RatioRing {
+        q,
+        rho,
+        restriction: std::array::from_fn(|k| nf[k].range()),
+        basis: boxes(&w),
+        points: boxes(&pts),
+        forms: pts,
+        scores,
+        centre: r0,
+        half_width: h,
+    })
+}
+
+/// The Bezier net (3 x 3, `b[a][c]`, `a` along `s`) of ring patch `id` as
+/// affine forms.
+fn bezier_net(ring: &RatioRing, n: usize, id: RingPatchId) -> [[[Af; 2]; 3]; 3] {
+    let g = patch_grid(n, id);
+    let ns = ring.forms[0][0].symbols();
+    let i = id.index % n;
+    let r = Af::symbol(ring.centre[i], ring.half_width[i], i, ns);
+    let half = |a: &[Af; 2], b: &[Af; 2]| -> [Af; 2] {
+        std::array::from_fn(|k| a[k].add(&b[k]).scale(0.5))
+    };
+    // b + r (a - b)
+    let lerp = |b: &[Af; 2], a: &[Af; 2]| -> [Af; 2] {
+        std::array::from_fn(|k| b[k].add(&r.mul(&a[k].sub(&b[k]))))
+    };
+    // conversion along s: A (s, s, r): [1/2 1/2 0; 0 1 0; 0 r s];
+    // B (s, r, r): [r s 0; 0 1 0; 0 1/2 1/2]; C uniform
+    let conv_s = |p: &[[Af; 2]; 3]| -> [[Af; 2]; 3] {
+        match id.kind {
+            PatchKind::A => [half(&p[0], &p[1]), p[1].clone(), lerp(&p[2], &p[1])],
+            PatchKind::B => [lerp(&p[1], &p[0]), p[1].clone(), half(&p[1], &p[2])],
+            PatchKind::C => [half(&p[0], &p[1]), p[1].clone(), half(&p[1], &p[2])],
+        }
+    };
+    let conv_t = |p: &[[Af; 2]; 3]| -> [[Af; 2]; 3] {
+        [half(&p[0], &p[1]), p[1].clone(), half(&p[1], &p[2])]
+    };
+    let cols: Vec<[[Af; 2]; 3]> = (0..3)
+        .map(|c| conv_s(&std::array::from_fn(|a| ring.forms[g[a][c]].clone())))
+        .collect();
+    std::array::from_fn(|a| conv_t(&std::array::from_fn(|c| cols[c][a].clone())))
+}
+
+fn det(a: &[Af; 2], b: &[Af; 2]) -> Af {
+    a[0].mul(&b[1]).sub(&a[1].mul(&b[0]))
+}
+
+/// The Jacobian's Bezier coefficients (bidegree (3, 3)) of a biquadratic
+/// net, each multiplied by the positive factor `C(3, k) C(3, l) / 4`:
+/// `sum C(1,i) C(2,i') C(2,j) C(1,j') det(b_{i+1,j} - b_{ij}, b_{i',j'+1} - b_{i'j'})`.
+fn jacobian_scaled(b: &[[[Af; 2]; 3]; 3]) -> Vec<Vec<Af>> {
+    let d = |p: &[Af; 2], q: &[Af; 2]| -> [Af; 2] { std::array::from_fn(|k| p[k].sub(&q[k])) };
+    let ds: Vec<Vec<[Af; 2]>> = (0..2)
+        .map(|i| (0..3).map(|j| d(&b[i + 1][j], &b[i][j])).collect())
+        .collect();
+    let dt: Vec<Vec<[Af; 2]>> = (0..3)
+        .map(|i| (0..2).map(|j| d(&b[i][j + 1], &b[i][j])).collect())
+        .collect();
+    let ns = b[0][0][0].symbols();
+    let c1 = [1.0, 1.0];
+    let c2 = [1.0, 2.0, 1.0];
+    let mut out = vec![vec![Af::constant(0.0, ns); 4]; 4];
+    for i in 0..2 {
+        for j in 0..3 {
+            for i2 in 0..3 {
+                for j2 in 0..2 {
+                    let wgt = c1[i] * c2[i2] * c2[j] * c1[j2];
+                    let v = det(&ds[i][j], &dt[i2][j2]).scale(wgt);
+                    out[i + i2][j + j2] = out[i + i2][j + j2].add(&v);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// de Casteljau halves of a 4 x 4 Bernstein coefficient grid in the first index.
+fn split_first(c: &[Vec<Af>]) -> (Vec<Vec<Af>>, Vec<Vec<Af>>) {
+    let mut left = c.to_vec();
+    let mut right = c.to_vec();
+    for l in 0..4 {
+        let mut pts: Vec<Af> = (0..4).map(|k| c[k][l].clone()).collect();
+        left[0][l] = pts[0].clone();
+        right[3][l] = pts[3].clone();
+        for level in 1..4 {
+            for k in 0..4 - level {
+                pts[k] = pts[k].add(&pts[k + 1]).scale(0.5);
+            }
+            left[level][l] = pts[0].clone();
+            right[3 - level][l] = pts[3 - level].clone();
+        }
+    }
+    (left, right)
+}
+
+fn transpose(c: &[Vec<Af>]) -> Vec<Vec<Af>> {
+    (0..4)
+        .map(|a| (0..4).map(|b| c[b][a].clone()).collect())
+        .collect()
+}
+
+/// `sigma J > 0` on every patch for every parameter: the Jacobian
+/// coefficients are checked, and split by de Casteljau (unscaled) up to
+/// [`JACOBIAN_DEPTH`] levels.
+fn jacobian_sign(nets: &[[[[Af; 2]; 3]; 3]]) -> Option<f64> {
+    let scaled: Vec<Vec<Vec<Af>>> = nets.iter().map(jacobian_scaled).collect();
+    let c0 = scaled.first()?[0][0].c;
+    let sigma = if c0 > 0.0 {
+        1.0
+    } else if c0 < 0.0 {
+        -1.0
+    } else {
+        return None;
+    };
+    let positive = |c: &[Vec<Af>]| {
+        c.iter().flatten().all(|v| {
+            let r = v.range();
+            if sigma > 0.0 {
+                r.lo > 0.0
+            } else {
+                r.hi < 0.0
+            }
+        })
+    };
+    let binom = [1.0, 3.0, 3.0, 1.0];
+    let mut work = Vec::new();
+    for c in &scaled {
+        if positive(c) {
+            continue;
+        }
+        // unscale: divide by C(3,k) C(3,l) in {1, 3, 9} (rounding into the remainder)
+        let u: Vec<Vec<Af>> = (0..4)
+            .map(|k| {
+                (0..4)
+                    .map(|l| {
+                        let d = binom[k] * binom[l];
+                        let v = c[k][l].scale(1.0 / d);
+                        // 1/d is rounded: |x/d - x fl(1/d)| <= |x| u / d
+                        v.widen(up(c[k][l].range().mag() * f64::EPSILON))
+                    })
+                    .collect()
+            })
+            .collect();
+        work.push((u, 0u32));
+    }
+    let mut pieces = 0usize;
+    while let Some((c, depth)) = work.pop() {
+        pieces += 1;
+        if positive(&c) {
+            continue;
+        }
+        if depth >= JACOBIAN_DEPTH || pieces + work.len() + 4 > JACOBIAN_PIECES {
+            return None;
+        }
+        let (l, r) = split_first(&c);
+        for half in [l, r] {
+            let (a, b) = split_first(&transpose(&half));
+            work.push((transpose(&a), depth + 1));
+            work.push((transpose(&b), depth + 1));
+        }
+    }
+    Some(sigma)
+}
+
+/// A quadratic Bezier curve with box control points.
+#[derive(Clone, Debug)]
+struct BezBox(Vec<P2>);
+
+impl BoxCurve for BezBox {
+    fn hull(&self) -> Vec<P2> {
+        self.0.clone()
+    }
+    fn halves(&self) -> (Self, Self) {
+        let mut pts = self.0.clone();
+        let d = pts.len();
+        let mut left = vec![pts[0]];
+        let mut right = vec![pts[d - 1]];
+        for level in 1..d {
+            for k in 0..d - level {
+                pts[k] = [
+                    pts[k][0].add(pts[k + 1][0]).mul(Iv::point(0.5)),
+                    pts[k][1].add(pts[k + 1][1]).mul(Iv::point(0.5)),
+                ];
+            }
+            left.push(pts[0]);
+            right.push(pts[d - 1 - level]);
+        }
+        right.reverse();
+        (BezBox(left), BezBox(right))
+    }
+}
+
+/// Whether the characteristic map is certified regular and injective for
+/// every ratio vector of the box (given that the cell's class is certified
+/// `complex_pair`, `real_distinct` or `standard`), with the split scores.
+pub fn certified(lo: &[f64], hi: &[f64], tamper: CellTamper) -> (bool, Option<Vec<f64>>) {
+    let n = lo.len();
+    let Some(ring) = ratio_ring(lo, hi, tamper) else {
+        return (false, None);
+    };
+    let scores = Some(ring.scores.clone());
+    let mut nets = Vec::with_capacity(3 * n);
+    for i in 0..n {
+        for kind in [PatchKind::A, PatchKind::B, PatchKind::C] {
+            nets.push(bezier_net(&ring, n, RingPatchId { kind, index: i }));
+        }
+    }
+    let Some(sigma) = jacobian_sign(&nets) else {
+        return (false, scores);
+    };
+    let net = |kind: PatchKind, i: usize| {
+        let k = match kind {
+            PatchKind::A => 0,
+            PatchKind::B => 1,
+            PatchKind::C => 2,
+        };
+        &nets[3 * (i % n) + k]
+    };
+    let bx = |p: &[Af; 2]| -> P2 { [p[0].range(), p[1].range()] };
+    let top = |b: &[[[Af; 2]; 3]; 3]| BezBox((0..3).map(|a| bx(&b[a][2])).collect());
+    let left = |b: &[[[Af; 2]; 3]; 3]| BezBox((0..3).map(|c| bx(&b[0][c])).collect());
+    let mut fwd = Vec::with_capacity(4 * n);
+    for i in 0..n {
+        fwd.push(top(net(PatchKind::A, i)));
+        fwd.push(top(net(PatchKind::B, i)));
+        let c = net(PatchKind::C, i + 1);
+        fwd.push(left(c));
+        fwd.push(top(c));
+    }
+    let curves: Vec<BezBox> = fwd
+        .into_iter()
+        .rev()
+        .map(|mut b| {
+            b.0.reverse();
+            b
+        })
+        .collect();
+    let ok = match winding_number(&curves) {
+        Some(wn) => (sigma * wn as f64) == 1.0,
+        None => false,
+    };
+    (ok, scores)
+}
+
+impl RatioRing {
+    /// The ring at one ratio vector `r` of the cell, in floating point, in
+    /// the normalisation `Q [I; P(r)]` of this enclosure (for the soundness
+    /// tests): `(||P(r)||_F, the 9n ring points)`. The pair's eigenvectors of
+    /// `W(r)` (the two largest moduli other than `3/4`) give `P` by
+    /// `[Z_1; Z_2] = Q^{-1} B`, `P = Z_2 Z_1^{-1}`; the restriction is
+    /// `N = T11 + T12 P` of `Q^{-1} W(r) Q`; the lift is
+    /// [`crate::charmap::basis::lift_subspace`] and the ring
+    /// [`crate::charmap::ring::ring_points`].
+    pub fn pointwise(&self, r: &[f64]) -> crate::error::Result<(f64, Vec<[f64; 2]>)> {
+        use crate::charmap::extended::ExtendedMatrix;
+        use crate::error::Error;
+        use crate::knots::EdgeRatios;
+        use crate::schemes::LocalScheme;
+        let n = r.len();
+        let bad = |reason: &str| Error::Numerical {
+            routine: "pointwise ring in the cell normalisation",
+            reason: reason.to_owned(),
+        };
+        if n != self.q.nrows() {
+            return Err(bad("valence differs from the enclosure's"));
+        }
+        let (c0, terms) = w_terms(n);
+        let mut w = DMatrix::zeros(n, n);
+        for &(i, j, v) in &c0 {
+            w[(i, j)] += v;
+        }
+        for (k, t) in terms.iter().enumerate() {
+            for &(i, j, v) in t {
+                w[(i, j)] += v * r[k];
+            }
+        }
+        let eig = Eigen::new(
+            &w,
+            EigenOptions {
+                right: true,
+                left: false,
+            },
+        )
+        .map_err(|e| bad(&e.to_string()))?;
+        let vals = eig.values();
+        let vecs = eig.right().ok_or_else(|| bad("no eigenvectors"))?;
+        let k34 = (0..n)
+            .min_by(|&a, &b| (vals[a] - 0.75).norm().total_cmp(&(vals[b] - 0.75).norm()))
+            .ok_or_else(|| bad("empty spectrum"))?;
+        let order: Vec<usize> = (0..n).filter(|&k| k != k34).collect();
+        let (a, b) = (order[0], order[1]);
+        let real = |k: usize| -> Vec<f64> {
+            let big = (0..n)
+                .map(|i| vecs[(i, k)])
+                .max_by(|x, y| x.norm().total_cmp(&y.norm()))
+                .unwrap_or(Complex64::new(1.0, 0.0));
+            let ph = big.conj() / big.norm();
+            (0..n).map(|i| (vecs[(i, k)] * ph).re).collect()
+        };
+        let bmat = if vals[a].im.abs() > REAL_TOL * vals[a].norm().max(1.0) {
+            DMatrix::from_fn(n, 2, |i, j| {
+                if j == 0 {
+                    vecs[(i, a)].re
+                } else {
+                    vecs[(i, a)].im
+                }
+            })
+        } else {
+            let (va, vb) = (real(a), real(b));
+            DMatrix::from_fn(n, 2, |i, j| if j == 0 { va[i] } else { vb[i] })
+        };
+        let qinv = self
+            .q
+            .clone()
+            .try_inverse()
+            .ok_or_else(|| bad("Q is singular"))?;
+        let z = &qinv * &bmat;
+        let z1 = z
+            .rows(0, 2)
+            .into_owned()
+            .try_inverse()
+            .ok_or_else(|| bad("the pair is not a graph over Q's first two columns"))?;
+        let p = z.rows(2, n - 2).into_owned() * z1;
+        let mut ip = DMatrix::zeros(n, 2);
+        ip[(0, 0)] = 1.0;
+        ip[(1, 1)] = 1.0;
+        ip.rows_mut(2, n - 2).copy_from(&p);
+        let basis = &self.q * ip;
+        let t = &qinv * &w * &self.q;
+        let nmat = t.view((0, 0), (2, 2)).into_owned() + t.view((0, 2), (2, n - 2)) * &p;
+        let scheme = LocalScheme::nurds(EdgeRatios::new(r.to_vec())?);
+        let sn = scheme.matrix()?.into_matrix();
+        let wa: Vec<[f64; 2]> = (0..n).map(|i| [basis[(i, 0)], basis[(i, 1)]]).collect();
+        let m = [[nmat[(0, 0)], nmat[(0, 1)]], [nmat[(1, 0)], nmat[(1, 1)]]];
+        let full = crate::charmap::basis::lift_subspace(&sn, &wa, m)?;
+        let w1: Vec<f64> = full.iter().map(|x| x[0]).collect();
+        let w2: Vec<f64> = full.iter().map(|x| x[1]).collect();
+        let ext = ExtendedMatrix::new(&scheme)?;
+        Ok((p.norm(), crate::charmap::ring::ring_points(&ext, &w1, &w2)?))
+    }
+
+    /// How many coordinates of the pointwise ring `pts` lie outside the
+    /// enclosure by more than `tol (1 + |x|)`, plus one if `p_norm` exceeds
+    /// `rho` by more than the same tolerance.
+    pub fn misses(&self, p_norm: f64, pts: &[[f64; 2]], tol: f64) -> usize {
+        let mut bad = usize::from(p_norm > self.rho + tol * (1.0 + self.rho));
+        for (p, e) in pts.iter().zip(&self.points) {
+            for k in 0..2 {
+                let t = tol * (1.0 + p[k].abs());
+                if !(e[k].lo - t <= p[k] && p[k] <= e[k].hi + t) {
+                    bad += 1;
+                }
+            }
+        }
+        bad + self.points.len().abs_diff(pts.len())
+    }
+}
