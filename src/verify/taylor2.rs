@@ -134,7 +134,7 @@ impl Taylor {
     /// their magnitudes.
     ///
     /// ```
-    /// use subdiv_lab::verify::taylor::Taylor;
+    /// use subdiv_lab::verify::taylor2::Taylor;
     /// use subdiv_lab::verify::interval::Iv;
     /// // q(x) = (x0 + x1)(x0 - x1) around (0.5, 0.25) with h = (0.1, 0.1)
     /// let h = [0.1, 0.1];
