@@ -5,7 +5,7 @@
 #
 #   benches/verify_targets.sh [BIN] [NAME..]     NAME among n3 n4 n5 n6 n7 n8 (default: n3 n4 n5)
 #
-# VERIFY_MAX_CELLS is passed as --max-cells (default: 16000000 for n4, whose
+# VERIFY_MAX_CELLS is passed as --max-cells (default: 8000000 for n5, 1.15 GB; 16000000 for n4, whose
 # spec bisects to min_width 0.005 and needs 7.3M cells and 2.7 GB; 4000000,
 # the CLI's default, for the others). Run it under `nice -n 19` on a shared machine and quote the CPU
 # time: the specs' time_budget is wall time, so a starved run stops early.
@@ -27,7 +27,7 @@ for name in "${names[@]}"; do
     before="$(cut -d' ' -f1-3 /proc/loadavg)"
     /usr/bin/time -f '%e %U %S' -o "$tmp/time" \
         "$bin" verify "$spec" --out "$tmp/$name" --threads 2 --force \
-        --max-cells "${VERIFY_MAX_CELLS:-$([ "$name" = n4 ] && echo 16000000 || echo 4000000)}"
+        --max-cells "${VERIFY_MAX_CELLS:-$(case "$name" in n4) echo 16000000 ;; n5) echo 8000000 ;; *) echo 4000000 ;; esac)}"
     after="$(cut -d' ' -f1-3 /proc/loadavg)"
     read -r wall user sys < "$tmp/time"
     cpu="$(echo "$user + $sys" | bc)"

@@ -69,6 +69,10 @@ pub enum Tamper {
     /// The sound enclosure without the second-order scaled discs (plain
     /// Gershgorin discs; for comparisons).
     PlainGershgorin,
+    /// The factor route's verdict ranges from the linear part of the Taylor
+    /// forms alone (quadratic terms and remainders dropped): first-order
+    /// exact, but not an enclosure.
+    FirstOrder,
     /// The sound spectral enclosure, but the `charmap` certificate drops the
     /// variation of the invariant subspace over the cell
     /// ([`super::charmap::CellTamper::DropSubspaceVariation`]).
@@ -164,6 +168,16 @@ impl AffineFamily {
             })
             .collect();
         AffineFamily { m, c0, terms }
+    }
+
+    /// Entry `(a, b)` of `C_0`.
+    pub fn constant(&self, a: usize, b: usize) -> f64 {
+        self.c0[a * self.m + b]
+    }
+
+    /// Per parameter `k`, the nonzero entries `(a, b, value)` of `C_k`.
+    pub fn terms(&self) -> &[Vec<(usize, usize, f64)>] {
+        &self.terms
     }
 
     /// Matrix size.

@@ -29,9 +29,12 @@ pub mod cc;
 pub mod charmap;
 pub mod decide;
 pub mod enclose;
+pub mod factor;
 pub mod interval;
+pub mod invariants;
 pub mod spec;
 pub mod taylor;
+pub mod taylor2;
 
 use crate::spectral::ClassName;
 use decide::Status;
@@ -141,6 +144,8 @@ type Evaluation = (Option<ClassName>, Vec<(Property, Status)>, Option<Vec<f64>>)
 fn evaluate(
     spec: &VerifySpec,
     family: Option<&enclose::AffineFamily>,
+    charpoly: Option<&factor::CharPoly>,
+    tree: Option<&invariants::Tree>,
     lo: &[f64],
     hi: &[f64],
     tamper: Tamper,
@@ -153,12 +158,20 @@ fn evaluate(
             }
         }
         (Region::Ratios { .. } | Region::Corners { .. }, Some(f)) => {
-            match enclose::enclose(f, lo, hi, tamper) {
-                Some(e) => {
-                    let v = decide::decide_either(&e.rows, &e.cols);
-                    (v.separation, v.class, Some(e.scores))
-                }
-                None => (Status::Undecided, None, None),
+            // the invariant route, the factor route, the disc route: the
+            // first that applies
+            match tree
+                .and_then(|t| t.decide(lo, hi, tamper))
+                .or_else(|| charpoly.and_then(|p| factor::decide(p, f, lo, hi, tamper)))
+            {
+                Some((v, scores)) => (v.separation, v.class, scores),
+                None => match enclose::enclose(f, lo, hi, tamper) {
+                    Some(e) => {
+                        let v = decide::decide_either(&e.rows, &e.cols);
+                        (v.separation, v.class, Some(e.scores))
+                    }
+                    None => (Status::Undecided, None, None),
+                },
             }
         }
         (Region::Shape { valence, .. }, _) => {
@@ -283,6 +296,12 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
         Region::Shape { .. } => None,
     };
     let (lo, hi) = spec.bounds();
+    let charpoly = family.as_ref().and_then(factor::CharPoly::new);
+    let invariants = charpoly.as_ref().and_then(invariants::Invariants::new);
+    let tree = invariants
+        .as_ref()
+        .filter(|inv| inv.count() <= invariants::MAX_TREE_INVARIANTS)
+        .and_then(|inv| invariants::Tree::new(inv, &lo, &hi, limits.tamper));
     let log_split = matches!(spec.region, Region::Corners { .. });
     let mut frontier: Vec<(Vec<f64>, Vec<f64>)> = vec![(lo, hi)];
     let mut cells = Vec::new();
@@ -292,7 +311,17 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
     while !frontier.is_empty() {
         let results: Vec<Evaluation> = frontier
             .par_iter()
-            .map(|(a, b)| evaluate(spec, family.as_ref(), a, b, limits.tamper))
+            .map(|(a, b)| {
+                evaluate(
+                    spec,
+                    family.as_ref(),
+                    charpoly.as_ref(),
+                    tree.as_ref(),
+                    a,
+                    b,
+                    limits.tamper,
+                )
+            })
             .collect();
         evaluated += frontier.len() as u64;
         let splittable = |a: &[f64], b: &[f64], scores: Option<&Vec<f64>>| {

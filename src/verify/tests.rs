@@ -222,6 +222,98 @@ fn gershgorin_path_agrees_with_the_exact_classifier_and_its_weakening_is_caught(
     );
 }
 
+fn spec_n(n: usize, lo: Vec<f64>, hi: Vec<f64>, min_width: f64) -> VerifySpec {
+    assert_eq!(lo.len(), n);
+    VerifySpec {
+        name: format!("t{n}"),
+        region: Region::Ratios { lo, hi },
+        properties: vec![Property::Class, Property::Separation],
+        min_width,
+        time_budget: None,
+    }
+}
+
+#[test]
+fn factor_route_agrees_with_the_exact_classifier_for_n_6_to_8() {
+    let mut rng = SplitMix64::new(15);
+    let mut certified = 0;
+    for n in 6..=8 {
+        for _ in 0..3 {
+            let lo: Vec<f64> = (0..n).map(|_| rng.uniform(0.05, 0.9)).collect();
+            let hi: Vec<f64> = lo.iter().map(|x| x + 0.04).collect();
+            let spec = spec_n(n, lo, hi, 0.02);
+            let out = run(&spec, &Limits::default());
+            certified += out.cells.iter().filter(|c| c.class.is_some()).count();
+            let (bad, checks) = disagreements(&spec, &out, 8, 5);
+            assert!(bad == 0, "n = {n}: {bad} disagreements in {checks}");
+        }
+    }
+    assert!(certified > 0, "no n = 6..8 cell was certified");
+}
+
+/// Exact tiling of the box by the cells, in rationals: every cell inside
+/// the box, interiors pairwise disjoint, volumes summing to the box's.
+fn assert_tiles(spec: &VerifySpec, out: &Outcome) {
+    let q = |x: f64| f64_to_rational(x).unwrap();
+    let (lo, hi) = spec.bounds();
+    let k = lo.len();
+    let total: Rational = lo.iter().zip(&hi).map(|(a, b)| q(*b) - q(*a)).product();
+    let mut sum = Rational::zero();
+    for (i, c) in out.cells.iter().enumerate() {
+        for d in 0..k {
+            assert!(lo[d] <= c.lo[d] && c.lo[d] < c.hi[d] && c.hi[d] <= hi[d]);
+        }
+        sum +=
+            c.lo.iter()
+                .zip(&c.hi)
+                .map(|(a, b)| q(*b) - q(*a))
+                .product::<Rational>();
+        for e in &out.cells[..i] {
+            assert!((0..k).any(|d| c.hi[d] <= e.lo[d] || e.hi[d] <= c.lo[d]));
+        }
+    }
+    assert_eq!(sum, total);
+}
+
+#[test]
+fn invariant_tree_route_at_n5_agrees_with_the_exact_classifier_and_tiles() {
+    // n = 5 goes through the invariant tree (math doc section 15): a box
+    // across the complex / real boundary
+    let f = AffineFamily::nurds(5);
+    let p = &factor::CharPoly::new(&f).unwrap();
+    let inv = &invariants::Invariants::new(p).expect("n = 5 has invariants");
+    let spec = spec_n(5, vec![0.4; 5], vec![0.6; 5], 0.05);
+    let (lo, hi) = spec.bounds();
+    assert!(invariants::Tree::new(inv, &lo, &hi, Tamper::None).is_some());
+    let out = run(&spec, &Limits::default());
+    // the box crosses the complex / real boundary (a_shrunk_invariant_enclosure_at_n5_is_caught)
+    assert!(
+        out.cells.iter().any(|c| c.class.is_some()),
+        "nothing certified"
+    );
+    let (bad, checks) = disagreements(&spec, &out, 300, 21);
+    assert!(checks == 300 && bad == 0, "{bad} disagreements in {checks}");
+    assert_tiles(&spec, &out);
+}
+
+#[test]
+fn a_shrunk_invariant_enclosure_at_n5_is_caught() {
+    // the invariants enclosed at the centre of each cell only (G = 0)
+    let spec = spec_n(5, vec![0.4; 5], vec![0.6; 5], 0.05);
+    let weak = run(
+        &spec,
+        &Limits {
+            tamper: Tamper::DropVariation,
+            ..Limits::default()
+        },
+    );
+    let (bad, checks) = disagreements(&spec, &weak, 300, 21);
+    assert!(
+        bad > 0,
+        "the shrunk invariant enclosure went unnoticed in {checks} checks"
+    );
+}
+
 #[test]
 fn cells_tile_the_box_exactly() {
     let spec = spec3([0.05, 0.2, 0.3], [0.95, 0.7, 0.9], 1.0 / 16.0);
