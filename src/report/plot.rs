@@ -709,64 +709,12 @@ pub fn legend_rows_height(
     (rows * row_h) as u32
 }
 
-#[cfg(test)]
-mod doc_examples {
-    //! The examples of this private module's items (not doctests: the module is
-    //! not public).
-    use super::*;
-
-    #[test]
-    fn log_ticks_are_decimal_near_one() {
-        assert_eq!(log_tick(1.0), "1");
-        assert_eq!(log_tick(10.0), "10");
-        assert_eq!(log_tick(0.01), "0.01");
-        assert_eq!(log_tick(1e-3), "1e-3");
-        assert_eq!(log_tick(1e5), "1e5");
-    }
-
-    #[test]
-    fn wrap_text_breaks_at_separators_only_when_needed() {
-        let w = |s: &str| 10 * s.chars().count() as u32;
-        assert_eq!(wrap_text("standard", 80, w), ["standard"]);
-        assert_eq!(
-            wrap_text("indeterminate:standard/defective", 200, w),
-            ["indeterminate:", "standard/defective"]
-        );
-        assert_eq!(
-            wrap_text("indeterminate:standard/defective", 100, w),
-            ["indeterminate:", "standard/", "defective"]
-        );
-        assert_eq!(
-            wrap_text("unbreakablelongword", 50, w),
-            ["unbreakablelongword"]
-        );
-    }
-
-    #[test]
-    fn tick_examples() {
-        assert_eq!(tick(-0.0), "0");
-        assert_eq!(tick(-1e-17), "0");
-        assert_eq!(tick(0.30000000000000004), "0.3");
-        assert_eq!(tick(2.0), "2");
-        assert_eq!(tick(1e-5), "1e-5");
-    }
-
-    #[test]
-    fn clip_polyline_example() {
-        let p = clip_polyline(
-            &[(-1.0, 0.5), (0.5, 0.5), (2.0, 0.5)],
-            (0.0, 1.0),
-            (0.0, 1.0),
-        );
-        assert_eq!(p, vec![vec![(0.0, 0.5), (0.5, 0.5), (1.0, 0.5)]]);
-    }
-
-    #[test]
-    fn equal_aspect_example() {
-        let ((a, b), (c, d)) = equal_aspect((400, 200), (0.0, 1.0), (0.0, 1.0));
-        assert_eq!(((a, b), (c, d)), ((-0.5, 1.5), (0.0, 1.0)));
-    }
-}
+/// The chart of a knot-space map panel ([`square_ratio_panel`]).
+pub type RatioChart<'a> = ChartContext<
+    'a,
+    super::backend::AnyBackend<'a>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
 
 /// A square chart over `[lo, hi]^2` with axes `r₀`, `r₁` (the knot-space
 /// maps: `knot-map` and `certified-map`), inside the panel `pa` under the
@@ -781,20 +729,7 @@ pub fn square_ratio_panel<'a>(
     th: &Theme,
     [lo, hi]: [f64; 2],
     y_tick: &dyn Fn(&f64) -> String,
-) -> Result<
-    (
-        ChartContext<
-            'a,
-            super::backend::AnyBackend<'a>,
-            Cartesian2d<
-                plotters::coord::types::RangedCoordf64,
-                plotters::coord::types::RangedCoordf64,
-            >,
-        >,
-        u32,
-    ),
-    ReportError,
-> {
+) -> Result<(RatioChart<'a>, u32), ReportError> {
     let (pw, ph) = pa.dim_in_pixel();
     let xl = th.label * 3;
     let yl = th.label * 3;
@@ -863,4 +798,63 @@ pub fn row_runs(
         }
     }
     rects
+}
+
+#[cfg(test)]
+mod doc_examples {
+    //! The examples of this private module's items (not doctests: the module is
+    //! not public).
+    use super::*;
+
+    #[test]
+    fn log_ticks_are_decimal_near_one() {
+        assert_eq!(log_tick(1.0), "1");
+        assert_eq!(log_tick(10.0), "10");
+        assert_eq!(log_tick(0.01), "0.01");
+        assert_eq!(log_tick(1e-3), "1e-3");
+        assert_eq!(log_tick(1e5), "1e5");
+    }
+
+    #[test]
+    fn wrap_text_breaks_at_separators_only_when_needed() {
+        let w = |s: &str| 10 * s.chars().count() as u32;
+        assert_eq!(wrap_text("standard", 80, w), ["standard"]);
+        assert_eq!(
+            wrap_text("indeterminate:standard/defective", 200, w),
+            ["indeterminate:", "standard/defective"]
+        );
+        assert_eq!(
+            wrap_text("indeterminate:standard/defective", 100, w),
+            ["indeterminate:", "standard/", "defective"]
+        );
+        assert_eq!(
+            wrap_text("unbreakablelongword", 50, w),
+            ["unbreakablelongword"]
+        );
+    }
+
+    #[test]
+    fn tick_examples() {
+        assert_eq!(tick(-0.0), "0");
+        assert_eq!(tick(-1e-17), "0");
+        assert_eq!(tick(0.30000000000000004), "0.3");
+        assert_eq!(tick(2.0), "2");
+        assert_eq!(tick(1e-5), "1e-5");
+    }
+
+    #[test]
+    fn clip_polyline_example() {
+        let p = clip_polyline(
+            &[(-1.0, 0.5), (0.5, 0.5), (2.0, 0.5)],
+            (0.0, 1.0),
+            (0.0, 1.0),
+        );
+        assert_eq!(p, vec![vec![(0.0, 0.5), (0.5, 0.5), (1.0, 0.5)]]);
+    }
+
+    #[test]
+    fn equal_aspect_example() {
+        let ((a, b), (c, d)) = equal_aspect((400, 200), (0.0, 1.0), (0.0, 1.0));
+        assert_eq!(((a, b), (c, d)), ((-0.5, 1.5), (0.0, 1.0)));
+    }
 }

@@ -236,22 +236,34 @@ impl CharPoly {
     /// Second-order Taylor forms of `p_j(x0 + d)`, `|d_i| <= h_i`, for
     /// `j = 0 .. m-1` (module docs).
     pub fn forms(&self, x0: &[f64], h: &[f64]) -> Vec<Taylor> {
-        let k = self.k;
-        let nq = k * (k + 1) / 2;
-        self.coeffs
-            .iter()
-            .map(|mons| {
-                let mut c = Iv::point(0.0);
-                let mut g = vec![Iv::point(0.0); k];
-                let mut q = vec![Iv::point(0.0); nq];
-                let mut rem = 0.0;
-                for mo in mons {
-                    monomial_form(mo, x0, h, &mut c, &mut g, &mut q, &mut rem);
-                }
-                Taylor::from_parts(c, g, q, rem)
-            })
-            .collect()
+        polynomial_forms(&self.coeffs, self.k, x0, h)
     }
+}
+
+/// Second-order Taylor forms over the cell `|d_i| <= h_i` around `x0` (`k`
+/// variables) of the polynomials `polys`, each a sum of monomials
+/// ([`monomial_form`]): the characteristic polynomial's coefficients here,
+/// the invariants in [`super::invariants`].
+pub(super) fn polynomial_forms(
+    polys: &[Vec<Monomial>],
+    k: usize,
+    x0: &[f64],
+    h: &[f64],
+) -> Vec<Taylor> {
+    let nq = k * (k + 1) / 2;
+    polys
+        .iter()
+        .map(|mons| {
+            let mut c = Iv::point(0.0);
+            let mut g = vec![Iv::point(0.0); k];
+            let mut q = vec![Iv::point(0.0); nq];
+            let mut rem = 0.0;
+            for mo in mons {
+                monomial_form(mo, x0, h, &mut c, &mut g, &mut q, &mut rem);
+            }
+            Taylor::from_parts(c, g, q, rem)
+        })
+        .collect()
 }
 
 /// Adds the second-order expansion of one monomial at `x0` to the parts

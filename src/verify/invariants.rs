@@ -27,7 +27,7 @@
 
 use super::decide::{SpectralVerdict, Status};
 use super::enclose::{centre_and_half_widths, Tamper};
-use super::factor::{combo, companion_roots, monomial_form, solve, verdict, Cell, CharPoly};
+use super::factor::{combo, companion_roots, solve, verdict, Cell, CharPoly};
 use super::interval::{down, up, Iv};
 use super::taylor2::Taylor;
 use crate::scalar::{f64_to_rational, rational_to_f64, Rational};
@@ -201,21 +201,7 @@ impl Invariants {
 
     /// The invariants over a cell of ratios, as second-order Taylor forms.
     pub fn forms(&self, x0: &[f64], h: &[f64]) -> Vec<Taylor> {
-        let k = self.k;
-        let nq = k * (k + 1) / 2;
-        self.phi
-            .iter()
-            .map(|mons| {
-                let mut c = Iv::point(0.0);
-                let mut g = vec![Iv::point(0.0); k];
-                let mut q = vec![Iv::point(0.0); nq];
-                let mut rem = 0.0;
-                for mo in mons {
-                    monomial_form(mo, x0, h, &mut c, &mut g, &mut q, &mut rem);
-                }
-                Taylor::from_parts(c, g, q, rem)
-            })
-            .collect()
+        super::factor::polynomial_forms(&self.phi, self.k, x0, h)
     }
 
     /// `p_j(psi0 + d) = a_j + sum_i b_ji (psi0_i + d_i)` as affine forms

@@ -108,7 +108,7 @@ fn closed_form_2x2_condition_numbers_equal_inverse_iteration() {
         let mut a = random_matrix(&mut rng, 2);
         if trial % 4 == 3 {
             // Nearly a Jordan block: [[l, 1], [t, l]] with tiny t.
-            let t = 10f64.powi(-(2 + (trial % 9) as i32));
+            let t = 10f64.powi(-(2 + trial % 9));
             a = vec![0.3, t * (a[1].signum()), 1.0, 0.3 + 1e-3 * a[3]];
         }
         let values = eig_of(&mut ws, &a, 2);
