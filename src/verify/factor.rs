@@ -323,69 +323,56 @@ pub(super) fn monomial_form(
 }
 
 /// Lower-degree coefficients of the product of two monic polynomials given
-/// by their lower coefficients (`u` of degree `u.len()`, `v` likewise).
+/// by their lower coefficients (`u` of degree `u.len()`, `v` likewise), in
+/// any coefficient arithmetic: `zero`, `add` and `mul` (the same order of
+/// operations for every type, so the `f64`, interval and Taylor products
+/// bound one another term by term).
+fn monic_product<T>(
+    u: &[T],
+    v: &[T],
+    zero: impl Fn() -> T,
+    add: impl Fn(&T, &T) -> T,
+    mul: impl Fn(&T, &T) -> T,
+) -> Vec<T> {
+    let (a, b) = (u.len(), v.len());
+    (0..a + b)
+        .map(|t| {
+            let mut s = zero();
+            if t >= b {
+                s = add(&s, &u[t - b]);
+            }
+            if t >= a {
+                s = add(&s, &v[t - a]);
+            }
+            for i in 0..a.min(t + 1) {
+                if t - i < b {
+                    s = add(&s, &mul(&u[i], &v[t - i]));
+                }
+            }
+            s
+        })
+        .collect()
+}
+
+/// [`monic_product`] in `f64`.
 fn monic_mul_f(u: &[f64], v: &[f64]) -> Vec<f64> {
-    let (a, b) = (u.len(), v.len());
-    let mut w = vec![0.0; a + b];
-    for t in 0..a + b {
-        let mut s = 0.0;
-        if t >= b {
-            s += u[t - b];
-        }
-        if t >= a {
-            s += v[t - a];
-        }
-        for i in 0..a.min(t + 1) {
-            if t - i < b {
-                s += u[i] * v[t - i];
-            }
-        }
-        w[t] = s;
-    }
-    w
+    monic_product(u, v, || 0.0, |x, y| x + y, |x, y| x * y)
 }
 
+/// [`monic_product`] in interval arithmetic.
 fn monic_mul_iv(u: &[Iv], v: &[Iv]) -> Vec<Iv> {
-    let (a, b) = (u.len(), v.len());
-    let mut w = vec![Iv::point(0.0); a + b];
-    for (t, wt) in w.iter_mut().enumerate() {
-        let mut s = Iv::point(0.0);
-        if t >= b {
-            s = s.add(u[t - b]);
-        }
-        if t >= a {
-            s = s.add(v[t - a]);
-        }
-        for i in 0..a.min(t + 1) {
-            if t - i < b {
-                s = s.add(u[i].mul(v[t - i]));
-            }
-        }
-        *wt = s;
-    }
-    w
+    monic_product(u, v, || Iv::point(0.0), |x, y| x.add(*y), |x, y| x.mul(*y))
 }
 
+/// [`monic_product`] of second-order Taylor forms over the cell `h`.
 fn monic_mul_t(u: &[Taylor], v: &[Taylor], h: &[f64]) -> Vec<Taylor> {
-    let (a, b) = (u.len(), v.len());
-    let k = h.len();
-    let mut w = Vec::with_capacity(a + b);
-    for t in 0..a + b {
-        let mut s = Taylor::constant(0.0, k);
-        if t >= b {
-            s = s.add(&u[t - b]);
-        }
-        if t >= a {
-            s = s.add(&v[t - a]);
-        }
-        for i in 0..a.min(t + 1) {
-            if t - i < b {
-                s = s.add(&u[i].mul(&v[t - i], h));
-            }
-        }
-        w.push(s);
-    }
-    w
+    monic_product(
+        u,
+        v,
+        || Taylor::constant(0.0, h.len()),
+        |x, y| x.add(y),
+        |x, y| x.mul(y, h),
+    )
 }
 
 /// The lower coefficients of `prod_{l != skip} Q_l` (of all factors when
@@ -495,25 +482,8 @@ impl Quad {
     }
 
     fn monic_mul(u: &[Quad], v: &[Quad]) -> Vec<Quad> {
-        let (a, b) = (u.len(), v.len());
         let k = u.first().or(v.first()).map_or(0, |x| x.g.len());
-        (0..a + b)
-            .map(|t| {
-                let mut s = Quad::zero(k);
-                if t >= b {
-                    s = s.add(&u[t - b]);
-                }
-                if t >= a {
-                    s = s.add(&v[t - a]);
-                }
-                for i in 0..a.min(t + 1) {
-                    if t - i < b {
-                        s = s.add(&u[i].mul(&v[t - i]));
-                    }
-                }
-                s
-            })
-            .collect()
+        monic_product(u, v, || Quad::zero(k), |x, y| x.add(y), |x, y| x.mul(y))
     }
 }
 
