@@ -15,7 +15,10 @@
 //! back to the same `f64` bit for bit), so the Parquet file holds exactly the
 //! numbers of the CSV of the same spec (a test reads both back and compares).
 //! No compression, no statistics, no page index: the bytes depend only on the
-//! rows, so the file is byte-identical for any thread count.
+//! rows, so the file is byte-identical for any thread count. The pages are
+//! written by [`encode`] (one data page per column chunk, a dictionary page
+//! before a label column's); the `parquet` crate writes the footer and reads
+//! files back.
 //!
 //! # Commit units
 //!
@@ -24,9 +27,8 @@
 //! completed group to its caller as a [`Commit`] (the bytes of the group, the
 //! offset where they go, the footer that makes the file end there). The file
 //! on disk is `PAR1`, the committed groups, and the footer of the last commit:
-//! a valid Parquet file after every commit. Each group is encoded alone (a
-//! one-group Parquet file in memory) and its column offsets are moved to its
-//! place in the file. The caller's journal of the last commit (offset and
+//! a valid Parquet file after every commit. Each group is encoded at its place
+//! in the file (its offsets are those of the file). The caller's journal of the last commit (offset and
 //! footer) lets a killed run find the last committed group: the CLI keeps it
 //! beside the file (see `docs/math.md` section 16.2).
 //!
@@ -45,17 +47,17 @@ use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
 use bytes::Bytes;
 use parquet::basic::{IntType, LogicalType, Repetition, Type as PhysicalType};
-use parquet::data_type::{BoolType, ByteArray, ByteArrayType, DoubleType, Int32Type, Int64Type};
 use parquet::file::metadata::{
     FileMetaData, KeyValue, ParquetMetaData, ParquetMetaDataBuilder, ParquetMetaDataWriter,
     RowGroupMetaData,
 };
 use parquet::file::properties::{EnabledStatistics, WriterProperties, WriterVersion};
 use parquet::file::reader::{FileReader, SerializedFileReader};
-use parquet::file::writer::SerializedFileWriter;
 use parquet::record::Field;
-use parquet::schema::types::{ColumnPath, SchemaDescriptor, Type, TypePtr};
+use parquet::schema::types::{SchemaDescPtr, SchemaDescriptor, Type, TypePtr};
 use std::sync::Arc;
+
+mod encode;
 
 /// Rows per row group (the commit unit; the last group of a file is
 /// shorter). Fixed, so that the groups, and with them the bytes of the file,
@@ -144,44 +146,158 @@ fn schema_of(layout: &Layout) -> Result<TypePtr, SweepError> {
     ))
 }
 
-/// Writer properties: no compression, statistics or page index (the bytes
-/// depend on the rows only); dictionary encoding for the label columns.
-fn properties(layout: &Layout) -> Arc<WriterProperties> {
-    let mut b = WriterProperties::builder()
-        .set_writer_version(WriterVersion::PARQUET_1_0)
-        .set_statistics_enabled(EnabledStatistics::None)
-        .set_offset_index_disabled(true)
-        .set_dictionary_enabled(false)
-        .set_max_row_group_row_count(Some(ROW_GROUP_ROWS))
-        .set_created_by(format!("subdiv-lab {}", env!("CARGO_PKG_VERSION")));
-    for (name, col) in layout.column_names().iter().zip(columns_of(layout)) {
-        if col == Col::Label {
-            b = b.set_column_dictionary_enabled(ColumnPath::from(name.as_str()), true);
-        }
-    }
-    Arc::new(b.build())
+/// Writer properties of the footer (format version, `created_by`); the
+/// pages themselves are written by [`encode`] (no compression, statistics or
+/// page index: the bytes depend on the rows only).
+fn properties(_layout: &Layout) -> Arc<WriterProperties> {
+    Arc::new(
+        WriterProperties::builder()
+            .set_writer_version(WriterVersion::PARQUET_1_0)
+            .set_statistics_enabled(EnabledStatistics::None)
+            .set_offset_index_disabled(true)
+            .set_created_by(format!("subdiv-lab {}", env!("CARGO_PKG_VERSION")))
+            .build(),
+    )
 }
 
-/// The values of one column of a row group being built.
+/// Labels interned in order of first appearance: a label column's
+/// dictionary (math doc section 16.2). A short linear search while there are
+/// few labels (class names, verdicts), a hash map beyond.
+#[derive(Debug, Default)]
+struct Dict {
+    entries: Vec<Box<str>>,
+    map: std::collections::HashMap<Box<str>, u32>,
+    /// Per row: its entry, or [`NULL_INDEX`].
+    indices: Vec<u32>,
+}
+
+/// The index of a null label (no dictionary has `u32::MAX` entries: a row
+/// group has [`ROW_GROUP_ROWS`] rows).
+const NULL_INDEX: u32 = u32::MAX;
+
+/// The bits of a null in a float column: a NaN whose payload no value
+/// stored there has (every NaN value is stored as the canonical `f64::NAN`,
+/// as its CSV text `NaN` reads back), so nulls need no separate levels.
+const NULL_F64: u64 = 0x7ff8_5d1b_0000_0001;
+
+/// A null in a boolean column (`0` false, `1` true).
+const NULL_BOOL: u8 = 2;
+
+impl Dict {
+    /// Entries searched linearly before the hash map takes over.
+    const LINEAR: usize = 16;
+
+    fn entries(&self) -> &[Box<str>] {
+        &self.entries
+    }
+
+    fn indices(&self) -> &[u32] {
+        &self.indices
+    }
+
+    /// The index of label `t`, a new entry if it is new.
+    fn intern(&mut self, t: &str) -> u32 {
+        // Most rows repeat the previous row's label.
+        if let Some(&i) = self.indices.last() {
+            if self.entries.get(i as usize).is_some_and(|e| **e == *t) {
+                return i;
+            }
+        }
+        if self.entries.len() <= Self::LINEAR {
+            if let Some(i) = self.entries.iter().position(|e| &**e == t) {
+                return i as u32;
+            }
+        } else if let Some(&i) = self.map.get(t) {
+            return i;
+        }
+        let i = self.entries.len() as u32;
+        self.entries.push(t.into());
+        if self.entries.len() == Self::LINEAR + 1 {
+            for (k, e) in self.entries.iter().enumerate() {
+                self.map.insert(e.clone(), k as u32);
+            }
+        } else if self.entries.len() > Self::LINEAR + 1 {
+            self.map.insert(t.into(), i);
+        }
+        i
+    }
+
+    fn push(&mut self, t: &str) {
+        let i = self.intern(t);
+        self.indices.push(i);
+    }
+
+    /// Appends label `t` as the CSV holds it ([`csv_text`]). The entries
+    /// hold no line breaks, so a `t` found among them is its own CSV text:
+    /// only a new label is scanned.
+    #[inline(always)]
+    fn push_label(&mut self, t: &str) {
+        if let Some(&i) = self.indices.last() {
+            if self.entries.get(i as usize).is_some_and(|e| **e == *t) {
+                self.indices.push(i);
+                return;
+            }
+        }
+        let found = if self.entries.len() <= Self::LINEAR {
+            self.entries
+                .iter()
+                .position(|e| **e == *t)
+                .map(|i| i as u32)
+        } else {
+            self.map.get(t).copied()
+        };
+        match found {
+            Some(i) => self.indices.push(i),
+            None => self.push(&csv_text(t)),
+        }
+    }
+
+    fn clear(&mut self) {
+        self.entries.clear();
+        self.map.clear();
+        self.indices.clear();
+    }
+}
+
+/// The values of one column of a row group being built, one per row; a
+/// null is a sentinel of the column's type ([`NULL_F64`], [`NULL_INDEX`],
+/// [`NULL_BOOL`], `None`), turned into definition levels when the group is
+/// encoded.
 #[derive(Debug)]
 enum Values {
     U64(Vec<i64>),
     U32(Vec<i32>),
-    F64(Vec<f64>, Vec<i16>),
-    Str(Vec<ByteArray>, Vec<i16>),
-    Bool(Vec<bool>, Vec<i16>),
+    F64(Vec<f64>),
+    /// A label column: dictionary indices.
+    Dict(Dict),
+    /// The error column: plain text.
+    Str(Vec<Option<String>>),
+    Bool(Vec<u8>),
+}
+
+/// `x` as a float column stores it: NaN as the canonical NaN.
+#[inline(always)]
+fn stored(x: f64) -> f64 {
+    if x.is_nan() {
+        f64::NAN
+    } else {
+        x
+    }
 }
 
 impl Values {
-    /// Empty values of a `col` column, with room for `rows` rows (the
-    /// labels, errors and booleans grow as needed).
+    /// Empty values of a `col` column, with room for `rows` rows.
     fn with_rows(col: Col, rows: usize) -> Values {
         match col {
             Col::Id => Values::U64(Vec::with_capacity(rows)),
             Col::Valence => Values::U32(Vec::with_capacity(rows)),
-            Col::Float => Values::F64(Vec::with_capacity(rows), Vec::with_capacity(rows)),
-            Col::Label | Col::Error => Values::Str(Vec::new(), Vec::with_capacity(rows)),
-            Col::Bool => Values::Bool(Vec::new(), Vec::with_capacity(rows)),
+            Col::Float => Values::F64(Vec::with_capacity(rows)),
+            Col::Label => Values::Dict(Dict {
+                indices: Vec::with_capacity(rows),
+                ..Dict::default()
+            }),
+            Col::Error => Values::Str(Vec::with_capacity(rows)),
+            Col::Bool => Values::Bool(Vec::with_capacity(rows)),
         }
     }
 
@@ -189,18 +305,22 @@ impl Values {
         match self {
             Values::U64(v) => v.clear(),
             Values::U32(v) => v.clear(),
-            Values::F64(v, d) => {
-                v.clear();
-                d.clear();
-            }
-            Values::Str(v, d) => {
-                v.clear();
-                d.clear();
-            }
-            Values::Bool(v, d) => {
-                v.clear();
-                d.clear();
-            }
+            Values::F64(v) => v.clear(),
+            Values::Dict(v) => v.clear(),
+            Values::Str(v) => v.clear(),
+            Values::Bool(v) => v.clear(),
+        }
+    }
+
+    /// Appends a null (nothing for the required `id` and `valence`).
+    #[inline(always)]
+    fn push_null(&mut self) {
+        match self {
+            Values::F64(v) => v.push(f64::from_bits(NULL_F64)),
+            Values::Dict(v) => v.indices.push(NULL_INDEX),
+            Values::Str(v) => v.push(None),
+            Values::Bool(v) => v.push(NULL_BOOL),
+            Values::U64(_) | Values::U32(_) => {}
         }
     }
 
@@ -222,57 +342,50 @@ impl Values {
             Values::U32(v) => {
                 v.push(f.parse::<u32>().map_err(|_| bad("an unsigned integer"))? as i32)
             }
-            Values::F64(v, d) => {
-                if f.is_empty() {
-                    d.push(0);
-                } else {
-                    let x = match canonical_number(f, scratch, digits) {
-                        Some(x) => x,
-                        None => f.parse::<f64>().map_err(|_| bad("a number"))?,
-                    };
-                    v.push(x);
-                    d.push(1);
-                }
+            _ if f.is_empty() => self.push_null(),
+            Values::F64(v) => {
+                let x = match canonical_number(f, scratch, digits) {
+                    Some(x) => x,
+                    None => f.parse::<f64>().map_err(|_| bad("a number"))?,
+                };
+                v.push(stored(x));
             }
-            Values::Str(v, d) => {
-                if f.is_empty() {
-                    d.push(0);
-                } else {
-                    v.push(ByteArray::from(f));
-                    d.push(1);
-                }
-            }
-            Values::Bool(v, d) => {
-                match f {
-                    "" => {
-                        d.push(0);
-                        return Ok(());
-                    }
-                    "true" => v.push(true),
-                    "false" => v.push(false),
-                    _ => return Err(bad("true or false")),
-                }
-                d.push(1);
-            }
+            Values::Dict(v) => v.push(f),
+            Values::Str(v) => v.push(Some(f.to_owned())),
+            Values::Bool(v) => match f {
+                "true" => v.push(1),
+                "false" => v.push(0),
+                _ => return Err(bad("true or false")),
+            },
         }
         Ok(())
     }
 
-    /// Appends rows `rows` of `src` (a column of the same type), whose first
-    /// value (of the non-null ones) is `src`'s value `*at`; advances `*at`.
-    fn append_rows(&mut self, src: &Values, rows: std::ops::Range<usize>, at: &mut usize) {
-        fn take<T: Clone>(v: &mut Vec<T>, d: &mut Vec<i16>, sv: &[T], sd: &[i16], at: &mut usize) {
-            let k = sd.iter().filter(|&&x| x == 1).count();
-            d.extend_from_slice(sd);
-            v.extend_from_slice(&sv[*at..*at + k]);
-            *at += k;
-        }
+    /// Appends rows `rows` of `src` (a column of the same type). Labels are
+    /// re-interned in row order, so that a group's dictionary is in order of
+    /// first appearance whatever the blocks were.
+    fn append_rows(&mut self, src: &Values, rows: std::ops::Range<usize>) {
         match (self, src) {
             (Values::U64(v), Values::U64(s)) => v.extend_from_slice(&s[rows]),
             (Values::U32(v), Values::U32(s)) => v.extend_from_slice(&s[rows]),
-            (Values::F64(v, d), Values::F64(sv, sd)) => take(v, d, sv, &sd[rows], at),
-            (Values::Str(v, d), Values::Str(sv, sd)) => take(v, d, sv, &sd[rows], at),
-            (Values::Bool(v, d), Values::Bool(sv, sd)) => take(v, d, sv, &sd[rows], at),
+            (Values::F64(v), Values::F64(s)) => v.extend_from_slice(&s[rows]),
+            (Values::Str(v), Values::Str(s)) => v.extend_from_slice(&s[rows]),
+            (Values::Bool(v), Values::Bool(s)) => v.extend_from_slice(&s[rows]),
+            (Values::Dict(v), Values::Dict(s)) => {
+                // Block entry -> group entry, assigned at first use.
+                let mut map = vec![NULL_INDEX; s.entries.len()];
+                for &b in &s.indices[rows] {
+                    if b == NULL_INDEX {
+                        v.indices.push(NULL_INDEX);
+                        continue;
+                    }
+                    let g = &mut map[b as usize];
+                    if *g == NULL_INDEX {
+                        *g = v.intern(&s.entries[b as usize]);
+                    }
+                    v.indices.push(*g);
+                }
+            }
             // Blocks are built from the same layout as the rows (same types).
             _ => unreachable!("a block column of another type"),
         }
@@ -282,7 +395,8 @@ impl Values {
 /// `t` as the CSV holds it after unquoting: line breaks become spaces (a CSV
 /// line is one row), everything else is kept.
 fn csv_text(t: &str) -> std::borrow::Cow<'_, str> {
-    if t.contains(['\n', '\r']) {
+    // Labels are short: a plain scan beats a vectorised search's set-up.
+    if t.bytes().any(|b| b == b'\n' || b == b'\r') {
         std::borrow::Cow::Owned(t.replace(['\n', '\r'], " "))
     } else {
         std::borrow::Cow::Borrowed(t)
@@ -307,8 +421,6 @@ pub struct TypedBlock {
     rows: usize,
     /// Id of the current row.
     id: u64,
-    /// Per label column: the labels seen in this block (cheap clones).
-    labels: Vec<Vec<ByteArray>>,
     /// The first cell that does not fit its column: (id, column, CSV text).
     fault: Option<(u64, usize, String)>,
     number: String,
@@ -342,18 +454,6 @@ impl TypedBlock {
         }
         self.col += 1;
     }
-
-    fn label(&mut self, k: usize, t: &str) -> ByteArray {
-        let seen = &mut self.labels[k];
-        if let Some(b) = seen.iter().find(|b| b.data() == t.as_bytes()) {
-            return b.clone();
-        }
-        let b = ByteArray::from(t);
-        if seen.len() < 64 {
-            seen.push(b.clone());
-        }
-        b
-    }
 }
 
 impl super::run::RowBlock for TypedBlock {
@@ -365,13 +465,13 @@ impl super::run::RowBlock for TypedBlock {
             col: 0,
             rows: 0,
             id: 0,
-            labels: vec![Vec::new(); cols.len()],
             fault: None,
             number: String::new(),
             digits: zmij::Buffer::new(),
         }
     }
 
+    #[inline(always)]
     fn start(&mut self, id: u64, valence: usize) {
         self.id = id;
         if let Values::U64(v) = &mut self.values[0] {
@@ -391,19 +491,17 @@ impl super::run::RowBlock for TypedBlock {
         self.col = 2;
     }
 
+    #[inline(always)]
     fn empty(&mut self) {
-        match &mut self.values[self.col] {
-            Values::F64(_, d) | Values::Str(_, d) | Values::Bool(_, d) => d.push(0),
-            // Only id and valence are required, and they are not cells.
-            Values::U64(_) | Values::U32(_) => {}
-        }
+        // Only id and valence are required, and they are not cells.
+        self.values[self.col].push_null();
         self.col += 1;
     }
 
+    #[inline(always)]
     fn num(&mut self, x: f64) {
-        if let Values::F64(v, d) = &mut self.values[self.col] {
-            v.push(if x.is_nan() { f64::NAN } else { x });
-            d.push(1);
+        if let Values::F64(v) = &mut self.values[self.col] {
+            v.push(stored(x));
             self.col += 1;
         } else {
             let mut t = String::new();
@@ -412,25 +510,25 @@ impl super::run::RowBlock for TypedBlock {
         }
     }
 
+    #[inline(always)]
     fn text(&mut self, t: &str) {
         let k = self.col;
         match &mut self.values[k] {
             // An empty text is an empty CSV cell: a null.
-            Values::Str(_, d) if t.is_empty() => {
-                d.push(0);
+            v @ (Values::Dict(_) | Values::Str(_)) if t.is_empty() => {
+                v.push_null();
                 self.col += 1;
             }
-            Values::Str(..) => {
-                let b = self.label(k, &csv_text(t));
-                if let Values::Str(v, d) = &mut self.values[k] {
-                    v.push(b);
-                    d.push(1);
-                }
+            Values::Dict(v) => {
+                v.push_label(t);
                 self.col += 1;
             }
-            Values::Bool(v, d) if t == "true" || t == "false" => {
-                v.push(t == "true");
-                d.push(1);
+            Values::Str(v) => {
+                v.push(Some(csv_text(t).into_owned()));
+                self.col += 1;
+            }
+            Values::Bool(v) if t == "true" || t == "false" => {
+                v.push(u8::from(t == "true"));
                 self.col += 1;
             }
             _ => self.push_text_cell(&csv_text(t)),
@@ -447,15 +545,13 @@ impl super::run::RowBlock for TypedBlock {
         self.fault = None;
     }
 
+    #[inline(always)]
     fn end(&mut self, error: Option<&str>) {
         let k = self.col;
-        if let Values::Str(v, d) = &mut self.values[k] {
+        if let Values::Str(v) = &mut self.values[k] {
             match error {
-                Some(e) if !e.is_empty() => {
-                    v.push(ByteArray::from(csv_text(e).as_ref()));
-                    d.push(1);
-                }
-                _ => d.push(0),
+                Some(e) if !e.is_empty() => v.push(Some(csv_text(e).into_owned())),
+                _ => v.push(None),
             }
         }
         self.col = 0;
@@ -486,6 +582,7 @@ pub struct Commit<'a> {
 pub struct ParquetRows<F> {
     names: Vec<String>,
     schema: TypePtr,
+    descr: SchemaDescPtr,
     props: Arc<WriterProperties>,
     key_value: Vec<KeyValue>,
     values: Vec<Values>,
@@ -525,6 +622,7 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
         commit: F,
     ) -> Result<Self, SweepError> {
         let cols = columns_of(layout);
+        let schema = schema_of(layout)?;
         let schema_json = serde_json::to_string(layout.column_docs())
             .map_err(|e| SweepError::Io(e.to_string()))?;
         Ok(ParquetRows {
@@ -534,7 +632,8 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
                 .collect(),
             encoded: Vec::new(),
             names: layout.column_names(),
-            schema: schema_of(layout)?,
+            descr: Arc::new(SchemaDescriptor::new(schema.clone())),
+            schema,
             props: properties(layout),
             key_value: vec![
                 KeyValue::new(
@@ -622,12 +721,11 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
                 self.values.len()
             )));
         }
-        let mut at = vec![0usize; self.values.len()];
         let mut start = 0;
         while start < block.rows {
             let take = (block.rows - start).min(ROW_GROUP_ROWS - self.rows_in_group);
-            for ((dst, src), at) in self.values.iter_mut().zip(&block.values).zip(&mut at) {
-                dst.append_rows(src, start..start + take, at);
+            for (dst, src) in self.values.iter_mut().zip(&block.values) {
+                dst.append_rows(src, start..start + take);
             }
             start += take;
             self.rows_in_group += take;
@@ -641,10 +739,15 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
     /// Encodes the open group, moves it to its place and commits it.
     fn commit_group(&mut self) -> Result<(), SweepError> {
         let mut encoded = std::mem::take(&mut self.encoded);
-        let (end, meta) = encode_group(&self.schema, &self.props, &self.values, &mut encoded)?;
-        let bytes = &encoded[MAGIC.len()..end];
-        let shift = self.data_end as i64 - MAGIC.len() as i64;
-        let meta = move_group(&meta, shift, self.groups.len())?;
+        let meta = encode::encode_group(
+            &self.descr,
+            &self.values,
+            self.rows_in_group,
+            self.data_end,
+            self.groups.len(),
+            &mut encoded,
+        )?;
+        let bytes = &encoded[..];
         let meta = as_read_back(&self.schema, &self.props, meta)?;
         self.groups.push(meta);
         let footer = self.footer()?;
@@ -713,70 +816,6 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> std::io::Write for ParquetRows
     fn flush(&mut self) -> std::io::Result<()> {
         Ok(())
     }
-}
-
-/// One group as a one-group Parquet file in memory, written into `buf`
-/// (cleared first; its storage is reused): the end of the group's bytes
-/// (they are `buf[MAGIC.len()..end]`, the footer follows) and its metadata
-/// (offsets within that file).
-fn encode_group(
-    schema: &TypePtr,
-    props: &Arc<WriterProperties>,
-    values: &[Values],
-    buf: &mut Vec<u8>,
-) -> Result<(usize, RowGroupMetaData), SweepError> {
-    buf.clear();
-    let mut w =
-        SerializedFileWriter::new(&mut *buf, schema.clone(), props.clone()).map_err(pq_err)?;
-    let mut rg = w.next_row_group().map_err(pq_err)?;
-    for v in values {
-        let Some(mut c) = rg.next_column().map_err(pq_err)? else {
-            return Err(SweepError::Io("parquet: fewer columns than values".into()));
-        };
-        match v {
-            Values::U64(x) => c.typed::<Int64Type>().write_batch(x, None, None),
-            Values::U32(x) => c.typed::<Int32Type>().write_batch(x, None, None),
-            Values::F64(x, d) => c.typed::<DoubleType>().write_batch(x, Some(d), None),
-            Values::Str(x, d) => c.typed::<ByteArrayType>().write_batch(x, Some(d), None),
-            Values::Bool(x, d) => c.typed::<BoolType>().write_batch(x, Some(d), None),
-        }
-        .map_err(pq_err)?;
-        c.close().map_err(pq_err)?;
-    }
-    let meta = rg.close().map_err(pq_err)?;
-    let end = w.bytes_written();
-    w.close().map_err(pq_err)?;
-    let meta = (*meta).clone();
-    Ok((end, meta))
-}
-
-/// `meta` with every byte offset moved by `shift` and ordinal `ordinal`.
-fn move_group(
-    meta: &RowGroupMetaData,
-    shift: i64,
-    ordinal: usize,
-) -> Result<RowGroupMetaData, SweepError> {
-    let cols = meta
-        .columns()
-        .iter()
-        .map(|c| {
-            c.clone()
-                .into_builder()
-                .set_data_page_offset(c.data_page_offset() + shift)
-                .set_dictionary_page_offset(c.dictionary_page_offset().map(|o| o + shift))
-                .build()
-                .map_err(pq_err)
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let mut b = meta.clone().into_builder();
-    b.take_columns();
-    let mut b = b
-        .set_column_metadata(cols)
-        .set_ordinal(i32::try_from(ordinal).unwrap_or(i32::MAX));
-    if let Some(o) = meta.file_offset() {
-        b = b.set_file_offset(o + shift);
-    }
-    b.build().map_err(pq_err)
 }
 
 /// `meta` as a reader decodes it from a footer: the form in which a resumed
