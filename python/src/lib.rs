@@ -314,18 +314,25 @@ type MeshOut<'py> = (Bound<'py, PyArray2<f64>>, Vec<Vec<usize>>);
 /// The distinct texts of one text column; a cell is stored as its index
 /// (`u32` code). Sweep text columns take a handful of values (class names,
 /// verdict codes, `true`/`false`), so a linear search is the fastest lookup.
+/// The second field is the last code given: consecutive rows often share
+/// their class, so it is tried first.
 #[derive(Default)]
-struct Levels(Vec<String>);
+struct Levels(Vec<String>, usize);
 
 impl Levels {
     fn code(&mut self, t: &str) -> u32 {
-        match self.0.iter().position(|l| l == t) {
-            Some(i) => i as u32,
+        if self.0.get(self.1).is_some_and(|l| l == t) {
+            return self.1 as u32;
+        }
+        let i = match self.0.iter().position(|l| l == t) {
+            Some(i) => i,
             None => {
                 self.0.push(t.to_owned());
-                (self.0.len() - 1) as u32
+                self.0.len() - 1
             }
-        }
+        };
+        self.1 = i;
+        i as u32
     }
 }
 
