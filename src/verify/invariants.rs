@@ -872,6 +872,125 @@ mod tests {
         }
     }
 
+    /// [`Tree::query`] against brute force on a random grid of verdicts:
+    /// the verdicts of the grid cells whose closed boxes meet the query box
+    /// (found cell by cell from `e(level, a)`, not through the index
+    /// ranges or the prefix sums), one verdict when they all agree, else
+    /// the properties they agree on. Query end points lie on grid lines
+    /// often (where an off-by-one in the index ranges or the table lookup
+    /// shows), and outside the root.
+    #[test]
+    fn grid_queries_match_brute_force() {
+        use crate::spectral::ClassName;
+        let f = AffineFamily::nurds(5);
+        let p = &CharPoly::new(&f).unwrap();
+        let inv = &Invariants::new(p).unwrap();
+        let mut tree = Tree::new(inv, &[0.3; 5], &[0.32; 5], Tamper::None).unwrap();
+        tree.level = 4;
+        let n = 1usize << tree.level;
+        let t = tree.lo.len();
+        assert_eq!(t, 2);
+        let verdict = |separation, class| SpectralVerdict { separation, class };
+        tree.verdicts = vec![
+            OPEN,
+            verdict(Status::Certified, Some(ClassName::ComplexPair)),
+            verdict(Status::Certified, Some(ClassName::RealDistinct)),
+            verdict(Status::Undecided, Some(ClassName::ComplexPair)),
+            verdict(Status::Refuted, None),
+        ];
+        let mut rng = SplitMix64::new(40);
+        // a grid of blocks (so that agreeing queries occur) with random cells
+        let block: Vec<u8> = (0..16).map(|_| rng.uniform(0.0, 5.0) as u8 % 5).collect();
+        let grid: Vec<u8> = (0..n * n)
+            .map(|flat| {
+                let (x, y) = (flat % n, flat / n);
+                if rng.uniform(0.0, 1.0) < 0.1 {
+                    rng.uniform(0.0, 5.0) as u8 % 5
+                } else {
+                    block[(y / 4) * 4 + x / 4]
+                }
+            })
+            .collect();
+        tree.sums = (0..tree.verdicts.len())
+            .map(|c| prefix_sums(&grid, n, t, c as u8))
+            .collect();
+        let level = tree.level;
+        let point = |rng: &mut SplitMix64, i: usize| -> f64 {
+            let (r0, r1) = (tree.end(i, 0, 0), tree.end(i, 0, 1));
+            let u = rng.uniform(0.0, 1.0);
+            if u < 0.4 {
+                // a grid line, the root's ends included
+                tree.end(
+                    i,
+                    level,
+                    (rng.uniform(0.0, n as f64 + 1.0) as u64).min(n as u64),
+                )
+            } else if u < 0.45 {
+                // just outside the root
+                if u < 0.425 {
+                    down(r0)
+                } else {
+                    up(r1)
+                }
+            } else {
+                rng.uniform(r0, r1)
+            }
+        };
+        let (mut agreeing, mut mixed, mut outside) = (0, 0, 0);
+        for _ in 0..4000 {
+            let mut blo = vec![0.0; t];
+            let mut bhi = vec![0.0; t];
+            for i in 0..t {
+                let (mut b0, mut b1) = (point(&mut rng, i), point(&mut rng, i));
+                if b1 < b0 {
+                    std::mem::swap(&mut b0, &mut b1);
+                }
+                blo[i] = b0;
+                bhi[i] = b1;
+            }
+            let got = tree.query(&blo, &bhi);
+            let inside = (0..t).all(|i| tree.end(i, 0, 0) <= blo[i] && bhi[i] <= tree.end(i, 0, 1));
+            if !inside {
+                outside += 1;
+                assert_eq!(got, OPEN, "{blo:?} {bhi:?}");
+                continue;
+            }
+            let meets = |i: usize, a: usize| {
+                tree.end(i, level, a as u64) <= bhi[i] && blo[i] <= tree.end(i, level, a as u64 + 1)
+            };
+            let mut want: Option<SpectralVerdict> = None;
+            let mut codes = std::collections::BTreeSet::new();
+            for y in (0..n).filter(|&y| meets(1, y)) {
+                for x in (0..n).filter(|&x| meets(0, x)) {
+                    let v = tree.verdicts[grid[y * n + x] as usize];
+                    codes.insert(grid[y * n + x]);
+                    want = Some(match want {
+                        None => v,
+                        Some(w) => SpectralVerdict {
+                            separation: if w.separation == v.separation {
+                                w.separation
+                            } else {
+                                Status::Undecided
+                            },
+                            class: if w.class == v.class { w.class } else { None },
+                        },
+                    });
+                }
+            }
+            if codes.len() == 1 {
+                agreeing += 1;
+            } else {
+                mixed += 1;
+            }
+            assert_eq!(Some(got), want, "{blo:?} {bhi:?}");
+        }
+        // every kind of query occurred
+        assert!(
+            agreeing > 100 && mixed > 100 && outside > 100,
+            "{agreeing} {mixed} {outside}"
+        );
+    }
+
     /// The coordinates of the tree: `G^-1` enclosed against `G`, and the
     /// coefficients through `psi = G phi` equal to those through `phi`.
     #[test]
