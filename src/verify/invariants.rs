@@ -223,13 +223,7 @@ impl Invariants {
 
     /// The factor route's verdicts for every `P~`, over the box of
     /// coordinates with slopes `b` (a node of the [`Tree`]).
-    fn node_verdict(
-        &self,
-        b: &[Vec<Iv>],
-        lo: &[f64],
-        hi: &[f64],
-        first_order: bool,
-    ) -> SpectralVerdict {
+    fn node_verdict(&self, b: &[Vec<Iv>], lo: &[f64], hi: &[f64]) -> SpectralVerdict {
         if lo
             .iter()
             .zip(hi)
@@ -242,7 +236,7 @@ impl Invariants {
         let mids: Vec<f64> = p.iter().map(|t| 0.5 * t.c.lo + 0.5 * t.c.hi).collect();
         match companion_roots(&mids).and_then(|v| solve(p, h.clone(), v)) {
             Some(f) => {
-                let cell = Cell { h: &h, first_order };
+                let cell = Cell { h: &h };
                 verdict(&f.factors, &f.moduli, &cell).0
             }
             None => OPEN,
@@ -320,7 +314,6 @@ pub struct Tree<'a> {
     lo: Vec<f64>,
     w: Vec<f64>,
     level: u32,
-    first_order: bool,
     /// The distinct verdicts of the grid; index 0 is the open verdict.
     verdicts: Vec<SpectralVerdict>,
     /// Per verdict, the prefix sums over the grid: `(N + 1)^t` entries,
@@ -337,13 +330,12 @@ const OPEN: SpectralVerdict = SpectralVerdict {
 impl<'a> Tree<'a> {
     /// Proves the grid for the cells of the box `[lo, hi]` of ratios (type
     /// docs); `None` when the root cannot be formed.
-    pub fn new(inv: &'a Invariants, lo: &[f64], hi: &[f64], tamper: Tamper) -> Option<Self> {
+    pub fn new(inv: &'a Invariants, lo: &[f64], hi: &[f64]) -> Option<Self> {
         let k = inv.k;
         if lo.len() != k || hi.len() != k {
             return None;
         }
         let t = inv.count();
-        let first_order = tamper == Tamper::FirstOrder;
         let g = decorrelation(inv, lo, hi);
         let b = slopes_in(inv, &g);
         // the root: the union of the enclosures over the parts of the box
@@ -405,7 +397,6 @@ impl<'a> Tree<'a> {
             lo: root_lo,
             w,
             level,
-            first_order,
             verdicts: vec![OPEN],
             sums: Vec::new(),
         };
@@ -469,7 +460,7 @@ impl<'a> Tree<'a> {
             .enumerate()
             .map(|(i, &a)| self.end(i, level, a + 1))
             .collect();
-        let v = self.inv.node_verdict(&self.b, &lo, &hi, self.first_order);
+        let v = self.inv.node_verdict(&self.b, &lo, &hi);
         let complete = v.separation != Status::Undecided && v.class.is_some();
         if complete || level >= self.level {
             return vec![(level, ix, v)];
@@ -604,11 +595,7 @@ impl<'a> Tree<'a> {
         let (blo, bhi): (Vec<f64>, Vec<f64>) = forms
             .iter()
             .map(|t| {
-                let r = if self.first_order {
-                    t.c.widen(t.linear_bound(&h))
-                } else {
-                    t.range(&h)
-                };
+                let r = t.range(&h);
                 (r.lo, r.hi)
             })
             .unzip();
@@ -820,7 +807,7 @@ mod tests {
         let f = AffineFamily::nurds(5);
         let p = &CharPoly::new(&f).unwrap();
         let inv = &Invariants::new(p).unwrap();
-        let mut tree = Tree::new(inv, &[0.3; 5], &[0.32; 5], Tamper::None).unwrap();
+        let mut tree = Tree::new(inv, &[0.3; 5], &[0.32; 5]).unwrap();
         tree.level = 5;
         let n = 1u64 << tree.level;
         let mut rng = SplitMix64::new(12);
@@ -885,7 +872,7 @@ mod tests {
         let f = AffineFamily::nurds(5);
         let p = &CharPoly::new(&f).unwrap();
         let inv = &Invariants::new(p).unwrap();
-        let mut tree = Tree::new(inv, &[0.3; 5], &[0.32; 5], Tamper::None).unwrap();
+        let mut tree = Tree::new(inv, &[0.3; 5], &[0.32; 5]).unwrap();
         tree.level = 4;
         let n = 1usize << tree.level;
         let t = tree.lo.len();

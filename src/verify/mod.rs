@@ -329,7 +329,7 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
     let tree = invariants
         .as_ref()
         .filter(|inv| inv.count() <= invariants::MAX_TREE_INVARIANTS)
-        .and_then(|inv| invariants::Tree::new(inv, &lo, &hi, limits.tamper));
+        .and_then(|inv| invariants::Tree::new(inv, &lo, &hi));
     let log_split = matches!(spec.region, Region::Corners { .. });
     let mut frontier: Vec<(Vec<f64>, Vec<f64>)> = vec![(lo, hi)];
     let mut cells = Vec::new();

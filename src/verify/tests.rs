@@ -284,7 +284,7 @@ fn invariant_tree_route_at_n5_agrees_with_the_exact_classifier_and_tiles() {
     let inv = &invariants::Invariants::new(p).expect("n = 5 has invariants");
     let spec = spec_n(5, vec![0.4; 5], vec![0.6; 5], 0.05);
     let (lo, hi) = spec.bounds();
-    assert!(invariants::Tree::new(inv, &lo, &hi, Tamper::None).is_some());
+    assert!(invariants::Tree::new(inv, &lo, &hi).is_some());
     let out = run(&spec, &Limits::default());
     // the box crosses the complex / real boundary (a_shrunk_invariant_enclosure_at_n5_is_caught)
     assert!(
