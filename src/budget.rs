@@ -383,16 +383,64 @@ pub const VERIFY_BYTES_PER_CELL: f64 = 400.0;
 /// [`VERIFY_BYTES_PER_CELL`]).
 pub const VERIFY_BYTES_PER_CELL_DIM: f64 = 64.0;
 
+/// Set-up seconds of `verify` on a NURDS box of valence 5: the proof of the
+/// invariant grid (`2^20` cells over two invariants, math doc section 15,
+/// "the invariant raster"). Measured with `verify --max-cells 1` (set-up
+/// plus one cell) on `[0.05, 0.95]^5`, 2 threads, load 7.5: 4.99 s CPU
+/// (user + sys), 7.6 s wall; a smaller box costs less (`[0.4, 0.6]^5`:
+/// 0.16 s CPU). The full-box wall time, rounded up.
+pub const VERIFY_SETUP_SECONDS_N5: f64 = 8.0;
+
+/// The same for valence 6: 7.97 s CPU, 12.0 s wall on `[0.05, 0.95]^6`
+/// (7.96 s CPU on `[0.01, 0.99]^6`), load 7.5-7.9; rounded up.
+pub const VERIFY_SETUP_SECONDS_N6: f64 = 13.0;
+
+/// The same for valences 7 to 9 (the characteristic polynomial and its
+/// invariants in exact rationals, no grid: three or more invariants):
+/// measured at most 0.02 s; rounded up.
+pub const VERIFY_SETUP_SECONDS_N7_TO_9: f64 = 0.1;
+
+/// Seconds of the set-up of `verify` before its first cell, NURDS of valence
+/// `n` when `nurds` (else the `c` path, which has none): the characteristic
+/// polynomial's monomial expansion and its invariants in exact rationals
+/// (`n = 5..9`), and for `n = 5, 6` the proof of the invariant grid
+/// ([`VERIFY_SETUP_SECONDS_N5`], [`VERIFY_SETUP_SECONDS_N6`],
+/// [`VERIFY_SETUP_SECONDS_N7_TO_9`]; `n = 3, 4` and `n >= 10` use routes
+/// without set-up). The set-up cannot be interrupted by the time budget.
+pub fn verify_setup_seconds(n: usize, nurds: bool) -> f64 {
+    match (nurds, n) {
+        (true, 5) => VERIFY_SETUP_SECONDS_N5,
+        (true, 6) => VERIFY_SETUP_SECONDS_N6,
+        (true, 7..=9) => VERIFY_SETUP_SECONDS_N7_TO_9,
+        _ => 0.0,
+    }
+}
+
+/// Seconds of `max_cells` cell evaluations of `verify` (without `charmap`)
+/// on `threads` threads.
+fn verify_cells_seconds(n: usize, nurds: bool, max_cells: u64, threads: usize) -> f64 {
+    let nf = n as f64;
+    let per_cell = if nurds {
+        VERIFY_SECONDS_PER_CELL_N4 * nf.powi(4)
+    } else {
+        VERIFY_SECONDS_PER_CELL_N_CC * nf
+    };
+    max_cells as f64 * per_cell / threads.max(1) as f64
+}
+
 /// `verify` with at most `max_cells` evaluated cells on `threads` threads
 /// (NURDS of valence `n` when `nurds`, else the adjustable Catmull-Clark
-/// scheme over `c`); a `time_budget` caps the time (it is checked between
-/// bisection levels, so the estimate allows one more level: twice the budget).
+/// scheme over `c`), plus the set-up ([`verify_setup_seconds`]). A
+/// `time_budget` caps the refinement: it is checked before every cell, so a
+/// run ends within one cell of it, or after the set-up when that alone
+/// takes longer; the estimate is the set-up plus the smaller of the budget
+/// and the cells' time.
 ///
 /// ```
 /// let e = subdiv_lab::budget::verify(3, true, 4_000_000, None, 2);
 /// assert!(e.bytes < 4e9);
 /// let t = subdiv_lab::budget::verify(8, true, 4_000_000, Some(60.0), 2);
-/// assert!(t.seconds <= 120.0);
+/// assert!(t.seconds <= 60.0 + subdiv_lab::budget::verify_setup_seconds(8, true));
 /// ```
 pub fn verify(
     n: usize,
@@ -403,20 +451,24 @@ pub fn verify(
 ) -> Estimate {
     let cells = max_cells as f64;
     let nf = n as f64;
-    let per_cell = if nurds {
-        VERIFY_SECONDS_PER_CELL_N4 * nf.powi(4)
-    } else {
-        VERIFY_SECONDS_PER_CELL_N_CC * nf
-    };
-    let mut seconds = cells * per_cell / threads.max(1) as f64;
+    let mut seconds = verify_cells_seconds(n, nurds, max_cells, threads);
     if let Some(t) = time_budget {
-        seconds = seconds.min(2.0 * t);
+        seconds = seconds.min(t);
     }
+    let setup = verify_setup_seconds(n, nurds);
+    seconds += setup;
     let dim = if nurds { nf } else { 1.0 };
     Estimate {
         bytes: cells * (VERIFY_BYTES_PER_CELL + VERIFY_BYTES_PER_CELL_DIM * dim),
         seconds,
-        what: format!("up to {max_cells} cells of the branch and bound"),
+        what: if setup > 0.0 {
+            format!(
+                "up to {max_cells} cells of the branch and bound after {} of set-up",
+                format_seconds(setup)
+            )
+        } else {
+            format!("up to {max_cells} cells of the branch and bound")
+        },
     }
 }
 
@@ -462,10 +514,12 @@ pub fn verify_charmap(
     } else {
         VERIFY_CHARMAP_SECONDS_PER_CELL_N_CC * nf
     };
-    e.seconds += max_cells as f64 * extra / threads.max(1) as f64;
+    let mut seconds = verify_cells_seconds(n, nurds, max_cells, threads)
+        + max_cells as f64 * extra / threads.max(1) as f64;
     if let Some(t) = time_budget {
-        e.seconds = e.seconds.min(2.0 * t);
+        seconds = seconds.min(t);
     }
+    e.seconds = seconds + verify_setup_seconds(n, nurds);
     e.what = format!("{} (with the charmap property)", e.what);
     e
 }
@@ -499,6 +553,23 @@ mod tests {
         assert_eq!(e.bytes, m.analyze_bytes_per_entry * 31.0 * 31.0);
         assert!((e.seconds - per_n3 * 1000.0).abs() <= 1e-15 * e.seconds);
         assert!(e.what.contains("31 x 31"));
+    }
+
+    /// The set-up of the invariant grid (`n = 5, 6`) is counted on top of
+    /// the cells, also when a time budget caps them.
+    #[test]
+    fn verify_estimates_count_the_set_up() {
+        for (n, setup) in [(5, VERIFY_SETUP_SECONDS_N5), (6, VERIFY_SETUP_SECONDS_N6)] {
+            let cells = verify(n, true, 1000, None, 2).seconds;
+            let budgeted = verify(n, true, 4_000_000, Some(1.0), 2);
+            assert_eq!(budgeted.seconds, 1.0 + setup);
+            assert!(cells >= setup && budgeted.what.contains("set-up"));
+            let cm = verify_charmap(n, true, 4_000_000, Some(1.0), 2);
+            assert_eq!(cm.seconds, 1.0 + setup);
+        }
+        // no set-up on the 2 x 2 route and on the c path
+        assert_eq!(verify(3, true, 4_000_000, Some(1.0), 2).seconds, 1.0);
+        assert_eq!(verify(5, false, 4_000_000, Some(1.0), 2).seconds, 1.0);
     }
 
     #[test]

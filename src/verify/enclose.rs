@@ -69,10 +69,6 @@ pub enum Tamper {
     /// The sound enclosure without the second-order scaled discs (plain
     /// Gershgorin discs; for comparisons).
     PlainGershgorin,
-    /// The factor route's verdict ranges from the linear part of the Taylor
-    /// forms alone (quadratic terms and remainders dropped): first-order
-    /// exact, but not an enclosure.
-    FirstOrder,
     /// The sound spectral enclosure, but the `charmap` certificate drops the
     /// variation of the invariant subspace over the cell
     /// ([`super::charmap::CellTamper::DropSubspaceVariation`]).

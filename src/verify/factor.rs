@@ -499,10 +499,7 @@ pub fn decide(
     tamper: Tamper,
 ) -> Option<(SpectralVerdict, Option<Vec<f64>>)> {
     let f = factor_forms(poly, family, lo, hi, tamper)?;
-    let cell = Cell {
-        h: &f.h,
-        first_order: tamper == Tamper::FirstOrder,
-    };
+    let cell = Cell { h: &f.h };
     let (v, why) = verdict(&f.factors, &f.moduli, &cell);
     Some((v, why.map(|t| t.scores(&f.h))))
 }
@@ -802,20 +799,14 @@ pub(super) fn solve(
     })
 }
 
-/// The cell's half-widths and how ranges are taken.
+/// The cell's half-widths, over which ranges are taken.
 pub(super) struct Cell<'a> {
     pub(super) h: &'a [f64],
-    /// Test hook ([`Tamper::FirstOrder`]): ranges from the linear part alone.
-    pub(super) first_order: bool,
 }
 
 impl Cell<'_> {
     pub(super) fn range(&self, t: &Taylor) -> Iv {
-        if self.first_order {
-            t.c.widen(t.linear_bound(self.h))
-        } else {
-            t.range(self.h)
-        }
+        t.range(self.h)
     }
 }
 

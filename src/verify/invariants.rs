@@ -223,13 +223,7 @@ impl Invariants {
 
     /// The factor route's verdicts for every `P~`, over the box of
     /// coordinates with slopes `b` (a node of the [`Tree`]).
-    fn node_verdict(
-        &self,
-        b: &[Vec<Iv>],
-        lo: &[f64],
-        hi: &[f64],
-        first_order: bool,
-    ) -> SpectralVerdict {
+    fn node_verdict(&self, b: &[Vec<Iv>], lo: &[f64], hi: &[f64]) -> SpectralVerdict {
         if lo
             .iter()
             .zip(hi)
@@ -242,7 +236,7 @@ impl Invariants {
         let mids: Vec<f64> = p.iter().map(|t| 0.5 * t.c.lo + 0.5 * t.c.hi).collect();
         match companion_roots(&mids).and_then(|v| solve(p, h.clone(), v)) {
             Some(f) => {
-                let cell = Cell { h: &h, first_order };
+                let cell = Cell { h: &h };
                 verdict(&f.factors, &f.moduli, &cell).0
             }
             None => OPEN,
@@ -320,7 +314,6 @@ pub struct Tree<'a> {
     lo: Vec<f64>,
     w: Vec<f64>,
     level: u32,
-    first_order: bool,
     /// The distinct verdicts of the grid; index 0 is the open verdict.
     verdicts: Vec<SpectralVerdict>,
     /// Per verdict, the prefix sums over the grid: `(N + 1)^t` entries,
@@ -337,13 +330,12 @@ const OPEN: SpectralVerdict = SpectralVerdict {
 impl<'a> Tree<'a> {
     /// Proves the grid for the cells of the box `[lo, hi]` of ratios (type
     /// docs); `None` when the root cannot be formed.
-    pub fn new(inv: &'a Invariants, lo: &[f64], hi: &[f64], tamper: Tamper) -> Option<Self> {
+    pub fn new(inv: &'a Invariants, lo: &[f64], hi: &[f64]) -> Option<Self> {
         let k = inv.k;
         if lo.len() != k || hi.len() != k {
             return None;
         }
         let t = inv.count();
-        let first_order = tamper == Tamper::FirstOrder;
         let g = decorrelation(inv, lo, hi);
         let b = slopes_in(inv, &g);
         // the root: the union of the enclosures over the parts of the box
@@ -405,7 +397,6 @@ impl<'a> Tree<'a> {
             lo: root_lo,
             w,
             level,
-            first_order,
             verdicts: vec![OPEN],
             sums: Vec::new(),
         };
@@ -469,7 +460,7 @@ impl<'a> Tree<'a> {
             .enumerate()
             .map(|(i, &a)| self.end(i, level, a + 1))
             .collect();
-        let v = self.inv.node_verdict(&self.b, &lo, &hi, self.first_order);
+        let v = self.inv.node_verdict(&self.b, &lo, &hi);
         let complete = v.separation != Status::Undecided && v.class.is_some();
         if complete || level >= self.level {
             return vec![(level, ix, v)];
@@ -604,11 +595,7 @@ impl<'a> Tree<'a> {
         let (blo, bhi): (Vec<f64>, Vec<f64>) = forms
             .iter()
             .map(|t| {
-                let r = if self.first_order {
-                    t.c.widen(t.linear_bound(&h))
-                } else {
-                    t.range(&h)
-                };
+                let r = t.range(&h);
                 (r.lo, r.hi)
             })
             .unzip();
@@ -820,7 +807,7 @@ mod tests {
         let f = AffineFamily::nurds(5);
         let p = &CharPoly::new(&f).unwrap();
         let inv = &Invariants::new(p).unwrap();
-        let mut tree = Tree::new(inv, &[0.3; 5], &[0.32; 5], Tamper::None).unwrap();
+        let mut tree = Tree::new(inv, &[0.3; 5], &[0.32; 5]).unwrap();
         tree.level = 5;
         let n = 1u64 << tree.level;
         let mut rng = SplitMix64::new(12);
@@ -870,6 +857,125 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// [`Tree::query`] against brute force on a random grid of verdicts:
+    /// the verdicts of the grid cells whose closed boxes meet the query box
+    /// (found cell by cell from `e(level, a)`, not through the index
+    /// ranges or the prefix sums), one verdict when they all agree, else
+    /// the properties they agree on. Query end points lie on grid lines
+    /// often (where an off-by-one in the index ranges or the table lookup
+    /// shows), and outside the root.
+    #[test]
+    fn grid_queries_match_brute_force() {
+        use crate::spectral::ClassName;
+        let f = AffineFamily::nurds(5);
+        let p = &CharPoly::new(&f).unwrap();
+        let inv = &Invariants::new(p).unwrap();
+        let mut tree = Tree::new(inv, &[0.3; 5], &[0.32; 5]).unwrap();
+        tree.level = 4;
+        let n = 1usize << tree.level;
+        let t = tree.lo.len();
+        assert_eq!(t, 2);
+        let verdict = |separation, class| SpectralVerdict { separation, class };
+        tree.verdicts = vec![
+            OPEN,
+            verdict(Status::Certified, Some(ClassName::ComplexPair)),
+            verdict(Status::Certified, Some(ClassName::RealDistinct)),
+            verdict(Status::Undecided, Some(ClassName::ComplexPair)),
+            verdict(Status::Refuted, None),
+        ];
+        let mut rng = SplitMix64::new(40);
+        // a grid of blocks (so that agreeing queries occur) with random cells
+        let block: Vec<u8> = (0..16).map(|_| rng.uniform(0.0, 5.0) as u8 % 5).collect();
+        let grid: Vec<u8> = (0..n * n)
+            .map(|flat| {
+                let (x, y) = (flat % n, flat / n);
+                if rng.uniform(0.0, 1.0) < 0.1 {
+                    rng.uniform(0.0, 5.0) as u8 % 5
+                } else {
+                    block[(y / 4) * 4 + x / 4]
+                }
+            })
+            .collect();
+        tree.sums = (0..tree.verdicts.len())
+            .map(|c| prefix_sums(&grid, n, t, c as u8))
+            .collect();
+        let level = tree.level;
+        let point = |rng: &mut SplitMix64, i: usize| -> f64 {
+            let (r0, r1) = (tree.end(i, 0, 0), tree.end(i, 0, 1));
+            let u = rng.uniform(0.0, 1.0);
+            if u < 0.4 {
+                // a grid line, the root's ends included
+                tree.end(
+                    i,
+                    level,
+                    (rng.uniform(0.0, n as f64 + 1.0) as u64).min(n as u64),
+                )
+            } else if u < 0.45 {
+                // just outside the root
+                if u < 0.425 {
+                    down(r0)
+                } else {
+                    up(r1)
+                }
+            } else {
+                rng.uniform(r0, r1)
+            }
+        };
+        let (mut agreeing, mut mixed, mut outside) = (0, 0, 0);
+        for _ in 0..4000 {
+            let mut blo = vec![0.0; t];
+            let mut bhi = vec![0.0; t];
+            for i in 0..t {
+                let (mut b0, mut b1) = (point(&mut rng, i), point(&mut rng, i));
+                if b1 < b0 {
+                    std::mem::swap(&mut b0, &mut b1);
+                }
+                blo[i] = b0;
+                bhi[i] = b1;
+            }
+            let got = tree.query(&blo, &bhi);
+            let inside = (0..t).all(|i| tree.end(i, 0, 0) <= blo[i] && bhi[i] <= tree.end(i, 0, 1));
+            if !inside {
+                outside += 1;
+                assert_eq!(got, OPEN, "{blo:?} {bhi:?}");
+                continue;
+            }
+            let meets = |i: usize, a: usize| {
+                tree.end(i, level, a as u64) <= bhi[i] && blo[i] <= tree.end(i, level, a as u64 + 1)
+            };
+            let mut want: Option<SpectralVerdict> = None;
+            let mut codes = std::collections::BTreeSet::new();
+            for y in (0..n).filter(|&y| meets(1, y)) {
+                for x in (0..n).filter(|&x| meets(0, x)) {
+                    let v = tree.verdicts[grid[y * n + x] as usize];
+                    codes.insert(grid[y * n + x]);
+                    want = Some(match want {
+                        None => v,
+                        Some(w) => SpectralVerdict {
+                            separation: if w.separation == v.separation {
+                                w.separation
+                            } else {
+                                Status::Undecided
+                            },
+                            class: if w.class == v.class { w.class } else { None },
+                        },
+                    });
+                }
+            }
+            if codes.len() == 1 {
+                agreeing += 1;
+            } else {
+                mixed += 1;
+            }
+            assert_eq!(Some(got), want, "{blo:?} {bhi:?}");
+        }
+        // every kind of query occurred
+        assert!(
+            agreeing > 100 && mixed > 100 && outside > 100,
+            "{agreeing} {mixed} {outside}"
+        );
     }
 
     /// The coordinates of the tree: `G^-1` enclosed against `G`, and the

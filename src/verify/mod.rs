@@ -9,7 +9,9 @@
 //! the enclosure into verdicts; [`charmap`] proves the characteristic map
 //! regular and injective over the cell. A cell whose requested properties are not all
 //! decided is bisected across its widest side, down to `min_width`; what is
-//! still open there is `undecided`. Bisection points are floats strictly
+//! still open there is `undecided`, and so is a cell left unevaluated when
+//! the spec's `time_budget` runs out (checked before every cell, so a run
+//! stops within one cell's evaluation of its budget). Bisection points are floats strictly
 //! inside their cells, so the cells tile the box exactly.
 //!
 //! ```
@@ -43,7 +45,8 @@ use rayon::prelude::*;
 use serde::Serialize;
 use spec::{Property, Region, VerifySpec};
 use std::collections::BTreeMap;
-use std::time::Instant;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 /// Default cap on the number of cells evaluated.
 pub const DEFAULT_MAX_CELLS: u64 = 4_000_000;
@@ -110,7 +113,9 @@ impl Cell {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Stop {
-    /// The spec's `time_budget` ran out.
+    /// The spec's `time_budget` ran out (checked before every cell: the
+    /// cells of the level not yet evaluated then stay whole and
+    /// `undecided`).
     TimeBudget,
     /// The next level would exceed `max_cells`.
     MaxCells,
@@ -123,6 +128,9 @@ pub struct Outcome {
     pub cells: Vec<Cell>,
     /// Cells evaluated (leaves and inner nodes).
     pub evaluated: u64,
+    /// Final cells that were never evaluated: the time budget ran out
+    /// within their level (they are `undecided`).
+    pub unevaluated: u64,
     /// Why refinement stopped early, if it did.
     pub stopped: Option<Stop>,
     /// Wall time, seconds.
@@ -227,6 +235,26 @@ fn evaluate(
     (class, status, scores)
 }
 
+/// The evaluation of a cell that was never evaluated (the time budget ran
+/// out): no class, every property `undecided` except Theorem 1, which holds
+/// on every ratio box without any evaluation (as in [`evaluate`]).
+fn not_evaluated(spec: &VerifySpec) -> Evaluation {
+    let status = spec
+        .properties
+        .iter()
+        .map(|&p| {
+            let s = match (p, &spec.region) {
+                (Property::Theorem1, Region::Ratios { .. } | Region::Corners { .. }) => {
+                    Status::Certified
+                }
+                _ => Status::Undecided,
+            };
+            (p, s)
+        })
+        .collect();
+    (None, status, None)
+}
+
 fn decided(spec: &VerifySpec, class: Option<ClassName>, status: &[(Property, Status)]) -> bool {
     status.iter().all(|&(p, s)| {
         !attempted(&spec.region, p)
@@ -301,18 +329,39 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
     let tree = invariants
         .as_ref()
         .filter(|inv| inv.count() <= invariants::MAX_TREE_INVARIANTS)
-        .and_then(|inv| invariants::Tree::new(inv, &lo, &hi, limits.tamper));
+        .and_then(|inv| invariants::Tree::new(inv, &lo, &hi));
     let log_split = matches!(spec.region, Region::Corners { .. });
     let mut frontier: Vec<(Vec<f64>, Vec<f64>)> = vec![(lo, hi)];
     let mut cells = Vec::new();
     let mut evaluated: u64 = 0;
     let mut stopped = None;
     let mut level: u32 = 0;
+    let mut unevaluated: u64 = 0;
+    // the time budget, checked before every cell (one clock read, tens of
+    // nanoseconds against microseconds to milliseconds per cell): once it
+    // has run out, the remaining cells of the level are not evaluated
+    let deadline = spec
+        .time_budget
+        .and_then(|t| start.checked_add(Duration::try_from_secs_f64(t).ok()?));
+    let expired = AtomicBool::new(false);
+    let out_of_time = || {
+        if expired.load(Ordering::Relaxed) {
+            return true;
+        }
+        let late = deadline.is_some_and(|d| Instant::now() >= d);
+        if late {
+            expired.store(true, Ordering::Relaxed);
+        }
+        late
+    };
     while !frontier.is_empty() {
-        let results: Vec<Evaluation> = frontier
+        let results: Vec<Option<Evaluation>> = frontier
             .par_iter()
             .map(|(a, b)| {
-                evaluate(
+                if out_of_time() {
+                    return None;
+                }
+                Some(evaluate(
                     spec,
                     family.as_ref(),
                     charpoly.as_ref(),
@@ -320,10 +369,20 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
                     a,
                     b,
                     limits.tamper,
-                )
+                ))
             })
             .collect();
-        evaluated += frontier.len() as u64;
+        let skipped = results.iter().filter(|r| r.is_none()).count();
+        if skipped > 0 {
+            stopped.get_or_insert(Stop::TimeBudget);
+        }
+        unevaluated += skipped as u64;
+        evaluated += (frontier.len() - skipped) as u64;
+        // a cell not evaluated is open on every property it attempts
+        let results: Vec<Evaluation> = results
+            .into_iter()
+            .map(|r| r.unwrap_or_else(|| not_evaluated(spec)))
+            .collect();
         let splittable = |a: &[f64], b: &[f64], scores: Option<&Vec<f64>>| {
             split_coordinate(a, b, scores.map(Vec::as_slice), spec.min_width, log_split)
         };
@@ -337,10 +396,7 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
         if open > 0 && stopped.is_none() {
             if evaluated + 2 * open as u64 > limits.max_cells {
                 stopped = Some(Stop::MaxCells);
-            } else if spec
-                .time_budget
-                .is_some_and(|t| start.elapsed().as_secs_f64() > t)
-            {
+            } else if out_of_time() {
                 stopped = Some(Stop::TimeBudget);
             }
         }
@@ -375,6 +431,7 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
     Outcome {
         cells,
         evaluated,
+        unevaluated,
         stopped,
         seconds: start.elapsed().as_secs_f64(),
     }
@@ -438,6 +495,9 @@ pub struct Summary {
     pub cells: usize,
     /// Cells evaluated, including the ones that were split.
     pub evaluated: u64,
+    /// Final cells never evaluated because the time budget ran out within
+    /// their level (counted as `undecided`).
+    pub unevaluated: u64,
     /// Final cells per verdict.
     pub counts: BTreeMap<String, usize>,
     /// Volume fraction per verdict.
@@ -448,7 +508,8 @@ pub struct Summary {
     pub property_volume_fraction: BTreeMap<String, BTreeMap<String, f64>>,
     /// Deepest bisection level among the final cells.
     pub deepest_level: u32,
-    /// Why refinement stopped early (`null`: it did not).
+    /// Why refinement stopped early (`null`: it did not): `"time_budget"`
+    /// or `"max_cells"`.
     pub stopped: Option<Stop>,
     /// Wall time of the refinement, seconds.
     pub seconds: f64,
@@ -492,6 +553,7 @@ pub fn summary(spec: &VerifySpec, outcome: &Outcome) -> Summary {
         min_width: spec.min_width,
         cells: outcome.cells.len(),
         evaluated: outcome.evaluated,
+        unevaluated: outcome.unevaluated,
         undecided_fraction: vol.get("undecided").copied().unwrap_or(0.0),
         counts,
         volume_fraction: vol,

@@ -7,7 +7,7 @@
 //! box = [[0.01, 0.99], [0.01, 0.99], [0.01, 0.99]]   # one [lo, hi] per edge ratio r_i
 //! properties = ["class", "separation"]                # also "theorem1", "charmap"
 //! min_width = 0.002          # optional: cells this narrow are not split further
-//! time_budget = 60           # optional, seconds: refinement stops after this
+//! time_budget = 60           # optional, seconds: refinement stops after this (cells left open are undecided)
 //! ```
 //!
 //! Errors name the key and the line (the rules of the sweep specs).
@@ -118,7 +118,8 @@ pub struct VerifySpec {
     pub properties: Vec<Property>,
     /// Cells whose widest side is at most this are not split.
     pub min_width: f64,
-    /// Wall-time budget of the refinement, seconds.
+    /// Wall-time budget of the run, seconds (from its start, set-up
+    /// included; checked before every cell, see [`super::Stop::TimeBudget`]).
     pub time_budget: Option<f64>,
 }
 

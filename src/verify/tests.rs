@@ -284,7 +284,7 @@ fn invariant_tree_route_at_n5_agrees_with_the_exact_classifier_and_tiles() {
     let inv = &invariants::Invariants::new(p).expect("n = 5 has invariants");
     let spec = spec_n(5, vec![0.4; 5], vec![0.6; 5], 0.05);
     let (lo, hi) = spec.bounds();
-    assert!(invariants::Tree::new(inv, &lo, &hi, Tamper::None).is_some());
+    assert!(invariants::Tree::new(inv, &lo, &hi).is_some());
     let out = run(&spec, &Limits::default());
     // the box crosses the complex / real boundary (a_shrunk_invariant_enclosure_at_n5_is_caught)
     assert!(
@@ -506,4 +506,52 @@ fn corner_box_encloses_its_ratios_and_its_cells_agree_with_the_exact_classifier(
         .any(|c| (0..3).any(|k| c.lo[k] != lo[k] && c.lo[k] != 0.5 * lo[k] + 0.5 * hi[k])));
     let (bad, checks) = disagreements(&spec, &out, 200, 9);
     assert!(checks == 200 && bad == 0, "{bad} disagreements in {checks}");
+}
+
+/// Budget of [`a_time_budget_stops_within_a_level`], seconds: a few
+/// hundred `n = 7` cells per thread fit in it.
+const SHORT_BUDGET: f64 = 1.0;
+
+/// The wall-time bound of [`a_time_budget_stops_within_a_level`] as a
+/// multiple of the budget. The run checks the clock before every cell, so it
+/// returns within one cell's evaluation (about 0.5 ms at `n = 7`) plus the
+/// collection of the remaining cells of the level after the deadline; the
+/// factor 3 leaves room for a loaded 2-core machine (the clock is wall time,
+/// so load delays the return only by the post-processing).
+const BUDGET_OVERRUN_FACTOR: f64 = 3.0;
+
+#[test]
+fn a_time_budget_stops_within_a_level() {
+    // n = 7 over [0.05, 0.95]^7 runs for many minutes (math doc section 15);
+    // with a short budget it stops inside a level: the cells of that level
+    // not yet evaluated stay whole and undecided, and the box stays tiled.
+    // The deadline can fall on the very end of a level (then no cell is left
+    // unevaluated and the between-levels check stops the run); a slightly
+    // longer budget moves it into the next level.
+    for attempt in 0..3 {
+        let budget = SHORT_BUDGET * (1.0 + 0.3 * f64::from(attempt));
+        let spec = VerifySpec {
+            time_budget: Some(budget),
+            ..spec_n(7, vec![0.05; 7], vec![0.95; 7], 0.02)
+        };
+        let t0 = Instant::now();
+        let out = run(&spec, &Limits::default());
+        let wall = t0.elapsed().as_secs_f64();
+        assert!(
+            wall < BUDGET_OVERRUN_FACTOR * budget,
+            "budget {budget} s, returned after {wall} s"
+        );
+        assert_eq!(out.stopped, Some(Stop::TimeBudget));
+        let s = summary(&spec, &out);
+        let json = serde_json::to_value(&s).unwrap();
+        assert_eq!(json["stopped"], "time_budget");
+        assert_eq!(json["unevaluated"], out.unevaluated);
+        assert_tiles(&spec, &out);
+        let open = out.cells.iter().filter(|c| c.verdict() == "undecided");
+        assert!(open.count() as u64 >= out.unevaluated);
+        if out.unevaluated > 0 {
+            return;
+        }
+    }
+    panic!("three budgets ran out exactly at the end of a level");
 }
