@@ -166,6 +166,8 @@ fn properties(_layout: &Layout) -> Arc<WriterProperties> {
 #[derive(Debug, Default)]
 struct Dict {
     entries: Vec<Box<str>>,
+    /// The entry of the last label looked up (most rows repeat it).
+    last: u32,
     map: std::collections::HashMap<Box<str>, u32>,
     /// Per row: its entry, or [`NULL_INDEX`].
     indices: Vec<u32>,
@@ -197,12 +199,6 @@ impl Dict {
 
     /// The index of label `t`, a new entry if it is new.
     fn intern(&mut self, t: &str) -> u32 {
-        // Most rows repeat the previous row's label.
-        if let Some(&i) = self.indices.last() {
-            if self.entries.get(i as usize).is_some_and(|e| **e == *t) {
-                return i;
-            }
-        }
         if self.entries.len() <= Self::LINEAR {
             if let Some(i) = self.entries.iter().position(|e| &**e == t) {
                 return i as u32;
@@ -227,35 +223,32 @@ impl Dict {
         self.indices.push(i);
     }
 
-    /// Appends label `t` as the CSV holds it ([`csv_text`]). The entries
-    /// hold no line breaks, so a `t` found among them is its own CSV text:
-    /// only a new label is scanned.
+    /// The index of label `t` as the CSV holds it ([`csv_text`]), a new
+    /// entry if it is new. The entries hold no line breaks, so a `t` found
+    /// among them is its own CSV text: only a new label is scanned.
     #[inline(always)]
-    fn push_label(&mut self, t: &str) {
-        if let Some(&i) = self.indices.last() {
-            if self.entries.get(i as usize).is_some_and(|e| **e == *t) {
-                self.indices.push(i);
-                return;
-            }
+    fn label_index(&mut self, t: &str) -> u32 {
+        if self.entries.get(self.last as usize).is_some_and(|e| **e == *t) {
+            return self.last;
         }
         let found = if self.entries.len() <= Self::LINEAR {
-            self.entries
-                .iter()
-                .position(|e| **e == *t)
-                .map(|i| i as u32)
+            self.entries.iter().position(|e| **e == *t).map(|i| i as u32)
         } else {
             self.map.get(t).copied()
         };
-        match found {
-            Some(i) => self.indices.push(i),
-            None => self.push(&csv_text(t)),
-        }
+        let i = match found {
+            Some(i) => i,
+            None => self.intern(&csv_text(t)),
+        };
+        self.last = i;
+        i
     }
 
     fn clear(&mut self) {
         self.entries.clear();
         self.map.clear();
         self.indices.clear();
+        self.last = 0;
     }
 }
 
@@ -361,33 +354,34 @@ impl Values {
         Ok(())
     }
 
-    /// Appends rows `rows` of `src` (a column of the same type). Labels are
-    /// re-interned in row order, so that a group's dictionary is in order of
-    /// first appearance whatever the blocks were.
-    fn append_rows(&mut self, src: &Values, rows: std::ops::Range<usize>) {
-        match (self, src) {
-            (Values::U64(v), Values::U64(s)) => v.extend_from_slice(&s[rows]),
-            (Values::U32(v), Values::U32(s)) => v.extend_from_slice(&s[rows]),
-            (Values::F64(v), Values::F64(s)) => v.extend_from_slice(&s[rows]),
-            (Values::Str(v), Values::Str(s)) => v.extend_from_slice(&s[rows]),
-            (Values::Bool(v), Values::Bool(s)) => v.extend_from_slice(&s[rows]),
-            (Values::Dict(v), Values::Dict(s)) => {
+    /// Appends rows `rows` of column `j` of `block` (a column of this
+    /// type). Labels are re-interned in row order, so that a group's
+    /// dictionary is in order of first appearance whatever the blocks were.
+    fn append_block(&mut self, block: &TypedBlock, j: usize, rows: std::ops::Range<usize>) {
+        match self {
+            Values::U64(v) => v.extend_from_slice(&block.ids[rows]),
+            Values::U32(v) => v.extend_from_slice(&block.valences[rows]),
+            Values::Str(v) => v.extend_from_slice(&block.errors[rows]),
+            Values::F64(v) => v.extend(block.column(j, rows).map(f64::from_bits)),
+            // A boolean cell is 0, 1 or NULL_BOOL.
+            Values::Bool(v) => v.extend(block.column(j, rows).map(|b| b as u8)),
+            Values::Dict(v) => {
+                let src = &block.dicts[j];
                 // Block entry -> group entry, assigned at first use.
-                let mut map = vec![NULL_INDEX; s.entries.len()];
-                for &b in &s.indices[rows] {
+                let mut map = vec![NULL_INDEX; src.entries.len()];
+                for b in block.column(j, rows) {
+                    let b = b as u32;
                     if b == NULL_INDEX {
                         v.indices.push(NULL_INDEX);
                         continue;
                     }
                     let g = &mut map[b as usize];
                     if *g == NULL_INDEX {
-                        *g = v.intern(&s.entries[b as usize]);
+                        *g = v.intern(&src.entries[b as usize]);
                     }
                     v.indices.push(*g);
                 }
             }
-            // Blocks are built from the same layout as the rows (same types).
-            _ => unreachable!("a block column of another type"),
         }
     }
 }
@@ -415,7 +409,20 @@ fn csv_text(t: &str) -> std::borrow::Cow<'_, str> {
 /// CSV text, as in [`ParquetRows`]' [`Write`](std::io::Write) path, and a cell
 /// that text does not fit is reported by [`ParquetRows::push_block`].
 pub struct TypedBlock {
-    values: Vec<Values>,
+    /// The column types, `id` to `error`.
+    kinds: Vec<Col>,
+    /// Cells per row: the columns between `valence` and `error`.
+    stride: usize,
+    ids: Vec<i64>,
+    valences: Vec<i32>,
+    /// The cells, row after row: a float's bits, a label's index into its
+    /// column's block dictionary, a boolean as 0 / 1, or the column's null
+    /// sentinel ([`null_bits`]). One store per cell; the columns are formed
+    /// when the block is appended to a row group.
+    cells: Vec<u64>,
+    /// Per column: the labels of this block (empty for other columns).
+    dicts: Vec<Dict>,
+    errors: Vec<Option<String>>,
     /// Column of the next cell.
     col: usize,
     rows: usize,
@@ -425,6 +432,17 @@ pub struct TypedBlock {
     fault: Option<(u64, usize, String)>,
     number: String,
     digits: zmij::Buffer,
+}
+
+/// The null of a cell column of type `kind` in [`TypedBlock`]'s cells.
+fn null_bits(kind: Col) -> u64 {
+    match kind {
+        Col::Float => NULL_F64,
+        Col::Label => u64::from(NULL_INDEX),
+        Col::Bool => u64::from(NULL_BOOL),
+        // Not cell columns.
+        Col::Id | Col::Valence | Col::Error => 0,
+    }
 }
 
 impl std::fmt::Debug for TypedBlock {
@@ -437,31 +455,61 @@ impl std::fmt::Debug for TypedBlock {
 }
 
 impl TypedBlock {
-    /// Appends the CSV text `f` of the next cell through [`Values::push`].
+    /// Appends the next cell from its CSV text `f`, read as the text path
+    /// reads it ([`Values::push`]): empty is a null, a float column parses a
+    /// number, a label column interns it, a boolean column takes `true` /
+    /// `false`. Text that does not fit is a null and the block's fault.
     fn push_text_cell(&mut self, f: &str) {
         let k = self.col;
-        if self.values[k]
-            .push(f, "", &mut self.number, &mut self.digits)
-            .is_err()
-        {
-            // Keep the columns aligned; the block is refused when written.
-            self.values[k]
-                .push("", "", &mut self.number, &mut self.digits)
-                .ok();
-            if self.fault.is_none() {
-                self.fault = Some((self.id, k, f.to_owned()));
+        let kind = self.kinds[k];
+        let cell = match kind {
+            _ if f.is_empty() => Some(null_bits(kind)),
+            Col::Float => canonical_number(f, &mut self.number, &mut self.digits)
+                .or_else(|| f.parse::<f64>().ok())
+                .map(|x| stored(x).to_bits()),
+            Col::Label => Some(u64::from(self.dicts[k].label_index(f))),
+            Col::Bool => match f {
+                "true" => Some(1),
+                "false" => Some(0),
+                _ => None,
+            },
+            Col::Id | Col::Valence | Col::Error => None,
+        };
+        match cell {
+            Some(c) => self.cells.push(c),
+            None => {
+                // Keep the rows aligned; the block is refused when written.
+                self.cells.push(null_bits(kind));
+                if self.fault.is_none() {
+                    self.fault = Some((self.id, k, f.to_owned()));
+                }
             }
         }
         self.col += 1;
+    }
+
+    /// The cells of column `j` (a cell column) in rows `rows`.
+    fn column(&self, j: usize, rows: std::ops::Range<usize>) -> impl Iterator<Item = u64> + '_ {
+        // Exact-size chunks: `extend` writes them without a check per value.
+        let k = j - 2;
+        self.cells[rows.start * self.stride..rows.end * self.stride]
+            .chunks_exact(self.stride.max(1))
+            .map(move |row| row[k])
     }
 }
 
 impl super::run::RowBlock for TypedBlock {
     fn with_rows(layout: &Layout, rows: usize) -> Self {
-        let cols = columns_of(layout);
-        let values = cols.iter().map(|&c| Values::with_rows(c, rows)).collect();
+        let kinds = columns_of(layout);
+        let stride = kinds.len() - 3;
         TypedBlock {
-            values,
+            stride,
+            ids: Vec::with_capacity(rows),
+            valences: Vec::with_capacity(rows),
+            cells: Vec::with_capacity(rows * stride),
+            dicts: kinds.iter().map(|_| Dict::default()).collect(),
+            errors: Vec::with_capacity(rows),
+            kinds,
             col: 0,
             rows: 0,
             id: 0,
@@ -474,17 +522,13 @@ impl super::run::RowBlock for TypedBlock {
     #[inline(always)]
     fn start(&mut self, id: u64, valence: usize) {
         self.id = id;
-        if let Values::U64(v) = &mut self.values[0] {
-            v.push(id as i64);
-        }
-        if let Values::U32(v) = &mut self.values[1] {
-            match u32::try_from(valence) {
-                Ok(n) => v.push(n as i32),
-                Err(_) => {
-                    v.push(0);
-                    if self.fault.is_none() {
-                        self.fault = Some((id, 1, valence.to_string()));
-                    }
+        self.ids.push(id as i64);
+        match u32::try_from(valence) {
+            Ok(n) => self.valences.push(n as i32),
+            Err(_) => {
+                self.valences.push(0);
+                if self.fault.is_none() {
+                    self.fault = Some((id, 1, valence.to_string()));
                 }
             }
         }
@@ -493,15 +537,14 @@ impl super::run::RowBlock for TypedBlock {
 
     #[inline(always)]
     fn empty(&mut self) {
-        // Only id and valence are required, and they are not cells.
-        self.values[self.col].push_null();
+        self.cells.push(null_bits(self.kinds[self.col]));
         self.col += 1;
     }
 
     #[inline(always)]
     fn num(&mut self, x: f64) {
-        if let Values::F64(v) = &mut self.values[self.col] {
-            v.push(stored(x));
+        if self.kinds[self.col] == Col::Float {
+            self.cells.push(stored(x).to_bits());
             self.col += 1;
         } else {
             let mut t = String::new();
@@ -513,31 +556,22 @@ impl super::run::RowBlock for TypedBlock {
     #[inline(always)]
     fn text(&mut self, t: &str) {
         let k = self.col;
-        match &mut self.values[k] {
-            // An empty text is an empty CSV cell: a null.
-            v @ (Values::Dict(_) | Values::Str(_)) if t.is_empty() => {
-                v.push_null();
-                self.col += 1;
-            }
-            Values::Dict(v) => {
-                v.push_label(t);
-                self.col += 1;
-            }
-            Values::Str(v) => {
-                v.push(Some(csv_text(t).into_owned()));
-                self.col += 1;
-            }
-            Values::Bool(v) if t == "true" || t == "false" => {
-                v.push(u8::from(t == "true"));
-                self.col += 1;
-            }
-            _ => self.push_text_cell(&csv_text(t)),
+        if self.kinds[k] == Col::Label && !t.is_empty() {
+            let i = self.dicts[k].label_index(t);
+            self.cells.push(u64::from(i));
+            self.col += 1;
+        } else {
+            self.push_text_cell(&csv_text(t));
         }
     }
 
     fn clear(&mut self) {
-        for v in &mut self.values {
-            v.clear();
+        self.ids.clear();
+        self.valences.clear();
+        self.cells.clear();
+        self.errors.clear();
+        for d in &mut self.dicts {
+            d.clear();
         }
         self.col = 0;
         self.rows = 0;
@@ -547,12 +581,9 @@ impl super::run::RowBlock for TypedBlock {
 
     #[inline(always)]
     fn end(&mut self, error: Option<&str>) {
-        let k = self.col;
-        if let Values::Str(v) = &mut self.values[k] {
-            match error {
-                Some(e) if !e.is_empty() => v.push(Some(csv_text(e).into_owned())),
-                _ => v.push(None),
-            }
+        match error {
+            Some(e) if !e.is_empty() => self.errors.push(Some(csv_text(e).into_owned())),
+            _ => self.errors.push(None),
         }
         self.col = 0;
         self.rows += 1;
@@ -714,18 +745,18 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
                 "parquet: configuration {id}: {name} = {f:?} is not {what}"
             )));
         }
-        if block.values.len() != self.values.len() {
+        if block.kinds.len() != self.values.len() {
             return Err(SweepError::Io(format!(
                 "parquet: a block of {} columns for {} columns",
-                block.values.len(),
+                block.kinds.len(),
                 self.values.len()
             )));
         }
         let mut start = 0;
         while start < block.rows {
             let take = (block.rows - start).min(ROW_GROUP_ROWS - self.rows_in_group);
-            for (dst, src) in self.values.iter_mut().zip(&block.values) {
-                dst.append_rows(src, start..start + take);
+            for (j, dst) in self.values.iter_mut().enumerate() {
+                dst.append_block(block, j, start..start + take);
             }
             start += take;
             self.rows_in_group += take;
