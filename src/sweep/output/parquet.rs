@@ -228,11 +228,18 @@ impl Dict {
     /// among them is its own CSV text: only a new label is scanned.
     #[inline(always)]
     fn label_index(&mut self, t: &str) -> u32 {
-        if self.entries.get(self.last as usize).is_some_and(|e| **e == *t) {
+        if self
+            .entries
+            .get(self.last as usize)
+            .is_some_and(|e| **e == *t)
+        {
             return self.last;
         }
         let found = if self.entries.len() <= Self::LINEAR {
-            self.entries.iter().position(|e| **e == *t).map(|i| i as u32)
+            self.entries
+                .iter()
+                .position(|e| **e == *t)
+                .map(|i| i as u32)
         } else {
             self.map.get(t).copied()
         };
