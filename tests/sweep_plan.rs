@@ -212,14 +212,14 @@ fn derived_cells_are_the_edge_ratios_of_the_scheme() {
         let mut out = [Some(-1.0); 5];
         p.derived_into(&c, &mut out);
         let r = p.scheme(&c).unwrap().ratios().unwrap();
-        for i in 0..5 {
+        for (i, cell) in out.iter().enumerate() {
             if i < n {
                 let (pi, qn) = (c.coordinates[i], c.coordinates[n + (i + 1) % n]);
                 let want = r.as_slice()[i];
-                assert_eq!(out[i], Some(want), "id {id}, r{i}");
+                assert_eq!(*cell, Some(want), "id {id}, r{i}");
                 assert!(close(want, qn / (pi + qn)), "id {id}, r{i}: {want}");
             } else {
-                assert_eq!(out[i], None, "id {id}, r{i}");
+                assert_eq!(*cell, None, "id {id}, r{i}");
             }
         }
     }
