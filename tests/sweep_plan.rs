@@ -190,3 +190,118 @@ fn shard_membership_length_and_text() {
     assert_eq!(Shard::ALL.to_string(), "0/1");
     assert!(Shard::new(0, 0).is_err() && Shard::new(3, 3).is_err());
 }
+
+/// Derived columns of a corner-interval sweep: the names `r0..r{N-1}` (`N`
+/// the largest valence), and per configuration the edge ratios
+/// `r_i = q_{i+1} / (p_i + q_{i+1})` of its scheme, bit for bit, `None` beyond
+/// the valence; every cell `None` for a space without derived columns, for a
+/// configuration whose coordinate count is not `2 n`, and for intervals that
+/// give no ratios (every earlier value of `out` is overwritten).
+#[test]
+fn derived_cells_are_the_edge_ratios_of_the_scheme() {
+    use subdiv_lab::sweep::Configuration;
+    let p = plan(
+        "[3, 5]",
+        "kind = \"corner-intervals\"\ninterval_range = [0.5, 2.0]",
+        "kind = \"random\"\ncount = 2\nseed = 5",
+    );
+    assert_eq!(p.derived_columns(), ["r0", "r1", "r2", "r3", "r4"]);
+    for id in 0..p.total() {
+        let c = p.configuration(id).unwrap();
+        let n = c.valence;
+        let mut out = [Some(-1.0); 5];
+        p.derived_into(&c, &mut out);
+        let r = p.scheme(&c).unwrap().ratios().unwrap();
+        for (i, cell) in out.iter().enumerate() {
+            if i < n {
+                let (pi, qn) = (c.coordinates[i], c.coordinates[n + (i + 1) % n]);
+                let want = r.as_slice()[i];
+                assert_eq!(*cell, Some(want), "id {id}, r{i}");
+                assert!(close(want, qn / (pi + qn)), "id {id}, r{i}: {want}");
+            } else {
+                assert_eq!(*cell, None, "id {id}, r{i}");
+            }
+        }
+    }
+    // a coordinate count other than 2 n, and intervals whose ratio rounds to 0
+    // (r_0 = q_1 / (p_0 + q_1) = 1e-300 / 1e300)
+    let bad = [
+        Configuration {
+            id: 0,
+            valence: 3,
+            coordinates: vec![1.0; 5],
+        },
+        Configuration {
+            id: 0,
+            valence: 3,
+            coordinates: vec![1e300, 1.0, 1.0, 1.0, 1e-300, 1.0],
+        },
+    ];
+    for c in &bad {
+        let mut out = [Some(-1.0); 5];
+        p.derived_into(c, &mut out);
+        assert_eq!(out, [None; 5], "{c:?}");
+    }
+    // a ratios space has no derived columns: every cell None
+    let p = plan(
+        "[3]",
+        "kind = \"ratios\"\nratio_range = [0.2, 0.8]",
+        "kind = \"random\"\ncount = 1\nseed = 5",
+    );
+    assert!(p.derived_columns().is_empty());
+    let mut out = [Some(-1.0); 3];
+    p.derived_into(&p.configuration(0).unwrap(), &mut out);
+    assert_eq!(out, [None; 3]);
+}
+
+/// `scheme_reusing` gives `scheme`'s result whatever it is handed: it may
+/// refill the ratios of a NURDS scheme only for a NURDS sweep over edge
+/// ratios, and only when the configuration has one ratio per edge of that
+/// valence (vertex-EP intervals are not ratios; a hand-made configuration with
+/// a wrong coordinate count is an error; another scheme over ratios refuses
+/// non-uniform knots).
+#[test]
+fn reusing_a_scheme_never_changes_the_result() {
+    use subdiv_lab::schemes::SchemeKind;
+    use subdiv_lab::sweep::Configuration;
+    let same = |p: &Plan, c: &Configuration, old| {
+        let fresh = p.scheme(c).map_err(|e| e.to_string());
+        let reused = p.scheme_reusing(c, old).map_err(|e| e.to_string());
+        assert_eq!(reused, fresh, "{c:?}");
+    };
+    // vertex-EP intervals (some above 1): the previous NURDS scheme of the same valence
+    let p = plan(
+        "[3, 4]",
+        "kind = \"vertex-ep\"\ninterval_range = [0.2, 5.0]",
+        "kind = \"random\"\ncount = 3\nseed = 2",
+    );
+    let mut old = None;
+    for id in 0..p.total() {
+        let c = p.configuration(id).unwrap();
+        same(&p, &c, old.take());
+        old = p.scheme(&c).ok();
+        assert!(old.is_some());
+    }
+    // ratios, but four of them for a valence-3 configuration
+    let p = plan(
+        "[3]",
+        "kind = \"ratios\"\nratio_range = [0.2, 0.8]",
+        "kind = \"random\"\ncount = 1\nseed = 2",
+    );
+    let c = p.configuration(0).unwrap();
+    let wrong = Configuration {
+        id: 0,
+        valence: 3,
+        coordinates: vec![0.3, 0.4, 0.6, 0.7],
+    };
+    assert!(p.scheme(&wrong).is_err());
+    same(&p, &wrong, p.scheme(&c).ok());
+    // a hand-built spec pairing ratios with Catmull-Clark, handed a NURDS scheme
+    let mut spec = p.spec().clone();
+    spec.scheme = SchemeKind::CatmullClark;
+    let cc = Plan::new(spec);
+    let nurds = p.scheme(&c).ok();
+    assert!(nurds.is_some());
+    assert!(cc.scheme(&c).is_err());
+    same(&cc, &c, nurds);
+}

@@ -555,4 +555,27 @@ mod tests {
         assert!(!q.is_uniform());
         assert!(EdgeRatios::<Rational>::uniform(3).unwrap().is_uniform());
     }
+
+    /// `scaled` multiplies every interval by `s` (checked on the intervals
+    /// themselves, not only through the invariant ratios); `refilled` equals
+    /// `new` on the same values, complements `1 - r_i` included, whatever the
+    /// old valence, and refuses what `new` refuses (directly here; the sweep's
+    /// reuse path checks it through `Plan::scheme_reusing`).
+    #[test]
+    fn scaling_multiplies_every_interval_and_refilling_equals_new() {
+        let k = CornerIntervals::new(vec![1.0, 2.0, 0.5], vec![3.0, 0.25, 1.5]).unwrap();
+        let s = k.scaled(&4.0).unwrap();
+        assert_eq!(s.p(), &[4.0, 8.0, 2.0]);
+        assert_eq!(s.q(), &[12.0, 1.0, 6.0]);
+        assert_eq!(s.ratios().unwrap(), k.ratios().unwrap());
+        let old = EdgeRatios::new(vec![0.5; 4]).unwrap();
+        let values = [0.125, 0.75, 0.375];
+        let r = old.clone().refilled(&values).unwrap();
+        assert_eq!(r, EdgeRatios::new(values.to_vec()).unwrap());
+        assert_eq!(r.complement(), &[0.875, 0.25, 0.625]);
+        assert_eq!(
+            old.refilled(&[0.5, 1.0, 0.5]).unwrap_err(),
+            EdgeRatios::new(vec![0.5, 1.0, 0.5]).unwrap_err()
+        );
+    }
 }
