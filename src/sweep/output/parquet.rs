@@ -16,7 +16,7 @@
 //! numbers of the CSV of the same spec (a test reads both back and compares).
 //! No compression, no statistics, no page index: the bytes depend only on the
 //! rows, so the file is byte-identical for any thread count. The pages are
-//! written by [`encode`] (one data page per column chunk, a dictionary page
+//! written by the private `encode` module (one data page per column chunk, a dictionary page
 //! before a label column's); the `parquet` crate writes the footer and reads
 //! files back.
 //!
@@ -147,7 +147,7 @@ fn schema_of(layout: &Layout) -> Result<TypePtr, SweepError> {
 }
 
 /// Writer properties of the footer (format version, `created_by`); the
-/// pages themselves are written by [`encode`] (no compression, statistics or
+/// pages themselves are written by `encode` (no compression, statistics or
 /// page index: the bytes depend on the rows only).
 fn properties(_layout: &Layout) -> Arc<WriterProperties> {
     Arc::new(
