@@ -149,7 +149,7 @@ fn schema_of(layout: &Layout) -> Result<TypePtr, SweepError> {
 /// Writer properties of the footer (format version, `created_by`); the
 /// pages themselves are written by `encode` (no compression, statistics or
 /// page index: the bytes depend on the rows only).
-fn properties(_layout: &Layout) -> Arc<WriterProperties> {
+fn properties() -> Arc<WriterProperties> {
     Arc::new(
         WriterProperties::builder()
             .set_writer_version(WriterVersion::PARQUET_1_0)
@@ -404,9 +404,9 @@ fn csv_text(t: &str) -> std::borrow::Cow<'_, str> {
     }
 }
 
-/// The rows of one task of the sweep driver as typed column buffers (the
-/// typed path of `sweep --format parquet`, math doc section 16.2): the
-/// evaluator's cells go straight into the buffers, with the values the CSV
+/// The rows of one task of the sweep driver as typed cells, row after row
+/// (the typed path of `sweep --format parquet`, math doc section 16.2): the
+/// evaluator's cells go straight into the block, with the values the CSV
 /// of the same rows holds once read back. A number in a float column is the
 /// `f64` itself (its CSV text is its shortest round trip, which reads back to
 /// the same bits; a NaN is the canonical NaN, as the text `NaN` reads back);
@@ -672,7 +672,7 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
             names: layout.column_names(),
             descr: Arc::new(SchemaDescriptor::new(schema.clone())),
             schema,
-            props: properties(layout),
+            props: properties(),
             key_value: vec![
                 KeyValue::new(
                     FINGERPRINT_KEY.to_owned(),
@@ -1165,7 +1165,7 @@ pub fn footer_for_groups(
         .collect();
     footer_bytes(
         &schema_of(layout)?,
-        &properties(layout),
+        &properties(),
         &kv,
         &table.groups[..groups],
     )

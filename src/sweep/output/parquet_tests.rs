@@ -261,39 +261,49 @@ fn typed_parquet_path_refuses_a_cell_of_the_wrong_kind() {
     .is_err());
 }
 
-/// The file reads back (through the arrow-rs reader, not our encoder) as
-/// exactly the CSV lines of the same rows: over two row groups, with more
-/// distinct labels than the dictionary's linear search holds (41, first
-/// seen in scrambled order), nulls in every optional column, booleans of
-/// both values and nulls (their bit packing), and error rows.
-#[test]
-fn parquet_reads_back_as_the_csv_lines() {
-    struct ManyLabels;
-    impl Evaluate for ManyLabels {
-        fn evaluate(
-            &self,
-            plan: &Plan,
-            c: &Configuration,
-            scheme: &dyn crate::scheme::Scheme,
-        ) -> crate::Result<Vec<Cell>> {
-            let mut v = Synthetic.evaluate(plan, c, scheme)?;
-            if c.id % 5 != 0 {
-                v[0] = Cell::Text(format!("label-{}", (c.id * 7919) % 41));
+/// Synthetic cells with 41 distinct labels first seen in scrambled order
+/// (beyond the dictionary's linear search), or, with `all_null`, every label
+/// and boolean cell empty (columns without a single value).
+struct ManyLabels {
+    all_null: bool,
+}
+
+impl Evaluate for ManyLabels {
+    fn evaluate(
+        &self,
+        plan: &Plan,
+        c: &Configuration,
+        scheme: &dyn crate::scheme::Scheme,
+    ) -> crate::Result<Vec<Cell>> {
+        let mut v = Synthetic.evaluate(plan, c, scheme)?;
+        if self.all_null {
+            for cell in &mut v {
+                if matches!(cell, Cell::Text(_)) {
+                    *cell = Cell::Empty;
+                }
             }
-            Ok(v)
+        } else if c.id % 5 != 0 {
+            v[0] = Cell::Text(format!("label-{}", (c.id * 7919) % 41));
         }
+        Ok(v)
     }
-    let spec = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = 70000\n[columns]\nexact_certificate = true\n";
-    let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+}
+
+/// The typed path's file for `count` Halton points read back (through the
+/// arrow-rs reader, not our encoder), and the CSV text of the same rows;
+/// asserts that the file reads back as exactly those CSV lines.
+fn reads_back_as_csv(eval: &ManyLabels, count: u64) -> (super::parquet::ParquetTable, String) {
+    let spec = format!("scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = {count}\n[columns]\nexact_certificate = true\n");
+    let plan = Plan::new(crate::sweep::SweepSpec::from_toml(&spec).unwrap());
     let layout = Layout::new(&plan);
     let ids: Vec<u64> = (0..plan.total()).collect();
-    let (typed, _) = both_paths(&plan, &layout, &ManyLabels, &ids, 2);
+    let (typed, _) = both_paths(&plan, &layout, eval, &ids, 2);
     let mut csv: Vec<u8> = Vec::new();
     let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
     run(
         &plan,
         &layout,
-        &ManyLabels,
+        eval,
         ids.iter().copied(),
         &mut csv,
         &mut summary,
@@ -301,15 +311,36 @@ fn parquet_reads_back_as_the_csv_lines() {
     )
     .unwrap();
     let t = read_table(typed.0).unwrap();
-    assert_eq!(t.group_rows(), vec![65_536, ids.len() as u64 - 65_536]);
     let csv = String::from_utf8(csv).unwrap();
     let back = t.csv_lines(0, t.rows());
     assert_eq!(back.lines().count(), csv.lines().count());
     for (k, (a, b)) in back.lines().zip(csv.lines()).enumerate() {
         assert_eq!(a, b, "row {k}");
     }
+    (t, csv)
+}
+
+/// The file reads back as exactly the CSV lines of the same rows: over two
+/// row groups, with more distinct labels than the dictionary's linear search
+/// holds, nulls in every optional column, booleans of both values and nulls
+/// (their bit packing), and error rows.
+#[test]
+fn parquet_reads_back_as_the_csv_lines() {
+    let (t, csv) = reads_back_as_csv(&ManyLabels { all_null: false }, 70_000);
+    assert_eq!(t.group_rows(), vec![65_536, t.rows() as u64 - 65_536]);
     // Every kind of cell occurs.
     assert!(matches!(t.column("exact_agrees"), Some(Column::Bool(v))
         if v.contains(&Some(true)) && v.contains(&Some(false)) && v.contains(&None)));
     assert!(csv.contains("label-40") && csv.contains(",,"));
+}
+
+/// Label and boolean columns without a single value (an empty dictionary,
+/// no boolean bits) read back as nulls.
+#[test]
+fn parquet_columns_of_nulls_read_back() {
+    let (t, _) = reads_back_as_csv(&ManyLabels { all_null: true }, 300);
+    assert!(matches!(t.column("class"), Some(Column::Str(v)) if v.iter().all(Option::is_none)));
+    assert!(
+        matches!(t.column("exact_agrees"), Some(Column::Bool(v)) if v.iter().all(Option::is_none))
+    );
 }
