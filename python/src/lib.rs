@@ -5,6 +5,8 @@
 //! Bad input raises `ValueError` with the library's (the CLI's) message, any
 //! other failure `RuntimeError`. Heavy work runs with the GIL released.
 
+use std::cell::{Cell as StdCell, RefCell};
+
 use numpy::{PyArray1, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -336,133 +338,138 @@ impl Levels {
     }
 }
 
-/// One result column, typed: numbers (NaN where empty) or text codes.
-enum TypedColumn {
-    Num(Vec<f64>),
-    Text(Vec<u32>, Levels),
-}
-
-/// One cell of a lane's row, held until the batch is committed.
+/// Where a result column's cells are kept in a [`ResultColumns`].
 #[derive(Clone, Copy)]
-enum Slot {
-    Empty,
-    Num(f64),
-    /// A byte range of the lane's text arena.
-    Text(usize, usize),
+enum ColKind {
+    /// The `k`-th numeric column.
+    Num(usize),
+    /// The `t`-th text column (codes into its levels).
+    Text(usize),
 }
 
-/// A reusable row buffer for one lane of a batch (no allocation per row once
-/// warm: the cells and the texts' bytes are kept across rows).
-#[derive(Default)]
-struct LaneRow {
-    slots: Vec<Slot>,
-    text: String,
+/// The empty text's code: every [`Levels`] of `classify_batch` starts with it.
+const EMPTY_CODE: u32 = 0;
+
+/// Levels holding the empty text as [`EMPTY_CODE`].
+fn empty_levels() -> Levels {
+    let mut l = Levels::default();
+    l.code("");
+    l
 }
 
-impl LaneRow {
-    fn clear(&mut self) {
-        self.slots.clear();
-        self.text.clear();
-    }
-}
-
-impl CellSink for LaneRow {
-    fn empty(&mut self) {
-        self.slots.push(Slot::Empty);
-    }
-    fn num(&mut self, x: f64) {
-        self.slots.push(Slot::Num(x));
-    }
-    fn text(&mut self, t: &str) {
-        let a = self.text.len();
-        self.text.push_str(t);
-        self.slots.push(Slot::Text(a, self.text.len()));
-    }
-}
-
-/// Typed result columns of consecutive rows (one block of `classify_batch`),
-/// with the validity mask and the error texts; blocks are concatenated in
-/// order by [`TypedColumns::append`].
-struct TypedColumns {
-    cols: Vec<TypedColumn>,
-    valid: Vec<Vec<bool>>,
+/// The result columns of `classify_batch`, each one flat vector of all rows,
+/// created empty (NaN, the empty text, not valid): the blocks of rows write
+/// their cells in place ([`BlockCells`]), so nothing is staged or
+/// concatenated.
+struct ResultColumns {
+    rows: usize,
+    kind: Vec<ColKind>,
+    /// Numeric column `k` at `nums[k * rows..(k + 1) * rows]`.
+    nums: Vec<f64>,
+    /// Text column `t`'s codes at `codes[t * rows..]`.
+    codes: Vec<u32>,
+    /// Column `j`'s validity at `valid[j * rows..]`.
+    valid: Vec<bool>,
     errors: Vec<u32>,
-    error_levels: Levels,
 }
 
-impl TypedColumns {
+/// One block's disjoint parts of the [`ResultColumns`] (sendable to a worker).
+struct BlockParts<'a> {
+    nums: Vec<&'a mut [f64]>,
+    codes: Vec<&'a mut [u32]>,
+    valid: Vec<&'a mut [bool]>,
+    errors: &'a mut [u32],
+}
+
+impl ResultColumns {
+    /// `rows` empty rows of the columns `numeric` describes.
     fn new(numeric: &[bool], rows: usize) -> Self {
-        let mut error_levels = Levels::default();
-        error_levels.code("");
-        TypedColumns {
-            cols: numeric
-                .iter()
-                .map(|&n| {
-                    if n {
-                        TypedColumn::Num(Vec::with_capacity(rows))
-                    } else {
-                        TypedColumn::Text(Vec::with_capacity(rows), Levels::default())
-                    }
-                })
-                .collect(),
-            valid: numeric.iter().map(|_| Vec::with_capacity(rows)).collect(),
-            errors: Vec::with_capacity(rows),
-            error_levels,
-        }
-    }
-
-    /// Appends one row: its cells (missing trailing cells are empty; a number
-    /// in a text column is written as Rust's shortest text, as `Cell` did), or
-    /// its error (every cell empty).
-    fn push_row(&mut self, row: Result<&LaneRow, &str>) {
-        for (j, (col, valid)) in self.cols.iter_mut().zip(&mut self.valid).enumerate() {
-            let slot = match row {
-                Ok(r) => r.slots.get(j).copied().unwrap_or(Slot::Empty),
-                Err(_) => Slot::Empty,
-            };
-            valid.push(!matches!(slot, Slot::Empty));
-            match col {
-                TypedColumn::Num(v) => v.push(match slot {
-                    Slot::Num(x) => x,
-                    _ => f64::NAN,
-                }),
-                TypedColumn::Text(codes, levels) => codes.push(match (slot, row) {
-                    (Slot::Text(a, b), Ok(r)) => levels.code(&r.text[a..b]),
-                    (Slot::Num(x), _) => levels.code(&x.to_string()),
-                    _ => levels.code(""),
-                }),
-            }
-        }
-        let e = match row {
-            Ok(_) => 0,
-            Err(msg) => self.error_levels.code(msg),
-        };
-        self.errors.push(e);
-    }
-
-    /// Appends the rows of `other` (text codes translated to this block's levels).
-    fn append(&mut self, other: TypedColumns) {
-        for (mine, theirs) in self.cols.iter_mut().zip(other.cols) {
-            match (mine, theirs) {
-                (TypedColumn::Num(a), TypedColumn::Num(b)) => a.extend(b),
-                (TypedColumn::Text(a, la), TypedColumn::Text(b, lb)) => {
-                    let map: Vec<u32> = lb.0.iter().map(|t| la.code(t)).collect();
-                    a.extend(b.into_iter().map(|c| map[c as usize]));
-                }
-                _ => unreachable!("both blocks have the same column types"),
-            }
-        }
-        for (a, b) in self.valid.iter_mut().zip(other.valid) {
-            a.extend(b);
-        }
-        let map: Vec<u32> = other
-            .error_levels
-            .0
+        let (mut k, mut t) = (0, 0);
+        let kind: Vec<ColKind> = numeric
             .iter()
-            .map(|t| self.error_levels.code(t))
+            .map(|&n| {
+                if n {
+                    k += 1;
+                    ColKind::Num(k - 1)
+                } else {
+                    t += 1;
+                    ColKind::Text(t - 1)
+                }
+            })
             .collect();
-        self.errors
-            .extend(other.errors.into_iter().map(|c| map[c as usize]));
+        ResultColumns {
+            rows,
+            nums: vec![f64::NAN; k * rows],
+            codes: vec![EMPTY_CODE; t * rows],
+            valid: vec![false; kind.len() * rows],
+            kind,
+            errors: vec![EMPTY_CODE; rows],
+        }
+    }
+
+    /// The storage of rows `[b * chunk, (b + 1) * chunk)` for every block `b`
+    /// (`rows > 0`).
+    fn blocks(&mut self, chunk: usize) -> Vec<BlockParts<'_>> {
+        let rows = self.rows;
+        let count = rows.div_ceil(chunk);
+        let mut out: Vec<BlockParts<'_>> = Vec::with_capacity(count);
+        for e in self.errors.chunks_mut(chunk) {
+            out.push(BlockParts {
+                nums: Vec::new(),
+                codes: Vec::new(),
+                valid: Vec::new(),
+                errors: e,
+            });
+        }
+        for col in self.nums.chunks_mut(rows) {
+            for (b, part) in out.iter_mut().zip(col.chunks_mut(chunk)) {
+                b.nums.push(part);
+            }
+        }
+        for col in self.codes.chunks_mut(rows) {
+            for (b, part) in out.iter_mut().zip(col.chunks_mut(chunk)) {
+                b.codes.push(part);
+            }
+        }
+        for col in self.valid.chunks_mut(rows) {
+            for (b, part) in out.iter_mut().zip(col.chunks_mut(chunk)) {
+                b.valid.push(part);
+            }
+        }
+        out
+    }
+
+    /// Translates block `b`'s text codes (rows `[b * chunk, ..)`, codes into
+    /// that block's `levels`) into codes of one set of levels per column, and
+    /// returns them: `(column levels, error levels)`.
+    fn merge_levels(
+        &mut self,
+        chunk: usize,
+        levels: Vec<(Vec<Levels>, Levels)>,
+    ) -> (Vec<Vec<String>>, Vec<String>) {
+        let rows = self.rows;
+        let texts = self.codes.len() / rows.max(1);
+        let mut merged: Vec<Levels> = (0..texts).map(|_| empty_levels()).collect();
+        let mut errors = empty_levels();
+        let remap = |all: &mut Levels, mine: &Levels, codes: &mut [u32]| {
+            let map: Vec<u32> = mine.0.iter().map(|t| all.code(t)).collect();
+            for c in codes {
+                *c = map[*c as usize];
+            }
+        };
+        for (b, (cols, errs)) in levels.iter().enumerate() {
+            let lo = b * chunk;
+            let hi = (lo + chunk).min(rows);
+            for (t, mine) in cols.iter().enumerate() {
+                remap(
+                    &mut merged[t],
+                    mine,
+                    &mut self.codes[t * rows + lo..t * rows + hi],
+                );
+            }
+            remap(&mut errors, errs, &mut self.errors[lo..hi]);
+        }
+        (merged.into_iter().map(|l| l.0).collect(), errors.0)
     }
 
     /// `name -> (values, mask)` for numeric columns and `name -> (codes,
@@ -470,24 +477,161 @@ impl TypedColumns {
     /// `error -> (codes, levels)`.
     fn into_dict<'py>(
         self,
+        levels: (Vec<Vec<String>>, Vec<String>),
         py: Python<'py>,
         names: &[String],
         out: &Bound<'py, PyDict>,
     ) -> PyResult<()> {
-        for ((name, col), ok) in names.iter().zip(self.cols).zip(self.valid) {
-            let mask = PyArray1::from_vec(py, ok);
-            match col {
-                TypedColumn::Num(v) => out.set_item(name, (PyArray1::from_vec(py, v), mask))?,
-                TypedColumn::Text(codes, levels) => {
-                    out.set_item(name, (PyArray1::from_vec(py, codes), levels.0, mask))?
+        let rows = self.rows;
+        let (mut text_levels, error_levels) = levels;
+        let part = |v: &[f64], k: usize| v[k * rows..(k + 1) * rows].to_vec();
+        for (j, (name, kind)) in names.iter().zip(&self.kind).enumerate() {
+            let mask = PyArray1::from_slice(py, &self.valid[j * rows..(j + 1) * rows]);
+            match *kind {
+                ColKind::Num(k) => {
+                    out.set_item(name, (PyArray1::from_vec(py, part(&self.nums, k)), mask))?
                 }
+                ColKind::Text(t) => out.set_item(
+                    name,
+                    (
+                        PyArray1::from_slice(py, &self.codes[t * rows..(t + 1) * rows]),
+                        std::mem::take(&mut text_levels[t]),
+                        mask,
+                    ),
+                )?,
             }
         }
-        out.set_item(
-            "error",
-            (PyArray1::from_vec(py, self.errors), self.error_levels.0),
-        )?;
+        out.set_item("error", (PyArray1::from_vec(py, self.errors), error_levels))?;
         Ok(())
+    }
+}
+
+/// One block's cells, written in place by the lanes' [`RowSink`]s (a cell
+/// store each: `std::cell::Cell` views of the block's parts, so the sinks share the
+/// block without a borrow flag; only texts take the levels' `RefCell`).
+struct BlockCells<'a> {
+    kind: &'a [ColKind],
+    nums: Vec<&'a [StdCell<f64>]>,
+    codes: Vec<&'a [StdCell<u32>]>,
+    valid: Vec<&'a [StdCell<bool>]>,
+    errors: &'a [StdCell<u32>],
+    levels: Vec<RefCell<Levels>>,
+    error_levels: RefCell<Levels>,
+}
+
+impl<'a> BlockCells<'a> {
+    fn new(kind: &'a [ColKind], parts: BlockParts<'a>) -> Self {
+        BlockCells {
+            kind,
+            levels: parts
+                .codes
+                .iter()
+                .map(|_| RefCell::new(empty_levels()))
+                .collect(),
+            nums: parts
+                .nums
+                .into_iter()
+                .map(|s| StdCell::from_mut(s).as_slice_of_cells())
+                .collect(),
+            codes: parts
+                .codes
+                .into_iter()
+                .map(|s| StdCell::from_mut(s).as_slice_of_cells())
+                .collect(),
+            valid: parts
+                .valid
+                .into_iter()
+                .map(|s| StdCell::from_mut(s).as_slice_of_cells())
+                .collect(),
+            errors: StdCell::from_mut(parts.errors).as_slice_of_cells(),
+            error_levels: RefCell::new(empty_levels()),
+        }
+    }
+
+    /// Writes the number `x` as cell `j` of row `row` (a cell beyond the
+    /// columns is dropped, as the staged rows did; a number in a text column
+    /// is written as Rust's shortest text, as `Cell` did).
+    #[inline]
+    fn put_num(&self, row: usize, j: usize, x: f64) {
+        match self.kind.get(j) {
+            Some(&ColKind::Num(k)) => {
+                self.nums[k][row].set(x);
+                self.valid[j][row].set(true);
+            }
+            Some(&ColKind::Text(_)) => self.put_num_as_text(row, j, x),
+            None => {}
+        }
+    }
+
+    /// [`put_num`](Self::put_num) into a text column (rare: out of line, so
+    /// that the common path saves no registers).
+    #[cold]
+    #[inline(never)]
+    fn put_num_as_text(&self, row: usize, j: usize, x: f64) {
+        self.put_text(row, j, &x.to_string());
+    }
+
+    /// Writes the text `t` as cell `j` of row `row` (a text in a numeric
+    /// column leaves it empty, as the staged rows did).
+    #[inline(never)]
+    fn put_text(&self, row: usize, j: usize, t: &str) {
+        match self.kind.get(j) {
+            Some(&ColKind::Text(c)) => {
+                self.codes[c][row].set(self.levels[c].borrow_mut().code(t));
+                self.valid[j][row].set(true);
+            }
+            Some(&ColKind::Num(_)) => self.put_empty(row, j),
+            None => {}
+        }
+    }
+
+    /// Makes cell `j` of row `row` empty (NaN or the empty text, not valid).
+    #[inline]
+    fn put_empty(&self, row: usize, j: usize) {
+        match self.kind.get(j) {
+            Some(&ColKind::Num(k)) => self.nums[k][row].set(f64::NAN),
+            Some(&ColKind::Text(c)) => self.codes[c][row].set(EMPTY_CODE),
+            None => return,
+        }
+        self.valid[j][row].set(false);
+    }
+
+    /// Makes row `row` an error row: every cell empty, the error text `msg`.
+    fn fail_row(&self, row: usize, msg: &str) {
+        for j in 0..self.kind.len() {
+            self.put_empty(row, j);
+        }
+        self.errors[row].set(self.error_levels.borrow_mut().code(msg));
+    }
+
+    /// The block's levels: `(one per text column, the errors')`.
+    fn into_levels(self) -> (Vec<Levels>, Levels) {
+        (
+            self.levels.into_iter().map(RefCell::into_inner).collect(),
+            self.error_levels.into_inner(),
+        )
+    }
+}
+
+/// One lane's writer into a block: cell after cell of row `row`, in place.
+struct RowSink<'a> {
+    block: &'a BlockCells<'a>,
+    row: usize,
+    j: usize,
+}
+
+impl CellSink for RowSink<'_> {
+    fn empty(&mut self) {
+        self.block.put_empty(self.row, self.j);
+        self.j += 1;
+    }
+    fn num(&mut self, x: f64) {
+        self.block.put_num(self.row, self.j, x);
+        self.j += 1;
+    }
+    fn text(&mut self, t: &str) {
+        self.block.put_text(self.row, self.j, t);
+        self.j += 1;
     }
 }
 
@@ -538,84 +682,88 @@ fn classify_batch<'py>(
     let pool = pool(threads)?;
     // Row-major rows of n ratios; blocks of whole batches, evaluated in parallel.
     const CHUNK: usize = 64 * BATCH;
-    let blocks: Vec<PyResult<TypedColumns>> = py.detach(|| {
-        pool.install(|| {
-            data.par_chunks(CHUNK * n)
-                .enumerate()
-                .map(|(ci, chunk)| -> PyResult<TypedColumns> {
-                    let rows = chunk.len() / n;
-                    let mut cols = TypedColumns::new(&numeric, rows);
-                    let mut configs: [Configuration; BATCH] =
-                        std::array::from_fn(|_| Configuration {
-                            id: 0,
-                            valence: n,
-                            coordinates: Vec::with_capacity(n),
-                        });
-                    let mut lanes: [LaneRow; BATCH] = Default::default();
-                    let mut kept: [Option<Builtin>; BATCH] = Default::default();
-                    for (bi, group) in chunk.chunks(BATCH * n).enumerate() {
-                        let width = group.len() / n;
-                        let base = (ci * CHUNK + bi * BATCH) as u64;
-                        for (l, r) in group.chunks(n).enumerate() {
-                            configs[l].id = base + l as u64;
-                            configs[l].coordinates.clear();
-                            configs[l].coordinates.extend_from_slice(r);
-                        }
-                        // Each lane's scheme reuses the storage of its last one.
-                        let mut schemes = Vec::with_capacity(width);
-                        for (c, old) in configs[..width].iter().zip(&mut kept) {
-                            schemes.push(
-                                plan.scheme_reusing(c, old.take())
-                                    .map_err(|e| value_err(format!("ratios row {}: {e}", c.id)))?,
-                            );
-                        }
-                        for lane in &mut lanes {
-                            lane.clear();
-                        }
-                        if width == BATCH {
-                            let mut it = lanes.iter_mut();
-                            let items = std::array::from_fn(|l| {
-                                (
-                                    &configs[l],
-                                    &*schemes[l],
-                                    it.next().expect("lane") as &mut dyn CellSink,
-                                )
+    let rows_total = shape[0];
+    let mut result = ResultColumns::new(&numeric, rows_total);
+    let kind = result.kind.clone();
+    let levels: Vec<(Vec<Levels>, Levels)> = if rows_total == 0 {
+        Vec::new()
+    } else {
+        let parts = result.blocks(CHUNK);
+        py.detach(|| {
+            pool.install(|| {
+                parts
+                    .into_par_iter()
+                    .zip(data.par_chunks(CHUNK * n))
+                    .enumerate()
+                    .map(|(ci, (parts, chunk))| -> PyResult<(Vec<Levels>, Levels)> {
+                        let block = BlockCells::new(&kind, parts);
+                        let mut configs: [Configuration; BATCH] =
+                            std::array::from_fn(|_| Configuration {
+                                id: 0,
+                                valence: n,
+                                coordinates: Vec::with_capacity(n),
                             });
-                            let res = eval.write_results_batch(&plan, items);
-                            for (lane, r) in lanes.iter().zip(res) {
-                                match r {
-                                    Ok(()) => cols.push_row(Ok(lane)),
-                                    Err(e) => cols.push_row(Err(&e.to_string())),
+                        let mut kept: [Option<Builtin>; BATCH] = Default::default();
+                        for (bi, group) in chunk.chunks(BATCH * n).enumerate() {
+                            let width = group.len() / n;
+                            let base = (ci * CHUNK + bi * BATCH) as u64;
+                            for (l, r) in group.chunks(n).enumerate() {
+                                configs[l].id = base + l as u64;
+                                configs[l].coordinates.clear();
+                                configs[l].coordinates.extend_from_slice(r);
+                            }
+                            // Each lane's scheme reuses the storage of its last one.
+                            let mut schemes = Vec::with_capacity(width);
+                            for (c, old) in configs[..width].iter().zip(&mut kept) {
+                                schemes.push(
+                                    plan.scheme_reusing(c, old.take()).map_err(|e| {
+                                        value_err(format!("ratios row {}: {e}", c.id))
+                                    })?,
+                                );
+                            }
+                            let row0 = bi * BATCH;
+                            let mut sinks: [RowSink; BATCH] = std::array::from_fn(|l| RowSink {
+                                block: &block,
+                                row: row0 + l,
+                                j: 0,
+                            });
+                            if width == BATCH {
+                                let mut it = sinks.iter_mut();
+                                let items = std::array::from_fn(|l| {
+                                    (
+                                        &configs[l],
+                                        &*schemes[l],
+                                        it.next().expect("lane") as &mut dyn CellSink,
+                                    )
+                                });
+                                let res = eval.write_results_batch(&plan, items);
+                                for (l, r) in res.into_iter().enumerate() {
+                                    if let Err(e) = r {
+                                        block.fail_row(row0 + l, &e.to_string());
+                                    }
+                                }
+                            } else {
+                                for (l, sink) in sinks[..width].iter_mut().enumerate() {
+                                    if let Err(e) =
+                                        eval.write_results(&plan, &configs[l], &*schemes[l], sink)
+                                    {
+                                        block.fail_row(row0 + l, &e.to_string());
+                                    }
                                 }
                             }
-                        } else {
-                            for l in 0..width {
-                                match eval.write_results(
-                                    &plan,
-                                    &configs[l],
-                                    &*schemes[l],
-                                    &mut lanes[l],
-                                ) {
-                                    Ok(()) => cols.push_row(Ok(&lanes[l])),
-                                    Err(e) => cols.push_row(Err(&e.to_string())),
-                                }
+                            for (k, s) in kept.iter_mut().zip(schemes) {
+                                *k = Some(s);
                             }
                         }
-                        for (k, s) in kept.iter_mut().zip(schemes) {
-                            *k = Some(s);
-                        }
-                    }
-                    Ok(cols)
-                })
-                .collect()
-        })
-    });
-    let mut all = TypedColumns::new(&numeric, shape[0]);
-    for block in blocks {
-        all.append(block?);
-    }
+                        Ok(block.into_levels())
+                    })
+                    .collect::<PyResult<Vec<_>>>()
+            })
+        })?
+    };
+    let levels = result.merge_levels(CHUNK, levels);
     let out = PyDict::new(py);
-    all.into_dict(py, &names, &out)?;
+    result.into_dict(levels, py, &names, &out)?;
     Ok(out)
 }
 

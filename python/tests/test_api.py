@@ -142,6 +142,33 @@ def test_classify_batch_equals_a_sweep():
     assert one["gap"][0] == whole["gap"][7]
 
 
+def test_classify_batch_blocks_merge_their_texts():
+    """Rows run in blocks of 1024 on the pool, each block coding its texts in
+    order of first appearance; the codes are merged at the end. Blocks whose
+    first classes differ, on two threads, must give the classes and values of
+    small batches of the same rows."""
+    x = np.random.default_rng(11).uniform(0.01, 0.99, (3000, 3))
+    probe = sl.classify_batch(x, threads=1)
+    kinds = sorted(set(probe["class"]))
+    assert len(kinds) >= 2, kinds
+    # block 0 starts with one class, block 1 with another, block 2 with the first
+    a = np.flatnonzero(probe["class"] == kinds[0])
+    b = np.flatnonzero(probe["class"] == kinds[1])
+    order = list(range(3000))
+    for pos, row in zip((0, 1024, 2048), (int(a[0]), int(b[0]), int(a[1]))):
+        order.remove(row)
+        order.insert(pos, row)
+    x = x[order]
+    whole = sl.classify_batch(x, threads=2)
+    parts = [sl.classify_batch(x[i:i + 700], threads=1) for i in range(0, 3000, 700)]
+    assert whole["class"][0] == kinds[0] and whole["class"][1024] == kinds[1]
+    assert list(whole["class"]) == [c for p in parts for c in p["class"]]
+    assert list(whole["error"]) == [""] * 3000
+    for name in ("lambda1_re", "lambda1_im", "ratio", "rho", "theta", "contraction_rate"):
+        want = np.concatenate([p[name] for p in parts])
+        assert np.array_equal(whole[name], want, equal_nan=True), name
+
+
 def test_subdivide():
     v = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
     faces = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]]

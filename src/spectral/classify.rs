@@ -224,6 +224,27 @@ pub struct Subdominant {
     pub note: Option<&'static str>,
 }
 
+impl Subdominant {
+    /// A placeholder (no eigenvalue, `not_separated`) that a classification
+    /// overwrites whole.
+    pub(crate) fn unset() -> Self {
+        let zero = Complex64::new(0.0, 0.0);
+        Subdominant {
+            class: SubdominantClass::NotSeparated,
+            lambda0: zero,
+            lambda1: zero,
+            lambda2: zero,
+            abs_lambda3: 0.0,
+            gap: 0.0,
+            ratio: None,
+            rho: None,
+            theta: None,
+            radii: [0.0; 4],
+            note: None,
+        }
+    }
+}
+
 /// Outcome of "is this non-negative quantity zero?".
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Decision {
@@ -260,6 +281,22 @@ pub struct Evidence<'a> {
     pub eta: f64,
 }
 
+/// `|z|`, bit for bit [`Complex64::norm`] (`hypot(re, im)`), without the
+/// `hypot` call when a part is zero: `hypot(x, +-0) = |x|` exactly (IEEE 754;
+/// checked for 40 million random bit patterns and the extremes, and by the
+/// test `modulus_is_norm_bit_for_bit`). Most eigenvalues of a sweep are real,
+/// and `hypot` is about 45 instructions.
+#[inline]
+pub fn modulus(z: Complex64) -> f64 {
+    if z.im == 0.0 {
+        z.re.abs()
+    } else if z.re == 0.0 {
+        z.im.abs()
+    } else {
+        z.norm()
+    }
+}
+
 /// Classifies the subdominant eigenstructure.
 ///
 /// `rank_test(lambda)` must return the second smallest singular value of
@@ -268,6 +305,18 @@ pub fn classify(
     ev: &Evidence<'_>,
     rank_test: &mut dyn FnMut(f64) -> Result<f64, SpectralError>,
 ) -> Result<Subdominant, SpectralError> {
+    let mut out = Subdominant::unset();
+    classify_into(ev, rank_test, &mut out)?;
+    Ok(out)
+}
+
+/// [`classify`] into `out` (overwritten whole): the batch paths keep one
+/// `Subdominant` per lane instead of moving 192-byte results between arrays.
+pub(crate) fn classify_into(
+    ev: &Evidence<'_>,
+    rank_test: &mut dyn FnMut(f64) -> Result<f64, SpectralError>,
+    out: &mut Subdominant,
+) -> Result<(), SpectralError> {
     let get = |k: usize| -> (Complex64, f64) {
         match ev.values.get(k) {
             Some(&z) => (z, ev.radii.get(k).copied().unwrap_or(0.0)),
@@ -285,9 +334,10 @@ pub fn classify(
     let (l1, e1) = get(1);
     let (l2, e2) = get(2);
     let (l3, e3) = get(3);
-    let abs3 = l3.norm();
-    let gap = l2.norm() - abs3;
-    let mut out = Subdominant {
+    let abs3 = modulus(l3);
+    let (abs0, abs1) = (modulus(l0), modulus(l1));
+    let gap = modulus(l2) - abs3;
+    *out = Subdominant {
         class: SubdominantClass::NotSeparated,
         lambda0: l0,
         lambda1: l1,
@@ -302,16 +352,16 @@ pub fn classify(
     };
     if ev.values.is_empty() {
         out.note = Some("empty matrix");
-        return Ok(out);
+        return Ok(());
     }
     // lambda_0 = 1.
-    if decide((l0 - 1.0).norm(), e0) == Decision::NonZero {
+    if decide(modulus(l0 - 1.0), e0) == Decision::NonZero {
         out.note = Some("the dominant eigenvalue is not 1");
-        return Ok(out);
+        return Ok(());
     }
     // Core class from lambda_1, lambda_2.
     let e12 = e1 + e2;
-    let d12 = (l1 - l2).norm();
+    let d12 = modulus(l1 - l2);
     let double_class = |rank: &mut dyn FnMut(f64) -> Result<f64, SpectralError>,
                         lam: f64|
      -> Result<(SubdominantClass, Option<&'static str>), SpectralError> {
@@ -406,7 +456,7 @@ pub fn classify(
         }
     };
     // Separation from lambda_0 and lambda_3.
-    let sep0 = decide_eq((l0.norm() - l1.norm()).max(0.0), e0 + e1);
+    let sep0 = decide_eq((abs0 - abs1).max(0.0), e0 + e1);
     let sep3 = decide_eq(gap.max(0.0), e2 + e3);
     if class != SubdominantClass::NotSeparated {
         if sep0 == Decision::Zero {
@@ -420,7 +470,7 @@ pub fn classify(
             sep0 == Decision::Grey || sep3 == Decision::Grey,
         ) {
             let (what, d, e) = if sep0 == Decision::Grey {
-                ("|lambda_0| - |lambda_1|", l0.norm() - l1.norm(), e0 + e1)
+                ("|lambda_0| - |lambda_1|", abs0 - abs1, e0 + e1)
             } else {
                 ("|lambda_2| - |lambda_3|", gap, e2 + e3)
             };
@@ -443,19 +493,42 @@ pub fn classify(
             out.ratio = Some(l2.re / l1.re);
         }
         SubdominantClass::ComplexPair => {
-            out.rho = Some(l1.norm());
+            out.rho = Some(abs1);
             out.theta = Some(l1.im.atan2(l1.re).abs());
         }
         _ => {}
     }
     out.class = class;
     out.note = note;
-    Ok(out)
+    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn modulus_is_norm_bit_for_bit() {
+        let xs = [
+            0.0,
+            -0.0,
+            1.0,
+            -0.25,
+            5e-324,
+            f64::MIN_POSITIVE,
+            1.0e-300,
+            3.7e200,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for &a in &xs {
+            for &b in &xs {
+                let z = Complex64::new(a, b);
+                assert_eq!(modulus(z).to_bits(), z.norm().to_bits(), "{z}");
+            }
+        }
+    }
 
     const ALL: [(ClassName, SubdominantClass); 5] = [
         (ClassName::Standard, SubdominantClass::Standard),

@@ -60,7 +60,7 @@ use crate::error::Result;
 use crate::scalar::Rational;
 use crate::scheme::{FaceContraction, Scheme, SpectralStructure};
 use crate::schemes::LocalScheme;
-use classify::{classify, Evidence, BACKWARD_ERROR_FACTOR};
+use classify::{classify, classify_into, Evidence, BACKWARD_ERROR_FACTOR};
 use eigen::spectral_order;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -586,25 +586,51 @@ pub fn classify_schemes_batch<S: Scheme + ?Sized>(
     ws: [&mut StructuredWorkspace; kernel::BATCH],
     schemes: [&S; kernel::BATCH],
 ) -> [Result<Subdominant>; kernel::BATCH] {
+    let mut subs: [Subdominant; kernel::BATCH] = std::array::from_fn(|_| Subdominant::unset());
+    let res = classify_schemes_batch_into(ws, schemes, subs.each_mut());
+    let mut subs = subs.into_iter();
+    res.map(|r| {
+        let s = subs.next().expect("one result per lane");
+        r.map(|()| s)
+    })
+}
+
+/// [`classify_schemes_batch`] into `out` (lane `l`'s classification into
+/// `out[l]`, overwritten whole when its result is `Ok`).
+pub(crate) fn classify_schemes_batch_into<S: Scheme + ?Sized>(
+    ws: [&mut StructuredWorkspace; kernel::BATCH],
+    schemes: [&S; kernel::BATCH],
+    out: [&mut Subdominant; kernel::BATCH],
+) -> [Result<()>; kernel::BATCH] {
     let mut ws = ws;
+    let mut out = out;
     if !schemes
         .iter()
         .all(|s| s.spectral_structure() == SpectralStructure::FaceBlock)
     {
-        return std::array::from_fn(|l| classify_scheme_with(ws[l], schemes[l]));
+        return std::array::from_fn(|l| {
+            classify_scheme_with(ws[l], schemes[l]).map(|s| *out[l] = s)
+        });
     }
     let faces = StructuredWorkspace::face_nonunit_batch(ws.each_mut().map(|w| &mut **w), schemes);
     let mut faces = faces.into_iter();
     std::array::from_fn(|l| {
         let f = faces.next().expect("one result per lane");
         f.map_err(Into::into)
-            .and_then(|()| classify_face(ws[l], schemes[l].valence()))
+            .and_then(|()| classify_face_into(ws[l], schemes[l].valence(), out[l]))
     })
 }
 
 /// The classification of a valence-`n` Doo-Sabin-family scheme whose face
 /// spectrum `ws` holds.
 fn classify_face(ws: &mut StructuredWorkspace, n: usize) -> Result<Subdominant> {
+    let mut out = Subdominant::unset();
+    classify_face_into(ws, n, &mut out)?;
+    Ok(out)
+}
+
+/// [`classify_face`] into `out` (overwritten whole when `Ok`).
+fn classify_face_into(ws: &mut StructuredWorkspace, n: usize, out: &mut Subdominant) -> Result<()> {
     let face_len = ws.face_nonunit_cached().len();
     let m = ws.deflated_dim();
     let eta = BACKWARD_ERROR_FACTOR * m.max(1) as f64 * f64::EPSILON * ws.frobenius_norm();
@@ -645,7 +671,7 @@ fn classify_face(ws: &mut StructuredWorkspace, n: usize) -> Result<Subdominant> 
     let values = [top[0].0, top[1].0, top[2].0, top[3].0];
     let radii = [top[0].1, top[1].1, top[2].1, top[3].1];
     let bm = ws.deflated_matrix();
-    Ok(classify(
+    classify_into(
         &Evidence {
             values: &values,
             radii: &radii,
@@ -655,7 +681,9 @@ fn classify_face(ws: &mut StructuredWorkspace, n: usize) -> Result<Subdominant> 
             let b = DMatrix::from_column_slice(m, m, bm);
             second_smallest_sigma(&b, lam)
         },
-    )?)
+        out,
+    )?;
+    Ok(())
 }
 
 thread_local! {

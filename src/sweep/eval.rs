@@ -295,8 +295,12 @@ struct Scratch {
 }
 
 thread_local! {
-    /// One scratch per configuration of a batch.
-    static SCRATCH: RefCell<[Scratch; BATCH]> = RefCell::new(Default::default());
+    /// One scratch per configuration of a batch, and one classification per
+    /// configuration (written in place by the batch classifier).
+    static SCRATCH: RefCell<([Scratch; BATCH], [Subdominant; BATCH])> = RefCell::new((
+        Default::default(),
+        std::array::from_fn(|_| Subdominant::unset()),
+    ));
 }
 
 /// The full spectrum of `S_n` from the face spectrum in `ws`, in the order of
@@ -336,9 +340,9 @@ impl Evaluate for SpectralEvaluator {
     ) -> crate::Result<()> {
         SCRATCH.with(|cell| {
             let mut guard = cell.borrow_mut();
-            let scratch = &mut guard[0];
+            let scratch = &mut guard.0[0];
             let sub = self.subdominant(scratch, scheme)?;
-            self.write_with(scratch, plan, c, scheme, sub, out)
+            self.write_with(scratch, plan, c, scheme, sub.as_ref(), out)
         })
     }
 
@@ -349,20 +353,34 @@ impl Evaluate for SpectralEvaluator {
     ) -> [crate::Result<()>; BATCH] {
         SCRATCH.with(|cell| {
             let mut guard = cell.borrow_mut();
-            let scratch = &mut *guard;
+            let (scratch, subs) = &mut *guard;
             let schemes = items.each_ref().map(|(_, s, _)| *s);
-            let subs: [crate::Result<Option<Subdominant>>; BATCH] =
-                if self.needs_subdominant() && schemes.iter().all(|s| face_block(*s)) {
-                    spectral::classify_schemes_batch(scratch.each_mut().map(|w| &mut w.ws), schemes)
-                        .map(|r| r.map(Some))
-                } else {
-                    std::array::from_fn(|l| self.subdominant(&mut scratch[l], schemes[l]))
-                };
-            let mut lanes = scratch.iter_mut().zip(subs);
-            items.map(|(c, s, out)| {
-                let (w, sub) = lanes.next().expect("one scratch per lane");
-                sub.and_then(|sub| self.write_with(w, plan, c, s, sub, out))
-            })
+            let mut results: [crate::Result<()>; BATCH] = std::array::from_fn(|_| Ok(()));
+            // Each lane's classification is written out where it lies: the
+            // 192-byte results are not moved between arrays.
+            if self.needs_subdominant() && schemes.iter().all(|s| face_block(*s)) {
+                let classified = spectral::classify_schemes_batch_into(
+                    scratch.each_mut().map(|w| &mut w.ws),
+                    schemes,
+                    subs.each_mut(),
+                );
+                for ((((r, (c, s, out)), w), sub), ok) in results
+                    .iter_mut()
+                    .zip(items)
+                    .zip(scratch.iter_mut())
+                    .zip(subs.iter())
+                    .zip(classified)
+                {
+                    *r = ok.and_then(|()| self.write_with(w, plan, c, s, Some(sub), out));
+                }
+            } else {
+                for ((r, (c, s, out)), w) in results.iter_mut().zip(items).zip(scratch.iter_mut()) {
+                    *r = self
+                        .subdominant(w, s)
+                        .and_then(|sub| self.write_with(w, plan, c, s, sub.as_ref(), out));
+                }
+            }
+            results
         })
     }
 }
@@ -411,12 +429,12 @@ impl SpectralEvaluator {
         plan: &Plan,
         c: &Configuration,
         scheme: &dyn Scheme,
-        sub: Option<Subdominant>,
+        sub: Option<&Subdominant>,
         out: &mut dyn CellSink,
     ) -> crate::Result<()> {
         let cols = &self.columns;
         let structured = face_block(scheme);
-        if let Some(sub) = &sub {
+        if let Some(sub) = sub {
             if cols.classification {
                 match &sub.class {
                     SubdominantClass::Indeterminate { .. } => out.text(&class_text(&sub.class)),
@@ -442,7 +460,7 @@ impl SpectralEvaluator {
                 }
             }
             if cols.contraction {
-                out.num(sub.lambda1.norm());
+                out.num(spectral::classify::modulus(sub.lambda1));
             }
         }
         if cols.eigenvalues > 0 {
@@ -484,7 +502,7 @@ impl SpectralEvaluator {
             }
         }
         if cols.charmap {
-            if let Some(sub) = &sub {
+            if let Some(sub) = sub {
                 let report = charmap::check_classified(scheme, sub)?;
                 out.text(report.verdict.code());
                 match report.min_jacobian_coeff() {
@@ -505,7 +523,7 @@ impl SpectralEvaluator {
         }
         if cols.exact_certificate {
             let exact = plan.exact_scheme(c)?;
-            let v = spectral::exact::exact_verdict(&exact, sub.as_ref())?;
+            let v = spectral::exact::exact_verdict(&exact, sub)?;
             out.text(v.class.map_or("undecided", |k| k.as_str()));
             match v.agrees_with_float {
                 Some(a) => out.text(if a { "true" } else { "false" }),

@@ -96,7 +96,7 @@ pub(super) fn kappa_2x2(h: &[f64], lam: Complex64, tiny: f64) -> Option<f64> {
         return None;
     }
     let dot = u[0] * x[0] + u[1] * x[1];
-    let s = dot.norm() / nx / nu;
+    let s = crate::spectral::classify::modulus(dot) / nx / nu;
     Some(if s == 0.0 || !s.is_finite() {
         f64::INFINITY
     } else {
@@ -212,7 +212,10 @@ pub(super) fn inverse_iteration_kappa<T: Field, const K: usize>(
     st: &mut LaneStorage<T>,
 ) -> [f64; K] {
     let zero = T::from_f64(0.0);
-    st.lu.clear();
+    // Every entry is overwritten below: the storage is not cleared first (at
+    // n = 64 that zeroing, up to 190 KB per call, was 1.2% of a profile's
+    // samples).
+    debug_assert!(hess.len() >= n * n);
     st.lu.resize(n * n * K, zero);
     for (e, &h) in st.lu.chunks_exact_mut(K).zip(hess) {
         e.fill(T::from_f64(h));
