@@ -369,14 +369,14 @@ impl Values {
             Values::U64(v) => v.extend_from_slice(&block.ids[rows]),
             Values::U32(v) => v.extend_from_slice(&block.valences[rows]),
             Values::Str(v) => v.extend_from_slice(&block.errors[rows]),
-            Values::F64(v) => v.extend(block.column(j, rows).map(f64::from_bits)),
+            Values::F64(v) => v.extend_from_slice(bytemuck::cast_slice(block.column(j, rows))),
             // A boolean cell is 0, 1 or NULL_BOOL.
-            Values::Bool(v) => v.extend(block.column(j, rows).map(|b| b as u8)),
+            Values::Bool(v) => v.extend(block.column(j, rows).iter().map(|&b| b as u8)),
             Values::Dict(v) => {
                 let src = &block.dicts[j];
                 // Block entry -> group entry, assigned at first use.
                 let mut map = vec![NULL_INDEX; src.entries.len()];
-                for b in block.column(j, rows) {
+                for &b in block.column(j, rows) {
                     let b = b as u32;
                     if b == NULL_INDEX {
                         v.indices.push(NULL_INDEX);
@@ -422,11 +422,16 @@ pub struct TypedBlock {
     stride: usize,
     ids: Vec<i64>,
     valences: Vec<i32>,
-    /// The cells, row after row: a float's bits, a label's index into its
-    /// column's block dictionary, a boolean as 0 / 1, or the column's null
-    /// sentinel ([`null_bits`]). One store per cell; the columns are formed
-    /// when the block is appended to a row group.
+    /// The cells, column after column, `cap` rows per column: a float's
+    /// bits, a label's index into its column's block dictionary, a boolean as
+    /// 0 / 1, or the column's null sentinel ([`null_bits`]). One store per
+    /// cell, and a column of the block is one slice when it is appended to a
+    /// row group.
     cells: Vec<u64>,
+    /// Rows per column of `cells` (grown, doubling, when a row does not fit).
+    cap: usize,
+    /// Index in `cells` of the next cell of the current row.
+    at: usize,
     /// Per column: the labels of this block (empty for other columns).
     dicts: Vec<Dict>,
     errors: Vec<Option<String>>,
@@ -483,25 +488,42 @@ impl TypedBlock {
             Col::Id | Col::Valence | Col::Error => None,
         };
         match cell {
-            Some(c) => self.cells.push(c),
+            Some(c) => self.put(c),
             None => {
                 // Keep the rows aligned; the block is refused when written.
-                self.cells.push(null_bits(kind));
+                self.put(null_bits(kind));
                 if self.fault.is_none() {
                     self.fault = Some((self.id, k, f.to_owned()));
                 }
             }
         }
+    }
+
+    /// Stores the next cell of the current row.
+    #[inline(always)]
+    fn put(&mut self, cell: u64) {
+        self.cells[self.at] = cell;
+        self.at += self.cap;
         self.col += 1;
     }
 
+    /// Room for one more row: doubles `cap`, moving each column to its new
+    /// place.
+    #[cold]
+    fn grow(&mut self) {
+        let cap = (2 * self.cap).max(16);
+        let mut cells = vec![0u64; self.stride * cap];
+        for (k, col) in self.cells.chunks_exact(self.cap.max(1)).enumerate() {
+            cells[k * cap..k * cap + self.rows].copy_from_slice(&col[..self.rows]);
+        }
+        self.cells = cells;
+        self.cap = cap;
+    }
+
     /// The cells of column `j` (a cell column) in rows `rows`.
-    fn column(&self, j: usize, rows: std::ops::Range<usize>) -> impl Iterator<Item = u64> + '_ {
-        // Exact-size chunks: `extend` writes them without a check per value.
-        let k = j - 2;
-        self.cells[rows.start * self.stride..rows.end * self.stride]
-            .chunks_exact(self.stride.max(1))
-            .map(move |row| row[k])
+    fn column(&self, j: usize, rows: std::ops::Range<usize>) -> &[u64] {
+        let base = (j - 2) * self.cap;
+        &self.cells[base + rows.start..base + rows.end]
     }
 }
 
@@ -513,7 +535,9 @@ impl super::run::RowBlock for TypedBlock {
             stride,
             ids: Vec::with_capacity(rows),
             valences: Vec::with_capacity(rows),
-            cells: Vec::with_capacity(rows * stride),
+            cells: vec![0; rows * stride],
+            cap: rows,
+            at: 0,
             dicts: kinds.iter().map(|_| Dict::default()).collect(),
             errors: Vec::with_capacity(rows),
             kinds,
@@ -540,19 +564,21 @@ impl super::run::RowBlock for TypedBlock {
             }
         }
         self.col = 2;
+        if self.rows == self.cap {
+            self.grow();
+        }
+        self.at = self.rows;
     }
 
     #[inline(always)]
     fn empty(&mut self) {
-        self.cells.push(null_bits(self.kinds[self.col]));
-        self.col += 1;
+        self.put(null_bits(self.kinds[self.col]));
     }
 
     #[inline(always)]
     fn num(&mut self, x: f64) {
         if self.kinds[self.col] == Col::Float {
-            self.cells.push(stored(x).to_bits());
-            self.col += 1;
+            self.put(stored(x).to_bits());
         } else {
             let mut t = String::new();
             push_number(&mut t, &mut self.digits, x);
@@ -565,8 +591,7 @@ impl super::run::RowBlock for TypedBlock {
         let k = self.col;
         if self.kinds[k] == Col::Label && !t.is_empty() {
             let i = self.dicts[k].label_index(t);
-            self.cells.push(u64::from(i));
-            self.col += 1;
+            self.put(u64::from(i));
         } else {
             self.push_text_cell(&csv_text(t));
         }
@@ -575,8 +600,8 @@ impl super::run::RowBlock for TypedBlock {
     fn clear(&mut self) {
         self.ids.clear();
         self.valences.clear();
-        self.cells.clear();
         self.errors.clear();
+        self.at = 0;
         for d in &mut self.dicts {
             d.clear();
         }
@@ -1271,4 +1296,71 @@ where
     super::run::drive::<E, TypedBlock, _, I>(
         plan, layout, eval, ids, rows, summary, progress, evaluated,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::run::RowBlock;
+    use super::*;
+
+    /// Rows of every cell kind into `block`: floats, labels, booleans and
+    /// nulls, each cell a function of its row and column.
+    fn fill(block: &mut TypedBlock, rows: u64) {
+        for r in 0..rows {
+            block.start(r, 3 + (r % 4) as usize);
+            for c in 2..block.kinds.len() - 1 {
+                match (block.kinds[c], (r + c as u64) % 5) {
+                    (_, 0) => block.empty(),
+                    (Col::Float, _) => block.num(r as f64 * 100.0 + c as f64),
+                    (Col::Label, k) => block.text(["a", "b", "c", "d", "e"][k as usize]),
+                    (Col::Bool, k) => block.text(if k % 2 == 0 { "true" } else { "false" }),
+                    _ => block.empty(),
+                }
+            }
+            block.end(if r % 7 == 3 { Some("failed") } else { None });
+        }
+    }
+
+    /// A block that starts with room for 2 rows and grows (doubling, the
+    /// columns moved) holds exactly the rows of one that never grows, and
+    /// so does a cleared, reused block.
+    #[test]
+    fn a_block_that_grows_keeps_its_rows() {
+        let spec = "name = \"g\"\nscheme = \"nurds\"\nvalences = [4]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"random\"\ncount = 10\nseed = 1\n[columns]\nexact_certificate = true\n";
+        let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+        let layout = Layout::new(&plan);
+        let rows = 70u64;
+        let mut roomy = TypedBlock::with_rows(&layout, rows as usize);
+        fill(&mut roomy, rows);
+        let mut small = TypedBlock::with_rows(&layout, 2);
+        fill(&mut small, 5);
+        small.clear();
+        fill(&mut small, rows);
+        assert!(small.cap >= rows as usize && small.cap < roomy.cap + 64);
+        assert!(roomy.kinds.contains(&Col::Label) && roomy.kinds.contains(&Col::Bool));
+        assert_eq!(small.rows, roomy.rows);
+        assert_eq!(small.ids, roomy.ids);
+        assert_eq!(small.valences, roomy.valences);
+        assert_eq!(small.errors, roomy.errors);
+        for j in 2..roomy.kinds.len() - 1 {
+            assert_eq!(small.column(j, 0..70), roomy.column(j, 0..70), "column {j}");
+            assert_eq!(
+                small.column(j, 20..33),
+                roomy.column(j, 20..33),
+                "column {j}"
+            );
+        }
+        // The float cells hold what was written.
+        let j = (2..roomy.kinds.len() - 1)
+            .find(|&j| roomy.kinds[j] == Col::Float)
+            .unwrap();
+        for (r, &bits) in small.column(j, 0..70).iter().enumerate() {
+            let want = if (r + j) % 5 == 0 {
+                NULL_F64
+            } else {
+                (r as f64 * 100.0 + j as f64).to_bits()
+            };
+            assert_eq!(bits, want, "row {r}");
+        }
+    }
 }

@@ -100,6 +100,11 @@ pub(super) struct Scratch {
     rows: [Staged; BATCH],
 }
 
+thread_local! {
+    /// The [`Scratch`] of the thread's last driver task, for its next one.
+    static SCRATCH: std::cell::RefCell<Option<Scratch>> = const { std::cell::RefCell::new(None) };
+}
+
 impl Scratch {
     pub(super) fn new() -> Self {
         Scratch {
@@ -651,7 +656,13 @@ fn evaluate_chunk<E: Evaluate + ?Sized, B: RowBlock>(
             let reused = spare.lock().ok().and_then(|mut s| s.pop());
             let mut block = reused.unwrap_or_else(|| B::with_rows(layout, ids.len()));
             let mut part = PartialSummary::new(numeric);
-            let mut scratch = Scratch::new();
+            // The thread's scratch of its last task: its rows' buffers and
+            // schemes are reused, not allocated per task (every row is
+            // cleared when it is loaded, and `Plan::scheme_reusing` reuses a
+            // scheme only of the same kind and valence).
+            let mut scratch = SCRATCH
+                .with(|s| s.borrow_mut().take())
+                .unwrap_or_else(Scratch::new);
             let mut batches = ids.chunks_exact(BATCH);
             for b in &mut batches {
                 let b: [u64; BATCH] = b.try_into().expect("chunks of BATCH");
@@ -661,6 +672,7 @@ fn evaluate_chunk<E: Evaluate + ?Sized, B: RowBlock>(
                 layout.append_row(plan, eval, id, &mut scratch, &mut block, &mut part);
             }
             evaluated.fetch_add(ids.len() as u64, std::sync::atomic::Ordering::Relaxed);
+            SCRATCH.with(|s| *s.borrow_mut() = Some(scratch));
             (block, part)
         })
         .collect()
