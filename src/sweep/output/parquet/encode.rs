@@ -114,6 +114,24 @@ fn bit_pack(out: &mut Vec<u8>, values: impl Iterator<Item = u32>, width: u32) {
     debug_assert_eq!(left, 0);
 }
 
+/// [`bit_pack`] of width 1 for flags: a byte per 8 flags, least
+/// significant bit first, the last byte padded with zeros (the same bytes,
+/// without the general packer's shifts per value).
+fn bit_pack_flags(out: &mut Vec<u8>, flags: impl Iterator<Item = bool>) {
+    let (mut byte, mut k) = (0u8, 0u32);
+    for f in flags {
+        byte |= u8::from(f) << k;
+        k += 1;
+        if k == 8 {
+            out.push(byte);
+            (byte, k) = (0, 0);
+        }
+    }
+    if k > 0 {
+        out.push(byte);
+    }
+}
+
 /// Appends the RLE / bit-packed hybrid encoding of `values` (`count` of
 /// them, each below `2^width`): one RLE run if they are all equal, else one
 /// bit-packed run.
@@ -143,7 +161,7 @@ fn def_levels(out: &mut Vec<u8>, rows: usize, values: usize, has: impl Iterator<
         out.push(u8::from(values == rows));
     } else {
         varint(out, ((rows.div_ceil(8) as u64) << 1) | 1);
-        bit_pack(out, has.map(u32::from), 1);
+        bit_pack_flags(out, has);
     }
     let len = (out.len() - at - 4) as u32;
     out[at..at + 4].copy_from_slice(&len.to_le_bytes());
@@ -237,9 +255,15 @@ pub(super) fn encode_group(
                 if nulls == 0 {
                     plain(out, x, f64::to_le_bytes);
                 } else {
-                    x.iter()
-                        .filter(|v| !null(v))
-                        .for_each(|v| out.extend_from_slice(&v.to_le_bytes()));
+                    // The values with a value, into room made once.
+                    let n0 = out.len();
+                    out.resize(n0 + 8 * (rows - nulls), 0);
+                    let mut dst = out[n0..].chunks_exact_mut(8);
+                    for v in x.iter().filter(|v| !null(v)) {
+                        if let Some(d) = dst.next() {
+                            d.copy_from_slice(&v.to_le_bytes());
+                        }
+                    }
                 }
                 None
             }
@@ -356,6 +380,17 @@ mod tests {
         v.clear();
         i32_field(&mut v, 65_536);
         assert_eq!(v, [0x15, 0x80, 0x80, 0x08]);
+    }
+
+    #[test]
+    fn flags_pack_as_width_one() {
+        for n in [0usize, 1, 7, 8, 9, 16, 21, 64, 100] {
+            let flags: Vec<bool> = (0..n).map(|i| (i * 7 + i / 3) % 5 < 2).collect();
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            bit_pack(&mut a, flags.iter().map(|&f| u32::from(f)), 1);
+            bit_pack_flags(&mut b, flags.iter().copied());
+            assert_eq!(a, b, "{n} flags");
+        }
     }
 
     #[test]
