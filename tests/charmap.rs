@@ -9,8 +9,8 @@ use subdiv_lab::bezier::BezierCurve;
 use subdiv_lab::bezier::{PlanarPatch, TensorBezier};
 use subdiv_lab::charmap::extended::{ExtLayout, ExtendedMatrix};
 use subdiv_lab::charmap::regularity::{
-    check_bezier_patches, check_regularity, gamma, ErrorModel, RegularityVerdict, MAX_DEPTH,
-    MAX_PIECES,
+    check_bezier_patches, check_regularity, gamma, Coefficients, ErrorModel, RegularityVerdict,
+    MAX_DEPTH, MAX_PIECES,
 };
 use subdiv_lab::charmap::ring::{PatchKind, Ring, RingPatchId};
 use subdiv_lab::charmap::winding::{winding_number, HullCurve, ANGLE_MARGIN, MAX_SPLIT_DEPTH};
@@ -1537,6 +1537,20 @@ fn a_jacobian_negative_only_inside_is_witnessed_at_the_centre_of_its_piece() {
     let (p, _) = reg.witness.unwrap();
     assert_eq!((p.s, p.t), (0.75, 0.75), "{reg:?}");
     assert_eq!((reg.pieces, reg.max_depth), (2, 1), "{reg:?}");
+    // a witness in the second piece examined after the split: d(i, 0) = 12 u_i,
+    // d(i, 1) = d(i, 2) = 1, so J = 9 (12 U(s) (1 - t)^2 + 1 - (1 - t)^2).
+    // J > 2.5 on the quarter [1/2, 1]^2 (examined first: no witness there,
+    // certified after splitting), J > 0 at every corner of the quarter
+    // [1/2, 1] x [0, 1/2] (examined next) and J(3/4, 1/4) = -3.65625 at its centre.
+    let patch = patch_with_y_steps(|i, j| if j == 0 { 12.0 * u[i] } else { 1.0 });
+    assert_eq!(patch.jacobian_at(0.75, 0.25), -3.65625);
+    for (s, t) in [(0.5, 0.0), (1.0, 0.0), (0.5, 0.5), (1.0, 0.5)] {
+        assert!(patch.jacobian_at(s, t) > 30.0, "({s}, {t})");
+    }
+    let reg = check_bezier_patches(&[(0usize, &patch)], 0.0).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::NotRegular, "{reg:?}");
+    let (p, _) = reg.witness.unwrap();
+    assert_eq!((p.s, p.t), (0.75, 0.25), "{reg:?}");
 }
 
 #[test]
@@ -1623,4 +1637,29 @@ fn the_piece_limit_is_exact_and_the_search_splits_only_along_the_zero_line() {
     assert_eq!(reg.pieces, MAX_PIECES, "{:?}", (reg.verdict, reg.max_depth));
     assert_eq!(reg.verdict, RegularityVerdict::Indeterminate);
     assert!(reg.witness.is_none());
+}
+
+#[test]
+fn verdict_and_coefficient_names_are_the_documented_words() {
+    // The text and CSV outputs spell a verdict with `as_str`, the JSON output
+    // with serde: both must give the same word. `describe` names what a
+    // certificate's `min_coeff` is in the text output.
+    for (v, word) in [
+        (RegularityVerdict::Regular, "regular"),
+        (RegularityVerdict::NotRegular, "not_regular"),
+        (RegularityVerdict::Indeterminate, "indeterminate"),
+    ] {
+        assert_eq!(v.as_str(), word);
+        assert_eq!(serde_json::to_string(&v).unwrap(), format!("\"{word}\""));
+    }
+    assert_eq!(
+        Coefficients::BezierJacobian.describe(),
+        "Bezier coefficient"
+    );
+    assert_eq!(
+        Coefficients::DerivativeCones.describe(),
+        "derivative-cone determinant"
+    );
+    let reg = check_bezier_patches(&[(0usize, &bilinear(1.0, 1.0))], 0.0).unwrap();
+    assert_eq!(reg.coefficients, Coefficients::BezierJacobian);
 }
