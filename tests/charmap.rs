@@ -1488,17 +1488,26 @@ fn a_negative_jacobian_at_any_corner_is_reported_at_that_corner() {
     // y_t negative only at one corner coefficient of its (3, 2) net: J = -9 at
     // that corner of the domain (the corner coefficient is the exact value),
     // +9 at the other three, positive at the centre: the witness is that
-    // corner, on the first piece, relative to max |c_ij|.
+    // corner, on the first piece, relative to max |c_ij|. The same with the
+    // coordinates scaled by 2^20 (J by 2^40, exactly): a clearly negative
+    // corner is evaluated whatever the magnitude of its coefficient.
     for (ci, cj, s, t) in [(3, 0, 1.0, 0.0), (0, 2, 0.0, 1.0), (3, 2, 1.0, 1.0)] {
-        let patch = patch_with_y_steps(|i, j| if (i, j) == (ci, cj) { -1.0 } else { 1.0 });
-        assert_eq!(patch.jacobian_at(s, t), -9.0);
-        assert!(patch.jacobian_at(0.5, 0.5) > 0.0);
-        let reg = check_bezier_patches(&[(3usize, &patch)], 0.0).unwrap();
-        assert_eq!(reg.verdict, RegularityVerdict::NotRegular, "{reg:?}");
-        let (p, v) = reg.witness.unwrap();
-        assert_eq!((p.patch, p.s, p.t), (3, s, t), "{reg:?}");
-        assert_eq!(v, -9.0 / patch.jacobian().max_abs(), "{reg:?}");
-        assert_eq!((reg.pieces, reg.max_depth), (1, 0), "{reg:?}");
+        let unit = patch_with_y_steps(|i, j| if (i, j) == (ci, cj) { -1.0 } else { 1.0 });
+        for scale in [1.0, 2f64.powi(20)] {
+            let patch = PlanarPatch {
+                x: TensorBezier::from_fn(3, 3, |i, j| scale * unit.x.coeff(i, j)),
+                y: TensorBezier::from_fn(3, 3, |i, j| scale * unit.y.coeff(i, j)),
+            };
+            let corner = -9.0 * scale * scale;
+            assert_eq!(patch.jacobian_at(s, t), corner);
+            assert!(patch.jacobian_at(0.5, 0.5) > 0.0);
+            let reg = check_bezier_patches(&[(3usize, &patch)], 0.0).unwrap();
+            assert_eq!(reg.verdict, RegularityVerdict::NotRegular, "{reg:?}");
+            let (p, v) = reg.witness.unwrap();
+            assert_eq!((p.patch, p.s, p.t), (3, s, t), "{reg:?}");
+            assert_eq!(v, corner / patch.jacobian().max_abs(), "{reg:?}");
+            assert_eq!((reg.pieces, reg.max_depth), (1, 0), "{reg:?}");
+        }
     }
 }
 
