@@ -9,7 +9,8 @@ use subdiv_lab::bezier::BezierCurve;
 use subdiv_lab::bezier::{PlanarPatch, TensorBezier};
 use subdiv_lab::charmap::extended::{ExtLayout, ExtendedMatrix};
 use subdiv_lab::charmap::regularity::{
-    check_bezier_patches, check_regularity, RegularityVerdict, MAX_DEPTH,
+    check_bezier_patches, check_regularity, gamma, Coefficients, ErrorModel, RegularityVerdict,
+    MAX_DEPTH, MAX_PIECES,
 };
 use subdiv_lab::charmap::ring::{PatchKind, Ring, RingPatchId};
 use subdiv_lab::charmap::winding::{winding_number, HullCurve, ANGLE_MARGIN, MAX_SPLIT_DEPTH};
@@ -1304,4 +1305,370 @@ fn the_right_half_of_a_split_carries_the_allowance_of_its_depth() {
         winding_number(&Declared::chain(&quarter_turns, 0.12, &[0.75; 4]), 0.0),
         None
     );
+}
+
+// ---------------------------------------------------------------------------
+// The Bezier Jacobian certificate on hand-made patches (issue 22: the mutation
+// run of `src/charmap/regularity.rs` against this target and `charmap_cc`
+// showed which of its bounds, boundaries and bookkeeping no ring test reaches:
+// every ring is certified or refuted on its first pieces, far from the bounds).
+
+/// A bicubic patch `x = 3 s` (control points `x_ij = i`), `y` with
+/// `y_{i,j+1} - y_ij = d(i, j)`: `x_s = 3`, `x_t = 0`, `y_t` has the Bernstein
+/// coefficients `3 d(i, j)` (bidegree (3, 2)), so the Jacobian is
+/// `J(s, t) = 9 sum_ij B^3_i(s) B^2_j(t) d(i, j)` (integer data: exact corners).
+fn patch_with_y_steps(d: impl Fn(usize, usize) -> f64) -> PlanarPatch {
+    let mut y = [[0.0; 4]; 4];
+    for (i, row) in y.iter_mut().enumerate() {
+        for j in 0..3 {
+            row[j + 1] = row[j] + d(i, j);
+        }
+    }
+    PlanarPatch {
+        x: TensorBezier::from_fn(3, 3, |i, _| i as f64),
+        y: TensorBezier::from_fn(3, 3, |i, j| y[i][j]),
+    }
+}
+
+/// The bilinear patch `x = a s`, `y = b t`: every Jacobian coefficient is `a b`.
+fn bilinear(a: f64, b: f64) -> PlanarPatch {
+    PlanarPatch {
+        x: TensorBezier::from_fn(1, 1, |i, _| a * i as f64),
+        y: TensorBezier::from_fn(1, 1, |_, j| b * j as f64),
+    }
+}
+
+#[test]
+fn gamma_is_highams_bound_for_k_roundings() {
+    // gamma_k = k u / (1 - k u), u = 2^-53 the unit roundoff of f64 (math doc
+    // section 7): strictly above k u, and exactly the formula's value.
+    let u = 2f64.powi(-53);
+    for k in 1..=64usize {
+        let ku = k as f64 * u;
+        assert_eq!(gamma(k), ku / (1.0 - ku), "k = {k}");
+        assert!(gamma(k) > ku, "k = {k}");
+    }
+}
+
+#[test]
+fn the_coefficient_error_bound_is_the_documented_sum_of_data_and_rounding_terms() {
+    // `ErrorModel`: 8 p delta md + 8 p^2 delta^2 + gamma_{8 + 2 p^2} 2 md^2 for a
+    // coefficient, plus 2 d gamma_{2p - 1} cmax after d subdivision levels; a
+    // directly evaluated value has the coefficient bound. Each term is isolated
+    // once (delta = 0, md = 0) so that none hides behind a larger one.
+    let close = |a: f64, b: f64| (a - b).abs() <= 4.0 * f64::EPSILON * b.abs();
+    for p in [1usize, 2, 3] {
+        let pf = p as f64;
+        for (delta, md) in [(0.0, 3.0), (0.25, 0.0), (0.25, 3.0), (2f64.powi(-20), 5.0)] {
+            let m = ErrorModel {
+                delta,
+                md,
+                degree: p,
+            };
+            let want = 8.0 * pf * delta * md
+                + 8.0 * pf * pf * delta * delta
+                + gamma(8 + 2 * p * p) * 2.0 * md * md;
+            assert!(close(m.coefficient_bound(), want), "{m:?}");
+            assert!(close(m.evaluation_bound(), want), "{m:?}");
+            for depth in [0u32, 1, 7] {
+                for cmax in [1.0, 6.0] {
+                    let sub = want + 2.0 * f64::from(depth) * gamma(2 * p - 1) * cmax;
+                    assert!(close(m.subdivided_bound(depth, cmax), sub), "{m:?} {depth}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_certificate_reports_its_minimum_relative_to_the_largest_coefficient() {
+    // x = 2s (biquadratic), y_t = 1 except its corner coefficient (2, 1) = 1/2:
+    // J = 2 y_t elevated to bidegree (3, 3), coefficients in [1, 2], the
+    // smallest (1, exact: a corner) only at (s, t) = (1, 1), the largest 2.
+    let x = TensorBezier::from_fn(2, 2, |i, _| i as f64);
+    let y = TensorBezier::from_fn(2, 2, |i, j| {
+        if (i, j) == (2, 2) {
+            0.75
+        } else {
+            j as f64 / 2.0
+        }
+    });
+    let patch = PlanarPatch { x, y };
+    let jac = patch.jacobian();
+    assert_eq!(jac.degree(), (3, 3));
+    assert_eq!(jac.min_coeff(), (1.0, 3, 3));
+    let cmax = jac.max_abs();
+    assert!((cmax - 2.0).abs() < 1e-15, "{cmax}");
+    let reg = check_bezier_patches(&[(4usize, &patch)], 0.0).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::Regular, "{reg:?}");
+    assert_eq!(reg.min_coeff, 1.0 / cmax, "{reg:?}");
+    let loc = reg.min_location;
+    assert_eq!((loc.patch, loc.s, loc.t), (4, 1.0, 1.0), "{reg:?}");
+    // the error bound relative to the same scale: md = 2 (x_s), degree 2
+    let model = ErrorModel {
+        delta: 0.0,
+        md: 2.0,
+        degree: 2,
+    };
+    assert_eq!(reg.relative_error_bound, model.coefficient_bound() / cmax);
+}
+
+#[test]
+fn ties_for_the_smallest_coefficient_report_the_first_in_patch_order() {
+    // Two patches with the same constant Jacobian 6: every coefficient ties.
+    // The reported location is the first (patch order, then s, then t), so
+    // that the same input always gives the same report.
+    let p = bilinear(2.0, 3.0);
+    let reg = check_bezier_patches(&[(5usize, &p), (9usize, &p)], 0.0).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::Regular);
+    let loc = reg.min_location;
+    assert_eq!((loc.patch, loc.s, loc.t), (5, 0.0, 0.0), "{reg:?}");
+    assert_eq!(reg.min_coeff, 1.0);
+}
+
+#[test]
+fn a_coefficient_equal_to_its_error_bound_certifies_nothing() {
+    // x = s, y = beta t: every Jacobian coefficient is exactly beta, and with
+    // exact data (delta = 0, md = 1, degree 1) the coefficient bound is
+    // 2 gamma_10. At beta = that bound the true Jacobian may be 0: the piece is
+    // not certified (and, the bound reaching every coefficient, not split);
+    // at twice the bound it is.
+    let bound = ErrorModel {
+        delta: 0.0,
+        md: 1.0,
+        degree: 1,
+    }
+    .coefficient_bound();
+    for (beta, verdict) in [
+        (bound, RegularityVerdict::Indeterminate),
+        (2.0 * bound, RegularityVerdict::Regular),
+    ] {
+        let patch = bilinear(1.0, beta);
+        assert_eq!(patch.jacobian().coeffs(), &[beta; 4]);
+        let reg = check_bezier_patches(&[(0usize, &patch)], 0.0).unwrap();
+        assert_eq!(reg.verdict, verdict, "beta {beta:e}: {reg:?}");
+        assert_eq!((reg.pieces, reg.max_depth), (1, 0), "{reg:?}");
+        assert!(reg.witness.is_none());
+    }
+}
+
+#[test]
+fn a_value_equal_to_minus_the_evaluation_bound_is_not_a_witness() {
+    // Patch 0 (J = 1) fixes the orientation and md = 1; patch 1 has the
+    // constant Jacobian -beta. At beta = the evaluation bound its values may be
+    // 0: no witness, indeterminate; at twice the bound, not regular, with the
+    // witness at the first corner of patch 1 (its corner coefficients are now
+    // below minus the bound).
+    let bound = ErrorModel {
+        delta: 0.0,
+        md: 1.0,
+        degree: 1,
+    }
+    .evaluation_bound();
+    let one = bilinear(1.0, 1.0);
+    for (beta, verdict) in [
+        (bound, RegularityVerdict::Indeterminate),
+        (2.0 * bound, RegularityVerdict::NotRegular),
+    ] {
+        let neg = bilinear(1.0, -beta);
+        let reg = check_bezier_patches(&[(0usize, &one), (1usize, &neg)], 0.0).unwrap();
+        assert_eq!(reg.verdict, verdict, "beta {beta:e}: {reg:?}");
+        assert_eq!(reg.orientation, 1);
+        if let Some((p, v)) = reg.witness {
+            assert_eq!((p.patch, p.s, p.t), (1, 0.0, 0.0), "{reg:?}");
+            assert_eq!(v, -beta);
+        } else {
+            assert_eq!(reg.undecided.map(|u| u.patch), Some(1), "{reg:?}");
+        }
+    }
+}
+
+#[test]
+fn a_negative_jacobian_at_any_corner_is_reported_at_that_corner() {
+    // y_t negative only at one corner coefficient of its (3, 2) net: J = -9 at
+    // that corner of the domain (the corner coefficient is the exact value),
+    // +9 at the other three, positive at the centre: the witness is that
+    // corner, on the first piece, relative to max |c_ij|. The same with the
+    // coordinates scaled by 2^20 (J by 2^40, exactly): a clearly negative
+    // corner is evaluated whatever the magnitude of its coefficient.
+    for (ci, cj, s, t) in [(3, 0, 1.0, 0.0), (0, 2, 0.0, 1.0), (3, 2, 1.0, 1.0)] {
+        let unit = patch_with_y_steps(|i, j| if (i, j) == (ci, cj) { -1.0 } else { 1.0 });
+        for scale in [1.0, 2f64.powi(20)] {
+            let patch = PlanarPatch {
+                x: TensorBezier::from_fn(3, 3, |i, j| scale * unit.x.coeff(i, j)),
+                y: TensorBezier::from_fn(3, 3, |i, j| scale * unit.y.coeff(i, j)),
+            };
+            let corner = -9.0 * scale * scale;
+            assert_eq!(patch.jacobian_at(s, t), corner);
+            assert!(patch.jacobian_at(0.5, 0.5) > 0.0);
+            let reg = check_bezier_patches(&[(3usize, &patch)], 0.0).unwrap();
+            assert_eq!(reg.verdict, RegularityVerdict::NotRegular, "{reg:?}");
+            let (p, v) = reg.witness.unwrap();
+            assert_eq!((p.patch, p.s, p.t), (3, s, t), "{reg:?}");
+            assert_eq!(v, corner / patch.jacobian().max_abs(), "{reg:?}");
+            assert_eq!((reg.pieces, reg.max_depth), (1, 0), "{reg:?}");
+        }
+    }
+}
+
+#[test]
+fn a_jacobian_negative_only_inside_is_witnessed_at_the_centre_of_its_piece() {
+    // d(1, 1) = d(2, 1) = -3, else 1: J = 9 at the four corners (so no corner
+    // is a witness) and J(1/2, 1/2) = 9 (1 - 4 * 3/8) = -4.5 at the centre of
+    // the patch: the witness of the first piece.
+    let patch = patch_with_y_steps(|i, j| {
+        if j == 1 && (i == 1 || i == 2) {
+            -3.0
+        } else {
+            1.0
+        }
+    });
+    for (s, t) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
+        assert_eq!(patch.jacobian_at(s, t), 9.0);
+    }
+    assert_eq!(patch.jacobian_at(0.5, 0.5), -4.5);
+    let reg = check_bezier_patches(&[(2usize, &patch)], 0.0).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::NotRegular, "{reg:?}");
+    let (p, v) = reg.witness.unwrap();
+    assert_eq!((p.patch, p.s, p.t), (2, 0.5, 0.5), "{reg:?}");
+    assert_eq!((reg.pieces, reg.max_depth), (1, 0), "{reg:?}");
+    assert_eq!(v, -4.5 / patch.jacobian().max_abs());
+    // after one split: u = (1, 5, -3, 1) in s, constant in t. U(s) = sum
+    // B^3_i(s) u_i is 1 at s = 0, 1/2, 1 and -1/8 at s = 3/4: J = 9 U > 0 at
+    // every corner of the patch and of the quarter [1/2, 1]^2, and at the
+    // patch centre; the quarter (the first piece examined after the split) has
+    // its centre (3/4, 3/4) as the witness.
+    let u = [1.0, 5.0, -3.0, 1.0];
+    let patch = patch_with_y_steps(|i, _| u[i]);
+    assert_eq!(patch.jacobian_at(0.75, 0.75), -1.125);
+    let reg = check_bezier_patches(&[(0usize, &patch)], 0.0).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::NotRegular, "{reg:?}");
+    let (p, _) = reg.witness.unwrap();
+    assert_eq!((p.s, p.t), (0.75, 0.75), "{reg:?}");
+    assert_eq!((reg.pieces, reg.max_depth), (2, 1), "{reg:?}");
+    // a witness in the second piece examined after the split: d(i, 0) = 12 u_i,
+    // d(i, 1) = d(i, 2) = 1, so J = 9 (12 U(s) (1 - t)^2 + 1 - (1 - t)^2).
+    // J > 2.5 on the quarter [1/2, 1]^2 (examined first: no witness there,
+    // certified after splitting), J > 0 at every corner of the quarter
+    // [1/2, 1] x [0, 1/2] (examined next) and J(3/4, 1/4) = -3.65625 at its centre.
+    let patch = patch_with_y_steps(|i, j| if j == 0 { 12.0 * u[i] } else { 1.0 });
+    assert_eq!(patch.jacobian_at(0.75, 0.25), -3.65625);
+    for (s, t) in [(0.5, 0.0), (1.0, 0.0), (0.5, 0.5), (1.0, 0.5)] {
+        assert!(patch.jacobian_at(s, t) > 30.0, "({s}, {t})");
+    }
+    let reg = check_bezier_patches(&[(0usize, &patch)], 0.0).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::NotRegular, "{reg:?}");
+    let (p, _) = reg.witness.unwrap();
+    assert_eq!((p.s, p.t), (0.75, 0.25), "{reg:?}");
+}
+
+#[test]
+fn all_zero_or_infinite_coefficients_are_indeterminate_at_once() {
+    // A constant x gives J = 0 everywhere; coordinates of 1e300 overflow J to
+    // infinity. Nothing can be certified: indeterminate before any piece is
+    // examined, the undecided point the minimum's location, finite relative
+    // numbers for the zero Jacobian (the scale 0 is replaced by 1).
+    let flat = PlanarPatch {
+        x: TensorBezier::from_fn(1, 1, |_, _| 1.0),
+        y: TensorBezier::from_fn(1, 1, |_, j| j as f64),
+    };
+    let reg = check_bezier_patches(&[(6usize, &flat)], 0.0).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::Indeterminate, "{reg:?}");
+    assert_eq!(reg.pieces, 0, "{reg:?}");
+    assert_eq!(reg.undecided, Some(reg.min_location));
+    assert_eq!(reg.min_coeff, 0.0);
+    assert!(reg.relative_error_bound.is_finite() && reg.relative_error_bound > 0.0);
+    let huge = bilinear(1e300, 1e300);
+    assert_eq!(huge.jacobian().max_abs(), f64::INFINITY);
+    let reg = check_bezier_patches(&[(6usize, &huge)], 0.0).unwrap();
+    assert_eq!(reg.verdict, RegularityVerdict::Indeterminate, "{reg:?}");
+    assert_eq!(reg.pieces, 0, "{reg:?}");
+    assert!(reg.undecided.is_some() && reg.witness.is_none());
+}
+
+#[test]
+fn the_orientation_is_the_sign_of_the_signed_area() {
+    // The signed area is the sum of the patches' coefficient means. A single
+    // mirrored patch (J = -4 everywhere, coefficient sum -16, a multiple of
+    // the coefficient count) is regular with orientation -1; two patches of
+    // opposite Jacobians (area exactly 0) take orientation +1 and refute it on
+    // the negative patch.
+    let reg = check_bezier_patches(&[(0usize, &bilinear(2.0, -2.0))], 0.0).unwrap();
+    assert_eq!(
+        (reg.verdict, reg.orientation),
+        (RegularityVerdict::Regular, -1),
+        "{reg:?}"
+    );
+    let (pos, neg) = (bilinear(1.0, 1.0), bilinear(1.0, -1.0));
+    for (a, b) in [(0usize, 1usize), (1, 0)] {
+        let patches = [
+            (a, if a == 0 { &pos } else { &neg }),
+            (b, if b == 0 { &pos } else { &neg }),
+        ];
+        let reg = check_bezier_patches(&patches, 0.0).unwrap();
+        assert_eq!(reg.orientation, 1, "{reg:?}");
+        assert_eq!(reg.verdict, RegularityVerdict::NotRegular, "{reg:?}");
+        assert_eq!(reg.witness.unwrap().0.patch, 1, "{reg:?}");
+    }
+}
+
+#[test]
+fn the_piece_limit_is_exact_and_the_search_splits_only_along_the_zero_line() {
+    // J = 3 (t - 1/2)^2 (as in the touching test): only the pieces that meet
+    // the line t = 1/2 are undecided and split, 2^(d+1) of them at depth
+    // d >= 1 (one at depth 0), down to MAX_DEPTH. Examined: 1 + 4 +
+    // sum_{d=2}^{10} 4 * 2^d = 8181 pieces for one patch, and the undecided
+    // piece is one of the depth-limit pieces on the line, inside the domain.
+    let x = TensorBezier::from_fn(3, 3, |a, _| a as f64 / 3.0);
+    let yc = [-0.125, 0.125, -0.125, 0.125];
+    let patch = PlanarPatch {
+        x,
+        y: TensorBezier::from_fn(3, 3, |_, b| yc[b]),
+    };
+    let reg = check_bezier_patches(&[(0usize, &patch)], 0.0).unwrap();
+    let want: usize = 5 + (2..=MAX_DEPTH).map(|d| 4usize << d).sum::<usize>();
+    assert_eq!(want, 8181);
+    assert_eq!(reg.pieces, want, "{reg:?}");
+    assert_eq!(reg.max_depth, MAX_DEPTH);
+    let at = reg.undecided.unwrap();
+    let side = 2f64.powi(-(MAX_DEPTH as i32));
+    assert!(
+        (0.0..1.0).contains(&at.s) && (at.s / side).fract() == 0.0,
+        "{at:?}"
+    );
+    assert!(at.t == 0.5 || at.t == 0.5 - side, "{at:?}");
+    // four such patches would need 4 * 8181 pieces: the search stops at
+    // exactly MAX_PIECES (4 + 4k pieces, the largest such count within the
+    // limit), still indeterminate and without a witness
+    let four: Vec<(usize, &PlanarPatch)> = (0..4).map(|k| (k, &patch)).collect();
+    let reg = check_bezier_patches(&four, 0.0).unwrap();
+    assert_eq!(MAX_PIECES % 4, 0);
+    assert_eq!(reg.pieces, MAX_PIECES, "{:?}", (reg.verdict, reg.max_depth));
+    assert_eq!(reg.verdict, RegularityVerdict::Indeterminate);
+    assert!(reg.witness.is_none());
+}
+
+#[test]
+fn verdict_and_coefficient_names_are_the_documented_words() {
+    // The text and CSV outputs spell a verdict with `as_str`, the JSON output
+    // with serde: both must give the same word. `describe` names what a
+    // certificate's `min_coeff` is in the text output.
+    for (v, word) in [
+        (RegularityVerdict::Regular, "regular"),
+        (RegularityVerdict::NotRegular, "not_regular"),
+        (RegularityVerdict::Indeterminate, "indeterminate"),
+    ] {
+        assert_eq!(v.as_str(), word);
+        assert_eq!(serde_json::to_string(&v).unwrap(), format!("\"{word}\""));
+    }
+    assert_eq!(
+        Coefficients::BezierJacobian.describe(),
+        "Bezier coefficient"
+    );
+    assert_eq!(
+        Coefficients::DerivativeCones.describe(),
+        "derivative-cone determinant"
+    );
+    let reg = check_bezier_patches(&[(0usize, &bilinear(1.0, 1.0))], 0.0).unwrap();
+    assert_eq!(reg.coefficients, Coefficients::BezierJacobian);
 }
