@@ -548,9 +548,9 @@ impl<'a> BlockCells<'a> {
         }
     }
 
-    /// Writes the number `x` as cell `j` of row `row` (a cell beyond the
-    /// columns is dropped, as the staged rows did; a number in a text column
-    /// is written as Rust's shortest text, as `Cell` did).
+    /// Writes the number `x` as cell `j` of row `row`. A cell beyond the
+    /// columns is dropped; a number in a text column becomes Rust's shortest
+    /// text for it (the built-in evaluator writes neither).
     #[inline]
     fn put_num(&self, row: usize, j: usize, x: f64) {
         match self.kind.get(j) {
@@ -571,8 +571,8 @@ impl<'a> BlockCells<'a> {
         self.put_text(row, j, &x.to_string());
     }
 
-    /// Writes the text `t` as cell `j` of row `row` (a text in a numeric
-    /// column leaves it empty, as the staged rows did).
+    /// Writes the text `t` as cell `j` of row `row`; a text in a numeric
+    /// column leaves the cell empty (NaN, not valid).
     #[inline(never)]
     fn put_text(&self, row: usize, j: usize, t: &str) {
         match self.kind.get(j) {

@@ -287,7 +287,7 @@ pub struct Evidence<'a> {
 /// test `modulus_is_norm_bit_for_bit`). Most eigenvalues of a sweep are real,
 /// and `hypot` is about 45 instructions.
 #[inline]
-pub fn modulus(z: Complex64) -> f64 {
+pub(crate) fn modulus(z: Complex64) -> f64 {
     if z.im == 0.0 {
         z.re.abs()
     } else if z.re == 0.0 {

@@ -255,7 +255,7 @@ pub(super) fn encode_group(
                 if nulls == 0 {
                     plain(out, x, f64::to_le_bytes);
                 } else {
-                    // The values with a value, into room made once.
+                    // The non-null values, into room made once.
                     let n0 = out.len();
                     out.resize(n0 + 8 * (rows - nulls), 0);
                     let mut dst = out[n0..].chunks_exact_mut(8);
@@ -268,20 +268,16 @@ pub(super) fn encode_group(
                 None
             }
             Values::Bool(x) => {
-                let set: Vec<u32> = x
-                    .iter()
-                    .filter(|&&b| b != NULL_BOOL)
-                    .map(|&b| u32::from(b))
-                    .collect();
+                let set = x.iter().filter(|&&b| b != NULL_BOOL);
                 def_levels(
                     &mut levels,
                     rows,
-                    set.len(),
+                    set.clone().count(),
                     x.iter().map(|&b| b != NULL_BOOL),
                 );
                 // PLAIN booleans: one bit each, least significant first; the
                 // padding of the last byte is ignored by readers.
-                bit_pack(&mut body, set.iter().copied(), 1);
+                bit_pack_flags(&mut body, set.map(|&b| b == 1));
                 Some(PLAIN)
             }
             Values::Str(x) => {
