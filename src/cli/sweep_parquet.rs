@@ -59,11 +59,12 @@ fn journal_path(path: &Path) -> PathBuf {
     ))
 }
 
-/// Truncates `file` at `at` and writes `parts` there.
-fn write_at(file: &mut File, at: u64, parts: &[&[u8]]) -> std::io::Result<()> {
+/// Truncates `file` at `at` and writes the pieces of `group`, then
+/// `footer`, there.
+fn write_at(file: &mut File, at: u64, group: &[&[u8]], footer: &[u8]) -> std::io::Result<()> {
     file.set_len(at)?;
     file.seek(SeekFrom::Start(at))?;
-    for p in parts {
+    for p in group.iter().chain([&footer]) {
         file.write_all(p)?;
     }
     file.flush()
@@ -71,8 +72,8 @@ fn write_at(file: &mut File, at: u64, parts: &[&[u8]]) -> std::io::Result<()> {
 
 fn commit_fn(mut file: File, journal: PathBuf) -> CommitFn {
     Box::new(move |c: Commit<'_>| {
-        write_at(&mut file, c.offset, &[c.group, c.footer])?;
-        let end = c.offset + c.group.len() as u64;
+        write_at(&mut file, c.offset, c.group, c.footer)?;
+        let end = c.offset + c.group_len();
         super::outfiles::write_atomic(&journal, &journal_bytes(end, c.footer))
             .map_err(|e| std::io::Error::other(format!("{e:#}")))
     })
@@ -118,7 +119,7 @@ pub(crate) fn open(
                 .write(true)
                 .open(path)
                 .map_err(|e| io(e, "opening"))?;
-            write_at(&mut f, end, &[&footer]).map_err(|e| io(e, "writing"))?;
+            write_at(&mut f, end, &[], &footer).map_err(|e| io(e, "writing"))?;
             recovered = len != end + footer.len() as u64;
         }
         let bytes = fs::read(path).map_err(|e| io(e, "reading"))?;
@@ -181,7 +182,7 @@ pub(crate) fn open(
                     .write(true)
                     .open(path)
                     .map_err(|e| io(e, "opening"))?;
-                write_at(&mut f, data_end, &[&footer]).map_err(|e| io(e, "writing"))?;
+                write_at(&mut f, data_end, &[], &footer).map_err(|e| io(e, "writing"))?;
                 recovered = true;
             }
             existing = table.row_groups()[..keep].to_vec();
@@ -204,7 +205,7 @@ pub(crate) fn open(
     if fresh {
         // A new file: PAR1 and the footer of no group (valid Parquet).
         let footer = rows.current_footer().map_err(CliError::failure)?;
-        write_at(&mut file, 0, &[pq::MAGIC, &footer]).map_err(|e| io(e, "writing"))?;
+        write_at(&mut file, 0, &[pq::MAGIC], &footer).map_err(|e| io(e, "writing"))?;
         super::outfiles::write_atomic(&journal, &journal_bytes(data_end, &footer))
             .map_err(CliError::failure)?;
     }
@@ -272,7 +273,7 @@ pub(crate) fn merge_sink(
 ) -> CliResult<ParquetRows<CommitFn>> {
     file.write_all(pq::MAGIC).map_err(CliError::failure)?;
     let commit: CommitFn =
-        Box::new(move |c: Commit<'_>| write_at(&mut file, c.offset, &[c.group, c.footer]));
+        Box::new(move |c: Commit<'_>| write_at(&mut file, c.offset, c.group, c.footer));
     let rows = ParquetRows::new(
         layout,
         &output::fingerprint_line(plan, Shard::ALL),

@@ -267,12 +267,42 @@ impl Dict {
 enum Values {
     U64(Vec<i64>),
     U32(Vec<i32>),
-    F64(Vec<f64>),
+    /// The values and how many of them are nulls ([`NULL_F64`]): counted as
+    /// rows are appended, while they are in cache, so that a group without
+    /// nulls is encoded without a pass over its values.
+    F64(Vec<f64>, usize),
     /// A label column: dictionary indices.
     Dict(Dict),
-    /// The error column: plain text.
-    Str(Vec<Option<String>>),
+    /// The error column: plain text, sparse (most rows have none).
+    Str(Sparse),
     Bool(Vec<u8>),
+}
+
+/// A text column whose rows are mostly null: the rows so far and the texts
+/// of the others, with their row, in row order. A row costs nothing unless
+/// it has a text (a dense column of `Option<String>` would write, and the
+/// encoder read, 24 bytes per row).
+#[derive(Debug, Default)]
+struct Sparse {
+    rows: usize,
+    texts: Vec<(usize, String)>,
+}
+
+impl Sparse {
+    fn clear(&mut self) {
+        self.rows = 0;
+        self.texts.clear();
+    }
+
+    /// The rows of the column.
+    fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// The texts, with their rows, in row order.
+    fn texts(&self) -> &[(usize, String)] {
+        &self.texts
+    }
 }
 
 /// `x` as a float column stores it: NaN as the canonical NaN.
@@ -291,12 +321,12 @@ impl Values {
         match col {
             Col::Id => Values::U64(Vec::with_capacity(rows)),
             Col::Valence => Values::U32(Vec::with_capacity(rows)),
-            Col::Float => Values::F64(Vec::with_capacity(rows)),
+            Col::Float => Values::F64(Vec::with_capacity(rows), 0),
             Col::Label => Values::Dict(Dict {
                 indices: Vec::with_capacity(rows),
                 ..Dict::default()
             }),
-            Col::Error => Values::Str(Vec::with_capacity(rows)),
+            Col::Error => Values::Str(Sparse::default()),
             Col::Bool => Values::Bool(Vec::with_capacity(rows)),
         }
     }
@@ -305,7 +335,10 @@ impl Values {
         match self {
             Values::U64(v) => v.clear(),
             Values::U32(v) => v.clear(),
-            Values::F64(v) => v.clear(),
+            Values::F64(v, nulls) => {
+                v.clear();
+                *nulls = 0;
+            }
             Values::Dict(v) => v.clear(),
             Values::Str(v) => v.clear(),
             Values::Bool(v) => v.clear(),
@@ -316,9 +349,12 @@ impl Values {
     #[inline(always)]
     fn push_null(&mut self) {
         match self {
-            Values::F64(v) => v.push(f64::from_bits(NULL_F64)),
+            Values::F64(v, nulls) => {
+                v.push(f64::from_bits(NULL_F64));
+                *nulls += 1;
+            }
             Values::Dict(v) => v.indices.push(NULL_INDEX),
-            Values::Str(v) => v.push(None),
+            Values::Str(v) => v.rows += 1,
             Values::Bool(v) => v.push(NULL_BOOL),
             Values::U64(_) | Values::U32(_) => {}
         }
@@ -343,7 +379,7 @@ impl Values {
                 v.push(f.parse::<u32>().map_err(|_| bad("an unsigned integer"))? as i32)
             }
             _ if f.is_empty() => self.push_null(),
-            Values::F64(v) => {
+            Values::F64(v, _) => {
                 let x = match canonical_number(f, scratch, digits) {
                     Some(x) => x,
                     None => f.parse::<f64>().map_err(|_| bad("a number"))?,
@@ -351,7 +387,10 @@ impl Values {
                 v.push(stored(x));
             }
             Values::Dict(v) => v.push(f),
-            Values::Str(v) => v.push(Some(f.to_owned())),
+            Values::Str(v) => {
+                v.texts.push((v.rows, f.to_owned()));
+                v.rows += 1;
+            }
             Values::Bool(v) => match f {
                 "true" => v.push(1),
                 "false" => v.push(0),
@@ -368,8 +407,22 @@ impl Values {
         match self {
             Values::U64(v) => v.extend_from_slice(&block.ids[rows]),
             Values::U32(v) => v.extend_from_slice(&block.valences[rows]),
-            Values::Str(v) => v.extend_from_slice(&block.errors[rows]),
-            Values::F64(v) => v.extend_from_slice(bytemuck::cast_slice(block.column(j, rows))),
+            Values::Str(v) => {
+                // The block's errors are in row order.
+                let at = block.errors.partition_point(|(r, _)| *r < rows.start);
+                for (r, e) in &block.errors[at..] {
+                    if *r >= rows.end {
+                        break;
+                    }
+                    v.texts.push((v.rows + r - rows.start, e.clone()));
+                }
+                v.rows += rows.len();
+            }
+            Values::F64(v, nulls) => {
+                let cells = block.column(j, rows);
+                v.extend_from_slice(bytemuck::cast_slice(cells));
+                *nulls += cells.iter().filter(|&&b| b == NULL_F64).count();
+            }
             // A boolean cell is 0, 1 or NULL_BOOL.
             Values::Bool(v) => v.extend(block.column(j, rows).iter().map(|&b| b as u8)),
             Values::Dict(v) => {
@@ -434,7 +487,8 @@ pub struct TypedBlock {
     at: usize,
     /// Per column: the labels of this block (empty for other columns).
     dicts: Vec<Dict>,
-    errors: Vec<Option<String>>,
+    /// The rows with an error (row in the block, CSV text), in row order.
+    errors: Vec<(usize, String)>,
     /// Column of the next cell.
     col: usize,
     rows: usize,
@@ -539,7 +593,7 @@ impl super::run::RowBlock for TypedBlock {
             cap: rows,
             at: 0,
             dicts: kinds.iter().map(|_| Dict::default()).collect(),
-            errors: Vec::with_capacity(rows),
+            errors: Vec::new(),
             kinds,
             col: 0,
             rows: 0,
@@ -602,8 +656,11 @@ impl super::run::RowBlock for TypedBlock {
         self.valences.clear();
         self.errors.clear();
         self.at = 0;
-        for d in &mut self.dicts {
-            d.clear();
+        // Only label columns have entries.
+        for (d, kind) in self.dicts.iter_mut().zip(&self.kinds) {
+            if *kind == Col::Label {
+                d.clear();
+            }
         }
         self.col = 0;
         self.rows = 0;
@@ -614,8 +671,8 @@ impl super::run::RowBlock for TypedBlock {
     #[inline(always)]
     fn end(&mut self, error: Option<&str>) {
         match error {
-            Some(e) if !e.is_empty() => self.errors.push(Some(csv_text(e).into_owned())),
-            _ => self.errors.push(None),
+            Some(e) if !e.is_empty() => self.errors.push((self.rows, csv_text(e).into_owned())),
+            _ => {}
         }
         self.col = 0;
         self.rows += 1;
@@ -623,19 +680,28 @@ impl super::run::RowBlock for TypedBlock {
 }
 
 /// One committed row group, handed to the caller of [`ParquetRows`]: write
-/// `group` at byte `offset` of the file (dropping whatever follows), then
-/// `footer`; the file is then a valid Parquet file of `rows` rows. Record
-/// `(offset + group.len(), footer)` as the last commit.
+/// the pieces of `group` one after the other at byte `offset` of the file
+/// (dropping whatever follows), then `footer`; the file is then a valid
+/// Parquet file of `rows` rows. Record `(offset + group_len(), footer)` as
+/// the last commit.
 #[derive(Debug)]
 pub struct Commit<'a> {
     /// Where the group's bytes go (the end of the previous group).
     pub offset: u64,
-    /// The row group's bytes.
-    pub group: &'a [u8],
+    /// The row group's bytes, in pieces (the values of a column are the
+    /// writer's own buffer, not a copy).
+    pub group: &'a [&'a [u8]],
     /// The footer (metadata, its length, `PAR1`) of the file ending after `group`.
     pub footer: &'a [u8],
     /// Rows in the file after this commit.
     pub rows: u64,
+}
+
+impl Commit<'_> {
+    /// Bytes of the row group (of all its pieces).
+    pub fn group_len(&self) -> u64 {
+        self.group.iter().map(|p| p.len() as u64).sum()
+    }
 }
 
 /// Rows of a sweep in Parquet form: receives the CSV lines the sweep driver
@@ -654,10 +720,9 @@ pub struct ParquetRows<F> {
     /// End of the last committed group (the file's length without its footer).
     data_end: u64,
     pending: Vec<u8>,
-    /// The in-memory one-group file of the group being committed, reused
-    /// group after group (so that a sweep does not touch fresh memory for
-    /// every group).
-    encoded: Vec<u8>,
+    /// The pieces of the group being committed, reused group after group
+    /// (so that a sweep does not touch fresh memory for every group).
+    encoded: encode::GroupBytes,
     commit: F,
     number: String,
     digits: zmij::Buffer,
@@ -693,7 +758,7 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
                 .iter()
                 .map(|c| Values::with_rows(*c, ROW_GROUP_ROWS))
                 .collect(),
-            encoded: Vec::new(),
+            encoded: encode::GroupBytes::default(),
             names: layout.column_names(),
             descr: Arc::new(SchemaDescriptor::new(schema.clone())),
             schema,
@@ -801,29 +866,27 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
 
     /// Encodes the open group, moves it to its place and commits it.
     fn commit_group(&mut self) -> Result<(), SweepError> {
-        let mut encoded = std::mem::take(&mut self.encoded);
         let meta = encode::encode_group(
             &self.descr,
             &self.values,
             self.rows_in_group,
             self.data_end,
             self.groups.len(),
-            &mut encoded,
+            &mut self.encoded,
         )?;
-        let bytes = &encoded[..];
         let meta = as_read_back(&self.schema, &self.props, meta)?;
         self.groups.push(meta);
         let footer = self.footer()?;
         let rows = self.rows();
         let offset = self.data_end;
+        let pieces = self.encoded.pieces(&self.values);
         (self.commit)(Commit {
             offset,
-            group: bytes,
+            group: &pieces,
             footer: &footer,
             rows,
         })?;
-        self.data_end += bytes.len() as u64;
-        self.encoded = encoded;
+        self.data_end += self.encoded.len() as u64;
         for v in &mut self.values {
             v.clear();
         }
@@ -1361,6 +1424,57 @@ mod tests {
                 (r as f64 * 100.0 + j as f64).to_bits()
             };
             assert_eq!(bits, want, "row {r}");
+        }
+    }
+
+    /// A block split between two row groups (its first 36 rows close the
+    /// first group) keeps every row's error text, floats and nulls, in both
+    /// groups; and a group's float column with nulls reads back as one
+    /// without.
+    #[test]
+    fn a_block_split_between_groups_keeps_its_rows() {
+        let spec = "name = \"g\"\nscheme = \"nurds\"\nvalences = [4]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"random\"\ncount = 10\nseed = 1\n";
+        let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+        let layout = Layout::new(&plan);
+        let first = ROW_GROUP_ROWS as u64 - 36;
+        let mut a = TypedBlock::with_rows(&layout, first as usize);
+        fill(&mut a, first);
+        let mut b = TypedBlock::with_rows(&layout, 100);
+        fill(&mut b, 100);
+        let mut bytes = MAGIC.to_vec();
+        let commit = |c: Commit<'_>| {
+            bytes.truncate(c.offset as usize);
+            for p in c.group {
+                bytes.extend_from_slice(p);
+            }
+            bytes.extend_from_slice(c.footer);
+            Ok(())
+        };
+        let mut rows = ParquetRows::new(&layout, "fp", Vec::new(), 4, commit).unwrap();
+        rows.push_block(&a).unwrap();
+        rows.push_block(&b).unwrap();
+        assert_eq!(rows.finish().unwrap(), first + 100);
+        let t = read_table(bytes).unwrap();
+        assert_eq!(t.group_rows(), vec![ROW_GROUP_ROWS as u64, 64]);
+        // Row i of the file is row r of block a or b.
+        let r_of = |i: usize| (i as u64).checked_sub(first).unwrap_or(i as u64);
+        let Some(Column::Str(errors)) = t.column("error") else {
+            panic!("no error column")
+        };
+        for (i, e) in errors.iter().enumerate() {
+            let want = (r_of(i) % 7 == 3).then(|| "failed".to_owned());
+            assert_eq!(*e, want, "error of row {i}");
+        }
+        let j = (2..a.kinds.len() - 1)
+            .find(|&j| a.kinds[j] == Col::Float)
+            .unwrap();
+        let Some(Column::F64(x)) = t.column(&layout.column_names()[j]) else {
+            panic!("no float column {j}")
+        };
+        for (i, x) in x.iter().enumerate() {
+            let r = r_of(i);
+            let want = ((r + j as u64) % 5 != 0).then_some(r as f64 * 100.0 + j as f64);
+            assert_eq!(*x, want, "column {j}, row {i}");
         }
     }
 }

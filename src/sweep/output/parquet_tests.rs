@@ -86,7 +86,10 @@ fn both_paths<E: Evaluate>(
         let mut summary = Summary::new(plan, layout, Shard::ALL, None);
         let commit = |c: Commit<'_>| {
             bytes.truncate(c.offset as usize);
-            bytes.extend_from_slice(c.group);
+            for p in c.group {
+                bytes.extend_from_slice(p);
+            }
+            assert_eq!(bytes.len() as u64, c.offset + c.group_len());
             bytes.extend_from_slice(c.footer);
             commits.push(c.rows);
             Ok(())
@@ -179,7 +182,10 @@ fn recycled_row_blocks_write_the_rows_of_the_per_row_path() {
     let mut want = MAGIC.to_vec();
     let commit = |c: Commit<'_>| {
         want.truncate(c.offset as usize);
-        want.extend_from_slice(c.group);
+        for p in c.group {
+            want.extend_from_slice(p);
+        }
+        assert_eq!(want.len() as u64, c.offset + c.group_len());
         want.extend_from_slice(c.footer);
         Ok(())
     };

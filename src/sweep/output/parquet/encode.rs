@@ -20,6 +20,11 @@
 //!   one hybrid run) into a `PLAIN` dictionary of the group's distinct labels
 //!   in order of first appearance.
 //!
+//! The group is handed over in pieces ([`GroupBytes`]): the headers, levels
+//! and small bodies in one buffer, and the values of the integer and float
+//! columns as the column buffers' own bytes (on a little-endian machine),
+//! so that a group's values are not copied before they are written.
+//!
 //! The bytes depend only on the rows, so a group is the same for any thread
 //! count or interruption point. Readers (arrow-rs, pyarrow, polars) decode
 //! them as any Parquet file; the tests read every sweep file back.
@@ -40,6 +45,75 @@ const PLAIN: i32 = 0;
 const PLAIN_DICTIONARY: i32 = 2;
 const RLE: i32 = 3;
 const RLE_DICTIONARY: i32 = 8;
+
+/// A row group's bytes as a sequence of pieces: runs of an owned buffer
+/// (page headers, definition levels, small bodies) and whole column buffers
+/// whose bytes are the page's values as they are ([`Piece::Column`]).
+#[derive(Debug, Default)]
+pub(super) struct GroupBytes {
+    own: Vec<u8>,
+    pieces: Vec<Piece>,
+    /// Start in `own` of the run not yet closed by a [`Piece::Column`].
+    open: usize,
+    /// Bytes of the column pieces so far.
+    borrowed: usize,
+}
+
+/// A piece of [`GroupBytes`].
+#[derive(Clone, Copy, Debug)]
+enum Piece {
+    /// Bytes `a..b` of the owned buffer.
+    Own(usize, usize),
+    /// All the bytes of column `k`'s values.
+    Column(usize),
+}
+
+impl GroupBytes {
+    fn clear(&mut self) {
+        self.own.clear();
+        self.pieces.clear();
+        self.open = 0;
+        self.borrowed = 0;
+    }
+
+    /// Bytes of the group so far.
+    pub(super) fn len(&self) -> usize {
+        self.own.len() + self.borrowed
+    }
+
+    /// Closes the owned run so far.
+    fn close(&mut self) {
+        if self.own.len() > self.open {
+            self.pieces.push(Piece::Own(self.open, self.own.len()));
+            self.open = self.own.len();
+        }
+    }
+
+    /// Appends the `bytes` bytes of column `k`'s values, as they are.
+    fn column(&mut self, k: usize, bytes: usize) {
+        self.close();
+        self.pieces.push(Piece::Column(k));
+        self.borrowed += bytes;
+    }
+
+    /// The pieces, in order, the column pieces taken from `values` (those
+    /// the group was encoded from).
+    pub(super) fn pieces<'a>(&'a self, values: &'a [Values]) -> Vec<&'a [u8]> {
+        self.pieces
+            .iter()
+            .map(|p| match *p {
+                Piece::Own(a, b) => &self.own[a..b],
+                Piece::Column(k) => match &values[k] {
+                    Values::U64(x) => bytemuck::cast_slice(x),
+                    Values::U32(x) => bytemuck::cast_slice(x),
+                    Values::F64(x, _) => bytemuck::cast_slice(x),
+                    // Never a column piece (see `encode_group`).
+                    Values::Dict(_) | Values::Str(_) | Values::Bool(_) => &[],
+                },
+            })
+            .collect()
+    }
+}
 
 /// Appends `v` as an unsigned LEB128 varint.
 fn varint(out: &mut Vec<u8>, mut v: u64) {
@@ -167,19 +241,21 @@ fn def_levels(out: &mut Vec<u8>, rows: usize, values: usize, has: impl Iterator<
     out[at..at + 4].copy_from_slice(&len.to_le_bytes());
 }
 
-/// Appends the little-endian bytes of `x` (`N` bytes each): on a
-/// little-endian machine the slice's own bytes, in one copy.
+/// Appends the little-endian bytes of `x` (`N` bytes each), the values of
+/// column `k`: on a little-endian machine the column's own bytes, not
+/// copied; otherwise converted into the owned buffer.
 fn plain<const N: usize, T: bytemuck::Pod>(
-    out: &mut Vec<u8>,
+    out: &mut GroupBytes,
+    k: usize,
     x: &[T],
     bytes: impl Fn(T) -> [u8; N],
 ) {
     if cfg!(target_endian = "little") {
-        out.extend_from_slice(bytemuck::cast_slice(x));
+        out.column(k, N * x.len());
     } else {
-        out.reserve(N * x.len());
+        out.own.reserve(N * x.len());
         for &v in x {
-            out.extend_from_slice(&bytes(v));
+            out.own.extend_from_slice(&bytes(v));
         }
     }
 }
@@ -211,51 +287,54 @@ fn page(
     Ok(())
 }
 
-/// Appends the row group of `values` (`rows` rows each) to `out`, whose
-/// first byte goes at byte `offset` of the file, and returns its metadata
-/// (row group `ordinal`).
+/// The row group of `values` (`rows` rows each) into `group` (its pieces,
+/// [`GroupBytes::pieces`] of the same `values`), whose first byte goes at
+/// byte `offset` of the file; returns its metadata (row group `ordinal`).
 pub(super) fn encode_group(
     schema: &SchemaDescPtr,
     values: &[Values],
     rows: usize,
     offset: u64,
     ordinal: usize,
-    out: &mut Vec<u8>,
+    group: &mut GroupBytes,
 ) -> Result<RowGroupMetaData, SweepError> {
-    out.clear();
+    group.clear();
     // Definition levels, and the values of the pages not written in place.
     let mut levels = Vec::new();
     let mut body = Vec::new();
     let mut indices = Vec::new();
     let mut columns = Vec::with_capacity(values.len());
-    let at = |out: &Vec<u8>| offset as i64 + out.len() as i64;
+    let at = |g: &GroupBytes| offset as i64 + g.len() as i64;
     for (k, v) in values.iter().enumerate() {
-        let start = at(out);
+        let start = at(group);
         let mut dictionary_offset = None;
         levels.clear();
         body.clear();
         let encoding = match v {
             Values::U64(x) => {
-                page_header(out, false, bytes_i32(8 * x.len())?, rows_i32(rows)?, PLAIN);
-                plain(out, x, i64::to_le_bytes);
+                let size = bytes_i32(8 * x.len())?;
+                page_header(&mut group.own, false, size, rows_i32(rows)?, PLAIN);
+                plain(group, k, x, i64::to_le_bytes);
                 None
             }
             Values::U32(x) => {
-                page_header(out, false, bytes_i32(4 * x.len())?, rows_i32(rows)?, PLAIN);
-                plain(out, x, i32::to_le_bytes);
+                let size = bytes_i32(4 * x.len())?;
+                page_header(&mut group.own, false, size, rows_i32(rows)?, PLAIN);
+                plain(group, k, x, i32::to_le_bytes);
                 None
             }
-            Values::F64(x) => {
+            &Values::F64(ref x, nulls) => {
                 let null = |v: &f64| v.to_bits() == NULL_F64;
-                let nulls = x.iter().filter(|v| null(v)).count();
+                debug_assert_eq!(nulls, x.iter().filter(|v| null(v)).count());
                 def_levels(&mut levels, rows, rows - nulls, x.iter().map(|v| !null(v)));
                 let size = bytes_i32(levels.len() + 8 * (rows - nulls))?;
-                page_header(out, false, size, rows_i32(rows)?, PLAIN);
-                out.extend_from_slice(&levels);
+                page_header(&mut group.own, false, size, rows_i32(rows)?, PLAIN);
+                group.own.extend_from_slice(&levels);
                 if nulls == 0 {
-                    plain(out, x, f64::to_le_bytes);
+                    plain(group, k, x, f64::to_le_bytes);
                 } else {
                     // The non-null values, into room made once.
+                    let out = &mut group.own;
                     let n0 = out.len();
                     out.resize(n0 + 8 * (rows - nulls), 0);
                     let mut dst = out[n0..].chunks_exact_mut(8);
@@ -281,9 +360,12 @@ pub(super) fn encode_group(
                 Some(PLAIN)
             }
             Values::Str(x) => {
-                let n = x.iter().flatten().count();
-                def_levels(&mut levels, rows, n, x.iter().map(Option::is_some));
-                for s in x.iter().flatten() {
+                let texts = x.texts();
+                debug_assert_eq!(x.rows(), rows);
+                let mut next = texts.iter().map(|(r, _)| *r).peekable();
+                let has = (0..rows).map(|r| next.next_if_eq(&r).is_some());
+                def_levels(&mut levels, rows, texts.len(), has);
+                for (_, s) in texts {
                     let len = u32::try_from(s.len()).map_err(|_| too_big("text"))?;
                     body.extend_from_slice(&len.to_le_bytes());
                     body.extend_from_slice(s.as_bytes());
@@ -298,7 +380,8 @@ pub(super) fn encode_group(
                     body.extend_from_slice(e.as_bytes());
                 }
                 dictionary_offset = Some(start);
-                page(out, true, &[&body], dict.entries().len(), PLAIN_DICTIONARY)?;
+                let n = dict.entries().len();
+                page(&mut group.own, true, &[&body], n, PLAIN_DICTIONARY)?;
                 body.clear();
                 indices.clear();
                 indices.extend(dict.indices().iter().copied().filter(|&i| i != NULL_INDEX));
@@ -314,12 +397,12 @@ pub(super) fn encode_group(
             // Written in place above (header first).
             None => start,
             Some(e) => {
-                let d = at(out);
-                page(out, false, &[&levels, &body], rows, e)?;
+                let d = at(group);
+                page(&mut group.own, false, &[&levels, &body], rows, e)?;
                 d
             }
         };
-        let size = at(out) - start;
+        let size = at(group) - start;
         let encodings = if dictionary_offset.is_some() {
             vec![
                 Encoding::PLAIN_DICTIONARY,
@@ -341,9 +424,10 @@ pub(super) fn encode_group(
             .map_err(super::pq_err)?;
         columns.push(meta);
     }
+    group.close();
     RowGroupMetaData::builder(schema.clone())
         .set_num_rows(rows as i64)
-        .set_total_byte_size(out.len() as i64)
+        .set_total_byte_size(group.len() as i64)
         .set_column_metadata(columns)
         .set_ordinal(i32::try_from(ordinal).unwrap_or(i32::MAX))
         .set_file_offset(offset as i64)
