@@ -126,6 +126,9 @@ mod tests {
             let bq: Vec<Rational> = b.iter().map(|&x| f64_to_rational(x).unwrap()).collect();
             let exact = EdgeRatios::<Rational>::from_edge_pairs(&aq, &bq).unwrap();
             let cq = face_weights(&exact);
+            // one weight per corner on both sides (a comparison by `zip`
+            // alone passes on an empty result)
+            assert_eq!((c.len(), cq.len()), (a.len(), a.len()), "{a:?} {b:?}");
             for (j, (x, y)) in c.iter().zip(&cq).enumerate() {
                 let y = y.to_f64();
                 // a weight below the f64 range rounds to 0 (absolute error < 1e-300)
@@ -193,6 +196,7 @@ mod tests {
         let (d0, d1, e0, e1) = (1.3, 0.4, 2.2, 0.7);
         let k = CornerIntervals::new(vec![d0, e0, d1, e1], vec![e0, d1, e1, d0]).unwrap();
         let c = face_weights(&k.ratios().unwrap());
+        assert_eq!(c.len(), 4, "{c:?}");
         let expected = [0.056795, 0.184584, 0.580122, 0.178499];
         for (a, b) in c.iter().zip(expected) {
             assert!((a - b).abs() < 5e-7, "{c:?}");
@@ -223,6 +227,7 @@ mod tests {
         }
         let k = CornerIntervals::new(p.clone(), q.clone()).unwrap();
         let c = face_weights(&k.ratios().unwrap());
+        assert_eq!(c.len(), n);
         assert!(c.iter().all(|x| x.is_finite() && *x > 0.0));
         // Exact reference on all 256 corners, from the exact knots. The
         // rational closed form over ratios takes minutes at n = 256 (every
@@ -275,12 +280,23 @@ mod tests {
             CornerIntervals::<Rational>::new(kq.p()[..m].to_vec(), kq.q()[..m].to_vec()).unwrap();
         let c64 = face_weights(&k_small.ratios().unwrap());
         let cq = face_weights(&kq_small.ratios().unwrap());
+        assert_eq!((c64.len(), cq.len()), (m, m));
         for (x, y) in c64.iter().zip(&cq) {
             let y = y.to_f64();
             assert!(((x - y) / y).abs() < 1e-13, "{x} vs {y}");
         }
+        // GTH on the 24-corner face against the exact weights (a valence that
+        // is not a power of two: cyclic indices modulo 256 could hide a
+        // wrapped subtraction that modulo 24 cannot)
+        let g_small = stationary_distribution(&k_small.ratios().unwrap());
+        assert_eq!(g_small.len(), m);
+        for (x, y) in g_small.iter().zip(&cq) {
+            let y = y.to_f64();
+            assert!(((x - y) / y).abs() < 1e-12, "GTH {x} vs {y}");
+        }
         // the large case against GTH
         let g = stationary_distribution(&k.ratios().unwrap());
+        assert_eq!(g.len(), n);
         for (a, b) in c.iter().zip(&g) {
             assert!(((a - b) / b).abs() < 1e-11, "{a} vs {b}");
         }

@@ -424,6 +424,19 @@ mod tests {
         assert_eq!(r.as_slice(), &[0.5, 0.25, 0.8]);
         let r = EdgeRatios::vertex_ep(&[1.0, 2.0, 3.0, 4.0]).unwrap();
         assert_eq!(r.as_slice(), &[0.75, 4.0 / 6.0, 0.25, 2.0 / 6.0]);
+        // valence 5 against the definition r_k = a_{k+2} / (a_k + a_{k+2}) (at
+        // valence 4, corners k + 2 and k - 2 coincide)
+        let a = [1.0, 2.0, 4.0, 8.0, 16.0];
+        let r = EdgeRatios::vertex_ep(&a).unwrap();
+        assert_eq!(r.valence(), 5);
+        for (k, &rk) in r.as_slice().iter().enumerate() {
+            let b = a[(k + 2) % 5];
+            let want = b / (a[k] + b);
+            assert!(
+                (rk - want).abs() <= 1e-15 * want,
+                "r_{k} = {rk}, want {want}"
+            );
+        }
     }
 
     /// A ratio that rounds to 1 in `f64` (its complement `s_0 = p_0 / (p_0 +
