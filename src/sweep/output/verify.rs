@@ -677,3 +677,120 @@ impl<'a> Verifier<'a> {
         summary.absorb_partial(&self.part);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sweep::eval::SpectralEvaluator;
+
+    /// Each text and number rule accepts exactly what its columns may hold
+    /// (the CLI tests edit only `class` and `abs_lambda3`).
+    #[test]
+    fn column_rules_accept_exactly_their_values() {
+        for c in CLASSES {
+            assert!(text_ok(TextRule::Class, c), "{c}");
+            assert!(text_ok(TextRule::ExactClass, c), "{c}");
+        }
+        assert!(text_ok(
+            TextRule::Class,
+            "indeterminate:real_distinct/complex_pair"
+        ));
+        for bad in [
+            "",
+            "Standard",
+            "undecided",
+            "indeterminate",
+            "indeterminate:standard",
+            "indeterminate:standard/",
+            "indeterminate:/standard",
+            "indeterminate:standard/bogus",
+            "indeterminate:bogus/standard",
+            "undetermined:standard/defective",
+        ] {
+            assert!(!text_ok(TextRule::Class, bad), "class {bad:?}");
+        }
+        assert!(text_ok(TextRule::ExactClass, "undecided"));
+        for bad in ["", "undecided ", "indeterminate:standard/defective", "c1"] {
+            assert!(!text_ok(TextRule::ExactClass, bad), "exact class {bad:?}");
+        }
+        for v in VERDICTS {
+            assert!(text_ok(TextRule::Verdict, v), "{v}");
+        }
+        for bad in ["", "C1", "c2", "standard", "true", "undecided"] {
+            assert!(!text_ok(TextRule::Verdict, bad), "verdict {bad:?}");
+        }
+        assert!(text_ok(TextRule::Bool, "true") && text_ok(TextRule::Bool, "false"));
+        for bad in ["", "1", "0", "1.0", "True", "yes"] {
+            assert!(!text_ok(TextRule::Bool, bad), "bool {bad:?}");
+        }
+        assert!(text_ok(TextRule::Any, "") && text_ok(TextRule::Any, "x,y"));
+
+        assert_eq!(text_rule("class"), TextRule::Class);
+        assert_eq!(text_rule("charmap_verdict"), TextRule::Verdict);
+        assert_eq!(text_rule("exact_class"), TextRule::ExactClass);
+        assert_eq!(text_rule("exact_agrees"), TextRule::Bool);
+        assert_eq!(text_rule("error"), TextRule::Any);
+        assert_eq!(num_rule("abs_lambda3"), NumRule::NonNegative);
+        assert_eq!(num_rule("contraction_rate"), NumRule::NonNegative);
+        assert_eq!(num_rule("charmap_winding"), NumRule::Integer);
+        assert_eq!(num_rule("lambda1_re"), NumRule::Any);
+
+        for x in [0.0, -0.0, 1e-300, 2.5, f64::INFINITY] {
+            assert!(num_ok(NumRule::NonNegative, x), "{x}");
+        }
+        for x in [-1e-300, -1.0, f64::NEG_INFINITY] {
+            assert!(!num_ok(NumRule::NonNegative, x), "{x}");
+        }
+        for x in [0.0, -3.0, 1.0, 1e15] {
+            assert!(num_ok(NumRule::Integer, x), "{x}");
+        }
+        for x in [0.5, -2.5, 1e-9, f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+            assert!(!num_ok(NumRule::Integer, x), "{x}");
+        }
+        for x in [-1.0, f64::NAN, f64::NEG_INFINITY] {
+            assert!(num_ok(NumRule::Any, x), "{x}");
+        }
+    }
+
+    /// The lines kept for `recheck` are the `RECHECK_SAMPLE` of smallest
+    /// salted hash of their id (bottom-k), whatever the order they come in,
+    /// and `kept_max` is the largest of their hashes.
+    #[test]
+    fn the_recheck_sample_is_the_bottom_k_of_the_salted_hashes() {
+        let spec = "name = \"k\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"halton\"\ncount = 150\n";
+        let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+        let layout = Layout::new(&plan);
+        let eval = SpectralEvaluator::new(plan.spec().columns);
+        let lines: Vec<String> = (0..plan.total())
+            .map(|id| {
+                let mut s = String::new();
+                layout.format_into(&layout.row(&plan, &eval, id), &mut s);
+                s.trim_end_matches('\n').to_owned()
+            })
+            .collect();
+        for (salt, reversed) in [(7, false), (12_345, false), (7, true)] {
+            let mut v = Verifier::new(&plan, &layout, salt);
+            let mut order: Vec<usize> = (0..lines.len()).collect();
+            if reversed {
+                order.reverse();
+            }
+            for id in order {
+                v.check(id as u64 + 2, &lines[id], id as u64).unwrap();
+            }
+            assert_eq!(v.rows(), plan.total());
+            let mut want: Vec<(u64, u64)> = (0..plan.total())
+                .map(|id| (mix64(v.salt ^ id), id))
+                .collect();
+            want.sort_unstable();
+            want.truncate(RECHECK_SAMPLE);
+            let mut got: Vec<(u64, u64)> = v.kept.iter().map(|k| (k.hash, k.id)).collect();
+            got.sort_unstable();
+            assert_eq!(got, want, "salt {salt}, reversed {reversed}");
+            assert_eq!(v.kept_max(), want[RECHECK_SAMPLE - 1].0);
+            for k in &v.kept {
+                assert_eq!(k.line, lines[k.id as usize]);
+                assert_eq!(k.lineno, k.id + 2);
+            }
+        }
+    }
+}
