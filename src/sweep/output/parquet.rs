@@ -293,16 +293,6 @@ impl Sparse {
         self.rows = 0;
         self.texts.clear();
     }
-
-    /// The rows of the column.
-    fn rows(&self) -> usize {
-        self.rows
-    }
-
-    /// The texts, with their rows, in row order.
-    fn texts(&self) -> &[(usize, String)] {
-        &self.texts
-    }
 }
 
 /// `x` as a float column stores it: NaN as the canonical NaN.
@@ -1429,8 +1419,8 @@ mod tests {
 
     /// A block split between two row groups (its first 36 rows close the
     /// first group) keeps every row's error text, floats and nulls, in both
-    /// groups; and a group's float column with nulls reads back as one
-    /// without.
+    /// groups. The float column checked has nulls, so its values are the
+    /// compacted copy, not the column's own buffer.
     #[test]
     fn a_block_split_between_groups_keeps_its_rows() {
         let spec = "name = \"g\"\nscheme = \"nurds\"\nvalences = [4]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"random\"\ncount = 10\nseed = 1\n";

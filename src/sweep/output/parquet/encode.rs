@@ -360,8 +360,8 @@ pub(super) fn encode_group(
                 Some(PLAIN)
             }
             Values::Str(x) => {
-                let texts = x.texts();
-                debug_assert_eq!(x.rows(), rows);
+                let texts = &x.texts;
+                debug_assert_eq!(x.rows, rows);
                 let mut next = texts.iter().map(|(r, _)| *r).peekable();
                 let has = (0..rows).map(|r| next.next_if_eq(&r).is_some());
                 def_levels(&mut levels, rows, texts.len(), has);
