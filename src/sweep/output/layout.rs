@@ -31,6 +31,9 @@ pub struct Row {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Layout {
     pub(super) names: Vec<String>,
+    /// Per cell: numeric or text. A cell is [`Kind::Numeric`] exactly when
+    /// its column's type (`types`) is [`ColumnType::Float`] (the sweep
+    /// driver relies on it: [`RowBlock::float`](super::run::RowBlock::float)).
     pub(super) kinds: Vec<Kind>,
     pub(super) coordinates: usize,
     /// Derived cells among the coordinate cells (the last ones).

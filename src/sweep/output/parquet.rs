@@ -543,6 +543,20 @@ impl TypedBlock {
         }
     }
 
+    /// [`num`](super::run::RowBlock::num) for a NaN, or for a number in a
+    /// column that is not a float column (through its CSV text).
+    #[cold]
+    #[inline(never)]
+    fn num_cold(&mut self, x: f64) {
+        if self.kinds[self.col] == Col::Float {
+            self.put(stored(x).to_bits());
+        } else {
+            let mut t = String::new();
+            push_number(&mut t, &mut self.digits, x);
+            self.push_text_cell(&t);
+        }
+    }
+
     /// Stores the next cell of the current row.
     #[inline(always)]
     fn put(&mut self, cell: u64) {
@@ -621,12 +635,22 @@ impl super::run::RowBlock for TypedBlock {
 
     #[inline(always)]
     fn num(&mut self, x: f64) {
-        if self.kinds[self.col] == Col::Float {
-            self.put(stored(x).to_bits());
+        // The common cell (a number, not NaN, in a float column) is one
+        // branch; NaN and a number in another column take the cold path.
+        if self.kinds[self.col] == Col::Float && !x.is_nan() {
+            self.put(x.to_bits());
         } else {
-            let mut t = String::new();
-            push_number(&mut t, &mut self.digits, x);
-            self.push_text_cell(&t);
+            self.num_cold(x);
+        }
+    }
+
+    #[inline(always)]
+    fn float(&mut self, x: f64) {
+        debug_assert_eq!(self.kinds[self.col], Col::Float);
+        if x.is_nan() {
+            self.num_cold(x);
+        } else {
+            self.put(x.to_bits());
         }
     }
 

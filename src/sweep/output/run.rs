@@ -128,6 +128,14 @@ pub(crate) trait RowBlock: Send {
     fn empty(&mut self);
     /// The next cell is the number `x`.
     fn num(&mut self, x: f64);
+    /// The next cell is the number `x`, in a float column (a
+    /// [`Kind::Numeric`] column of the layout, whose type is always
+    /// [`ColumnType::Float`](crate::sweep::ColumnType::Float)): a block may
+    /// skip the check of the column's type.
+    #[inline(always)]
+    fn float(&mut self, x: f64) {
+        self.num(x);
+    }
     /// The next cell is the text `t`.
     fn text(&mut self, t: &str);
     /// Ends the row with its `error` cell.
@@ -325,12 +333,11 @@ impl Layout {
         for (pos, x) in row.coordinates.iter().enumerate() {
             let is_num = self.kinds[pos] == Kind::Numeric;
             match x {
-                Some(x) => {
-                    out.num(*x);
-                    if is_num {
-                        part.push(numeric, *x, id);
-                    }
+                Some(x) if is_num => {
+                    out.float(*x);
+                    part.push(numeric, *x, id);
                 }
+                Some(x) => out.num(*x),
                 None => out.empty(),
             }
             if is_num {
@@ -348,12 +355,11 @@ impl Layout {
                 let is_num = self.kinds[pos] == Kind::Numeric;
                 match *slot {
                     Slot::Empty => out.empty(),
-                    Slot::Num(x) => {
-                        out.num(x);
-                        if is_num {
-                            part.push(numeric, x, id);
-                        }
+                    Slot::Num(x) if is_num => {
+                        out.float(x);
+                        part.push(numeric, x, id);
                     }
+                    Slot::Num(x) => out.num(x),
                     Slot::Text(a, b) => {
                         let t = &row.stage.text[a..b];
                         out.text(t);
@@ -792,6 +798,29 @@ pub(super) mod tests {
                 .unwrap();
             assert_eq!(n, ids.len() as u64);
             assert_eq!(summary, want_summary);
+        }
+    }
+
+    /// `emit` hands every numeric cell to [`RowBlock::float`], which may skip
+    /// the type check: so a numeric cell must be exactly a float column, in
+    /// every column set (all optional columns on, and the curvature columns).
+    #[test]
+    fn numeric_cells_are_exactly_the_float_columns() {
+        for spec in [
+            "scheme = \"nurds\"\nvalences = [5]\n[space]\nkind = \"corner-intervals\"\ninterval_range = [0.1, 10.0]\n[sampler]\nkind = \"random\"\ncount = 2\nseed = 1\n[columns]\neigenvalues = 4\nexact_certificate = true\ncharmap = true\n",
+            "scheme = \"cc-variant\"\nvalences = [3]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\ncurvature = true\n",
+        ] {
+            let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+            let layout = Layout::new(&plan);
+            assert_eq!(layout.kinds.len(), layout.types.len());
+            assert!(layout.types.contains(&crate::sweep::eval::ColumnType::Label));
+            for (k, t) in layout.kinds.iter().zip(&layout.types) {
+                assert_eq!(
+                    *k == Kind::Numeric,
+                    *t == crate::sweep::eval::ColumnType::Float,
+                    "{spec}"
+                );
+            }
         }
     }
 
