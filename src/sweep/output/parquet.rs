@@ -409,9 +409,14 @@ impl Values {
                 v.rows += rows.len();
             }
             Values::F64(v, nulls) => {
+                let whole = rows == (0..block.rows);
                 let cells = block.column(j, rows);
                 v.extend_from_slice(bytemuck::cast_slice(cells));
-                *nulls += cells.iter().filter(|&&b| b == NULL_F64).count();
+                *nulls += if whole {
+                    block.float_nulls[j]
+                } else {
+                    cells.iter().filter(|&&b| b == NULL_F64).count()
+                };
             }
             // A boolean cell is 0, 1 or NULL_BOOL.
             Values::Bool(v) => v.extend(block.column(j, rows).iter().map(|&b| b as u8)),
@@ -479,6 +484,9 @@ pub struct TypedBlock {
     dicts: Vec<Dict>,
     /// The rows with an error (row in the block, CSV text), in row order.
     errors: Vec<(usize, String)>,
+    /// Per column: the nulls of a float column in the block (a block that
+    /// joins a group whole adds them without a pass over its cells).
+    float_nulls: Vec<usize>,
     /// Column of the next cell.
     col: usize,
     rows: usize,
@@ -518,8 +526,11 @@ impl TypedBlock {
     fn push_text_cell(&mut self, f: &str) {
         let k = self.col;
         let kind = self.kinds[k];
+        if f.is_empty() {
+            self.put_null(kind);
+            return;
+        }
         let cell = match kind {
-            _ if f.is_empty() => Some(null_bits(kind)),
             Col::Float => canonical_number(f, &mut self.number, &mut self.digits)
                 .or_else(|| f.parse::<f64>().ok())
                 .map(|x| stored(x).to_bits()),
@@ -535,7 +546,7 @@ impl TypedBlock {
             Some(c) => self.put(c),
             None => {
                 // Keep the rows aligned; the block is refused when written.
-                self.put(null_bits(kind));
+                self.put_null(kind);
                 if self.fault.is_none() {
                     self.fault = Some((self.id, k, f.to_owned()));
                 }
@@ -555,6 +566,16 @@ impl TypedBlock {
             push_number(&mut t, &mut self.digits, x);
             self.push_text_cell(&t);
         }
+    }
+
+    /// Stores a null in the next cell (of a `kind` column), counting the
+    /// nulls of a float column.
+    #[inline(always)]
+    fn put_null(&mut self, kind: Col) {
+        if kind == Col::Float {
+            self.float_nulls[self.col] += 1;
+        }
+        self.put(null_bits(kind));
     }
 
     /// Stores the next cell of the current row.
@@ -598,6 +619,7 @@ impl super::run::RowBlock for TypedBlock {
             at: 0,
             dicts: kinds.iter().map(|_| Dict::default()).collect(),
             errors: Vec::new(),
+            float_nulls: vec![0; kinds.len()],
             kinds,
             col: 0,
             rows: 0,
@@ -630,7 +652,7 @@ impl super::run::RowBlock for TypedBlock {
 
     #[inline(always)]
     fn empty(&mut self) {
-        self.put(null_bits(self.kinds[self.col]));
+        self.put_null(self.kinds[self.col]);
     }
 
     #[inline(always)]
@@ -669,6 +691,7 @@ impl super::run::RowBlock for TypedBlock {
         self.ids.clear();
         self.valences.clear();
         self.errors.clear();
+        self.float_nulls.fill(0);
         self.at = 0;
         // Only label columns have entries.
         for (d, kind) in self.dicts.iter_mut().zip(&self.kinds) {
