@@ -468,7 +468,9 @@ pub struct TypedBlock {
     kinds: Vec<Col>,
     /// Cells per row: the columns between `valence` and `error`.
     stride: usize,
+    /// Per row, `cap` of them (the rows so far are the first `rows`).
     ids: Vec<i64>,
+    /// Per row, `cap` of them.
     valences: Vec<i32>,
     /// The cells, column after column, `cap` rows per column: a float's
     /// bits, a label's index into its column's block dictionary, a boolean as
@@ -597,6 +599,8 @@ impl TypedBlock {
         }
         self.cells = cells;
         self.cap = cap;
+        self.ids.resize(cap, 0);
+        self.valences.resize(cap, 0);
     }
 
     /// The cells of column `j` (a cell column) in rows `rows`.
@@ -612,8 +616,8 @@ impl super::run::RowBlock for TypedBlock {
         let stride = kinds.len() - 3;
         TypedBlock {
             stride,
-            ids: Vec::with_capacity(rows),
-            valences: Vec::with_capacity(rows),
+            ids: vec![0; rows],
+            valences: vec![0; rows],
             cells: vec![0; rows * stride],
             cap: rows,
             at: 0,
@@ -632,22 +636,23 @@ impl super::run::RowBlock for TypedBlock {
 
     #[inline(always)]
     fn start(&mut self, id: u64, valence: usize) {
-        self.id = id;
-        self.ids.push(id as i64);
-        match u32::try_from(valence) {
-            Ok(n) => self.valences.push(n as i32),
-            Err(_) => {
-                self.valences.push(0);
-                if self.fault.is_none() {
-                    self.fault = Some((id, 1, valence.to_string()));
-                }
-            }
-        }
-        self.col = 2;
         if self.rows == self.cap {
             self.grow();
         }
-        self.at = self.rows;
+        self.id = id;
+        let r = self.rows;
+        self.ids[r] = id as i64;
+        self.valences[r] = match u32::try_from(valence) {
+            Ok(n) => n as i32,
+            Err(_) => {
+                if self.fault.is_none() {
+                    self.fault = Some((id, 1, valence.to_string()));
+                }
+                0
+            }
+        };
+        self.col = 2;
+        self.at = r;
     }
 
     #[inline(always)]
@@ -688,8 +693,6 @@ impl super::run::RowBlock for TypedBlock {
     }
 
     fn clear(&mut self) {
-        self.ids.clear();
-        self.valences.clear();
         self.errors.clear();
         self.float_nulls.fill(0);
         self.at = 0;
@@ -1439,8 +1442,11 @@ mod tests {
         assert!(small.cap >= rows as usize && small.cap < roomy.cap + 64);
         assert!(roomy.kinds.contains(&Col::Label) && roomy.kinds.contains(&Col::Bool));
         assert_eq!(small.rows, roomy.rows);
-        assert_eq!(small.ids, roomy.ids);
-        assert_eq!(small.valences, roomy.valences);
+        assert_eq!(small.ids[..70], roomy.ids[..70]);
+        assert_eq!(small.valences[..70], roomy.valences[..70]);
+        assert_eq!(small.ids[..70], (0..70).collect::<Vec<i64>>());
+        let valences: Vec<i32> = (0..70).map(|r| 3 + r % 4).collect();
+        assert_eq!(small.valences[..70], valences);
         assert_eq!(small.errors, roomy.errors);
         for j in 2..roomy.kinds.len() - 1 {
             assert_eq!(small.column(j, 0..70), roomy.column(j, 0..70), "column {j}");
