@@ -330,3 +330,162 @@ fn the_recheck_sample_is_the_bottom_k_of_the_salted_hashes() {
     v.add_to(&mut rebuilt);
     assert_eq!(rebuilt, written);
 }
+
+/// Session 33 (mutation run of `verify.rs`): a block whose last line has no
+/// `\n` is verified to its end (the tail line counts and is checked), and a
+/// line that is not UTF-8 is reported as such at its own line number, after
+/// the lines before it, whether it sits in the first piece of a block or in
+/// a later one.
+#[test]
+fn a_last_line_without_newline_is_checked_and_non_utf8_lines_are_located() {
+    let plan = Plan::new(SweepSpec::from_toml(SMALL).unwrap());
+    let layout = Layout::new(&plan);
+    let (lines, _) = data_lines(&plan, &layout);
+    let n = lines.len() as u64;
+    let mut all = block(&lines);
+    assert_eq!(all.pop(), Some(b'\n'));
+    let mut v = Verifier::new(&plan, &layout, 1);
+    assert_eq!(v.check_block(3, &all, &expected, n), Ok(n));
+    assert_eq!(v.rows(), n);
+    // the tail line is checked: an edit of it is found
+    let mut edited = lines.clone();
+    let last = edited.len() - 1;
+    let cells: Vec<&str> = edited[last].split(',').collect();
+    let mut cells: Vec<String> = cells.into_iter().map(str::to_owned).collect();
+    let class = layout
+        .column_names()
+        .iter()
+        .position(|c| c == "class")
+        .unwrap();
+    cells[class] = "bogus".into();
+    edited[last] = cells.join(",");
+    let mut tail = block(&edited);
+    tail.pop();
+    let mut v = Verifier::new(&plan, &layout, 1);
+    assert!(matches!(
+        v.check_block(3, &tail, &expected, n),
+        Err((l, LineFault::Mismatch(_))) if l == lineno(last)
+    ));
+    // a byte that is not UTF-8 in row 7 (the rows before it are fine)
+    let mut bad = block(&lines);
+    let at = block(&lines[..7]).len() + 1;
+    bad[at] = 0xff;
+    let mut v = Verifier::new(&plan, &layout, 1);
+    assert_eq!(
+        v.check_block(3, &bad, &expected, n),
+        Err((lineno(7), LineFault::NotUtf8))
+    );
+    // in the first line of a block
+    let mut bad = block(&lines);
+    bad[0] = 0xff;
+    let mut v = Verifier::new(&plan, &layout, 1);
+    assert_eq!(
+        v.check_block(3, &bad, &expected, n),
+        Err((lineno(0), LineFault::NotUtf8))
+    );
+    // in a later piece of a block cut into several (and a later block)
+    let plan = Plan::new(SweepSpec::from_toml(LARGE).unwrap());
+    let layout = Layout::new(&plan);
+    let (lines, _) = data_lines(&plan, &layout);
+    let n = lines.len();
+    assert!(block(&lines).len() > 2 * output::PIECE_BYTES);
+    for j in [n / 2, n - 1] {
+        let mut bad = block(&lines);
+        let at = block(&lines[..j]).len() + 2;
+        bad[at] = 0xfe;
+        let mut v = Verifier::new(&plan, &layout, 1);
+        assert_eq!(
+            v.check_block(3, &bad, &expected, n as u64),
+            Err((lineno(j), LineFault::NotUtf8)),
+            "row {j}"
+        );
+        let mut v = Verifier::new(&plan, &layout, 1);
+        v.check_block(3, &bad[..block(&lines[..100]).len()], &expected, n as u64)
+            .unwrap();
+        assert_eq!(
+            v.check_block(
+                lineno(100),
+                &bad[block(&lines[..100]).len()..],
+                &expected,
+                n as u64
+            ),
+            Err((lineno(j), LineFault::NotUtf8)),
+            "row {j}, second block"
+        );
+    }
+}
+
+/// Session 33: the summary rebuilt by the verifier counts a failed row under
+/// `error` and, in a sweep without a `class` column, every other row under
+/// `all` (as `Summary::add` does); a failed row's error text may be quoted.
+#[test]
+fn rebuilt_summaries_count_failed_rows_and_rows_without_a_class() {
+    // no class column
+    let spec = SMALL.replace("charmap = true", "classification = false");
+    let plan = Plan::new(SweepSpec::from_toml(&spec).unwrap());
+    let layout = Layout::new(&plan);
+    assert!(!layout.column_names().iter().any(|c| c == "class"));
+    let (lines, written) = data_lines(&plan, &layout);
+    assert_eq!(written.errors, 0);
+    let mut v = Verifier::new(&plan, &layout, 1);
+    let n = lines.len() as u64;
+    assert_eq!(v.check_block(3, &block(&lines), &expected, n), Ok(n));
+    let mut rebuilt = Summary::new(&plan, &layout, Shard::ALL, None);
+    v.add_to(&mut rebuilt);
+    assert_eq!(rebuilt, written);
+    // failed rows (with and without a class column): no results, an error text
+    for spec in [SMALL.to_owned(), spec] {
+        let plan = Plan::new(SweepSpec::from_toml(&spec).unwrap());
+        let layout = Layout::new(&plan);
+        let eval = SpectralEvaluator::new(plan.spec().columns);
+        let mut want = Summary::new(&plan, &layout, Shard::ALL, None);
+        let mut v = Verifier::new(&plan, &layout, 1);
+        for id in 0..plan.total() {
+            let mut row = layout.row(&plan, &eval, id);
+            assert!(row.error.is_none());
+            if id % 3 == 1 {
+                for c in &mut row.cells[layout.coordinate_cells()..] {
+                    *c = subdiv_lab::sweep::Cell::Empty;
+                }
+                row.error = Some(format!("boom {id}, \"quoted\""));
+            }
+            want.add(&layout, &row);
+            let line = layout.format(&row);
+            let line = line.trim_end_matches('\n');
+            assert_eq!(line.contains('"'), id % 3 == 1, "{line}");
+            assert_eq!(v.check(lineno(id as usize), line, id), Ok(id), "{line}");
+        }
+        assert_eq!(want.errors, (plan.total() + 1) / 3);
+        let mut rebuilt = Summary::new(&plan, &layout, Shard::ALL, None);
+        v.add_to(&mut rebuilt);
+        assert_eq!(rebuilt, want);
+    }
+}
+
+/// Session 33: only a comma separates fields. A correct line with every comma
+/// replaced by a double quote is refused (the quote sends the line to the
+/// CSV parser, which sees one malformed field), not split at the quotes.
+#[test]
+fn quotes_are_not_field_separators() {
+    let plan = Plan::new(SweepSpec::from_toml(SMALL).unwrap());
+    let layout = Layout::new(&plan);
+    let (lines, _) = data_lines(&plan, &layout);
+    let mut tried = 0;
+    for (j, line) in lines.iter().enumerate() {
+        if line.contains('"') {
+            continue;
+        }
+        let mut v = Verifier::new(&plan, &layout, 1);
+        assert_eq!(
+            v.check(lineno(j), line, expected(j as u64)),
+            Ok(expected(j as u64))
+        );
+        let quoted = line.replace(',', "\"");
+        assert!(
+            v.check(lineno(j), &quoted, expected(j as u64)).is_err(),
+            "{quoted}"
+        );
+        tried += 1;
+    }
+    assert!(tried > 0);
+}
