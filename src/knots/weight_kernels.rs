@@ -316,6 +316,33 @@ mod tests {
         assert_eq!(exp2i(-5000), 0.0);
     }
 
+    /// `to_f64` on both sides of each of its branch boundaries (exponents
+    /// 1024, 1000, -1021, -1100) and inside each branch, against the value
+    /// computed independently: `0.5 * 2^e = 2^(e - 1)`, exact wherever it is
+    /// an `f64` (0 below `2^-1074`, where `2^-1075` is a tie that rounds to
+    /// even, and infinity from `2^1024` on), and `0.75 * 2^e = 1.5 *
+    /// 2^(e - 1)` in the normal range.
+    #[test]
+    fn to_f64_on_both_sides_of_every_branch() {
+        let es = [
+            5000, 1026, 1025, 1024, 1023, 1010, 1001, 1000, 999, 100, 0, -100, -1020, -1021, -1022,
+            -1023, -1050, -1073, -1074, -1075, -1076, -1099, -1100, -1101, -1200, -5000,
+        ];
+        for e in es {
+            let half = ExtFloat { m: 0.5, e }.to_f64();
+            let want = match e - 1 {
+                k if k >= 1024 => f64::INFINITY,
+                k if k < -1074 => 0.0,
+                k => exp2i(k),
+            };
+            assert_eq!(half, want, "0.5 * 2^{e}");
+            if (-1021..=1024).contains(&e) {
+                let x = ExtFloat { m: 0.75, e }.to_f64();
+                assert_eq!(x, 1.5 * exp2i(e - 1), "0.75 * 2^{e}");
+            }
+        }
+    }
+
     /// Extended-exponent sums whose terms are more than `2^1024` apart, in
     /// both orders: the small term vanishes and the big one comes back
     /// exactly (no overflow in aligning the mantissas); `mul` and `div` keep
