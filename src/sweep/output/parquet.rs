@@ -17,8 +17,9 @@
 //! No compression, no statistics, no page index: the bytes depend only on the
 //! rows, so the file is byte-identical for any thread count. The pages are
 //! written by the private `encode` module (one data page per column chunk, a dictionary page
-//! before a label column's); the `parquet` crate writes the footer and reads
-//! files back.
+//! before a label column's); the `parquet` crate serialises the footer's
+//! parts (each group's metadata once; the private `footer` module assembles
+//! a commit's footer from them) and reads files back.
 //!
 //! # Commit units
 //!
@@ -47,10 +48,7 @@ use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
 use bytes::Bytes;
 use parquet::basic::{IntType, LogicalType, Repetition, Type as PhysicalType};
-use parquet::file::metadata::{
-    FileMetaData, KeyValue, ParquetMetaData, ParquetMetaDataBuilder, ParquetMetaDataWriter,
-    RowGroupMetaData,
-};
+use parquet::file::metadata::{KeyValue, RowGroupMetaData};
 use parquet::file::properties::{EnabledStatistics, WriterProperties, WriterVersion};
 use parquet::file::reader::{FileReader, SerializedFileReader};
 use parquet::record::Field;
@@ -58,6 +56,7 @@ use parquet::schema::types::{SchemaDescPtr, SchemaDescriptor, Type, TypePtr};
 use std::sync::Arc;
 
 mod encode;
+mod footer;
 
 /// Rows per row group (the commit unit; the last group of a file is
 /// shorter). Fixed, so that the groups, and with them the bytes of the file,
@@ -753,10 +752,10 @@ pub struct ParquetRows<F> {
     schema: TypePtr,
     descr: SchemaDescPtr,
     props: Arc<WriterProperties>,
-    key_value: Vec<KeyValue>,
     values: Vec<Values>,
     rows_in_group: usize,
-    groups: Vec<RowGroupMetaData>,
+    /// The committed groups and their footers.
+    footers: footer::Footers,
     /// End of the last committed group (the file's length without its footer).
     data_end: u64,
     pending: Vec<u8>,
@@ -771,7 +770,7 @@ pub struct ParquetRows<F> {
 impl<F> std::fmt::Debug for ParquetRows<F> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("ParquetRows")
-            .field("groups", &self.groups.len())
+            .field("groups", &self.footers.groups().len())
             .field("data_end", &self.data_end)
             .finish()
     }
@@ -793,6 +792,15 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
         let schema = schema_of(layout)?;
         let schema_json = serde_json::to_string(layout.column_docs())
             .map_err(|e| SweepError::Io(e.to_string()))?;
+        let props = properties();
+        let key_value = vec![
+            KeyValue::new(
+                FINGERPRINT_KEY.to_owned(),
+                fingerprint.trim_end_matches('\n').to_owned(),
+            ),
+            KeyValue::new(SCHEMA_KEY.to_owned(), schema_json),
+        ];
+        let footers = footer::Footers::new(schema.clone(), props.clone(), key_value, existing)?;
         Ok(ParquetRows {
             values: cols
                 .iter()
@@ -802,16 +810,9 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
             names: layout.column_names(),
             descr: Arc::new(SchemaDescriptor::new(schema.clone())),
             schema,
-            props: properties(),
-            key_value: vec![
-                KeyValue::new(
-                    FINGERPRINT_KEY.to_owned(),
-                    fingerprint.trim_end_matches('\n').to_owned(),
-                ),
-                KeyValue::new(SCHEMA_KEY.to_owned(), schema_json),
-            ],
+            props,
             rows_in_group: 0,
-            groups: existing,
+            footers,
             data_end,
             pending: Vec::new(),
             commit,
@@ -822,12 +823,13 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
 
     /// Rows committed so far (in the file) plus rows of the open group.
     pub fn rows(&self) -> u64 {
-        self.groups.iter().map(|g| g.num_rows() as u64).sum::<u64>() + self.rows_in_group as u64
+        self.footers.rows() + self.rows_in_group as u64
     }
 
-    /// The footer of a file holding `groups` (metadata, length, `PAR1`).
+    /// The footer of a file holding the committed groups (metadata, length,
+    /// `PAR1`), assembled from their serialised metadata.
     fn footer(&self) -> Result<Vec<u8>, SweepError> {
-        footer_bytes(&self.schema, &self.props, &self.key_value, &self.groups)
+        self.footers.footer()
     }
 
     /// The footer of the file as committed so far (for a new file: no group).
@@ -911,11 +913,11 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
             &self.values,
             self.rows_in_group,
             self.data_end,
-            self.groups.len(),
+            self.footers.groups().len(),
             &mut self.encoded,
         )?;
         let meta = as_read_back(&self.schema, &self.props, meta)?;
-        self.groups.push(meta);
+        self.footers.push(meta)?;
         let footer = self.footer()?;
         let rows = self.rows();
         let offset = self.data_end;
@@ -944,7 +946,7 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
         }
         if self.rows_in_group > 0 {
             self.commit_group()?;
-        } else if self.groups.is_empty() {
+        } else if self.footers.groups().is_empty() {
             // No row at all: the file is `PAR1` and the footer of no group.
             let footer = self.footer()?;
             (self.commit)(Commit {
@@ -1012,23 +1014,7 @@ fn footer_bytes(
     key_value: &[KeyValue],
     groups: &[RowGroupMetaData],
 ) -> Result<Vec<u8>, SweepError> {
-    let rows: i64 = groups.iter().map(RowGroupMetaData::num_rows).sum();
-    let file = FileMetaData::new(
-        props.writer_version().as_num(),
-        rows,
-        Some(props.created_by().to_owned()),
-        Some(key_value.to_vec()),
-        Arc::new(SchemaDescriptor::new(schema.clone())),
-        None,
-    );
-    let md: ParquetMetaData = ParquetMetaDataBuilder::new(file)
-        .set_row_groups(groups.to_vec())
-        .build();
-    let mut out = Vec::new();
-    ParquetMetaDataWriter::new(&mut out, &md)
-        .finish()
-        .map_err(pq_err)?;
-    Ok(out)
+    footer::with_trailer(footer::metadata_bytes(schema, props, key_value, groups)?)
 }
 
 /// A column of a [`ParquetTable`].
@@ -1305,11 +1291,21 @@ pub fn is_parquet(bytes: &[u8]) -> bool {
 }
 
 /// The first line of a commit journal ([`journal_bytes`]).
-const JOURNAL_HEADER: &str = "subdiv-lab parquet commit v1\n";
+const JOURNAL_HEADER: &str = "subdiv-lab parquet commit v2\n";
 
-/// FNV-1a (64 bits) of `bytes`: detects a damaged journal.
-fn fnv64(bytes: &[u8]) -> u64 {
-    crate::hash::fnv1a64(bytes)
+/// The first line of a journal of the first form (checksum: byte-wise
+/// FNV-1a, eight times slower on the footer of a long sweep); still read, so
+/// that a run killed before an upgrade resumes after it.
+const JOURNAL_HEADER_V1: &str = "subdiv-lab parquet commit v1\n";
+
+/// A checksum of a journal's footer.
+type Checksum = fn(&[u8]) -> u64;
+
+/// The checksum of a journal's footer: FNV-1a over 64-bit words
+/// ([`crate::hash::fnv1a64_words`]; the footer of a sweep of `G` groups is
+/// about `0.7 G` kB, and a commit checks it whole).
+fn journal_checksum(bytes: &[u8]) -> u64 {
+    crate::hash::fnv1a64_words(bytes)
 }
 
 /// The journal of the last commit (the caller writes it beside the file,
@@ -1327,7 +1323,7 @@ fn fnv64(bytes: &[u8]) -> u64 {
 pub fn journal_bytes(data_end: u64, footer: &[u8]) -> Vec<u8> {
     let mut v = format!(
         "{JOURNAL_HEADER}{data_end}\n{:016x} {}\n",
-        fnv64(footer),
+        journal_checksum(footer),
         footer.len()
     )
     .into_bytes();
@@ -1338,9 +1334,14 @@ pub fn journal_bytes(data_end: u64, footer: &[u8]) -> Vec<u8> {
 /// Reads a journal written by [`journal_bytes`]: `(data_end, footer)`; the
 /// error names what is wrong (not a journal, damaged, truncated).
 pub fn parse_journal(bytes: &[u8]) -> Result<(u64, Vec<u8>), String> {
-    let rest = bytes
-        .strip_prefix(JOURNAL_HEADER.as_bytes())
-        .ok_or("not a subdiv-lab Parquet commit journal")?;
+    let (rest, checksum): (&[u8], Checksum) =
+        if let Some(rest) = bytes.strip_prefix(JOURNAL_HEADER.as_bytes()) {
+            (rest, journal_checksum)
+        } else if let Some(rest) = bytes.strip_prefix(JOURNAL_HEADER_V1.as_bytes()) {
+            (rest, crate::hash::fnv1a64)
+        } else {
+            return Err("not a subdiv-lab Parquet commit journal".into());
+        };
     let mut parts = rest.splitn(3, |&b| b == b'\n');
     let end = parts.next().and_then(|l| std::str::from_utf8(l).ok());
     let check = parts.next().and_then(|l| std::str::from_utf8(l).ok());
@@ -1352,7 +1353,7 @@ pub fn parse_journal(bytes: &[u8]) -> Result<(u64, Vec<u8>), String> {
         .and_then(|c| c.split_once(' '))
         .ok_or("the commit journal's checksum line is damaged")?;
     if len.parse::<usize>().ok() != Some(footer.len())
-        || u64::from_str_radix(hash, 16).ok() != Some(fnv64(footer))
+        || u64::from_str_radix(hash, 16).ok() != Some(checksum(footer))
     {
         return Err(
             "the commit journal is damaged (its footer does not match its checksum)".into(),
@@ -1405,6 +1406,42 @@ where
 mod tests {
     use super::super::run::RowBlock;
     use super::*;
+
+    /// A journal is the header, the end, the checksum line and the footer;
+    /// the checksum is over 64-bit words (v2), and a journal of the first
+    /// form (v1, byte-wise FNV-1a) is still read. A footer changed in one
+    /// byte, a checksum of the other form, or a length that does not match
+    /// is refused.
+    #[test]
+    fn journals_of_both_forms_are_read_and_checked() {
+        let footer: Vec<u8> = (0..=255u8).cycle().take(3000).chain(*MAGIC).collect();
+        let j = journal_bytes(1234, &footer);
+        let want = format!(
+            "subdiv-lab parquet commit v2\n1234\n{:016x} 3004\n",
+            crate::hash::fnv1a64_words(&footer)
+        );
+        assert!(j.starts_with(want.as_bytes()));
+        assert_eq!(parse_journal(&j).unwrap(), (1234, footer.clone()));
+        let v1 = |h: u64, len: usize| {
+            let mut v =
+                format!("subdiv-lab parquet commit v1\n1234\n{h:016x} {len}\n").into_bytes();
+            v.extend_from_slice(&footer);
+            v
+        };
+        let old = v1(crate::hash::fnv1a64(&footer), footer.len());
+        assert_eq!(parse_journal(&old).unwrap(), (1234, footer.clone()));
+        assert!(parse_journal(&v1(crate::hash::fnv1a64_words(&footer), footer.len())).is_err());
+        assert!(parse_journal(&v1(crate::hash::fnv1a64(&footer), footer.len() + 1)).is_err());
+        for k in [0, 7, 8, 1500, footer.len() - 5] {
+            let mut bad = j.clone();
+            let at = j.len() - footer.len() + k;
+            bad[at] ^= 0x01;
+            assert!(parse_journal(&bad).is_err(), "byte {k} of the footer");
+        }
+        let mut v3 = j.clone();
+        v3[27] = b'3';
+        assert!(parse_journal(&v3).is_err());
+    }
 
     /// Rows of every cell kind into `block`: floats, labels, booleans and
     /// nulls, each cell a function of its row and column.

@@ -116,7 +116,7 @@ impl GroupBytes {
 }
 
 /// Appends `v` as an unsigned LEB128 varint.
-fn varint(out: &mut Vec<u8>, mut v: u64) {
+pub(super) fn varint(out: &mut Vec<u8>, mut v: u64) {
     while v >= 0x80 {
         out.push((v as u8) | 0x80);
         v >>= 7;
