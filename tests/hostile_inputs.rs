@@ -1016,6 +1016,30 @@ fn cases() -> Vec<Case> {
             needle: "damaged",
             stdout: Stdout::Pipe,
         },
+        Case {
+            name: "sweep-format-parquet-damaged-journal-v2",
+            args: &["sweep", "h.toml", "--out", "o.parquet", "--resume", "--format", "parquet"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("o.parquet", "PAR1 torn row group"),
+                (".o.parquet.commit", "subdiv-lab parquet commit v2\n4\n0000000000000000 8\nxyzPAR1!"),
+            ],
+            code: 2,
+            needle: "damaged",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "sweep-format-parquet-journal-of-an-unknown-form",
+            args: &["sweep", "h.toml", "--out", "o.parquet", "--resume", "--format", "parquet"],
+            files: &[
+                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
+                ("o.parquet", "PAR1 torn row group"),
+                (".o.parquet.commit", "subdiv-lab parquet commit v3\n4\n0000000000000000 4\nPAR1"),
+            ],
+            code: 2,
+            needle: "journal",
+            stdout: Stdout::Pipe,
+        },
     ]);
 
     // Resume and merge trust nothing: every row verified, files tied to their
