@@ -10,7 +10,8 @@
 //! `G^2` on footers: about 10 CPU-seconds for 10^8 rows at n = 3, a quarter
 //! of the evaluation. [`Footers`] serialises each group's metadata once and
 //! assembles a footer by copying bytes, so that a commit costs a copy of the
-//! footer (about 0.1 ms for 1 MB) and no serialisation beyond the new group.
+//! footer (0.027 ms for the 1 MB footer at `G` = 1,526; `cargo bench --bench
+//! parquet_footer`) and no serialisation beyond the new group.
 //!
 //! # The frame
 //!
