@@ -525,10 +525,7 @@ fn prepare(scheme: &LocalScheme<f64>, sub: &Subdominant) -> Result<Prepared> {
 /// assert_ne!(r.verdict, Verdict::C1Standard); // non-standard: never "C1"
 /// ```
 pub fn check<S: Scheme + ?Sized>(scheme: &S) -> Result<CharmapReport<AnyPatchId>> {
-    let sub = match scheme.fast_classification() {
-        Some(fast) => fast?,
-        None => crate::spectral::classify_matrix(scheme.local_matrix()?.matrix())?,
-    };
+    let sub = crate::spectral::classify_local(scheme)?;
     check_classified(scheme, &sub)
 }
 
@@ -540,10 +537,7 @@ pub fn plot_data<S: Scheme + ?Sized>(
     levels: usize,
     per_side: usize,
 ) -> Result<(CharmapReport<AnyPatchId>, Option<figure::RingPlot>)> {
-    let sub = match scheme.fast_classification() {
-        Some(fast) => fast?,
-        None => crate::spectral::classify_matrix(scheme.local_matrix()?.matrix())?,
-    };
+    let sub = crate::spectral::classify_local(scheme)?;
     match scheme.characteristic_plot(&sub, levels, per_side) {
         Some(r) => r,
         None => Ok((check_classified(scheme, &sub)?, None)),

@@ -98,7 +98,7 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     }
     // Characteristic map (math doc section 7); a numerical failure there is
     // reported inside the "charmap" object, not as a failure of the analysis.
-    let charmap = charmap::check_classified(&*resolved.scheme, &result.subdominant);
+    let charmap = charmap::check_classified(&*resolved.scheme, &result.charmap_subdominant());
     if args.json {
         let value = subdiv_lab::spectral::json::analysis_json(&result, &charmap, &resolved.input);
         let text = serde_json::to_string_pretty(&value).map_err(CliError::failure)? + "\n";

@@ -163,10 +163,7 @@ fn measure_with<S: Scheme + ?Sized>(
         });
     }
     let summary = super::curvature(scheme)?;
-    let sub = match scheme.fast_classification() {
-        Some(f) => f?,
-        None => crate::spectral::classify_matrix(s)?,
-    };
+    let sub = crate::spectral::classify_local(scheme)?;
     // The subdominant pair: one 2-dimensional eigenspace (standard) or two
     // real eigenvalues with one vector each (real_distinct; module docs).
     let ident = DMatrix::<f64>::identity(d, d);

@@ -132,7 +132,14 @@ pub(crate) fn face_block_from<T: Scalar>(ratios: &EdgeRatios<T>, c: &[T]) -> DMa
 
 /// `cos(2 pi k / n)` exactly when it is rational (denominator of `k/n` in
 /// {1, 2, 3, 4, 6}), in `f64` otherwise; `None` for an irrational value in an exact type.
+///
+/// The `f64` value is computed at the folded index `min(k, n - k)`, so that
+/// `cos_2pi(k, n) == cos_2pi(n - k, n)` bit for bit: the rotationally
+/// symmetric matrices built from it are exactly mirror symmetric too, which
+/// the structural certificate of a double eigenvalue checks
+/// ([`crate::spectral::pairing`]).
 pub fn cos_2pi<T: Scalar>(k: usize, n: usize) -> Option<T> {
+    let k = fold(k, n);
     let g = gcd(k % n, n);
     let (a, b) = ((k % n) / g, n / g);
     let exact = match (a, b) {
@@ -151,6 +158,13 @@ pub fn cos_2pi<T: Scalar>(k: usize, n: usize) -> Option<T> {
             Some(T::from_f64_lossless(v))
         }
     }
+}
+
+/// `min(k mod n, n - k mod n)`: the index of `cos(2 pi k / n)` that makes it
+/// even in `k` bit for bit.
+fn fold(k: usize, n: usize) -> usize {
+    let k = k % n;
+    k.min(n - k)
 }
 
 fn gcd(a: usize, b: usize) -> usize {
@@ -246,7 +260,7 @@ pub(crate) fn fill_face_like(scheme: &LocalScheme<f64>, n: usize, f: &mut [f64])
                     f[i + j * n] = if i == j {
                         (n as f64 + 5.0) / den
                     } else {
-                        let k = (i + n - j) % n;
+                        let k = fold(i + n - j, n);
                         (3.0 + 2.0 * (2.0 * std::f64::consts::PI * k as f64 / n as f64).cos()) / den
                     };
                 }

@@ -43,11 +43,52 @@
 //! signature of a defective eigenvalue (first-order bounds invalid), and the
 //! verdict is `indeterminate` instead.
 //!
-//! For a double eigenvalue the eigenspace dimension is decided from the second
-//! smallest singular value `sigma` of `X - lambda I`: `sigma <= RANK_FACTOR * (e_1 + e_2 + eta)`
-//! means a 2-dimensional eigenspace (standard), `sigma > SEPARATION_FACTOR *
-//! RANK_FACTOR * (e_1 + e_2 + eta)` a 1-dimensional one (defective), anything
-//! between is indeterminate.
+//! # A double eigenvalue: standard or defective?
+//!
+//! When `|lambda_1 - lambda_2|` is consistent with zero, the floating-point
+//! spectrum alone **cannot** separate `standard` (a semisimple double
+//! eigenvalue, 2-dimensional eigenspace) from `defective` (a Jordan block) or
+//! from two distinct eigenvalues closer than the error radius. A Jordan block
+//! `[[lambda, nu], [0, lambda]]` with a nilpotent part `nu` below the
+//! backward error `eta` is a perturbation of size `eta` away from `lambda I`,
+//! and a perturbation of size `eta` also splits it into two distinct
+//! eigenvalues `lambda +- sqrt(nu eta)`; the audit case `r = (1/2, 1/2,
+//! 1/2 + 1e-10)` (exactly defective, `nu ~ 1e-10`) had computed eigenvalues
+//! `~1e-13` apart, condition numbers `~520`, and a second smallest singular
+//! value of `X - lambda I` below the old rank-test threshold
+//! `RANK_FACTOR (e_1 + e_2 + eta)`, which grows with the ill-conditioning it
+//! was meant to detect. No threshold on `sigma` fixes this, because `nu` can
+//! be arbitrarily small: see math doc section 10.
+//!
+//! So a double eigenvalue gets a definite class only from an **exact
+//! structural argument** supplied with the evidence ([`DoubleTest::semisimple`]):
+//!
+//! * the matrix, or the face block it was deflated from, is exactly (bit for
+//!   bit) symmetric or circulant, hence normal, hence every eigenvalue is
+//!   semisimple (uniform Doo-Sabin-family configurations);
+//! * the scheme's Fourier blocks put the pair in two conjugate modes
+//!   `l != n - l`, each simple in its block: the eigenvalue then has an
+//!   eigenvector in each of the two modes (Catmull-Clark family, Loop).
+//!
+//! With such a certificate, "consistent with equal" is `standard` (the
+//! toolkit's convention for equality verdicts). Without one the verdict is
+//! `indeterminate`; the second smallest singular value `sigma` of
+//! `X - lambda I` only names the more likely pair of candidates: at most
+//! `RANK_FACTOR (e_1 + e_2 + eta)` names `standard`/`defective`, above
+//! `SEPARATION_FACTOR` times that `defective`/distinct. Exact verdicts
+//! (`--exact`) settle such cases.
+//!
+//! Distinct verdicts stay sound for ill-conditioned pairs: for the Schur block
+//! `T = [[lambda_1, b], [0, lambda_2]]` of the pair and any perturbation `F`
+//! of norm `f` projected on the pair, the resolvent bound
+//! `||(z I - T)^-1|| <= 2/r + |b|/r^2` (for `z` at distance `>= r` from both
+//! eigenvalues) confines the perturbed eigenvalues to discs of radius
+//! `r_v = 2f + sqrt(f (|b| + 4f))` (math doc section 10). With
+//! `kappa ~ |b| / |lambda_1 - lambda_2|` the test
+//! `|lambda_1 - lambda_2| > SEPARATION_FACTOR (e_1 + e_2)` implies
+//! `|lambda_1 - lambda_2|^2 > 200 |b| eta >= 4 f |b|` whenever `f <= 50 eta`
+//! (a spectral projector of the pair of norm at most 50), so the discs are
+//! disjoint: the distinct verdict holds without first-order assumptions.
 
 use super::SpectralError;
 use num_complex::Complex64;
@@ -68,8 +109,22 @@ pub const SEPARATION_FACTOR: f64 = 100.0;
 
 /// Scale of the rank test for a double eigenvalue (see the module docs): the
 /// second-smallest singular value of `X - lambda I` at a semisimple double
-/// eigenvalue is at most a small multiple of the eigenvalue error.
+/// eigenvalue is at most a small multiple of the eigenvalue error. It only
+/// names the candidates of an indeterminate verdict; a definite class needs a
+/// structural certificate ([`DoubleTest::semisimple`]).
 pub const RANK_FACTOR: f64 = 10.0;
+
+/// What the double-eigenvalue test returns for a candidate `lambda` (called
+/// only when `|lambda_1 - lambda_2|` is not certainly non-zero).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DoubleTest {
+    /// The second smallest singular value of `X - lambda I`.
+    pub sigma: f64,
+    /// `Some(why)` when an exact structural argument shows that a double
+    /// eigenvalue at the top pair is semisimple (module docs); `None` when
+    /// nothing does.
+    pub semisimple: Option<&'static str>,
+}
 
 /// Largest error radius for which "consistent with zero" becomes a definite
 /// equality verdict (a 2-dimensional eigenspace, `|lambda_2| = |lambda_3|`,
@@ -170,6 +225,17 @@ impl SubdominantClass {
             SubdominantClass::NotSeparated => ClassName::NotSeparated,
             SubdominantClass::Indeterminate { .. } => return None,
         })
+    }
+
+    /// The payload-free class of `name`.
+    pub fn from_name(name: ClassName) -> Self {
+        match name {
+            ClassName::Standard => SubdominantClass::Standard,
+            ClassName::RealDistinct => SubdominantClass::RealDistinct,
+            ClassName::ComplexPair => SubdominantClass::ComplexPair,
+            ClassName::Defective => SubdominantClass::Defective,
+            ClassName::NotSeparated => SubdominantClass::NotSeparated,
+        }
     }
 
     /// Whether the verdict is indeterminate.
@@ -299,11 +365,12 @@ pub(crate) fn modulus(z: Complex64) -> f64 {
 
 /// Classifies the subdominant eigenstructure.
 ///
-/// `rank_test(lambda)` must return the second smallest singular value of
-/// `X - lambda I` (it is called only for a real double eigenvalue candidate).
+/// `double(lambda)` must return the second smallest singular value of
+/// `X - lambda I` and the structural certificate, if any ([`DoubleTest`]; it
+/// is called only for a double eigenvalue candidate).
 pub fn classify(
     ev: &Evidence<'_>,
-    rank_test: &mut dyn FnMut(f64) -> Result<f64, SpectralError>,
+    rank_test: &mut dyn FnMut(f64) -> Result<DoubleTest, SpectralError>,
 ) -> Result<Subdominant, SpectralError> {
     let mut out = Subdominant::unset();
     classify_into(ev, rank_test, &mut out)?;
@@ -314,7 +381,7 @@ pub fn classify(
 /// `Subdominant` per lane instead of moving 192-byte results between arrays.
 pub(crate) fn classify_into(
     ev: &Evidence<'_>,
-    rank_test: &mut dyn FnMut(f64) -> Result<f64, SpectralError>,
+    rank_test: &mut dyn FnMut(f64) -> Result<DoubleTest, SpectralError>,
     out: &mut Subdominant,
 ) -> Result<(), SpectralError> {
     let get = |k: usize| -> (Complex64, f64) {
@@ -362,44 +429,45 @@ pub(crate) fn classify_into(
     // Core class from lambda_1, lambda_2.
     let e12 = e1 + e2;
     let d12 = modulus(l1 - l2);
-    let double_class = |rank: &mut dyn FnMut(f64) -> Result<f64, SpectralError>,
-                        lam: f64|
-     -> Result<(SubdominantClass, Option<&'static str>), SpectralError> {
-        let sigma = rank(lam)?;
-        let scale = RANK_FACTOR * (e12 + ev.eta);
-        Ok(match decide(sigma, scale) {
-            Decision::Zero if scale.is_nan() || scale > limit => (
-                SubdominantClass::Indeterminate {
-                    between: (ClassName::Standard, ClassName::Defective),
-                    reason: format!(
-                        "eigenspace dimension of the double eigenvalue {lam:.6e}: the rank-test radius {scale:.3e} exceeds the linear-regime limit {limit:.3e} (condition numbers of a defective eigenvalue); second smallest singular value {sigma:.3e}"
-                    ),
-                },
-                None,
-            ),
-            Decision::Zero if lam > SEPARATION_FACTOR * e12 => (SubdominantClass::Standard, None),
-            Decision::Zero => (
-                SubdominantClass::NotSeparated,
-                Some("the double subdominant eigenvalue is not (certainly) positive"),
-            ),
-            Decision::NonZero => (SubdominantClass::Defective, None),
-            Decision::Grey => (
-                SubdominantClass::Indeterminate {
-                    between: (ClassName::Standard, ClassName::Defective),
-                    reason: format!(
-                        "eigenspace dimension of the double eigenvalue {lam:.6e}: second smallest singular value {sigma:.3e} of S - lambda I is in the grey zone of {scale:.3e}"
-                    ),
-                },
-                None,
-            ),
-        })
-    };
     let distinct_class =
         if decide(l1.im.abs(), e1) == Decision::Zero && decide(l2.im.abs(), e2) == Decision::Zero {
             ClassName::RealDistinct
         } else {
             ClassName::ComplexPair
         };
+    let double_class = |rank: &mut dyn FnMut(f64) -> Result<DoubleTest, SpectralError>,
+                        lam: f64|
+     -> Result<(SubdominantClass, Option<&'static str>), SpectralError> {
+        let DoubleTest { sigma, semisimple } = rank(lam)?;
+        let scale = RANK_FACTOR * (e12 + ev.eta);
+        if semisimple.is_none() {
+            // No structural certificate: nothing separates a semisimple
+            // double eigenvalue from a Jordan block with a tiny nilpotent
+            // part, or from two eigenvalues closer than their radii.
+            let between = if decide(sigma, scale) == Decision::NonZero {
+                (ClassName::Defective, distinct_class)
+            } else {
+                (ClassName::Standard, ClassName::Defective)
+            };
+            return Ok((
+                SubdominantClass::Indeterminate {
+                    between,
+                    reason: format!(
+                        "double eigenvalue {lam:.6e} (|lambda_1 - lambda_2| = {d12:.3e}, radius {e12:.3e}) with no structural certificate of a two-dimensional eigenspace: floating point cannot separate a semisimple pair from a Jordan block or a pair closer than its radius (second smallest singular value of S - lambda I {sigma:.3e}, rank-test scale {scale:.3e})"
+                    ),
+                },
+                None,
+            ));
+        }
+        Ok(if lam > SEPARATION_FACTOR * e12 {
+            (SubdominantClass::Standard, None)
+        } else {
+            (
+                SubdominantClass::NotSeparated,
+                Some("the double subdominant eigenvalue is not (certainly) positive"),
+            )
+        })
+    };
     let (mut class, mut note) = match decide(d12, e12) {
         Decision::NonZero => match decide(l1.im.abs(), e1) {
             Decision::NonZero => (SubdominantClass::ComplexPair, None),
@@ -437,22 +505,25 @@ pub(crate) fn classify_into(
         },
         Decision::Zero => double_class(rank_test, 0.5 * (l1.re + l2.re))?,
         Decision::Grey => {
-            let (dc, _) = double_class(rank_test, 0.5 * (l1.re + l2.re))?;
-            let dn = dc.class_name().unwrap_or(ClassName::Standard);
-            let dn = if dn == ClassName::NotSeparated {
-                ClassName::Standard
+            let (dc, note) = double_class(rank_test, 0.5 * (l1.re + l2.re))?;
+            // A structural certificate makes the pair exactly equal.
+            if dc == SubdominantClass::Standard {
+                (dc, note)
             } else {
-                dn
-            };
-            (
-                SubdominantClass::Indeterminate {
-                    between: (dn, distinct_class),
-                    reason: format!(
-                        "|lambda_1 - lambda_2| = {d12:.3e} is in the grey zone of the error radius {e12:.3e}"
-                    ),
-                },
-                None,
-            )
+                let dn = match &dc {
+                    SubdominantClass::Indeterminate { between, .. } => between.0,
+                    _ => ClassName::Standard,
+                };
+                (
+                    SubdominantClass::Indeterminate {
+                        between: (dn, distinct_class),
+                        reason: format!(
+                            "|lambda_1 - lambda_2| = {d12:.3e} is in the grey zone of the error radius {e12:.3e}"
+                        ),
+                    },
+                    None,
+                )
+            }
         }
     };
     // Separation from lambda_0 and lambda_3.

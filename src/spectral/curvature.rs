@@ -70,7 +70,6 @@ use crate::scalar::Rational;
 use crate::scheme::Scheme;
 use crate::spectral::classify::BACKWARD_ERROR_FACTOR;
 use crate::spectral::classify::{decide, Decision, Subdominant, SubdominantClass};
-use crate::spectral::classify_matrix;
 use crate::spectral::eigen::{Eigen, EigenOptions};
 use crate::spectral::exact::charpoly;
 use crate::spectral::poly::{roots_outside, Poly};
@@ -215,10 +214,7 @@ pub fn curvature<S: Scheme + ?Sized>(scheme: &S) -> Result<CurvatureSummary> {
         .iter()
         .map(|&k| first_order_radius(k, eta))
         .collect();
-    let sub = match scheme.fast_classification() {
-        Some(fast) => fast?,
-        None => classify_matrix(s)?,
-    };
+    let sub = crate::spectral::classify_local(scheme)?;
     summarize(scheme, e.values(), &radii, &sub)
 }
 

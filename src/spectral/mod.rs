@@ -39,6 +39,7 @@ pub mod eigen;
 pub mod exact;
 pub mod json;
 pub(crate) mod kernel;
+pub mod pairing;
 pub(crate) mod poly;
 pub mod structured;
 pub(crate) mod svd;
@@ -60,7 +61,7 @@ use crate::error::Result;
 use crate::scalar::Rational;
 use crate::scheme::{FaceContraction, Scheme, SpectralStructure};
 use crate::schemes::LocalScheme;
-use classify::{classify, classify_into, Evidence, BACKWARD_ERROR_FACTOR};
+use classify::{classify, classify_into, DoubleTest, Evidence, BACKWARD_ERROR_FACTOR};
 use eigen::spectral_order;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -230,16 +231,108 @@ pub struct LocalAnalysis {
     pub contraction: Option<ContractionSummary>,
     /// Exact verdicts (`--exact`).
     pub exact: Option<exact::ExactVerdict>,
+    /// The floating-point class when an exact class overrode it
+    /// ([`add_exact`](Self::add_exact)); `None` otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub float_class: Option<&'static str>,
     /// Second order at the extraordinary point: `mu` against `lambda^2`
     /// ([`crate::curvature`], math doc section 13).
     pub curvature: curvature::CurvatureSummary,
 }
 
 impl LocalAnalysis {
-    /// Adds the exact verdicts for the exact version of the same configuration.
+    /// Adds the exact verdicts for the exact version of the same
+    /// configuration, and makes every verdict that depends on the class
+    /// follow the exact class (math doc section 10, "Exact verdicts
+    /// override"):
+    ///
+    /// * when the exact class is decided and differs from the float class
+    ///   (an indeterminate float verdict included), `subdominant.class`
+    ///   becomes the exact class and `subdominant.note` says so;
+    /// * the curvature verdict is `not_applicable` when the exact class is
+    ///   not standard, and `indeterminate` when it is standard but the float
+    ///   evidence did not show it (the rate is not derived from exact data);
+    /// * the characteristic map is built only where the float eigenvectors
+    ///   carry the exact class ([`charmap_subdominant`](Self::charmap_subdominant));
+    /// * the 3/4 spectral-bound check takes the exact answer when there is one.
+    ///
+    /// ```
+    /// use subdiv_lab::knots::EdgeRatios;
+    /// use subdiv_lab::scalar::{Rational, Scalar};
+    /// use subdiv_lab::schemes::LocalScheme;
+    /// use subdiv_lab::spectral::{analyze, AnalyzeOptions, SubdominantClass};
+    /// // On the exactly defective line r0 = r1 = 1/2 of valence 3.
+    /// let r = [0.5, 0.5, 0.5000000001];
+    /// let f = LocalScheme::nurds(EdgeRatios::new(r.to_vec()).unwrap());
+    /// let x = LocalScheme::nurds(EdgeRatios::new(r.iter().map(|&v| Rational::from_f64_lossless(v)).collect()).unwrap());
+    /// let mut a = analyze(&f, &AnalyzeOptions::default()).unwrap();
+    /// assert!(a.subdominant.class.is_indeterminate());
+    /// a.add_exact(&x).unwrap();
+    /// assert_eq!(a.subdominant.class, SubdominantClass::Defective);
+    /// assert_eq!(a.curvature.verdict.as_str(), "not_applicable");
+    /// ```
     pub fn add_exact(&mut self, scheme: &LocalScheme<Rational>) -> Result<()> {
-        self.exact = Some(exact::exact_verdict(scheme, Some(&self.subdominant))?);
+        let x = exact::exact_verdict(scheme, Some(&self.subdominant))?;
+        if let Some(bound) = x.spectral_bound_below_three_quarters {
+            if let Some(c) = self.contraction.as_mut() {
+                c.spectral_bound_check = if bound {
+                    BoundCheck::Holds
+                } else {
+                    BoundCheck::Violated
+                };
+                c.spectral_bound_ok = bound;
+            }
+        }
+        if let Some(class) = x.class {
+            let float = self.subdominant.class.clone();
+            if float.class_name() != Some(class) {
+                self.float_class = Some(float.name());
+                self.subdominant.class = SubdominantClass::from_name(class);
+                self.subdominant.note = Some(
+                    "the class is the exact one (--exact); the floating-point evidence did not show it",
+                );
+                let c = &mut self.curvature;
+                c.evidence = curvature::CurvatureEvidence::None;
+                if class == ClassName::Standard {
+                    c.verdict = curvature::CurvatureVerdict::Indeterminate;
+                    c.reason = format!(
+                        "the exact class is standard but the floating-point evidence was {}, so mu and lambda are not certified from the exact data",
+                        float.name()
+                    );
+                } else {
+                    c.verdict = curvature::CurvatureVerdict::NotApplicable;
+                    c.reason = format!(
+                        "the exact class is {}: the curvature criterion needs the standard structure",
+                        class.as_str()
+                    );
+                }
+            }
+        }
+        self.exact = Some(x);
         Ok(())
+    }
+
+    /// The classification the characteristic map is built from: the
+    /// subdominant classification, except where an exact class overrode a
+    /// float class that does not carry it (module docs of
+    /// [`add_exact`](Self::add_exact)): a standard, real-distinct or complex
+    /// exact class that the float eigenvectors did not show gives an
+    /// indeterminate map; defective and not-separated classes have no map
+    /// whatever the vectors.
+    pub fn charmap_subdominant(&self) -> Subdominant {
+        let mut sub = self.subdominant.clone();
+        if let (Some(float), Some(exact)) = (self.float_class, sub.class.class_name()) {
+            if !matches!(exact, ClassName::Defective | ClassName::NotSeparated) {
+                sub.class = SubdominantClass::Indeterminate {
+                    between: (exact, ClassName::Defective),
+                    reason: format!(
+                        "the exact class is {} but the floating-point evidence was {float}, so the float eigenvectors the map is built from do not carry the exact structure",
+                        exact.as_str()
+                    ),
+                };
+            }
+        }
+        sub
     }
 }
 
@@ -278,6 +371,19 @@ fn radius(kappa: f64, eta: f64) -> f64 {
 
 fn c64(z: Complex64) -> [f64; 2] {
     [z.re, z.im]
+}
+
+/// The double-eigenvalue evidence ([`DoubleTest`]): the rank test of
+/// [`second_smallest_sigma`] and the structural certificate `semisimple`.
+fn double_test(
+    x: &DMatrix<f64>,
+    lambda: f64,
+    semisimple: Option<&'static str>,
+) -> Result<DoubleTest, SpectralError> {
+    Ok(DoubleTest {
+        sigma: second_smallest_sigma(x, lambda)?,
+        semisimple,
+    })
 }
 
 /// Second smallest singular value of `x - lambda I` ([`svd::singular_values`]:
@@ -330,7 +436,7 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
                     radii: &radii,
                     eta,
                 },
-                &mut |lam| second_smallest_sigma(s, lam),
+                &mut |lam| double_test(s, lam, pairing::scheme_pair_certificate(scheme, lam)),
             )?;
             subdominant = match scheme.fast_classification() {
                 Some(fast) => fast?,
@@ -388,10 +494,7 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
                     scheme: scheme.name().to_owned(),
                     operation: "the structured spectral path (use the full path)",
                 })??;
-            subdominant = match scheme.fast_classification() {
-                Some(fast) => fast?,
-                None => classify_matrix(s)?,
-            };
+            subdominant = classify_local(scheme)?;
             subdominant_full = None;
             curvature = if s.nrows() <= curvature::STRUCTURED_DENSE_MAX_DIM {
                 curvature::curvature(scheme)?
@@ -463,6 +566,7 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
         subdominant_full,
         contraction,
         exact: None,
+        float_class: None,
         fourier_deviation,
         curvature,
     })
@@ -528,6 +632,17 @@ fn condition_numbers_of(
     std::array::from_fn(|k| if wanted[k] { kappa[slot[k]] } else { 0.0 })
 }
 
+/// The subdominant classification of any scheme: its own
+/// [`fast_classification`](Scheme::fast_classification) when it has one,
+/// else [`classify_scheme`] (the face-block kernel, or the local matrix with
+/// the scheme's structural certificate, [`pairing::scheme_pair_certificate`]).
+pub fn classify_local<S: Scheme + ?Sized>(scheme: &S) -> Result<Subdominant> {
+    match scheme.fast_classification() {
+        Some(fast) => fast,
+        None => classify_scheme(scheme),
+    }
+}
+
 thread_local! {
     static WORKSPACE: RefCell<StructuredWorkspace> = RefCell::new(StructuredWorkspace::new());
 }
@@ -555,7 +670,9 @@ pub fn classify_scheme_with<S: Scheme + ?Sized>(
     scheme: &S,
 ) -> Result<Subdominant> {
     if scheme.spectral_structure() != SpectralStructure::FaceBlock {
-        return classify_matrix(scheme.local_matrix()?.matrix());
+        return classify_matrix_with(scheme.local_matrix()?.matrix(), &mut |lam| {
+            pairing::scheme_pair_certificate(scheme, lam)
+        });
     }
     ws.face_nonunit(scheme)?;
     classify_face(ws, scheme.valence())
@@ -671,6 +788,10 @@ fn classify_face_into(ws: &mut StructuredWorkspace, n: usize, out: &mut Subdomin
     let values = [top[0].0, top[1].0, top[2].0, top[3].0];
     let radii = [top[0].1, top[1].1, top[2].1, top[3].1];
     let bm = ws.deflated_matrix();
+    // A double made of two face eigenvalues (not the known 1/4) is certified
+    // by a circulant, mirror-symmetric face block ([`pairing`]).
+    let both_face = top[1].2 != usize::MAX && top[2].2 != usize::MAX;
+    let face = ws.face_block();
     classify_into(
         &Evidence {
             values: &values,
@@ -679,7 +800,12 @@ fn classify_face_into(ws: &mut StructuredWorkspace, n: usize, out: &mut Subdomin
         },
         &mut |lam| {
             let b = DMatrix::from_column_slice(m, m, bm);
-            second_smallest_sigma(&b, lam)
+            let cert = if both_face {
+                pairing::circulant_pair(face, n, lam)
+            } else {
+                None
+            };
+            double_test(&b, lam, cert)
         },
         out,
     )?;
@@ -709,6 +835,17 @@ thread_local! {
 /// assert_eq!(classify_matrix(&s).unwrap().class, SubdominantClass::NotSeparated);
 /// ```
 pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
+    classify_matrix_with(s, &mut |_| None)
+}
+
+/// [`classify_matrix`] with a structural certificate for a double candidate
+/// `lambda` ([`DoubleTest::semisimple`], e.g.
+/// [`pairing::scheme_pair_certificate`]); without one a double eigenvalue is
+/// `indeterminate` ([`classify`] module docs).
+pub fn classify_matrix_with(
+    s: &DMatrix<f64>,
+    certificate: &mut dyn FnMut(f64) -> Option<&'static str>,
+) -> Result<Subdominant> {
     let (n, m) = s.shape();
     if n != m {
         return Err(SpectralError::NotSquare { rows: n, cols: m }.into());
@@ -721,7 +858,7 @@ pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
             Ok(v) => v,
             // fallback route: the general eigen-decomposition (faer), as on
             // the full path of `analyze`
-            Err(SpectralError::NoConvergence { .. }) => return classify_general(s),
+            Err(SpectralError::NoConvergence { .. }) => return classify_general(s, certificate),
             Err(e) => return Err(e.into()),
         };
         values.clear();
@@ -743,7 +880,7 @@ pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
                 radii: &radii[..top.len()],
                 eta,
             },
-            &mut |lam| second_smallest_sigma(s, lam),
+            &mut |lam| double_test(s, lam, certificate(lam)),
         )?)
     })
 }
@@ -752,7 +889,10 @@ pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
 /// with condition numbers ([`Eigen`], the full path of [`analyze`]): the
 /// fallback of [`classify_matrix`] when the small-matrix kernel's QR
 /// iteration does not converge within its bound.
-fn classify_general(s: &DMatrix<f64>) -> Result<Subdominant> {
+fn classify_general(
+    s: &DMatrix<f64>,
+    certificate: &mut dyn FnMut(f64) -> Option<&'static str>,
+) -> Result<Subdominant> {
     let e = Eigen::new(s, EigenOptions::BOTH)?;
     let eta = BACKWARD_ERROR_FACTOR * e.dim() as f64 * f64::EPSILON * e.frobenius_norm();
     let radii: Vec<f64> = e
@@ -767,6 +907,6 @@ fn classify_general(s: &DMatrix<f64>) -> Result<Subdominant> {
             radii: &radii,
             eta,
         },
-        &mut |lam| second_smallest_sigma(s, lam),
+        &mut |lam| double_test(s, lam, certificate(lam)),
     )?)
 }

@@ -178,6 +178,12 @@ impl StructuredWorkspace {
         self.kernel.dim()
     }
 
+    /// The face block the last load built (column major, `n x n`; see
+    /// [`Scheme::fill_face_block`]), e.g. for a structural certificate.
+    pub fn face_block(&self) -> &[f64] {
+        &self.f
+    }
+
     /// The deflated block `B` (column major), e.g. for a rank test.
     pub fn deflated_matrix(&self) -> &[f64] {
         self.kernel.matrix()

@@ -413,10 +413,7 @@ impl SpectralEvaluator {
                 scheme,
             )?))
         } else {
-            Ok(Some(match scheme.fast_classification() {
-                Some(fast) => fast?,
-                None => spectral::classify_matrix(scheme.local_matrix()?.matrix())?,
-            }))
+            Ok(Some(spectral::classify_local(scheme)?))
         }
     }
 

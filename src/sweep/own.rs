@@ -65,12 +65,7 @@ where
                     }
                 }
             };
-            let sub = match scheme.fast_classification() {
-                Some(fast) => fast,
-                None => scheme
-                    .local_matrix()
-                    .and_then(|m| crate::spectral::classify_matrix(m.matrix())),
-            };
+            let sub = crate::spectral::classify_local(&scheme);
             let map = match (&sub, charmap) {
                 (Ok(sub), true) => {
                     Some(crate::charmap::check_classified(&scheme, sub).map_err(|e| e.to_string()))
