@@ -433,18 +433,34 @@ fn n4_uniform_and_tensor_rings_are_affine_images_of_a_rectangular_annulus() {
         // boundary consists of straight segments with 4 corners; simplest check:
         // all 12 patches are pieces of ONE affine map of the knot plane, i.e. the
         // A/B/C nets' edge vectors along x and y are parallel to two fixed directions.
-        let r = report(&s);
-        assert_eq!(r.verdict, Verdict::C1Standard);
-        assert_eq!(r.winding_number, Some(1));
-        let g = r.regularity.unwrap();
+        // The tensor configurations' double 1/2 has no structural
+        // certificate in floating point (math doc section 10): the checked
+        // verdict is given for the uniform ones; for the tensor ones the
+        // planar basis above is taken as given.
+        let r = if s.kind() == subdiv_lab::schemes::SchemeKind::Nurds {
+            assert!(
+                matches!(report(&s).verdict, Verdict::NoCharacteristicMap { .. }),
+                "uncertified double: no definite verdict"
+            );
+            let r = check_basis(&ExtendedMatrix::new(&s).unwrap(), &s.ratios(), &basis).unwrap();
+            let g = r.regularity.as_ref().map(|g| (g.min_coeff, g.pieces));
+            (r.verdict, r.winding_number, g)
+        } else {
+            let r = report(&s);
+            let g = r.regularity.as_ref().map(|g| (g.min_coeff, g.pieces));
+            (r.verdict, r.winding_number, g)
+        };
+        assert_eq!(r.0, Verdict::C1Standard);
+        assert_eq!(r.1, Some(1));
+        let (min_coeff, pieces) = r.2.unwrap();
         assert!(
-            g.min_coeff > 0.0 && g.pieces == 12,
+            min_coeff > 0.0 && pieces == 12,
             "no subdivision needed: {}",
-            g.pieces
+            pieces
         );
         if s.kind() != subdiv_lab::schemes::SchemeKind::Nurds {
             assert!(
-                (g.min_coeff - 1.0).abs() < 1e-9,
+                (min_coeff - 1.0).abs() < 1e-9,
                 "uniform: all coefficients equal"
             );
         }

@@ -162,7 +162,10 @@ fn uniform_and_non_uniform_nurds_follow_their_rates() {
     for (ratios, class) in [
         (vec![0.3, 0.6, 0.5], "real_distinct"),
         (vec![0.3, 0.6, 0.5, 0.45, 0.55], "real_distinct"),
-        (vec![0.4, 0.6, 0.4, 0.6, 0.4, 0.6], "standard"),
+        // (A period-2 configuration such as [0.4, 0.6, ...] has an exactly
+        // double pair by a symmetry the structural certificate does not
+        // check: its float class is indeterminate, and it is not measured.)
+        (vec![0.5; 6], "standard"),
     ] {
         let s = LocalScheme::nurds(EdgeRatios::new(ratios.clone()).unwrap());
         let m = measure_scheme(&s, K, 4).unwrap();

@@ -29,6 +29,9 @@
 //! candidate double eigenvalue of the dense evidence matches it.
 
 use crate::scheme::Scheme;
+use crate::schemes::assembly::{LocalMatrix, PointLabel, Role};
+use crate::spectral::eigen::{Eigen, EigenOptions};
+use nalgebra::DMatrix;
 use num_complex::Complex64;
 
 /// How closely a closed-form block eigenvalue must match the dense candidate
@@ -151,7 +154,9 @@ pub fn circulant_pair(f: &[f64], n: usize, lambda: f64) -> Option<&'static str> 
 /// its **local matrix** (module docs): the closed-form Fourier spectrum when
 /// the scheme has one; for a scheme with a face block, the circulant face
 /// block, provided `lambda` exceeds the largest eigenvalue `1/4` of the other
-/// diagonal blocks by more than [`PAIR_MATCH_TOLERANCE`]. `None` when nothing
+/// diagonal blocks by more than [`PAIR_MATCH_TOLERANCE`]; else the
+/// rotation and mirror symmetry of the labelled local matrix
+/// ([`symmetric_pair`], which serves users' schemes too). `None` when nothing
 /// certifies the pair (or the structure cannot be built).
 pub fn scheme_pair_certificate<S: Scheme + ?Sized>(
     scheme: &S,
@@ -166,7 +171,149 @@ pub fn scheme_pair_certificate<S: Scheme + ?Sized>(
     if lambda > super::structured::KNOWN_EIGENVALUES[0] + PAIR_MATCH_TOLERANCE {
         let mut f = vec![0.0; n * n];
         if let Some(Ok(())) = scheme.fill_face_block(&mut f) {
-            return circulant_pair(&f, n, lambda);
+            if let Some(why) = circulant_pair(&f, n, lambda) {
+                return Some(why);
+            }
+        }
+    }
+    scheme
+        .local_matrix()
+        .ok()
+        .and_then(|lm| symmetric_pair(&lm, lambda))
+}
+
+/// Where the rotation of the `n` sectors takes a labelled point (`k` steps),
+/// or where the mirror through sector 0 takes it; `None` for points whose
+/// label carries no sector (extended and patch-outer points).
+///
+/// Sector conventions (math doc sections 4, 8 and 11): `e_i`, `g_i`, `P_i`
+/// and `C_i` sit on ray `i`; `f_i` between rays `i` and `i + 1`; `E_{i,1}`
+/// next to `P_i` and `E_{i,2}` next to `P_{i+1}` on the edge `(P_i, P_{i+1})`.
+fn moved(label: PointLabel, n: usize, mirror: bool) -> Option<PointLabel> {
+    let i = label.index % n;
+    let neg = |j: usize| (n - j % n) % n;
+    let (role, index) = match (label.role, mirror) {
+        (Role::Vertex, _) => (Role::Vertex, label.index),
+        (r @ (Role::EdgeNeighbour | Role::SecondRing | Role::FaceCorner | Role::Corner), false)
+        | (r @ Role::FaceNeighbour, false)
+        | (r @ (Role::EdgeFirst | Role::EdgeSecond), false) => (r, (i + 1) % n),
+        (r @ (Role::EdgeNeighbour | Role::SecondRing | Role::FaceCorner | Role::Corner), true) => {
+            (r, neg(i))
+        }
+        (Role::FaceNeighbour, true) => (Role::FaceNeighbour, neg(i + 1)),
+        (Role::EdgeFirst, true) => (Role::EdgeSecond, neg(i + 1)),
+        (Role::EdgeSecond, true) => (Role::EdgeFirst, neg(i + 1)),
+        _ => return None,
+    };
+    Some(PointLabel::new(role, index))
+}
+
+/// The permutation `p` of the rows with `label(p[k]) = moved(label(k))`, if
+/// every label moves to a label of the matrix.
+fn permutation(labels: &[PointLabel], n: usize, mirror: bool) -> Option<Vec<usize>> {
+    let at: std::collections::HashMap<PointLabel, usize> =
+        labels.iter().enumerate().map(|(k, l)| (*l, k)).collect();
+    if at.len() != labels.len() {
+        return None;
+    }
+    labels
+        .iter()
+        .map(|l| moved(*l, n, mirror).and_then(|m| at.get(&m).copied()))
+        .collect()
+}
+
+/// `Some(reason)` when the labelled local matrix `lm` is, bit for bit,
+/// invariant under the rotation of its sectors and under the mirror through
+/// sector 0, and some pair of conjugate modes `l, n - l` (`0 < l < n/2`)
+/// holds `lambda` exactly twice (module docs): then `lambda` is a real
+/// eigenvalue of a two-dimensional eigenspace with one eigenvector in each
+/// mode.
+///
+/// The modes `l` and `n - l` together span a real invariant subspace with
+/// the orthonormal basis `cos(2 pi l j / n) e_(o, j)`, `sin(2 pi l j / n)
+/// e_(o, j)` (`sqrt(2/n)`-scaled, `o` over the rotation orbits of size `n`);
+/// the restriction `R_l = Q^T X Q` has the spectrum of the Fourier block
+/// `X_l` twice (the mirror makes `X_{n-l}` similar to `X_l`, and `X_{n-l}`
+/// is the conjugate of `X_l`, so the spectrum of `X_l` is closed under
+/// conjugation). Exactly two eigenvalues of `R_l` within
+/// [`PAIR_MATCH_TOLERANCE`] of `lambda` make `lambda` a simple, hence real,
+/// eigenvalue of `X_l`.
+///
+/// ```
+/// use subdiv_lab::scheme::Scheme;
+/// use subdiv_lab::schemes::LocalScheme;
+/// use subdiv_lab::spectral::pairing::symmetric_pair;
+/// let s = LocalScheme::<f64>::catmull_clark(5).unwrap();
+/// let lm = s.local_matrix().unwrap();
+/// let lambda = subdiv_lab::schemes::catmull_clark::fourier::subdominant(5, 0.5).unwrap();
+/// assert!(symmetric_pair(&lm, lambda).is_some());
+/// assert!(symmetric_pair(&lm, 0.3).is_none());
+/// ```
+pub fn symmetric_pair(lm: &LocalMatrix<f64>, lambda: f64) -> Option<&'static str> {
+    let n = lm.valence();
+    let x = lm.matrix();
+    let labels = lm.rows();
+    if n < 3 || labels != lm.cols() || x.nrows() != labels.len() {
+        return None;
+    }
+    let rot = permutation(labels, n, false)?;
+    let mir = permutation(labels, n, true)?;
+    let d = labels.len();
+    for p in [&rot, &mir] {
+        for j in 0..d {
+            for i in 0..d {
+                if x[(p[i], p[j])].to_bits() != x[(i, j)].to_bits() {
+                    return None;
+                }
+            }
+        }
+    }
+    // Orbits of size n, by a representative.
+    let mut seen = vec![false; d];
+    let mut orbits: Vec<Vec<usize>> = Vec::new();
+    for k in 0..d {
+        if seen[k] {
+            continue;
+        }
+        let mut orbit = vec![k];
+        seen[k] = true;
+        let mut j = rot[k];
+        while j != k {
+            seen[j] = true;
+            orbit.push(j);
+            j = rot[j];
+        }
+        match orbit.len() {
+            1 => {}
+            len if len == n => orbits.push(orbit),
+            _ => return None,
+        }
+    }
+    let m = orbits.len();
+    let scale = (2.0 / n as f64).sqrt();
+    for l in 1..n.div_ceil(2) {
+        if 2 * l == n {
+            continue;
+        }
+        let mut q = DMatrix::<f64>::zeros(d, 2 * m);
+        for (o, orbit) in orbits.iter().enumerate() {
+            for (j, &row) in orbit.iter().enumerate() {
+                let t = 2.0 * std::f64::consts::PI * ((l * j) % n) as f64 / n as f64;
+                q[(row, 2 * o)] = scale * t.cos();
+                q[(row, 2 * o + 1)] = scale * t.sin();
+            }
+        }
+        let r = q.transpose() * x * &q;
+        let Ok(e) = Eigen::new(&r, EigenOptions::VALUES) else {
+            continue;
+        };
+        let near = e
+            .values()
+            .iter()
+            .filter(|z| (**z - lambda).norm() <= PAIR_MATCH_TOLERANCE)
+            .count();
+        if near == 2 {
+            return Some("the labelled matrix is rotation and mirror invariant bit for bit, and the pair is one real eigenvalue of the conjugate Fourier modes l and n - l");
         }
     }
     None

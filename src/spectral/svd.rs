@@ -194,9 +194,9 @@ mod tests {
     #[test]
     fn fallback_on_the_issue_16_matrix() {
         use crate::schemes::LocalScheme;
-        let s = LocalScheme::<f64>::adjustable_cc(3, 0.22986).unwrap();
-        let m = s.matrix().unwrap().into_matrix();
-        let sub = crate::spectral::classify_matrix(&m).unwrap();
+        let scheme = LocalScheme::<f64>::adjustable_cc(3, 0.22986).unwrap();
+        let m = scheme.matrix().unwrap().into_matrix();
+        let sub = crate::spectral::classify_local(&scheme).unwrap();
         assert_eq!(sub.class, crate::spectral::SubdominantClass::Standard);
         let x = &m - DMatrix::identity(7, 7) * sub.lambda1.re;
         let s = singular_values(&x).unwrap();
