@@ -841,7 +841,7 @@ pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
 /// [`classify_matrix`] with a structural certificate for a double candidate
 /// `lambda` ([`DoubleTest::semisimple`], e.g.
 /// [`pairing::scheme_pair_certificate`]); without one a double eigenvalue is
-/// `indeterminate` ([`classify`] module docs).
+/// `indeterminate` ([`classify`](mod@classify) module docs).
 pub fn classify_matrix_with(
     s: &DMatrix<f64>,
     certificate: &mut dyn FnMut(f64) -> Option<&'static str>,
