@@ -4,10 +4,10 @@
 #   benches/compare_numpy.sh [COUNT] [VALENCES...]
 #
 # For each valence n it runs, in one go and on one thread each,
-#   * ../shared/bench/numpy_reference.py --valence n --count COUNT
+#   * $NUMPY_REF --valence n --count COUNT
 #     (numpy: build the 4n x 4n S_n for random ratios in [0.01, 0.99),
 #      LAPACK eigvals, sort, classify; OPENBLAS/MKL/OMP threads = 1),
-#   * ../shared/bench/numpy_faceblock.py --valence n --count COUNT
+#   * $NUMPY_FACE --valence n --count COUNT
 #     (what an expert writes: the n x n face block only, batched LAPACK),
 #   * our structured path  (cargo bench --bench throughput -- --path structured),
 #   * our full path        (cargo bench --bench throughput -- --path full:
@@ -16,24 +16,28 @@
 # from other processes), and prints a table of configurations per second and
 # the speed-up of the structured path over each baseline, and of the full path
 # over the reference. Needs python3 with numpy (`pip install numpy`).
-# Environment: REPEAT (runs per cell, best kept), NUMPY_REF (path of the
-# reference script), THROUGHPUT_BIN (use this throughput binary, no build).
+# The two numpy baselines are not part of the repository: NUMPY_REF is the
+# path of a script that builds the full 4n x 4n S_n for random ratios,
+# computes its spectrum with numpy.linalg.eigvals and classifies the
+# subdominant pair, printing `configs_per_s=R`; NUMPY_FACE (default:
+# numpy_faceblock.py beside NUMPY_REF) one that does the same from the n x n
+# face block and prints `n count seconds R fraction`.
+# Environment: REPEAT (runs per cell, best kept), NUMPY_REF and NUMPY_FACE
+# (the baselines; relative paths from the repository root), THROUGHPUT_BIN
+# (use this throughput binary, no build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 COUNT=${1:-4000}
 shift || true
 VALENCES=${*:-3 5 8 16 32 64}
 REPEAT=${REPEAT:-3}
-# The reference lives next to the repository (../shared/bench); a git
-# worktree one level deeper finds it at ../../shared/bench. NUMPY_REF overrides.
-NUMPY_REF=${NUMPY_REF:-../shared/bench/numpy_reference.py}
-[ -f "$NUMPY_REF" ] || NUMPY_REF=../../shared/bench/numpy_reference.py
+NUMPY_REF=${NUMPY_REF:?set NUMPY_REF to the numpy baseline script (see the header)}
 NUMPY_FACE=${NUMPY_FACE:-$(dirname "$NUMPY_REF")/numpy_faceblock.py}
 python3 -c 'import numpy' 2>/dev/null || { echo "numpy missing: pip install numpy" >&2; exit 1; }
 [ -f "$NUMPY_REF" ] || { echo "missing $NUMPY_REF" >&2; exit 1; }
 [ -f "$NUMPY_FACE" ] || { echo "missing $NUMPY_FACE" >&2; exit 1; }
 # THROUGHPUT_BIN runs a saved throughput binary instead of building one (e.g.
-# the binary of an older commit, for a before/after table under equal load).
+# the binary of another commit, for a comparison under equal load).
 if [ -n "${THROUGHPUT_BIN:-}" ]; then
   BIN=$THROUGHPUT_BIN
 else
@@ -41,8 +45,8 @@ else
   BIN=$(ls -t target/release/deps/throughput-* | grep -v '\.d$' | head -1)
 fi
 
-# numpy_reference.py and our binary print `configs_per_s=R`; numpy_faceblock.py
-# prints `n count seconds R fraction`.
+# The reference baseline and our binary print `configs_per_s=R`; the
+# face-block baseline prints `n count seconds R fraction`.
 rate() { sed -n -e 's/.*configs_per_s=\([0-9]*\).*/\1/p' \
   -e 's/^[0-9][0-9]* [0-9][0-9]* [0-9.]* \([0-9][0-9]*\) [0-9.]*$/\1/p'; }
 best() { # best of REPEAT runs of the command given as arguments

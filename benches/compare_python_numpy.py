@@ -3,12 +3,15 @@
 sweep (`subdiv-lab sweep --threads 1`) and the two numpy baselines, at n = 3,
 5, 8, 16, 64, random edge ratios uniform in [0.01, 0.99]:
 
-* ../shared/bench/numpy_faceblock.py, the face-block peer (face block only,
-  batched LAPACK, one BLAS thread): its run();
-* ../shared/bench/numpy_reference.py, the reference (the whole 4n x 4n S_n,
-  batched LAPACK eigvals, sort, classify; one BLAS thread): the loop of its
-  main() (batches of 4096, its build() and classify()), on fewer
-  configurations (the 256 x 256 matrices of n = 64 cost about 20 ms each).
+* numpy_faceblock.py, the face-block peer (face block only, batched LAPACK,
+  one BLAS thread): its run(n, count, seed);
+* numpy_reference.py, the reference (the whole 4n x 4n S_n, batched LAPACK
+  eigvals, sort, classify; one BLAS thread): the loop of its main() (batches
+  of 4096, its build(r) and classify(eigenvalues)), on fewer configurations
+  (the 256 x 256 matrices of n = 64 cost about 20 ms each).
+
+The two numpy baselines are not part of the repository; NUMPY_BASELINES
+(environment) is the directory that holds them.
 
     python3 benches/compare_python_numpy.py [SCALE]
 
@@ -46,13 +49,9 @@ import subdiv_lab as sl  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 SCALE = float(sys.argv[1]) if len(sys.argv) > 1 else 1.0
 BIN = os.environ.get("SUBDIV_LAB_BIN", str(ROOT / "target" / "release" / "subdiv-lab"))
-ref = None
-for d in [ROOT, *ROOT.parents]:
-    if (d.parent / "shared" / "bench" / "numpy_faceblock.py").exists():
-        ref = d.parent / "shared" / "bench"
-        break
-if ref is None:
-    sys.exit("numpy_faceblock.py not found beside the repository (../shared/bench)")
+ref = Path(os.environ["NUMPY_BASELINES"]) if os.environ.get("NUMPY_BASELINES") else None
+if ref is None or not all((ref / f).is_file() for f in ("numpy_faceblock.py", "numpy_reference.py")):
+    sys.exit("set NUMPY_BASELINES to the directory of numpy_faceblock.py and numpy_reference.py")
 sys.path.insert(0, str(ref))
 import numpy_faceblock  # noqa: E402
 import numpy_reference  # noqa: E402

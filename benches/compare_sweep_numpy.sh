@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Side-by-side throughput: subdiv-lab sweep vs the vectorised numpy reference
-# (shared/bench/numpy_reference.py), same valence, same number of random
-# configurations (edge ratios uniform in [0.01, 0.99]), in one run.
+# Side-by-side throughput: subdiv-lab sweep vs a vectorised numpy reference,
+# same valence, same number of random configurations (edge ratios uniform in
+# [0.01, 0.99]), in one run.
 #
 #   benches/compare_sweep_numpy.sh [SCALE]
 #
@@ -28,28 +28,23 @@
 # output.
 #
 # SWEEP_BIN=/path/to/subdiv-lab runs that binary instead of building this
-# checkout (before/after comparisons).
+# checkout (comparisons between builds).
 #
 # Needs python3 with numpy (installed with `pip install --user numpy` if
-# missing). The reference script is looked up at $NUMPY_REFERENCE, then
-# ../shared/bench/numpy_reference.py from the repository root and its parents.
+# missing). The numpy reference is not part of the repository: NUMPY_REFERENCE
+# is the path of a script that builds the full 4n x 4n S_n for random ratios
+# (`--valence n --count N`), computes its spectrum with numpy.linalg.eigvals
+# and classifies the subdominant pair, printing `configs_per_s=R`.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 SCALE="${1:-1}"
 
 REF="${NUMPY_REFERENCE:-}"
-if [ -z "$REF" ]; then
-  d="$ROOT"
-  while [ "$d" != "/" ]; do
-    if [ -f "$d/../shared/bench/numpy_reference.py" ]; then REF="$d/../shared/bench/numpy_reference.py"; break; fi
-    d="$(dirname "$d")"
-  done
-fi
-[ -n "$REF" ] && [ -f "$REF" ] || { echo "numpy_reference.py not found; set NUMPY_REFERENCE" >&2; exit 1; }
+[ -n "$REF" ] && [ -f "$REF" ] || { echo "numpy reference script not found; set NUMPY_REFERENCE (see the header)" >&2; exit 1; }
 python3 -c 'import numpy' 2>/dev/null || python3 -m pip install --user numpy >&2
 
 if [ -n "${SWEEP_BIN:-}" ]; then
-  BIN="$SWEEP_BIN"   # e.g. an older build, for before/after tables
+  BIN="$SWEEP_BIN"   # e.g. another build, for a comparison
 else
   (cd "$ROOT" && cargo build --release --quiet)
   BIN="$ROOT/target/release/subdiv-lab"

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Reads a sweep's Parquet file with pyarrow (and pandas / polars when installed)
-and checks that every value equals the CSV of the same spec (issue #19 part 2).
+and checks that every value equals the CSV of the same spec.
 
     benches/parquet_check.py SWEEP.parquet SWEEP.csv
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sweep rate by output format (issue #19 part 2): configurations per CPU-second
+# Sweep rate by output format: configurations per CPU-second
 # (user + sys) of `subdiv-lab sweep` at n = 3, 5, 8, 16 (nurds, edge ratios in
 # [0.01, 0.99], Halton points, default columns), on one thread, for
 #   * classification only: `[columns] gap = false, contraction = false`, CSV

@@ -1,4 +1,4 @@
-//! Speed of the report generator (issue 4: the default report must finish in
+//! Speed of the report generator (the target: the default report finishes in
 //! under 2 minutes on a 2-core machine in release mode).
 //!
 //! Run: `cargo bench --bench report`. Measures the whole in-memory generation

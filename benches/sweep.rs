@@ -1,7 +1,7 @@
 //! Sweep throughput: configurations per second for n = 3, 5, 8, 16, 64 with
 //! classification (the default columns: class, subdominant pair, gap,
-//! contraction rate), random edge ratios uniform in [0.01, 0.99] as in
-//! `shared/bench/numpy_reference.py`.
+//! contraction rate), random edge ratios uniform in [0.01, 0.99] as in the
+//! numpy reference of `benches/compare_sweep_numpy.sh`.
 //!
 //! * `classify_only`: enumerate + assemble + spectral classification (the
 //!   evaluator), no output, one thread;

@@ -1,6 +1,6 @@
-//! The cost of the sweep's output formats over evaluation alone (issue #19
-//! part 2: "Parquet overhead of at most 15% over evaluation alone at n =
-//! 3..16"), measured in one process, in CPU time (user + sys, all threads).
+//! The cost of the sweep's output formats over evaluation alone (the target:
+//! a Parquet overhead of at most 15% over evaluation alone at n = 3..16),
+//! measured in one process, in CPU time (user + sys, all threads).
 //!
 //! For n = 3, 5, 8, 16 (nurds, edge ratios in [0.01, 0.99], Halton points,
 //! the default columns), on a rayon pool of one thread, the same

@@ -1,4 +1,5 @@
-//! Side-by-side throughput counterpart of `../shared/bench/numpy_reference.py`.
+//! Side-by-side throughput counterpart of the numpy reference of
+//! `benches/compare_numpy.sh` (a script outside the repository; see there).
 //!
 //! `cargo bench --bench throughput -- --valence 8 --count 20000 [--seed 1] [--path structured|full]`
 //!

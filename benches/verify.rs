@@ -1,4 +1,4 @@
-//! Issue 20 targets of `verify` (math doc section 15), printed as numbers
+//! The targets of `verify` (math doc section 15), printed as numbers
 //! (not a divan micro-benchmark: one run of each target takes seconds to
 //! minutes). Run: `cargo bench --bench verify [-- NAME..]` with NAME among
 //! `n3`, `n4`, `n5`, `n6`, `n7`, `n8`, `cc` (default: `n3 cc`). Threads: the

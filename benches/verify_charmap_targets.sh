@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Issue 20, the `charmap` property over cells (math doc section 15, "The
-# characteristic map over a cell"): the numbers of the README and the math doc,
+# The `charmap` property over cells (math doc section 15, "The
+# characteristic map over a cell"): the numbers of BENCHMARKS.md,
 # with wall time, CPU time (user + sys) and the load average around each run.
 #
 #   benches/verify_charmap_targets.sh [BIN] [NAME..]    NAME: cc (n = 3..16), n3, n4, n5

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 20 targets of `subdiv-lab verify` (math doc section 15), with the
+# The targets of `subdiv-lab verify` (math doc section 15), with the
 # numbers a shared machine needs: wall time, CPU time (user + sys) and the
 # load average before and after each run.
 #

@@ -1,5 +1,5 @@
 //! Work estimates: memory and time of the heavy steps, computed from the
-//! sizes alone before any of the work (or its allocations) starts (issue 16).
+//! sizes alone before any of the work (or its allocations) starts.
 //!
 //! Each function returns an [`Estimate`] (peak bytes, seconds on the
 //! reference machine, and what the memory is for). The command-line tool
@@ -367,7 +367,7 @@ pub fn subdivide(half_edges: u64) -> Estimate {
 /// Seconds per evaluated cell of `verify` on a NURDS box, per `n^4` (the
 /// centre eigen-decomposition of the `(n-1)`-square deflated block and the
 /// `n` interval products `Y C_k V`). Measured 6.3e-7 at `n = 3` (582 000
-/// cells in 14.8 s on 2 threads, machine load 11); rounded up.
+/// cells in 14.8 s on 2 threads of the loaded reference machine); rounded up.
 pub const VERIFY_SECONDS_PER_CELL_N4: f64 = 1.0e-6;
 
 /// Seconds per evaluated cell of `verify` on an interval of `c` (closed-form
@@ -386,13 +386,13 @@ pub const VERIFY_BYTES_PER_CELL_DIM: f64 = 64.0;
 /// Set-up seconds of `verify` on a NURDS box of valence 5: the proof of the
 /// invariant grid (`2^20` cells over two invariants, math doc section 15,
 /// "the invariant raster"). Measured with `verify --max-cells 1` (set-up
-/// plus one cell) on `[0.05, 0.95]^5`, 2 threads, load 7.5: 4.99 s CPU
+/// plus one cell) on `[0.05, 0.95]^5`, 2 threads, loaded machine: 4.99 s CPU
 /// (user + sys), 7.6 s wall; a smaller box costs less (`[0.4, 0.6]^5`:
 /// 0.16 s CPU). The full-box wall time, rounded up.
 pub const VERIFY_SETUP_SECONDS_N5: f64 = 8.0;
 
 /// The same for valence 6: 7.97 s CPU, 12.0 s wall on `[0.05, 0.95]^6`
-/// (7.96 s CPU on `[0.01, 0.99]^6`), load 7.5-7.9; rounded up.
+/// (7.96 s CPU on `[0.01, 0.99]^6`), loaded machine; rounded up.
 pub const VERIFY_SETUP_SECONDS_N6: f64 = 13.0;
 
 /// The same for valences 7 to 9 (the characteristic polynomial and its
@@ -477,10 +477,10 @@ pub fn verify(
 /// of `W`, the verified inverse and Stewart's bound, `n` interval Sylvester
 /// solves and `3n` Jacobian nets in affine forms with `3n - 4` symbols).
 /// Measured: the `n = 3` target (`benches/specs/verify-charmap-n3.toml`)
-/// took 198 s of CPU for 1 178 991 evaluated cells at load 12, about 170
-/// microseconds per cell, most of them with a charmap evaluation; single cells
-/// took 0.5 ms (`n = 3`), 0.9 ms (`n = 4`), 1.4 ms (`n = 5`) of wall time at
-/// that load. `1.2e-5 n^3` (0.32 ms at `n = 3`, 1.5 ms at `n = 5`) is an
+/// takes 198 s of CPU for 1 178 991 evaluated cells on the loaded reference
+/// machine, about 170 microseconds per cell, most of them with a charmap
+/// evaluation; single cells take 0.5 ms (`n = 3`), 0.9 ms (`n = 4`), 1.4 ms
+/// (`n = 5`) of wall time under the same load. `1.2e-5 n^3` (0.32 ms at `n = 3`, 1.5 ms at `n = 5`) is an
 /// upper estimate for a run in which every cell gets a charmap evaluation.
 pub const VERIFY_CHARMAP_SECONDS_PER_CELL_N3: f64 = 1.2e-5;
 
@@ -529,7 +529,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn issue_16_sizes_exceed_the_limits_and_small_ones_do_not() {
+    fn large_sizes_exceed_the_limits_and_small_ones_do_not() {
         // (the per-scheme sizes: scheme::registry's tests, over every built-in cost model)
         assert!(ccss_bound(1000, 4).seconds > TIME_LIMIT_SECONDS);
         assert!(ccss_bound(50, 4).seconds < 10.0);

@@ -1,5 +1,5 @@
-//! Parameter study of the shape-adjustable Catmull-Clark scheme (issue 8,
-//! item 3; math doc sections 6-8): for each valence `n`, as a function of
+//! Parameter study of the shape-adjustable Catmull-Clark scheme (math doc
+//! sections 6-8): for each valence `n`, as a function of
 //! `c` in `[0, 1]`, the subdominant eigenvalues, `|lambda_3|`, the
 //! subdominant class and the characteristic-map verdict, and the interval(s)
 //! of `c` on which the scheme is certified C1 (class `standard`, map regular

@@ -172,8 +172,8 @@ pub fn derive_seed(base: u64, name: &str) -> u64 {
 mod tests {
     use super::*;
 
-    /// The generators written out independently (as they were before they
-    /// were gathered here): every sequence is the same, bit for bit.
+    /// The generators written out independently of this module: every
+    /// sequence is the same, bit for bit.
     #[test]
     fn sequences_are_those_of_the_original_generators() {
         for seed in [0u64, 1, 7, 0x5EED, 1234567, u64::MAX] {

@@ -1,7 +1,6 @@
-//! Issue 16: bounded work. Every spec shipped in `analysis/` runs (at its
-//! full size, or with the `--limit` documented here and in the README), and
-//! the structured path no longer fails on the 7 x 7 matrix whose SVD did not
-//! converge. Refusals of heavy work are rows of `tests/hostile_inputs.rs`
+//! Bounded work. Every spec shipped in `analysis/` runs (at its full size, or
+//! with the `--limit` documented here and in the README), and the structured
+//! path classifies the 7 x 7 matrix on which faer's SVD does not converge. Refusals of heavy work are rows of `tests/hostile_inputs.rs`
 //! (section bounded-work).
 
 mod common;
@@ -14,7 +13,7 @@ fn analysis() -> PathBuf {
 }
 
 /// The test-time `--limit` of each shipped sweep spec (`None`: full size).
-/// Full sizes (2-core reference machine, idle, 2026-11-24): n3-grid 0.2 s,
+/// Full sizes (2-core reference machine, idle): n3-grid 0.2 s,
 /// vertex-ep-sobol 0.1 s, random 1.9 s, cc-shape 3.3 s, n3-slice 2.8 s,
 /// uniform-valences 4.2 s (the exact certificate up to n = 64); n3-slice is
 /// limited here only to keep the suite cheap. The benchmark-sized sweep
@@ -125,8 +124,8 @@ fn shipped_report_specs_run() {
     }
 }
 
-/// Issue 16 item 6: faer's SVD did not converge on the 7 x 7 matrix of the
-/// rank test; the Jacobi fallback gives the same verdict as the full path.
+/// faer's SVD does not converge on the 7 x 7 matrix of the rank test; the
+/// Jacobi fallback gives the same verdict as the full path.
 #[test]
 fn structured_path_survives_the_svd_failure() {
     let base = [

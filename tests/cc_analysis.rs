@@ -1,4 +1,4 @@
-//! Catmull-Clark family through the common spectral engine (issue 8, item 2):
+//! Catmull-Clark family through the common spectral engine:
 //! classification, Fourier fast path vs full path, limit and tangent stencils
 //! from left eigenvectors vs the closed forms of `catmull_clark::limit`, the
 //! patch matrix's extra eigenvalues, and the `analyze` CLI.
@@ -308,11 +308,11 @@ mod study {
     }
 }
 
-/// Regression (found by the proptest above): faer returned zero eigenvector
-/// columns at the exactly double subdominant eigenvalue of the adjustable
-/// scheme (n = 9, c = 0.10944...). Zero columns have residual 0 and used to
-/// pass as eigenvectors, giving infinite condition numbers and a wrong
-/// `not_separated`. Now they are refined, and double eigenvalues get the
+/// A case found by the proptest above: faer returns zero eigenvector columns
+/// at the exactly double subdominant eigenvalue of the adjustable scheme
+/// (n = 9, c = 0.10944...). Zero columns have residual 0; taken as
+/// eigenvectors they would give infinite condition numbers and a wrong
+/// `not_separated`. They are refined, and double eigenvalues get the
 /// condition number of their spectral projector.
 #[test]
 fn double_eigenvalue_vectors_are_unit_and_well_conditioned() {

@@ -840,7 +840,7 @@ fn eigenstructures_without_a_planar_map_are_reported_with_a_reason() {
     }
 }
 
-// ---------------------------------------------------------------- certificate error bound and orientation (issue 22)
+// ---------------------------------------------------------------- certificate error bound and orientation
 
 /// A regular ring of the Doo-Sabin family, its control-point error bound, and
 /// the ring turned so that its Jacobian is positive.
@@ -1024,9 +1024,9 @@ fn a_negative_jacobian_at_a_corner_is_reported_at_that_corner() {
 }
 
 // ---------------------------------------------------------------------------
-// The winding certificate on hand-made chains (issue 22: the mutation run of
-// `src/charmap/winding.rs` against this target and `charmap_cc` showed which
-// of its error allowances and branches no ring test reaches).
+// The winding certificate on hand-made chains: they reach the error
+// allowances and branches of `src/charmap/winding.rs` that no ring test
+// reaches (docs/testing.md has the mutation score).
 
 /// The quadrant chain: four quadratic Bezier arcs through `(1, 0)`, `(0, 1)`,
 /// `(-1, 0)`, `(0, -1)` with control points `(+-1, +-1)`, scaled by `s`
@@ -1324,10 +1324,10 @@ fn the_right_half_of_a_split_carries_the_allowance_of_its_depth() {
 }
 
 // ---------------------------------------------------------------------------
-// The Bezier Jacobian certificate on hand-made patches (issue 22: the mutation
-// run of `src/charmap/regularity.rs` against this target and `charmap_cc`
-// showed which of its bounds, boundaries and bookkeeping no ring test reaches:
-// every ring is certified or refuted on its first pieces, far from the bounds).
+// The Bezier Jacobian certificate on hand-made patches: they reach the bounds,
+// boundaries and bookkeeping of `src/charmap/regularity.rs` that no ring test
+// reaches (every ring is certified or refuted on its first pieces, far from
+// the bounds; docs/testing.md has the mutation score).
 
 /// A bicubic patch `x = 3 s` (control points `x_ij = i`), `y` with
 /// `y_{i,j+1} - y_ij = d(i, j)`: `x_s = 3`, `x_t = 0`, `y_t` has the Bernstein

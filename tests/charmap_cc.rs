@@ -1,5 +1,5 @@
-//! Characteristic maps of the Catmull-Clark family (issue 8 item 2 and 3;
-//! math doc sections 7 and 8).
+//! Characteristic maps of the Catmull-Clark family (math doc sections 7 and
+//! 8).
 
 use proptest::prelude::*;
 use subdiv_lab::cc_study::{c1_intervals, study_point};

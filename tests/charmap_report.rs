@@ -117,8 +117,9 @@ fn bad_charmap_specs_name_the_key() {
 
 #[test]
 fn convergence_figure_rejects_catmull_clark_configs_at_parse_time() {
-    // Regression: a convergence figure with a Catmull-Clark configuration used
-    // to panic inside the contraction measurement (no face weights).
+    // A convergence figure with a Catmull-Clark configuration is refused at
+    // parse time, not a panic inside the contraction measurement (no face
+    // weights).
     let text = "name = \"x\"\n[[figure]]\nkind = \"convergence\"\nconfigs = [{ scheme = \"doo-sabin\", valence = 4 }, { scheme = \"catmull-clark\", valence = 5 }]\n";
     let e = ReportSpec::parse(text).map(|_| ()).unwrap_err().to_string();
     assert!(

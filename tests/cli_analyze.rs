@@ -113,7 +113,7 @@ fn bad_input_is_a_usage_error() {
         assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
     }
     // Input that the exact mode cannot represent (irrational weights): an
-    // input error (exit 2, issue #16 item 7) with a one-line message.
+    // input error (exit 2) with a one-line message.
     let (code, _, err) = run(&[
         "analyze",
         "--scheme",

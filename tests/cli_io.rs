@@ -50,11 +50,10 @@ fn libc_sigpipe() -> i32 {
     13
 }
 
-/// Audit of issue 16 item 2: an output path that is a special file (a
-/// device such as `/dev/null`, here a FIFO in a scratch directory, so that a
-/// regression cannot harm the machine) is written in place, never replaced
-/// by a rename: `subdivide -o /dev/null` used to replace the device node with
-/// a regular file when run as root. `sweep --out` and `merge --out` refuse
+/// An output path that is a special file (a device such as `/dev/null`,
+/// here a FIFO in a scratch directory, so that a failure cannot harm the
+/// machine) is written in place, never replaced by a rename (which would
+/// replace the device node with a regular file when run as root). `sweep --out` and `merge --out` refuse
 /// it (their CSV is resumable and has a summary beside it).
 #[cfg(target_os = "linux")]
 #[test]

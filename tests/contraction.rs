@@ -83,7 +83,7 @@ fn block_of(w: &DMatrix<Rational>, c: &[Rational]) -> DMatrix<Rational> {
     })
 }
 
-/// Issue #22: broken blocks are passed to the certificate itself, one
+/// Broken blocks are passed to the certificate itself, one
 /// defect at a time (each other check still passes, so `holds()` must look
 /// at the broken one).
 #[test]
@@ -138,10 +138,9 @@ fn certificate_detects_a_broken_face_block() {
     assert!(certify_face_block(&a, &c[..4], DMatrix::zeros(5, 5)).is_err());
 }
 
-/// Issue #16 item 14: the weights come from the knots by the theorem's
-/// formula, equal the assembled rows, and the reported minimum is the
-/// smallest positive weight (structural zeros excluded: it used to be 0 for
-/// every n >= 4).
+/// The weights come from the knots by the theorem's formula, equal the
+/// assembled rows, and the reported minimum is the smallest positive weight
+/// (structural zeros excluded, so it is not 0 for n >= 4).
 #[test]
 fn certificate_weights_come_from_the_formula() {
     let mut rng = SplitMix64::new(9);
@@ -305,7 +304,7 @@ proptest! {
     }
 }
 
-/// Issue #22 (mutation run of `contraction.rs`): every dimension of the
+/// Every dimension of the
 /// certificate's input is checked on its own, and the error reports the
 /// count that disagrees with the face block's `n` rows.
 #[test]
@@ -331,7 +330,7 @@ fn certify_face_block_checks_every_dimension() {
     assert!(certify_face_block(&a, &c, w).unwrap().holds());
 }
 
-/// Issue #22 (mutation run of `contraction.rs`): the measured rate with no
+/// The measured rate with no
 /// level (nothing to fit: rate 0, no ratio) and with one level (the ratio is
 /// `m_1 / m_0`, and the fitted rate over the one level is that ratio).
 #[test]
@@ -354,7 +353,7 @@ fn measured_rate_with_zero_and_one_level() {
     assert!(m.max_ratio > 0.0 && m.max_ratio <= 0.75);
 }
 
-/// Issue #22 (mutation run of `contraction.rs`): `Measured::ratios` is
+/// `Measured::ratios` is
 /// NaN-free; it stops at the first level where `m_k = 0`. Enough levels
 /// drive the distances below the smallest subnormal (`|lambda_1| = 3/8` for
 /// the valence-3 Catmull-Clark variant: `(3/8)^k < 2^-1074` from `k = 760`);

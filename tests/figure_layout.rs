@@ -1,4 +1,4 @@
-//! The automatic layout check of the report figures (issue 21): every figure
+//! The automatic layout check of the report figures: every figure
 //! kind of the registry is rendered (the default report plus small samples
 //! of the kinds it does not use) and its SVG is checked for
 //!
@@ -26,9 +26,8 @@ use subdiv_lab::report::{generate_with, Inputs, Options, ReportSpec, RunInfo};
 /// directions) before it counts: none. The boxes are em boxes (they include
 /// the space above the digits and below the baseline), so two boxes that
 /// touch still leave a visible gap between the glyphs, while any overlap is
-/// the kind a reader sees: the corner ticks "0.0" of the old knot maps
-/// overlapped by 12 x 3 px and are caught with this value (checked against
-/// the report of main before issue 21), but not with a slack of 0.15 em.
+/// the kind a reader sees: corner ticks "0.0" of two axes that overlap by
+/// 12 x 3 px are caught with this value, but not with a slack of 0.15 em.
 const OVERLAP_SLACK: f64 = 0.0;
 /// Pixels a text box may reach beyond the canvas edge (antialiasing; the
 /// estimate is not exact to the pixel).

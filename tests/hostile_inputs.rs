@@ -113,7 +113,7 @@ fn cases() -> Vec<Case> {
         &["analyze", "--ratios", "0.5,1.5,0.5"],
         "1.5",
     )]);
-    // Issue #16 item 1: a mesh interval refinement cannot halve exactly
+    // A mesh interval refinement that cannot halve exactly
     // (5e-324 / 2 rounds to 0) names the edge instead of recursing in frexp.
     v.extend([
         bad(
@@ -176,13 +176,13 @@ fn cases() -> Vec<Case> {
             "= 1e400 is not representable in f64: it rounds to inf",
         ),
     ]);
-    // Issue #16 item 1: a ratio below the f64 range names the edge ratio.
+    // A ratio below the f64 range names the edge ratio.
     v.extend([bad(
         "analyze-knots-ratio-below-f64",
         &["analyze", "--knots", "1e300:1e300,1e300:1e-300,1e300:1e300"],
         "r_0 = 1e-300 / (1e300 + 1e-300) is not representable in f64",
     )]);
-    // Issue #16 item 15: values that do not fit in f64 are named as such on
+    // Values that do not fit in f64 are named as such on
     // the float path (not "got inf", "got 1.0", or silently 0).
     v.extend([
         bad(
@@ -264,7 +264,7 @@ fn cases() -> Vec<Case> {
         "bogus",
     )]);
     // A write error on stdout (/dev/full) is exit 1 with one line naming
-    // stdout, never a panic (issue #16, item 3).
+    // stdout, never a panic.
     v.extend([
         full("full-analyze", &["analyze", "--uniform", "--valence", "3"]),
         full(
@@ -340,7 +340,7 @@ fn cases() -> Vec<Case> {
             ],
         ),
     ]);
-    // Input errors are exit 2 everywhere (item 7).
+    // Input errors are exit 2 everywhere.
     v.extend([
         bad(
             "exact-doo-sabin-irrational-valence",
@@ -527,7 +527,7 @@ fn cases() -> Vec<Case> {
             "all-quad",
         ),
     ]);
-    // Messages name the problem on one line (item 8); clap's errors too.
+    // Messages name the problem on one line; clap's errors too.
     v.extend([
         bad(
             "ccss-bound-epsilon-without-net",
@@ -625,8 +625,8 @@ fn cases() -> Vec<Case> {
             "figure[0].kind: missing",
         ),
     ]);
-    // `report --out`: never delete or rename a file the tool did not create
-    // (item 2). Refusals come before any work and touch nothing.
+    // `report --out`: never delete or rename a file the tool did not create.
+    // Refusals come before any work and touch nothing.
     v.extend([
         bad_with(
             "report-out-foreign-nonempty-dir",
@@ -676,7 +676,7 @@ fn cases() -> Vec<Case> {
             "holds no previous subdiv-lab report",
         ),
     ]);
-    // Conflicting outputs are refused before anything is written (item 9).
+    // Conflicting outputs are refused before anything is written.
     v.extend([
         bad(
             "subdivide-same-output-twice",
@@ -763,8 +763,8 @@ fn cases() -> Vec<Case> {
         &["analyze", "--uniform", "--valence", "0"],
         "0",
     )]);
-    // Issue 16 item 4: sizes whose matrices do not fit in memory are refused
-    // from the estimate, before any allocation (they used to abort).
+    // Sizes whose matrices do not fit in memory are refused from the
+    // estimate, before any allocation (which would abort the process).
     v.extend([
         bad(
             "analyze-cc-valence-100000",
@@ -877,7 +877,7 @@ fn cases() -> Vec<Case> {
             "ccss-bound: valence 100000 needs ~",
         ),
     ]);
-    // Issue 16 item 5: runs of minutes are refused with their estimate.
+    // Runs of minutes are refused with their estimate.
     v.extend([
         bad(
             "analyze-valence-1000-uniform",
@@ -1159,7 +1159,7 @@ fn cases() -> Vec<Case> {
             stdout: Stdout::Pipe,
         },
     ]);
-    // The audit of issue 16 item 2: sweep and merge never overwrite a file
+    // Sweep and merge never overwrite a file
     // they did not write (the summary beside --out, the spec, an input
     // shard's summary, an existing --out), and a missing --out directory is
     // bad input (exit 2), not a failure while running.
@@ -1231,7 +1231,7 @@ fn cases() -> Vec<Case> {
 
     // ===================================================================
     // SECTION figures: `plot` (sweep CSV -> figure), `report --formats`,
-    // the keys of the report figure kind `sweep` (issue 21).
+    // the keys of the report figure kind `sweep`.
     // ===================================================================
     v.extend([
         bad_with(
@@ -1258,8 +1258,8 @@ fn cases() -> Vec<Case> {
             &[("s.csv", "# subdiv-lab sweep: test\nid,valence,r0,r1,class,contraction_rate\n0,3,0.2,0.2,complex_pair,0.4\n1,4,0.2,0.8,real_distinct,0.45\n2,3,0.8,0.2,real_distinct,0.45\n")],
             "no column \"colour\"",
         ),
-        // Values near the f64 limit: the axis range overflowed and the tick
-        // search looped for ever (a hang); now refused naming the column.
+        // Values near the f64 limit: the axis range would overflow and the
+        // tick search loop for ever, so they are refused naming the column.
         bad_with(
             "plot-x-beyond-plot-range",
             &["plot", "h.csv", "-o", "f.svg", "--kind", "histogram", "--x", "a"],
@@ -1764,7 +1764,7 @@ fn cases() -> Vec<Case> {
     // (end of section verify)
 
     // ===================================================================
-    // SECTION g2-cap: the G2 cap command (issue 18 part 2).
+    // SECTION g2-cap: the G2 cap command.
     // ===================================================================
     const RING5: &str = "v 0.0000 0.0000 0.0000\nv 1.0000 0.0000 0.1000\nv 2.0000 0.0000 0.4000\nv 0.3090 0.9511 -0.0809\nv 0.6180 1.9021 -0.3236\nv -0.8090 0.5878 0.0309\nv -1.6180 1.1756 0.1236\nv -0.8090 -0.5878 0.0309\nv -1.6180 -1.1756 0.1236\nv 0.3090 -0.9511 -0.0809\nv 0.6180 -1.9021 -0.3236\nv 1.3090 0.9511 0.0809\nv 1.6180 1.9021 -0.1000\nv 2.3090 0.9511 0.4427\nv 2.6180 1.9021 0.3236\nv -0.5000 1.5388 -0.2118\nv -1.3090 2.1266 -0.2809\nv -0.1910 2.4899 -0.6163\nv -1.0000 3.0777 -0.8472\nv -1.6180 0.0000 0.2618\nv -2.4271 -0.5878 0.5545\nv -2.4271 0.5878 0.5545\nv -3.2361 0.0000 1.0472\nv -0.5000 -1.5388 -0.2118\nv -0.1910 -2.4899 -0.6163\nv -1.3090 -2.1266 -0.2809\nv -1.0000 -3.0777 -0.8472\nv 1.3090 -0.9511 0.0809\nv 2.3090 -0.9511 0.4427\nv 1.6180 -1.9021 -0.1000\nv 2.6180 -1.9021 0.3236\nf 1 2 12 4\nf 2 3 14 12\nf 4 12 13 5\nf 12 14 15 13\nf 1 4 16 6\nf 4 5 18 16\nf 6 16 17 7\nf 16 18 19 17\nf 1 6 20 8\nf 6 7 22 20\nf 8 20 21 9\nf 20 22 23 21\nf 1 8 24 10\nf 8 9 26 24\nf 10 24 25 11\nf 24 26 27 25\nf 1 10 28 2\nf 10 11 30 28\nf 2 28 29 3\nf 28 30 31 29\n";
     const TRI5: &str = "v 0.0000 0.0000 0.0000\nv 1.0000 0.0000 0.1000\nv 2.0000 0.0000 0.4000\nv 0.3090 0.9511 -0.0809\nv 0.6180 1.9021 -0.3236\nv -0.8090 0.5878 0.0309\nv -1.6180 1.1756 0.1236\nv -0.8090 -0.5878 0.0309\nv -1.6180 -1.1756 0.1236\nv 0.3090 -0.9511 -0.0809\nv 0.6180 -1.9021 -0.3236\nv 1.3090 0.9511 0.0809\nv 1.6180 1.9021 -0.1000\nv 2.3090 0.9511 0.4427\nv 2.6180 1.9021 0.3236\nv -0.5000 1.5388 -0.2118\nv -1.3090 2.1266 -0.2809\nv -0.1910 2.4899 -0.6163\nv -1.0000 3.0777 -0.8472\nv -1.6180 0.0000 0.2618\nv -2.4271 -0.5878 0.5545\nv -2.4271 0.5878 0.5545\nv -3.2361 0.0000 1.0472\nv -0.5000 -1.5388 -0.2118\nv -0.1910 -2.4899 -0.6163\nv -1.3090 -2.1266 -0.2809\nv -1.0000 -3.0777 -0.8472\nv 1.3090 -0.9511 0.0809\nv 2.3090 -0.9511 0.4427\nv 1.6180 -1.9021 -0.1000\nv 2.6180 -1.9021 0.3236\nf 1 2 12\nf 2 3 14 12\nf 4 12 13 5\nf 12 14 15 13\nf 1 4 16 6\nf 4 5 18 16\nf 6 16 17 7\nf 16 18 19 17\nf 1 6 20 8\nf 6 7 22 20\nf 8 20 21 9\nf 20 22 23 21\nf 1 8 24 10\nf 8 9 26 24\nf 10 24 25 11\nf 24 26 27 25\nf 1 10 28 2\nf 10 11 30 28\nf 2 28 29 3\nf 28 30 31 29\n";
@@ -1959,8 +1959,7 @@ fn cases() -> Vec<Case> {
             ],
         ),
             // Degenerate 2-rings (all points on one point, or on one line) are
-        // bad input naming the vertex (they used to fail as a NaN residual,
-        // exit 1).
+        // bad input naming the vertex (not a NaN residual and exit 1).
         bad_with(
             "g2cap-ring-on-one-point",
             &["g2-cap", "pt.obj", "--vertex", "0", "--c", "0.5"],
@@ -1974,7 +1973,7 @@ fn cases() -> Vec<Case> {
             "the 2-ring of vertex 0 (OBJ 1) is degenerate",
         ),
         // ccss-bound: a tolerance below what f64 resolves for the net is bad
-        // input naming it (it used to run 200 steps and fail as an LP, exit 1).
+        // input naming it (not 200 steps and a failing LP, exit 1).
         bad_with(
             "ccss-bound-epsilon-below-resolution",
             &["ccss-bound", "--valence", "5", "--net", "net.txt", "--epsilon", "1e-300"],
@@ -1986,7 +1985,7 @@ fn cases() -> Vec<Case> {
 
     let _ = full; // used by the cli-io section
                   // ===================================================================
-                  // SECTION curvature (issue 18 part 1): the `curvature` and
+                  // SECTION curvature: the `curvature` and
                   // `curvature-tuning` figure keys and the sweep column switch.
                   // ===================================================================
     v.extend([
@@ -2080,8 +2079,8 @@ fn cases() -> Vec<Case> {
             &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature-tuning\"\nvalence = [2, 5]\n")],
             "valence range must satisfy 3 <= lo <= hi <= 64, got [2, 5]",
         ),
-        // Report figures whose largest settings ran for hours without a
-        // word (issue 16 item 5): refused at parse time with the estimate.
+        // Report figures whose largest settings would run for hours without
+        // a word: refused at parse time with the estimate.
         bad_with(
             "report-cc-c1-interval-heavy",
             &["report", "s.toml", "--out", "r"],

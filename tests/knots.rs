@@ -240,11 +240,11 @@ fn cube() -> String {
     format!("{}/analysis/meshes/cube.obj", env!("CARGO_MANIFEST_DIR"))
 }
 
-/// Issue #16 item 1: `subdivide --knots k.knots --default-interval 1e300`
-/// with `1 3 1e-300` (a ratio of about 1e-600) and `--default-interval
-/// 9e307` (sums overflow) aborted with a stack overflow (exit 134) in
-/// `frexp(0.0)`. Any finite positive intervals are accepted; the output only
-/// depends on ratios, so uniform 9e307 gives exactly the output of uniform 1.
+/// `subdivide --knots k.knots --default-interval 1e300` with `1 3 1e-300`
+/// (a ratio of about 1e-600) and `--default-interval 9e307` (sums overflow)
+/// run without a stack overflow in `frexp(0.0)`. Any finite positive
+/// intervals are accepted; the output only depends on ratios, so uniform
+/// 9e307 gives exactly the output of uniform 1.
 #[test]
 fn subdivide_takes_extreme_intervals() {
     let d = scratch("subdivide");
@@ -304,7 +304,7 @@ fn subdivide_takes_extreme_intervals() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// Issue #16 items 1 and 15 through the library: interval sums that
+/// Extreme intervals through the library: interval sums that
 /// overflow give the exact ratios; a ratio below the f64 range names the edge.
 #[test]
 fn ratios_of_extreme_intervals() {
@@ -335,10 +335,9 @@ fn ratios_of_extreme_intervals() {
     assert!(rf.is_uniform());
 }
 
-/// Issue #16 item 15 through the CLI: the README promises numbers are read
-/// exactly. Uniform 9e307 knots (which failed with "got 0.0", also with
-/// --exact) and, with --exact, knots of 1e400/3 (which failed with "got inf")
-/// are the uniform configuration.
+/// Extreme knots through the CLI: numbers are read exactly. Uniform 9e307
+/// knots (whose sums overflow f64; also with --exact) and, with --exact,
+/// knots of 1e400/3 (beyond the f64 range) are the uniform configuration.
 #[test]
 fn analyze_reads_extreme_knots() {
     let d = scratch("analyze");

@@ -1,5 +1,5 @@
-//! Loop subdivision in sweep and report specs (issue #17: `--scheme loop`
-//! wherever it makes sense): a valence sweep's rows equal the per-scheme
+//! Loop subdivision in sweep and report specs (`--scheme loop` wherever it
+//! makes sense): a valence sweep's rows equal the per-scheme
 //! analysis and Loop's closed form (math doc section 11), and report specs
 //! draw Loop configurations and refine triangle meshes with Loop's rules.
 

@@ -1,4 +1,4 @@
-//! Catmull-Clark-family mesh refinement (issue 8, item 4): the textbook cube
+//! Catmull-Clark-family mesh refinement: the textbook cube
 //! step, agreement with the one-ring matrix of the scheme module for random c,
 //! limit positions (invariance under refinement and deep refinement), OBJ
 //! round trip through the `subdivide` CLI.

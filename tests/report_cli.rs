@@ -243,7 +243,7 @@ fn stderr_line(o: &std::process::Output) -> String {
     err
 }
 
-/// Issue #16 item 2: `--out` naming a directory with the user's files (the
+/// `--out` naming a directory with the user's files (the
 /// spec among them) is refused with exit 2 and nothing is touched.
 #[test]
 fn out_dir_with_foreign_files_is_refused_and_untouched() {
@@ -267,7 +267,7 @@ fn out_dir_with_foreign_files_is_refused_and_untouched() {
     assert_eq!(tree(tmp.path()), before, "files touched");
 }
 
-/// Item 2: `--out` naming an existing regular file is exit 2, the file untouched.
+/// `--out` naming an existing regular file is exit 2, the file untouched.
 #[test]
 fn out_naming_a_file_is_refused_and_untouched() {
     let tmp = tempfile::tempdir().unwrap();
@@ -283,7 +283,7 @@ fn out_naming_a_file_is_refused_and_untouched() {
     assert_eq!(tree(tmp.path()), before, "files touched");
 }
 
-/// Item 2: a previous report is replaced by default (so the main job can be
+/// A previous report is replaced by default (so the main job can be
 /// run again), touching only the files its manifest lists: the user's files
 /// in the directory survive, stale outputs of the old report are removed, no
 /// temporaries remain.
@@ -378,7 +378,7 @@ fn rerun_replaces_only_the_previous_reports_files() {
     assert_eq!(tree(tmp.path()), before);
 }
 
-/// Item 2 (audit): the manifest is not trusted blindly. A user file added
+/// The manifest is not trusted blindly. A user file added
 /// to an edited manifest's list is never removed, a report file the user
 /// edited is never overwritten (exit 2, naming it, nothing touched), and a
 /// manifest without digests (an older version, or edited) owns no file.
@@ -432,7 +432,7 @@ fn rerun_never_touches_files_the_manifest_does_not_vouch_for() {
     assert_eq!(tree(tmp.path()), before);
 }
 
-/// Item 3 (audit): a report whose closing line cannot be written (stdout
+/// A report whose closing line cannot be written (stdout
 /// is /dev/full) exits 1 and installs nothing: no new directory, and an
 /// existing report is left as it was.
 #[test]
@@ -478,7 +478,7 @@ fn report_with_a_failing_stdout_installs_nothing() {
     assert_eq!(tree(tmp.path()), before, "the previous report was replaced");
 }
 
-/// Item 17: the default report works from any directory (the spec is built
+/// The default report works from any directory (the spec is built
 /// into the binary; its meshes are generated in code) and records the
 /// version and the build-time git revision.
 #[test]
@@ -525,7 +525,7 @@ fn default_report_runs_from_another_directory() {
         files.len(),
         std::fs::read_dir(tmp.path().join("r")).unwrap().count()
     );
-    // Issue 21: the default report is at most 8 MB, and no data file is
+    // The default report is at most 8 MB, and no data file is
     // written twice (the three knot maps of one grid share one CSV, named by
     // each figure's record).
     let mut total = 0u64;

@@ -813,10 +813,10 @@ fn check_float_against_exact(rq: EdgeRatios<Rational>, expected: ClassName) -> &
     f.class.name()
 }
 
-/// Issue #16 item 12: along `r_0 = r_2 = 1/2, r_1 = k/100` every row is
-/// exactly defective (standard at k = 50). Before the fix 12 of the 99 rows
-/// were a definite `not_separated` (a huge first-order radius made the rank
-/// test "zero" and 3/8 "not certainly positive"). Every row is checked.
+/// Along `r_0 = r_2 = 1/2, r_1 = k/100` every row is exactly defective
+/// (standard at k = 50). A huge first-order radius can make the rank test
+/// "zero" and 3/8 "not certainly positive", which would give a definite
+/// `not_separated`; every row is checked to be no definite wrong class.
 #[test]
 fn defective_line_is_never_a_definite_wrong_class() {
     let q = |a: i64, b: i64| Rational::frac(a, b);
@@ -840,7 +840,7 @@ fn defective_line_is_never_a_definite_wrong_class() {
     assert_eq!(counts.get("indeterminate"), Some(&98), "{counts:?}");
 }
 
-/// Issue #22 "rank threshold": several exactly defective families (not one
+/// Several exactly defective families (not one
 /// matrix) guard the defective/standard threshold; exact and float agree or
 /// float says indeterminate (with defective as a candidate).
 #[test]
@@ -901,9 +901,9 @@ fn exactly_defective_families_agree_with_exact() {
     assert!(total > 30);
 }
 
-/// Issue #16 item 13: at n = 32 with ratios in {1e-9, 1 - 1e-9, 1/2}
-/// `|lambda_1|` lies within rounding of 3/4 (computed 0.7500000000000018
-/// before): never `violated` inside the error radius.
+/// At n = 32 with ratios in {1e-9, 1 - 1e-9, 1/2} `|lambda_1|` lies within
+/// rounding of 3/4 (it can be computed as 0.7500000000000018): never
+/// `violated` inside the error radius.
 #[test]
 fn spectral_bound_near_three_quarters_is_not_a_false_alarm() {
     use subdiv_lab::spectral::BoundCheck;
@@ -944,10 +944,9 @@ fn spectral_bound_near_three_quarters_is_not_a_false_alarm() {
     assert_eq!(BoundCheck::of(0.75 - 1e-9, 1e-15, 0.75), BoundCheck::Holds);
 }
 
-/// Issue #22 (mutation run of `classify.rs` against this target): the names
-/// written to CSV, reports and JSON, and `is_indeterminate`, checked from the
-/// outside (the lib's unit tests check them too, but a mutation run of this
-/// target alone does not build them).
+/// The names written to CSV, reports and JSON, and `is_indeterminate`,
+/// checked from the outside (the lib's unit tests check them too, but a
+/// mutation run of `classify.rs` on this target alone does not build them).
 #[test]
 fn class_names_and_indeterminate_flag() {
     let all = [
@@ -1029,7 +1028,7 @@ fn indeterminate(s: &SubdominantClass) -> ((ClassName, ClassName), &str) {
     }
 }
 
-/// Issue #22 (mutation run of `classify.rs`): every decision of `classify`
+/// Every decision of `classify`
 /// at and around its thresholds (`decide`'s `d <= e` and
 /// `d > SEPARATION_FACTOR * e`, the linear-regime limit `sqrt(eta)`, the
 /// rank-test radius `RANK_FACTOR (e_1 + e_2 + eta)`), on hand-made evidence

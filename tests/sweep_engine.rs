@@ -355,7 +355,7 @@ points_per_axis = 3
 }
 
 /// Corner-interval sweeps write the edge ratios `r_i` the scheme is built
-/// from (issue 19), after the intervals: `r_i = q_(i+1) / (p_i + q_(i+1))`,
+/// from, after the intervals: `r_i = q_(i+1) / (p_i + q_(i+1))`,
 /// empty beyond the row's valence; and a ratios-space evaluation of those
 /// `r_i` gives the row's spectrum (an independent route to the same matrix).
 #[test]

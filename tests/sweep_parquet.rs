@@ -525,8 +525,8 @@ points_per_axis = 9
 exact_certificate = true
 "#;
 
-/// `plot` draws the same figure from a sweep's Parquet file as from its CSV
-/// (issue 21), for the default (a class map of the slice) and every kind.
+/// `plot` draws the same figure from a sweep's Parquet file as from its CSV,
+/// for the default (a class map of the slice) and every kind.
 #[test]
 fn plot_from_parquet_equals_plot_from_csv() {
     let dir = tempfile::tempdir().unwrap();
@@ -589,7 +589,8 @@ fn plot_from_parquet_equals_plot_from_csv() {
 
 /// A Parquet file under another name (`sweep --format parquet --out x.csv`)
 /// is recognised by its magic bytes: `plot` draws the same figure as from
-/// the `.parquet` file (it used to fail with "line 1: not valid UTF-8").
+/// the `.parquet` file (read as CSV it would fail with "line 1: not valid
+/// UTF-8").
 #[test]
 fn plot_recognises_parquet_under_a_csv_name() {
     let dir = tempfile::tempdir().unwrap();

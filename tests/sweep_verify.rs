@@ -1,5 +1,5 @@
 //! The library's sweep-CSV verifier (`sweep::output::Verifier`, used by
-//! `sweep --resume` and `sweep merge`), tested directly (issue #22): the row
+//! `sweep --resume` and `sweep merge`), tested directly: the row
 //! limit, the form rules of the result columns, the bottom-k recheck sample
 //! and the summary it rebuilds. The CLI tests (`sweep_cli.rs`,
 //! `hostile_inputs.rs`) exercise the same checks through the binary but edit
@@ -60,7 +60,7 @@ charmap = true
 exact_certificate = true
 "#;
 
-/// Issue #22 "resume": rows beyond the run's limit are refused at the first
+/// Rows beyond the run's limit are refused at the first
 /// such row, the limit counts the rows of earlier blocks, and a file of
 /// exactly `max_rows` rows passes (an off-by-one in either direction fails).
 #[test]
@@ -331,8 +331,7 @@ fn the_recheck_sample_is_the_bottom_k_of_the_salted_hashes() {
     assert_eq!(rebuilt, written);
 }
 
-/// Session 33 (mutation run of `verify.rs`): a block whose last line has no
-/// `\n` is verified to its end (the tail line counts and is checked), and a
+/// A block whose last line has no `\n` is verified to its end (the tail line counts and is checked), and a
 /// line that is not UTF-8 is reported as such at its own line number, after
 /// the lines before it, whether it sits in the first piece of a block or in
 /// a later one.
@@ -415,7 +414,7 @@ fn a_last_line_without_newline_is_checked_and_non_utf8_lines_are_located() {
     }
 }
 
-/// Session 33: the summary rebuilt by the verifier counts a failed row under
+/// The summary rebuilt by the verifier counts a failed row under
 /// `error` and, in a sweep without a `class` column, every other row under
 /// `all` (as `Summary::add` does); a failed row's error text may be quoted.
 #[test]
@@ -462,7 +461,7 @@ fn rebuilt_summaries_count_failed_rows_and_rows_without_a_class() {
     }
 }
 
-/// Session 33: only a comma separates fields. A correct line with every comma
+/// Only a comma separates fields. A correct line with every comma
 /// replaced by a double quote is refused (the quote sends the line to the
 /// CSV parser, which sees one malformed field), not split at the quotes.
 #[test]

@@ -1,4 +1,4 @@
-//! Certified verdicts over regions (issue 20): soundness against the exact
+//! Certified verdicts over regions (math doc section 15): soundness against the exact
 //! pointwise classifier (proptest), exact tiling of the written cells,
 //! thread-count independence, the `--out` rules and the Catmull-Clark path
 //! against `cc-study`.

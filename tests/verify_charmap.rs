@@ -1,5 +1,5 @@
-//! The `charmap` property of `subdiv-lab verify` over cells (issue 20; math
-//! doc section 15, "The characteristic map over a cell"): at random points
+//! The `charmap` property of `subdiv-lab verify` over cells (math doc
+//! section 15, "The characteristic map over a cell"): at random points
 //! of the cells certified for `charmap` the pointwise certificate of math
 //! doc section 7 finds the map regular and injective, and the pointwise ring
 //! (in the cell's own normalisation) lies in the cell's enclosure; a run with

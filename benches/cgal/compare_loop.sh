@@ -29,18 +29,8 @@
 #    runs; peak RSS of the whole process from /usr/bin/time (%M), including
 #    the input; the timed runs write nothing.
 #
-# Result on this machine (2 cores, shared with up to 6 other builds; Debian 12;
-# g++ 12 -O2; release build; LEVELS=3, RUNS=3), 98,304 triangles in, 6,291,456 out:
-#
-# | tool                  |    out faces |   refine s |    out faces / s |   peak RSS MiB |
-# |-----------------------|--------------|------------|------------------|----------------|
-# | CGAL 5.5              |      6291456 |      2.705 |          2325647 |          548.0 |
-# | OpenSubdiv 3.5 (Far)  |      6291456 |      2.040 |          3084384 |          847.5 |
-# | subdiv-lab            |      6291456 |      1.241 |          5070398 |          613.8 |
-#
-# (OpenSubdiv keeps every level's topology and positions; our mesh carries a
-# knot interval (f64) and a face index (u32) per half-edge that Loop does not
-# need, about 12 of its 34 bytes per output half-edge.)
+# The speed table is in BENCHMARKS.md ("Loop subdivision against CGAL and
+# OpenSubdiv").
 #
 # Agreement with CGAL at levels 1..3: counts, one-to-one matching and
 # oriented triangles equal on all five meshes; largest distance 9.9e-16

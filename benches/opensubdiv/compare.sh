@@ -19,6 +19,6 @@ for m in analysis/meshes/*.obj; do
   ./target/release/subdiv-lab subdivide "$m" --scheme catmull-clark --levels "$LEVELS" --limit -o "$TMP/ours_limit.obj"
   "$TMP/osd_refine" "$m" "$LEVELS" "$TMP/ours_limit.obj" --limit
 done
-# Result on this machine (2026-11-22, OpenSubdiv 3.5.0 Debian, LEVELS=3): largest
+# Result (OpenSubdiv 3.5.0 Debian, LEVELS=3): largest
 # refined-vertex distance 8.9e-16 (torus), largest limit-position distance
 # 1.3e-15 (torus); counts equal on all five meshes.

@@ -137,8 +137,8 @@ pub const MAX_STEPS: u32 = 200;
 /// The smallest `epsilon` [`steps_needed`] accepts, relative to the largest
 /// coordinate magnitude `m` of the net: the refined points carry rounding
 /// errors of order `1e-16 m`, so their second differences stop shrinking
-/// near that level and a smaller `epsilon` is never reached (it used to run
-/// [`MAX_STEPS`] steps and fail as if an LP had). `1e-12` leaves a margin of
+/// near that level and a smaller `epsilon` is never reached (without this
+/// floor a run would take [`MAX_STEPS`] steps and fail as if an LP had). `1e-12` leaves a margin of
 /// ten thousand over the rounding floor; with `rho <= 0.66` for every valence
 /// it is reached in well under [`MAX_STEPS`] steps.
 pub const EPSILON_FLOOR_RELATIVE: f64 = 1e-12;

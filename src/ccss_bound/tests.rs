@@ -293,12 +293,11 @@ fn steps_needed_bounds_the_refined_distance() {
     assert!(steps_needed(&patch, &family, c.beta, &net, f64::NAN).is_err());
 }
 
-/// Issue 16 (audit): the step counts are homogeneous in the net, so a net
-/// scaled by 2^k (here up to coordinates near 1e300, whose squared
-/// differences overflow) gives the same steps and bounds scaled by 2^k; a
-/// tolerance below the f64 resolution of the net is refused by name (it used
-/// to run MAX_STEPS steps and fail as an LP); `steps_a_priori` terminates
-/// (an infinite M_0 looped for ever).
+/// The step counts are homogeneous in the net, so a net scaled by 2^k (here
+/// up to coordinates near 1e300, whose squared differences overflow) gives
+/// the same steps and bounds scaled by 2^k; a tolerance below the f64
+/// resolution of the net is refused by name (instead of running MAX_STEPS
+/// steps into a failing LP); `steps_a_priori` terminates on an infinite M_0.
 #[test]
 fn step_counts_are_scale_invariant_and_refuse_unresolvable_tolerances() {
     let n = 5;

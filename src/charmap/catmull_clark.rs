@@ -1,7 +1,7 @@
 //! Characteristic maps of the Catmull-Clark family: Catmull-Clark (`c = 1/2`)
 //! and the shape-adjustable scheme with parameter `c` in `(0, 1]`.
 //!
-//! Math doc sections 7 and 8; issue 8 item 2. The scheme is rotationally
+//! Math doc sections 7 and 8. The scheme is rotationally
 //! symmetric, so its subdominant eigenvalue comes from a Fourier mode
 //! `l` with a double real eigenvalue (modes `l` and `n - l`), and the
 //! characteristic map's control net is the real pair

@@ -15,8 +15,8 @@ pub const FREE: usize = 5;
 /// zero. The matrix is rank-deficient by design (the conditions near the
 /// outer corners hold automatically, and several vertex conditions repeat),
 /// so a threshold is needed; the spurious singular values are rounding
-/// (`~1e-15 sigma_max`), the genuine ones were above `1e-4 sigma_max` in the
-/// prototype. A wrong rank decision would show as a constraint residual
+/// (`~1e-15 sigma_max`), the genuine ones measure above `1e-4 sigma_max`.
+/// A wrong rank decision would show as a constraint residual
 /// above [`super::CONSTRAINT_RTOL`] or a geometric residual above
 /// [`super::RESIDUAL_TOL`], both checked after the solve.
 pub const RANK_RTOL: f64 = 1e-10;

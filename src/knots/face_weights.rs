@@ -106,7 +106,7 @@ mod tests {
     use crate::scalar::{f64_to_rational, Rational};
     use num_bigint::BigInt;
 
-    /// Issue #16: intervals whose sums overflow or whose ratios underflow
+    /// Intervals whose sums overflow or whose ratios underflow
     /// `f64` (`1e-300` against `1e300`, `9e307 + 9e307`). The weights come from
     /// the extended-exponent ratios and match the exact closed form.
     #[test]

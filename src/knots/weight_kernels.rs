@@ -47,8 +47,8 @@ pub(crate) fn generic_kernel<T: Clone + Num>(r: &[T], s: &[T]) -> Vec<T> {
 /// `c_j = alpha_j / sum_k alpha_k`. Doubling the weights (`1, 2, .., 2, 1`)
 /// keeps everything in integers, so the products need no gcd; only the `n`
 /// final quotients are reduced. Identical values to [`generic_kernel`], which
-/// reduces after every operation (and was the bottleneck of `--exact` with
-/// `f64` knots, whose 53-bit mantissas give products of thousands of bits).
+/// reduces after every operation (too slow for `--exact` with `f64` knots,
+/// whose 53-bit mantissas give products of thousands of bits).
 pub(crate) fn rational_kernel(r: &[Rational], s: &[Rational]) -> Vec<Rational> {
     use num_bigint::BigInt;
     use num_integer::Integer as _;

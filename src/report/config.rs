@@ -218,7 +218,7 @@ pub fn resolve_all(
 /// take longer than [`crate::budget::TIME_LIMIT_SECONDS`] to analyse: the
 /// sum of the `analyze` estimates ([`crate::budget::analyze`], full path) of
 /// every configuration. A table of a few NURDS faces of valence 256 (about
-/// 30 s each) ran for minutes without a word (issue 16 item 5).
+/// 30 s each) would otherwise run for minutes without a word.
 pub fn check_analysis_budget(
     fs: &FigureSpec<'_>,
     specs: &Spanned<Vec<ConfigSpec>>,

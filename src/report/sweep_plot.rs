@@ -1072,7 +1072,7 @@ mod tests {
 
     /// A map draws a class below 2% of its cells (a measure-zero set) as
     /// enlarged markers on top, one per cell, and marks its legend box; a
-    /// common class gets none (issue 21).
+    /// common class gets none.
     #[test]
     fn map_marks_rare_classes() {
         assert_eq!(rare_categories(&[0, 0, 1, 0], 3), [false, false, false]);

@@ -230,9 +230,9 @@ mod tests {
         }
     }
 
-    // Moved from budget.rs (issue 16), now over every built-in cost model.
+    // The size limits over every built-in cost model.
     #[test]
-    fn issue_16_sizes_exceed_the_limits_and_small_ones_do_not() {
+    fn large_sizes_exceed_the_limits_and_small_ones_do_not() {
         for s in every_builtin(3) {
             let kind = s.kind();
             let model = s.cost_model();
@@ -248,7 +248,7 @@ mod tests {
             assert!(budget::matrix(&model, 64, false, true)
                 .within_limits(TIME_LIMIT_SECONDS, MEMORY_LIMIT_BYTES));
         }
-        // the CC one-ring at n = 100000 is the issue's 320 GB matrix
+        // the CC one-ring at n = 100000 is a 320 GB matrix
         let cc = budget::analyze(&cost_model(SchemeKind::CatmullClark), 100_000, false);
         assert!(cc.bytes >= 8.0 * 200_001f64.powi(2));
         assert!(cc.what.contains("200001 x 200001"));

@@ -115,7 +115,7 @@ pub(crate) fn face_block_from<T: Scalar>(ratios: &EdgeRatios<T>, c: &[T]) -> DMa
     let s = ratios.complement();
     let quarter = T::frac(1, 4);
     // c_j / 4 once per column (exact c_j can have thousands of bits; scaling
-    // each of the n^2 entries was the bulk of an exact assembly).
+    // each of the n^2 entries would be the bulk of an exact assembly).
     let c4: Vec<T> = c.iter().map(|x| x.clone() * quarter.clone()).collect();
     let mut a = DMatrix::from_fn(n, n, |_, j| c4[j].clone());
     for i in 0..n {

@@ -52,12 +52,12 @@
 //! `[[lambda, nu], [0, lambda]]` with a nilpotent part `nu` below the
 //! backward error `eta` is a perturbation of size `eta` away from `lambda I`,
 //! and a perturbation of size `eta` also splits it into two distinct
-//! eigenvalues `lambda +- sqrt(nu eta)`; the audit case `r = (1/2, 1/2,
-//! 1/2 + 1e-10)` (exactly defective, `nu ~ 1e-10`) had computed eigenvalues
+//! eigenvalues `lambda +- sqrt(nu eta)`; the case `r = (1/2, 1/2,
+//! 1/2 + 1e-10)` (exactly defective, `nu ~ 1e-10`) has computed eigenvalues
 //! `~1e-13` apart, condition numbers `~520`, and a second smallest singular
-//! value of `X - lambda I` below the old rank-test threshold
+//! value of `X - lambda I` below the rank-test threshold
 //! `RANK_FACTOR (e_1 + e_2 + eta)`, which grows with the ill-conditioning it
-//! was meant to detect. No threshold on `sigma` fixes this, because `nu` can
+//! would have to detect. No threshold on `sigma` fixes this, because `nu` can
 //! be arbitrarily small: see math doc section 10.
 //!
 //! So a double eigenvalue gets a definite class only from an **exact
@@ -138,8 +138,8 @@ pub struct DoubleTest {
 /// `sqrt(eta)`, its condition numbers grow like `1 / sqrt(eta)`, infinite
 /// when the two computed values coincide). There the first-order bound is not
 /// valid and "the difference is below the radius" says nothing: such a
-/// verdict is `indeterminate`, never a definite class (issue #16: exactly
-/// defective pairs came out `not_separated`). Certain non-zero verdicts
+/// verdict is `indeterminate`, never a definite class (without this limit,
+/// exactly defective pairs would come out `not_separated`). Certain non-zero verdicts
 /// (`d > SEPARATION_FACTOR * e`) are unaffected.
 pub fn equality_limit(eta: f64) -> f64 {
     if eta.is_nan() {

@@ -202,7 +202,7 @@ pub const STRUCTURED_DENSE_MAX_DIM: usize = 256;
 
 /// The curvature analysis of a scheme from its dense spectrum: the
 /// eigenvalues with condition numbers of [`Eigen`], the classification of
-/// [`classify_matrix`], then [`summarize`].
+/// [`classify_matrix`](super::classify_matrix), then [`summarize`].
 pub fn curvature<S: Scheme + ?Sized>(scheme: &S) -> Result<CurvatureSummary> {
     let lm = scheme.local_matrix()?;
     let s = lm.matrix();

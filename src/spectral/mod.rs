@@ -394,7 +394,7 @@ fn second_smallest_sigma(x: &DMatrix<f64>, lambda: f64) -> Result<f64, SpectralE
         return Ok(f64::INFINITY);
     }
     let m = DMatrix::from_fn(n, n, |i, j| x[(i, j)] - if i == j { lambda } else { 0.0 });
-    // faer's SVD, with the one-sided Jacobi SVD as the fallback route (issue 16)
+    // faer's SVD, with the one-sided Jacobi SVD as the fallback route
     let s = svd::singular_values(&m)?;
     // Sorted non-increasing.
     Ok(s[n - 2])
@@ -841,7 +841,7 @@ pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
 /// [`classify_matrix`] with a structural certificate for a double candidate
 /// `lambda` ([`DoubleTest::semisimple`], e.g.
 /// [`pairing::scheme_pair_certificate`]); without one a double eigenvalue is
-/// `indeterminate` ([`classify`] module docs).
+/// `indeterminate` ([`classify`](mod@classify) module docs).
 pub fn classify_matrix_with(
     s: &DMatrix<f64>,
     certificate: &mut dyn FnMut(f64) -> Option<&'static str>,

@@ -3,7 +3,7 @@
 //!
 //! Floating point cannot tell a semisimple double eigenvalue (`standard`)
 //! from a Jordan block with a tiny nilpotent part or from two eigenvalues
-//! closer than their error radii ([`super::classify`] module docs). What can
+//! closer than their error radii ([`super::classify`](mod@super::classify) module docs). What can
 //! is *structure* that holds exactly:
 //!
 //! * A matrix `X` that commutes with the rotation of its `n` sectors splits,

@@ -3,7 +3,7 @@
 //! The first route is faer's bidiagonalisation SVD (fast, LAPACK-style). Its
 //! implicit QR iteration has an iteration bound and can report "no
 //! convergence" on perfectly ordinary matrices (seen on a 7 x 7 one-ring
-//! matrix of the adjustable Catmull-Clark scheme, issue 16). The fallback is
+//! matrix of the adjustable Catmull-Clark scheme). The fallback is
 //! the one-sided Jacobi SVD of Hestenes (Golub and Van Loan, *Matrix
 //! Computations*, 4th ed., section 8.6.3; Demmel and Veselic, SIAM J. Matrix
 //! Anal. Appl. 13, 1992): plane rotations `[c s; -s c]` applied to column
@@ -186,13 +186,13 @@ mod tests {
         );
     }
 
-    /// The 7 x 7 matrix of issue 16 on which faer's SVD reports no
+    /// The 7 x 7 matrix on which faer's SVD reports no
     /// convergence: the second smallest singular value of `S - lambda I` for
     /// the adjustable scheme, n = 3, c = 0.22986, at the classifier's
     /// lambda_1. The fallback gives it; both eigenvalue copies (a standard
     /// double eigenvalue) make it tiny.
     #[test]
-    fn fallback_on_the_issue_16_matrix() {
+    fn fallback_where_faer_does_not_converge() {
         use crate::schemes::LocalScheme;
         let scheme = LocalScheme::<f64>::adjustable_cc(3, 0.22986).unwrap();
         let m = scheme.matrix().unwrap().into_matrix();

@@ -1,4 +1,4 @@
-//! The work estimate of a sweep (issue #16: heavy work is estimated first):
+//! The work estimate of a sweep (heavy work is estimated before it starts):
 //! the per-configuration cost model of [`crate::budget`] summed over a shard.
 
 use super::Plan;

@@ -1,6 +1,5 @@
 //! The `charmap` property over a cell: the characteristic map is regular and
-//! injective for *every* parameter of the cell (issue 20; math doc section
-//! 15, "The characteristic map over a cell").
+//! injective for *every* parameter of the cell (math doc section 15, "The characteristic map over a cell").
 //!
 //! The pointwise certificates of math doc section 7 ([`crate::charmap`]) are
 //! carried over to a cell by enclosing the planar control net of the

@@ -1,4 +1,4 @@
-//! Proofs over regions (issue 20; math doc section 15): certified verdicts
+//! Proofs over regions (math doc section 15): certified verdicts
 //! for whole boxes of edge ratios (NURDS) and intervals of `c` (the
 //! shape-adjustable Catmull-Clark scheme), by branch and bound.
 //!

@@ -1,6 +1,6 @@
 //! `kind = "cc-c1-interval"`: the interval(s) of the shape parameter `c` on
 //! which the shape-adjustable Catmull-Clark scheme is certified C1, against
-//! the valence (issue 8 item 3; math doc sections 7 and 8).
+//! the valence (math doc sections 7 and 8).
 //!
 //! Drawn from [`crate::cc_study::c1_intervals`] (class certified `standard`
 //! and characteristic map certified regular and injective; ends located by
@@ -99,8 +99,8 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
             ))
         }
     };
-    // Heavy work is refused with its estimate (issue 16): the largest
-    // settings ran for hours without a word.
+    // Heavy work is refused with its estimate: the largest settings would
+    // run for hours without a word.
     let seconds = estimate_seconds(lo, hi, samples, tol);
     if seconds > crate::budget::TIME_LIMIT_SECONDS {
         let what = format!(

@@ -1,7 +1,6 @@
 //! `kind = "cc-eigenvalues"`: the shape-adjustable Catmull-Clark scheme's
 //! subdominant eigenvalue `lambda_1 = lambda_2` and `|lambda_3|` against the
-//! shape parameter `c`, one colour per valence (issue 8 item 3; math doc
-//! sections 6 and 8).
+//! shape parameter `c`, one colour per valence (math doc sections 6 and 8).
 //!
 //! Drawn from [`crate::cc_study::study_curve`] (common spectral engine on the
 //! one-ring matrix, cross-checked against the closed-form Fourier blocks):

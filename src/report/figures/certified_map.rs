@@ -1,5 +1,5 @@
 //! `kind = "certified-map"`: certified cells of the NURDS ratio space beside
-//! the sampled knot map (issue 20; math doc section 15).
+//! the sampled knot map (math doc section 15).
 //!
 //! For `n = 3` and each fixed `r_2` of `slices`, the branch and bound of
 //! [`crate::verify`] runs over the square `(r_0, r_1)` in `[lo, hi]^2` with

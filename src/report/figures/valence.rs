@@ -89,8 +89,8 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
             ))
         }
     };
-    // Heavy work is refused with its estimate (issue 16): valences up to 256
-    // with thousands of samples ran for hours without a word.
+    // Heavy work is refused with its estimate: valences up to 256 with
+    // thousands of samples would run for hours without a word.
     let seconds = estimate_seconds(lo, hi, samples);
     if seconds > crate::budget::TIME_LIMIT_SECONDS {
         let what = format!(

@@ -58,18 +58,18 @@ pub const MIN_VALENCE: usize = 3;
 
 /// Seconds per `n^3` of `analyze` (the dense `(3n+1)` decomposition with
 /// vectors and the characteristic-map certificate, either path). Measured
-/// 1.4e-6 at `n = 100` and `n = 200` (1.40 s, 11.1 s) on the 2-core machine
-/// while other builds ran (load 9); rounded up.
+/// 1.4e-6 at `n = 100` and `n = 200` (1.40 s, 11.1 s) on the 2-core
+/// reference machine under load; rounded up.
 pub const ANALYZE_SECONDS_PER_N3: f64 = 2.0e-6;
 
 /// Seconds per `n^3` of one sweep configuration's classification (the dense
 /// `(3n+1)` decomposition). Measured 3.9e-7 CPU seconds (one thread; 159 s
-/// for `n = 40..200`, one configuration each) at load 10-13; rounded up.
+/// for `n = 40..200`, one configuration each) under load; rounded up.
 pub const SWEEP_CLASSIFY_SECONDS_PER_N3: f64 = 8e-7;
 
 /// Seconds per `n^3` of one sweep configuration's characteristic-map
 /// certificate on top of the classification: measured about 5e-8 (CPU,
-/// `n = 40..120`, load 13); rounded up.
+/// `n = 40..120`, under load); rounded up.
 pub const SWEEP_CHARMAP_SECONDS_PER_N3: f64 = 1e-7;
 
 /// Loop's work model ([`crate::budget`]): the `(3n + 1)` two-ring matrix,

@@ -44,7 +44,7 @@
 //! With 16 lanes each operation is four 256-bit instructions, which the
 //! processor overlaps (more independent chains per reflector); at 32 lanes
 //! the compiler no longer keeps the lanes in registers. An AVX-512 build of
-//! 8 lanes ran no faster than AVX2 on Zen 4 (whose 512-bit units are
+//! 8 lanes runs no faster than AVX2 on Zen 4 (whose 512-bit units are
 //! double-pumped 256-bit ones), so only AVX2 is dispatched.
 
 use super::{Hqr, HqrMatrix, SpectralError, SAFE_MAX, SAFE_MIN};

@@ -439,7 +439,7 @@ fn adversarial_inputs_agree_with_faer() {
         assert!(d < 1e-6 * scale, "graded n = {n}: {d:e}");
         // Companion matrix of prod_k (x - k / n): eigenvalues k / n, k = 1..n
         // (Wilkinson-like, unbalanced: ill-conditioned beyond n ~ 10 for
-        // any unbalanced QR, faer's and the old kernel's alike).
+        // any unbalanced QR, faer's included).
         if n > 10 {
             continue;
         }

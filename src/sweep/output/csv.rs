@@ -415,7 +415,7 @@ mod tests {
 
     #[test]
     fn numbers_are_written_as_ryu_writes_them() {
-        // The CSV format is Ryu's shortest round trip; the digits now come from
+        // The CSV format is Ryu's shortest round trip; the digits come from
         // Zmij, so compare the two on random bit patterns, random values of
         // every magnitude and short decimals.
         let mut ryu_buf = ryu::Buffer::new();

@@ -29,44 +29,24 @@
 //! larger file, `e` edited rows out of `r` escape detection with probability
 //! about `(1 - e/r)^RECHECK_SAMPLE`.
 //!
-//! # Speed (issue #16)
+//! # Speed
 //!
 //! [`Verifier::check_block`] takes the file's bytes as read (no per-line
 //! copies), cuts them into pieces at line ends and verifies the pieces in
 //! parallel (UTF-8, line and field splitting included); the caller reads the
 //! next block meanwhile. A number cell is checked without a full parse where
 //! that is exact: a plain decimal of at most 15 significant digits is the
-//! shortest round trip of its value by construction, and one of 16 or 17
-//! digits is compared with the text written for its approximate value and that
-//! value's neighbours (`canonical_number`); other texts take the definitive
-//! path (parse, format, compare). Halton points use constant-base digit
-//! arithmetic. No check was dropped or weakened.
-//!
-//! Since then (resume helper, session 26): a 16- or 17-digit number is
-//! decided by exact integer arithmetic without formatting
-//! (`shortest_by_integers` in `csv.rs`, math doc section 16.2), and a
-//! coordinate cell is checked the same way (its value compared bit for bit
-//! with the one re-derived from the id) instead of formatting the expected
-//! value; only undecided texts are formatted. `benches/resume_check.sh`
-//! (best of 5, 2-core Xeon VM shared with six agents' builds, load average
-//! 12.4 to 13.5): a2db675 9.00 s wall / 2.95 s CPU, this 3.02 s / 0.85 s:
-//! 3.5x CPU; the wall times measure the load, not the program. On one
-//! thread (`--threads 1`, same load) 0.85 to 0.94 s CPU against 1.6 to 1.8 s
-//! before this change (`perf`: the Zmij formatting, 18% of the time, is gone).
-//!
-//! Measured before that (the commands of `benches/resume_check.sh`: 1M-row CSV of valence
-//! 3, Halton, default columns; re-check of the complete file) on the 2-core
-//! VM of the sweep2 branch, shared with other agents' builds (load average 5.5
-//! to 6.5 during the runs, so the machine was about 3x oversubscribed), best
-//! of 5 interleaved runs, wall / CPU (user + sys): a2db675 3.72 s / 2.59 s,
-//! main before this change 2.19 s / 1.24 s, after it 1.80 s / 1.02 s: 2.1x
-//! wall, 2.5x CPU against a2db675, NOT the 5x of the issue on that loaded
-//! machine (an idle-machine measurement is still to be made; a parallel
-//! re-check gains least when the cores are taken). Deterministic instruction
-//! counts (`valgrind --tool=callgrind`, 100k-row file, `--threads 1`): main
-//! 1 050 M, after 902 M (-14%). On two
-//! threads the re-check no longer has a serial read-and-split phase (about 18%
-//! of main's CPU time ran on one thread: `read_until`, copies, UTF-8).
+//! shortest round trip of its value by construction; one of 16 or 17 digits
+//! is decided by exact integer arithmetic without formatting
+//! (`shortest_by_integers` in `csv.rs`, math doc section 16.2) or, where that
+//! leaves it undecided, compared with the text written for its approximate
+//! value and that value's neighbours (`canonical_number`); other texts take
+//! the definitive path (parse, format, compare). A coordinate cell is checked
+//! the same way, its value compared bit for bit with the one re-derived from
+//! the id, instead of formatting the expected value. Halton points use
+//! constant-base digit arithmetic. None of these shortcuts drops or weakens a
+//! check. The re-check time of a 1M-row file is in `BENCHMARKS.md`
+//! (`benches/resume_check.sh`).
 
 use super::csv::{canonical_number, push_number, small_uint, split_csv_line};
 use super::layout::{Kind, Layout};

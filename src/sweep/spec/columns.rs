@@ -8,7 +8,8 @@ use crate::sweep::SweepError;
 /// Parses and validates `[columns]` (the exact certificate needs a scheme of
 /// the Doo-Sabin family, and for original Doo-Sabin a valence whose weights
 /// are rational: `cos(2 pi / n)` rational, `n` in {3, 4, 6}; other valences
-/// used to turn every row into an error row, losing its float columns).
+/// are refused here, since they would turn every row into an error row and
+/// lose its float columns).
 pub(super) fn columns(
     ctx: &Ctx,
     c: &RawColumns,
