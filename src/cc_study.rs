@@ -187,7 +187,7 @@ pub fn check_tol(tol: f64) -> Result<()> {
     }
     Err(Error::InvalidParameter {
         name: "tol",
-        value: format!("{tol:e}"),
+        value: format!("{tol:?}"),
         reason: "the bisection width must be at least 2^-52 (2.2e-16, the spacing f64 resolves in [0, 1]) and below 1",
     })
 }

@@ -1282,6 +1282,80 @@ mod tests {
         );
     }
 
+    /// One valence: the class fractions, unless one or two parameters vary
+    /// (then the scatter or the class map of the slice); without a class
+    /// column, a histogram.
+    #[test]
+    fn one_valence_defaults_to_the_class_fractions() {
+        let cube = t("id,valence,r0,r1,r2,class,contraction_rate\n0,3,0.1,0.1,0.1,a,1\n1,3,0.2,0.2,0.2,b,2\n2,3,0.1,0.2,0.3,a,3\n");
+        let (k, r) = choose(&cube, &PlotRequest::default()).unwrap();
+        assert_eq!(
+            (k, r.x.as_deref(), r.color.as_deref()),
+            (PlotKind::Fractions, Some("valence"), Some("class"))
+        );
+        let fixed = t("id,valence,r0,class,contraction_rate\n0,3,0.1,a,1\n1,3,0.1,b,2\n");
+        assert_eq!(
+            choose(&fixed, &PlotRequest::default()).unwrap().0,
+            PlotKind::Fractions
+        );
+        let no_class = t("id,valence,r0,r1,r2,x\n0,3,0.1,0.1,0.1,1\n1,3,0.2,0.2,0.2,2\n");
+        assert_eq!(
+            choose(&no_class, &PlotRequest::default()).unwrap().0,
+            PlotKind::Histogram
+        );
+    }
+
+    /// A verify cells table is the certified map: one rectangle per cell in
+    /// the slice through the middle of the box, coloured by verdict; rows
+    /// with a non-finite end are counted as dropped.
+    #[test]
+    fn verify_cells_are_drawn_as_the_certified_map() {
+        let cells = t("lo0,lo1,lo2,hi0,hi1,hi2,verdict,class\n\
+            0.1,0.1,0.1,0.5,0.5,0.5,complex_pair,certified\n\
+            0.1,0.1,0.5,0.5,0.5,0.9,real_distinct,certified\n\
+            0.5,0.1,0.1,0.9,0.9,0.9,undecided,undecided\n\
+            0.1,0.5,0.1,0.5,0.9,0.9,NaN,undecided\n\
+            0.1,0.5,NaN,0.5,0.9,0.9,undecided,undecided\n");
+        let p = SweepPlot::build(&cells, &PlotRequest::default()).unwrap();
+        assert_eq!(p.kind(), PlotKind::Map);
+        assert_eq!(p.dropped(), 1);
+        // r2 = 0.5 lies in [0.5, 0.9) of the second cell, not in the first's [0.1, 0.5).
+        let d = p.data();
+        assert_eq!(d.rows.len(), 3, "{:?}", d.rows);
+        assert!(d.rows.iter().all(|r| r[4] != "complex_pair"));
+        assert!(p.default_title().starts_with("Certified map: verdict over r0 and r1, at r2 = 0.5"));
+        let by_c = t("c_lo,c_hi,verdict\n0.0,0.5,standard\n0.5,1.0,undecided\n");
+        let p = SweepPlot::build(&by_c, &PlotRequest::default()).unwrap();
+        assert_eq!((p.items(), p.default_title().as_str()), (2, "Certified map: verdict over c"));
+        // Another kind asked for: the table's columns as they are.
+        let h = SweepPlot::build(
+            &cells,
+            &PlotRequest {
+                kind: Some(PlotKind::Histogram),
+                x: Some("lo0".into()),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(h.kind(), PlotKind::Histogram);
+    }
+
+    /// Rows without a finite value on an axis are counted.
+    #[test]
+    fn dropped_rows_are_counted() {
+        let tab = t("a,b\n1,2\n2,NaN\n3,inf\n4,\n5,6\n");
+        let req = |kind, y: Option<&str>| PlotRequest {
+            kind: Some(kind),
+            x: Some("a".into()),
+            y: y.map(Into::into),
+            ..Default::default()
+        };
+        let p = SweepPlot::build(&tab, &req(PlotKind::Scatter, Some("b"))).unwrap();
+        assert_eq!((p.dropped(), p.axes().as_str()), (3, "a or b"));
+        let p = SweepPlot::build(&tab, &req(PlotKind::Histogram, None)).unwrap();
+        assert_eq!((p.dropped(), p.axes().as_str()), (0, "a"));
+    }
+
     #[test]
     fn fractions_sum_to_one_per_valence() {
         let tab = t("valence,class\n3,a\n3,b\n3,b\n5,a\n");

@@ -269,7 +269,7 @@ impl Table {
 
     /// Reads `bytes` as Parquet when `name` ends in `.parquet` or the bytes
     /// begin and end with the Parquet magic `PAR1` (a Parquet file under
-    /// another name, e.g. `sweep --format parquet --out x.csv`), as CSV
+    /// another name, e.g. a `.parquet` file renamed `x.csv`), as CSV
     /// otherwise ([`from_parquet`](Self::from_parquet),
     /// [`from_csv`](Self::from_csv)).
     pub fn from_named_bytes(name: &str, bytes: &[u8]) -> Result<Self, TableError> {
@@ -394,6 +394,17 @@ impl Table {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shape is read without parsing: a bound of the rows (the lines)
+    /// and the header's fields; a Parquet file's from its footer.
+    #[test]
+    fn shape_bounds_rows_before_parsing() {
+        let csv = b"# fingerprint\nid,valence,class\n0,3,a\n1,3,b\n";
+        let (rows, cols) = Table::shape("s.csv", csv).unwrap();
+        assert_eq!(cols, 3);
+        assert!(rows >= Table::from_csv(csv).unwrap().len());
+        assert!(Table::shape("s.parquet", b"PAR1").is_err());
+    }
 
     #[test]
     fn csv_errors_name_the_problem() {
