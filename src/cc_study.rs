@@ -316,19 +316,23 @@ mod tests {
 
     /// The bisection itself stops after `MAX_BISECTION_STEPS` (or when the
     /// midpoint no longer lies strictly inside) with a numerical error, even
-    /// for a width `f64` cannot reach near the end point (`c ~ 1.6e-5` at
-    /// `n = 5`, where doubles are `3.4e-21` apart).
+    /// for a width `f64` cannot reach near the end point (the standard
+    /// interval of `n = 5` starts at `c ~ 4.7e-10`, where doubles are
+    /// `1.0e-25` apart; a width of `1e-26` is never reached).
     #[test]
     fn bisection_is_bounded_by_a_step_count() {
         let (tx, rx) = std::sync::mpsc::channel();
         std::thread::spawn(move || {
-            let r = bisect(5, 1.0 / 64.0, 0.0, "x".into(), 1e-22, Criterion::Standard);
+            let r = bisect(5, 1.0 / 64.0, 0.0, "x".into(), 1e-26, Criterion::Standard);
             let _ = tx.send(r);
         });
         let r = rx
             .recv_timeout(std::time::Duration::from_secs(60))
             .expect("the bisection must stop");
         let e = r.unwrap_err();
-        assert!(!e.is_input_error() && e.to_string().contains("did not narrow"), "{e}");
+        assert!(
+            !e.is_input_error() && e.to_string().contains("did not narrow"),
+            "{e}"
+        );
     }
 }

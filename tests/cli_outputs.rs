@@ -65,7 +65,17 @@ fn single_file_outputs_replace_a_regular_file_atomically() {
         ("f.svg", vec!["plot", "a.csv", "-o", "f.svg"], "<svg"),
         (
             "cap.obj",
-            vec!["g2-cap", "--valence", "3", "--random-net", "1", "--c", "0.5", "-o", "cap.obj"],
+            vec![
+                "g2-cap",
+                "--valence",
+                "3",
+                "--random-net",
+                "1",
+                "--c",
+                "0.5",
+                "-o",
+                "cap.obj",
+            ],
             "# subdiv-lab g2-cap",
         ),
         (
@@ -111,7 +121,10 @@ fn output_directories_are_touched_only_when_the_tool_wrote_them() {
     fs::write(d.join("empty/notes.txt"), "mine").unwrap();
     fs::write(d.join("empty/cells.csv"), "stale").unwrap();
     ok_in(d, &["verify", "v.toml", "--out", "empty", "--quiet"]);
-    assert_eq!(fs::read_to_string(d.join("empty/notes.txt")).unwrap(), "mine");
+    assert_eq!(
+        fs::read_to_string(d.join("empty/notes.txt")).unwrap(),
+        "mine"
+    );
     assert!(fs::read_to_string(d.join("empty/cells.csv"))
         .unwrap()
         .starts_with("lo0,lo1,lo2,hi0,hi1,hi2,verdict,class,separation\n"));
@@ -137,10 +150,7 @@ fn resuming_a_finished_sweep_changes_nothing() {
     for name in ["c.csv", "p.parquet"] {
         let stem = name.split('.').next().unwrap();
         let summary = d.join(format!("{stem}.summary.json"));
-        let (rows, json) = (
-            fs::read(d.join(name)).unwrap(),
-            fs::read(&summary).unwrap(),
-        );
+        let (rows, json) = (fs::read(d.join(name)).unwrap(), fs::read(&summary).unwrap());
         let o = ok_in(d, &["sweep", "h.toml", "--out", name, "--resume"]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(
@@ -148,7 +158,11 @@ fn resuming_a_finished_sweep_changes_nothing() {
             "{err}"
         );
         assert_eq!(fs::read(d.join(name)).unwrap(), rows, "{name}");
-        assert_eq!(fs::read(&summary).unwrap(), json, "{name}: summary rewritten");
+        assert_eq!(
+            fs::read(&summary).unwrap(),
+            json,
+            "{name}: summary rewritten"
+        );
     }
 }
 
@@ -160,13 +174,30 @@ fn plot_counts_dropped_rows_and_draws_verify_cells() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     fs::write(d.join("s.csv"), "a,b\n1,2\n2,NaN\n3,inf\n4,\n5,6\n6,7\n").unwrap();
-    let o = ok_in(d, &["plot", "s.csv", "-o", "s.svg", "--kind", "scatter", "--x", "a", "--y", "b"]);
+    let o = ok_in(
+        d,
+        &[
+            "plot", "s.csv", "-o", "s.svg", "--kind", "scatter", "--x", "a", "--y", "b",
+        ],
+    );
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         err.contains("left out 3 of 6 rows without a finite a or b (missing, NaN or infinite)"),
         "{err}"
     );
-    let o = ok_in(d, &["plot", "s.csv", "-o", "h.svg", "--kind", "histogram", "--x", "a"]);
+    let o = ok_in(
+        d,
+        &[
+            "plot",
+            "s.csv",
+            "-o",
+            "h.svg",
+            "--kind",
+            "histogram",
+            "--x",
+            "a",
+        ],
+    );
     assert!(o.stderr.is_empty(), "nothing left out: {:?}", o.stderr);
 
     fs::write(d.join("v.toml"), VERIFY).unwrap();
@@ -185,8 +216,15 @@ fn plot_counts_dropped_rows_and_draws_verify_cells() {
         many.push_str(&format!("{},{}\n", i % 1000, i / 1000));
     }
     fs::write(d.join("many.csv"), many).unwrap();
-    ok_in(d, &["plot", "many.csv", "-o", "many.png", "--kind", "scatter", "--x", "a", "--y", "b"]);
-    assert!(fs::read(d.join("many.png")).unwrap().starts_with(b"\x89PNG"));
+    ok_in(
+        d,
+        &[
+            "plot", "many.csv", "-o", "many.png", "--kind", "scatter", "--x", "a", "--y", "b",
+        ],
+    );
+    assert!(fs::read(d.join("many.png"))
+        .unwrap()
+        .starts_with(b"\x89PNG"));
 }
 
 /// The `--help` texts state the accepted ranges and the output rule.
@@ -204,14 +242,32 @@ fn help_states_ranges_and_the_output_rule() {
     }
     let checks: [(&[&str], &[&str]); 6] = [
         (&["merge", "--help"], &["Parquet", "replaced atomically"]),
-        (&["sweep", "--help"], &["NAME.parquet", "never replaced", "fingerprint"]),
+        (
+            &["sweep", "--help"],
+            &["NAME.parquet", "never replaced", "fingerprint"],
+        ),
         (
             &["verify", "--help"],
-            &["p_box", "q_box", "nurds 3 to 16", "2^-40", "any other directory"],
+            &[
+                "p_box",
+                "q_box",
+                "nurds 3 to 16",
+                "2^-40",
+                "any other directory",
+            ],
         ),
-        (&["g2-cap", "--help"], &["3 to 16", "1 to 256", "replaced atomically"]),
-        (&["cc-study", "--help"], &["at most 256", "1 to 100000", "2^-52"]),
-        (&["plot", "--help"], &["400 to 8000", "replaced atomically", "100000 points"]),
+        (
+            &["g2-cap", "--help"],
+            &["3 to 16", "1 to 256", "replaced atomically"],
+        ),
+        (
+            &["cc-study", "--help"],
+            &["at most 256", "1 to 100000", "2^-52"],
+        ),
+        (
+            &["plot", "--help"],
+            &["400 to 8000", "replaced atomically", "100000 points"],
+        ),
     ];
     for (args, needles) in checks {
         let text = help(args).split_whitespace().collect::<Vec<_>>().join(" ");
@@ -220,5 +276,9 @@ fn help_states_ranges_and_the_output_rule() {
         }
     }
     let sub = help(&["subdivide", "--help"]);
-    assert!(sub.split_whitespace().collect::<Vec<_>>().join(" ").contains("replaced atomically"));
+    assert!(sub
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .contains("replaced atomically"));
 }

@@ -780,7 +780,10 @@ fn cases() -> Vec<Case> {
             args: &["verify", "v.toml", "--out", "o"],
             files: &[
                 ("v.toml", VERIFY_SMALL),
-                ("o/summary.json", "{\"tool\": \"subdiv-lab\", \"command\": \"verify\"}\n"),
+                (
+                    "o/summary.json",
+                    "{\"tool\": \"subdiv-lab\", \"command\": \"verify\"}\n",
+                ),
                 ("o/cells.csv", "old cells\n"),
             ],
             code: 1,
@@ -795,14 +798,29 @@ fn cases() -> Vec<Case> {
         ),
         bad_with(
             "g2-cap-out-is-a-directory",
-            &["g2-cap", "--valence", "3", "--random-net", "1", "--c", "0.5", "-o", "d.obj"],
+            &[
+                "g2-cap",
+                "--valence",
+                "3",
+                "--random-net",
+                "1",
+                "--c",
+                "0.5",
+                "-o",
+                "d.obj",
+            ],
             &[("d.obj/keep.txt", "mine")],
             "-o d.obj is a directory",
         ),
         bad_with(
             "merge-out-is-a-directory",
             &["merge", "--spec", "h.toml", "--out", "d", "a.csv"],
-            &[("h.toml", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY), ("d/keep.txt", "mine")],
+            &[
+                ("h.toml", MERGE_SPEC),
+                ("a.csv", MERGE_A_CSV),
+                ("a.summary.json", MERGE_A_SUMMARY),
+                ("d/keep.txt", "mine"),
+            ],
             "--out d is a directory",
         ),
     ]);
@@ -1581,7 +1599,9 @@ fn cases() -> Vec<Case> {
     v.extend([
         bad_with(
             "plot-svg-too-many-points",
-            &["plot", "p.csv", "-o", "f.svg", "--kind", "scatter", "--x", "a", "--y", "b"],
+            &[
+                "plot", "p.csv", "-o", "f.svg", "--kind", "scatter", "--x", "a", "--y", "b",
+            ],
             Box::leak(Box::new([("p.csv", many_points(100_001))])),
             "draws 100001 points or cells, an SVG of ~8.0 MB (limit 100000); write a PNG",
         ),

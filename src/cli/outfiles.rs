@@ -165,9 +165,11 @@ pub(crate) fn install_new(tmp: &Path, target: &Path) -> std::io::Result<()> {
             let _ = fs::remove_file(tmp);
             Err(e)
         }
-        Err(_) if fs::symlink_metadata(target).is_err() => fs::rename(tmp, target).inspect_err(|_| {
-            let _ = fs::remove_file(tmp);
-        }),
+        Err(_) if fs::symlink_metadata(target).is_err() => {
+            fs::rename(tmp, target).inspect_err(|_| {
+                let _ = fs::remove_file(tmp);
+            })
+        }
         Err(e) => {
             let _ = fs::remove_file(tmp);
             Err(e)

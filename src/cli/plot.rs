@@ -100,8 +100,8 @@ pub(crate) fn run(args: PlotArgs) -> CliResult {
     let bytes = std::fs::read(&args.input)
         .map_err(|e| CliError::usage(anyhow!("cannot read {in_name}: {e}")))?;
     // Reading and drawing the table: checked before it is parsed.
-    let (rows, columns) = Table::shape(&in_name, &bytes)
-        .map_err(|e| CliError::usage(anyhow!("{in_name}: {e}")))?;
+    let (rows, columns) =
+        Table::shape(&in_name, &bytes).map_err(|e| CliError::usage(anyhow!("{in_name}: {e}")))?;
     let estimate = sweep_plot::estimate(rows, columns, file_bytes);
     super::budget::check("plot", &in_name, &estimate, limit, args.force)?;
     let table = Table::from_named_bytes(&in_name, &bytes)

@@ -274,7 +274,11 @@ fn scan_existing(
             "{name} exists but is empty: not a sweep file of this tool (one is created whole, with its fingerprint line); remove it or choose another --out"
         )));
     }
-    if lineno == 0 && !output::fingerprint_line(plan, shard).as_bytes().starts_with(&line) {
+    if lineno == 0
+        && !output::fingerprint_line(plan, shard)
+            .as_bytes()
+            .starts_with(&line)
+    {
         // A torn first line that is not the start of this run's fingerprint.
         return Err(mismatch(
             1,
@@ -559,7 +563,9 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
                 .write_all(output::fingerprint_line(&plan, shard).as_bytes())
                 .map_err(anyhow::Error::from)
                 .and_then(|()| layout.write_header(&mut file).map_err(anyhow::Error::from))
-                .and_then(|()| super::outfiles::install_new(&tmp, path).map_err(anyhow::Error::from))
+                .and_then(|()| {
+                    super::outfiles::install_new(&tmp, path).map_err(anyhow::Error::from)
+                })
                 .with_context(|| format!("creating {}", path.display()));
             if let Err(e) = preamble {
                 let _ = fs::remove_file(&tmp);

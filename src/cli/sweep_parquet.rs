@@ -240,8 +240,7 @@ pub(crate) fn open(
             return Err(e);
         }
     };
-    super::outfiles::install_new(&tmp, path)
-        .map_err(|e| io(e, "creating"))?;
+    super::outfiles::install_new(&tmp, path).map_err(|e| io(e, "creating"))?;
     let footer = rows.current_footer().map_err(CliError::failure)?;
     super::outfiles::write_atomic(&journal, &journal_bytes(data_end, &footer))
         .map_err(CliError::failure)?;

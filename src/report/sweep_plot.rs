@@ -391,8 +391,14 @@ fn build_cells(
         return Err(TableError::NoFiniteValues(coords[xi].1.clone()));
     }
     let range = |k: usize| {
-        let a = rows.iter().map(|&i| lo[k][i].unwrap_or(0.0)).fold(f64::INFINITY, f64::min);
-        let b = rows.iter().map(|&i| hi[k][i].unwrap_or(0.0)).fold(f64::NEG_INFINITY, f64::max);
+        let a = rows
+            .iter()
+            .map(|&i| lo[k][i].unwrap_or(0.0))
+            .fold(f64::INFINITY, f64::min);
+        let b = rows
+            .iter()
+            .map(|&i| hi[k][i].unwrap_or(0.0))
+            .fold(f64::NEG_INFINITY, f64::max);
         (a, b)
     };
     // The other coordinates at the middle of the box; a cell is in the slice
@@ -1323,10 +1329,15 @@ mod tests {
         let d = p.data();
         assert_eq!(d.rows.len(), 3, "{:?}", d.rows);
         assert!(d.rows.iter().all(|r| r[4] != "complex_pair"));
-        assert!(p.default_title().starts_with("Certified map: verdict over r0 and r1, at r2 = 0.5"));
+        assert!(p
+            .default_title()
+            .starts_with("Certified map: verdict over r0 and r1, at r2 = 0.5"));
         let by_c = t("c_lo,c_hi,verdict\n0.0,0.5,standard\n0.5,1.0,undecided\n");
         let p = SweepPlot::build(&by_c, &PlotRequest::default()).unwrap();
-        assert_eq!((p.items(), p.default_title().as_str()), (2, "Certified map: verdict over c"));
+        assert_eq!(
+            (p.items(), p.default_title().as_str()),
+            (2, "Certified map: verdict over c")
+        );
         // Another kind asked for: the table's columns as they are.
         let h = SweepPlot::build(
             &cells,

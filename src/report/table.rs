@@ -287,10 +287,11 @@ impl Table {
     /// footer's counts.
     pub fn shape(name: &str, bytes: &[u8]) -> Result<(usize, usize), TableError> {
         if Self::is_parquet(name, bytes) {
-            let (rows, columns) = crate::sweep::output::parquet::shape(bytes).map_err(|e| match e {
-                crate::sweep::SweepError::Read(m) => TableError::Parquet(m),
-                other => TableError::Parquet(other.to_string()),
-            })?;
+            let (rows, columns) =
+                crate::sweep::output::parquet::shape(bytes).map_err(|e| match e {
+                    crate::sweep::SweepError::Read(m) => TableError::Parquet(m),
+                    other => TableError::Parquet(other.to_string()),
+                })?;
             return Ok((usize::try_from(rows).unwrap_or(usize::MAX), columns));
         }
         let lines = memchr::memchr_iter(b'\n', bytes).count() + 1;

@@ -1168,10 +1168,9 @@ pub fn shape(bytes: &[u8]) -> Result<(u64, usize), SweepError> {
             "a footer of {len} bytes in a file of {n} bytes"
         )));
     }
-    let md = parquet::file::metadata::ParquetMetaDataReader::decode_metadata(
-        &bytes[n - 8 - len..n - 8],
-    )
-    .map_err(pq_read_err)?;
+    let md =
+        parquet::file::metadata::ParquetMetaDataReader::decode_metadata(&bytes[n - 8 - len..n - 8])
+            .map_err(pq_read_err)?;
     let f = md.file_metadata();
     Ok((
         u64::try_from(f.num_rows()).unwrap_or(0),
@@ -1235,7 +1234,9 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<ParquetTable, SweepError> {
         let row = row.map_err(pq_read_err)?;
         for (k, (_, f)) in row.get_column_iter().enumerate() {
             let Some(col) = columns.get_mut(k) else {
-                return Err(SweepError::Read("parquet: a row has too many fields".into()));
+                return Err(SweepError::Read(
+                    "parquet: a row has too many fields".into(),
+                ));
             };
             let ok = match (col, f) {
                 (Column::U64(v), Field::ULong(x)) => {

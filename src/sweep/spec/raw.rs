@@ -199,7 +199,9 @@ pub(crate) fn bounds(
                 return ctx.err(
                     key,
                     span,
-                    format!("{key}: bound {x:?} is outside the open interval (0, 1) of edge ratios"),
+                    format!(
+                        "{key}: bound {x:?} is outside the open interval (0, 1) of edge ratios"
+                    ),
                 );
             }
         }
