@@ -38,7 +38,7 @@
 //! ```
 
 use crate::charmap;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::schemes::catmull_clark::fourier;
 use crate::schemes::LocalScheme;
 use crate::spectral::{classify_scheme, SubdominantClass};
@@ -166,8 +166,35 @@ pub struct CInterval {
     pub above: String,
 }
 
-/// Bisection between `inside` (certified) and `outside` (not) to width `tol`;
-/// returns `(inside, outside, reason at outside)`.
+/// Smallest bisection width of [`intervals`]: `f64::EPSILON = 2^-52`
+/// (about `2.2e-16`). Doubles in `[1/2, 1)` are `2^-53` apart, the widest
+/// spacing in `[0, 1]`, so the midpoint of any bracket in `[0, 1]` wider than
+/// `2^-52` lies strictly inside it and every step halves the bracket. Below
+/// it a bracket can shrink to two adjacent doubles still wider than `tol`
+/// (next to `c = 1/2` they are `1.1e-16` apart) and never narrow further.
+pub const MIN_TOL: f64 = f64::EPSILON;
+
+/// Most bisection steps per interval end: `64`. From a bracket of width at
+/// most 1, [`MIN_TOL`] is reached in at most 52 halvings; a bracket still
+/// wider than `tol` after 64 steps is a numerical failure, never an endless
+/// loop.
+pub const MAX_BISECTION_STEPS: u32 = 64;
+
+/// Checks a bisection width for [`intervals`]: `MIN_TOL <= tol < 1`.
+pub fn check_tol(tol: f64) -> Result<()> {
+    if tol.is_finite() && (MIN_TOL..1.0).contains(&tol) {
+        return Ok(());
+    }
+    Err(Error::InvalidParameter {
+        name: "tol",
+        value: format!("{tol:?}"),
+        reason: "the bisection width must be at least 2^-52 (2.2e-16, the spacing f64 resolves in [0, 1]) and below 1",
+    })
+}
+
+/// Bisection between `inside` (certified) and `outside` (not) to width `tol`
+/// (at least [`MIN_TOL`]), in at most [`MAX_BISECTION_STEPS`] steps; returns
+/// `(inside, outside, reason at outside)`.
 fn bisect(
     n: usize,
     mut inside: f64,
@@ -176,8 +203,21 @@ fn bisect(
     tol: f64,
     criterion: Criterion,
 ) -> Result<(f64, f64, String)> {
+    let mut steps = 0;
     while (inside - outside).abs() > tol {
         let mid = 0.5 * (inside + outside);
+        let strictly_inside = (inside.min(outside) < mid) && (mid < inside.max(outside));
+        if steps == MAX_BISECTION_STEPS || !strictly_inside {
+            return Err(Error::Numerical {
+                routine: "cc-study bisection",
+                reason: format!(
+                    "the bracket [{:e}, {:e}] did not narrow to {tol:e} in {steps} steps",
+                    inside.min(outside),
+                    inside.max(outside)
+                ),
+            });
+        }
+        steps += 1;
         let v = verdict(n, mid, criterion)?;
         if v.is_empty() {
             inside = mid;
@@ -206,13 +246,15 @@ pub fn c1_intervals(n: usize, samples: usize, tol: f64) -> Result<Vec<CInterval>
 /// change, and each end is located by bisection to `tol` (both ends of the
 /// final bracket are reported, with the reason just outside). Changes between
 /// two grid points that cancel out (two ends within one grid cell) are not
-/// seen: choose `samples` accordingly.
+/// seen: choose `samples` accordingly. A `tol` outside `[MIN_TOL, 1)` is an
+/// input error ([`check_tol`]).
 pub fn intervals(
     n: usize,
     samples: usize,
     tol: f64,
     criterion: Criterion,
 ) -> Result<Vec<CInterval>> {
+    check_tol(tol)?;
     let m = samples.max(1);
     let grid: Vec<f64> = (0..=m).map(|k| k as f64 / m as f64).collect();
     let reasons: Vec<String> = grid
@@ -254,4 +296,43 @@ pub fn intervals(
         k += 1;
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A tolerance below what `f64` resolves in `[0, 1]` is an input error
+    /// before any work; the smallest accepted one still terminates.
+    #[test]
+    fn tolerance_below_f64_resolution_is_refused() {
+        for tol in [1e-21, 0.0, -1.0, 1.0, f64::NAN, MIN_TOL / 2.0] {
+            let e = intervals(5, 4, tol, Criterion::Standard).unwrap_err();
+            assert!(e.is_input_error(), "{tol}: {e}");
+        }
+        let iv = intervals(5, 4, MIN_TOL, Criterion::Standard).unwrap();
+        assert!(iv[0].lo > 0.0 && (iv[0].lo - iv[0].lo_outside).abs() <= MIN_TOL);
+    }
+
+    /// The bisection itself stops after `MAX_BISECTION_STEPS` (or when the
+    /// midpoint no longer lies strictly inside) with a numerical error, even
+    /// for a width `f64` cannot reach near the end point (the standard
+    /// interval of `n = 5` starts at `c ~ 4.7e-10`, where doubles are
+    /// `1.0e-25` apart; a width of `1e-26` is never reached).
+    #[test]
+    fn bisection_is_bounded_by_a_step_count() {
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let r = bisect(5, 1.0 / 64.0, 0.0, "x".into(), 1e-26, Criterion::Standard);
+            let _ = tx.send(r);
+        });
+        let r = rx
+            .recv_timeout(std::time::Duration::from_secs(60))
+            .expect("the bisection must stop");
+        let e = r.unwrap_err();
+        assert!(
+            !e.is_input_error() && e.to_string().contains("did not narrow"),
+            "{e}"
+        );
+    }
 }

@@ -101,6 +101,20 @@ const MERGE_A_CSV: &str = "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/
 /// The summary of [`MERGE_A_CSV`].
 const MERGE_A_SUMMARY: &str = "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe5\",\"total_configurations\":8,\"shard\":{\"index\":0,\"count\":1},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}";
 
+/// A small verify spec (n = 3, class only, wide cells: a fraction of a second).
+const VERIFY_SMALL: &str = "name = \"v\"\nscheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\nmin_width = 0.2\n";
+/// A verify `cells.csv` (two coordinates' worth of an n = 3 box).
+const VERIFY_CELLS: &str = "lo0,lo1,lo2,hi0,hi1,hi2,verdict,class\n0.1,0.1,0.1,0.5,0.5,0.9,complex_pair,certified\n0.5,0.1,0.1,0.9,0.5,0.9,real_distinct,certified\n0.1,0.5,0.1,0.9,0.9,0.9,undecided,undecided\n";
+
+/// A CSV of `rows` scatter points (columns `a`, `b`), built once.
+fn many_points(rows: usize) -> &'static str {
+    let mut s = String::from("a,b\n");
+    for i in 0..rows {
+        s.push_str(&format!("{},{}\n", i % 1000, i / 1000));
+    }
+    Box::leak(s.into_boxed_str())
+}
+
 fn cases() -> Vec<Case> {
     let mut v = Vec::new();
 
@@ -750,6 +764,66 @@ fn cases() -> Vec<Case> {
             "nodir",
         ),
     ]);
+    // One rule for outputs: a failed run (stdout full) leaves no new output,
+    // and an output directory is never replaced by a file.
+    v.extend([
+        Case {
+            name: "verify-stdout-full-new-dir",
+            args: &["verify", "v.toml", "--out", "o"],
+            files: &[("v.toml", VERIFY_SMALL)],
+            code: 1,
+            needle: "stdout",
+            stdout: Stdout::Full,
+        },
+        Case {
+            name: "verify-stdout-full-previous-output",
+            args: &["verify", "v.toml", "--out", "o"],
+            files: &[
+                ("v.toml", VERIFY_SMALL),
+                (
+                    "o/summary.json",
+                    "{\"tool\": \"subdiv-lab\", \"command\": \"verify\"}\n",
+                ),
+                ("o/cells.csv", "old cells\n"),
+            ],
+            code: 1,
+            needle: "stdout",
+            stdout: Stdout::Full,
+        },
+        bad_with(
+            "plot-out-is-a-directory",
+            &["plot", "s.csv", "-o", "d.svg"],
+            &[("s.csv", "a,b\n1,2\n3,4\n"), ("d.svg/keep.txt", "mine")],
+            "-o d.svg is a directory",
+        ),
+        bad_with(
+            "g2-cap-out-is-a-directory",
+            &[
+                "g2-cap",
+                "--valence",
+                "3",
+                "--random-net",
+                "1",
+                "--c",
+                "0.5",
+                "-o",
+                "d.obj",
+            ],
+            &[("d.obj/keep.txt", "mine")],
+            "-o d.obj is a directory",
+        ),
+        bad_with(
+            "merge-out-is-a-directory",
+            &["merge", "--spec", "h.toml", "--out", "d", "a.csv"],
+            &[
+                ("h.toml", MERGE_SPEC),
+                ("a.csv", MERGE_A_CSV),
+                ("a.summary.json", MERGE_A_SUMMARY),
+                ("d/keep.txt", "mine"),
+            ],
+            "--out d is a directory",
+        ),
+    ]);
     // (end of section cli-io)
     //
     //
@@ -952,6 +1026,35 @@ fn cases() -> Vec<Case> {
             "got 0",
         ),
     ]);
+    // cc-study: a bisection width below what f64 resolves in [0, 1] never
+    // ended; it is refused (and every bisection is bounded by a step count).
+    v.extend([
+        bad(
+            "cc-study-tol-below-f64",
+            &["cc-study", "--n-min", "5", "--n-max", "5", "--tol", "1e-21"],
+            "--tol: invalid parameter tol = 1e-21",
+        ),
+        bad(
+            "cc-study-tol-zero",
+            &["cc-study", "--n-min", "5", "--n-max", "5", "--tol", "0"],
+            "tol = 0.0",
+        ),
+        bad(
+            "cc-study-tol-one",
+            &["cc-study", "--n-min", "5", "--n-max", "5", "--tol", "1"],
+            "tol = 1.0",
+        ),
+        bad(
+            "cc-study-samples-zero",
+            &["cc-study", "--samples", "0"],
+            "--samples must be in 1..=100000, got 0",
+        ),
+        bad(
+            "cc-study-n-max-above-range",
+            &["cc-study", "--n-max", "257"],
+            "--n-max <= 256, got 3..257",
+        ),
+    ]);
     // (end of section bounded-work)
     //
     //
@@ -987,13 +1090,13 @@ fn cases() -> Vec<Case> {
         },
         Case {
             name: "sweep-format-parquet-resume-csv",
-            args: &["sweep", "h.toml", "--out", "o.csv", "--resume", "--format", "parquet"],
+            args: &["sweep", "h.toml", "--out", "o.dat", "--resume", "--format", "parquet"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence\n"),
+                ("o.dat", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence\n"),
             ],
             code: 2,
-            needle: "not a Parquet file",
+            needle: "cannot read o.dat: not a Parquet file",
             stdout: Stdout::Pipe,
         },
         Case {
@@ -1161,8 +1264,8 @@ fn cases() -> Vec<Case> {
     ]);
     // Sweep and merge never overwrite a file
     // they did not write (the summary beside --out, the spec, an input
-    // shard's summary, an existing --out), and a missing --out directory is
-    // bad input (exit 2), not a failure while running.
+    // shard's summary, an existing sweep --out), and a missing --out
+    // directory is bad input (exit 2), not a failure while running.
     v.extend([
         bad_with(
             "sweep-exact-certificate-doo-sabin-irrational-valence",
@@ -1197,13 +1300,7 @@ fn cases() -> Vec<Case> {
             "merge-out-is-an-input-summary",
             &["merge", "--spec", "h.toml", "--out", "a.summary.json", "a.csv"],
             &[("h.toml", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY)],
-            "--out a.summary.json exists",
-        ),
-        bad_with(
-            "merge-out-is-an-existing-user-file",
-            &["merge", "--spec", "h.toml", "--out", "q.txt", "a.csv"],
-            &[("h.toml", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY), ("q.txt", "mine")],
-            "--out q.txt exists",
+            "--out a.summary.json is also the summary of an input",
         ),
         bad_with(
             "merge-summary-of-out-exists",
@@ -1222,6 +1319,77 @@ fn cases() -> Vec<Case> {
             &["merge", "--spec", "h.toml", "--out", "m3.csv", "m.csv"],
             &[("h.toml", MERGE_SPEC)],
             "m.summary.json",
+        ),
+    ]);
+    // Resumable outputs are continued only when they are the tool's (a file
+    // of this tool is created whole with its fingerprint); the extension of
+    // an output must match its format; reading a file is called reading.
+    v.extend([
+        bad_with(
+            "sweep-resume-empty-parquet",
+            &["sweep", "h.toml", "--out", "zero.parquet", "--resume"],
+            &[("h.toml", MERGE_SPEC), ("zero.parquet", "")],
+            "zero.parquet exists but is empty: not a sweep file of this tool",
+        ),
+        bad_with(
+            "sweep-resume-empty-csv",
+            &["sweep", "h.toml", "--out", "zero.csv", "--resume"],
+            &[("h.toml", MERGE_SPEC), ("zero.csv", "")],
+            "zero.csv exists but is empty: not a sweep file of this tool",
+        ),
+        bad_with(
+            "sweep-resume-foreign-torn-first-line",
+            &["sweep", "h.toml", "--out", "f.csv", "--resume"],
+            &[("h.toml", MERGE_SPEC), ("f.csv", "my notes, no newline")],
+            "f.csv: line 1: an incomplete first line that is not this spec's fingerprint",
+        ),
+        bad_with(
+            "sweep-resume-summary-is-a-user-file",
+            &["sweep", "h.toml", "--out", "o.csv", "--resume"],
+            &[("h.toml", MERGE_SPEC), ("o.csv", MERGE_A_CSV), ("o.summary.json", "mine")],
+            "o.summary.json exists and is not a sweep summary",
+        ),
+        bad_with(
+            "sweep-format-parquet-out-csv",
+            &["sweep", "h.toml", "--format", "parquet", "--out", "x.csv"],
+            &[("h.toml", MERGE_SPEC)],
+            "--format parquet but --out x.csv names a CSV file",
+        ),
+        bad_with(
+            "sweep-format-csv-out-parquet",
+            &["sweep", "h.toml", "--format", "csv", "--out", "x.parquet"],
+            &[("h.toml", MERGE_SPEC)],
+            "--format csv but --out x.parquet names a Parquet file",
+        ),
+        bad_with(
+            "merge-parquet-shards-out-csv",
+            &["merge", "--spec", "h.toml", "--out", "m.csv", "a.parquet"],
+            &[("h.toml", MERGE_SPEC), ("a.parquet", "PAR1 a shard"), ("a.summary.json", MERGE_A_SUMMARY)],
+            "the shards are Parquet files but --out m.csv names a CSV file",
+        ),
+        bad_with(
+            "merge-csv-shards-out-parquet",
+            &["merge", "--spec", "h.toml", "--out", "m.parquet", "a.csv"],
+            &[("h.toml", MERGE_SPEC), ("a.csv", MERGE_A_CSV), ("a.summary.json", MERGE_A_SUMMARY)],
+            "the shards are CSV files but --out m.parquet names a Parquet file",
+        ),
+        bad_with(
+            "merge-torn-parquet-shard",
+            &["merge", "--spec", "h.toml", "--out", "m.parquet", "a.parquet"],
+            &[("h.toml", MERGE_SPEC), ("a.parquet", "PAR1 torn row group"), ("a.summary.json", MERGE_A_SUMMARY)],
+            "cannot read a.parquet: not a Parquet file, or torn",
+        ),
+        bad_with(
+            "sweep-resume-torn-parquet-reads",
+            &["sweep", "h.toml", "--out", "o.parquet", "--resume"],
+            &[("h.toml", MERGE_SPEC), ("o.parquet", "PAR1 torn row group")],
+            "cannot read o.parquet: not a Parquet file, or torn",
+        ),
+        bad_with(
+            "sweep-ratio-range-huge-bound",
+            &["sweep", "h.toml", "--out", "o.csv"],
+            &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [-1e300, 0.5]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n")],
+            "bound -1e300 is outside the open interval (0, 1)",
         ),
     ]);
     // (end of section sweep-resume-merge)
@@ -1425,6 +1593,30 @@ fn cases() -> Vec<Case> {
         bad("plot-missing-input", &["plot", "none.csv", "-o", "f.svg"], "none.csv"),
         bad("report-formats-unknown", &["report", "--formats", "svg,pdf", "--out", "r"], "svg,pdf"),
         bad("report-formats-empty", &["report", "--formats", "", "--out", "r"], "formats"),
+    ]);
+    // plot: an SVG of more points than MAX_SVG_ITEMS is refused (a PNG is
+    // not); verify's cells are drawn over two distinct coordinates.
+    v.extend([
+        bad_with(
+            "plot-svg-too-many-points",
+            &[
+                "plot", "p.csv", "-o", "f.svg", "--kind", "scatter", "--x", "a", "--y", "b",
+            ],
+            Box::leak(Box::new([("p.csv", many_points(100_001))])),
+            "draws 100001 points or cells, an SVG of ~8.0 MB (limit 100000); write a PNG",
+        ),
+        bad_with(
+            "plot-cells-same-axis-twice",
+            &["plot", "cells.csv", "-o", "f.svg", "--x", "r1", "--y", "r1"],
+            &[("cells.csv", VERIFY_CELLS)],
+            "--x and --y both name the coordinate r1",
+        ),
+        bad_with(
+            "plot-cells-unknown-colour",
+            &["plot", "cells.csv", "-o", "f.svg", "--color", "charmap"],
+            &[("cells.csv", VERIFY_CELLS)],
+            "no column \"charmap\"",
+        ),
     ]);
     // (end of section figures)
 
@@ -1761,6 +1953,12 @@ fn cases() -> Vec<Case> {
             "p_box is for scheme",
         ),
     ]);
+    v.extend([bad_with(
+        "verify-min-width-tiny",
+        &["verify", "v.toml", "--out", "o"],
+        &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\nmin_width = 1e-300\n")],
+        "at least 2^-40 (9.094947017729282e-13), got 1e-300 (line 5)",
+    )]);
     // (end of section verify)
 
     // ===================================================================

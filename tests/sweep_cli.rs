@@ -244,9 +244,12 @@ fn resume_after_torn_write_is_byte_identical() {
             assert_eq!(summary(&p), summary(&reference));
         }
     }
-    // Torn inside the header, and an interrupted --limit run continued in steps.
+    // Torn inside the header (after a complete fingerprint line), and an
+    // interrupted --limit run continued in steps.
     let p = dir.path().join("steps.csv");
-    fs::write(&p, "id,vale").unwrap();
+    let text = String::from_utf8_lossy(&expected).into_owned();
+    let fingerprint = &text[..=text.find('\n').unwrap()];
+    fs::write(&p, format!("{fingerprint}id,vale")).unwrap();
     ok(&[
         "sweep",
         s(&spec),
@@ -310,7 +313,7 @@ fn bad_specs_name_the_key_and_create_no_file() {
         ),
         (
             SPEC.replace("[0.05, 0.95]", "[0.0, 0.5]"),
-            "space.ratio_range: bound 0 is outside the open interval (0, 1)",
+            "space.ratio_range: bound 0.0 is outside the open interval (0, 1)",
         ),
         (
             SPEC.replace("[0.05, 0.95]", "[0.5, 1.5]"),

@@ -7,20 +7,26 @@ use super::{CliError, CliResult};
 use anyhow::anyhow;
 use clap::Args;
 use std::io::Write as _;
-use subdiv_lab::cc_study::{csv_cell, intervals, study_curve_rows, Criterion};
+use subdiv_lab::cc_study::{check_tol, csv_cell, intervals, study_curve_rows, Criterion};
+
+/// Largest `--n-max`.
+const MAX_VALENCE: usize = 256;
+/// Largest `--samples`.
+const MAX_SAMPLES: usize = 100_000;
 
 #[derive(Args, Debug)]
 pub(crate) struct CcStudyArgs {
-    /// Smallest valence.
+    /// Smallest valence (3 <= --n-min <= --n-max).
     #[arg(long, default_value_t = 3)]
     n_min: usize,
-    /// Largest valence.
+    /// Largest valence (at most 256).
     #[arg(long, default_value_t = 32)]
     n_max: usize,
-    /// Grid cells in c (samples + 1 values in [0, 1]).
+    /// Grid cells in c (samples + 1 values in [0, 1]); 1 to 100000.
     #[arg(long, default_value_t = 100)]
     samples: usize,
-    /// Bisection width for the interval ends.
+    /// Bisection width for the interval ends: at least 2^-52 (2.2e-16, what
+    /// f64 resolves in [0, 1]) and below 1.
     #[arg(long, default_value_t = 1e-6)]
     tol: f64,
     /// Print the curves (one row per (n, c)) instead of the intervals.
@@ -42,18 +48,20 @@ enum CriterionArg {
 }
 
 pub(crate) fn run(args: CcStudyArgs) -> CliResult {
-    if args.n_min < 3 || args.n_max < args.n_min || args.n_max > 256 {
+    if args.n_min < 3 || args.n_max < args.n_min || args.n_max > MAX_VALENCE {
         return Err(CliError::usage(anyhow!(
-            "need 3 <= --n-min <= --n-max <= 256, got {}..{}",
+            "need 3 <= --n-min <= --n-max <= {MAX_VALENCE}, got {}..{}",
             args.n_min,
             args.n_max
         )));
     }
-    if args.samples == 0 || args.samples > 100_000 || !(args.tol > 0.0 && args.tol < 1.0) {
+    if args.samples == 0 || args.samples > MAX_SAMPLES {
         return Err(CliError::usage(anyhow!(
-            "need 1 <= --samples <= 100000 and 0 < --tol < 1"
+            "--samples must be in 1..={MAX_SAMPLES}, got {}",
+            args.samples
         )));
     }
+    check_tol(args.tol).map_err(|e| CliError::lib(e).context("--tol"))?;
     super::budget::check(
         "cc-study",
         &format!("valences {}..{}", args.n_min, args.n_max),

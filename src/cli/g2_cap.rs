@@ -21,10 +21,11 @@ const MAX_SAMPLES: usize = 256;
 pub(crate) struct G2CapArgs {
     /// Input mesh (OBJ; may be open away from the 2-ring of --vertex).
     input: Option<PathBuf>,
-    /// The extraordinary vertex (0-based index into the OBJ's vertices).
+    /// The extraordinary vertex (0-based index into the OBJ's vertices; its
+    /// valence must be in 3..=16).
     #[arg(long)]
     vertex: Option<usize>,
-    /// Valence of a generated test net (with --random-net).
+    /// Valence of a generated test net (with --random-net), 3 to 16.
     #[arg(long)]
     valence: Option<usize>,
     /// Seed of a generated test net: a random perturbation of a regular-looking 2-ring.
@@ -34,9 +35,10 @@ pub(crate) struct G2CapArgs {
     #[arg(long)]
     c: String,
     /// Write the cap, sampled on --samples x --samples quads per patch, as OBJ.
+    /// An existing regular file is replaced atomically.
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
-    /// Quads per patch side in the OBJ output.
+    /// Quads per patch side in the OBJ output, 1 to 256.
     #[arg(long, default_value_t = 16)]
     samples: usize,
     /// Print the result as JSON (degree, patches, residuals, energy).

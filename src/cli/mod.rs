@@ -50,13 +50,13 @@ enum Command {
     Report(report::ReportArgs),
     /// Spectrum, subdominant classification and Theorem 1 for one configuration.
     Analyze(analyze::AnalyzeArgs),
-    /// Run a parameter sweep from a TOML spec into a CSV (+ summary JSON).
+    /// Run a parameter sweep from a TOML spec into a CSV or Parquet file (+ summary JSON).
     Sweep(sweep::SweepArgs),
     /// G2 cap of bidegree (7, 7) around an extraordinary vertex (seed 003): JSON, OBJ.
     G2Cap(g2_cap::G2CapArgs),
-    /// Merge shard CSVs of one sweep, checking no configuration is missing or duplicated.
+    /// Merge shard files (CSV or Parquet) of one sweep, checking no configuration is missing or duplicated.
     Merge(sweep::MergeArgs),
-    /// Plot a sweep's results (class fractions, histogram, scatter or 2-D class map).
+    /// Plot a sweep's results (class fractions, histogram, scatter or 2-D class map) or verify's cells.
     Plot(plot::PlotArgs),
     /// Prove class/separation verdicts over a box of ratios or an interval of c (cells.csv + summary.json).
     Verify(verify::VerifyArgs),

@@ -1,11 +1,24 @@
 //! Output files of the CLI: conflict checks and atomic writes.
 //!
-//! The rule: **the tool never deletes or renames anything it did not create.**
-//! Outputs are written to temporary files that the tool creates itself
-//! (`create_new`, so an existing file of the same name is never truncated) in
-//! the target's directory; only when every output and standard output are
-//! written are the temporaries renamed into place. A failed run leaves no new
-//! file.
+//! The rule, one for every command (README, "Files"):
+//!
+//! * **A single-file output** (`-o FILE`, `merge --out FILE`) replaces a
+//!   regular file atomically, as Unix tools do: it is written to a temporary
+//!   file that the tool creates itself (`create_new`, so an existing file of
+//!   the same name is never truncated) in the target's directory, and renamed
+//!   into place only when every output and standard output are written. A
+//!   device or FIFO (`-o /dev/null`) is written in place; a directory is
+//!   refused.
+//! * **Directories and resumable outputs** (`verify --out DIR`, `report
+//!   --out DIR`, `sweep --out FILE` with its summary and journal) are never
+//!   touched unless the tool wrote them: a directory must be new, empty, or
+//!   an earlier output of the same command (recognised by the file it always
+//!   writes there); a resumable file is created whole with its fingerprint
+//!   ([`install_new`], so a file at that path without one is not the
+//!   tool's) and continued only by `--resume`.
+//!
+//! A failed run leaves no new file, and the tool never deletes or renames
+//! anything it did not create.
 
 use super::{CliError, CliResult};
 use anyhow::{anyhow, Context as _};
@@ -137,6 +150,33 @@ pub(crate) fn create_temp_dir(dir: &Path, name: &str) -> std::io::Result<PathBuf
     create_at_free_temp_name(dir, name, |p| fs::create_dir(p)).map(|((), p)| p)
 }
 
+/// Puts the complete temporary file `tmp` (of this run) at `target` only if
+/// nothing is there: a hard link, which fails with `AlreadyExists` when the
+/// name is taken (so a file that appeared meanwhile is never replaced), then
+/// the temporary name is removed. On a file system without hard links, a
+/// rename after checking that `target` is free.
+pub(crate) fn install_new(tmp: &Path, target: &Path) -> std::io::Result<()> {
+    match fs::hard_link(tmp, target) {
+        Ok(()) => {
+            let _ = fs::remove_file(tmp);
+            Ok(())
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+            let _ = fs::remove_file(tmp);
+            Err(e)
+        }
+        Err(_) if fs::symlink_metadata(target).is_err() => {
+            fs::rename(tmp, target).inspect_err(|_| {
+                let _ = fs::remove_file(tmp);
+            })
+        }
+        Err(e) => {
+            let _ = fs::remove_file(tmp);
+            Err(e)
+        }
+    }
+}
+
 /// Whether `p` exists and is neither a regular file nor a directory (after
 /// following symbolic links): a character or block device such as
 /// `/dev/null`, a FIFO or a socket. Such a target is written in place, never
@@ -186,6 +226,15 @@ impl Staged {
                 .map_err(CliError::failure)?;
         }
         Ok(staged)
+    }
+
+    /// Adds `tmp`, a complete temporary file of this run next to `target`
+    /// (from [`create_temp_file`]), to be renamed into place by
+    /// [`Staged::commit`] before the files already staged (and removed on
+    /// drop, as they are).
+    pub(crate) fn adopt_first(&mut self, tmp: PathBuf, target: PathBuf) {
+        let existed = fs::symlink_metadata(&target).is_ok();
+        self.files.insert(0, (tmp, target, existed));
     }
 
     /// Renames every temporary into place. If a rename fails, the targets

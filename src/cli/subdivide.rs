@@ -40,10 +40,12 @@ pub(crate) struct SubdivideArgs {
     /// Number of refinement steps.
     #[arg(long, default_value_t = 1)]
     levels: usize,
-    /// Output OBJ ("-" for standard output).
+    /// Output OBJ ("-" for standard output). An existing regular file is
+    /// replaced atomically.
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
-    /// Write the refined knot intervals here (NURDS only).
+    /// Write the refined knot intervals here (NURDS only). An existing regular
+    /// file is replaced atomically.
     #[arg(long)]
     knots_out: Option<PathBuf>,
     /// Write the limit mesh instead of the refined control mesh: face limit

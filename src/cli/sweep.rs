@@ -5,8 +5,15 @@
 //! Files: `--out NAME.csv` gets the rows, `NAME.summary.json` the summary (written
 //! when the run starts and again when it ends). `--resume` re-reads `NAME.csv`,
 //! drops a torn last line, verifies every row against the spec, and continues.
+//!
+//! `sweep --out` is a resumable output (the rule of `super::outfiles`): a new
+//! file appears whole with its fingerprint line; an existing one is never
+//! replaced, and `--resume` continues it only if it carries this spec's
+//! fingerprint (an empty or foreign file is refused). `merge --out` is a
+//! single-file output: an existing regular file is replaced atomically. The
+//! extension `.csv` or `.parquet` of an output must match its format.
 
-use super::outfiles::{write_atomic, LineIter};
+use super::outfiles::{write_atomic, LineIter, Staged};
 use super::{CliError, CliResult};
 use anyhow::{anyhow, Context};
 use clap::Args;
@@ -21,8 +28,10 @@ use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, Summary, SweepEr
 pub(crate) struct SweepArgs {
     /// The sweep spec (TOML; see analysis/sweep-*.toml).
     spec: PathBuf,
-    /// Output CSV (default: standard output, without a summary file). The summary
-    /// JSON goes beside it: NAME.csv -> NAME.summary.json.
+    /// Output file, NAME.csv or NAME.parquet (default: CSV on standard output,
+    /// without a summary file). The summary JSON goes beside it: NAME.csv ->
+    /// NAME.summary.json. A resumable output: an existing file is never
+    /// replaced; --resume continues it if it carries this spec's fingerprint.
     #[arg(long)]
     out: Option<PathBuf>,
     /// Worker threads (default: all cores).
@@ -32,7 +41,8 @@ pub(crate) struct SweepArgs {
     #[arg(long, value_parser = parse_shard)]
     shard: Option<Shard>,
     /// Continue an interrupted run of the same command (needs --out; starts afresh
-    /// if the file does not exist).
+    /// if the file does not exist; an existing file must carry this spec's
+    /// fingerprint: an empty or foreign file is refused).
     #[arg(long)]
     resume: bool,
     /// Stop after the first K configurations of the shard (a prefix of the full run).
@@ -45,10 +55,12 @@ pub(crate) struct SweepArgs {
     /// progress lines otherwise) and no closing line; errors are still reported.
     #[arg(long)]
     quiet: bool,
-    /// Output format of the rows: `csv` (default) or `parquet` (typed columns,
-    /// row groups of 65536 rows as commit units; needs --out).
-    #[arg(long, value_enum, default_value_t = Format::Csv)]
-    format: Format,
+    /// Output format of the rows: `csv` or `parquet` (typed columns, row
+    /// groups of 65536 rows as commit units; needs --out). Default: parquet
+    /// when --out ends in .parquet, else csv; a --format that contradicts a
+    /// .csv or .parquet --out is refused.
+    #[arg(long, value_enum)]
+    format: Option<Format>,
     /// Seconds between progress lines when stderr is not a terminal (testing).
     #[arg(long, hide = true, default_value_t = PROGRESS_EVERY.as_secs_f64())]
     progress_every: f64,
@@ -56,11 +68,13 @@ pub(crate) struct SweepArgs {
 
 #[derive(Args, Debug)]
 pub(crate) struct MergeArgs {
-    /// Shard CSVs written by `sweep --shard I/N --out ...` (each with its
-    /// .summary.json beside it).
+    /// Shard files written by `sweep --shard I/N --out ...`, all CSV or all
+    /// Parquet (each with its .summary.json beside it).
     #[arg(required = true)]
     inputs: Vec<PathBuf>,
-    /// Merged CSV (its summary goes beside it).
+    /// Merged file, in the shards' format (NAME.csv or NAME.parquet; its
+    /// summary goes beside it). An existing regular file is replaced
+    /// atomically.
     #[arg(long)]
     out: PathBuf,
     /// The sweep spec the shards were run with: every row is verified against it.
@@ -75,6 +89,51 @@ pub(crate) enum Format {
     Csv,
     /// Apache Parquet, typed columns.
     Parquet,
+}
+
+impl Format {
+    fn name(self) -> &'static str {
+        match self {
+            Format::Csv => "CSV",
+            Format::Parquet => "Parquet",
+        }
+    }
+
+    fn extension(self) -> &'static str {
+        match self {
+            Format::Csv => "csv",
+            Format::Parquet => "parquet",
+        }
+    }
+
+    /// The format an output name's extension (`.csv`, `.parquet`, any case)
+    /// stands for; `None` for any other name.
+    fn of_name(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?;
+        [Format::Csv, Format::Parquet]
+            .into_iter()
+            .find(|f| ext.eq_ignore_ascii_case(f.extension()))
+    }
+}
+
+/// The format of `sweep`'s rows: `--format` if given (refused when `--out`
+/// ends in the other format's extension), else the extension's (`.parquet`:
+/// Parquet), else CSV. The flag says whether it was inferred as Parquet from
+/// the extension (then the run says so on stderr).
+fn sweep_format(flag: Option<Format>, out: Option<&Path>) -> CliResult<(Format, bool)> {
+    let named = out.and_then(Format::of_name);
+    match (flag, named, out) {
+        (Some(f), Some(n), Some(out)) if f != n => Err(CliError::usage(anyhow!(
+            "--format {} but --out {} names a {} file; name it NAME.{} or leave out --format",
+            f.extension(),
+            out.display(),
+            n.name(),
+            f.extension()
+        ))),
+        (Some(f), _, _) => Ok((f, false)),
+        (None, Some(n), _) => Ok((n, n == Format::Parquet)),
+        (None, None, _) => Ok((Format::Csv, false)),
+    }
 }
 
 fn parse_shard(s: &str) -> Result<Shard, String> {
@@ -99,16 +158,10 @@ fn summary_path(csv: &Path) -> PathBuf {
 /// `/dev/null`, a FIFO: the CSV is resumable and its summary goes beside it),
 /// the output and its summary must differ from every input (the spec, the
 /// shards and their summaries), and an existing file at the summary path is
-/// refused unless `resuming` (continuing an existing output, whose summary it
-/// replaces) or it is itself a sweep summary (an earlier run's, e.g. of
-/// `NAME.csv` beside `NAME.parquet`): the tool never overwrites a file it did
-/// not write.
-fn check_out_paths(
-    command: &str,
-    out: &Path,
-    inputs: &[(&str, &Path)],
-    resuming: bool,
-) -> CliResult {
+/// refused unless it is itself a sweep summary (this output's, or an earlier
+/// run's, e.g. of `NAME.csv` beside `NAME.parquet`): the tool never
+/// overwrites a file it did not write.
+fn check_out_paths(command: &str, out: &Path, inputs: &[(&str, &Path)]) -> CliResult {
     if super::outfiles::is_special(out) {
         return Err(CliError::usage(anyhow!(
             "--out {} is not a regular file: {command} writes a CSV (or Parquet) file and a summary beside it; to discard the rows, leave out --out and redirect standard output",
@@ -119,7 +172,7 @@ fn check_out_paths(
     super::outfiles::check_distinct(&[("--out", out), ("its summary", &spath)], inputs)?;
     let a_summary =
         || fs::read_to_string(&spath).is_ok_and(|t| serde_json::from_str::<Summary>(&t).is_ok());
-    if !resuming && fs::symlink_metadata(&spath).is_ok() && !a_summary() {
+    if fs::symlink_metadata(&spath).is_ok() && !a_summary() {
         return Err(CliError::usage(anyhow!(
             "{} exists and is not a sweep summary (the summary --out {} would write); remove it or choose another --out",
             spath.display(),
@@ -127,6 +180,12 @@ fn check_out_paths(
         )));
     }
     Ok(())
+}
+
+/// The sweep summary at `path`, if it is one.
+fn read_summary(path: &Path) -> Option<Summary> {
+    let text = fs::read_to_string(path).ok()?;
+    serde_json::from_str(&text).ok()
 }
 
 fn write_summary(path: &Path, summary: &Summary) -> CliResult {
@@ -208,8 +267,27 @@ fn scan_existing(
         }
         good += n as u64;
     }
+    if lineno == 0 && !torn {
+        // A file of this tool appears whole with its fingerprint line and
+        // header: an empty one is someone else's.
+        return Err(CliError::usage(anyhow!(
+            "{name} exists but is empty: not a sweep file of this tool (one is created whole, with its fingerprint line); remove it or choose another --out"
+        )));
+    }
+    if lineno == 0
+        && !output::fingerprint_line(plan, shard)
+            .as_bytes()
+            .starts_with(&line)
+    {
+        // A torn first line that is not the start of this run's fingerprint.
+        return Err(mismatch(
+            1,
+            "an incomplete first line that is not this spec's fingerprint: not a sweep CSV of this spec and shard; cannot resume".into(),
+        ));
+    }
     if lineno < 2 {
-        // Empty, or torn inside the fingerprint or header line: start afresh.
+        // Torn inside this run's fingerprint or header line (a file of an
+        // earlier build, which did not create it whole): start afresh.
         return Ok((0, 0, true, torn && good > 0));
     }
     // The data lines, by blocks of about BLOCK_BYTES: each block's complete
@@ -386,14 +464,25 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     if args.resume && args.out.is_none() {
         return Err(CliError::usage(anyhow!("--resume needs --out FILE.csv")));
     }
-    if args.format == Format::Parquet && args.out.is_none() {
+    let (format, inferred) = sweep_format(args.format, args.out.as_deref())?;
+    if format == Format::Parquet && args.out.is_none() {
         return Err(CliError::usage(anyhow!(
             "--format parquet needs --out FILE.parquet (Parquet is not written to standard output)"
         )));
     }
+    // Whether --out exists (then it is continued, never replaced).
+    let exists = args
+        .out
+        .as_deref()
+        .is_some_and(|p| fs::symlink_metadata(p).is_ok());
     if let Some(out) = &args.out {
-        let resuming = args.resume && out.exists();
-        check_out_paths("sweep", out, &[("the spec", &args.spec)], resuming)?;
+        check_out_paths("sweep", out, &[("the spec", &args.spec)])?;
+        if exists && !args.resume {
+            return Err(CliError::usage(anyhow!(
+                "{} exists; pass --resume to continue it, or remove it",
+                out.display()
+            )));
+        }
     }
     let shard = args.shard.unwrap_or(Shard::ALL);
     let plan = Plan::new(spec);
@@ -435,18 +524,17 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
             layout.write_header(&mut w).map_err(CliError::failure)?;
             (Sink::Csv(Box::new(w)), 0, None)
         }
-        Some(path) if args.format == Format::Parquet => {
+        Some(path) if format == Format::Parquet => {
             let spath = summary_path(path);
-            let exists = path.exists();
-            if exists && !args.resume {
-                return Err(CliError::usage(anyhow!(
-                    "{} exists; pass --resume to continue it, or remove it",
-                    path.display()
-                )));
-            }
             let (sink, done, recovered) = pool.install(|| {
                 super::sweep_parquet::open(path, &plan, &layout, &eval, shard, &mut summary, salt())
             })?;
+            if inferred && !exists && !args.quiet {
+                eprintln!(
+                    "sweep: writing Parquet (from the extension of --out {})",
+                    path.display()
+                );
+            }
             if exists && (done > 0 || recovered) && !args.quiet {
                 eprintln!(
                     "sweep: resuming {} at row {done} of {expected}{}",
@@ -458,31 +546,47 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
                     }
                 );
             }
-            write_summary(&spath, &summary)?;
             (Sink::Parquet(Box::new(sink)), done, Some(spath))
+        }
+        Some(path) if !exists => {
+            // A new file appears whole with its fingerprint line and header
+            // (written to a temporary file of this run, then put in place).
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            let (mut file, tmp) =
+                super::outfiles::create_temp_file(&super::outfiles::parent_dir(path), &name)
+                    .with_context(|| format!("creating {}", path.display()))
+                    .map_err(CliError::failure)?;
+            let preamble = file
+                .write_all(output::fingerprint_line(&plan, shard).as_bytes())
+                .map_err(anyhow::Error::from)
+                .and_then(|()| layout.write_header(&mut file).map_err(anyhow::Error::from))
+                .and_then(|()| {
+                    super::outfiles::install_new(&tmp, path).map_err(anyhow::Error::from)
+                })
+                .with_context(|| format!("creating {}", path.display()));
+            if let Err(e) = preamble {
+                let _ = fs::remove_file(&tmp);
+                return Err(CliError::failure(e));
+            }
+            (
+                Sink::Csv(Box::new(BufWriter::with_capacity(1 << 20, file))),
+                0,
+                Some(summary_path(path)),
+            )
         }
         Some(path) => {
             let spath = summary_path(path);
-            let exists = path.exists();
-            if exists && !args.resume {
-                return Err(CliError::usage(anyhow!(
-                    "{} exists; pass --resume to continue it, or remove it",
-                    path.display()
-                )));
-            }
-            let (done, good, preamble, torn) = if exists {
-                pool.install(|| scan_existing(path, &plan, &layout, &eval, shard, &mut summary))?
-            } else {
-                (0, 0, true, false)
-            };
+            let (done, good, preamble, torn) =
+                pool.install(|| scan_existing(path, &plan, &layout, &eval, shard, &mut summary))?;
             let mut file = OpenOptions::new()
-                .create(true)
-                .truncate(false)
                 .write(true)
                 .open(path)
                 .with_context(|| format!("opening {}", path.display()))
                 .map_err(CliError::failure)?;
-            if exists {
+            {
                 file.set_len(good)
                     .and_then(|_| file.seek(SeekFrom::End(0)).map(|_| ()))
                     .with_context(|| format!("truncating {}", path.display()))
@@ -504,7 +608,6 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
                     .map_err(CliError::failure)?;
                 layout.write_header(&mut file).map_err(CliError::failure)?;
             }
-            write_summary(&spath, &summary)?;
             (
                 Sink::Csv(Box::new(BufWriter::with_capacity(1 << 20, file))),
                 done,
@@ -512,6 +615,19 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
             )
         }
     };
+
+    // A resumed file that is already complete: nothing is evaluated, and the
+    // summary keeps the throughput of the run that wrote the rows.
+    let complete = exists && done == expected;
+    if let Some(spath) = &summary_file {
+        if complete {
+            if let Some(old) = read_summary(spath) {
+                summary.throughput = old.throughput;
+            }
+        }
+        // The summary at the start (and, for a complete file, the only one).
+        write_summary(spath, &summary)?;
+    }
 
     // A progress bar on a terminal; progress lines every few seconds otherwise
     // (batch jobs: the Slurm log shows the run is alive and how far it got).
@@ -583,6 +699,17 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         Sink::Parquet(p) => p.finish().map_err(CliError::failure)?,
     }
     let seconds = start.elapsed().as_secs_f64();
+    if complete {
+        if !args.quiet {
+            eprintln!(
+                "sweep: {} is already complete: {} rows verified, nothing evaluated; summary {}",
+                args.out.as_deref().unwrap_or(Path::new("-")).display(),
+                summary.rows,
+                summary_file.as_deref().unwrap_or(Path::new("-")).display()
+            );
+        }
+        return Ok(());
+    }
     summary.set_throughput(evaluated, seconds, threads);
     if let Some(spath) = &summary_file {
         write_summary(spath, &summary)?;
@@ -713,21 +840,41 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     let layout = Layout::new(&plan);
     let eval = SpectralEvaluator::new(plan.spec().columns);
     let digest = plan.spec().digest();
-    // The output and its summary are new files, distinct from the spec, every
-    // shard and every shard's summary.
-    if fs::symlink_metadata(&args.out).is_ok() && !super::outfiles::is_special(&args.out) {
-        return Err(CliError::usage(anyhow!(
-            "--out {} exists; remove it or choose another --out",
-            args.out.display()
-        )));
-    }
+    // The output and its summary are distinct from the spec, every shard and
+    // every shard's summary; an existing output file is replaced atomically,
+    // an existing summary only if it is a sweep summary.
     let shard_summaries: Vec<PathBuf> = args.inputs.iter().map(|p| summary_path(p)).collect();
     let mut inputs: Vec<(&str, &Path)> = vec![("the spec", args.spec.as_path())];
     for (p, sp) in args.inputs.iter().zip(&shard_summaries) {
         inputs.push(("the input", p.as_path()));
         inputs.push(("the summary of an input", sp.as_path()));
     }
-    check_out_paths("merge", &args.out, &inputs, false)?;
+    check_out_paths("merge", &args.out, &inputs)?;
+    // One format for every shard, and an output named for it.
+    let parquet = args
+        .inputs
+        .iter()
+        .map(|p| is_parquet_file(p))
+        .collect::<Vec<_>>();
+    if parquet.iter().any(|&q| q != parquet[0]) {
+        return Err(CliError::usage(anyhow!(
+            "the shards mix CSV and Parquet files; merge shards of one format"
+        )));
+    }
+    let format = if parquet[0] {
+        Format::Parquet
+    } else {
+        Format::Csv
+    };
+    if let Some(named) = Format::of_name(&args.out).filter(|&n| n != format) {
+        return Err(CliError::usage(anyhow!(
+            "the shards are {} files but --out {} names a {} file; name it NAME.{} (merge writes the shards' format)",
+            format.name(),
+            args.out.display(),
+            named.name(),
+            format.extension()
+        )));
+    }
     // Summaries first: each must be of this spec (they give the throughput, and
     // are compared with the rows).
     let mut summaries = Vec::new();
@@ -800,16 +947,6 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let parquet = args
-        .inputs
-        .iter()
-        .map(|p| is_parquet_file(p))
-        .collect::<Vec<_>>();
-    if parquet.iter().any(|&q| q != parquet[0]) {
-        return Err(CliError::usage(anyhow!(
-            "the shards mix CSV and Parquet files; merge shards of one format"
-        )));
-    }
     let (file, tmp) =
         super::outfiles::create_temp_file(&super::outfiles::parent_dir(&args.out), &out_name)
             .with_context(|| format!("creating a temporary file for {}", args.out.display()))
@@ -882,10 +1019,20 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     }
     merged.throughput = json.throughput.clone();
     let n = merged.rows;
-    fs::rename(&tmp, &args.out)
-        .with_context(|| format!("renaming {} to {}", tmp.display(), args.out.display()))
-        .map_err(CliError::failure)?;
-    write_summary(&summary_path(&args.out), &merged)?;
+    // The merged file and its summary are put in place together (the file
+    // first); a failure leaves neither new.
+    let staged = serde_json::to_string_pretty(&merged)
+        .map_err(CliError::failure)
+        .and_then(|j| Staged::write(&[(summary_path(&args.out), (j + "\n").into_bytes())]));
+    let mut staged = match staged {
+        Ok(st) => st,
+        Err(e) => {
+            let _ = fs::remove_file(&tmp);
+            return Err(e);
+        }
+    };
+    staged.adopt_first(tmp, args.out.clone());
+    staged.commit()?;
     let total = plan.total();
     eprintln!(
         "merge: {n} rows from {} shards into {}; every configuration 0..{total} present once and verified",

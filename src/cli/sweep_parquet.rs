@@ -12,6 +12,7 @@
 //! are the committed groups: `--resume` truncates there and appends the
 //! journal's footer, which drops a torn trailing group.
 
+use super::outfiles::parent_dir;
 use super::{CliError, CliResult};
 use anyhow::{anyhow, Context};
 use std::fs::{self, File, OpenOptions};
@@ -101,8 +102,8 @@ pub(crate) fn open(
     let mut existing = Vec::new();
     let mut data_end = pq::MAGIC.len() as u64;
     let mut done = 0u64;
-    let mut fresh = true;
-    if path.exists() {
+    let exists = fs::symlink_metadata(path).is_ok();
+    if exists {
         // A killed run: back to the journal's last commit.
         if journal.exists() {
             let j = fs::read(&journal).map_err(|e| io(e, "reading the journal of"))?;
@@ -123,10 +124,19 @@ pub(crate) fn open(
             recovered = len != end + footer.len() as u64;
         }
         let bytes = fs::read(path).map_err(|e| io(e, "reading"))?;
-        if !bytes.is_empty() {
-            fresh = false;
+        if bytes.is_empty() {
+            // A file of this tool is created whole (PAR1 and a footer):
+            // an empty one is someone else's.
+            return Err(CliError::usage(anyhow!(
+                "{name} exists but is empty: not a sweep file of this tool (one is created whole, with its fingerprint); remove it or choose another --out"
+            )));
+        }
+        {
             let table = read_table(bytes).map_err(|e| {
-                CliError::usage(anyhow!("{name}: {e}; cannot resume (not a sweep Parquet file, or torn without its commit journal)"))
+                CliError::usage(anyhow!(
+                    "{}; cannot resume (not a sweep Parquet file, or torn without its commit journal)",
+                    read_error(&name, e)
+                ))
             })?;
             let mismatch = |line: u64, message: String| {
                 CliError::usage(SweepError::Mismatch {
@@ -188,28 +198,62 @@ pub(crate) fn open(
             existing = table.row_groups()[..keep].to_vec();
         }
     }
-    let mut file = OpenOptions::new()
-        .create(true)
-        .truncate(false)
-        .read(true)
-        .write(true)
-        .open(path)
-        .with_context(|| format!("opening {name}"))
+    if exists {
+        let file = OpenOptions::new()
+            .write(true)
+            .open(path)
+            .with_context(|| format!("opening {name}"))
+            .map_err(CliError::failure)?;
+        let commit = commit_fn(
+            file.try_clone().map_err(|e| io(e, "opening"))?,
+            journal.clone(),
+        );
+        let rows = ParquetRows::new(layout, &fingerprint, existing, data_end, commit)
+            .map_err(CliError::failure)?;
+        return Ok((ParquetSink { rows, journal }, done, recovered));
+    }
+    // A new file: PAR1 and the footer of no group (valid Parquet), written to
+    // a temporary file of this run and put in place whole, so that a file at
+    // `path` without a fingerprint is never the tool's.
+    let name_only = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let (mut file, tmp) = super::outfiles::create_temp_file(&parent_dir(path), &name_only)
+        .with_context(|| format!("creating {name}"))
         .map_err(CliError::failure)?;
-    let commit = commit_fn(
-        file.try_clone().map_err(|e| io(e, "opening"))?,
-        journal.clone(),
-    );
-    let rows = ParquetRows::new(layout, &fingerprint, existing, data_end, commit)
-        .map_err(CliError::failure)?;
-    if fresh {
-        // A new file: PAR1 and the footer of no group (valid Parquet).
+    let created = (|| -> CliResult<ParquetRows<CommitFn>> {
+        let commit = commit_fn(
+            file.try_clone().map_err(|e| io(e, "creating"))?,
+            journal.clone(),
+        );
+        let rows = ParquetRows::new(layout, &fingerprint, existing, data_end, commit)
+            .map_err(CliError::failure)?;
         let footer = rows.current_footer().map_err(CliError::failure)?;
         write_at(&mut file, 0, &[pq::MAGIC], &footer).map_err(|e| io(e, "writing"))?;
-        super::outfiles::write_atomic(&journal, &journal_bytes(data_end, &footer))
-            .map_err(CliError::failure)?;
-    }
+        Ok(rows)
+    })();
+    let rows = match created {
+        Ok(rows) => rows,
+        Err(e) => {
+            let _ = fs::remove_file(&tmp);
+            return Err(e);
+        }
+    };
+    super::outfiles::install_new(&tmp, path).map_err(|e| io(e, "creating"))?;
+    let footer = rows.current_footer().map_err(CliError::failure)?;
+    super::outfiles::write_atomic(&journal, &journal_bytes(data_end, &footer))
+        .map_err(CliError::failure)?;
     Ok((ParquetSink { rows, journal }, done, recovered))
+}
+
+/// The message of a failure to read `name`: "cannot read NAME: ..." for a
+/// file that is not (or no longer) a readable Parquet file.
+fn read_error(name: &str, e: SweepError) -> String {
+    match e {
+        SweepError::Read(m) => format!("cannot read {name}: {m}"),
+        other => format!("{name}: {other}"),
+    }
 }
 
 /// A Parquet shard as a merge source: its fingerprint (which gives the shard)
@@ -233,10 +277,10 @@ pub(crate) fn merge_source(
         })
     };
     let table = read_table(bytes).map_err(|e| {
-        mismatch(
-            1,
-            format!("{e}; finish this shard with `sweep --resume` first"),
-        )
+        CliError::usage(anyhow!(
+            "{}; finish this shard with `sweep --resume` first",
+            read_error(&name, e)
+        ))
     })?;
     let fp = table.fingerprint().unwrap_or_default().to_owned() + "\n";
     let shard = output::fingerprint_shard(&fp).ok_or_else(|| {

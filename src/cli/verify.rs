@@ -22,11 +22,17 @@ const FILES: [&str; 2] = ["cells.csv", "summary.json"];
 
 #[derive(Args, Debug)]
 pub(crate) struct VerifyArgs {
-    /// Verify spec (TOML): scheme, valence, box or c_range, properties,
-    /// min_width, time_budget.
+    /// Verify spec (TOML): name, scheme ("nurds" or "adjustable-cc"),
+    /// valence (nurds 3 to 16, adjustable-cc 3 to 1024), the region (nurds:
+    /// box = one [lo, hi] per edge ratio, or p_box and q_box = one [lo, hi]
+    /// per corner knot interval; adjustable-cc: c_range), properties (class,
+    /// separation, theorem1, charmap), min_width (at least 2^-40),
+    /// time_budget (seconds).
     spec: PathBuf,
     /// Output directory: new, empty, or a previous verify output (only its
-    /// cells.csv and summary.json are replaced).
+    /// cells.csv and summary.json are replaced); any other directory or a
+    /// file is refused. Nothing is installed unless the run, including the
+    /// summary line on stdout, succeeds.
     #[arg(long)]
     out: PathBuf,
     /// Worker threads (default: all cores).
@@ -170,17 +176,12 @@ pub(crate) fn run(args: VerifyArgs) -> CliResult {
         ("cells.csv", verify::cells_csv(&spec, &outcome).into_bytes()),
         ("summary.json", json),
     ];
-    if new_dir {
-        write_new_dir(&args.out, &files)?;
-    } else {
-        // summary.json last: a half-written run is not taken for a complete one
-        let staged: Vec<(PathBuf, Vec<u8>)> = files
-            .iter()
-            .map(|(n, b)| (args.out.join(n), b.clone()))
-            .collect();
-        Staged::write(&staged)?.commit()?;
-    }
-    if !args.quiet {
+    // The summary line goes out before the files are installed: if standard
+    // output fails (exit 1), no new output is left behind.
+    let announce = || -> CliResult {
+        if args.quiet {
+            return Ok(());
+        }
         let line = format!(
             "verify {}: {} cells, {:.2}% of the volume undecided, deepest level {}, {:.1} s{}; wrote {}\n",
             spec.name,
@@ -195,14 +196,30 @@ pub(crate) fn run(args: VerifyArgs) -> CliResult {
             },
             args.out.display()
         );
-        write_stdout(line.as_bytes())?;
+        write_stdout(line.as_bytes())
+    };
+    if new_dir {
+        write_new_dir(&args.out, &files, announce)
+    } else {
+        // summary.json last: a half-written run is not taken for a complete one
+        let staged: Vec<(PathBuf, Vec<u8>)> = files
+            .iter()
+            .map(|(n, b)| (args.out.join(n), b.clone()))
+            .collect();
+        let staged = Staged::write(&staged)?;
+        announce()?;
+        staged.commit()
     }
-    Ok(())
 }
 
 /// Writes `files` into a new temporary sibling of `out` (created by this
-/// run), then renames it to `out`; on failure the temporary is removed.
-fn write_new_dir(out: &Path, files: &[(&str, Vec<u8>)]) -> CliResult {
+/// run), calls `announce` (the summary line), then renames it to `out`; on
+/// failure the temporary is removed.
+fn write_new_dir(
+    out: &Path,
+    files: &[(&str, Vec<u8>)],
+    announce: impl FnOnce() -> CliResult,
+) -> CliResult {
     let name = out
         .file_name()
         .ok_or_else(|| CliError::usage(anyhow!("--out {} has no directory name", out.display())))?
@@ -212,17 +229,22 @@ fn write_new_dir(out: &Path, files: &[(&str, Vec<u8>)]) -> CliResult {
     let tmp = create_temp_dir(&parent, &name)
         .with_context(|| format!("cannot create a directory in {}", parent.display()))
         .map_err(CliError::failure)?;
-    let result = (|| -> anyhow::Result<()> {
+    let result = (|| -> CliResult {
         for (f, bytes) in files {
             let p = tmp.join(f);
-            std::fs::write(&p, bytes).with_context(|| format!("cannot write {}", p.display()))?;
+            std::fs::write(&p, bytes)
+                .with_context(|| format!("cannot write {}", p.display()))
+                .map_err(CliError::failure)?;
         }
+        announce()?;
         // rename(2) onto an existing non-empty directory fails: a directory
         // that appeared meanwhile is never replaced
-        std::fs::rename(&tmp, out).with_context(|| format!("cannot create {}", out.display()))
+        std::fs::rename(&tmp, out)
+            .with_context(|| format!("cannot create {}", out.display()))
+            .map_err(CliError::failure)
     })();
     if result.is_err() {
         let _ = std::fs::remove_dir_all(&tmp);
     }
-    result.map_err(CliError::failure)
+    result
 }

@@ -19,11 +19,22 @@
 //!   marker in its legend box, as the knot map of the reports does.
 //!
 //! With no kind the data decides ([`choose`]): class fractions against the
-//! valence for a multi-valence sweep with a `class` column; a class map when
-//! exactly two parameter columns vary (a 2-D slice); a scatter of
-//! `contraction_rate` when one varies; else a histogram. Parameter columns
+//! valence for a multi-valence sweep with a `class` column; for one valence, a
+//! class map when exactly two parameter columns vary (a 2-D slice), a scatter
+//! of `contraction_rate` when one varies, and otherwise the class fractions
+//! too; a histogram for a table without a `class` column. Parameter columns
 //! are those between `valence` and `class` in a sweep CSV (all numeric
 //! columns but `id` and `valence` otherwise).
+//!
+//! The `cells.csv` of `subdiv-lab verify` (columns `lo0..`, `hi0..` or
+//! `c_lo, c_hi`, and `verdict`; [`cell_coordinates`]) is drawn as the
+//! certified map: every cell as its rectangle over two coordinates (default
+//! `r0`, `r1`; `c` alone for an interval of `c`), coloured by `verdict` (or
+//! `--color` naming a property column), the other coordinates held at the
+//! middle of the box (the cells containing that point tile the slice).
+//!
+//! Rows without a finite value on a plotted axis (missing, NaN or infinite)
+//! are left out and counted ([`SweepPlot::dropped`]).
 //!
 //! ```
 //! use subdiv_lab::report::table::Table;
@@ -63,6 +74,14 @@ pub const SECONDS_PER_POINT: f64 = 4e-6;
 /// Memory per table cell while reading (the text, the parsed value and the
 /// vectors around it), bytes.
 pub const BYTES_PER_CELL: f64 = 64.0;
+/// Most points or cells drawn into an SVG without `--force`: each is an SVG
+/// element of about [`SVG_BYTES_PER_ITEM`] bytes, so the file stays below
+/// about 8 MB (3 million scatter points made a 240 MB SVG). A PNG has a
+/// fixed size whatever the number of points.
+pub const MAX_SVG_ITEMS: usize = 100_000;
+/// Bytes of SVG per drawn point or cell: measured 80 (a 3-million-point
+/// scatter, 240 MB).
+pub const SVG_BYTES_PER_ITEM: f64 = 80.0;
 
 /// The kinds of sweep plot.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -159,13 +178,15 @@ pub fn choose(t: &Table, req: &PlotRequest) -> Result<(PlotKind, PlotRequest), T
         .collect();
     let class = t.has("class").then(|| "class".to_owned());
     let multi_valence = t.has("valence") && t.distinct_numbers("valence") > 1;
+    let slice = params.len() == 1 || params.len() == 2;
     let kind = match req.kind {
         Some(k) => k,
         None if req.y.is_some() => PlotKind::Scatter,
-        None if multi_valence && class.is_some() && req.x.is_none() => PlotKind::Fractions,
+        None if class.is_some() && req.x.is_none() && (multi_valence || !slice) => {
+            PlotKind::Fractions
+        }
         None if params.len() == 2 => PlotKind::Map,
         None if params.len() == 1 => PlotKind::Scatter,
-        None if req.x.is_some() => PlotKind::Histogram,
         None => PlotKind::Histogram,
     };
     let value = default_value_column(t, &params);
@@ -254,6 +275,16 @@ enum Colors {
 
 #[derive(Clone, Debug)]
 enum Data {
+    /// The cells of a `verify` run: `[x_lo, x_hi, y_lo, y_hi]` per cell (`y`
+    /// from 0 to 1 for one coordinate), the category of each, the
+    /// categories, the box, and the coordinates held fixed.
+    Cells {
+        rects: Vec<[f64; 4]>,
+        idx: Vec<usize>,
+        cats: Vec<String>,
+        bounds: [f64; 4],
+        fixed: Vec<(String, f64)>,
+    },
     Fractions {
         xs: Vec<f64>,
         cats: Vec<String>,
@@ -284,6 +315,152 @@ pub struct SweepPlot {
     y: Option<String>,
     color: Option<String>,
     data: Data,
+    /// Rows left out for a missing, NaN or infinite value on a plotted axis.
+    dropped: usize,
+}
+
+/// The coordinates of a `verify` cells table (`cells.csv`, see
+/// [`crate::verify::csv_header`]): per coordinate, its name and its lower and
+/// upper columns: `r{i}` from `lo{i}`, `hi{i}` (edge ratios), or `c` from
+/// `c_lo`, `c_hi`. `None` for a table without a `verdict` column or without
+/// such pairs.
+pub fn cell_coordinates(t: &Table) -> Option<Vec<(String, String, String)>> {
+    if !t.has("verdict") {
+        return None;
+    }
+    if t.has("c_lo") && t.has("c_hi") {
+        return Some(vec![("c".into(), "c_lo".into(), "c_hi".into())]);
+    }
+    let v: Vec<(String, String, String)> = (0..)
+        .map(|i| (format!("r{i}"), format!("lo{i}"), format!("hi{i}")))
+        .take_while(|(_, lo, hi)| t.has(lo) && t.has(hi))
+        .collect();
+    (!v.is_empty()).then_some(v)
+}
+
+/// Whether `req` asks for the certified map of a cells table with
+/// coordinates `coords` (no kind or `map`, axes among the coordinates).
+fn wants_cells(req: &PlotRequest, coords: &[(String, String, String)]) -> bool {
+    let coordinate = |a: &Option<String>| {
+        a.as_ref()
+            .is_none_or(|a| coords.iter().any(|(name, _, _)| name == a))
+    };
+    matches!(req.kind, None | Some(PlotKind::Map)) && coordinate(&req.x) && coordinate(&req.y)
+}
+
+/// The certified map of a `verify` cells table (module docs).
+fn build_cells(
+    t: &Table,
+    req: &PlotRequest,
+    coords: &[(String, String, String)],
+) -> Result<SweepPlot, TableError> {
+    let pos = |name: &str| coords.iter().position(|(n, _, _)| n == name);
+    let xi = req.x.as_deref().and_then(pos).unwrap_or(0);
+    let yi = match req.y.as_deref() {
+        Some(y) => pos(y),
+        None => (0..coords.len()).find(|&k| k != xi),
+    };
+    if yi == Some(xi) {
+        return Err(TableError::NoDefault(format!(
+            "--x and --y both name the coordinate {}",
+            coords[xi].0
+        )));
+    }
+    let color = req.color.clone().unwrap_or_else(|| "verdict".to_owned());
+    let labels = t.labels(&color)?;
+    let lo: Vec<Vec<Option<f64>>> = coords
+        .iter()
+        .map(|(_, l, _)| t.numeric(l))
+        .collect::<Result<_, _>>()?;
+    let hi: Vec<Vec<Option<f64>>> = coords
+        .iter()
+        .map(|(_, _, h)| t.numeric(h))
+        .collect::<Result<_, _>>()?;
+    for (k, (_, l, h)) in coords.iter().enumerate() {
+        check_magnitude(l, &lo[k])?;
+        check_magnitude(h, &hi[k])?;
+    }
+    let finite = |i: usize| {
+        (0..coords.len()).all(|k| {
+            matches!((lo[k][i], hi[k][i]), (Some(a), Some(b)) if a.is_finite() && b.is_finite())
+        })
+    };
+    let rows: Vec<usize> = (0..t.len()).filter(|&i| finite(i)).collect();
+    let dropped = t.len() - rows.len();
+    if rows.is_empty() {
+        return Err(TableError::NoFiniteValues(coords[xi].1.clone()));
+    }
+    let range = |k: usize| {
+        let a = rows
+            .iter()
+            .map(|&i| lo[k][i].unwrap_or(0.0))
+            .fold(f64::INFINITY, f64::min);
+        let b = rows
+            .iter()
+            .map(|&i| hi[k][i].unwrap_or(0.0))
+            .fold(f64::NEG_INFINITY, f64::max);
+        (a, b)
+    };
+    // The other coordinates at the middle of the box; a cell is in the slice
+    // when the point lies in its half-open side [lo, hi) (or at the top end).
+    let fixed: Vec<(usize, f64, f64)> = (0..coords.len())
+        .filter(|&k| k != xi && Some(k) != yi)
+        .map(|k| {
+            let (a, b) = range(k);
+            (k, 0.5 * a + 0.5 * b, b)
+        })
+        .collect();
+    let in_slice = |i: usize| {
+        fixed.iter().all(|&(k, v, top)| {
+            let (a, b) = (lo[k][i].unwrap_or(0.0), hi[k][i].unwrap_or(0.0));
+            (a <= v && v < b) || (v == top && b == top && a <= v)
+        })
+    };
+    let kept: Vec<usize> = rows.iter().copied().filter(|&i| in_slice(i)).collect();
+    let kept_labels: Vec<String> = kept.iter().map(|&i| labels[i].clone()).collect();
+    let cats = categories(&kept_labels);
+    if cats.len() > MAX_CATEGORIES {
+        return Err(too_many(
+            &color,
+            cats.len(),
+            MAX_CATEGORIES,
+            PlotKind::Map,
+            "colour by verdict or by a property column",
+        ));
+    }
+    let idx: Vec<usize> = kept_labels
+        .iter()
+        .map(|l| cats.iter().position(|c| c == l).unwrap_or(0))
+        .collect();
+    let rects: Vec<[f64; 4]> = kept
+        .iter()
+        .map(|&i| {
+            let (y0, y1) = match yi {
+                Some(k) => (lo[k][i].unwrap_or(0.0), hi[k][i].unwrap_or(0.0)),
+                None => (0.0, 1.0),
+            };
+            [lo[xi][i].unwrap_or(0.0), hi[xi][i].unwrap_or(0.0), y0, y1]
+        })
+        .collect();
+    let (x0, x1) = range(xi);
+    let (y0, y1) = yi.map_or((0.0, 1.0), range);
+    Ok(SweepPlot {
+        kind: PlotKind::Map,
+        x: coords[xi].0.clone(),
+        y: yi.map(|k| coords[k].0.clone()),
+        color: Some(color),
+        data: Data::Cells {
+            rects,
+            idx,
+            cats,
+            bounds: [x0, x1, y0, y1],
+            fixed: fixed
+                .iter()
+                .map(|&(k, v, _)| (coords[k].0.clone(), v))
+                .collect(),
+        },
+        dropped,
+    })
 }
 
 /// Finite `(x, y)` values of two numeric columns and the row indices kept.
@@ -361,6 +538,9 @@ impl SweepPlot {
     /// Builds the plot: chooses what `req` leaves open ([`choose`]) and
     /// extracts the data; errors name the offending column.
     pub fn build(t: &Table, req: &PlotRequest) -> Result<SweepPlot, TableError> {
+        if let Some(coords) = cell_coordinates(t).filter(|c| wants_cells(req, c)) {
+            return build_cells(t, req, &coords);
+        }
         let (kind, req) = choose(t, req)?;
         let x = req.x.clone().unwrap_or_default();
         let xs = t.numeric(&x)?;
@@ -372,6 +552,8 @@ impl SweepPlot {
             Some(c) => Some(t.labels(c)?),
             None => None,
         };
+        let finite_x = xs.iter().flatten().filter(|v| v.is_finite()).count();
+        let mut dropped = t.len() - finite_x;
         let data = match kind {
             PlotKind::Fractions => {
                 let color = req.color.clone().unwrap_or_default();
@@ -471,6 +653,7 @@ impl SweepPlot {
                 let ys = t.numeric(&y)?;
                 check_magnitude(&y, &ys)?;
                 let keep = finite_pairs(&xs, &ys);
+                dropped = t.len() - keep.len();
                 if keep.is_empty() {
                     return Err(TableError::NoFiniteValues(format!("{x}\" and \"{y}")));
                 }
@@ -539,7 +722,24 @@ impl SweepPlot {
             y: req.y.clone(),
             color: req.color.clone(),
             data,
+            dropped,
         })
+    }
+
+    /// Rows left out because a plotted coordinate (`x`, or `x` or `y`) is
+    /// missing, NaN or infinite.
+    pub fn dropped(&self) -> usize {
+        self.dropped
+    }
+
+    /// The plotted axes, `x` or `x` and `y` (for messages).
+    pub fn axes(&self) -> String {
+        match &self.y {
+            Some(y) if !matches!(self.kind, PlotKind::Fractions | PlotKind::Histogram) => {
+                format!("{} or {y}", self.x)
+            }
+            _ => self.x.clone(),
+        }
     }
 
     /// The plot kind.
@@ -553,12 +753,27 @@ impl SweepPlot {
             Data::Fractions { xs, cats, .. } => xs.len() * cats.len(),
             Data::Histogram { counts, .. } => counts.iter().map(Vec::len).sum(),
             Data::Points { xs, .. } => xs.len(),
+            Data::Cells { rects, .. } => rects.len(),
         }
     }
 
     /// A title naming the columns.
     pub fn default_title(&self) -> String {
         let c = self.color.as_deref().unwrap_or("");
+        if let Data::Cells { fixed, .. } = &self.data {
+            let over = match &self.y {
+                Some(y) => format!("Certified map: {c} over {} and {y}", self.x),
+                None => format!("Certified map: {c} over {}", self.x),
+            };
+            if fixed.is_empty() {
+                return over;
+            }
+            let at: Vec<String> = fixed
+                .iter()
+                .map(|(n, v)| format!("{n} = {}", super::plot::tick(*v)))
+                .collect();
+            return format!("{over}, at {}", at.join(", "));
+        }
         match self.kind {
             PlotKind::Fractions => format!("Fraction of configurations by {c} against {}", self.x),
             PlotKind::Histogram if c.is_empty() => format!("Histogram of {}", self.x),
@@ -577,6 +792,29 @@ impl SweepPlot {
     /// The data plotted, as a table (what a report writes as CSV).
     pub fn data(&self) -> DataTable {
         match &self.data {
+            Data::Cells {
+                rects, idx, cats, ..
+            } => {
+                let c = self.color.as_deref().unwrap_or("verdict");
+                let (xl, xh) = (format!("{}_lo", self.x), format!("{}_hi", self.x));
+                let mut head = vec![xl.as_str(), xh.as_str()];
+                let (yl, yh);
+                if let Some(y) = &self.y {
+                    (yl, yh) = (format!("{y}_lo"), format!("{y}_hi"));
+                    head.extend([yl.as_str(), yh.as_str()]);
+                }
+                head.push(c);
+                let mut t = DataTable::new(None, &head);
+                for (r, &k) in rects.iter().zip(idx) {
+                    let mut row = vec![format!("{:?}", r[0]), format!("{:?}", r[1])];
+                    if self.y.is_some() {
+                        row.extend([format!("{:?}", r[2]), format!("{:?}", r[3])]);
+                    }
+                    row.push(cats[k].clone());
+                    t.push(row);
+                }
+                t
+            }
             Data::Fractions {
                 xs,
                 cats,
@@ -648,11 +886,13 @@ impl SweepPlot {
         let side_w = (w as f64 * 0.24) as u32;
         let (main, side) = body.split_horizontally(w - side_w);
         let cat_color = |cats: &[String], i: usize| -> RGBColor {
-            if cats
-                .iter()
-                .all(|c| super::figures::knot_map::CLASSES.contains(&c.as_str()))
-            {
+            // class names (with `undecided`, the verify cells' open verdict)
+            if cats.iter().all(|c| {
+                super::figures::knot_map::CLASSES.contains(&c.as_str()) || c == "undecided"
+            }) {
                 class_color(&cats[i])
+            } else if cats.iter().all(|c| VERDICTS.contains(&c.as_str())) {
+                verdict_color(&cats[i])
             } else {
                 series_color(i, cats.len())
             }
@@ -708,6 +948,41 @@ impl SweepPlot {
             .x_label_area_size(th.label * 3)
             .y_label_area_size(th.label * 4);
         match &self.data {
+            Data::Cells {
+                rects,
+                idx,
+                cats,
+                bounds,
+                ..
+            } => {
+                let [x0, x1, y0, y1] = *bounds;
+                let (x0, x1) = if x1 > x0 { (x0, x1) } else { pad(x0, x1) };
+                let (y0, y1) = if y1 > y0 { (y0, y1) } else { pad(y0, y1) };
+                let mut chart = builder
+                    .build_cartesian_2d(x0..x1, y0..y1)
+                    .map_err(draw_err)?;
+                match &self.y {
+                    Some(y) => mesh(&mut chart, &self.x, y, 8, &th)?,
+                    None => chart
+                        .configure_mesh()
+                        .x_labels(8)
+                        .y_labels(0)
+                        .x_desc(self.x.as_str())
+                        .label_style(th.font(th.tick))
+                        .axis_desc_style(th.font(th.label))
+                        .light_line_style(WHITE)
+                        .bold_line_style(BLACK.mix(0.08))
+                        .x_label_formatter(&|v| super::plot::tick(*v))
+                        .draw()
+                        .map_err(draw_err)?,
+                }
+                chart
+                    .draw_series(rects.iter().zip(idx).map(|(r, &k)| {
+                        Rectangle::new([(r[0], r[2]), (r[1], r[3])], cat_color(cats, k).filled())
+                    }))
+                    .map_err(draw_err)?;
+                legend(cats, false, &[])
+            }
             Data::Fractions {
                 xs,
                 cats,
@@ -907,6 +1182,20 @@ impl SweepPlot {
     }
 }
 
+/// The verdicts of a `verify` property column (and of `verdict` without the
+/// class property).
+const VERDICTS: &[&str] = &["certified", "refuted", "undecided"];
+
+/// The colour of a verdict: certified green-blue, refuted dark, undecided
+/// light grey (as on the certified map).
+fn verdict_color(v: &str) -> RGBColor {
+    match v {
+        "certified" => viridis(0.6),
+        "refuted" => RGBColor(60, 60, 60),
+        _ => RGBColor(215, 215, 215),
+    }
+}
+
 /// Which of `count` categories (the category of each cell in `idx`) a map
 /// draws as measure-zero sets: those with fewer than
 /// [`RARE_SHARE`](super::figures::knot_map::RARE_SHARE) of the cells, as on
@@ -952,14 +1241,21 @@ fn mesh<'a, DB: DrawingBackend + 'a>(
         .map_err(draw_err)
 }
 
-/// The estimated cost of plotting `rows` rows of `columns` columns (reading
-/// and drawing every row into SVG and PNG), for the CLI's work limits.
-pub fn estimate(rows: usize, columns: usize) -> Estimate {
+/// The estimated cost of plotting `rows` rows of `columns` columns read from
+/// a file of `file_bytes` bytes (holding the file, reading the table and
+/// drawing every row into SVG or PNG), for the CLI's work limits.
+pub fn estimate(rows: usize, columns: usize, file_bytes: u64) -> Estimate {
     Estimate {
-        bytes: rows as f64 * columns.max(1) as f64 * BYTES_PER_CELL,
+        bytes: file_bytes as f64 + rows as f64 * columns.max(1) as f64 * BYTES_PER_CELL,
         seconds: rows as f64 * SECONDS_PER_POINT,
         what: format!("plotting {rows} rows"),
     }
+}
+
+/// The size of an SVG of `items` drawn points or cells, bytes (about
+/// [`SVG_BYTES_PER_ITEM`] each).
+pub fn svg_bytes(items: usize) -> f64 {
+    items as f64 * SVG_BYTES_PER_ITEM
 }
 
 #[cfg(test)]
@@ -990,6 +1286,85 @@ mod tests {
             (k, r.y.as_deref()),
             (PlotKind::Scatter, Some("contraction_rate"))
         );
+    }
+
+    /// One valence: the class fractions, unless one or two parameters vary
+    /// (then the scatter or the class map of the slice); without a class
+    /// column, a histogram.
+    #[test]
+    fn one_valence_defaults_to_the_class_fractions() {
+        let cube = t("id,valence,r0,r1,r2,class,contraction_rate\n0,3,0.1,0.1,0.1,a,1\n1,3,0.2,0.2,0.2,b,2\n2,3,0.1,0.2,0.3,a,3\n");
+        let (k, r) = choose(&cube, &PlotRequest::default()).unwrap();
+        assert_eq!(
+            (k, r.x.as_deref(), r.color.as_deref()),
+            (PlotKind::Fractions, Some("valence"), Some("class"))
+        );
+        let fixed = t("id,valence,r0,class,contraction_rate\n0,3,0.1,a,1\n1,3,0.1,b,2\n");
+        assert_eq!(
+            choose(&fixed, &PlotRequest::default()).unwrap().0,
+            PlotKind::Fractions
+        );
+        let no_class = t("id,valence,r0,r1,r2,x\n0,3,0.1,0.1,0.1,1\n1,3,0.2,0.2,0.2,2\n");
+        assert_eq!(
+            choose(&no_class, &PlotRequest::default()).unwrap().0,
+            PlotKind::Histogram
+        );
+    }
+
+    /// A verify cells table is the certified map: one rectangle per cell in
+    /// the slice through the middle of the box, coloured by verdict; rows
+    /// with a non-finite end are counted as dropped.
+    #[test]
+    fn verify_cells_are_drawn_as_the_certified_map() {
+        let cells = t("lo0,lo1,lo2,hi0,hi1,hi2,verdict,class\n\
+            0.1,0.1,0.1,0.5,0.5,0.5,complex_pair,certified\n\
+            0.1,0.1,0.5,0.5,0.5,0.9,real_distinct,certified\n\
+            0.5,0.1,0.1,0.9,0.9,0.9,undecided,undecided\n\
+            0.1,0.5,0.1,0.5,0.9,0.9,NaN,undecided\n\
+            0.1,0.5,NaN,0.5,0.9,0.9,undecided,undecided\n");
+        let p = SweepPlot::build(&cells, &PlotRequest::default()).unwrap();
+        assert_eq!(p.kind(), PlotKind::Map);
+        assert_eq!(p.dropped(), 1);
+        // r2 = 0.5 lies in [0.5, 0.9) of the second cell, not in the first's [0.1, 0.5).
+        let d = p.data();
+        assert_eq!(d.rows.len(), 3, "{:?}", d.rows);
+        assert!(d.rows.iter().all(|r| r[4] != "complex_pair"));
+        assert!(p
+            .default_title()
+            .starts_with("Certified map: verdict over r0 and r1, at r2 = 0.5"));
+        let by_c = t("c_lo,c_hi,verdict\n0.0,0.5,standard\n0.5,1.0,undecided\n");
+        let p = SweepPlot::build(&by_c, &PlotRequest::default()).unwrap();
+        assert_eq!(
+            (p.items(), p.default_title().as_str()),
+            (2, "Certified map: verdict over c")
+        );
+        // Another kind asked for: the table's columns as they are.
+        let h = SweepPlot::build(
+            &cells,
+            &PlotRequest {
+                kind: Some(PlotKind::Histogram),
+                x: Some("lo0".into()),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(h.kind(), PlotKind::Histogram);
+    }
+
+    /// Rows without a finite value on an axis are counted.
+    #[test]
+    fn dropped_rows_are_counted() {
+        let tab = t("a,b\n1,2\n2,NaN\n3,inf\n4,\n5,6\n");
+        let req = |kind, y: Option<&str>| PlotRequest {
+            kind: Some(kind),
+            x: Some("a".into()),
+            y: y.map(Into::into),
+            ..Default::default()
+        };
+        let p = SweepPlot::build(&tab, &req(PlotKind::Scatter, Some("b"))).unwrap();
+        assert_eq!((p.dropped(), p.axes().as_str()), (3, "a or b"));
+        let p = SweepPlot::build(&tab, &req(PlotKind::Histogram, None)).unwrap();
+        assert_eq!((p.dropped(), p.axes().as_str()), (0, "a"));
     }
 
     #[test]

@@ -229,7 +229,9 @@ impl Table {
         use crate::sweep::output::parquet::{read_table, Column};
         // The reader's problems are reported as they are (not as a write).
         let t = read_table(bytes).map_err(|e| match e {
-            crate::sweep::SweepError::Io(m) => TableError::Parquet(m),
+            crate::sweep::SweepError::Io(m) | crate::sweep::SweepError::Read(m) => {
+                TableError::Parquet(m)
+            }
             other => TableError::Parquet(other.to_string()),
         })?;
         if t.names.is_empty() {
@@ -267,18 +269,47 @@ impl Table {
 
     /// Reads `bytes` as Parquet when `name` ends in `.parquet` or the bytes
     /// begin and end with the Parquet magic `PAR1` (a Parquet file under
-    /// another name, e.g. `sweep --format parquet --out x.csv`), as CSV
+    /// another name, e.g. a `.parquet` file renamed `x.csv`), as CSV
     /// otherwise ([`from_parquet`](Self::from_parquet),
     /// [`from_csv`](Self::from_csv)).
     pub fn from_named_bytes(name: &str, bytes: &[u8]) -> Result<Self, TableError> {
-        let magic = b"PAR1";
-        let parquet_bytes =
-            bytes.len() >= 2 * magic.len() && bytes.starts_with(magic) && bytes.ends_with(magic);
-        if name.ends_with(".parquet") || parquet_bytes {
+        if Self::is_parquet(name, bytes) {
             Table::from_parquet(bytes.to_vec())
         } else {
             Table::from_csv(bytes)
         }
+    }
+
+    /// An upper bound of the rows and the number of columns of the table
+    /// [`from_named_bytes`](Self::from_named_bytes) would read from `bytes`,
+    /// without reading it (a work estimate): for CSV the line count and the
+    /// fields of the first line that is not a `#` comment; for Parquet the
+    /// footer's counts.
+    pub fn shape(name: &str, bytes: &[u8]) -> Result<(usize, usize), TableError> {
+        if Self::is_parquet(name, bytes) {
+            let (rows, columns) =
+                crate::sweep::output::parquet::shape(bytes).map_err(|e| match e {
+                    crate::sweep::SweepError::Read(m) => TableError::Parquet(m),
+                    other => TableError::Parquet(other.to_string()),
+                })?;
+            return Ok((usize::try_from(rows).unwrap_or(usize::MAX), columns));
+        }
+        let lines = memchr::memchr_iter(b'\n', bytes).count() + 1;
+        let header = bytes
+            .split(|&b| b == b'\n')
+            .find(|l| !l.starts_with(b"#"))
+            .unwrap_or_default();
+        let columns = memchr::memchr_iter(b',', header).count() + 1;
+        Ok((lines, columns))
+    }
+
+    /// Whether [`from_named_bytes`](Self::from_named_bytes) reads `bytes` as
+    /// Parquet.
+    fn is_parquet(name: &str, bytes: &[u8]) -> bool {
+        let magic = b"PAR1";
+        let parquet_bytes =
+            bytes.len() >= 2 * magic.len() && bytes.starts_with(magic) && bytes.ends_with(magic);
+        name.ends_with(".parquet") || parquet_bytes
     }
 
     /// Column names in order.
@@ -364,6 +395,17 @@ impl Table {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shape is read without parsing: a bound of the rows (the lines)
+    /// and the header's fields; a Parquet file's from its footer.
+    #[test]
+    fn shape_bounds_rows_before_parsing() {
+        let csv = b"# fingerprint\nid,valence,class\n0,3,a\n1,3,b\n";
+        let (rows, cols) = Table::shape("s.csv", csv).unwrap();
+        assert_eq!(cols, 3);
+        assert!(rows >= Table::from_csv(csv).unwrap().len());
+        assert!(Table::shape("s.parquet", b"PAR1").is_err());
+    }
 
     #[test]
     fn csv_errors_name_the_problem() {

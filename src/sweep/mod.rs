@@ -99,6 +99,10 @@ pub enum SweepError {
     /// Writing output failed.
     #[error("write failed: {0}")]
     Io(String),
+    /// An existing file (a Parquet file to resume, merge or plot) could not
+    /// be read as a sweep writes it: not Parquet, torn, or of other types.
+    #[error("read failed: {0}")]
+    Read(String),
 }
 
 impl From<std::io::Error> for SweepError {

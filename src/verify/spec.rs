@@ -291,7 +291,7 @@ impl VerifySpec {
                     return ctx.err(
                         "min_width",
                         Some(w.span()),
-                        format!("min_width must be finite and at least 2^-40 ({MIN_MIN_WIDTH:e}), got {x}"),
+                        format!("min_width must be finite and at least 2^-40 ({MIN_MIN_WIDTH:e}), got {x:?}"),
                     );
                 }
                 x
@@ -305,7 +305,7 @@ impl VerifySpec {
                     return ctx.err(
                         "time_budget",
                         Some(t.span()),
-                        format!("time_budget must be a positive number of seconds, got {x}"),
+                        format!("time_budget must be a positive number of seconds, got {x:?}"),
                     );
                 }
                 Some(x)

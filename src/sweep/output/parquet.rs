@@ -78,6 +78,11 @@ fn pq_err(e: parquet::errors::ParquetError) -> SweepError {
     SweepError::Io(format!("parquet: {e}"))
 }
 
+/// A reader error of the `parquet` crate (reading an existing file).
+fn pq_read_err(e: parquet::errors::ParquetError) -> SweepError {
+    SweepError::Read(format!("parquet: {e}"))
+}
+
 /// The column types of a layout, `id` to `error`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Col {
@@ -1147,6 +1152,32 @@ impl ParquetTable {
     }
 }
 
+/// The number of rows and of columns of a Parquet file, from its footer
+/// alone (a work estimate before [`read_table`]). A file that is not Parquet
+/// or is torn is refused as by [`read_table`].
+pub fn shape(bytes: &[u8]) -> Result<(u64, usize), SweepError> {
+    let n = bytes.len();
+    if n < 12 || &bytes[..4] != MAGIC || &bytes[n - 4..] != MAGIC {
+        return Err(SweepError::Read(
+            "not a Parquet file, or torn (no PAR1 footer at its end)".into(),
+        ));
+    }
+    let len = u32::from_le_bytes([bytes[n - 8], bytes[n - 7], bytes[n - 6], bytes[n - 5]]) as usize;
+    if len > n - 12 {
+        return Err(SweepError::Read(format!(
+            "a footer of {len} bytes in a file of {n} bytes"
+        )));
+    }
+    let md =
+        parquet::file::metadata::ParquetMetaDataReader::decode_metadata(&bytes[n - 8 - len..n - 8])
+            .map_err(pq_read_err)?;
+    let f = md.file_metadata();
+    Ok((
+        u64::try_from(f.num_rows()).unwrap_or(0),
+        f.schema_descr().num_columns(),
+    ))
+}
+
 /// Reads a sweep's Parquet file from its bytes (the library does no I/O: the
 /// caller reads the file, e.g. `std::fs::read`), returning the columns by
 /// name. Every column must be of a type a sweep writes (`u64`, `u32`, `f64`,
@@ -1161,11 +1192,11 @@ impl ParquetTable {
 pub fn read_table(bytes: impl Into<Bytes>) -> Result<ParquetTable, SweepError> {
     let bytes: Bytes = bytes.into();
     if bytes.len() < 12 || &bytes[..4] != MAGIC || &bytes[bytes.len() - 4..] != MAGIC {
-        return Err(SweepError::Io(
+        return Err(SweepError::Read(
             "not a Parquet file, or torn (no PAR1 footer at its end)".into(),
         ));
     }
-    let reader = SerializedFileReader::new(bytes).map_err(pq_err)?;
+    let reader = SerializedFileReader::new(bytes).map_err(pq_read_err)?;
     let md = reader.metadata();
     let key_value = md
         .file_metadata()
@@ -1191,19 +1222,21 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<ParquetTable, SweepError> {
             (PhysicalType::DOUBLE, _) => Ok(Column::F64(Vec::new())),
             (PhysicalType::BYTE_ARRAY, _) => Ok(Column::Str(Vec::new())),
             (PhysicalType::BOOLEAN, _) => Ok(Column::Bool(Vec::new())),
-            (t, _) => Err(SweepError::Io(format!(
+            (t, _) => Err(SweepError::Read(format!(
                 "parquet: column {} has type {t}, which a sweep does not write",
                 c.name()
             ))),
         })
         .collect::<Result<_, _>>()?;
     let groups = md.row_groups().to_vec();
-    let rows = reader.get_row_iter(None).map_err(pq_err)?;
+    let rows = reader.get_row_iter(None).map_err(pq_read_err)?;
     for row in rows {
-        let row = row.map_err(pq_err)?;
+        let row = row.map_err(pq_read_err)?;
         for (k, (_, f)) in row.get_column_iter().enumerate() {
             let Some(col) = columns.get_mut(k) else {
-                return Err(SweepError::Io("parquet: a row has too many fields".into()));
+                return Err(SweepError::Read(
+                    "parquet: a row has too many fields".into(),
+                ));
             };
             let ok = match (col, f) {
                 (Column::U64(v), Field::ULong(x)) => {
@@ -1249,7 +1282,7 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<ParquetTable, SweepError> {
                 _ => false,
             };
             if !ok {
-                return Err(SweepError::Io(format!(
+                return Err(SweepError::Read(format!(
                     "parquet: column {} holds {f}, not a value a sweep writes there",
                     names[k]
                 )));

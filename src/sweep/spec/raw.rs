@@ -178,7 +178,7 @@ pub(crate) fn bounds(
         return ctx.err(
             key,
             span,
-            format!("{key}: bounds must be finite, got [{a}, {b}]"),
+            format!("{key}: bounds must be finite, got [{a:?}, {b:?}]"),
         );
     }
     if domain == Domain::Shape {
@@ -188,7 +188,7 @@ pub(crate) fn bounds(
                     key,
                     span,
                     format!(
-                        "{key}: bound {x} is outside [0, 1], the range of the shape parameter c"
+                        "{key}: bound {x:?} is outside [0, 1], the range of the shape parameter c"
                     ),
                 );
             }
@@ -199,7 +199,9 @@ pub(crate) fn bounds(
                 return ctx.err(
                     key,
                     span,
-                    format!("{key}: bound {x} is outside the open interval (0, 1) of edge ratios"),
+                    format!(
+                        "{key}: bound {x:?} is outside the open interval (0, 1) of edge ratios"
+                    ),
                 );
             }
         }
@@ -209,7 +211,7 @@ pub(crate) fn bounds(
                 return ctx.err(
                     key,
                     span,
-                    format!("{key}: bound {x} must be > 0 (knot intervals are positive)"),
+                    format!("{key}: bound {x:?} must be > 0 (knot intervals are positive)"),
                 );
             }
         }
@@ -218,14 +220,14 @@ pub(crate) fn bounds(
         return ctx.err(
             key,
             span,
-            format!("{key}: lower bound {a} > upper bound {b}"),
+            format!("{key}: lower bound {a:?} > upper bound {b:?}"),
         );
     }
     if a == b {
         return ctx.err(
             key,
             span,
-            format!("{key}: empty range [{a}, {b}] (lower bound = upper bound){empty_hint}"),
+            format!("{key}: empty range [{a:?}, {b:?}] (lower bound = upper bound){empty_hint}"),
         );
     }
     Ok((a, b))

@@ -43,7 +43,7 @@ pub(super) fn fixed(
                     SpaceKind::Shape => "a shape parameter c in [0, 1]",
                     _ => "a finite knot interval > 0",
                 };
-                return ctx.err(&key, span, format!("{key} must be {domain}, got {x}"));
+                return ctx.err(&key, span, format!("{key} must be {domain}, got {x:?}"));
             }
             fixed.insert(name.clone(), x);
         }
