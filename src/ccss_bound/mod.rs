@@ -36,6 +36,7 @@ pub(crate) mod differences;
 pub(crate) mod lp;
 pub(crate) mod patch;
 pub(crate) mod steps;
+pub mod summary;
 
 pub use differences::{default_family, Difference, DifferenceFamily};
 pub use patch::ExtraordinaryPatch;

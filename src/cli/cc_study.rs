@@ -4,7 +4,6 @@
 //! per valence by bisection). CSV on standard output.
 
 use super::{CliError, CliResult};
-use anyhow::anyhow;
 use clap::Args;
 use std::io::Write as _;
 use subdiv_lab::cc_study::{csv_cell, intervals, study_curve_rows, Criterion};
@@ -42,18 +41,14 @@ enum CriterionArg {
 }
 
 pub(crate) fn run(args: CcStudyArgs) -> CliResult {
-    if args.n_min < 3 || args.n_max < args.n_min || args.n_max > 256 {
-        return Err(CliError::usage(anyhow!(
-            "need 3 <= --n-min <= --n-max <= 256, got {}..{}",
-            args.n_min,
-            args.n_max
-        )));
-    }
-    if args.samples == 0 || args.samples > 100_000 || !(args.tol > 0.0 && args.tol < 1.0) {
-        return Err(CliError::usage(anyhow!(
-            "need 1 <= --samples <= 100000 and 0 < --tol < 1"
-        )));
-    }
+    subdiv_lab::cc_study::check_study(
+        args.n_min,
+        args.n_max,
+        args.samples,
+        args.tol,
+        subdiv_lab::budget::Spelling::Cli,
+    )
+    .map_err(super::budget::usage)?;
     super::budget::check(
         "cc-study",
         &format!("valences {}..{}", args.n_min, args.n_max),
