@@ -118,6 +118,47 @@ pub const SWEEP_EXACT_SECONDS_PER_N3: f64 = 6e-5;
 /// `n = 64`, 0.19 s at `n = 48` (2.4e-6 per `n^3`), rounded up.
 pub const SWEEP_EXACT_UNIFORM_SECONDS_PER_N3: f64 = 4e-6;
 
+/// Peak bytes per cell of a result table held in memory by the Python
+/// binding (`sweep` and `merge` return a `pyarrow.Table`: the rows, their
+/// columns, the arrays and the Python strings of the text columns). Measured
+/// 36 to 49 bytes per cell (peak resident set above the one before the call,
+/// 100 000 to 400 000 rows, 17 and 33 columns); rounded up.
+pub const TABLE_BYTES_PER_CELL: f64 = 64.0;
+
+/// Peak bytes per cell of the result columns of Python's `classify_batch`
+/// (typed columns, their numpy arrays and the expanded text columns), and per
+/// cell of its input (copied once). Measured 16 to 20 bytes per result cell
+/// (1 000 000 rows at `n = 3`, 300 000 at `n = 8`); rounded up.
+pub const BATCH_BYTES_PER_CELL: f64 = 32.0;
+
+/// `estimate` with its `rows` result rows of `columns` cells each held in
+/// memory at `bytes_per_cell` ([`TABLE_BYTES_PER_CELL`],
+/// [`BATCH_BYTES_PER_CELL`]): the command-line tool streams its rows to a
+/// file, a Python call returns them.
+///
+/// ```
+/// use subdiv_lab::budget::{held_in_memory, Estimate, TABLE_BYTES_PER_CELL};
+/// let e = Estimate { bytes: 1e6, seconds: 1.0, what: "10 configurations".into() };
+/// let held = held_in_memory(e, 10, 5, TABLE_BYTES_PER_CELL);
+/// assert_eq!(held.bytes, 1e6 + 10.0 * 5.0 * 64.0);
+/// assert_eq!(held.what, "10 configurations, 10 rows of 5 columns in memory");
+/// ```
+pub fn held_in_memory(
+    estimate: Estimate,
+    rows: u64,
+    columns: usize,
+    bytes_per_cell: f64,
+) -> Estimate {
+    Estimate {
+        bytes: estimate.bytes + rows as f64 * columns as f64 * bytes_per_cell,
+        seconds: estimate.seconds,
+        what: format!(
+            "{}, {rows} rows of {columns} columns in memory",
+            estimate.what
+        ),
+    }
+}
+
 /// An estimate of one heavy step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Estimate {

@@ -14,7 +14,7 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{BufRead, BufReader, BufWriter, IsTerminal, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use subdiv_lab::sweep::output::shards::{self, ShardData, ShardFile};
+use subdiv_lab::sweep::output::shards::{self, summary_path, ShardData, ShardFile};
 use subdiv_lab::sweep::output::{self, LineFault, Verifier};
 use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, Summary, SweepError, SweepSpec};
 
@@ -82,19 +82,6 @@ fn parse_shard(s: &str) -> Result<Shard, String> {
     s.parse::<Shard>().map_err(|e| e.to_string())
 }
 
-/// `NAME.csv` -> `NAME.summary.json` (any other name gets `.summary.json` appended).
-fn summary_path(csv: &Path) -> PathBuf {
-    let name = csv
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let stem = name
-        .strip_suffix(".csv")
-        .or_else(|| name.strip_suffix(".parquet"))
-        .unwrap_or(&name);
-    csv.with_file_name(format!("{stem}.summary.json"))
-}
-
 /// Checks the output paths of `sweep --out` and `merge --out` before any work
 /// (exit 2): the output must not be a special file (a device such as
 /// `/dev/null`, a FIFO: the CSV is resumable and its summary goes beside it),
@@ -135,14 +122,8 @@ fn write_summary(path: &Path, summary: &Summary) -> CliResult {
     write_atomic(path, json.as_bytes()).map_err(CliError::failure)
 }
 
-/// A salt for the verifier's re-evaluated sample: which lines are re-evaluated
-/// must not be predictable.
-fn salt() -> u64 {
-    let t = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_nanos() as u64);
-    t ^ (u64::from(std::process::id()) << 32)
-}
+/// A salt for the verifier's re-evaluated sample (the library's).
+use subdiv_lab::sweep::output::fresh_salt as salt;
 
 /// Reads an existing CSV for `--resume`: checks the fingerprint line (same spec,
 /// same shard) and the header, verifies every complete line in full against the

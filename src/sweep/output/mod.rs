@@ -44,6 +44,7 @@ pub use layout::{ColumnDoc, Layout, Row};
 pub use merge::{merge, MergeSource};
 pub use parquet::run_parquet;
 pub use run::{run, run_counting, run_discard, CHUNK, SUB_CHUNK};
+pub use shards::fresh_salt;
 pub use verify::{
     check_fingerprint, fingerprint_digest, fingerprint_line, fingerprint_shard, LineFault,
     Verifier, PIECE_BYTES, RECHECK_SAMPLE,

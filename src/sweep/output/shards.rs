@@ -16,7 +16,40 @@ use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
 use std::cell::Cell;
 use std::io::{BufRead, Write};
+use std::path::{Path, PathBuf};
 use std::rc::Rc;
+
+/// Where `sweep --out NAME.csv` (or `NAME.parquet`) writes its summary:
+/// `NAME.summary.json` beside it (any other name gets `.summary.json`
+/// appended). A path computation only.
+///
+/// ```
+/// use std::path::Path;
+/// use subdiv_lab::sweep::output::shards::summary_path;
+/// assert_eq!(summary_path(Path::new("out/a.parquet")), Path::new("out/a.summary.json"));
+/// assert_eq!(summary_path(Path::new("a.txt")), Path::new("a.txt.summary.json"));
+/// ```
+pub fn summary_path(rows: &Path) -> PathBuf {
+    let name = rows
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let stem = name
+        .strip_suffix(".csv")
+        .or_else(|| name.strip_suffix(".parquet"))
+        .unwrap_or(&name);
+    rows.with_file_name(format!("{stem}.summary.json"))
+}
+
+/// A salt for the re-evaluated sample of a resume or merge ([`Verifier`](super::Verifier),
+/// [`merge`]): which lines are re-evaluated must not be predictable, so it
+/// mixes the clock and the process id.
+pub fn fresh_salt() -> u64 {
+    let t = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos() as u64);
+    t ^ (u64::from(std::process::id()) << 32)
+}
 
 /// The data of one shard file.
 pub enum ShardData<R> {
