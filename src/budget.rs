@@ -118,6 +118,47 @@ pub const SWEEP_EXACT_SECONDS_PER_N3: f64 = 6e-5;
 /// `n = 64`, 0.19 s at `n = 48` (2.4e-6 per `n^3`), rounded up.
 pub const SWEEP_EXACT_UNIFORM_SECONDS_PER_N3: f64 = 4e-6;
 
+/// Peak bytes per cell of a result table held in memory by the Python
+/// binding (`sweep` and `merge` return a `pyarrow.Table`: the rows, their
+/// columns, the arrays and the Python strings of the text columns). Measured
+/// 36 to 49 bytes per cell (peak resident set above the one before the call,
+/// 100 000 to 400 000 rows, 17 and 33 columns); rounded up.
+pub const TABLE_BYTES_PER_CELL: f64 = 64.0;
+
+/// Peak bytes per cell of the result columns of Python's `classify_batch`
+/// (typed columns, their numpy arrays and the expanded text columns), and per
+/// cell of its input (copied once). Measured 16 to 20 bytes per result cell
+/// (1 000 000 rows at `n = 3`, 300 000 at `n = 8`); rounded up.
+pub const BATCH_BYTES_PER_CELL: f64 = 32.0;
+
+/// `estimate` with its `rows` result rows of `columns` cells each held in
+/// memory at `bytes_per_cell` ([`TABLE_BYTES_PER_CELL`],
+/// [`BATCH_BYTES_PER_CELL`]): the command-line tool streams its rows to a
+/// file, a Python call returns them.
+///
+/// ```
+/// use subdiv_lab::budget::{held_in_memory, Estimate, TABLE_BYTES_PER_CELL};
+/// let e = Estimate { bytes: 1e6, seconds: 1.0, what: "10 configurations".into() };
+/// let held = held_in_memory(e, 10, 5, TABLE_BYTES_PER_CELL);
+/// assert_eq!(held.bytes, 1e6 + 10.0 * 5.0 * 64.0);
+/// assert_eq!(held.what, "10 configurations, 10 rows of 5 columns in memory");
+/// ```
+pub fn held_in_memory(
+    estimate: Estimate,
+    rows: u64,
+    columns: usize,
+    bytes_per_cell: f64,
+) -> Estimate {
+    Estimate {
+        bytes: estimate.bytes + rows as f64 * columns as f64 * bytes_per_cell,
+        seconds: estimate.seconds,
+        what: format!(
+            "{}, {rows} rows of {columns} columns in memory",
+            estimate.what
+        ),
+    }
+}
+
 /// An estimate of one heavy step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Estimate {
@@ -522,6 +563,169 @@ pub fn verify_charmap(
     e.seconds = seconds + verify_setup_seconds(n, nurds);
     e.what = format!("{} (with the charmap property)", e.what);
     e
+}
+
+/// Most worker threads per available core accepted for a run's thread count
+/// (more only add scheduling and per-thread scratch memory).
+pub const MAX_THREADS_PER_CORE: usize = 4;
+
+/// Absolute cap on a run's thread count, whatever the core count.
+pub const MAX_THREADS: usize = 1024;
+
+/// The largest thread count accepted on this machine:
+/// `min(MAX_THREADS, MAX_THREADS_PER_CORE x available cores)`.
+pub fn max_threads() -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    (MAX_THREADS_PER_CORE * cores).min(MAX_THREADS)
+}
+
+/// How a front end spells its arguments in messages: `--n-min` and
+/// `--force` on the command line, `n_min` and `force=True` in Python. The
+/// validators shared by the front ends take it, so that one check gives each
+/// front end its own one-line message.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Spelling {
+    /// Command-line flags: `--` and the name with `_` as `-`.
+    Cli,
+    /// Python keyword arguments: the name itself.
+    Python,
+}
+
+impl Spelling {
+    /// The argument `name` (snake case) as the front end spells it.
+    ///
+    /// ```
+    /// use subdiv_lab::budget::Spelling;
+    /// assert_eq!(Spelling::Cli.arg("max_cells"), "--max-cells");
+    /// assert_eq!(Spelling::Python.arg("max_cells"), "max_cells");
+    /// ```
+    pub fn arg(self, name: &str) -> String {
+        match self {
+            Spelling::Cli => format!("--{}", name.replace('_', "-")),
+            Spelling::Python => name.to_owned(),
+        }
+    }
+
+    /// The override of the limits: `--force` or `force=True`.
+    pub fn force(self) -> &'static str {
+        match self {
+            Spelling::Cli => "--force",
+            Spelling::Python => "force=True",
+        }
+    }
+}
+
+/// Checks a thread count: between 1 and [`max_threads`]; the error is the
+/// one-line message naming the argument as `spelling` spells it.
+///
+/// ```
+/// use subdiv_lab::budget::{check_threads, Spelling};
+/// assert!(check_threads(1, Spelling::Cli).is_ok());
+/// let e = check_threads(0, Spelling::Python).unwrap_err();
+/// assert!(e.starts_with("threads must be between 1 and "), "{e}");
+/// ```
+pub fn check_threads(threads: usize, spelling: Spelling) -> Result<(), String> {
+    let max = max_threads();
+    if threads == 0 || threads > max {
+        return Err(format!(
+            "{} must be between 1 and {max} ({MAX_THREADS_PER_CORE} per available core, at most {MAX_THREADS}), got {threads}",
+            spelling.arg("threads")
+        ));
+    }
+    Ok(())
+}
+
+/// Total physical memory (`MemTotal` of `/proc/meminfo`), if known. The one
+/// place the library reads the machine's state (like
+/// [`std::thread::available_parallelism`]): the refusal above it holds even
+/// when the limits are overridden.
+pub fn physical_memory() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemTotal:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024.0)
+}
+
+/// Refuses `estimate` of `command` on `subject` (e.g. "valence 100000") when
+/// it exceeds [`MEMORY_LIMIT_BYTES`] or `time_limit` seconds, unless
+/// `force`; refuses it always when it exceeds `physical` bytes (the
+/// machine's memory, [`physical_memory`]; `None`: unknown, not checked),
+/// since the allocation would abort the process. The error is the one-line
+/// message stating the estimate and the limit, naming the override as
+/// `spelling` spells it.
+///
+/// ```
+/// use subdiv_lab::budget::{check_against, Estimate, Spelling};
+/// let e = Estimate { bytes: 1e9, seconds: 432.0, what: "the work".into() };
+/// assert_eq!(
+///     check_against("analyze", "valence 600", &e, 60.0, false, Spelling::Python, None).unwrap_err(),
+///     "analyze: valence 600 takes ~7.2 min for the work (limit 60 s); use force=True to run anyway"
+/// );
+/// assert!(check_against("analyze", "valence 600", &e, 60.0, true, Spelling::Python, None).is_ok());
+/// let small = Some(5e8);
+/// assert!(check_against("analyze", "valence 600", &e, 60.0, true, Spelling::Cli, small)
+///     .unwrap_err()
+///     .ends_with("(refused even with --force)"));
+/// ```
+pub fn check_against(
+    command: &str,
+    subject: &str,
+    estimate: &Estimate,
+    time_limit: f64,
+    force: bool,
+    spelling: Spelling,
+    physical: Option<f64>,
+) -> Result<(), String> {
+    let bytes = format_bytes(estimate.bytes);
+    let what = &estimate.what;
+    let flag = spelling.force();
+    if let Some(total) = physical {
+        if estimate.bytes > total {
+            return Err(format!(
+                "{command}: {subject} needs ~{bytes} for {what}, more than this machine's {} of memory (refused even with {flag})",
+                format_bytes(total)
+            ));
+        }
+    }
+    if force {
+        return Ok(());
+    }
+    let over_memory = estimate.bytes > MEMORY_LIMIT_BYTES;
+    let over_time = estimate.seconds > time_limit;
+    let time = format_seconds(estimate.seconds);
+    let (mem_limit, time_limit) = (format_bytes(MEMORY_LIMIT_BYTES), format_seconds(time_limit));
+    let text = match (over_memory, over_time) {
+        (false, false) => return Ok(()),
+        (true, false) => format!("needs ~{bytes} for {what} (limit {mem_limit})"),
+        (false, true) => format!("takes ~{time} for {what} (limit {time_limit})"),
+        (true, true) => {
+            format!("needs ~{bytes} and ~{time} for {what} (limits {mem_limit}, {time_limit})")
+        }
+    };
+    Err(format!(
+        "{command}: {subject} {text}; use {flag} to run anyway"
+    ))
+}
+
+/// [`check_against`] this machine's [`physical_memory`]: the check every
+/// front end applies before a heavy step.
+pub fn check(
+    command: &str,
+    subject: &str,
+    estimate: &Estimate,
+    time_limit: f64,
+    force: bool,
+    spelling: Spelling,
+) -> Result<(), String> {
+    check_against(
+        command,
+        subject,
+        estimate,
+        time_limit,
+        force,
+        spelling,
+        physical_memory(),
+    )
 }
 
 #[cfg(test)]

@@ -44,6 +44,50 @@ use crate::schemes::LocalScheme;
 use crate::spectral::{classify_scheme, SubdominantClass};
 use serde::Serialize;
 
+/// Largest valence of a study.
+pub const MAX_VALENCE: usize = 256;
+
+/// Most grid cells in `c` of a study.
+pub const MAX_SAMPLES: usize = 100_000;
+
+/// Checks the arguments of a study: `3 <= n_min <= n_max <=`
+/// [`MAX_VALENCE`], `1 <= samples <=` [`MAX_SAMPLES`], `0 < tol < 1` (the
+/// message names the arguments as `spelling` spells them).
+///
+/// ```
+/// use subdiv_lab::budget::Spelling;
+/// use subdiv_lab::cc_study::check_study;
+/// assert!(check_study(3, 32, 100, 1e-6, Spelling::Cli).is_ok());
+/// assert_eq!(
+///     check_study(5, 4, 100, 1e-6, Spelling::Python).unwrap_err(),
+///     "need 3 <= n_min <= n_max <= 256, got 5..4"
+/// );
+/// ```
+pub fn check_study(
+    n_min: usize,
+    n_max: usize,
+    samples: usize,
+    tol: f64,
+    spelling: crate::budget::Spelling,
+) -> std::result::Result<(), String> {
+    let arg = |name| spelling.arg(name);
+    if n_min < 3 || n_max < n_min || n_max > MAX_VALENCE {
+        return Err(format!(
+            "need 3 <= {} <= {} <= {MAX_VALENCE}, got {n_min}..{n_max}",
+            arg("n_min"),
+            arg("n_max")
+        ));
+    }
+    if samples == 0 || samples > MAX_SAMPLES || !(tol > 0.0 && tol < 1.0) {
+        return Err(format!(
+            "need 1 <= {} <= {MAX_SAMPLES} and 0 < {} < 1",
+            arg("samples"),
+            arg("tol")
+        ));
+    }
+    check_tol(tol).map_err(|e| format!("{}: {e}", arg("tol")))
+}
+
 /// One `(n, c)` sample.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StudyPoint {

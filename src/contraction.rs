@@ -291,6 +291,30 @@ pub fn certify_face_block<T: Scalar>(
     })
 }
 
+/// Most subdivision levels of the measured contraction (`analyze`'s
+/// `levels`): far beyond what the rate needs (the distances reach the
+/// underflow of `f64` long before), and a bound on the work.
+pub const MAX_LEVELS: usize = 10_000;
+
+/// Checks the level count of the measured contraction: 1 to [`MAX_LEVELS`]
+/// (the message names the argument as `spelling` spells it).
+///
+/// ```
+/// use subdiv_lab::budget::Spelling;
+/// use subdiv_lab::contraction::check_levels;
+/// assert!(check_levels(60, Spelling::Cli).is_ok());
+/// assert_eq!(check_levels(0, Spelling::Cli).unwrap_err(), "--levels must be between 1 and 10000, got 0");
+/// ```
+pub fn check_levels(levels: usize, spelling: crate::budget::Spelling) -> Result<(), String> {
+    if levels == 0 || levels > MAX_LEVELS {
+        return Err(format!(
+            "{} must be between 1 and {MAX_LEVELS}, got {levels}",
+            spelling.arg("levels")
+        ));
+    }
+    Ok(())
+}
+
 /// Options of the measured contraction.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct MeasureOptions {

@@ -128,11 +128,32 @@ impl Error {
                 c,
                 C::InvalidTolerance(_)
                     | C::NonFinitePoint { .. }
+                    | C::RaggedNet { .. }
                     | C::ToleranceBelowResolution { .. }
             ),
             E::Spectral(s) => matches!(s, S::NotDooSabinFamily { .. }),
             E::Sweep(w) => !matches!(w, W::Io(_)),
+            E::G2Cap(g) => g.is_input_error(),
             _ => false,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::g2cap::G2CapError;
+
+    /// A G2 cap error keeps its own classification through [`Error`] (the
+    /// Python binding maps library errors through it).
+    #[test]
+    fn g2_cap_errors_keep_their_kind() {
+        assert!(Error::from(G2CapError::ShapeParameter { c: f64::NAN }).is_input_error());
+        let residual = G2CapError::Residual {
+            what: "g1",
+            value: 1.0,
+            tol: 1e-9,
+        };
+        assert!(!Error::from(residual).is_input_error());
     }
 }

@@ -8,6 +8,8 @@ import pyarrow as pa
 
 __version__: str
 
+Spec = Union[str, os.PathLike[str], Mapping[str, Any]]
+
 def matrix(
     scheme: str = ...,
     valence: Optional[int] = ...,
@@ -16,6 +18,7 @@ def matrix(
     uniform: bool = ...,
     c: Optional[float] = ...,
     block: str = ...,
+    force: bool = ...,
 ) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
 def analyze(
     scheme: str = ...,
@@ -27,19 +30,27 @@ def analyze(
     path: str = ...,
     levels: int = ...,
     seed: int = ...,
+    force: bool = ...,
 ) -> Dict[str, Any]: ...
 def classify_batch(
     ratios: npt.ArrayLike,
     scheme: str = ...,
     columns: Optional[Mapping[str, Any]] = ...,
     threads: Optional[int] = ...,
+    force: bool = ...,
 ) -> Dict[str, npt.NDArray[Any]]: ...
 def sweep(
-    spec: Union[str, os.PathLike[str], Mapping[str, Any]],
+    spec: Spec,
     threads: Optional[int] = ...,
     shard: Optional[Union[str, Tuple[int, int]]] = ...,
     limit: Optional[int] = ...,
+    force: bool = ...,
 ) -> pa.Table: ...
+def merge(
+    inputs: Union[str, os.PathLike[str], Sequence[Union[str, os.PathLike[str]]]],
+    spec: Spec,
+    force: bool = ...,
+) -> Tuple[pa.Table, Dict[str, Any]]: ...
 def subdivide(
     vertices: npt.ArrayLike,
     faces: Sequence[Sequence[int]],
@@ -47,8 +58,54 @@ def subdivide(
     knots: Optional[Mapping[Tuple[int, int], float]] = ...,
     levels: int = ...,
     c: Optional[float] = ...,
+    force: bool = ...,
 ) -> Tuple[npt.NDArray[np.float64], List[List[int]]]: ...
 def report(
-    spec: Union[str, os.PathLike[str], Mapping[str, Any]],
+    spec: Spec,
     out: Union[str, os.PathLike[str]],
 ) -> List[str]: ...
+def verify(
+    spec: Spec,
+    threads: Optional[int] = ...,
+    max_cells: Optional[int] = ...,
+    force: bool = ...,
+) -> Tuple[Dict[str, Any], pa.Table]: ...
+def g2_cap(
+    c: float,
+    vertices: Optional[npt.ArrayLike] = ...,
+    faces: Optional[Sequence[Sequence[int]]] = ...,
+    vertex: Optional[int] = ...,
+    valence: Optional[int] = ...,
+    random_net: Optional[int] = ...,
+    samples: Optional[int] = ...,
+) -> Dict[str, Any]: ...
+def plot(
+    data: Union[str, os.PathLike[str], pa.Table],
+    out: Optional[Union[str, os.PathLike[str]]] = ...,
+    kind: Optional[str] = ...,
+    x: Optional[str] = ...,
+    y: Optional[str] = ...,
+    color: Optional[str] = ...,
+    title: Optional[str] = ...,
+    width: int = ...,
+    height: int = ...,
+    format: Optional[str] = ...,
+    force: bool = ...,
+) -> bytes: ...
+def cc_study(
+    n_min: int = ...,
+    n_max: int = ...,
+    samples: int = ...,
+    tol: float = ...,
+    curves: bool = ...,
+    criterion: str = ...,
+    force: bool = ...,
+) -> pa.Table: ...
+def ccss_bound(
+    valence: Optional[int] = ...,
+    levels: int = ...,
+    table_to: Optional[int] = ...,
+    net: Optional[npt.ArrayLike] = ...,
+    epsilon: Optional[float] = ...,
+    force: bool = ...,
+) -> Union[Dict[str, Any], pa.Table]: ...

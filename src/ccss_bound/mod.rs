@@ -36,6 +36,7 @@ pub(crate) mod differences;
 pub(crate) mod lp;
 pub(crate) mod patch;
 pub(crate) mod steps;
+pub mod summary;
 
 pub use differences::{default_family, Difference, DifferenceFamily};
 pub use patch::ExtraordinaryPatch;
@@ -84,6 +85,17 @@ pub enum CcssBoundError {
     NonFinitePoint {
         /// The point's index.
         index: usize,
+    },
+    /// A control point whose dimension differs from the first point's (or
+    /// a net of points without coordinates).
+    #[error("control point {index} has {got} coordinates, expected {expected} (as point 0)")]
+    RaggedNet {
+        /// The point's index.
+        index: usize,
+        /// Its number of coordinates.
+        got: usize,
+        /// The first point's (at least 1).
+        expected: usize,
     },
     /// Writing output failed.
     #[error("writing output failed: {0}")]

@@ -170,6 +170,24 @@ fn scale_pow2(x: f64, k: i32) -> f64 {
     x * 2f64.powi(h) * 2f64.powi(k - h)
 }
 
+/// Checks a control net's points: one dimension (at least 1) for all, every
+/// coordinate finite.
+fn check_net(net: &[Vec<f64>]) -> Result<()> {
+    let expected = net.first().map_or(1, |p| p.len().max(1));
+    if let Some((index, p)) = net.iter().enumerate().find(|(_, p)| p.len() != expected) {
+        return Err(CcssBoundError::RaggedNet {
+            index,
+            got: p.len(),
+            expected,
+        }
+        .into());
+    }
+    if let Some(index) = net.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
+        return Err(CcssBoundError::NonFinitePoint { index }.into());
+    }
+    Ok(())
+}
+
 /// What [`steps_needed`] found.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct StepsReport {
@@ -207,9 +225,7 @@ pub fn steps_needed(
     if !(epsilon.is_finite() && epsilon > 0.0) {
         return Err(CcssBoundError::InvalidTolerance(epsilon).into());
     }
-    if let Some(index) = net.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-        return Err(CcssBoundError::NonFinitePoint { index }.into());
-    }
+    check_net(net)?;
     let magnitude = net
         .iter()
         .flat_map(|p| p.iter())
@@ -304,9 +320,7 @@ pub fn steps_a_priori(c: &Contraction, net: &[Vec<f64>], epsilon: f64) -> Result
     if !(epsilon.is_finite() && epsilon > 0.0) {
         return Err(CcssBoundError::InvalidTolerance(epsilon).into());
     }
-    if let Some(index) = net.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-        return Err(CcssBoundError::NonFinitePoint { index }.into());
-    }
+    check_net(net)?;
     let family = default_family(c.valence)?;
     // On the net scaled to magnitude about 1 (an unscaled M_0 can overflow to
     // infinity, and `inf * rho` never drops below epsilon).

@@ -44,12 +44,8 @@ enum Path {
 }
 
 pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
-    if args.levels == 0 || args.levels > 10_000 {
-        return Err(CliError::usage(anyhow::anyhow!(
-            "--levels must be between 1 and 10000, got {}",
-            args.levels
-        )));
-    }
+    subdiv_lab::contraction::check_levels(args.levels, subdiv_lab::budget::Spelling::Cli)
+        .map_err(super::budget::usage)?;
     let resolved = args.scheme.resolve(args.exact)?;
     let n = resolved.scheme.valence();
     let estimate = subdiv_lab::budget::analyze(

@@ -4,15 +4,9 @@
 //! per valence by bisection). CSV on standard output.
 
 use super::{CliError, CliResult};
-use anyhow::anyhow;
 use clap::Args;
 use std::io::Write as _;
-use subdiv_lab::cc_study::{check_tol, csv_cell, intervals, study_curve_rows, Criterion};
-
-/// Largest `--n-max`.
-const MAX_VALENCE: usize = 256;
-/// Largest `--samples`.
-const MAX_SAMPLES: usize = 100_000;
+use subdiv_lab::cc_study::{csv_cell, intervals, study_curve_rows, Criterion};
 
 #[derive(Args, Debug)]
 pub(crate) struct CcStudyArgs {
@@ -48,20 +42,14 @@ enum CriterionArg {
 }
 
 pub(crate) fn run(args: CcStudyArgs) -> CliResult {
-    if args.n_min < 3 || args.n_max < args.n_min || args.n_max > MAX_VALENCE {
-        return Err(CliError::usage(anyhow!(
-            "need 3 <= --n-min <= --n-max <= {MAX_VALENCE}, got {}..{}",
-            args.n_min,
-            args.n_max
-        )));
-    }
-    if args.samples == 0 || args.samples > MAX_SAMPLES {
-        return Err(CliError::usage(anyhow!(
-            "--samples must be in 1..={MAX_SAMPLES}, got {}",
-            args.samples
-        )));
-    }
-    check_tol(args.tol).map_err(|e| CliError::lib(e).context("--tol"))?;
+    subdiv_lab::cc_study::check_study(
+        args.n_min,
+        args.n_max,
+        args.samples,
+        args.tol,
+        subdiv_lab::budget::Spelling::Cli,
+    )
+    .map_err(super::budget::usage)?;
     super::budget::check(
         "cc-study",
         &format!("valences {}..{}", args.n_min, args.n_max),

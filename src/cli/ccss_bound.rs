@@ -5,8 +5,9 @@ use super::{write_stdout, CliError, CliResult};
 use anyhow::anyhow;
 use clap::Args;
 use std::fmt::Write as _;
-use subdiv_lab::ccss_bound::bound::{beta_table, bound, write_beta_csv, DEFAULT_LEVELS};
-use subdiv_lab::ccss_bound::{contraction_with, default_family, steps_needed, ExtraordinaryPatch};
+use subdiv_lab::budget::Spelling;
+use subdiv_lab::ccss_bound::bound::{beta_table, write_beta_csv, DEFAULT_LEVELS};
+use subdiv_lab::ccss_bound::summary::{check_levels, check_table_to, BoundSummary};
 
 #[derive(Args, Debug)]
 pub(crate) struct CcssBoundArgs {
@@ -77,18 +78,9 @@ fn read_net(path: &std::path::Path) -> CliResult<Vec<Vec<f64>>> {
 }
 
 pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
-    if args.levels == 0 || args.levels > 12 {
-        return Err(CliError::usage(anyhow!(
-            "--levels must be in 1..=12, got {}",
-            args.levels
-        )));
-    }
+    check_levels(args.levels, Spelling::Cli).map_err(super::budget::usage)?;
     if let Some(max) = args.table_to {
-        if max < 3 {
-            return Err(CliError::usage(anyhow!(
-                "--table-to must be >= 3, got {max}"
-            )));
-        }
+        check_table_to(max, Spelling::Cli).map_err(super::budget::usage)?;
         super::budget::check(
             "ccss-bound",
             &format!("--table-to {max}"),
@@ -116,39 +108,24 @@ pub(crate) fn run(args: CcssBoundArgs) -> CliResult {
         subdiv_lab::budget::TIME_LIMIT_SECONDS,
         args.force,
     )?;
-    let r = bound(n, args.levels).map_err(CliError::lib)?;
-    let c12 = r
-        .omega_1_2()
-        .map(|s| s.c)
-        .ok_or_else(|| CliError::failure(anyhow!("no Omega^1_2 bound computed")))?;
-    let patch = ExtraordinaryPatch::new(n).map_err(CliError::lib)?;
-    let family = default_family(n).map_err(CliError::lib)?;
-    let rate = contraction_with(&patch, &family, r.full_max).map_err(CliError::lib)?;
-    let steps = match (&args.net, args.epsilon) {
-        (Some(path), Some(eps)) => {
-            let net = read_net(path)?;
-            Some(steps_needed(&patch, &family, r.full_max, &net, eps).map_err(CliError::lib)?)
-        }
+    let net = match (&args.net, args.epsilon) {
+        (Some(path), Some(eps)) => Some((read_net(path)?, eps)),
         _ => None,
     };
+    let summary = BoundSummary::compute(
+        n,
+        args.levels,
+        net.as_ref().map(|(points, eps)| (points.as_slice(), *eps)),
+    )
+    .map_err(CliError::lib)?;
+    let (r, c12, rate, steps) = (
+        &summary.report,
+        summary.c_omega_1_2,
+        &summary.contraction,
+        &summary.steps,
+    );
     if args.json {
-        let doc = serde_json::json!({
-            "valence": n,
-            "beta": r.beta,
-            "t_max": r.t_max,
-            "level_of_max": r.level_of_max,
-            "full_max": r.full_max,
-            "full_max_domain": r.full_max_domain,
-            "family_size": r.family_size,
-            "c_omega_1_2": c12,
-            "level_maxima": r.level_maxima,
-            "lp_status": "optimal",
-            "max_lp_residual": r.max_residual,
-            "max_asymmetry": r.max_asymmetry,
-            "mirror_defect": r.mirror_defect,
-            "contraction": rate,
-            "steps": steps,
-        });
+        let doc = summary.to_json();
         let text = serde_json::to_string_pretty(&doc).map_err(CliError::failure)? + "\n";
         write_stdout(text.as_bytes())
     } else {

@@ -10,12 +10,10 @@ use anyhow::{anyhow, Context};
 use clap::Args;
 use std::fmt::Write as _;
 use std::path::PathBuf;
+use subdiv_lab::budget::Spelling;
 use subdiv_lab::g2cap::ring::TwoRing;
-use subdiv_lab::g2cap::{G2Cap, G2CapError, CONSTRAINT_RTOL, RESIDUAL_TOL};
+use subdiv_lab::g2cap::{check_samples, G2Cap, G2CapError, RESIDUAL_TOL};
 use subdiv_lab::mesh::obj::parse_obj_data;
-
-/// Largest `--samples` (quads per patch side in the OBJ output).
-const MAX_SAMPLES: usize = 256;
 
 #[derive(Args, Debug)]
 pub(crate) struct G2CapArgs {
@@ -109,27 +107,7 @@ fn obj_text(cap: &G2Cap, samples: usize) -> String {
 }
 
 fn json_text(cap: &G2Cap) -> String {
-    let outer = cap.outer_residual();
-    let value = serde_json::json!({
-        "degree": cap.degree(),
-        "valence": cap.valence(),
-        "c": cap.c(),
-        "orientation": "patches[i][j][k] = p^i_jk: patch i lies between spokes i and i+1 (the faces around the vertex in the mesh's order), j along u (spoke i), k along v (spoke i+1), p^i_00 the vertex; P_i(0,t) = P_{i+1}(t,0)",
-        "patches": cap.patches(),
-        "g1_residual": cap.g1_residual(),
-        "g2_residual": cap.g2_residual(),
-        "outer_residual": { "g1": outer.normal, "g2": outer.curvature },
-        "outer_join": "C2 (rows and columns 5..7 from the neighbouring bicubic B-spline cells)",
-        "residual_definition": "g1: max |N_1 - N_2| (unit normals); g2: max(|K_1 - K_2| / k_s^2, |H_1 - H_2| / k_s), k_s = curvature_scale = max(1/L, largest principal curvature magnitude over the samples), L = length_scale = diameter of the control points; 65 samples per edge",
-        "curvature_scale": cap.curvature_scale(),
-        "length_scale": cap.length_scale(),
-        "constraint_residual": cap.constraint_residual(),
-        "tolerance": RESIDUAL_TOL,
-        "constraint_tolerance": CONSTRAINT_RTOL,
-        "energy": cap.energy(),
-        "energy_definition": "discrete thin-plate energy of the control nets (sum of squared second differences, mixed ones weighted 2)",
-    });
-    let mut s = serde_json::to_string_pretty(&value).unwrap_or_default();
+    let mut s = serde_json::to_string_pretty(&cap.to_json()).unwrap_or_default();
     s.push('\n');
     s
 }
@@ -161,12 +139,7 @@ pub(crate) fn run(args: G2CapArgs) -> CliResult {
             args.c
         )));
     }
-    if args.samples == 0 || args.samples > MAX_SAMPLES {
-        return Err(CliError::usage(anyhow!(
-            "--samples must be in 1..={MAX_SAMPLES}, got {}",
-            args.samples
-        )));
-    }
+    check_samples(args.samples, Spelling::Cli).map_err(super::budget::usage)?;
     if let Some(out) = &args.output {
         let inputs: Vec<(&str, &std::path::Path)> = args
             .input

@@ -309,6 +309,3 @@ pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     }
     result
 }
-
-/// Data lines of one shard CSV (or of a Parquet shard, as CSV lines).
-pub(crate) type LineIter = Box<dyn Iterator<Item = Result<String, subdiv_lab::sweep::SweepError>>>;

@@ -20,10 +20,9 @@ use anyhow::anyhow;
 use clap::Args;
 use std::path::PathBuf;
 use subdiv_lab::budget::format_bytes;
-use subdiv_lab::report::sweep_plot::{self, PlotKind, PlotRequest, SweepPlot, MAX_SVG_ITEMS};
+use subdiv_lab::report::sweep_plot::{self, PlotRequest, SweepPlot, MAX_SVG_ITEMS};
 use subdiv_lab::report::table::Table;
 use subdiv_lab::report::{render_png, render_svg, Area};
-use subdiv_lab::report::{MAX_PIXELS, MIN_PIXELS};
 
 #[derive(Args, Debug)]
 pub(crate) struct PlotArgs {
@@ -73,21 +72,13 @@ pub(crate) fn run(args: PlotArgs) -> CliResult {
             )))
         }
     };
-    let kind = match &args.kind {
-        None => None,
-        Some(k) => Some(PlotKind::from_name(k).ok_or_else(|| {
-            CliError::usage(anyhow!(
-                "--kind {k:?} is not a plot kind (known: fractions, histogram, scatter, map)"
-            ))
-        })?),
-    };
-    for (flag, v) in [("--width", args.width), ("--height", args.height)] {
-        if !(MIN_PIXELS..=MAX_PIXELS).contains(&v) {
-            return Err(CliError::usage(anyhow!(
-                "{flag} must be between {MIN_PIXELS} and {MAX_PIXELS} pixels, got {v}"
-            )));
-        }
-    }
+    let kind = sweep_plot::check_options(
+        args.kind.as_deref(),
+        args.width,
+        args.height,
+        subdiv_lab::budget::Spelling::Cli,
+    )
+    .map_err(super::budget::usage)?;
     let in_name = args.input.display().to_string();
     check_distinct(&[("-o", &args.out)], &[("input", &args.input)])?;
     let limit = subdiv_lab::budget::TIME_LIMIT_SECONDS;

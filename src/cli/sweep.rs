@@ -13,7 +13,7 @@
 //! single-file output: an existing regular file is replaced atomically. The
 //! extension `.csv` or `.parquet` of an output must match its format.
 
-use super::outfiles::{write_atomic, LineIter, Staged};
+use super::outfiles::{write_atomic, Staged};
 use super::{CliError, CliResult};
 use anyhow::{anyhow, Context};
 use clap::Args;
@@ -21,7 +21,8 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{BufRead, BufReader, BufWriter, IsTerminal, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use subdiv_lab::sweep::output::{self, LineFault, MergeSource, Verifier};
+use subdiv_lab::sweep::output::shards::{self, summary_path, ShardData, ShardFile};
+use subdiv_lab::sweep::output::{self, LineFault, Verifier};
 use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, Summary, SweepError, SweepSpec};
 
 #[derive(Args, Debug)]
@@ -140,19 +141,6 @@ fn parse_shard(s: &str) -> Result<Shard, String> {
     s.parse::<Shard>().map_err(|e| e.to_string())
 }
 
-/// `NAME.csv` -> `NAME.summary.json` (any other name gets `.summary.json` appended).
-fn summary_path(csv: &Path) -> PathBuf {
-    let name = csv
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let stem = name
-        .strip_suffix(".csv")
-        .or_else(|| name.strip_suffix(".parquet"))
-        .unwrap_or(&name);
-    csv.with_file_name(format!("{stem}.summary.json"))
-}
-
 /// Checks the output paths of `sweep --out` and `merge --out` before any work
 /// (exit 2): the output must not be a special file (a device such as
 /// `/dev/null`, a FIFO: the CSV is resumable and its summary goes beside it),
@@ -193,14 +181,8 @@ fn write_summary(path: &Path, summary: &Summary) -> CliResult {
     write_atomic(path, json.as_bytes()).map_err(CliError::failure)
 }
 
-/// A salt for the verifier's re-evaluated sample: which lines are re-evaluated
-/// must not be predictable.
-fn salt() -> u64 {
-    let t = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_nanos() as u64);
-    t ^ (u64::from(std::process::id()) << 32)
-}
+/// A salt for the verifier's re-evaluated sample (the library's).
+use subdiv_lab::sweep::output::fresh_salt as salt;
 
 /// Reads an existing CSV for `--resume`: checks the fingerprint line (same spec,
 /// same shard) and the header, verifies every complete line in full against the
@@ -747,89 +729,6 @@ fn is_parquet_file(path: &Path) -> bool {
         && subdiv_lab::sweep::output::parquet::is_parquet(&head)
 }
 
-/// The data lines of one shard CSV, after its fingerprint line (checked against
-/// `plan`; it gives the shard) and its header (checked against `layout`), as a
-/// [`MergeSource`].
-fn data_lines(
-    path: &Path,
-    plan: &Plan,
-    layout: &Layout,
-    rows: std::rc::Rc<std::cell::Cell<u64>>,
-) -> CliResult<MergeSource<LineIter>> {
-    let name = path.display().to_string();
-    if is_parquet_file(path) {
-        return super::sweep_parquet::merge_source(path, plan, layout, rows);
-    }
-    let file = File::open(path)
-        .with_context(|| format!("opening {name}"))
-        .map_err(CliError::usage)?;
-    let mut reader = BufReader::with_capacity(1 << 20, file);
-    let mut first = String::new();
-    let mut header = String::new();
-    reader
-        .read_line(&mut first)
-        .and_then(|_| reader.read_line(&mut header))
-        .with_context(|| format!("reading {name}"))
-        .map_err(CliError::usage)?;
-    let mismatch = |line: u64, message: String| {
-        CliError::usage(SweepError::Mismatch {
-            source_name: name.clone(),
-            line,
-            message,
-        })
-    };
-    let shard = output::fingerprint_shard(&first).ok_or_else(|| {
-        mismatch(
-            1,
-            output::check_fingerprint(plan, Shard::ALL, &first)
-                .err()
-                .unwrap_or_else(|| "the fingerprint line names no shard".into()),
-        )
-    })?;
-    output::check_fingerprint(plan, shard, &first).map_err(|m| mismatch(1, m))?;
-    if header != layout.header() {
-        return Err(mismatch(
-            2,
-            "the header does not match the spec's columns".into(),
-        ));
-    }
-    let n2 = name.clone();
-    let mut lineno = 2u64;
-    let mut buf = Vec::new();
-    let iter = std::iter::from_fn(move || {
-        buf.clear();
-        match reader.read_until(b'\n', &mut buf) {
-            Ok(0) => None,
-            Ok(_) => {
-                lineno += 1;
-                if buf.last() != Some(&b'\n') {
-                    return Some(Err(SweepError::Mismatch {
-                        source_name: n2.clone(),
-                        line: lineno,
-                        message: "torn last line; finish this shard with `sweep --resume` first"
-                            .into(),
-                    }));
-                }
-                buf.pop();
-                rows.set(rows.get() + 1);
-                Some(String::from_utf8(std::mem::take(&mut buf)).map_err(|_| {
-                    SweepError::Mismatch {
-                        source_name: n2.clone(),
-                        line: lineno,
-                        message: "not UTF-8".into(),
-                    }
-                }))
-            }
-            Err(e) => Some(Err(SweepError::Io(format!("{n2}: {e}")))),
-        }
-    });
-    Ok(MergeSource {
-        name,
-        shard,
-        lines: Box::new(iter),
-    })
-}
-
 pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     let text = fs::read_to_string(&args.spec)
         .with_context(|| format!("reading spec {}", args.spec.display()))
@@ -839,7 +738,6 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     let plan = Plan::new(spec);
     let layout = Layout::new(&plan);
     let eval = SpectralEvaluator::new(plan.spec().columns);
-    let digest = plan.spec().digest();
     // The output and its summary are distinct from the spec, every shard and
     // every shard's summary; an existing output file is replaced atomically,
     // an existing summary only if it is a sweep summary.
@@ -878,10 +776,9 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     // Summaries first: each must be of this spec (they give the throughput, and
     // are compared with the rows).
     let mut summaries = Vec::new();
-    for p in &args.inputs {
-        let sp = summary_path(p);
+    for (p, sp) in args.inputs.iter().zip(&shard_summaries) {
         let mut text = String::new();
-        File::open(&sp)
+        File::open(sp)
             .and_then(|mut f| f.read_to_string(&mut text))
             .with_context(|| {
                 format!(
@@ -891,55 +788,32 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
                 )
             })
             .map_err(CliError::usage)?;
-        let s: Summary = serde_json::from_str(&text)
-            .with_context(|| format!("parsing {}", sp.display()))
-            .map_err(CliError::usage)?;
-        if s.spec_digest != digest {
-            return Err(CliError::usage(anyhow!(
-                "{}: the summary of another spec (digest {}; {} has digest {digest})",
-                sp.display(),
-                s.spec_digest,
-                args.spec.display()
-            )));
-        }
-        summaries.push(s);
+        summaries.push(text);
     }
-    let mut json = summaries[0].clone();
-    for s in &summaries[1..] {
-        json.merge(s).map_err(CliError::usage)?;
+    let mut shards = Vec::new();
+    for ((p, sp), summary) in args.inputs.iter().zip(&shard_summaries).zip(summaries) {
+        let name = p.display().to_string();
+        let data = if is_parquet_file(p) {
+            ShardData::Parquet(
+                fs::read(p)
+                    .with_context(|| format!("reading {name}"))
+                    .map_err(CliError::usage)?,
+            )
+        } else {
+            let file = File::open(p)
+                .with_context(|| format!("opening {name}"))
+                .map_err(CliError::usage)?;
+            ShardData::Csv(BufReader::with_capacity(1 << 20, file))
+        };
+        shards.push(ShardFile {
+            name,
+            summary_name: sp.display().to_string(),
+            summary,
+            data,
+        });
     }
-    let mut sources = Vec::new();
-    let mut counters = Vec::new();
-    for (p, s) in args.inputs.iter().zip(&summaries) {
-        let c = std::rc::Rc::new(std::cell::Cell::new(0u64));
-        let src = data_lines(p, &plan, &layout, c.clone())?;
-        if src.shard != s.shard {
-            return Err(CliError::usage(anyhow!(
-                "{}: holds shard {} but its summary {} says shard {}",
-                p.display(),
-                src.shard,
-                summary_path(p).display(),
-                s.shard
-            )));
-        }
-        if src.shard.count
-            != sources
-                .first()
-                .map_or(src.shard.count, |f: &MergeSource<LineIter>| f.shard.count)
-        {
-            return Err(CliError::usage(anyhow!(
-                "{}: shard {} of {} shards, but {} is shard {} of {}: shards of one run have the same count",
-                p.display(),
-                src.shard,
-                src.shard.count,
-                sources[0].name,
-                sources[0].shard,
-                sources[0].shard.count
-            )));
-        }
-        sources.push(src);
-        counters.push(c);
-    }
+    let prepared = shards::prepare(&plan, &layout, &args.spec.display().to_string(), shards)
+        .map_err(CliError::usage)?;
     // Write to a new temporary file of this run; rename only when every
     // check passed.
     let out_name = args
@@ -951,73 +825,36 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
         super::outfiles::create_temp_file(&super::outfiles::parent_dir(&args.out), &out_name)
             .with_context(|| format!("creating a temporary file for {}", args.out.display()))
             .map_err(CliError::failure)?;
-    let result = (|| -> CliResult<Vec<Summary>> {
-        if parquet[0] {
+    let merge_err = |e: SweepError| match e {
+        SweepError::Io(_) => CliError::failure(e),
+        other => CliError::usage(other),
+    };
+    let result = (|| -> CliResult<Summary> {
+        if prepared.is_parquet() {
             let mut w = super::sweep_parquet::merge_sink(file, &plan, &layout)?;
-            let parts = output::merge(&plan, &layout, &eval, sources, &mut w, salt()).map_err(
-                |e| match e {
-                    SweepError::Io(_) => CliError::failure(e),
-                    other => CliError::usage(other),
-                },
-            )?;
+            let merged = prepared
+                .run(&plan, &layout, &eval, &mut w, salt())
+                .map_err(merge_err)?;
             w.finish().map_err(CliError::failure)?;
-            return Ok(parts);
+            return Ok(merged);
         }
         let mut w = BufWriter::with_capacity(1 << 20, file);
         w.write_all(output::fingerprint_line(&plan, Shard::ALL).as_bytes())
             .map_err(CliError::failure)?;
         layout.write_header(&mut w).map_err(CliError::failure)?;
-        let parts =
-            output::merge(&plan, &layout, &eval, sources, &mut w, salt()).map_err(|e| match e {
-                SweepError::Io(_) => CliError::failure(e),
-                other => CliError::usage(other),
-            })?;
+        let merged = prepared
+            .run(&plan, &layout, &eval, &mut w, salt())
+            .map_err(merge_err)?;
         w.flush().map_err(CliError::failure)?;
-        Ok(parts)
+        Ok(merged)
     })();
-    let parts = match result {
-        Ok(n) => n,
+    let merged = match result {
+        Ok(m) => m,
         Err(e) => {
             let _ = fs::remove_file(&tmp);
             return Err(e);
         }
     };
-    for (((p, s), c), part) in args
-        .inputs
-        .iter()
-        .zip(&summaries)
-        .zip(&counters)
-        .zip(&parts)
-    {
-        let problem = if s.rows != c.get() {
-            Some(format!(
-                "{}: the summary counts {} rows but the CSV has {}; finish that shard with `sweep --resume`",
-                p.display(),
-                s.rows,
-                c.get()
-            ))
-        } else if s.errors != part.errors || s.classes != part.classes || s.columns != part.columns
-        {
-            Some(format!(
-                "{}: the summary does not match the rows of {} (was one of them edited?)",
-                summary_path(p).display(),
-                p.display()
-            ))
-        } else {
-            None
-        };
-        if let Some(m) = problem {
-            let _ = fs::remove_file(&tmp);
-            return Err(CliError::usage(anyhow!(m)));
-        }
-    }
-    // The merged summary is rebuilt from the verified rows; only the throughput
-    // comes from the shards' summaries.
-    let mut merged = parts[0].clone();
-    for p in &parts[1..] {
-        merged.merge(p).map_err(CliError::usage)?;
-    }
-    merged.throughput = json.throughput.clone();
     let n = merged.rows;
     // The merged file and its summary are put in place together (the file
     // first); a failure leaves neither new.

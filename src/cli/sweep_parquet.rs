@@ -256,58 +256,6 @@ fn read_error(name: &str, e: SweepError) -> String {
     }
 }
 
-/// A Parquet shard as a merge source: its fingerprint (which gives the shard)
-/// checked against `plan`, its columns against `layout`, its rows as the CSV
-/// lines the sweep writes for them (verified by the merge like a CSV's).
-pub(crate) fn merge_source(
-    path: &Path,
-    plan: &Plan,
-    layout: &Layout,
-    rows: std::rc::Rc<std::cell::Cell<u64>>,
-) -> CliResult<output::MergeSource<super::outfiles::LineIter>> {
-    let name = path.display().to_string();
-    let bytes = fs::read(path)
-        .with_context(|| format!("reading {name}"))
-        .map_err(CliError::usage)?;
-    let mismatch = |line: u64, message: String| {
-        CliError::usage(SweepError::Mismatch {
-            source_name: name.clone(),
-            line,
-            message,
-        })
-    };
-    let table = read_table(bytes).map_err(|e| {
-        CliError::usage(anyhow!(
-            "{}; finish this shard with `sweep --resume` first",
-            read_error(&name, e)
-        ))
-    })?;
-    let fp = table.fingerprint().unwrap_or_default().to_owned() + "\n";
-    let shard = output::fingerprint_shard(&fp).ok_or_else(|| {
-        mismatch(
-            1,
-            output::check_fingerprint(plan, Shard::ALL, &fp)
-                .err()
-                .unwrap_or_else(|| "the fingerprint names no shard".into()),
-        )
-    })?;
-    output::check_fingerprint(plan, shard, &fp).map_err(|m| mismatch(1, m))?;
-    if table.names != layout.column_names() {
-        return Err(mismatch(1, "the columns do not match the spec's".into()));
-    }
-    let text = table.csv_lines(0, table.rows());
-    let lines: Vec<String> = text.lines().map(str::to_owned).collect();
-    let iter = lines.into_iter().map(move |l| {
-        rows.set(rows.get() + 1);
-        Ok(l)
-    });
-    Ok(output::MergeSource {
-        name,
-        shard,
-        lines: Box::new(iter),
-    })
-}
-
 /// The rows sink of a merged Parquet file (written to a temporary file that
 /// the caller renames when every check passed: no journal).
 pub(crate) fn merge_sink(

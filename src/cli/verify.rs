@@ -132,27 +132,13 @@ pub(crate) fn run(args: VerifyArgs) -> CliResult {
         super::budget::check_threads(t)?;
     }
     let max_cells = args.max_cells.unwrap_or(verify::DEFAULT_MAX_CELLS);
-    if max_cells == 0 {
-        return Err(CliError::usage(anyhow!(
-            "--max-cells must be at least 1, got 0"
-        )));
-    }
+    verify::check_max_cells(max_cells, subdiv_lab::budget::Spelling::Cli)
+        .map_err(super::budget::usage)?;
     let new_dir = check_out(&args.out)?;
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    let estimate_fn = if spec.properties.contains(&verify::spec::Property::Charmap) {
-        subdiv_lab::budget::verify_charmap
-    } else {
-        subdiv_lab::budget::verify
-    };
-    let estimate = estimate_fn(
-        spec.valence(),
-        spec.scheme() == "nurds",
-        max_cells,
-        spec.time_budget,
-        threads,
-    );
+    let estimate = verify::estimate(&spec, max_cells, threads);
     super::budget::check(
         "verify",
         &format!("{} (--max-cells {max_cells})", args.spec.display()),

@@ -237,6 +237,23 @@ pub enum Solver {
     Dense,
 }
 
+/// Most quads per patch side of [`G2Cap::sample_mesh`] as the front ends
+/// offer it (`g2-cap --samples`): 256 x 256 quads per patch, about 66 000
+/// points per patch.
+pub const MAX_SAMPLES: usize = 256;
+
+/// Checks the quads per patch side of a sampled cap: 1 to [`MAX_SAMPLES`]
+/// (the message names the argument as `spelling` spells it).
+pub fn check_samples(samples: usize, spelling: crate::budget::Spelling) -> Result<(), String> {
+    if samples == 0 || samples > MAX_SAMPLES {
+        return Err(format!(
+            "{} must be in 1..={MAX_SAMPLES}, got {samples}",
+            spelling.arg("samples")
+        ));
+    }
+    Ok(())
+}
+
 /// The cap and its measurements.
 #[derive(Clone, Debug)]
 pub struct G2Cap {
@@ -454,6 +471,33 @@ impl G2Cap {
             self.eval(i, u, v, 0, 2),
         ];
         residual::shape(&d).map(|(_, k, h)| (k, h))
+    }
+
+    /// The cap as JSON (`g2-cap --json`, the Python dict): degree, valence,
+    /// `c`, the control points of the patches (with their orientation), the
+    /// internal and outer residuals with their definitions and tolerances,
+    /// and the energy.
+    pub fn to_json(&self) -> serde_json::Value {
+        let outer = self.outer_residual();
+        serde_json::json!({
+            "degree": self.degree(),
+            "valence": self.valence(),
+            "c": self.c(),
+            "orientation": "patches[i][j][k] = p^i_jk: patch i lies between spokes i and i+1 (the faces around the vertex in the mesh's order), j along u (spoke i), k along v (spoke i+1), p^i_00 the vertex; P_i(0,t) = P_{i+1}(t,0)",
+            "patches": self.patches(),
+            "g1_residual": self.g1_residual(),
+            "g2_residual": self.g2_residual(),
+            "outer_residual": { "g1": outer.normal, "g2": outer.curvature },
+            "outer_join": "C2 (rows and columns 5..7 from the neighbouring bicubic B-spline cells)",
+            "residual_definition": "g1: max |N_1 - N_2| (unit normals); g2: max(|K_1 - K_2| / k_s^2, |H_1 - H_2| / k_s), k_s = curvature_scale = max(1/L, largest principal curvature magnitude over the samples), L = length_scale = diameter of the control points; 65 samples per edge",
+            "curvature_scale": self.curvature_scale(),
+            "length_scale": self.length_scale(),
+            "constraint_residual": self.constraint_residual(),
+            "tolerance": RESIDUAL_TOL,
+            "constraint_tolerance": CONSTRAINT_RTOL,
+            "energy": self.energy(),
+            "energy_definition": "discrete thin-plate energy of the control nets (sum of squared second differences, mixed ones weighted 2)",
+        })
     }
 
     /// The cap sampled on an `m x m` grid of quads per patch: points and

@@ -368,10 +368,11 @@ pub fn refine_levels(mesh: &Mesh, scheme: SchemeKind, levels: usize) -> Result<M
 }
 
 /// Number of half-edges after `levels` steps (each step multiplies it by 4),
-/// saturating; lets callers refuse a request before allocating.
+/// saturating; lets callers refuse a request before allocating. Any count
+/// has saturated after 32 steps, so a huge `levels` costs no more than that.
 pub fn half_edges_after(mesh: &Mesh, levels: usize) -> u64 {
     let mut h = mesh.half_edge_count() as u64;
-    for _ in 0..levels {
+    for _ in 0..levels.min(32) {
         h = h.saturating_mul(4);
     }
     h

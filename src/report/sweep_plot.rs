@@ -121,6 +121,50 @@ impl PlotKind {
     }
 }
 
+/// Checks the options of a sweep plot before any reading: the kind's name,
+/// if given, and the width and height (between
+/// [`MIN_PIXELS`](super::MIN_PIXELS) and [`MAX_PIXELS`](super::MAX_PIXELS)
+/// pixels); returns the kind. The message names the argument as `spelling`
+/// spells it.
+///
+/// ```
+/// use subdiv_lab::budget::Spelling;
+/// use subdiv_lab::report::sweep_plot::{check_options, PlotKind};
+/// assert_eq!(check_options(Some("map"), 1600, 1000, Spelling::Cli), Ok(Some(PlotKind::Map)));
+/// assert_eq!(
+///     check_options(None, 10, 1000, Spelling::Python).unwrap_err(),
+///     "width must be between 400 and 8000 pixels, got 10"
+/// );
+/// ```
+pub fn check_options(
+    kind: Option<&str>,
+    width: u32,
+    height: u32,
+    spelling: crate::budget::Spelling,
+) -> Result<Option<PlotKind>, String> {
+    use super::{MAX_PIXELS, MIN_PIXELS};
+    let kind = match kind {
+        None => None,
+        Some(k) => Some(PlotKind::from_name(k).ok_or_else(|| {
+            let known: Vec<&str> = PlotKind::ALL.iter().map(|k| k.name()).collect();
+            format!(
+                "{} {k:?} is not a plot kind (known: {})",
+                spelling.arg("kind"),
+                known.join(", ")
+            )
+        })?),
+    };
+    for (name, v) in [("width", width), ("height", height)] {
+        if !(MIN_PIXELS..=MAX_PIXELS).contains(&v) {
+            return Err(format!(
+                "{} must be between {MIN_PIXELS} and {MAX_PIXELS} pixels, got {v}",
+                spelling.arg(name)
+            ));
+        }
+    }
+    Ok(kind)
+}
+
 /// What to plot: every field may be left to the data ([`choose`]).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct PlotRequest {

@@ -51,21 +51,39 @@ pub fn sweep_rows(plan: &Plan, rows: u64, shard_count: u64, threads: usize) -> E
         max_n = max_n.max(n);
         seconds += take as f64 * sweep_seconds_per_configuration(plan, &model, n);
     }
-    let d = model.dimension(max_n);
-    // the characteristic map works on the local matrix (d x d); the
-    // classification alone on the n x n face block (when the scheme
-    // classifies through it) or on the local matrix
-    let nf = max_n as f64;
-    let per_thread = if plan.spec().columns.charmap {
+    Estimate {
+        bytes: threads as f64 * bytes_per_thread(plan, &model, max_n) + 64e6,
+        seconds: seconds / threads.max(1) as f64,
+        what: format!("{rows} configurations on {threads} threads"),
+    }
+}
+
+/// `rows` configurations of valence `n` with the columns of `plan`, on
+/// `threads` threads: the per-configuration cost of [`sweep_rows`] without
+/// the spec's enumeration (the rows of a batch given by the caller, e.g.
+/// Python's `classify_batch`).
+pub fn batch_rows(plan: &Plan, n: usize, rows: u64, threads: usize) -> Estimate {
+    let model = cost_model(plan.spec().scheme);
+    let seconds = rows as f64 * sweep_seconds_per_configuration(plan, &model, n);
+    Estimate {
+        bytes: threads as f64 * bytes_per_thread(plan, &model, n) + 64e6,
+        seconds: seconds / threads.max(1) as f64,
+        what: format!("{rows} configurations of valence {n} on {threads} threads"),
+    }
+}
+
+/// Scratch bytes of one worker thread at valence `n`: the characteristic
+/// map works on the local matrix (`d x d`), the classification alone on the
+/// `n x n` face block (when the scheme classifies through it) or on the
+/// local matrix.
+fn bytes_per_thread(plan: &Plan, model: &CostModel, n: usize) -> f64 {
+    let d = model.dimension(n);
+    let nf = n as f64;
+    if plan.spec().columns.charmap {
         model.analyze_bytes_per_entry * d * d
     } else if model.sweep_classify_on_face_block {
         64.0 * nf * nf
     } else {
         64.0 * d * d
-    };
-    Estimate {
-        bytes: threads as f64 * per_thread + 64e6,
-        seconds: seconds / threads.max(1) as f64,
-        what: format!("{rows} configurations on {threads} threads"),
     }
 }

@@ -49,7 +49,7 @@ mod sobol_table;
 pub(crate) mod spec;
 pub(crate) mod summary;
 
-pub use estimate::sweep_rows;
+pub use estimate::{batch_rows, sweep_rows};
 pub use eval::{Cell, Evaluate, SpectralEvaluator};
 pub use output::Layout;
 pub use plan::{Configuration, Plan, Shard};
@@ -96,6 +96,10 @@ pub enum SweepError {
     /// Shards do not combine to the full sweep.
     #[error("merge: {0}")]
     Merge(String),
+    /// A shard or its summary is not what the merge needs (the message
+    /// names the file).
+    #[error("{0}")]
+    MergeInput(String),
     /// Writing output failed.
     #[error("write failed: {0}")]
     Io(String),

@@ -51,6 +51,18 @@ use std::time::{Duration, Instant};
 /// Default cap on the number of cells evaluated.
 pub const DEFAULT_MAX_CELLS: u64 = 4_000_000;
 
+/// Checks a cap on the evaluated cells: at least 1 (the message names the
+/// argument as `spelling` spells it).
+pub fn check_max_cells(max_cells: u64, spelling: crate::budget::Spelling) -> Result<(), String> {
+    if max_cells == 0 {
+        return Err(format!(
+            "{} must be at least 1, got 0",
+            spelling.arg("max_cells")
+        ));
+    }
+    Ok(())
+}
+
 /// Limits of one run (besides the spec's `min_width` and `time_budget`).
 #[derive(Clone, Copy, Debug)]
 pub struct Limits {
@@ -69,6 +81,25 @@ impl Default for Limits {
             tamper: Tamper::None,
         }
     }
+}
+
+/// The work estimate of [`run`] of `spec` with at most `max_cells` evaluated
+/// cells on `threads` threads: [`crate::budget::verify_charmap`] when the
+/// spec asks for the `charmap` property, else [`crate::budget::verify`]
+/// (the spec's `time_budget` caps the time).
+pub fn estimate(spec: &VerifySpec, max_cells: u64, threads: usize) -> crate::budget::Estimate {
+    let estimate_fn = if spec.properties.contains(&Property::Charmap) {
+        crate::budget::verify_charmap
+    } else {
+        crate::budget::verify
+    };
+    estimate_fn(
+        spec.valence(),
+        spec.scheme() == "nurds",
+        max_cells,
+        spec.time_budget,
+        threads,
+    )
 }
 
 /// The verdicts of one cell.

@@ -22,6 +22,8 @@
 //! * `csv.rs`: number and text cells, line splitting (no sweep types);
 //! * `run.rs`: the streaming driver ([`run()`], [`run_counting`]);
 //! * `merge.rs`: the shard merge ([`merge()`]);
+//! * `shards.rs`: the shard files of a merge and their summaries, checked
+//!   before and after it ([`shards::prepare`]);
 //! * `parquet.rs`: the Parquet form of the rows (typed columns, row groups as
 //!   commit units, reading back: [`parquet::read_table`]);
 //! * `verify.rs`: the verification of existing files (resume and merge,
@@ -34,6 +36,7 @@ pub mod parquet;
 #[cfg(test)]
 mod parquet_tests;
 mod run;
+pub mod shards;
 mod verify;
 
 pub use csv::{format_number, split_csv_line};
@@ -41,6 +44,7 @@ pub use layout::{ColumnDoc, Layout, Row};
 pub use merge::{merge, MergeSource};
 pub use parquet::run_parquet;
 pub use run::{run, run_counting, run_discard, CHUNK, SUB_CHUNK};
+pub use shards::fresh_salt;
 pub use verify::{
     check_fingerprint, fingerprint_digest, fingerprint_line, fingerprint_shard, LineFault,
     Verifier, PIECE_BYTES, RECHECK_SAMPLE,

@@ -1,0 +1,317 @@
+//! `sweep` and `merge`: the rows of a sweep, computed or merged from shard
+//! files, as typed columns (the `pyarrow.Table` of the Python side). The
+//! command-line tool streams such rows to a file; here they are held in
+//! memory, which the estimate counts.
+
+use crate::{guard, lib_err, runtime_err, value_err, Int, SpecOrigin};
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rayon::prelude::*;
+use std::io::Read as _;
+use subdiv_lab::budget::{
+    held_in_memory, Estimate, SWEEP_TIME_LIMIT_SECONDS, TABLE_BYTES_PER_CELL,
+};
+use subdiv_lab::sweep::eval::Cell;
+use subdiv_lab::sweep::output::shards::{self, summary_path, ShardData, ShardFile};
+use subdiv_lab::sweep::output::{self, Row};
+use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, SweepSpec};
+
+/// A TOML sweep spec from its JSON form (the Python dict).
+#[pyfunction]
+pub(crate) fn spec_json_to_toml(json: &str) -> PyResult<String> {
+    guard("spec_json_to_toml", || {
+        let v: serde_json::Value =
+            serde_json::from_str(json).map_err(|e| value_err(format!("spec: {e}")))?;
+        toml::to_string(&v).map_err(|e| value_err(format!("spec: {e}")))
+    })
+}
+
+/// A spec's text parsed, its errors phrased for where it came from.
+fn parse_spec(text: &str, origin: &SpecOrigin) -> PyResult<SweepSpec> {
+    SweepSpec::from_toml(text).map_err(|e| origin.sweep_error(e))
+}
+
+/// Columns of evaluated rows, filled in row order.
+struct Columns {
+    names: Vec<String>,
+    numeric: Vec<bool>,
+    nums: Vec<Vec<f64>>,
+    valid: Vec<Vec<bool>>,
+    texts: Vec<Vec<String>>,
+}
+
+impl Columns {
+    fn new(names: Vec<String>, numeric: Vec<bool>, rows: usize) -> Self {
+        let k = names.len();
+        Columns {
+            nums: numeric
+                .iter()
+                .map(|&n| {
+                    if n {
+                        Vec::with_capacity(rows)
+                    } else {
+                        Vec::new()
+                    }
+                })
+                .collect(),
+            valid: (0..k).map(|_| Vec::with_capacity(rows)).collect(),
+            texts: numeric
+                .iter()
+                .map(|&n| {
+                    if n {
+                        Vec::new()
+                    } else {
+                        Vec::with_capacity(rows)
+                    }
+                })
+                .collect(),
+            names,
+            numeric,
+        }
+    }
+
+    fn push(&mut self, cells: &[Cell]) {
+        for (j, numeric) in self.numeric.iter().enumerate() {
+            let cell = cells.get(j).unwrap_or(&Cell::Empty);
+            let ok = !matches!(cell, Cell::Empty);
+            self.valid[j].push(ok);
+            if *numeric {
+                self.nums[j].push(match cell {
+                    Cell::Num(x) => *x,
+                    _ => f64::NAN,
+                });
+            } else {
+                self.texts[j].push(match cell {
+                    Cell::Text(t) => t.clone(),
+                    Cell::Num(x) => x.to_string(),
+                    Cell::Empty => String::new(),
+                });
+            }
+        }
+    }
+
+    /// `{name: (values, valid)}`: numpy float64 arrays or lists of str, with a numpy bool mask.
+    fn into_dict<'py>(self, py: Python<'py>, out: &Bound<'py, PyDict>) -> PyResult<()> {
+        let Columns {
+            names,
+            numeric,
+            nums,
+            valid,
+            texts,
+        } = self;
+        for ((((name, numeric), num), ok), text) in names
+            .into_iter()
+            .zip(numeric)
+            .zip(nums)
+            .zip(valid)
+            .zip(texts)
+        {
+            let mask = PyArray1::from_vec(py, ok);
+            if numeric {
+                out.set_item(name, (PyArray1::from_vec(py, num), mask))?;
+            } else {
+                out.set_item(name, (text, mask))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// `(column names, {name: column})` of `rows` (the layout's columns): `id`
+/// (uint64), `valence` (uint32), each coordinate and result column as
+/// `(values, valid)` and `error` (str, empty when the row succeeded).
+fn table<'py>(
+    py: Python<'py>,
+    layout: &Layout,
+    rows: Vec<Row>,
+) -> PyResult<(Vec<String>, Bound<'py, PyDict>)> {
+    let names = layout.column_names();
+    let inner: Vec<String> = names
+        .get(2..names.len().saturating_sub(1))
+        .map(<[String]>::to_vec)
+        .unwrap_or_default();
+    let mut numeric = vec![false; inner.len()];
+    for (pos, _) in layout.numeric_columns() {
+        if let Some(x) = numeric.get_mut(*pos) {
+            *x = true;
+        }
+    }
+    let mut cols = Columns::new(inner, numeric, rows.len());
+    let mut ids = Vec::with_capacity(rows.len());
+    let mut valences = Vec::with_capacity(rows.len());
+    let mut errors = Vec::with_capacity(rows.len());
+    for r in rows {
+        ids.push(r.id);
+        valences.push(u32::try_from(r.valence).unwrap_or(u32::MAX));
+        cols.push(&r.cells);
+        errors.push(r.error.unwrap_or_default());
+    }
+    let out = PyDict::new(py);
+    out.set_item("id", PyArray1::from_vec(py, ids))?;
+    out.set_item("valence", PyArray1::from_vec(py, valences))?;
+    cols.into_dict(py, &out)?;
+    out.set_item("error", errors)?;
+    Ok((names, out))
+}
+
+/// `sweep`: the rows of a sweep (all, one shard, or its first `limit` ids) as columns.
+#[pyfunction]
+#[pyo3(signature = (spec_toml, spec_path=None, from_dict=false, threads=None, shard=None, limit=None, force=false))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn sweep<'py>(
+    py: Python<'py>,
+    spec_toml: &str,
+    spec_path: Option<String>,
+    from_dict: bool,
+    threads: Option<Int>,
+    shard: Option<(Int, Int)>,
+    limit: Option<Int>,
+    force: bool,
+) -> PyResult<(Vec<String>, Bound<'py, PyDict>)> {
+    guard("sweep", || {
+        let origin = SpecOrigin::new(spec_path, from_dict);
+        let spec = parse_spec(spec_toml, &origin)?;
+        let threads = crate::threads(threads)?;
+        let shard = match shard {
+            Some((i, k)) => {
+                let bad = || lib_err(subdiv_lab::sweep::SweepError::BadShard(format!("{i}/{k}")));
+                let (i, k) = (
+                    i.u64("shard").map_err(|_| bad())?,
+                    k.u64("shard").map_err(|_| bad())?,
+                );
+                Shard::new(i, k).map_err(lib_err)?
+            }
+            None => Shard::ALL,
+        };
+        let limit_rows = limit.map(|l| l.u64("limit")).transpose()?;
+        let plan = Plan::new(spec);
+        let layout = Layout::new(&plan);
+        let count = shard.len(plan.total()).min(limit_rows.unwrap_or(u64::MAX));
+        // The CLI's sweep estimate of these rows, and the rows held in memory.
+        let estimate = held_in_memory(
+            subdiv_lab::sweep::sweep_rows(&plan, count, shard.count, threads),
+            count,
+            layout.column_names().len(),
+            TABLE_BYTES_PER_CELL,
+        );
+        let subject = match &origin {
+            SpecOrigin::Path(p) => p.clone(),
+            _ => format!("spec {:?}", plan.spec().name),
+        };
+        crate::limit(
+            "sweep",
+            &subject,
+            &estimate,
+            SWEEP_TIME_LIMIT_SECONDS,
+            force,
+        )?;
+        let eval = SpectralEvaluator::new(plan.spec().columns);
+        let pool = crate::pool(threads)?;
+        let rows: Vec<Row> = py.detach(|| {
+            pool.install(|| {
+                (0..count)
+                    .into_par_iter()
+                    .map(|j| layout.row(&plan, &eval, shard.id(j)))
+                    .collect()
+            })
+        });
+        table(py, &layout, rows)
+    })
+}
+
+/// Reads one shard of `merge`: its summary (beside it, as `sweep` writes it)
+/// and its rows (CSV, read line by line, or Parquet bytes).
+fn read_shard(path: &str) -> PyResult<ShardFile<std::io::BufReader<std::fs::File>>> {
+    let p = std::path::Path::new(path);
+    let sp = summary_path(p);
+    let summary = std::fs::read_to_string(&sp).map_err(|e| {
+        value_err(format!(
+            "reading {} (the summary `sweep` writes beside {path}; merge needs it): {e}",
+            sp.display()
+        ))
+    })?;
+    let mut file = std::fs::File::open(p).map_err(|e| value_err(format!("opening {path}: {e}")))?;
+    let mut head = [0u8; 4];
+    let parquet = file.read_exact(&mut head).is_ok() && output::parquet::is_parquet(&head);
+    let data = if parquet {
+        ShardData::Parquet(std::fs::read(p).map_err(|e| value_err(format!("reading {path}: {e}")))?)
+    } else {
+        let file = std::fs::File::open(p).map_err(|e| value_err(format!("opening {path}: {e}")))?;
+        ShardData::Csv(std::io::BufReader::with_capacity(1 << 20, file))
+    };
+    Ok(ShardFile {
+        name: path.to_owned(),
+        summary_name: sp.display().to_string(),
+        summary,
+        data,
+    })
+}
+
+/// `merge`: the shards of one sweep (files written by `sweep --shard I/N`),
+/// every row verified as `subdiv-lab merge` verifies it, as the columns of
+/// [`sweep`]; with the merged summary (JSON text).
+#[pyfunction]
+#[pyo3(signature = (inputs, spec_toml, spec_path=None, from_dict=false, force=false))]
+pub(crate) fn merge<'py>(
+    py: Python<'py>,
+    inputs: Vec<String>,
+    spec_toml: &str,
+    spec_path: Option<String>,
+    from_dict: bool,
+    force: bool,
+) -> PyResult<(Vec<String>, Bound<'py, PyDict>, String)> {
+    guard("merge", || {
+        let origin = SpecOrigin::new(spec_path, from_dict);
+        let spec = parse_spec(spec_toml, &origin)?;
+        if inputs.is_empty() {
+            return Err(value_err("inputs: give at least one shard file"));
+        }
+        let plan = Plan::new(spec);
+        let layout = Layout::new(&plan);
+        let total = plan.total();
+        let estimate = held_in_memory(
+            Estimate {
+                bytes: 0.0,
+                seconds: 0.0,
+                what: format!("merging {total} configurations"),
+            },
+            total,
+            layout.column_names().len(),
+            TABLE_BYTES_PER_CELL,
+        );
+        crate::limit(
+            "merge",
+            &format!("{} shards", inputs.len()),
+            &estimate,
+            SWEEP_TIME_LIMIT_SECONDS,
+            force,
+        )?;
+        let shards = inputs
+            .iter()
+            .map(|p| read_shard(p))
+            .collect::<PyResult<Vec<_>>>()?;
+        let spec_name = match &origin {
+            SpecOrigin::Path(p) => p.clone(),
+            _ => "the spec".to_owned(),
+        };
+        let eval = SpectralEvaluator::new(plan.spec().columns);
+        let (text, summary) = py.detach(|| -> PyResult<(Vec<u8>, String)> {
+            let prepared = shards::prepare(&plan, &layout, &spec_name, shards).map_err(lib_err)?;
+            let mut text = Vec::new();
+            let summary = prepared
+                .run(&plan, &layout, &eval, &mut text, output::fresh_salt())
+                .map_err(lib_err)?;
+            let json = serde_json::to_string(&summary).map_err(runtime_err)?;
+            Ok((text, json))
+        })?;
+        let text = String::from_utf8(text).map_err(runtime_err)?;
+        let rows = text
+            .lines()
+            .map(|l| layout.parse(l))
+            .collect::<Result<Vec<Row>, String>>()
+            .map_err(runtime_err)?;
+        let (names, cols) = table(py, &layout, rows)?;
+        Ok((names, cols, summary))
+    })
+}

@@ -1,0 +1,346 @@
+//! The inputs of a shard merge: shard files (CSV or Parquet, as `sweep
+//! --shard I/N` writes them) with the summaries written beside them, checked
+//! against the spec and against each other ([`prepare`]), then merged and
+//! compared with their summaries ([`PreparedMerge::run`]). The file side
+//! (opening the shards, the output's temporary file and its renaming) is
+//! the front end's: this module takes the summaries' text and the shards'
+//! readers or bytes, and writes the merged rows to any [`Write`].
+
+use super::merge::{merge, MergeSource};
+use super::parquet::read_table;
+use super::verify::{check_fingerprint, fingerprint_shard};
+use super::Layout;
+use crate::sweep::eval::Evaluate;
+use crate::sweep::plan::{Plan, Shard};
+use crate::sweep::summary::Summary;
+use crate::sweep::SweepError;
+use std::cell::Cell;
+use std::io::{BufRead, Write};
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+
+/// Where `sweep --out NAME.csv` (or `NAME.parquet`) writes its summary:
+/// `NAME.summary.json` beside it (any other name gets `.summary.json`
+/// appended). A path computation only.
+///
+/// ```
+/// use std::path::Path;
+/// use subdiv_lab::sweep::output::shards::summary_path;
+/// assert_eq!(summary_path(Path::new("out/a.parquet")), Path::new("out/a.summary.json"));
+/// assert_eq!(summary_path(Path::new("a.txt")), Path::new("a.txt.summary.json"));
+/// ```
+pub fn summary_path(rows: &Path) -> PathBuf {
+    let name = rows
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let stem = name
+        .strip_suffix(".csv")
+        .or_else(|| name.strip_suffix(".parquet"))
+        .unwrap_or(&name);
+    rows.with_file_name(format!("{stem}.summary.json"))
+}
+
+/// A salt for the re-evaluated sample of a resume or merge ([`Verifier`](super::Verifier),
+/// [`merge`]): which lines are re-evaluated must not be predictable, so it
+/// mixes the clock and the process id.
+pub fn fresh_salt() -> u64 {
+    let t = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos() as u64);
+    t ^ (u64::from(std::process::id()) << 32)
+}
+
+/// The data of one shard file.
+pub enum ShardData<R> {
+    /// A CSV (fingerprint line, header, data lines), read line by line.
+    Csv(R),
+    /// A Parquet file's bytes.
+    Parquet(Vec<u8>),
+}
+
+/// One shard of a merge.
+pub struct ShardFile<R> {
+    /// The shard's file name (for messages).
+    pub name: String,
+    /// The file name of its summary (for messages).
+    pub summary_name: String,
+    /// The summary's JSON text.
+    pub summary: String,
+    /// The rows.
+    pub data: ShardData<R>,
+}
+
+/// Data lines of one shard (CSV lines without `\n`; a Parquet shard's rows
+/// as the CSV lines the sweep writes for them).
+type Lines<'a> = Box<dyn Iterator<Item = Result<String, SweepError>> + 'a>;
+
+/// Shards checked against the spec and each other, ready to merge.
+pub struct PreparedMerge<'a> {
+    sources: Vec<MergeSource<Lines<'a>>>,
+    /// `(shard name, summary name)` per shard.
+    names: Vec<(String, String)>,
+    summaries: Vec<Summary>,
+    /// Data lines read per shard.
+    counters: Vec<Rc<Cell<u64>>>,
+    /// The shards' summaries merged (for the throughput).
+    merged: Summary,
+    parquet: bool,
+}
+
+/// An input error of the merge (the message names the file).
+fn input(message: String) -> SweepError {
+    SweepError::MergeInput(message)
+}
+
+/// Checks the shards before any row is merged: each summary parses and is
+/// of this spec (`spec_name` names it in messages), each shard's fingerprint
+/// is of this spec and names the shard its summary names, its columns are
+/// the spec's, all shards are of one shard count and one format.
+pub fn prepare<'a, R: BufRead + 'a>(
+    plan: &Plan,
+    layout: &Layout,
+    spec_name: &str,
+    shards: Vec<ShardFile<R>>,
+) -> Result<PreparedMerge<'a>, SweepError> {
+    if shards.is_empty() {
+        return Err(input("no shards to merge".into()));
+    }
+    let digest = plan.spec().digest();
+    let mut summaries = Vec::with_capacity(shards.len());
+    for s in &shards {
+        let summary: Summary = serde_json::from_str(&s.summary)
+            .map_err(|e| input(format!("parsing {}: {e}", s.summary_name)))?;
+        if summary.spec_digest != digest {
+            return Err(input(format!(
+                "{}: the summary of another spec (digest {}; {spec_name} has digest {digest})",
+                s.summary_name, summary.spec_digest
+            )));
+        }
+        summaries.push(summary);
+    }
+    let mut merged = summaries[0].clone();
+    for s in &summaries[1..] {
+        merged.merge(s)?;
+    }
+    let mut sources: Vec<MergeSource<Lines<'a>>> = Vec::with_capacity(shards.len());
+    let mut counters = Vec::with_capacity(shards.len());
+    let mut names = Vec::with_capacity(shards.len());
+    let mut formats = Vec::with_capacity(shards.len());
+    for (file, summary) in shards.into_iter().zip(&summaries) {
+        let counter = Rc::new(Cell::new(0u64));
+        formats.push(matches!(file.data, ShardData::Parquet(_)));
+        let src = match file.data {
+            ShardData::Csv(r) => csv_source(&file.name, r, plan, layout, counter.clone())?,
+            ShardData::Parquet(b) => parquet_source(&file.name, b, plan, layout, counter.clone())?,
+        };
+        if src.shard != summary.shard {
+            return Err(input(format!(
+                "{}: holds shard {} but its summary {} says shard {}",
+                file.name, src.shard, file.summary_name, summary.shard
+            )));
+        }
+        if let Some(first) = sources.first() {
+            if src.shard.count != first.shard.count {
+                return Err(input(format!(
+                    "{}: shard {} of {} shards, but {} is shard {} of {}: shards of one run have the same count",
+                    file.name, src.shard, src.shard.count, first.name, first.shard, first.shard.count
+                )));
+            }
+        }
+        sources.push(src);
+        counters.push(counter);
+        names.push((file.name, file.summary_name));
+    }
+    if formats.iter().any(|&q| q != formats[0]) {
+        return Err(input(
+            "the shards mix CSV and Parquet files; merge shards of one format".into(),
+        ));
+    }
+    Ok(PreparedMerge {
+        sources,
+        names,
+        summaries,
+        counters,
+        merged,
+        parquet: formats[0],
+    })
+}
+
+impl PreparedMerge<'_> {
+    /// Whether the shards are Parquet files (else CSV).
+    pub fn is_parquet(&self) -> bool {
+        self.parquet
+    }
+
+    /// Merges the rows into `out` ([`merge`]: every row verified, every id
+    /// `0..total` once; `out` gets the data lines only, the front end writes
+    /// the fingerprint and the header of its format), then checks each
+    /// shard's summary against its rows. Returns the merged summary, rebuilt
+    /// from the verified rows (only the throughput comes from the shards'
+    /// summaries). `salt` chooses the re-evaluated sample.
+    pub fn run<W: Write, E: Evaluate + ?Sized>(
+        self,
+        plan: &Plan,
+        layout: &Layout,
+        eval: &E,
+        out: &mut W,
+        salt: u64,
+    ) -> Result<Summary, SweepError> {
+        let PreparedMerge {
+            sources,
+            names,
+            summaries,
+            counters,
+            merged: shard_summaries,
+            ..
+        } = self;
+        let parts = merge(plan, layout, eval, sources, out, salt)?;
+        for ((((name, summary_name), s), c), part) in
+            names.iter().zip(&summaries).zip(&counters).zip(&parts)
+        {
+            if s.rows != c.get() {
+                return Err(input(format!(
+                    "{name}: the summary counts {} rows but the CSV has {}; finish that shard with `sweep --resume`",
+                    s.rows,
+                    c.get()
+                )));
+            }
+            if s.errors != part.errors || s.classes != part.classes || s.columns != part.columns {
+                return Err(input(format!(
+                    "{summary_name}: the summary does not match the rows of {name} (was one of them edited?)"
+                )));
+            }
+        }
+        let mut merged = parts
+            .first()
+            .cloned()
+            .ok_or_else(|| input("no shards to merge".into()))?;
+        for p in &parts[1..] {
+            merged.merge(p)?;
+        }
+        merged.throughput = shard_summaries.throughput;
+        Ok(merged)
+    }
+}
+
+/// The data lines of one shard CSV, after its fingerprint line (checked
+/// against `plan`; it gives the shard) and its header (checked against
+/// `layout`); `rows` counts the lines read.
+fn csv_source<'a, R: BufRead + 'a>(
+    name: &str,
+    mut reader: R,
+    plan: &Plan,
+    layout: &Layout,
+    rows: Rc<Cell<u64>>,
+) -> Result<MergeSource<Lines<'a>>, SweepError> {
+    let mut first = String::new();
+    let mut header = String::new();
+    reader
+        .read_line(&mut first)
+        .and_then(|_| reader.read_line(&mut header))
+        .map_err(|e| input(format!("reading {name}: {e}")))?;
+    let mismatch = |line: u64, message: String| SweepError::Mismatch {
+        source_name: name.to_owned(),
+        line,
+        message,
+    };
+    let shard = fingerprint_shard(&first).ok_or_else(|| {
+        mismatch(
+            1,
+            check_fingerprint(plan, Shard::ALL, &first)
+                .err()
+                .unwrap_or_else(|| "the fingerprint line names no shard".into()),
+        )
+    })?;
+    check_fingerprint(plan, shard, &first).map_err(|m| mismatch(1, m))?;
+    if header != layout.header() {
+        return Err(mismatch(
+            2,
+            "the header does not match the spec's columns".into(),
+        ));
+    }
+    let n2 = name.to_owned();
+    let mut lineno = 2u64;
+    let mut buf = Vec::new();
+    let iter = std::iter::from_fn(move || {
+        buf.clear();
+        match reader.read_until(b'\n', &mut buf) {
+            Ok(0) => None,
+            Ok(_) => {
+                lineno += 1;
+                if buf.last() != Some(&b'\n') {
+                    return Some(Err(SweepError::Mismatch {
+                        source_name: n2.clone(),
+                        line: lineno,
+                        message: "torn last line; finish this shard with `sweep --resume` first"
+                            .into(),
+                    }));
+                }
+                buf.pop();
+                rows.set(rows.get() + 1);
+                Some(String::from_utf8(std::mem::take(&mut buf)).map_err(|_| {
+                    SweepError::Mismatch {
+                        source_name: n2.clone(),
+                        line: lineno,
+                        message: "not UTF-8".into(),
+                    }
+                }))
+            }
+            Err(e) => Some(Err(SweepError::Io(format!("{n2}: {e}")))),
+        }
+    });
+    Ok(MergeSource {
+        name: name.to_owned(),
+        shard,
+        lines: Box::new(iter),
+    })
+}
+
+/// A Parquet shard as a merge source: its fingerprint (which gives the
+/// shard) checked against `plan`, its columns against `layout`, its rows as
+/// the CSV lines the sweep writes for them (verified by the merge like a
+/// CSV's); `rows` counts the lines read.
+fn parquet_source<'a>(
+    name: &str,
+    bytes: Vec<u8>,
+    plan: &Plan,
+    layout: &Layout,
+    rows: Rc<Cell<u64>>,
+) -> Result<MergeSource<Lines<'a>>, SweepError> {
+    let mismatch = |line: u64, message: String| SweepError::Mismatch {
+        source_name: name.to_owned(),
+        line,
+        message,
+    };
+    let table = read_table(bytes).map_err(|e| {
+        mismatch(
+            1,
+            format!("{e}; finish this shard with `sweep --resume` first"),
+        )
+    })?;
+    let fp = table.fingerprint().unwrap_or_default().to_owned() + "\n";
+    let shard = fingerprint_shard(&fp).ok_or_else(|| {
+        mismatch(
+            1,
+            check_fingerprint(plan, Shard::ALL, &fp)
+                .err()
+                .unwrap_or_else(|| "the fingerprint names no shard".into()),
+        )
+    })?;
+    check_fingerprint(plan, shard, &fp).map_err(|m| mismatch(1, m))?;
+    if table.names != layout.column_names() {
+        return Err(mismatch(1, "the columns do not match the spec's".into()));
+    }
+    let text = table.csv_lines(0, table.rows());
+    let lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let iter = lines.into_iter().map(move |l| {
+        rows.set(rows.get() + 1);
+        Ok(l)
+    });
+    Ok(MergeSource {
+        name: name.to_owned(),
+        shard,
+        lines: Box::new(iter),
+    })
+}
