@@ -471,7 +471,7 @@ points_per_axis = 4
         let e = err(&GOOD.replace("[0.1, 0.9]", "[0.0, 0.9]"));
         assert!(
             e.to_string()
-                .starts_with("space.ratio_range: bound 0 is outside"),
+                .starts_with("space.ratio_range: bound 0.0 is outside"),
             "{e}"
         );
         let e = err(&GOOD.replace("[0.1, 0.9]", "[0.5, 0.5]"));
