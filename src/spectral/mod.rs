@@ -231,7 +231,9 @@ pub struct LocalAnalysis {
     /// Exact verdicts (`--exact`).
     pub exact: Option<exact::ExactVerdict>,
     /// Second order at the extraordinary point: `mu` against `lambda^2`
-    /// ([`crate::curvature`], math doc section 13).
+    /// ([`crate::curvature`], math doc section 13), on the second-order
+    /// matrix ([`Scheme::second_order_matrix`]; the reported spectrum is the
+    /// local matrix's).
     pub curvature: curvature::CurvatureSummary,
 }
 
@@ -337,7 +339,11 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
                 None => full.clone(),
             };
             subdominant_full = Some(full);
-            curvature = curvature::summarize(scheme, e.values(), &radii, &subdominant)?;
+            curvature = curvature::with_classification(
+                scheme,
+                &subdominant,
+                Some((s, e.values(), &radii)),
+            )?;
             eigenvalues = e.values().iter().map(|&z| c64(z)).collect::<Vec<_>>();
             residuals = e.residuals().map(<[f64]>::to_vec);
             conditions = Some(kappa);
@@ -393,11 +399,7 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
                 None => classify_matrix(s)?,
             };
             subdominant_full = None;
-            curvature = if s.nrows() <= curvature::STRUCTURED_DENSE_MAX_DIM {
-                curvature::curvature(scheme)?
-            } else {
-                curvature::summarize(scheme, &all, &[], &subdominant)?
-            };
+            curvature = curvature::structured(scheme, &subdominant, &all)?;
             eigenvalues = all.iter().map(|&z| c64(z)).collect();
             residuals = None;
             conditions = None;
