@@ -67,22 +67,24 @@ pub(crate) mod linear;
 pub use layout::{PatchLayout, SubPatch};
 
 use super::assembly::{Assembler, LocalMatrix, PointLabel};
-use crate::budget::{CostModel, ANALYZE_BYTES_PER_ENTRY_CC, ANALYZE_SECONDS_PER_N3_CC};
+use crate::budget::{
+    CostModel, ANALYZE_BYTES_PER_ENTRY_CC, ANALYZE_SECONDS_PER_N3_CC, SWEEP_SECONDS_PER_N3_CC,
+};
 use crate::error::{Error, Result};
 use crate::scalar::Scalar;
 
 /// The work model of the family ([`crate::budget`]): the `(2n + 1)` one-ring
-/// matrix, decomposed densely on every path (the analysis's constant covers
-/// a sweep's classification and characteristic map too).
+/// matrix, decomposed densely on every path; `analyze`'s constant covers the
+/// curvature verdict's `(2n + 8)` patch matrix too.
 pub const COST_MODEL: CostModel = CostModel {
     dimension_per_valence: 2.0,
     dimension_offset: 1.0,
     analyze_bytes_per_entry: ANALYZE_BYTES_PER_ENTRY_CC,
     analyze_seconds_per_n3_full: ANALYZE_SECONDS_PER_N3_CC,
     analyze_seconds_per_n3_structured: ANALYZE_SECONDS_PER_N3_CC,
-    sweep_classify_seconds_per_n3: ANALYZE_SECONDS_PER_N3_CC,
+    sweep_classify_seconds_per_n3: SWEEP_SECONDS_PER_N3_CC,
     sweep_classify_on_face_block: false,
-    sweep_charmap_seconds_per_n3: ANALYZE_SECONDS_PER_N3_CC,
+    sweep_charmap_seconds_per_n3: SWEEP_SECONDS_PER_N3_CC,
 };
 
 /// Scheme name used in matrix labels for `c = 1/2`.
