@@ -81,9 +81,9 @@ pub const ANALYZE_SECONDS_PER_N3_DS_STRUCTURED: f64 = 5.0e-7;
 pub const ANALYZE_SECONDS_PER_N3_CC: f64 = 4.0e-7;
 
 /// Seconds per `n^3` of one sweep configuration's classification or
-/// characteristic map, Catmull-Clark family (the one-ring alone; measured
-/// as `analyze` was before the curvature verdict took the patch matrix:
-/// 1.9e-7 to 2.1e-7 at `n = 200, 400`).
+/// characteristic map, Catmull-Clark family: the one-ring alone, measured
+/// as `analyze` without the patch matrix (1.9e-7 to 2.1e-7 at
+/// `n = 200, 400`).
 pub const SWEEP_SECONDS_PER_N3_CC: f64 = 2.5e-7;
 
 /// Bytes per printed matrix entry of `matrix` (the entry, its text and the

@@ -206,9 +206,9 @@ const LEVELS: usize = 24;
 /// they must agree within the measurement's stated error, and that error
 /// must be smaller than the distance to 1, so that the measurement alone
 /// decides between `zero` and `unbounded` (and below `1e-3` where the
-/// verdict is `bounded`). Before the second-order matrix was the patch
-/// matrix, `n = 3`, `c = 0.75` gave the verdict `zero` with
-/// `mu / lambda^2 = 0.829` against a measured `1.2438`.
+/// verdict is `bounded`). On the one-ring alone `n = 3`, `c = 0.75` would
+/// give the verdict `zero` with `mu / lambda^2 = 0.829` against a measured
+/// `1.2438`.
 #[test]
 fn measured_rates_agree_with_the_verdict() {
     for (n, c, verdict) in [

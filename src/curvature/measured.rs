@@ -114,7 +114,7 @@ fn rate_error(r: &[f64], growth: f64) -> f64 {
     let d = |j: usize| (r[j] - r[j - 1]).abs();
     let (d0, d1, d2) = (d(k - 1), d(k - 2), d(k - 3));
     let rho = (d0 / d1).max((d0 / d2).sqrt());
-    if !(rho < MAX_CONVERGENCE_FACTOR) {
+    if rho.is_nan() || rho >= MAX_CONVERGENCE_FACTOR {
         return f64::INFINITY;
     }
     let tail = RATE_ERROR_SAFETY * d0.max(rho * d1) * rho / (1.0 - rho);

@@ -282,9 +282,10 @@ pub(crate) fn patch_named<T: Scalar>(name: &str, n: usize, c: &T) -> Result<Loca
 /// ```
 ///
 /// Derivation: on the grid positions `0..3` of one parameter direction the
-/// univariate rule ([`univariate_rule`]) is the matrix `U` whose column 3 is
-/// `c/4` on the diagonal and 0 elsewhere (no new point at positions `0..2`
-/// reaches position 3), so `U` is block lower-triangular with eigenvalues
+/// univariate rule (vertex mask `c/4, 1 - c/2, c/4`, new edge points at the
+/// midpoints; module docs) is the matrix `U` whose column 3 is `c/4` on the
+/// diagonal and 0 elsewhere (no new point at positions `0..2` reaches
+/// position 3), so `U` is block lower-triangular with eigenvalues
 /// `1, 1/2, (1 - c)/2` (positions `0..2`: trace `2 - c/2`) and `c/4`. The
 /// outer points are the grid points with a coordinate 3; the tensor rule
 /// `U (x) U` is block lower-triangular with respect to them, so the outer

@@ -477,7 +477,7 @@ proptest! {
     /// The patch matrix's outer 7 x 7 block has exactly the characteristic
     /// polynomial `prod (x - r)` over [`regular_part_eigenvalues`] (exact
     /// rationals), so the patch spectrum is the one-ring's and these.
-    /// (Planted: a regular part of `c/4, c/8, c/16, ...` fails at once.)
+    /// (Planted: `c/16` in place of `c^2/16` fails at once.)
     #[test]
     fn regular_part_is_the_outer_block_spectrum(n in 3usize..9, c in rational_c()) {
         use crate::spectral::exact::charpoly;
