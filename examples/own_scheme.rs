@@ -20,7 +20,15 @@
 //! structured or Fourier spectrum, a characteristic ring, and the cost model
 //! the work estimates use ([`Scheme::cost_model`]; the default measures the
 //! local matrix once, enough for this scheme).
+//!
+//! One capability is a duty here: the one-ring is too small for the
+//! second-order (curvature) analysis, whose neighbourhood must hold the
+//! support of the ring of patches around the vertex (math doc section 13.5).
+//! [`Scheme::second_order_matrix`] therefore returns one patch's support,
+//! the `2n + 8` points of Stam's patch: this scheme's one-ring rows, and
+//! Catmull-Clark's regular (bicubic) rules for the 7 outer points.
 
+use subdiv_lab::schemes::catmull_clark::patch_matrix;
 use subdiv_lab::schemes::{Assembler, LocalMatrix, PointLabel, Role};
 use subdiv_lab::spectral::{analyze, AnalyzeOptions};
 use subdiv_lab::sweep::own::{sweep, to_csv};
@@ -114,6 +122,21 @@ impl Scheme for VertexWeightCc {
                 f(i),
                 [(0, 0.25), (e(i), 0.25), (f(i), 0.25), (e(i + 1), 0.25)],
             );
+        }
+        a.finish()
+    }
+
+    /// Step 4: the second-order neighbourhood (module docs): the patch
+    /// matrix's labels and outer rows (regular rules, the same for this
+    /// scheme as for Catmull-Clark), with this scheme's one-ring block.
+    fn second_order_matrix(&self) -> subdiv_lab::Result<LocalMatrix<f64>> {
+        let ring = self.local_matrix()?;
+        let patch = patch_matrix::<f64>(self.n, &0.5)?;
+        let m = ring.matrix().nrows();
+        let mut a = Assembler::square(self.name(), self.n, patch.rows().to_vec());
+        a.block(0, 0, ring.matrix());
+        for i in m..patch.matrix().nrows() {
+            a.stencil(i, (0..m + 7).map(|j| (j, patch.matrix()[(i, j)])));
         }
         a.finish()
     }

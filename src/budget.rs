@@ -56,7 +56,9 @@ pub const SWEEP_TIME_LIMIT_SECONDS: f64 = 3600.0;
 pub const ANALYZE_BYTES_PER_ENTRY_DS: f64 = 200.0;
 
 /// The same for the Catmull-Clark family (`d = 2n + 1`). Measured 128-190
-/// bytes at `n = 200..400`.
+/// bytes at `n = 200..400`; with the curvature verdict's `(2n + 8)` patch
+/// matrix decomposed as well (math doc section 13.5), 169-175 bytes above a
+/// 9.5 MB base at `n = 200..400`.
 pub const ANALYZE_BYTES_PER_ENTRY_CC: f64 = 200.0;
 
 /// Seconds per `n^3` of `analyze`, Doo-Sabin family, full path (the
@@ -70,9 +72,19 @@ pub const ANALYZE_SECONDS_PER_N3_DS_FULL: f64 = 2.0e-6;
 /// 3.8e-7 at `n = 200, 400`.
 pub const ANALYZE_SECONDS_PER_N3_DS_STRUCTURED: f64 = 5.0e-7;
 
-/// Seconds per `n^3` of `analyze`, Catmull-Clark family (either path).
-/// Measured 1.9e-7 to 2.1e-7 at `n = 200, 400`.
-pub const ANALYZE_SECONDS_PER_N3_CC: f64 = 2.5e-7;
+/// Seconds per `n^3` of `analyze`, Catmull-Clark family (either path): the
+/// one-ring's decomposition and the curvature verdict's `(2n + 8)` patch
+/// matrix (math doc section 13.5). The one-ring alone measured 1.9e-7 to
+/// 2.1e-7 at `n = 200, 400`; the patch matrix multiplies the CPU time by 1.6
+/// to 1.85 (`n = 200..400`: 0.91 s to 1.68 s, 4.00 s to 6.51 s, 8.52 s to
+/// 15.45 s), so `2.1e-7 * 1.85`, rounded up.
+pub const ANALYZE_SECONDS_PER_N3_CC: f64 = 4.0e-7;
+
+/// Seconds per `n^3` of one sweep configuration's classification or
+/// characteristic map, Catmull-Clark family: the one-ring alone, measured
+/// as `analyze` without the patch matrix (1.9e-7 to 2.1e-7 at
+/// `n = 200, 400`).
+pub const SWEEP_SECONDS_PER_N3_CC: f64 = 2.5e-7;
 
 /// Bytes per printed matrix entry of `matrix` (the entry, its text and the
 /// per-cell `String` of the text/JSON renderers); exact rationals need about

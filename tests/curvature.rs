@@ -307,7 +307,7 @@ fn measured_curvature_follows_mu_over_lambda_squared() {
 #[test]
 fn tuning_roots_are_certified_and_where_the_floats_change_sign() {
     let f = |n: usize, c: f64| {
-        let s = fourier::spectrum(n, c).unwrap();
+        let s = fourier::patch_spectrum(n, c).unwrap();
         s[3].norm() - s[1].norm().powi(2)
     };
     let expected_roots = [(3, 2), (4, 0), (5, 1), (6, 1)];
@@ -341,6 +341,39 @@ fn tuning_roots_are_certified_and_where_the_floats_change_sign() {
     }
 }
 
+/// The second `n = 3` tuning root is where the regular part's `c/4` (an
+/// eigenvalue of the patch matrix, not of the one-ring) meets `lambda^2`:
+/// `lambda(c)` from block 1's closed form (trace `3/4 - 3c/8` at
+/// `cos(2 pi/3) = -1/2`, determinant `(1 - c)/8`), the crossing by bisection
+/// here. (The one-ring alone puts the root at `0.79686`.)
+#[test]
+fn the_second_n3_tuning_root_is_the_regular_part_crossing() {
+    let lambda = |c: f64| {
+        let t = 0.75 - 0.375 * c;
+        0.5 * (t + (t * t - 0.5 * (1.0 - c)).sqrt())
+    };
+    let g = |c: f64| c / 4.0 - lambda(c).powi(2);
+    let (mut lo, mut hi) = (0.6, 0.7);
+    assert!(g(lo) < 0.0 && g(hi) > 0.0);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if g(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let t = tune(3, 64).unwrap();
+    assert_eq!(t.roots.len(), 2);
+    let r = &t.roots[1];
+    assert!(
+        r.c_lo <= hi + 1e-12 && lo - 1e-12 <= r.c_hi,
+        "{r:?} vs {lo}"
+    );
+    assert_eq!((r.below, r.above), (Sign::Negative, Sign::Positive));
+    assert!((lo - 0.631231).abs() < 1e-6, "{lo}");
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
@@ -350,9 +383,11 @@ proptest! {
     fn enclosures_contain_the_float_values(n in 3usize..=16, c in 0.0f64..=1.0) {
         let cos = cos_enclosures(n).unwrap();
         let [lambda, mu, _] = enclosure(n, c, &cos);
-        let s = fourier::spectrum(n, c).unwrap();
+        let s = fourier::patch_spectrum(n, c).unwrap();
         let slack = 1e-14;
         prop_assert!(lambda.lo - slack <= s[1].norm() && s[1].norm() <= lambda.hi + slack);
+        // lambda >= 3/8 > 1/4 >= c/4: the regular part never reaches the pair.
+        prop_assert!(lambda.lo >= 0.375 - slack && lambda.lo > c / 4.0);
         prop_assert!(mu.lo - slack <= s[3].norm() && s[3].norm() <= mu.hi + slack);
         // near a double root of a block the sqrt of the rounded discriminant
         // widens the enclosure to about sqrt(eps)

@@ -432,3 +432,37 @@ seed = 11
     }
     assert_eq!(checked, 25 * 3 + 25 * 5);
 }
+
+/// The `curvature` columns are the curvature verdict of `analyze` (on the
+/// second-order matrix, math doc section 13.5), whether the row's
+/// classification is made for other columns (and reused) or not: the
+/// adjustable scheme at `n = 3` across the crossing `c = 0.63123`, where the
+/// one-ring alone says `zero`.
+#[test]
+fn curvature_columns_equal_the_verdict_with_and_without_classification() {
+    for classification in [true, false] {
+        let spec = format!(
+            "scheme = \"adjustable-cc\"\nvalences = [3, 5]\n[space]\nkind = \"shape\"\nc_range = [0.5, 0.9]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 9\n[columns]\nclassification = {classification}\ngap = false\ncontraction = false\ncurvature = true\n"
+        );
+        let (header, rows, _) = sweep_csv(&spec);
+        assert_eq!(rows.len(), 18);
+        let mut unbounded_at_3 = 0;
+        for row in &rows {
+            let n: usize = get(&header, row, "valence").parse().unwrap();
+            let c = num(&header, row, "c");
+            let s = LocalScheme::adjustable_cc(n, c).unwrap();
+            let a = spectral::analyze(&s, &AnalyzeOptions::default()).unwrap();
+            let k = &a.curvature;
+            assert_eq!(get(&header, row, "curvature_verdict"), k.verdict.as_str());
+            assert!((num(&header, row, "curvature_mu") - k.mu).abs() < 1e-14);
+            let ratio = num(&header, row, "curvature_ratio");
+            assert!((ratio - k.mu_over_lambda_squared).abs() < 1e-13);
+            if n == 3 && k.verdict.as_str() == "unbounded" {
+                assert!(c > 0.6312, "c = {c}");
+                unbounded_at_3 += 1;
+            }
+        }
+        // c = 0.65, 0.7, .., 0.9
+        assert_eq!(unbounded_at_3, 6, "classification = {classification}");
+    }
+}

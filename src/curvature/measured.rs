@@ -38,11 +38,32 @@
 //! curvature converges to `mu / lambda^2` with a relative error of order
 //! `rho^k`, `rho = max(nu / mu, mu / lambda)`, `nu` the largest modulus below
 //! `mu` (math doc section 13.2 **\[derived\]**; tested in `tests/curvature.rs`).
+//! `mu`, `lambda` and `nu` are those of the patch matrix
+//! ([`fourier::patch_spectrum`]), the family's second-order matrix (math
+//! doc section 13.5).
+//!
+//! The nets are recentred on the limit point at every level (rounding
+//! would otherwise feed a constant drift into the eigenvalue 1, which the
+//! quadric reads as curvature growing like `lambda^-2k`).
+//!
+//! **The dominant part and its stated error.** The largest principal
+//! curvature mixes the two Fourier parts, so its ratio converges only as fast
+//! as the slower part dies out (`(0.948)^k` at `n = 5`, `c = 1/2`). The part
+//! that carries `mu` (the larger of the ratios of `|H|` and of the half
+//! difference at the last level) converges with its own corrections:
+//! [`MeasuredCurvature::dominant_rate`]. Its stated error
+//! ([`MeasuredCurvature::rate_error`], an a-posteriori estimate, not a
+//! bound): with the differences `d_k = |r_k - r_{k-1}|` of its ratios, a
+//! correction `C rho^k` leaves `|r_K - lim r| = d_K rho / (1 - rho)`; `rho`
+//! is read off the last differences, and the error is
+//! [`RATE_ERROR_SAFETY`] times `max(d_K, rho d_{K-1}) rho / (1 - rho)` plus
+//! the rounding [`RATE_ROUNDING_FACTOR`]` eps (lambda / mu)^K` (infinite
+//! when `rho` reaches [`MAX_CONVERGENCE_FACTOR`]).
 
 use crate::error::{Error, Result};
 use crate::rng::SplitMix64;
 use crate::schemes::catmull_clark::limit::{limit_stencil, tangent_stencils};
-use crate::schemes::catmull_clark::{fourier, patch_matrix, PatchLayout};
+use crate::schemes::catmull_clark::{fourier, patch_matrix, regular_part_eigenvalues, PatchLayout};
 use nalgebra::{DMatrix, Matrix3, Vector3};
 use serde::Serialize;
 
@@ -60,6 +81,58 @@ pub const MAX_VALENCE: usize = 64;
 /// eigen-direction by a visible amount, small enough to keep the net a graph
 /// over the plane.
 pub const PERTURBATION: f64 = 0.05;
+
+/// Safety factor of the stated error over the geometric-tail estimate
+/// (module docs): the corrections are sums of several geometric terms, and
+/// 4 covers a second term of up to three times the first's size at a
+/// convergence factor like the first's.
+pub const RATE_ERROR_SAFETY: f64 = 4.0;
+
+/// Largest convergence factor `rho` (read off the last differences of the
+/// ratios) for which the stated error is given; closer to 1 the tail
+/// estimate `rho / (1 - rho)` is itself unreliable and the error is infinite.
+pub const MAX_CONVERGENCE_FACTOR: f64 = 0.95;
+
+/// Rounding term of the stated error, times `eps (lambda / mu)^k`: the nets
+/// are recentred at every level, so the heights (of order `mu^k`) carry the
+/// rounding of coordinates of order `lambda^k`. Observed at most `0.2 eps
+/// (lambda / mu)^k` on the dominant part (`n = 3`, `c = 1/2`, levels 24 to
+/// 32); 4 is twenty times that.
+pub const RATE_ROUNDING_FACTOR: f64 = 4.0;
+
+/// The stated error of the last of the per-level ratios `r` (module docs):
+/// `rho` is the larger of `|d_K / d_(K-1)|` and `|d_K / d_(K-2)|^(1/2)`
+/// (the latter for alternating corrections), the error
+/// `RATE_ERROR_SAFETY max(d_K, rho d_(K-1)) rho / (1 - rho)` plus
+/// `RATE_ROUNDING_FACTOR eps growth`. Infinite with fewer than four ratios or
+/// `rho >= MAX_CONVERGENCE_FACTOR`.
+fn rate_error(r: &[f64], growth: f64) -> f64 {
+    let k = r.len();
+    if k < 4 {
+        return f64::INFINITY;
+    }
+    let d = |j: usize| (r[j] - r[j - 1]).abs();
+    let (d0, d1, d2) = (d(k - 1), d(k - 2), d(k - 3));
+    let rho = (d0 / d1).max((d0 / d2).sqrt());
+    if rho.is_nan() || rho >= MAX_CONVERGENCE_FACTOR {
+        return f64::INFINITY;
+    }
+    let tail = RATE_ERROR_SAFETY * d0.max(rho * d1) * rho / (1.0 - rho);
+    let e = tail + RATE_ROUNDING_FACTOR * f64::EPSILON * growth;
+    if e.is_nan() {
+        f64::INFINITY
+    } else {
+        e
+    }
+}
+
+/// The per-level ratios `|x_k / x_(k-1)|`, `k = 1..`.
+fn ratios(levels: &[MeasuredLevel], x: impl Fn(&MeasuredLevel) -> f64) -> Vec<f64> {
+    levels
+        .windows(2)
+        .map(|w| (x(&w[1]) / x(&w[0])).abs())
+        .collect()
+}
 
 /// One level of the measurement.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -91,21 +164,31 @@ pub struct MeasuredCurvature {
     pub c: f64,
     /// `lambda` (closed-form Fourier blocks).
     pub lambda: f64,
-    /// `mu`.
+    /// `mu` of the patch matrix ([`fourier::patch_spectrum`]: the Fourier
+    /// blocks and the regular part).
     pub mu: f64,
     /// The predicted per-level rate `mu / lambda^2`.
     pub predicted_rate: f64,
     /// The predicted rate of the mean curvature `H`: `mu_0 / lambda^2`, with
-    /// `mu_0` the largest non-unit modulus of Fourier block 0.
+    /// `mu_0` the largest non-unit modulus of Fourier block 0 and of the
+    /// regular part (whose eigenvalues occur in every mode of the ring).
     pub mean_rate: f64,
     /// The predicted rate of `twist`: `mu_2 / lambda^2`, with `mu_2` the
-    /// largest modulus of Fourier block 2 (`n >= 5`; for `n = 3, 4` block 2
-    /// aliases the tangent plane's block or is the regular case: `None`).
+    /// largest modulus of Fourier block 2 and of the regular part (`n >= 5`;
+    /// for `n = 3, 4` block 2 aliases the tangent plane's block or is the
+    /// regular case: `None`).
     pub twist_rate: Option<f64>,
     /// Levels `0..=levels`.
     pub levels: Vec<MeasuredLevel>,
     /// The measured per-level ratio of `max_principal` at the last level.
     pub measured_rate: f64,
+    /// The per-level ratio at the last level of the faster-growing Fourier
+    /// part, `|H|` (mode 0) or the half difference (mode 2): the part that
+    /// carries `mu`, whose ratio converges to `mu / lambda^2` without the
+    /// other part's leakage (math doc section 13.2).
+    pub dominant_rate: f64,
+    /// The stated error of `dominant_rate` (absolute; module docs).
+    pub rate_error: f64,
 }
 
 /// Refines the seeded test net of valence `n` and shape parameter `c`
@@ -138,8 +221,14 @@ pub fn measure(n: usize, c: f64, levels: usize, seed: u64) -> Result<MeasuredCur
     let lay = PatchLayout::new(n)?;
     let a = patch_matrix::<f64>(n, &c)?;
     let a = a.matrix();
-    let spec = fourier::spectrum(n, c)?;
+    let spec = fourier::patch_spectrum(n, c)?;
     let (lambda, mu) = (spec[1].norm(), spec[3].norm());
+    // The regular part's largest eigenvalue (c/4) lies in every Fourier mode
+    // of the ring (math doc section 13.5).
+    let regular = regular_part_eigenvalues(&c)
+        .into_iter()
+        .map(f64::abs)
+        .fold(0.0, f64::max);
     let nets = initial_nets(n, &lay, seed);
     let stencil = limit_stencil::<f64>(n, &c)?;
     let (_, [t1, t2]) = tangent_stencils(n, c)?;
@@ -162,6 +251,15 @@ pub fn measure(n: usize, c: f64, levels: usize, seed: u64) -> Result<MeasuredCur
         if level > 0 {
             for net in nets.iter_mut() {
                 *net = a * &*net;
+                // Recentre: rounding feeds a constant drift into the
+                // eigenvalue 1, which the quadric (no constant term) would
+                // read as curvature growing like lambda^-2k.
+                let p = apply(&stencil, net);
+                for mut row in net.row_iter_mut() {
+                    for k in 0..3 {
+                        row[k] -= p[k];
+                    }
+                }
             }
         }
         out.push(measure_level(level, &nets, &lay, c, &stencil, &t1, &t2)?);
@@ -171,14 +269,29 @@ pub fn measure(n: usize, c: f64, levels: usize, seed: u64) -> Result<MeasuredCur
     let block_max = |l: usize| -> Result<f64> {
         let ev = fourier::block_eigenvalues(n, l, c)?;
         let skip = usize::from(l == 0);
-        Ok(ev.iter().skip(skip).map(|z| z.norm()).fold(0.0, f64::max))
+        Ok(ev
+            .iter()
+            .skip(skip)
+            .map(|z| z.norm())
+            .fold(regular, f64::max))
     };
     let l2 = lambda * lambda;
+    let growth = (lambda / mu).powi(levels as i32);
+    let mean = ratios(&out, |l| l.mean);
+    let twist = ratios(&out, |l| l.twist);
+    let dominant = match (mean.last(), twist.last()) {
+        (Some(a), Some(b)) if b > a => twist,
+        _ => mean,
+    };
+    let dominant_rate = dominant.last().copied().unwrap_or(f64::NAN);
+    let rate_error = rate_error(&dominant, growth);
     Ok(MeasuredCurvature {
         n,
         c,
         lambda,
         mu,
+        dominant_rate,
+        rate_error,
         predicted_rate: mu / l2,
         mean_rate: block_max(0)? / l2,
         twist_rate: if n >= 5 {

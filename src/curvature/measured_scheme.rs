@@ -1,13 +1,16 @@
 //! Measured curvature around the extraordinary point of **any** scheme with
 //! a square local subdivision matrix (the Doo-Sabin family, Loop, a user's
-//! own [`Scheme`]): refine a lifted, perturbed local net `k` levels with the
-//! local matrix `S` and estimate the curvature from the level-`k` control
-//! points (math doc section 13.4 **\[derived\]**).
+//! own [`Scheme`]): refine a lifted, perturbed net `k` levels with the
+//! second-order matrix `S` ([`Scheme::second_order_matrix`]: the local
+//! matrix for the Doo-Sabin family and Loop, the patch matrix for the
+//! Catmull-Clark family; math doc section 13.5) and estimate the curvature
+//! from the level-`k` control points (math doc section 13.4 **\[derived\]**).
 //!
 //! **Method: fitted quadrics to control points** (no limit evaluation, which
 //! a general scheme need not provide).
 //!
-//! 1. The spectral data come from `S` alone: the classification must be
+//! 1. The spectral data come from `S` alone (the classification from the
+//!    local matrix): the classification must be
 //!    standard (a double real subdominant eigenvalue `lambda` with a
 //!    2-dimensional eigenspace, math doc section 7); the right eigenspace of
 //!    `lambda`, the left eigenspace of `lambda` and the left eigenvector
@@ -145,7 +148,11 @@ fn measure_with<S: Scheme + ?Sized>(
             reason: "the measured curvature takes 1..=40 levels",
         });
     }
-    let lm = scheme.local_matrix()?;
+    // The second-order matrix: it holds the support of the ring of patches
+    // (math doc section 13.5), so its nets carry every eigenvalue that
+    // reaches the surface near the point; the classification is the local
+    // matrix's.
+    let lm = scheme.second_order_matrix()?;
     let s = lm.matrix();
     let d = s.nrows();
     if s.ncols() != d {
@@ -162,8 +169,8 @@ fn measure_with<S: Scheme + ?Sized>(
             reason: "the measured curvature takes local matrices of dimension up to 400",
         });
     }
-    let summary = super::curvature(scheme)?;
     let sub = crate::spectral::classify_local(scheme)?;
+    let summary = crate::spectral::curvature::with_classification(scheme, &sub, None)?;
     // The subdominant pair: one 2-dimensional eigenspace (standard) or two
     // real eigenvalues with one vector each (real_distinct; module docs).
     let ident = DMatrix::<f64>::identity(d, d);
@@ -213,6 +220,12 @@ fn measure_with<S: Scheme + ?Sized>(
     let measured_rate = out[last].max_principal / out[last - 1].max_principal;
     let l2 = lambda2 * lambda2;
     let n = scheme.valence();
+    // The regular part's eigenvalues occur in every Fourier mode of the ring
+    // (math doc section 13.5).
+    let regular = match scheme.regular_part_spectrum() {
+        Some(extra) => extra?.iter().map(|z| z.norm()).fold(0.0, f64::max),
+        None => 0.0,
+    };
     let (mean_rate, twist_rate) = match scheme.fourier_spectrum() {
         None => (None, None),
         Some(blocks) => {
@@ -220,7 +233,11 @@ fn measure_with<S: Scheme + ?Sized>(
             let block_max = |l: usize| {
                 blocks.iter().find(|(b, _)| *b == l).map(|(_, ev)| {
                     let skip = usize::from(l == 0);
-                    ev.iter().skip(skip).map(|z| z.norm()).fold(0.0, f64::max) / l2
+                    ev.iter()
+                        .skip(skip)
+                        .map(|z| z.norm())
+                        .fold(regular, f64::max)
+                        / l2
                 })
             };
             (block_max(0), if n >= 4 { block_max(2) } else { None })

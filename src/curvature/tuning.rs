@@ -2,14 +2,20 @@
 //! `mu / lambda^2` against `c`, and the values of `c` where `mu = lambda^2`,
 //! certified (math doc section 13.3).
 //!
-//! The spectrum is the union of the Fourier blocks' spectra (math doc
-//! sections 6 and 8; [`crate::schemes::catmull_clark::fourier`]): block 0
+//! The second-order spectrum (the `2n + 8` patch matrix, math doc section
+//! 13.5) is the union of the one-ring's Fourier blocks' spectra (math doc
+//! sections 6 and 8; [`crate::schemes::catmull_clark::fourier`]) and the
+//! regular part ([`fourier::patch_spectrum`]): block 0
 //! contributes 1 and the roots of `x^2 - t_0 x + d_0` with
 //! `t_0 = (3n - 16c + 4c^2)/(4n)`, `d_0 = (n(1 - c) - 8c + 12c^2 - 4c^3)/(8n)`;
 //! block `l = 1..n-1` the roots of `x^2 - t_l x + (1 - c)/8` with
-//! `t_l = 3/4 - c/4 + (c/4) cos(2 pi l / n)`. With the `2n` non-unit moduli
-//! sorted, `lambda` is the largest (the pair `l = 1, n - 1`) and `mu` the third
-//! largest, and `F(c) = mu - lambda^2`.
+//! `t_l = 3/4 - c/4 + (c/4) cos(2 pi l / n)`; the regular part's largest is
+//! `c/4` (the others, `c/8`, `c(1 - c)/8`, `c^2/16`, are below it). With the
+//! `2n + 1` moduli (the `2n` non-unit Fourier ones and `c/4`) sorted,
+//! `lambda` is the largest (the pair `l = 1, n - 1`; `lambda >= 3/8 > 1/4 >= c/4`)
+//! and `mu` the third largest, and `F(c) = mu - lambda^2`. The regular part
+//! decides `mu` at `n = 3` for `c > 0.557` and moves the second root there
+//! to `c = 0.63120`.
 //!
 //! **Rigorous sign evaluation.** [`enclosure`] evaluates `F(c)` in interval
 //! arithmetic with outward rounding: every `f64` operation (`+ - * /` and
@@ -31,7 +37,7 @@
 //! [`ROOT_WIDTH`] or until the sign at the midpoint is undecided. Grid
 //! points with an undecided sign (on the coarser grid [`EXACT_GRID`]) are
 //! tried with the exact certificate of
-//! [`crate::curvature`] (rational `c`: the one-ring matrix is rational); at
+//! [`crate::curvature`] (rational `c`: the patch matrix is rational); at
 //! `n = 4` this certifies `mu = lambda^2` on the whole of `[1/2, 1]` sampled
 //! (math doc section 13.3 derives it for every `c` there).
 //!
@@ -305,6 +311,8 @@ pub fn enclosure(n: usize, c: f64, cos: &[Interval]) -> [Interval; 3] {
     let mut moduli: Vec<Interval> = quadratic_moduli(t0, d0).to_vec();
     let d = q(1.0).sub(ci).div(8.0);
     let quarter_c = ci.div(4.0);
+    // The regular part's largest eigenvalue, c/4 (module docs).
+    moduli.push(quarter_c);
     for l in 1..n {
         let cl = cos[l.min(n - l)];
         let t = q(0.75).sub(quarter_c).add(quarter_c.mul(cl));
@@ -382,7 +390,7 @@ pub fn tune(n: usize, grid: usize) -> Result<Tuning> {
     let mut curve = Vec::with_capacity(grid + 1);
     for j in 0..=grid {
         let c = j as f64 / grid as f64;
-        let spec = fourier::spectrum(n, c)?;
+        let spec = fourier::patch_spectrum(n, c)?;
         let (lambda, mu) = (spec[1].norm(), spec[3].norm());
         let sign = enclosure(n, c, &cos)[2].sign();
         let on_exact_grid = (j * EXACT_GRID) % grid == 0;

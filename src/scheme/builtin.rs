@@ -67,6 +67,44 @@ impl Scheme for LocalScheme<f64> {
         Some(exact.and_then(|s| s.matrix()))
     }
 
+    /// Catmull-Clark family: the `(2n + 8)` patch matrix
+    /// ([`catmull_clark::patch_matrix`]: one patch's support, which holds the
+    /// control nets of the next level's regular sub-patches; the `n` patches
+    /// around the vertex are rotations of it). The Doo-Sabin family: the
+    /// local `4n` matrix, whose one step makes the `9n` points that hold the
+    /// `3n` patches of the ring (math doc section 13.5).
+    fn second_order_matrix(&self) -> Result<LocalMatrix<f64>> {
+        match self.shape_parameter() {
+            Some(c) => catmull_clark::patch_named(self.kind().name(), self.valence(), &c),
+            None => self.matrix(),
+        }
+    }
+
+    /// The patch matrix over the rationals where
+    /// [`exact_local_matrix`](Scheme::exact_local_matrix) has the one-ring
+    /// (the exact value of `c`), else as that.
+    fn exact_second_order_matrix(&self) -> Option<Result<LocalMatrix<Rational>>> {
+        match self {
+            LocalScheme::CatmullClark { valence } => Some(catmull_clark::patch_named(
+                self.kind().name(),
+                *valence,
+                &Rational::new(1.into(), 2.into()),
+            )),
+            LocalScheme::AdjustableCc { valence, c } => f64_to_rational(*c)
+                .map(|q| catmull_clark::patch_named(self.kind().name(), *valence, &q)),
+            _ => self.exact_local_matrix(),
+        }
+    }
+
+    /// Catmull-Clark family: [`catmull_clark::regular_part_eigenvalues`].
+    fn regular_part_spectrum(&self) -> Option<Result<Vec<Complex64>>> {
+        let c = self.shape_parameter()?;
+        Some(Ok(catmull_clark::regular_part_eigenvalues(&c)
+            .into_iter()
+            .map(|x| Complex64::new(x, 0.0))
+            .collect()))
+    }
+
     /// Doo-Sabin family: the face weights `c` over the `P` columns (the other
     /// entries are zero; math doc section 4). Catmull-Clark family: the limit
     /// stencil over the one-ring (math doc section 6).

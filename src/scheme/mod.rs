@@ -14,6 +14,9 @@
 //! | capability | default | used by |
 //! |---|---|---|
 //! | [`exact_local_matrix`](Scheme::exact_local_matrix) | none: no exact verdicts | `--exact` |
+//! | [`second_order_matrix`](Scheme::second_order_matrix) | the local matrix | every verdict on eigenvalues beyond the subdominant pair (`mu`: the curvature) |
+//! | [`exact_second_order_matrix`](Scheme::exact_second_order_matrix) | the exact local matrix | the curvature's exact certificate |
+//! | [`regular_part_spectrum`](Scheme::regular_part_spectrum) | none: the second-order matrix adds no eigenvalues | `mu_regular_part`, the structured path above [`STRUCTURED_DENSE_MAX_DIM`](crate::curvature::STRUCTURED_DENSE_MAX_DIM) |
 //! | [`limit_stencil`](Scheme::limit_stencil) | none: the limit weights are reported without a closed-form check | `analyze` |
 //! | [`structured_spectrum`](Scheme::structured_spectrum) | none: only the dense path | `--path structured`, sweeps' `eigenvalues` |
 //! | [`spectral_structure`](Scheme::spectral_structure) | [`SpectralStructure::Dense`] | which closed-form cross-checks apply |
@@ -166,6 +169,47 @@ pub trait Scheme: fmt::Debug + Send + Sync {
     /// The same matrix in exact rational arithmetic, when the weights are
     /// rational (default: none).
     fn exact_local_matrix(&self) -> Option<Result<LocalMatrix<Rational>>> {
+        None
+    }
+
+    /// The second-order neighbourhood matrix `S_2` (math doc section 13.5):
+    /// square, closed under subdivision, and holding the support of the
+    /// limit surface on the ring of patches around the extraordinary point
+    /// (the control nets of the next level's ring are combinations of its
+    /// points). Every verdict that depends on eigenvalues beyond the
+    /// subdominant pair (`mu` of [`crate::curvature`]) is made on it; the
+    /// classification and everything first-order stay on
+    /// [`local_matrix`](Self::local_matrix).
+    ///
+    /// Contract: its points contain the local matrix's (the same subdominant
+    /// pair), it is closed under one step (its new points are combinations
+    /// of its old points) and it contains that support; a larger closed
+    /// neighbourhood then adds only eigenvalues whose eigenvectors vanish on
+    /// it. Default: the local matrix, which is right when the local
+    /// matrix already holds that support (the Doo-Sabin family's `4n`
+    /// points, Loop's two-ring). A scheme whose local matrix is smaller (the
+    /// Catmull-Clark family's one-ring: the ring's bicubic-type patches
+    /// reach the two-ring) must override it, and then
+    /// [`exact_second_order_matrix`](Self::exact_second_order_matrix) and
+    /// [`regular_part_spectrum`](Self::regular_part_spectrum) with it.
+    fn second_order_matrix(&self) -> Result<LocalMatrix<f64>> {
+        self.local_matrix()
+    }
+
+    /// [`second_order_matrix`](Self::second_order_matrix) in exact rational
+    /// arithmetic (default: [`exact_local_matrix`](Self::exact_local_matrix)).
+    fn exact_second_order_matrix(&self) -> Option<Result<LocalMatrix<Rational>>> {
+        self.exact_local_matrix()
+    }
+
+    /// The eigenvalues [`second_order_matrix`](Self::second_order_matrix)
+    /// has beyond those of the local matrix (the regular part of the ring of
+    /// patches; math doc section 13.5), in closed form. Default none: the
+    /// second-order matrix is the local matrix. Used to label `mu`
+    /// (`mu_regular_part`) and, with
+    /// [`structured_spectrum`](Self::structured_spectrum), for the structured
+    /// path's second-order spectrum.
+    fn regular_part_spectrum(&self) -> Option<Result<Vec<Complex64>>> {
         None
     }
 

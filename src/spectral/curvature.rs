@@ -1,12 +1,19 @@
 //! Second order at an extraordinary point: does the curvature of the limit
 //! surface tend to zero, stay bounded or blow up (math doc section 13)?
 //!
-//! With the eigenvalues of the local subdivision matrix ordered
+//! With the eigenvalues of the second-order matrix `S_2`
+//! ([`Scheme::second_order_matrix`]) ordered
 //! `1 = lambda_0 > |lambda_1| = |lambda_2| = lambda > |lambda_3| >= ..`
-//! (the *standard* subdominant structure of math doc section 7), let
+//! (the *standard* subdominant structure of math doc section 7, classified
+//! on the local matrix), let
 //! `mu = max_{k >= 3} |lambda_k|`: the modulus of the next eigenvalue after
-//! the subdominant pair, over the whole local matrix (fixed eigenvalues such
-//! as Loop's `1/8` included). On the ring of level `k`, whose size is of
+//! the subdominant pair, over the whole of `S_2` (fixed eigenvalues such
+//! as Loop's `1/8` included). `S_2` holds the support of the limit surface on
+//! the ring of patches (math doc section 13.5): the local matrix for the
+//! Doo-Sabin family (`4n`) and Loop (the two-ring, `3n + 1`), the `2n + 8`
+//! patch matrix for the Catmull-Clark family, whose one-ring lacks the
+//! regular part's eigenvalues (`c/4`, ...; above `lambda^2` at `n = 3` for
+//! `c > 0.6312`). On the ring of level `k`, whose size is of
 //! order `lambda^k`, the normal component of a generic limit surface is of
 //! order `mu^k`, so its curvature is of order `(mu / lambda^2)^k`
 //! **\[derived\]** (math doc section 13):
@@ -30,7 +37,7 @@
 //!    `r_mu + (2 lambda + r_lambda) r_lambda`: certainly non-zero gives `zero`
 //!    or `unbounded`; otherwise the exact path is tried.
 //! 2. **Exact** (schemes with an
-//!    [`exact_local_matrix`](crate::Scheme::exact_local_matrix)): rational
+//!    [`exact_second_order_matrix`](crate::Scheme::exact_second_order_matrix)): rational
 //!    candidates `lambda_q`, `mu_q` are read off the floats by continued
 //!    fractions ([`RATIONAL_DENOMINATOR_LIMIT`]), and then *proved*: the
 //!    exact characteristic polynomial `p` of `S` has the simple root 1, the
@@ -86,10 +93,11 @@ use serde::Serialize;
 /// wide margin while keeping the candidate search to a few steps.
 pub const RATIONAL_DENOMINATOR_LIMIT: u64 = 1 << 20;
 
-/// Largest local-matrix dimension for which the exact certificate is
+/// Largest second-order-matrix dimension for which the exact certificate is
 /// attempted: the rational characteristic polynomial costs `O(d^3)` operations
 /// on growing rationals; 80 (a Doo-Sabin-family face of 20 sides, a
-/// Catmull-Clark vertex of valence 39) keeps it below a second.
+/// Catmull-Clark vertex of valence 36: the `2n + 8` patch matrix) keeps it
+/// below a second.
 pub const EXACT_MAX_DIM: usize = 80;
 
 /// How far (beyond the error radius of `mu`) a closed-form Fourier-block
@@ -152,13 +160,20 @@ pub struct CurvatureSummary {
     pub mu: f64,
     /// `mu / lambda^2`.
     pub mu_over_lambda_squared: f64,
-    /// Number of eigenvalues of modulus `mu` (within error radii; exact when
-    /// `evidence` is `exact`).
+    /// Number of eigenvalues of modulus `mu` of the second-order matrix
+    /// (within error radii; exact when `evidence` is `exact`).
     pub mu_multiplicity: usize,
     /// The Fourier frequencies `l` (folded to `0..=n/2`, `l` and `n - l`
-    /// being conjugate) whose block has an eigenvalue of modulus `mu`;
-    /// `None` for schemes without a Fourier capability.
+    /// being conjugate) whose block of the local matrix has an eigenvalue of
+    /// modulus `mu`; `None` for schemes without a Fourier capability. Empty
+    /// when `mu` comes from the regular part alone.
     pub mu_mode: Option<Vec<usize>>,
+    /// Whether `mu` is an eigenvalue of the regular part: one the
+    /// second-order matrix adds to the local matrix's spectrum
+    /// ([`Scheme::regular_part_spectrum`]; the Catmull-Clark family's `c/4`,
+    /// math doc section 13.5). In the rotationally symmetric ring these
+    /// eigenvalues occur in every Fourier mode.
+    pub mu_regular_part: bool,
     /// The verdict.
     pub verdict: CurvatureVerdict,
     /// The error radius of `mu - lambda^2` used by the float decision (0 when
@@ -173,12 +188,19 @@ pub struct CurvatureSummary {
 impl CurvatureSummary {
     /// The one human-readable line of `subdiv-lab analyze`.
     pub fn human_line(&self) -> String {
-        let modes = match &self.mu_mode {
-            Some(m) => format!(
-                ", mode {}",
-                m.iter().map(usize::to_string).collect::<Vec<_>>().join(",")
-            ),
-            None => String::new(),
+        let mut labels: Vec<String> = self
+            .mu_mode
+            .iter()
+            .flatten()
+            .map(usize::to_string)
+            .collect();
+        if self.mu_regular_part {
+            labels.push("regular part".to_owned());
+        }
+        let modes = if labels.is_empty() {
+            String::new()
+        } else {
+            format!(", mode {}", labels.join(","))
         };
         format!(
             "curvature: {} (lambda = {:.10}, mu = {:.10} x{}{}, mu/lambda^2 = {:.10}; {})\n",
@@ -193,20 +215,39 @@ impl CurvatureSummary {
     }
 }
 
-/// Largest local-matrix dimension for which `analyze --path structured`
-/// adds the dense decomposition that the curvature verdict needs (the
-/// structured path has no error radii); above it the verdict is made without
-/// radii (so only the exact certificate can decide). 256 keeps the dense
-/// decomposition within the time the structured path already allows.
+/// Largest second-order-matrix dimension for which `analyze --path
+/// structured` adds the dense decomposition that the curvature verdict needs
+/// (the structured path has no error radii); above it the verdict is made
+/// without radii on the structured spectrum and the regular part (so only the
+/// exact certificate can decide). 256 keeps the dense decomposition within
+/// the time the structured path already allows.
 pub const STRUCTURED_DENSE_MAX_DIM: usize = 256;
 
-/// The curvature analysis of a scheme from its dense spectrum: the
-/// eigenvalues with condition numbers of [`Eigen`], the classification of
-/// [`classify_matrix`](super::classify_matrix), then [`summarize`].
+/// The curvature analysis of a scheme: the subdominant classification on
+/// the local matrix ([`classify_local`](super::classify_local)), the
+/// eigenvalues with condition numbers of [`Eigen`] on the second-order
+/// matrix ([`Scheme::second_order_matrix`], math doc section 13.5), then
+/// [`summarize`].
 pub fn curvature<S: Scheme + ?Sized>(scheme: &S) -> Result<CurvatureSummary> {
-    let lm = scheme.local_matrix()?;
-    let s = lm.matrix();
-    let e = Eigen::new(s, EigenOptions::BOTH)?;
+    let sub = crate::spectral::classify_local(scheme)?;
+    with_classification(scheme, &sub, None)
+}
+
+/// [`curvature`] with the classification already made; `local` is the
+/// decomposition of the local matrix with its error radii when the caller
+/// has it (it is reused if the second-order matrix is the local matrix).
+pub(crate) fn with_classification<S: Scheme + ?Sized>(
+    scheme: &S,
+    sub: &Subdominant,
+    local: Option<(&DMatrix<f64>, &[Complex64], &[f64])>,
+) -> Result<CurvatureSummary> {
+    let so = scheme.second_order_matrix()?;
+    if let Some((m, values, radii)) = local {
+        if m == so.matrix() {
+            return summarize(scheme, values, radii, sub);
+        }
+    }
+    let e = Eigen::new(so.matrix(), EigenOptions::BOTH)?;
     let eta = BACKWARD_ERROR_FACTOR * e.dim() as f64 * f64::EPSILON * e.frobenius_norm();
     let radii: Vec<f64> = e
         .condition_numbers()
@@ -214,8 +255,34 @@ pub fn curvature<S: Scheme + ?Sized>(scheme: &S) -> Result<CurvatureSummary> {
         .iter()
         .map(|&k| first_order_radius(k, eta))
         .collect();
-    let sub = crate::spectral::classify_local(scheme)?;
-    summarize(scheme, e.values(), &radii, &sub)
+    summarize(scheme, e.values(), &radii, sub)
+}
+
+/// The curvature analysis of the structured path (`analyze --path
+/// structured`): [`with_classification`] (dense, on the second-order
+/// matrix) up to dimension [`STRUCTURED_DENSE_MAX_DIM`]; above it
+/// [`summarize`] without radii on the structured spectrum `local_spectrum`
+/// of the local matrix together with
+/// [`Scheme::regular_part_spectrum`] (the dense path when a scheme with a
+/// larger second-order matrix does not provide the latter).
+pub(crate) fn structured<S: Scheme + ?Sized>(
+    scheme: &S,
+    sub: &Subdominant,
+    local_spectrum: &[Complex64],
+) -> Result<CurvatureSummary> {
+    let so = scheme.second_order_matrix()?;
+    let dim = so.matrix().nrows();
+    if dim <= STRUCTURED_DENSE_MAX_DIM {
+        return with_classification(scheme, sub, None);
+    }
+    let mut all = local_spectrum.to_vec();
+    match scheme.regular_part_spectrum() {
+        Some(extra) => all.extend(extra?),
+        None if dim != all.len() => return with_classification(scheme, sub, None),
+        None => {}
+    }
+    all.sort_by(crate::spectral::eigen::spectral_order);
+    summarize(scheme, &all, &[], sub)
 }
 
 /// `max(kappa, 1) eta` (infinite for a NaN condition number; math doc
@@ -230,10 +297,12 @@ pub(crate) fn first_order_radius(kappa: f64, eta: f64) -> f64 {
     }
 }
 
-/// The curvature verdict from eigenvalues sorted by non-increasing modulus
+/// The curvature verdict from the eigenvalues of the second-order matrix
+/// ([`Scheme::second_order_matrix`]) sorted by non-increasing modulus
 /// ([`spectral_order`](crate::spectral::eigen::spectral_order)), their error
 /// radii (missing radii count as infinite) and the subdominant
-/// classification (module docs).
+/// classification of the local matrix (module docs). The exact certificate
+/// uses [`Scheme::exact_second_order_matrix`].
 pub fn summarize<S: Scheme + ?Sized>(
     scheme: &S,
     values: &[Complex64],
@@ -247,6 +316,7 @@ pub fn summarize<S: Scheme + ?Sized>(
         mu_over_lambda_squared: f64::NAN,
         mu_multiplicity: 0,
         mu_mode: None,
+        mu_regular_part: false,
         verdict: CurvatureVerdict::NotApplicable,
         radius: f64::INFINITY,
         evidence: CurvatureEvidence::None,
@@ -283,6 +353,10 @@ pub fn summarize<S: Scheme + ?Sized>(
     if let Some(blocks) = scheme.fourier_spectrum() {
         out.mu_mode = Some(modes_of(&blocks?, scheme.valence(), mu, r_mu));
     }
+    if let Some(extra) = scheme.regular_part_spectrum() {
+        let tol = r_mu + MODE_MATCH_TOLERANCE;
+        out.mu_regular_part = extra?.iter().any(|z| (z.norm() - mu).abs() <= tol);
+    }
     match &sub.class {
         SubdominantClass::Standard => {}
         SubdominantClass::Indeterminate { .. } => {
@@ -311,7 +385,7 @@ pub fn summarize<S: Scheme + ?Sized>(
         );
         return Ok(out);
     }
-    let exact = match scheme.exact_local_matrix() {
+    let exact = match scheme.exact_second_order_matrix() {
         None => Err("no exact (rational) local matrix for this configuration".to_owned()),
         Some(m) => {
             let m = m?;
@@ -498,6 +572,29 @@ pub fn rational_candidate(x: f64, tol: f64) -> Option<Rational> {
     None
 }
 
+/// The diagonal blocks of `s` as a block lower-triangular matrix, split
+/// wherever the rows above a point have no entry right of it
+/// (`s[i][j] = 0` for all `i < k <= j`). The characteristic polynomial is
+/// the product of the blocks' (the Catmull-Clark family's patch matrix: the
+/// one-ring and the outer `7 x 7` block), and each factor is smaller and has
+/// shorter coefficients for the Schur-Cohn count.
+fn diagonal_blocks(s: &DMatrix<Rational>) -> Vec<DMatrix<Rational>> {
+    let n = s.nrows();
+    let mut cuts = vec![0];
+    for k in 1..n {
+        if (0..k).all(|i| (k..n).all(|j| s[(i, j)].is_zero())) {
+            cuts.push(k);
+        }
+    }
+    cuts.push(n);
+    cuts.windows(2)
+        .map(|w| {
+            s.view((w[0], w[0]), (w[1] - w[0], w[1] - w[0]))
+                .into_owned()
+        })
+        .collect()
+}
+
 /// Divides `p` by `x - r` as long as `r` is a root; returns the quotient and
 /// the multiplicity.
 fn deflate_root(p: &Poly, r: &Rational) -> (Poly, usize) {
@@ -540,35 +637,51 @@ pub fn certify_rational(
             "candidates out of order: 0 < mu = {mq} < lambda = {lq} < 1 fails"
         ));
     }
-    let p = charpoly(s);
-    let (p1, m1) = deflate_root(&p, &Rational::one());
+    // p = prod of the diagonal blocks' characteristic polynomials; each
+    // check below sums over the factors.
+    let mut ps: Vec<Poly> = diagonal_blocks(s).iter().map(charpoly).collect();
+    fn deflate_all(ps: &mut [Poly], r: &Rational) -> usize {
+        let mut total = 0;
+        for p in ps.iter_mut() {
+            let (q, m) = deflate_root(p, r);
+            *p = q;
+            total += m;
+        }
+        total
+    }
+    let m1 = deflate_all(&mut ps, &Rational::one());
     if m1 != 1 {
         return Err(format!("1 is a root of multiplicity {m1}, not simple"));
     }
-    let (p2, ml) = deflate_root(&p1, &lq);
+    let ml = deflate_all(&mut ps, &lq);
     if ml != 2 {
         return Err(format!(
             "lambda = {lq} is a root of multiplicity {ml}, not 2"
         ));
     }
-    if p2.eval(&-lq.clone()).is_zero() {
+    if ps.iter().any(|p| p.eval(&-lq.clone()).is_zero()) {
         return Err(format!(
             "-lambda = -{lq} is also a root (|lambda_2| = |lambda_3|)"
         ));
     }
-    let (p3, mp) = deflate_root(&p2, &mq);
-    let (p4, mm) = deflate_root(&p3, &-mq.clone());
+    let mp = deflate_all(&mut ps, &mq);
+    let mm = deflate_all(&mut ps, &-mq.clone());
     if mp + mm == 0 {
         return Err(format!("mu = {mq} is not a root"));
     }
-    match roots_outside(&p4, &mq) {
-        Some(0) => {}
-        Some(k) => return Err(format!("{k} further roots have modulus > mu = {mq}")),
-        None => {
-            return Err(format!(
-                "a further root may have modulus exactly mu = {mq} (singular Schur-Cohn count)"
-            ))
+    let mut outside = 0;
+    for p in &ps {
+        match roots_outside(p, &mq) {
+            Some(k) => outside += k,
+            None => {
+                return Err(format!(
+                    "a further root may have modulus exactly mu = {mq} (singular Schur-Cohn count)"
+                ))
+            }
         }
+    }
+    if outside > 0 {
+        return Err(format!("{outside} further roots have modulus > mu = {mq}"));
     }
     let mut mu_eigenvectors = 0;
     if mp > 0 {

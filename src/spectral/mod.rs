@@ -236,7 +236,9 @@ pub struct LocalAnalysis {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub float_class: Option<&'static str>,
     /// Second order at the extraordinary point: `mu` against `lambda^2`
-    /// ([`crate::curvature`], math doc section 13).
+    /// ([`crate::curvature`], math doc section 13), on the second-order
+    /// matrix ([`Scheme::second_order_matrix`]; the reported spectrum is the
+    /// local matrix's).
     pub curvature: curvature::CurvatureSummary,
 }
 
@@ -443,7 +445,11 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
                 None => full.clone(),
             };
             subdominant_full = Some(full);
-            curvature = curvature::summarize(scheme, e.values(), &radii, &subdominant)?;
+            curvature = curvature::with_classification(
+                scheme,
+                &subdominant,
+                Some((s, e.values(), &radii)),
+            )?;
             eigenvalues = e.values().iter().map(|&z| c64(z)).collect::<Vec<_>>();
             residuals = e.residuals().map(<[f64]>::to_vec);
             conditions = Some(kappa);
@@ -496,11 +502,7 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
                 })??;
             subdominant = classify_local(scheme)?;
             subdominant_full = None;
-            curvature = if s.nrows() <= curvature::STRUCTURED_DENSE_MAX_DIM {
-                curvature::curvature(scheme)?
-            } else {
-                curvature::summarize(scheme, &all, &[], &subdominant)?
-            };
+            curvature = curvature::structured(scheme, &subdominant, &all)?;
             eigenvalues = all.iter().map(|&z| c64(z)).collect();
             residuals = None;
             conditions = None;

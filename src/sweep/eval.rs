@@ -10,7 +10,7 @@
 //! | `contraction` | `contraction_rate` = `|lambda1|`, the asymptotic per-step contraction of the face towards its limit point (math doc section 5; <= 3/4) |
 //! | `eigenvalues = K` | `ev0_re, ev0_im, .., ev{K-1}_re, ev{K-1}_im`: the K leading eigenvalues of `S_n` by non-increasing modulus (empty beyond `4n`; for the Catmull-Clark family those of the `(2n+1)` one-ring matrix from the Fourier blocks, empty beyond `2n + 1`) |
 //! | `charmap` | `charmap_verdict` (`c1`, `tpc_real_distinct`, `tpc_complex_pair`, `not_regular`, `not_injective`, `indeterminate`, `no_charmap`; see [`crate::charmap::Verdict`]), `charmap_min_jacobian` (smallest Bezier coefficient of the ring's Jacobian relative to the largest; > 0 certifies regularity), `charmap_winding` (winding number of the ring boundary around the origin) |
-//! | `curvature` | `curvature_mu` (`mu`, the largest modulus after the subdominant pair), `curvature_ratio` (`mu / lambda^2`), `curvature_verdict` (`zero`, `bounded`, `unbounded`, `indeterminate`, `not_applicable`; [`crate::curvature`], math doc section 13; from the dense decomposition of the local matrix, with the exact certificate where the float comparison is undecided) |
+//! | `curvature` | `curvature_mu` (`mu`, the largest modulus after the subdominant pair), `curvature_ratio` (`mu / lambda^2`), `curvature_verdict` (`zero`, `bounded`, `unbounded`, `indeterminate`, `not_applicable`; [`crate::curvature`], math doc section 13; from the dense decomposition of the second-order matrix, math doc section 13.5, with the exact certificate where the float comparison is undecided) |
 //! | `exact_certificate` | `exact_class`: the classification decided exactly over the rationals from the exact value of the `f64` parameters (`undecided` when the exact method cannot decide); `exact_agrees` = `true` / `false` when both verdicts are decided and agree / disagree (empty otherwise) |
 //!
 //! `lambda0 = 1` is the dominant eigenvalue; `lambda1, lambda2` the subdominant
@@ -513,7 +513,12 @@ impl SpectralEvaluator {
             }
         }
         if cols.curvature {
-            let k = crate::curvature::curvature(scheme)?;
+            // The classification of this row when the columns made one (the
+            // same as `curvature`'s own: the fast path or the local matrix).
+            let k = match sub {
+                Some(sub) => spectral::curvature::with_classification(scheme, sub, None)?,
+                None => crate::curvature::curvature(scheme)?,
+            };
             out.num(k.mu);
             out.num(k.mu_over_lambda_squared);
             out.text(k.verdict.as_str());

@@ -211,6 +211,30 @@ pub fn spectrum(n: usize, c: f64) -> Result<Vec<Complex64>> {
     Ok(all)
 }
 
+/// All `2n + 8` eigenvalues of the [`patch_matrix`](super::patch_matrix),
+/// the family's second-order matrix (math doc section 13.5): [`spectrum`]
+/// together with [`regular_part_eigenvalues`](super::regular_part_eigenvalues),
+/// sorted as [`spectrum`].
+///
+/// ```
+/// use subdiv_lab::schemes::catmull_clark::fourier::patch_spectrum;
+/// let s = patch_spectrum(3, 0.75).unwrap();
+/// assert_eq!(s.len(), 14);
+/// // mu: the regular part's c/4, above the one-ring's 1/8
+/// assert_eq!(s[3].re, 0.1875);
+/// assert!((s[3].norm() / s[1].norm().powi(2) - 1.2438).abs() < 1e-4);
+/// ```
+pub fn patch_spectrum(n: usize, c: f64) -> Result<Vec<Complex64>> {
+    let mut all = spectrum(n, c)?;
+    all.extend(
+        super::regular_part_eigenvalues(&c)
+            .into_iter()
+            .map(|x| Complex64::new(x, 0.0)),
+    );
+    all.sort_by(|a, b| b.norm().total_cmp(&a.norm()).then(b.re.total_cmp(&a.re)));
+    Ok(all)
+}
+
 /// The largest modulus among the eigenvalues other than the (simple, `l = 0`) eigenvalue 1.
 pub fn subdominant(n: usize, c: f64) -> Result<f64> {
     let mut best = 0.0f64;

@@ -67,22 +67,24 @@ pub(crate) mod linear;
 pub use layout::{PatchLayout, SubPatch};
 
 use super::assembly::{Assembler, LocalMatrix, PointLabel};
-use crate::budget::{CostModel, ANALYZE_BYTES_PER_ENTRY_CC, ANALYZE_SECONDS_PER_N3_CC};
+use crate::budget::{
+    CostModel, ANALYZE_BYTES_PER_ENTRY_CC, ANALYZE_SECONDS_PER_N3_CC, SWEEP_SECONDS_PER_N3_CC,
+};
 use crate::error::{Error, Result};
 use crate::scalar::Scalar;
 
 /// The work model of the family ([`crate::budget`]): the `(2n + 1)` one-ring
-/// matrix, decomposed densely on every path (the analysis's constant covers
-/// a sweep's classification and characteristic map too).
+/// matrix, decomposed densely on every path; `analyze`'s constant covers the
+/// curvature verdict's `(2n + 8)` patch matrix too.
 pub const COST_MODEL: CostModel = CostModel {
     dimension_per_valence: 2.0,
     dimension_offset: 1.0,
     analyze_bytes_per_entry: ANALYZE_BYTES_PER_ENTRY_CC,
     analyze_seconds_per_n3_full: ANALYZE_SECONDS_PER_N3_CC,
     analyze_seconds_per_n3_structured: ANALYZE_SECONDS_PER_N3_CC,
-    sweep_classify_seconds_per_n3: ANALYZE_SECONDS_PER_N3_CC,
+    sweep_classify_seconds_per_n3: SWEEP_SECONDS_PER_N3_CC,
     sweep_classify_on_face_block: false,
-    sweep_charmap_seconds_per_n3: ANALYZE_SECONDS_PER_N3_CC,
+    sweep_charmap_seconds_per_n3: SWEEP_SECONDS_PER_N3_CC,
 };
 
 /// Scheme name used in matrix labels for `c = 1/2`.
@@ -243,12 +245,21 @@ fn add_regular_row<T: Scalar>(
 /// The `(2n+8) x (2n+8)` patch matrix (Stam's `A`): the one-ring block and the
 /// 7 outer points of the next level's patch at the extraordinary corner,
 /// in the order of [`PatchLayout`]. Block lower-triangular: the one-ring rows
-/// use only one-ring columns.
+/// use only one-ring columns, so its spectrum is the one-ring's together with
+/// [`regular_part_eigenvalues`] (the outer `7 x 7` block).
+///
+/// It is the family's second-order neighbourhood (math doc section 13.5): one
+/// patch's support, which holds the control nets of the regular sub-patches
+/// of the ring of the next level.
 pub fn patch_matrix<T: Scalar>(n: usize, c: &T) -> Result<LocalMatrix<T>> {
+    patch_named(scheme_name(c), n, c)
+}
+
+pub(crate) fn patch_named<T: Scalar>(name: &str, n: usize, c: &T) -> Result<LocalMatrix<T>> {
     validate(n, c)?;
     let lay = PatchLayout::new(n)?;
     let labels = lay.labels()[..lay.patch_len()].to_vec();
-    let mut asm = Assembler::square(scheme_name(c), n, labels);
+    let mut asm = Assembler::square(name, n, labels);
     add_one_ring_rows(&mut asm, &lay, c);
     for k in 0..7 {
         add_regular_row(
@@ -260,6 +271,46 @@ pub fn patch_matrix<T: Scalar>(n: usize, c: &T) -> Result<LocalMatrix<T>> {
         )?;
     }
     asm.finish()
+}
+
+/// The eigenvalues the [`patch_matrix`] adds to the one-ring's: those of its
+/// outer `7 x 7` block, the regular part (math doc section 13.5
+/// **\[derived\]**); for `c` in `[0, 1]` the first, `c/4`, is the largest:
+///
+/// ```text
+/// c/4, c/4, c/8, c/8, c(1 - c)/8, c(1 - c)/8, c^2/16
+/// ```
+///
+/// Derivation: on the grid positions `0..3` of one parameter direction the
+/// univariate rule (vertex mask `c/4, 1 - c/2, c/4`, new edge points at the
+/// midpoints; module docs) is the matrix `U` whose column 3 is `c/4` on the
+/// diagonal and 0 elsewhere (no new point at positions `0..2` reaches
+/// position 3), so `U` is block lower-triangular with eigenvalues
+/// `1, 1/2, (1 - c)/2` (positions `0..2`: trace `2 - c/2`) and `c/4`. The
+/// outer points are the grid points with a coordinate 3; the tensor rule
+/// `U (x) U` is block lower-triangular with respect to them, so the outer
+/// block's eigenvalues are the products `u v` of eigenvalues of `U` with at
+/// least one factor `c/4`: `c/4 {1, 1/2, (1 - c)/2}` twice (either
+/// direction) and `(c/4)^2`. At `c = 1/2`: Stam's `1/8, 1/16, 1/32, 1/64`.
+///
+/// ```
+/// use subdiv_lab::schemes::catmull_clark::regular_part_eigenvalues;
+/// assert_eq!(regular_part_eigenvalues(&0.5), vec![0.125, 0.125, 0.0625, 0.0625, 0.03125, 0.03125, 0.015625]);
+/// ```
+pub fn regular_part_eigenvalues<T: Scalar>(c: &T) -> Vec<T> {
+    let quarter = c.clone() * T::frac(1, 4);
+    let eighth = c.clone() * T::frac(1, 8);
+    let mixed = eighth.clone() * (T::one() - c.clone());
+    let square = quarter.clone() * quarter.clone();
+    vec![
+        quarter.clone(),
+        quarter,
+        eighth.clone(),
+        eighth,
+        mixed.clone(),
+        mixed,
+        square,
+    ]
 }
 
 /// The `(2n+17) x (2n+8)` extended matrix (Stam's `A-bar`): rows are the
