@@ -196,7 +196,8 @@ pub(crate) fn analyze_json(
         let scheme = std::sync::Arc::<dyn subdiv_lab::Scheme>::from(scheme);
         let (result, charmap) = py.detach(move || -> PyResult<_> {
             let result = subdiv_lab::spectral::analyze(&*scheme, &options).map_err(lib_err)?;
-            let charmap = subdiv_lab::charmap::check_classified(&*scheme, &result.subdominant);
+            let charmap =
+                subdiv_lab::charmap::check_classified(&*scheme, &result.charmap_subdominant());
             Ok((result, charmap))
         })?;
         let v = subdiv_lab::spectral::json::analysis_json(&result, &charmap, &input);

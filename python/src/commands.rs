@@ -313,7 +313,7 @@ pub(crate) fn plot<'py>(
         limit(
             "plot",
             name,
-            &sweep_plot::estimate(table.len(), table.names().len()),
+            &sweep_plot::estimate(table.len(), table.names().len(), data.len() as u64),
             TIME_LIMIT_SECONDS,
             force,
         )?;
