@@ -1377,7 +1377,7 @@ fn cases() -> Vec<Case> {
             "merge-torn-parquet-shard",
             &["merge", "--spec", "h.toml", "--out", "m.parquet", "a.parquet"],
             &[("h.toml", MERGE_SPEC), ("a.parquet", "PAR1 torn row group"), ("a.summary.json", MERGE_A_SUMMARY)],
-            "cannot read a.parquet: not a Parquet file, or torn",
+            "a.parquet: line 1: read failed: not a Parquet file, or torn",
         ),
         bad_with(
             "sweep-resume-torn-parquet-reads",
