@@ -159,7 +159,7 @@ def test_merge_equals_the_cli_and_the_sweep(tmp_path, fmt):
     assert table.equals(sl.sweep(SPEC))
     assert summary == json.loads((tmp_path / "all.summary.json").read_text())
     # shards missing or of another spec are refused as the CLI refuses them
-    p = cli("merge", *map(str, shards[:2]), "--spec", str(spec), "--out", str(tmp_path / "x.csv"),
+    p = cli("merge", *map(str, shards[:2]), "--spec", str(spec), "--out", str(tmp_path / f"x.{fmt}"),
             check=False)
     with pytest.raises(ValueError) as e:
         sl.merge(shards[:2], spec)
