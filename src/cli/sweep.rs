@@ -268,8 +268,8 @@ fn scan_existing(
         ));
     }
     if lineno < 2 {
-        // Torn inside this run's fingerprint or header line (a file of an
-        // earlier build, which did not create it whole): start afresh.
+        // Torn inside this run's fingerprint or header line (a file not
+        // created whole by the temporary-file-and-link step): start afresh.
         return Ok((0, 0, true, torn && good > 0));
     }
     // The data lines, by blocks of about BLOCK_BYTES: each block's complete
