@@ -1,9 +1,11 @@
-//! The guide's console sessions (docs/guide/*.md) run against the binary built
+//! The console sessions of the README and the guide (docs/guide/*.md) run against the binary built
 //! from this tree, from the repository root, and their output is compared with
 //! the text of the guide (`...` and `[..]` elide what varies, such as timings).
 //! Commands that write files write them under `target/guide/`.
 #[test]
 fn guide_sessions() {
     std::fs::create_dir_all("target/guide").expect("create target/guide");
-    trycmd::TestCases::new().case("docs/guide/*.md");
+    trycmd::TestCases::new()
+        .case("README.md")
+        .case("docs/guide/*.md");
 }
