@@ -16,14 +16,12 @@
 # from other processes), and prints a table of configurations per second and
 # the speed-up of the structured path over each baseline, and of the full path
 # over the reference. Needs python3 with numpy (`pip install numpy`).
-# The two numpy baselines are not part of the repository: NUMPY_REF is the
-# path of a script that builds the full 4n x 4n S_n for random ratios,
-# computes its spectrum with numpy.linalg.eigvals and classifies the
-# subdominant pair, printing `configs_per_s=R`; NUMPY_FACE (default:
-# numpy_faceblock.py beside NUMPY_REF) one that does the same from the n x n
-# face block and prints `n count seconds R fraction`.
+# The numpy baselines are benches/baselines/numpy_reference.py (the full
+# 4n x 4n S_n for random ratios, numpy.linalg.eigvals, the subdominant pair
+# classified; prints `configs_per_s=R`) and benches/baselines/numpy_faceblock.py
+# (the same from the n x n face block; prints `n count seconds R fraction`).
 # Environment: REPEAT (runs per cell, best kept), NUMPY_REF and NUMPY_FACE
-# (the baselines; relative paths from the repository root), THROUGHPUT_BIN
+# (other baseline scripts; relative paths from the repository root), THROUGHPUT_BIN
 # (use this throughput binary, no build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,7 +29,7 @@ COUNT=${1:-4000}
 shift || true
 VALENCES=${*:-3 5 8 16 32 64}
 REPEAT=${REPEAT:-3}
-NUMPY_REF=${NUMPY_REF:?set NUMPY_REF to the numpy baseline script (see the header)}
+NUMPY_REF=${NUMPY_REF:-benches/baselines/numpy_reference.py}
 NUMPY_FACE=${NUMPY_FACE:-$(dirname "$NUMPY_REF")/numpy_faceblock.py}
 python3 -c 'import numpy' 2>/dev/null || { echo "numpy missing: pip install numpy" >&2; exit 1; }
 [ -f "$NUMPY_REF" ] || { echo "missing $NUMPY_REF" >&2; exit 1; }

@@ -10,8 +10,8 @@ sweep (`subdiv-lab sweep --threads 1`) and the two numpy baselines, at n = 3,
   of 4096, its build(r) and classify(eigenvalues)), on fewer configurations
   (the 256 x 256 matrices of n = 64 cost about 20 ms each).
 
-The two numpy baselines are not part of the repository; NUMPY_BASELINES
-(environment) is the directory that holds them.
+The numpy baselines are in benches/baselines/; NUMPY_BASELINES (environment)
+names another directory holding the two scripts.
 
     python3 benches/compare_python_numpy.py [SCALE]
 
@@ -49,9 +49,9 @@ import subdiv_lab as sl  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 SCALE = float(sys.argv[1]) if len(sys.argv) > 1 else 1.0
 BIN = os.environ.get("SUBDIV_LAB_BIN", str(ROOT / "target" / "release" / "subdiv-lab"))
-ref = Path(os.environ["NUMPY_BASELINES"]) if os.environ.get("NUMPY_BASELINES") else None
-if ref is None or not all((ref / f).is_file() for f in ("numpy_faceblock.py", "numpy_reference.py")):
-    sys.exit("set NUMPY_BASELINES to the directory of numpy_faceblock.py and numpy_reference.py")
+ref = Path(os.environ.get("NUMPY_BASELINES") or ROOT / "benches" / "baselines")
+if not all((ref / f).is_file() for f in ("numpy_faceblock.py", "numpy_reference.py")):
+    sys.exit(f"{ref} lacks numpy_faceblock.py or numpy_reference.py (NUMPY_BASELINES)")
 sys.path.insert(0, str(ref))
 import numpy_faceblock  # noqa: E402
 import numpy_reference  # noqa: E402

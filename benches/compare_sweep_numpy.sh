@@ -31,16 +31,15 @@
 # checkout (comparisons between builds).
 #
 # Needs python3 with numpy (installed with `pip install --user numpy` if
-# missing). The numpy reference is not part of the repository: NUMPY_REFERENCE
-# is the path of a script that builds the full 4n x 4n S_n for random ratios
-# (`--valence n --count N`), computes its spectrum with numpy.linalg.eigvals
-# and classifies the subdominant pair, printing `configs_per_s=R`.
+# missing). The numpy reference is benches/baselines/numpy_reference.py (the
+# full 4n x 4n S_n for random ratios, numpy.linalg.eigvals, the subdominant
+# pair classified; prints `configs_per_s=R`); NUMPY_REFERENCE names another.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 SCALE="${1:-1}"
 
-REF="${NUMPY_REFERENCE:-}"
-[ -n "$REF" ] && [ -f "$REF" ] || { echo "numpy reference script not found; set NUMPY_REFERENCE (see the header)" >&2; exit 1; }
+REF="${NUMPY_REFERENCE:-$ROOT/benches/baselines/numpy_reference.py}"
+[ -n "$REF" ] && [ -f "$REF" ] || { echo "numpy reference script not found; check NUMPY_REFERENCE (see the header)" >&2; exit 1; }
 python3 -c 'import numpy' 2>/dev/null || python3 -m pip install --user numpy >&2
 
 if [ -n "${SWEEP_BIN:-}" ]; then
