@@ -53,8 +53,8 @@ pub enum CellTamper {
     /// takes `rho = 0` (the centre's basis for every `r`), the `c` path
     /// evaluates the eigenvector at the cell's midpoint only.
     DropSubspaceVariation,
-    /// Shrink Stewart's radius: NURDS takes `rho / 4` for the ball of `P`
-    /// and a quarter of the bound of its second-order part.
+    /// Shrink Stewart's radius: NURDS takes `rho / 64` for the ball of `P`
+    /// and drops the bound of its second-order part.
     ShrinkStewartRadius,
 }
 

@@ -340,8 +340,8 @@ pub fn ratio_ring(lo: &[f64], hi: &[f64], tamper: CellTamper) -> Option<RatioRin
 
 /// [`ratio_ring`] with the pair's columns of `Q` chosen by `pair`. With
 /// [`CellTamper::ShrinkStewartRadius`] the radius `rho` of the ball of `P`
-/// and the bound of its second-order part are divided by 4 (deliberately
-/// unsound).
+/// is divided by 64 and the bound of its second-order part dropped
+/// (deliberately unsound).
 pub fn ratio_ring_with(
     lo: &[f64],
     hi: &[f64],
@@ -456,7 +456,7 @@ pub fn ratio_ring_with(
     }
     let rho = match tamper {
         CellTamper::DropSubspaceVariation => 0.0,
-        CellTamper::ShrinkStewartRadius => 0.25 * up(2.0 * gamma / delta),
+        CellTamper::ShrinkStewartRadius => up(2.0 * gamma / delta) / 64.0,
         CellTamper::None => up(2.0 * gamma / delta),
     };
     // N = T11 + T12 P
@@ -499,7 +499,7 @@ pub fn ratio_ring_with(
     let mut eps2 = up(up(up(up(r11 + r22) * gamma) / down(delta * sigma_lo))
         + up(up(eta * up(rho * rho)) / delta));
     if tamper == CellTamper::ShrinkStewartRadius {
-        eps2 *= 0.25;
+        eps2 = 0.0;
     }
     let t21: Vec<Af> = (0..2 * m).map(|v| t_af(2 + v % m, v / m)).collect();
     let pmat: Vec<Af> = (0..2 * m)
