@@ -25,13 +25,13 @@ tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 for name in "${names[@]}"; do
     case "$name" in
-        n3) args=(3 0.01 0.99 0.002 "$budget") ;;
+        n3) args=(3 0.01 0.99 0.004 "$budget") ;;
         n4) args=(4 0.05 0.95 0.005 "$budget") ;;
         n5) args=(5 0.05 0.95 0.01 "$budget") ;;
         n6) args=(6 0.05 0.95 0.02 "$budget") ;;
         n7) args=(7 0.05 0.95 0.02 "$budget") ;;
         n8) args=(8 0.05 0.95 0.02 "$budget") ;;
-        c3) args=(3 1 100 0.002 "$budget" 200 corners) ;;
+        c3) args=(3 1 100 0.004 "$budget" 200 corners) ;;
         c4) args=(4 1 100 0.005 "$budget" 200 corners) ;;
         c5) args=(5 1 100 0.01 "$budget" 200 corners) ;;
         *) echo "unknown target $name" >&2; exit 2 ;;

@@ -37,7 +37,10 @@ fn main() {
         let side = vec![format!("[{lo:?}, {hi:?}]"); n].join(", ");
         format!("p_box = [{side}]\nq_box = [{side}]\n")
     } else {
-        format!("box = [{}]\n", vec![format!("[{lo:?}, {hi:?}]"); n].join(", "))
+        format!(
+            "box = [{}]\n",
+            vec![format!("[{lo:?}, {hi:?}]"); n].join(", ")
+        )
     };
     let spec = VerifySpec::parse(&format!(
         "name = \"g1-n{n}\"\nscheme = \"nurds\"\nvalence = {n}\n{text}properties = [\"g1\"]\nmin_width = {min_width:?}\ntime_budget = {budget:?}\n"

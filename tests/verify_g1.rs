@@ -128,7 +128,9 @@ fn g1_cells_hold_both_classes_and_agree_with_the_pointwise_tools() {
     let (wrong, misses, checked, classes) = check(&out, CellTamper::None, 40, 11);
     assert_eq!((wrong, misses), (0, 0), "{checked} points");
     // the box holds both classes, and at least one g1 cell holds both
-    assert!(classes.contains(&ClassName::ComplexPair) && classes.contains(&ClassName::RealDistinct));
+    assert!(
+        classes.contains(&ClassName::ComplexPair) && classes.contains(&ClassName::RealDistinct)
+    );
     let class_at = |x: Vec<f64>| {
         let q: Vec<Rational> = x.iter().map(|v| f64_to_rational(*v).unwrap()).collect();
         exact_verdict(&LocalScheme::nurds(EdgeRatios::new(q).unwrap()), None)

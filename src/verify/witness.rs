@@ -83,7 +83,5 @@ pub fn g1_witness(lo: &[f64], hi: &[f64], samples: usize, seed: u64) -> Option<W
                 .map(|(a, b)| rng.uniform(*a, *b).clamp(*a, *b))
                 .collect()
         }))
-        .find_map(|r: Vec<f64>| {
-            failure_at(&r).map(|failure| Witness { ratios: r, failure })
-        })
+        .find_map(|r: Vec<f64>| failure_at(&r).map(|failure| Witness { ratios: r, failure }))
 }
