@@ -932,7 +932,7 @@ fn map_certified(ring: &RatioRing) -> bool {
     let mut nets = Vec::with_capacity(3 * n);
     for i in 0..n {
         for kind in [PatchKind::A, PatchKind::B, PatchKind::C] {
-            nets.push(bezier_net(&ring, n, RingPatchId { kind, index: i }));
+            nets.push(bezier_net(ring, n, RingPatchId { kind, index: i }));
         }
     }
     let Some(sigma) = jacobian_sign(&nets) else {
