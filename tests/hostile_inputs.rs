@@ -1744,6 +1744,24 @@ fn cases() -> Vec<Case> {
             "properties[0]",
         ),
         bad_with(
+            "verify-g1-for-cc",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"adjustable-cc\"\nvalence = 3\nc_range = [0.1, 0.5]\nproperties = [\"g1\"]\n")],
+            "g1",
+        ),
+        bad_with(
+            "verify-g1-twice",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"g1\", \"g1\"]\n")],
+            "properties[1]",
+        ),
+        bad_with(
+            "verify-g1-misspelt",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"G1\"]\n")],
+            "properties[0]",
+        ),
+        bad_with(
             "verify-unknown-property",
             &["verify", "v.toml", "--out", "o"],
             &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\", \"smooth\"]\n")],
@@ -1803,6 +1821,13 @@ fn cases() -> Vec<Case> {
             "verify-charmap-over-budget",
             &["verify", "v.toml", "--out", "o", "--threads", "1"],
             &[("v.toml", "scheme = \"nurds\"\nvalence = 5\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\", \"charmap\"]\n")],
+            "--force",
+        ),
+        bad_with(
+            // g1 has the charmap property's cost estimate
+            "verify-g1-over-budget",
+            &["verify", "v.toml", "--out", "o", "--threads", "1"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 5\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"g1\"]\n")],
             "--force",
         ),
         bad_with(

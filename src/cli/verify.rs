@@ -26,7 +26,7 @@ pub(crate) struct VerifyArgs {
     /// valence (nurds 3 to 16, adjustable-cc 3 to 1024), the region (nurds:
     /// box = one [lo, hi] per edge ratio, or p_box and q_box = one [lo, hi]
     /// per corner knot interval; adjustable-cc: c_range), properties (class,
-    /// separation, theorem1, charmap), min_width (at least 2^-40),
+    /// separation, theorem1, charmap, g1), min_width (at least 2^-40),
     /// time_budget (seconds).
     spec: PathBuf,
     /// Output directory: new, empty, or a previous verify output (only its

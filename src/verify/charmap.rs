@@ -53,6 +53,9 @@ pub enum CellTamper {
     /// takes `rho = 0` (the centre's basis for every `r`), the `c` path
     /// evaluates the eigenvector at the cell's midpoint only.
     DropSubspaceVariation,
+    /// Shrink Stewart's radius: NURDS takes `rho / 64` for the ball of `P`
+    /// and drops the bound of its second-order part.
+    ShrinkStewartRadius,
 }
 
 /// The status of the `charmap` property on the cell `[lo, hi]` of `region`
@@ -99,5 +102,39 @@ pub fn cell_status(
             let (b, scores) = ratios::certified(lo, hi, tamper);
             (ok(b), scores)
         }
+    }
+}
+
+/// The status of the `g1` property on the cell `[lo, hi]` of `region`
+/// (math doc section 15, "G1 over a cell"): `certified` when
+/// [`ratios::g1_certified`] proves it for every ratio vector of the cell,
+/// else `undecided` (never `refuted`: a failed test proves nothing), and the
+/// split scores. The `c` path has no `g1` property (the spec refuses it).
+///
+/// ```
+/// use subdiv_lab::verify::charmap::{g1_status, CellTamper};
+/// use subdiv_lab::verify::decide::Status;
+/// use subdiv_lab::verify::spec::Region;
+/// let region = Region::Ratios { lo: vec![0.3; 3], hi: vec![0.36; 3] };
+/// let (s, _) = g1_status(&region, &[0.3; 3], &[0.31; 3], CellTamper::None);
+/// assert_eq!(s, Status::Certified);
+/// ```
+pub fn g1_status(
+    region: &Region,
+    lo: &[f64],
+    hi: &[f64],
+    tamper: CellTamper,
+) -> (Status, Option<Vec<f64>>) {
+    match region {
+        Region::Ratios { .. } | Region::Corners { .. } => {
+            let (b, scores) = ratios::g1_certified(lo, hi, tamper);
+            let s = if b {
+                Status::Certified
+            } else {
+                Status::Undecided
+            };
+            (s, scores)
+        }
+        Region::Shape { .. } => (Status::Undecided, None),
     }
 }

@@ -73,6 +73,9 @@ pub enum Tamper {
     /// variation of the invariant subspace over the cell
     /// ([`super::charmap::CellTamper::DropSubspaceVariation`]).
     DropSubspaceVariation,
+    /// The sound spectral enclosure, but the `g1` certificate shrinks
+    /// Stewart's radius ([`super::charmap::CellTamper::ShrinkStewartRadius`]).
+    ShrinkStewartRadius,
 }
 
 /// An affine matrix family `C(x) = C_0 + sum_k x_k C_k` of size `m`.

@@ -37,6 +37,7 @@ pub mod invariants;
 pub mod spec;
 pub mod taylor;
 pub mod taylor2;
+pub mod witness;
 
 use crate::spectral::ClassName;
 use decide::Status;
@@ -85,10 +86,12 @@ impl Default for Limits {
 
 /// The work estimate of [`run`] of `spec` with at most `max_cells` evaluated
 /// cells on `threads` threads: [`crate::budget::verify_charmap`] when the
-/// spec asks for the `charmap` property, else [`crate::budget::verify`]
+/// spec asks for the `charmap` or the `g1` property, else [`crate::budget::verify`]
 /// (the spec's `time_budget` caps the time).
 pub fn estimate(spec: &VerifySpec, max_cells: u64, threads: usize) -> crate::budget::Estimate {
-    let estimate_fn = if spec.properties.contains(&Property::Charmap) {
+    let estimate_fn = if spec.properties.contains(&Property::Charmap)
+        || spec.properties.contains(&Property::G1)
+    {
         crate::budget::verify_charmap
     } else {
         crate::budget::verify
@@ -118,10 +121,19 @@ pub struct Cell {
 }
 
 impl Cell {
-    /// The `verdict` column: the class name when `class` is requested (or
-    /// `undecided`); otherwise `certified` when every property holds,
-    /// `refuted` when one fails and none is open, else `undecided`.
+    /// The `verdict` column: `g1` when the `g1` property is requested and
+    /// certified (whatever class or classes the cell holds); else the class
+    /// name when `class` is requested (or `undecided`); otherwise `certified`
+    /// when every property holds, `refuted` when one fails and none is open,
+    /// else `undecided`.
     pub fn verdict(&self) -> &'static str {
+        if self
+            .status
+            .iter()
+            .any(|(p, s)| *p == Property::G1 && *s == Status::Certified)
+        {
+            return "g1";
+        }
         if self.status.iter().any(|(p, _)| *p == Property::Class) {
             return self.class.map_or("undecided", ClassName::as_str);
         }
@@ -189,7 +201,15 @@ fn evaluate(
     hi: &[f64],
     tamper: Tamper,
 ) -> Evaluation {
+    // the spectral enclosure is needed by every property but g1 and theorem1
+    let spectral = spec.properties.iter().any(|p| {
+        matches!(
+            p,
+            Property::Class | Property::Separation | Property::Charmap
+        )
+    });
     let (separation, class, scores) = match (&spec.region, family) {
+        _ if !spectral => (Status::Undecided, None, None),
         (Region::Ratios { .. } | Region::Corners { .. }, Some(f)) if f.dim() == 2 => {
             match enclose::decide_2x2(f, lo, hi, tamper) {
                 Some((v, scores)) => (v.separation, v.class, scores),
@@ -229,13 +249,29 @@ fn evaluate(
     } else {
         (Status::Undecided, None)
     };
-    // once the spectral part is decided, the open charmap drives the split
+    // the class-free g1 certificate (math doc section 15, "G1 over a cell")
+    let (g1, g1_scores) = if spec.properties.contains(&Property::G1) {
+        let ct = match tamper {
+            Tamper::ShrinkStewartRadius => charmap::CellTamper::ShrinkStewartRadius,
+            _ => charmap::CellTamper::None,
+        };
+        charmap::g1_status(&spec.region, lo, hi, ct)
+    } else {
+        (Status::Undecided, None)
+    };
+    // once the spectral part is decided, the open charmap drives the split;
+    // an open g1 drives it when no spectral property is open
     let scores = if charmap == Status::Undecided
         && class.is_some()
         && separation != Status::Undecided
         && charmap_scores.is_some()
     {
         charmap_scores
+    } else if g1 == Status::Undecided
+        && g1_scores.is_some()
+        && (!spectral || (class.is_some() && separation != Status::Undecided))
+    {
+        g1_scores
     } else {
         scores
     };
@@ -259,6 +295,7 @@ fn evaluate(
                     Region::Shape { .. } => Status::Undecided,
                 },
                 Property::Charmap => charmap,
+                Property::G1 => g1,
             };
             (p, s)
         })
@@ -355,7 +392,17 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
         Region::Shape { .. } => None,
     };
     let (lo, hi) = spec.bounds();
-    let charpoly = family.as_ref().and_then(factor::CharPoly::new);
+    // the spectral routes' set-up only when a spectral property is asked for
+    let spectral = spec.properties.iter().any(|p| {
+        matches!(
+            p,
+            Property::Class | Property::Separation | Property::Charmap
+        )
+    });
+    let charpoly = family
+        .as_ref()
+        .filter(|_| spectral)
+        .and_then(factor::CharPoly::new);
     let invariants = charpoly.as_ref().and_then(invariants::Invariants::new);
     let tree = invariants
         .as_ref()

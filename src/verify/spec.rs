@@ -5,7 +5,7 @@
 //! scheme = "nurds"            # or "adjustable-cc" (then c_range instead of box)
 //! valence = 3
 //! box = [[0.01, 0.99], [0.01, 0.99], [0.01, 0.99]]   # one [lo, hi] per edge ratio r_i
-//! properties = ["class", "separation"]                # also "theorem1", "charmap"
+//! properties = ["class", "separation"]                # also "theorem1", "charmap", "g1"
 //! min_width = 0.002          # optional: cells this narrow are not split further
 //! time_budget = 60           # optional, seconds: refinement stops after this (cells left open are undecided)
 //! ```
@@ -44,6 +44,12 @@ pub enum Property {
     Theorem1,
     /// The characteristic map is regular and injective on the whole cell.
     Charmap,
+    /// For every parameter of the cell the pair of largest eigenvalues after
+    /// `1` is separated from the rest of the spectrum and the
+    /// characteristic map of its real invariant subspace is regular and
+    /// injective, whatever the class (NURDS only; math doc section 15,
+    /// "G1 over a cell").
+    G1,
 }
 
 impl Property {
@@ -54,6 +60,7 @@ impl Property {
             Property::Separation => "separation",
             Property::Theorem1 => "theorem1",
             Property::Charmap => "charmap",
+            Property::G1 => "g1",
         }
     }
 
@@ -63,6 +70,7 @@ impl Property {
             Property::Separation,
             Property::Theorem1,
             Property::Charmap,
+            Property::G1,
         ]
         .into_iter()
         .find(|p| p.as_str() == s)
@@ -250,7 +258,7 @@ impl VerifySpec {
             return ctx.err(
                 "properties",
                 Some(raw.properties.span()),
-                "properties: empty list; give at least one of class, separation, theorem1, charmap"
+                "properties: empty list; give at least one of class, separation, theorem1, charmap, g1"
                     .into(),
             );
         }
@@ -261,7 +269,7 @@ impl VerifySpec {
                     &key,
                     Some(p.span()),
                     format!(
-                        "{key}: unknown property {:?}; one of class, separation, theorem1, charmap",
+                        "{key}: unknown property {:?}; one of class, separation, theorem1, charmap, g1",
                         p.get_ref()
                     ),
                 );
@@ -278,6 +286,13 @@ impl VerifySpec {
                     &key,
                     Some(p.span()),
                     format!("{key}: theorem1 (the 3/4 contraction of the central face) applies to scheme \"nurds\" only"),
+                );
+            }
+            if prop == Property::G1 && scheme != "nurds" {
+                return ctx.err(
+                    &key,
+                    Some(p.span()),
+                    format!("{key}: g1 (the class-free certificate over a ratio box) applies to scheme \"nurds\" only; adjustable-cc gives charmap"),
                 );
             }
             properties.push(prop);

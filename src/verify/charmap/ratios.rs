@@ -114,9 +114,50 @@ fn w_terms(n: usize) -> (Sparse, Vec<Sparse>) {
     (c0, terms)
 }
 
-/// A real basis of the numerical eigenvectors of `W(r0)`: the pair, `1`,
-/// the rest, and the sizes of the rest's blocks (1 real, 2 complex pair).
-fn centre_basis(w: &DMatrix<f64>) -> Option<(DMatrix<f64>, Vec<usize>)> {
+/// How the first two columns of the centre basis `Q` span the pair's
+/// invariant subspace of `W(r0)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PairBasis {
+    /// The pair's eigenvectors (two real ones, or the real and imaginary
+    /// parts of a complex one): needs the class, degenerates near the class
+    /// boundary.
+    Eigenvectors,
+    /// An orthonormal basis of the pair's real invariant subspace (the first
+    /// two Schur vectors of an ordered real Schur form): the null space of
+    /// `(W - mu_1)(W - mu_2) = W^2 - t W + d I`, `t = mu_1 + mu_2`,
+    /// `d = mu_1 mu_2` (real for a real or a conjugate pair), from an SVD.
+    /// Well conditioned on both sides of the class boundary and on the
+    /// defective lines (math doc section 15, "G1 over a cell").
+    Schur,
+}
+
+/// An orthonormal basis (two columns) of the null space of
+/// `W^2 - t W + d I`: the right singular vectors of its two smallest
+/// singular values (any result is only a guess; the enclosure is rigorous).
+fn pair_subspace(w: &DMatrix<f64>, t: f64, d: f64) -> Option<[Vec<f64>; 2]> {
+    let n = w.nrows();
+    let w2 = w * w;
+    let m = faer::Mat::<f64>::from_fn(n, n, |i, j| {
+        w2[(i, j)] - t * w[(i, j)] + if i == j { d } else { 0.0 }
+    });
+    let svd = m.svd().ok()?;
+    let v = svd.V();
+    let s = svd.S().column_vector();
+    // faer orders the singular values decreasingly; find the two smallest anyway
+    let mut idx: Vec<usize> = (0..n).collect();
+    idx.sort_by(|&a, &b| s[a].total_cmp(&s[b]));
+    let (a, b) = (*idx.first()?, *idx.get(1)?);
+    let col = |k: usize| -> Vec<f64> { (0..n).map(|i| v[(i, k)]).collect() };
+    let out = [col(a), col(b)];
+    out.iter()
+        .all(|c| c.iter().all(|x| x.is_finite()))
+        .then_some(out)
+}
+
+/// A real basis of `W(r0)` from its numerical eigen-decomposition: the pair
+/// (as `pair` says), `1`, the rest's eigenvectors, and the sizes of the
+/// rest's blocks (1 real, 2 complex pair).
+fn centre_basis(w: &DMatrix<f64>, pair: PairBasis) -> Option<(DMatrix<f64>, Vec<usize>)> {
     let n = w.nrows();
     let eig = Eigen::new(
         w,
@@ -154,7 +195,11 @@ fn centre_basis(w: &DMatrix<f64>) -> Option<(DMatrix<f64>, Vec<usize>)> {
     let mut used = vec![false; n];
     // the pair: the first two of `order` (largest moduli after 3/4)
     let (a, b) = (*order.first()?, *order.get(1)?);
-    if is_real(vals[a]) && is_real(vals[b]) {
+    if pair == PairBasis::Schur {
+        let [u, v] = pair_subspace(w, (vals[a] + vals[b]).re, (vals[a] * vals[b]).re)?;
+        cols.push(u);
+        cols.push(v);
+    } else if is_real(vals[a]) && is_real(vals[b]) {
         cols.push(real_vec(a));
         cols.push(real_vec(b));
     } else if !is_real(vals[a]) && (vals[a] - vals[b].conj()).norm() <= 1e-6 * vals[a].norm() {
@@ -290,6 +335,19 @@ fn min_modulus_2x2(a: &[Iv; 4]) -> f64 {
 /// [`CellTamper::DropSubspaceVariation`] the basis is taken as `Q`'s first
 /// two columns for the whole cell (`rho = 0`, deliberately unsound).
 pub fn ratio_ring(lo: &[f64], hi: &[f64], tamper: CellTamper) -> Option<RatioRing> {
+    ratio_ring_with(lo, hi, tamper, PairBasis::Eigenvectors)
+}
+
+/// [`ratio_ring`] with the pair's columns of `Q` chosen by `pair`. With
+/// [`CellTamper::ShrinkStewartRadius`] the radius `rho` of the ball of `P`
+/// is divided by 64 and the bound of its second-order part dropped
+/// (deliberately unsound).
+pub fn ratio_ring_with(
+    lo: &[f64],
+    hi: &[f64],
+    tamper: CellTamper,
+    pair: PairBasis,
+) -> Option<RatioRing> {
     let n = lo.len();
     if n < 3 || hi.len() != n {
         return None;
@@ -315,7 +373,7 @@ pub fn ratio_ring(lo: &[f64], hi: &[f64], tamper: CellTamper) -> Option<RatioRin
         }
     }
     let wf = DMatrix::from_fn(n, n, |i, j| mid(wc[i * n + j]));
-    let (q, blocks) = centre_basis(&wf)?;
+    let (q, blocks) = centre_basis(&wf, pair)?;
     let y = verified_inverse(&q)?;
     let qi = |i: usize, j: usize| Iv::point(q[(i, j)]);
     // M0 = Y (W(r0) Q)
@@ -396,10 +454,10 @@ pub fn ratio_ring(lo: &[f64], hi: &[f64], tamper: CellTamper) -> Option<RatioRin
     if !(up(4.0 * up(gamma * eta)) < down(delta * delta)) {
         return None;
     }
-    let rho = if tamper == CellTamper::DropSubspaceVariation {
-        0.0
-    } else {
-        up(2.0 * gamma / delta)
+    let rho = match tamper {
+        CellTamper::DropSubspaceVariation => 0.0,
+        CellTamper::ShrinkStewartRadius => up(2.0 * gamma / delta) / 64.0,
+        CellTamper::None => up(2.0 * gamma / delta),
     };
     // N = T11 + T12 P
     let t12_row = |a: usize| norm2_upper((0..m).map(|k| tb(a, 2 + k).mag()));
@@ -438,8 +496,11 @@ pub fn ratio_ring(lo: &[f64], hi: &[f64], tamper: CellTamper) -> Option<RatioRin
     };
     // P = P^ + D: P^ = L0^{-1}(T21(r)) (first order in the ratios, with
     // L0(P) = P mid(T11) - mid(T22) P) and ||D||_F <= eps2 (second order)
-    let eps2 = up(up(up(up(r11 + r22) * gamma) / down(delta * sigma_lo))
+    let mut eps2 = up(up(up(up(r11 + r22) * gamma) / down(delta * sigma_lo))
         + up(up(eta * up(rho * rho)) / delta));
+    if tamper == CellTamper::ShrinkStewartRadius {
+        eps2 = 0.0;
+    }
     let t21: Vec<Af> = (0..2 * m).map(|v| t_af(2 + v % m, v / m)).collect();
     let pmat: Vec<Af> = (0..2 * m)
         .map(|v| {
@@ -603,10 +664,21 @@ pub fn ratio_ring(lo: &[f64], hi: &[f64], tamper: CellTamper) -> Option<RatioRin
     }
     let boxes =
         |v: &[[Af; 2]]| -> Vec<P2> { v.iter().map(|p| [p[0].range(), p[1].range()]).collect() };
+    // N lies in both enclosures (the interval one and the affine forms'
+    // range), so in their intersection
+    let mut restriction = [Iv::point(0.0); 4];
+    for k in 0..4 {
+        let f = nf[k].range();
+        let (a, b) = (f.lo.max(nb[k].lo), f.hi.min(nb[k].hi));
+        if !(a <= b) {
+            return None;
+        }
+        restriction[k] = Iv::new(a, b);
+    }
     Some(RatioRing {
         q,
         rho,
-        restriction: std::array::from_fn(|k| nf[k].range()),
+        restriction,
         basis: boxes(&w),
         points: boxes(&pts),
         forms: pts,
@@ -801,19 +873,70 @@ impl BoxCurve for BezBox {
 /// every ratio vector of the box (given that the cell's class is certified
 /// `complex_pair`, `real_distinct` or `standard`), with the split scores.
 pub fn certified(lo: &[f64], hi: &[f64], tamper: CellTamper) -> (bool, Option<Vec<f64>>) {
-    let n = lo.len();
     let Some(ring) = ratio_ring(lo, hi, tamper) else {
         return (false, None);
     };
     let scores = Some(ring.scores.clone());
+    (map_certified(&ring), scores)
+}
+
+/// The spectral part of the `g1` property from the restriction `N` of the
+/// pair's invariant subspace (math doc section 15, "G1 over a cell"): for
+/// every matrix of the interval 2 x 2 matrix `n`,
+///
+/// * `det N > 0`: the next ring is the image of this one under the
+///   orientation-preserving linear map `x -> x N`;
+/// * every eigenvalue modulus `<= |t|/2 + sqrt|t^2/4 - det| < 1`: `1` stays
+///   the simple dominant eigenvalue;
+/// * every eigenvalue modulus `> 1/4`: the pair lies above the fixed
+///   eigenvalues `1/4, 1/8, 1/16` of the `E` and `V` blocks (section 4).
+///
+/// Separation from the rest of the face block's spectrum is part of the
+/// enclosure itself ([`ratio_ring_with`]).
+pub fn g1_spectrum(n: &[Iv; 4]) -> bool {
+    let t = n[0].add(n[3]);
+    let d = n[0].mul(n[3]).sub(n[1].mul(n[2]));
+    let h = t.mul(Iv::point(0.5));
+    let disc = h.mul(h).sub(d);
+    let max_modulus = up(h.mag() + up(disc.mag().sqrt()));
+    d.lo > 0.0 && max_modulus < 1.0 && min_modulus_2x2(n) > G1_FIXED_MODULUS
+}
+
+/// The largest modulus of the fixed eigenvalues of `S_n` outside the face
+/// block (`1/4` of the `E` blocks, math doc section 4): the pair must lie
+/// strictly above it.
+pub const G1_FIXED_MODULUS: f64 = 0.25;
+
+/// The `g1` property over the ratio box (math doc section 15, "G1 over a
+/// cell"): for every ratio vector of the box the two largest eigenvalues of
+/// `spec(A) \ {1}`, as a set, are separated from the rest of the spectrum of
+/// `S_n`, `det N > 0`, and the characteristic map built from the basis
+/// `Q [I; P(r)]` of their real invariant subspace ([`PairBasis::Schur`]) is
+/// regular and injective. No class is needed. Returns the verdict and the
+/// split scores.
+pub fn g1_certified(lo: &[f64], hi: &[f64], tamper: CellTamper) -> (bool, Option<Vec<f64>>) {
+    let Some(ring) = ratio_ring_with(lo, hi, tamper, PairBasis::Schur) else {
+        return (false, None);
+    };
+    let scores = Some(ring.scores.clone());
+    if !g1_spectrum(&ring.restriction) {
+        return (false, scores);
+    }
+    (map_certified(&ring), scores)
+}
+
+/// Whether the enclosed ring is regular (one Jacobian sign on every patch
+/// for every parameter) and its outer boundary winds once after orientation.
+fn map_certified(ring: &RatioRing) -> bool {
+    let n = ring.centre.len();
     let mut nets = Vec::with_capacity(3 * n);
     for i in 0..n {
         for kind in [PatchKind::A, PatchKind::B, PatchKind::C] {
-            nets.push(bezier_net(&ring, n, RingPatchId { kind, index: i }));
+            nets.push(bezier_net(ring, n, RingPatchId { kind, index: i }));
         }
     }
     let Some(sigma) = jacobian_sign(&nets) else {
-        return (false, scores);
+        return false;
     };
     let net = |kind: PatchKind, i: usize| {
         let k = match kind {
@@ -842,11 +965,10 @@ pub fn certified(lo: &[f64], hi: &[f64], tamper: CellTamper) -> (bool, Option<Ve
             b
         })
         .collect();
-    let ok = match winding_number(&curves) {
+    match winding_number(&curves) {
         Some(wn) => (sigma * wn as f64) == 1.0,
         None => false,
-    };
-    (ok, scores)
+    }
 }
 
 impl RatioRing {

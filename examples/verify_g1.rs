@@ -1,0 +1,95 @@
+//! The `g1` targets of `verify` (math doc section 15, "G1 over a cell"):
+//! runs the branch and bound for the property `g1` over a NURDS box and
+//! looks for witnesses (a ratio vector where the pair is not separated or
+//! the characteristic map folds) in the largest cells left undecided.
+//!
+//! ```text
+//! cargo run --release --example verify_g1 -- N LO HI MIN_WIDTH TIME_BUDGET [WITNESS_CELLS] [corners]
+//! ```
+//!
+//! `N` the valence; the box is `[LO, HI]^N` of edge ratios, or with
+//! `corners` the corner-interval box `p_i, q_i in [LO, HI]` (log-scaled
+//! bisection); `MIN_WIDTH` and `TIME_BUDGET` (seconds) as in a verify spec;
+//! `WITNESS_CELLS` (default 200) undecided cells, largest first, are
+//! searched for witnesses (centre and 16 random points each). Prints one
+//! line: the certified `g1` volume share, cells, wall time, why refinement
+//! stopped, and the witnesses found by kind (`benches/verify_g1_targets.sh`
+//! runs the targets).
+
+use std::collections::BTreeMap;
+use subdiv_lab::verify::spec::{Property, Region, VerifySpec};
+use subdiv_lab::verify::witness::g1_witness;
+use subdiv_lab::verify::{run, summary, Limits};
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let usage = "usage: verify_g1 N LO HI MIN_WIDTH TIME_BUDGET [WITNESS_CELLS] [corners]";
+    let num = |k: usize| -> f64 {
+        args.get(k)
+            .and_then(|s| s.parse().ok())
+            .unwrap_or_else(|| panic!("{usage}"))
+    };
+    let n = num(0) as usize;
+    let (lo, hi, min_width, budget) = (num(1), num(2), num(3), num(4));
+    let witness_cells = args.get(5).and_then(|s| s.parse().ok()).unwrap_or(200usize);
+    let corners = args.iter().any(|a| a == "corners");
+    let text = if corners {
+        let side = vec![format!("[{lo:?}, {hi:?}]"); n].join(", ");
+        format!("p_box = [{side}]\nq_box = [{side}]\n")
+    } else {
+        format!(
+            "box = [{}]\n",
+            vec![format!("[{lo:?}, {hi:?}]"); n].join(", ")
+        )
+    };
+    let spec = VerifySpec::parse(&format!(
+        "name = \"g1-n{n}\"\nscheme = \"nurds\"\nvalence = {n}\n{text}properties = [\"g1\"]\nmin_width = {min_width:?}\ntime_budget = {budget:?}\n"
+    ))
+    .unwrap_or_else(|e| panic!("{e}"));
+    let out = run(&spec, &Limits::default());
+    let s = summary(&spec, &out);
+    let g1 = s.volume_fraction.get("g1").copied().unwrap_or(0.0);
+    let mut open: Vec<_> = out
+        .cells
+        .iter()
+        .filter(|c| {
+            c.status
+                .iter()
+                .any(|(p, st)| *p == Property::G1 && st.as_str() != "certified")
+        })
+        .collect();
+    open.sort_by(|a, b| b.volume().total_cmp(&a.volume()));
+    let mut found: BTreeMap<&str, (usize, f64)> = BTreeMap::new();
+    let mut first = Vec::new();
+    let total: f64 = match &spec.region {
+        Region::Ratios { lo, hi } | Region::Corners { lo, hi, .. } => {
+            lo.iter().zip(hi).map(|(a, b)| b - a).product()
+        }
+        Region::Shape { .. } => 1.0,
+    };
+    for (k, c) in open.iter().take(witness_cells).enumerate() {
+        if let Some(w) = g1_witness(&c.lo, &c.hi, 16, k as u64) {
+            let e = found.entry(w.failure.as_str()).or_insert((0, 0.0));
+            e.0 += 1;
+            e.1 += c.volume() / total;
+            if first.len() < 3 {
+                first.push(w);
+            }
+        }
+    }
+    println!(
+        "n={n} {} [{lo}, {hi}] min_width={min_width}: g1 {:.4}% of the volume, {} cells ({} evaluated), {:.1} s wall, stopped {:?}; witnesses in {} of the {} largest open cells: {:?}",
+        if corners { "corners" } else { "ratios" },
+        100.0 * g1,
+        s.cells,
+        s.evaluated,
+        s.seconds,
+        s.stopped,
+        found.values().map(|v| v.0).sum::<usize>(),
+        witness_cells.min(open.len()),
+        found
+    );
+    for w in first {
+        println!("  witness {:?}: {}", w.ratios, w.failure.as_str());
+    }
+}

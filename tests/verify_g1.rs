@@ -1,0 +1,229 @@
+//! The class-free `g1` property of `subdiv-lab verify` (math doc section 15,
+//! "G1 over a cell"): random points of the certified cells checked with the
+//! exact pointwise classifier and the pointwise characteristic-map
+//! certificate, the pointwise ring inside the cell's enclosure, a shrunk
+//! Stewart radius caught, cells across the class boundary, exact tiling in
+//! rationals, the CLI's `g1` verdict.
+
+mod common;
+
+use num_traits::Zero;
+use proptest::prelude::*;
+use std::fs;
+use subdiv_lab::charmap::{self, Verdict};
+use subdiv_lab::knots::EdgeRatios;
+use subdiv_lab::rng::SplitMix64;
+use subdiv_lab::scalar::{f64_to_rational, Rational};
+use subdiv_lab::schemes::LocalScheme;
+use subdiv_lab::spectral::exact::exact_verdict;
+use subdiv_lab::spectral::ClassName;
+use subdiv_lab::verify::charmap::ratios::{ratio_ring_with, PairBasis};
+use subdiv_lab::verify::charmap::CellTamper;
+use subdiv_lab::verify::spec::{Property, Region, VerifySpec};
+use subdiv_lab::verify::{run, Cell, Limits, Outcome, Tamper};
+
+/// Slack for the floating-point error of the pointwise ring.
+const POINT_TOL: f64 = 1e-10;
+
+fn g1_spec(lo: Vec<f64>, hi: Vec<f64>, min_width: f64) -> VerifySpec {
+    VerifySpec {
+        name: "g".into(),
+        region: Region::Ratios { lo, hi },
+        properties: vec![Property::G1],
+        min_width,
+        time_budget: None,
+    }
+}
+
+fn g1_cells(out: &Outcome) -> Vec<&Cell> {
+    out.cells.iter().filter(|c| c.verdict() == "g1").collect()
+}
+
+/// At `samples` random points of the `g1` cells: the points where the exact
+/// classifier or the pointwise certificate disagrees (not separated, or a
+/// map that is not certified regular and injective), the enclosure misses of
+/// the pointwise ring (recomputed with `tamper`, the enclosure the run
+/// used), the number of points checked and the classes met.
+fn check(
+    out: &Outcome,
+    tamper: CellTamper,
+    samples: usize,
+    seed: u64,
+) -> (usize, usize, usize, Vec<ClassName>) {
+    let cells = g1_cells(out);
+    let mut classes = Vec::new();
+    if cells.is_empty() {
+        return (0, 0, 0, classes);
+    }
+    let mut rng = SplitMix64::new(seed);
+    let (mut wrong, mut misses) = (0, 0);
+    for s in 0..samples {
+        let cell = cells[(s * 7919 + seed as usize) % cells.len()];
+        let x: Vec<f64> = cell
+            .lo
+            .iter()
+            .zip(&cell.hi)
+            .map(|(a, b)| rng.uniform(*a, *b).clamp(*a, *b))
+            .collect();
+        let q: Vec<Rational> = x.iter().map(|v| f64_to_rational(*v).unwrap()).collect();
+        let exact = exact_verdict(&LocalScheme::nurds(EdgeRatios::new(q).unwrap()), None).unwrap();
+        if exact.separated == Some(false) || exact.class == Some(ClassName::NotSeparated) {
+            wrong += 1;
+        }
+        if let Some(c) = exact.class {
+            if !classes.contains(&c) {
+                classes.push(c);
+            }
+        }
+        let scheme = LocalScheme::nurds(EdgeRatios::new(x.clone()).unwrap());
+        if !matches!(
+            charmap::check(&scheme).unwrap().verdict,
+            Verdict::C1Standard | Verdict::TangentPlaneContinuous { .. }
+        ) {
+            wrong += 1;
+        }
+        let ring = ratio_ring_with(&cell.lo, &cell.hi, tamper, PairBasis::Schur).unwrap();
+        let (pf, pts) = ring.pointwise(&x).unwrap();
+        misses += ring.misses(pf, &pts, POINT_TOL);
+    }
+    (wrong, misses, samples, classes)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 6, ..ProptestConfig::default() })]
+
+    /// Random NURDS boxes (n = 3, 4, across the class boundary or not):
+    /// every sampled point of a `g1` cell is separated (exact classifier)
+    /// and its map regular and injective (pointwise certificate), and its
+    /// ring lies in the cell's enclosure.
+    #[test]
+    fn g1_cells_agree_with_the_exact_classifier_and_the_pointwise_certificate(
+        n in 3usize..=4,
+        corner in prop::collection::vec(0.02f64..0.85, 4),
+        width in prop::collection::vec(0.03f64..0.12, 4),
+        seed in 0u64..1000,
+    ) {
+        let lo: Vec<f64> = corner[..n].to_vec();
+        let hi: Vec<f64> = lo.iter().zip(&width).map(|(a, w)| (a + w).min(0.98)).collect();
+        let s = g1_spec(lo, hi, if n == 3 { 1.0 / 128.0 } else { 1.0 / 64.0 });
+        let out = run(&s, &Limits::default());
+        let (wrong, misses, checked, _) = check(&out, CellTamper::None, 12, seed);
+        prop_assume!(checked > 0);
+        prop_assert_eq!(wrong, 0, "{} disagreements at {} points", wrong, checked);
+        prop_assert_eq!(misses, 0, "{} enclosure misses at {} points", misses, checked);
+    }
+}
+
+/// A box across the complex / real boundary (n = 3).
+fn boundary_box() -> (Vec<f64>, Vec<f64>) {
+    (vec![0.5, 0.45, 0.52], vec![0.56, 0.51, 0.58])
+}
+
+#[test]
+fn g1_cells_hold_both_classes_and_agree_with_the_pointwise_tools() {
+    let (lo, hi) = boundary_box();
+    let s = g1_spec(lo, hi, 1.0 / 64.0);
+    let out = run(&s, &Limits::default());
+    assert!(out.cells.iter().all(|c| c.verdict() == "g1"));
+    let (wrong, misses, checked, classes) = check(&out, CellTamper::None, 40, 11);
+    assert_eq!((wrong, misses), (0, 0), "{checked} points");
+    // the box holds both classes, and at least one g1 cell holds both
+    assert!(
+        classes.contains(&ClassName::ComplexPair) && classes.contains(&ClassName::RealDistinct)
+    );
+    let class_at = |x: Vec<f64>| {
+        let q: Vec<Rational> = x.iter().map(|v| f64_to_rational(*v).unwrap()).collect();
+        exact_verdict(&LocalScheme::nurds(EdgeRatios::new(q).unwrap()), None)
+            .unwrap()
+            .class
+    };
+    let straddles = out.cells.iter().any(|c| {
+        let corners: Vec<Option<ClassName>> = (0..8)
+            .map(|m| {
+                class_at(
+                    (0..3)
+                        .map(|k| if m >> k & 1 == 0 { c.lo[k] } else { c.hi[k] })
+                        .collect(),
+                )
+            })
+            .collect();
+        corners.contains(&Some(ClassName::ComplexPair))
+            && corners.contains(&Some(ClassName::RealDistinct))
+    });
+    assert!(straddles, "no g1 cell meets both classes");
+}
+
+#[test]
+fn a_shrunk_stewart_radius_is_caught() {
+    let (lo, hi) = boundary_box();
+    let s = g1_spec(lo, hi, 1.0 / 64.0);
+    let limits = Limits {
+        tamper: Tamper::ShrinkStewartRadius,
+        ..Limits::default()
+    };
+    let out = run(&s, &limits);
+    let (_, misses, checked, _) = check(&out, CellTamper::ShrinkStewartRadius, 12, 5);
+    assert!(
+        checked > 0 && misses > 0,
+        "{misses} misses at {checked} points"
+    );
+}
+
+#[test]
+fn g1_cells_tile_the_box_exactly() {
+    let s = g1_spec(vec![0.02, 0.3, 0.5], vec![0.9, 0.45, 0.99], 1.0 / 32.0);
+    let out = run(&s, &Limits::default());
+    assert!(out.cells.len() > 10);
+    let q = |x: f64| f64_to_rational(x).unwrap();
+    let (lo, hi) = s.bounds();
+    let total: Rational = lo.iter().zip(&hi).map(|(a, b)| q(*b) - q(*a)).product();
+    let mut sum = Rational::zero();
+    for (i, c) in out.cells.iter().enumerate() {
+        for k in 0..3 {
+            assert!(lo[k] <= c.lo[k] && c.lo[k] < c.hi[k] && c.hi[k] <= hi[k]);
+        }
+        sum +=
+            c.lo.iter()
+                .zip(&c.hi)
+                .map(|(a, b)| q(*b) - q(*a))
+                .product::<Rational>();
+        for d in &out.cells[..i] {
+            // interiors disjoint: separated along some axis
+            assert!((0..3).any(|k| c.hi[k] <= d.lo[k] || d.hi[k] <= c.lo[k]));
+        }
+    }
+    assert_eq!(sum, total);
+}
+
+#[test]
+fn cli_writes_the_g1_verdict() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("v.toml");
+    fs::write(
+        &spec,
+        "scheme = \"nurds\"\nvalence = 3\nbox = [[0.5, 0.56], [0.45, 0.51], [0.52, 0.58]]\nproperties = [\"class\", \"g1\"]\nmin_width = 0.02\n",
+    )
+    .unwrap();
+    let out = dir.path().join("o");
+    let (code, _, stderr) = common::run(&[
+        "verify",
+        spec.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let text = fs::read_to_string(out.join("cells.csv")).unwrap();
+    assert!(text.starts_with("lo0,lo1,lo2,hi0,hi1,hi2,verdict,class,g1\n"));
+    // every cell is g1 (also the cells whose class stays open)
+    assert!(
+        text.lines()
+            .skip(1)
+            .all(|l| l.contains(",g1,") && l.ends_with(",certified")),
+        "{text}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let f = summary["volume_fraction"]["g1"].as_f64().unwrap();
+    assert!((f - 1.0).abs() < 1e-12, "{f}");
+}
