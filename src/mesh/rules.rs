@@ -104,7 +104,7 @@ pub trait MeshRules: fmt::Debug + Send + Sync {
     }
 
     /// The scheme whose masks refine meshes with boundaries and crease or
-    /// corner tags ([`super::sharp::SharpMesh`], math doc section 13);
+    /// corner tags ([`super::sharp::SharpMesh`], math doc section 17);
     /// `None` (the default) when these rules refine closed meshes only.
     fn sharp_scheme(&self) -> Option<super::sharp::rules::SdcScheme> {
         None

@@ -1,6 +1,6 @@
 //! Open manifold polygon meshes with sharp and semi-sharp edges and
 //! vertices, refined by Catmull-Clark or Loop with OpenSubdiv's Sdc
-//! semantics (math doc section 13).
+//! semantics (math doc section 17).
 //!
 //! [`SharpMesh`] holds the topology (faces, edges, their faces, the edges
 //! and faces around every vertex), the per-edge and per-vertex sharpness

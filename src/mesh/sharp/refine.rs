@@ -1,5 +1,5 @@
 //! One level of Catmull-Clark or Loop refinement of a [`SharpMesh`] with the
-//! masks of [`super::rules`] (math doc section 13), and the sharpness of the
+//! masks of [`super::rules`] (math doc section 17), and the sharpness of the
 //! child edges and vertices. Closed meshes without tags refine to the same
 //! points as the closed refiners ([`crate::mesh::catmull_clark`],
 //! [`crate::schemes::loop_subdivision::mesh`]) up to rounding, with the same

@@ -1,4 +1,4 @@
-//! The rules of sharp and semi-sharp features (math doc section 13): vertex
+//! The rules of sharp and semi-sharp features (math doc section 17): vertex
 //! rules, sharpness decay and the refinement masks of Catmull-Clark and Loop
 //! with OpenSubdiv's Sdc semantics. Pure functions of local data (the
 //! sharpness of a vertex and of its incident edges); the refiner

@@ -1,4 +1,4 @@
-//! OpenSubdiv's tag lines (math doc section 13), read from OBJ text or from a
+//! OpenSubdiv's tag lines (math doc section 17), read from OBJ text or from a
 //! sidecar file of the same lines:
 //!
 //! ```text
