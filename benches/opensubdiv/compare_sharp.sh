@@ -12,8 +12,9 @@
 # 1..LEVELS (default 3), benches/opensubdiv/compare_meshes.py matches the
 # vertices by position, checks the matching is one-to-one and the faces (the
 # ones that are not holes) agree as oriented cycles, and prints the largest
-# distance. A case fails when counts or faces differ or the distance exceeds
-# 1e-12.
+# distance; then the same with `--limit` (OpenSubdiv's
+# PrimvarRefinerReal<double>::Limit on the last level). A case fails when
+# counts or faces differ or the distance exceeds 1e-12.
 set -eu
 LEVELS=${1:-3}
 TMP=$(mktemp -d)
@@ -28,20 +29,22 @@ run() { # name scheme osd-scheme obj tags-or-dash
     for c in uniform chaikin; do
       l=1
       while [ "$l" -le "$LEVELS" ]; do
+       for lim in "" --limit; do
         if [ "$5" = - ]; then
-          "$BIN" subdivide "$4" --scheme "$2" --boundary "$b" --creasing "$c" --levels "$l" -o "$TMP/ours.obj"
+          "$BIN" subdivide "$4" --scheme "$2" --boundary "$b" --creasing "$c" --levels "$l" $lim -o "$TMP/ours.obj"
         else
-          "$BIN" subdivide "$4" --tags "$5" --scheme "$2" --boundary "$b" --creasing "$c" --levels "$l" -o "$TMP/ours.obj"
+          "$BIN" subdivide "$4" --tags "$5" --scheme "$2" --boundary "$b" --creasing "$c" --levels "$l" $lim -o "$TMP/ours.obj"
         fi
-        "$TMP/osd_sharp" "$3" "$b" "$c" "$l" "$4" "$5" "$TMP/osd.obj"
+        "$TMP/osd_sharp" "$3" "$b" "$c" "$l" "$4" "$5" "$TMP/osd.obj" $lim
         r=$(python3 benches/opensubdiv/compare_meshes.py "$TMP/osd.obj" "$TMP/ours.obj")
-        echo "$1 $b $c level $l: $r"
+        echo "$1 $b $c level $l${lim:+ limit}: $r"
         case "$r" in
           *"one-to-one yes; faces equal yes; max distance "*) ;;
           *) fail=1 ;;
         esac
         d=$(echo "$r" | sed 's/.*max distance \([^ ]*\) .*/\1/')
         if python3 -c "import sys; sys.exit(0 if float('$d') <= 1e-12 else 1)"; then :; else fail=1; fi
+       done
         l=$((l + 1))
       done
     done

@@ -2,14 +2,16 @@
 // with crease and corner tags. Not part of the crate's build.
 //
 // Usage: osd_sharp catmark|loop none|edge-only|edge-and-corner uniform|chaikin
-//                  LEVELS IN.obj TAGS|- OUT.obj [--time]
+//                  LEVELS IN.obj TAGS|- OUT.obj [--time|--limit]
 //
 // Reads the OBJ's v and f lines and the `t crease NI/NF/0 ...` and
 // `t corner NI/NF/0 ...` lines of the OBJ and of TAGS (a file of t lines, or
 // "-" for none), builds a Far::TopologyRefiner from a TopologyDescriptor with
 // those sharpness values, refines uniformly LEVELS times and interpolates the
 // positions with Far::PrimvarRefinerReal<double>. Writes the last level as
-// OBJ: every vertex, and every face that is not a hole. With --time it also
+// OBJ: every vertex, and every face that is not a hole; with --limit the
+// vertices are the limit positions of the last level's vertices
+// (PrimvarRefinerReal<double>::Limit). With --time it also
 // prints the best of 3 wall times of (topology + refinement + interpolation)
 // to standard error.
 #include <opensubdiv/far/primvarRefiner.h>
@@ -157,6 +159,7 @@ int main(int argc, char **argv) {
         return 1;
     }
     bool timing = argc > 8 && std::strcmp(argv[8], "--time") == 0;
+    bool limit = argc > 8 && std::strcmp(argv[8], "--limit") == 0;
     if (timing) {
         double best = 1e300;
         for (int run = 0; run < 3; ++run) {
@@ -180,6 +183,13 @@ int main(int argc, char **argv) {
     std::vector<V> buf = interpolate(*r, in);
     Far::TopologyLevel const &last = r->GetLevel(levels);
     size_t first = buf.size() - last.GetNumVertices();
+    if (limit) {
+        std::vector<V> lim(last.GetNumVertices());
+        V const *src = buf.data() + first;
+        V *dst = lim.data();
+        Far::PrimvarRefinerReal<double>(*r).Limit(src, dst);
+        for (size_t i = 0; i < lim.size(); ++i) buf[first + i] = lim[i];
+    }
     std::FILE *out = std::fopen(argv[7], "w");
     if (!out) return 1;
     for (int i = 0; i < last.GetNumVertices(); ++i) {

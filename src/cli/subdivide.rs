@@ -349,11 +349,6 @@ fn run_sharp(
     data: obj::ObjData,
     sidecar: &[tags::Tag],
 ) -> CliResult {
-    if args.limit {
-        return Err(CliError::usage(anyhow!(
-            "--limit: limit positions of meshes with boundaries or tags are not supported"
-        )));
-    }
     let boundary = match args.boundary.unwrap_or(BoundaryArg::EdgeOnly) {
         BoundaryArg::None => Boundary::None,
         BoundaryArg::EdgeOnly => Boundary::EdgeOnly,
@@ -411,6 +406,13 @@ fn run_sharp(
             refine_secs,
             mesh.face_count() as f64 / refine_secs.max(1e-9)
         ));
+    }
+    if args.limit {
+        // OpenSubdiv's limit masks at the last level (math doc section 17).
+        let limit = mesh
+            .limit_positions(scheme)
+            .map_err(|e| CliError::usage(anyhow!("--limit: {e}")))?;
+        mesh.set_positions(limit).map_err(CliError::lib)?;
     }
     let mut buf = Vec::new();
     if args.output.is_some() {

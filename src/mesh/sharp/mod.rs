@@ -7,7 +7,8 @@
 //! (`f32`, OpenSubdiv's precision) and the hole flag of every face.
 //! Boundaries are allowed; non-manifold edges and vertices are not.
 //! Submodules: [`rules`] (vertex rules, sharpness decay, masks), [`tags`]
-//! (OpenSubdiv's `t crease` / `t corner` lines), [`refine`] (one level).
+//! (OpenSubdiv's `t crease` / `t corner` lines), [`refine`] (one level),
+//! [`limit`] (limit positions).
 //!
 //! Index layout of a refined mesh (as the closed refiners):
 //! Catmull-Clark `[vertex points, edge points, face points]` with one quad
@@ -28,6 +29,7 @@
 //! assert_eq!(r.positions()[0], [0.0, 0.0, 0.0]);
 //! ```
 
+pub mod limit;
 pub mod refine;
 pub mod rules;
 pub mod tags;
@@ -155,7 +157,6 @@ fn topology(nv: usize, face_start: &[u32], face_verts: &[u32]) -> Result<Topolog
     let mut face_edges = vec![NONE; nc];
     let mut edge_verts: Vec<[u32; 2]> = Vec::with_capacity(nc / 2 + 1);
     let mut edge_faces: Vec<[u32; 2]> = Vec::with_capacity(nc / 2 + 1);
-    let mut edge_first: Vec<u32> = Vec::with_capacity(nc / 2 + 1);
     for c in 0..nc {
         if face_edges[c] != NONE {
             continue;
@@ -205,9 +206,7 @@ fn topology(nv: usize, face_start: &[u32], face_verts: &[u32]) -> Result<Topolog
         }
         edge_verts.push([a, b]);
         edge_faces.push(faces);
-        edge_first.push(c as u32);
     }
-    drop(edge_first);
     // Vertex incidence.
     let ne = edge_verts.len();
     let mut vert_edge_start = vec![0u32; nv + 1];
