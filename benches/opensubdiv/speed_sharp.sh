@@ -13,6 +13,8 @@
 # refinement of every level (topology, sharpness and positions); OpenSubdiv's
 # covers topology construction from the descriptor, RefineUniform and
 # Interpolate of every level. Neither includes reading or writing OBJ text.
+# Peak resident memory of each whole process (reading, refining, writing) is
+# printed by /usr/bin/time when it is installed.
 set -eu
 N=${1:-320}
 LEVELS=${2:-3}
@@ -43,8 +45,12 @@ with open(path, "w") as f:
         for i in range(32, n, 32):
             f.write(f"t corner 1/1/0 {j * w + i} 3\n")
 PY
+TIME=""
+if [ -x /usr/bin/time ]; then TIME="/usr/bin/time -f peak-rss-kb=%M"; fi
 for run in 1 2 3; do
-  "$BIN" subdivide "$TMP/grid.obj" --scheme catmull-clark --levels "$LEVELS" --timing -o "$TMP/ours.obj" 2>&1 | sed "s/^/subdiv-lab run $run: /"
+  $TIME "$BIN" subdivide "$TMP/grid.obj" --scheme catmull-clark --levels "$LEVELS" --timing -o "$TMP/ours.obj" 2>&1 | sed "s/^/subdiv-lab run $run: /"
 done
+# one run that only refines and writes, for its memory (no timing loop)
+$TIME "$TMP/osd_sharp" catmark edge-only uniform "$LEVELS" "$TMP/grid.obj" - "$TMP/osd.obj" 2>&1 | sed "s/^/opensubdiv single run: /"
 "$TMP/osd_sharp" catmark edge-only uniform "$LEVELS" "$TMP/grid.obj" - "$TMP/osd.obj" --time
 python3 benches/opensubdiv/compare_meshes.py "$TMP/osd.obj" "$TMP/ours.obj"
