@@ -115,6 +115,13 @@ fn many_points(rows: usize) -> &'static str {
     Box::leak(s.into_boxed_str())
 }
 
+/// An open strip of two quads (8 lines: tag lines added after it are line 9 on).
+macro_rules! sharp_strip {
+    () => {
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nf 1 2 5 4\nf 2 3 6 5\n"
+    };
+}
+
 fn cases() -> Vec<Case> {
     let mut v = Vec::new();
 
@@ -2332,6 +2339,68 @@ fn cases() -> Vec<Case> {
             "columns.curvature",
         ),
     ]);
+
+    // ===================================================================
+    // SECTION sharp-meshes: open meshes, crease and corner tags (OBJ `t`
+    // lines and --tags), --boundary, --creasing.
+    // ===================================================================
+    v.extend([
+        bad_with("sharp-tag-bad-counts", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t crease 2/1 0 1 2\n"))], "tag line 9: tag crease: counts \"2/1\""),
+        bad_with("sharp-tag-unsupported-name", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t hole 1/0/0 0\n"))], "tag line 9: unsupported tag \"hole\""),
+        bad_with("sharp-tag-negative-sharpness", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t crease 2/1/0 0 1 -1\n"))], "tag line 9: sharpness -1 must be a finite number >= 0"),
+        bad_with("sharp-tag-nan-sharpness", &["subdivide", "m.obj", "--scheme", "loop", "-o", "o.obj"],
+            &[("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nt corner 1/1/0 0 nan\n")], "tag line 5: sharpness nan"),
+        bad_with("sharp-tag-infinite-sharpness", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t corner 1/1/0 0 inf\n"))], "tag line 9: sharpness inf"),
+        bad_with("sharp-tag-names-no-edge", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t crease 2/1/0 0 4 1\n"))], "tag line 9: the mesh has no edge 0-4"),
+        bad_with("sharp-tag-names-no-vertex", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t corner 1/1/0 6 1\n"))], "tag line 9: the mesh has no vertex 6"),
+        bad_with("sharp-tag-duplicate", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t crease 2/1/0 0 1 1\nt crease 2/1/0 1 0 2\n"))], "tag line 10: edge 1-0 was already tagged on line 9"),
+        bad_with("sharp-tag-bad-index", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t crease 2/1/0 0 x 1\n"))], "tag line 9: tag crease: vertex index \"x\""),
+        bad_with("sharp-tag-missing-argument", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t crease 2/1/0 0 1\n"))], "tag line 9: tag crease 2/1/0: expected 3 arguments, got 2"),
+        bad_with("sharp-tag-odd-crease-indices", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t crease 3/1/0 0 1 2 1\n"))], "tag line 9: tag crease: 3 vertex indices"),
+        bad_with("sharp-tags-file-missing", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--tags", "nope.tags", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "nope.tags"),
+        bad_with("sharp-tags-file-non-tag-line", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--tags", "t.tags", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!()), ("t.tags", "# tags\nv 0 0 0\n")], "t.tags: tag line 2: \"v\": a tag file holds only t lines"),
+        bad_with("sharp-tags-file-names-no-edge", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--tags", "t.tags", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!()), ("t.tags", "t crease 2/1/0 0 5 1\n")], "t.tags: tag line 1: the mesh has no edge 0-5"),
+        bad_with("sharp-tags-file-is-output", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--tags", "t.tags", "-o", "t.tags"],
+            &[("m.obj", sharp_strip!()), ("t.tags", "t crease 2/1/0 0 1 1\n")], "t.tags"),
+        bad_with("sharp-open-non-manifold-edge", &["subdivide", "m.obj", "--scheme", "loop", "-o", "o.obj"],
+            &[("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n")], "non-manifold edge 0-1 (OBJ 1-2): it lies in 3 faces"),
+        bad_with("sharp-open-non-manifold-vertex", &["subdivide", "m.obj", "--scheme", "loop", "-o", "o.obj"],
+            &[("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n")], "non-manifold vertex 0 (OBJ 1): its faces form 2 separate fans"),
+        bad_with("sharp-boundary-bad-value", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--boundary", "sideways", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "sideways"),
+        bad_with("sharp-creasing-bad-value", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--creasing", "linear", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "linear"),
+        bad("sharp-boundary-with-closed-only-scheme", &["subdivide", "{M}/cube.obj", "--scheme", "nurds", "--boundary", "edge-only", "-o", "o.obj"],
+            "--boundary: scheme nurds refines closed meshes without tags only"),
+        bad("sharp-creasing-with-closed-only-scheme", &["subdivide", "{M}/cube.obj", "--scheme", "adjustable-cc", "--c", "0.3", "--creasing", "chaikin", "-o", "o.obj"],
+            "--creasing: scheme adjustable-cc refines closed meshes without tags only"),
+        bad_with("sharp-tags-with-closed-only-scheme", &["subdivide", "{M}/cube.obj", "--scheme", "nurds", "--tags", "t.tags", "-o", "o.obj"],
+            &[("t.tags", "t crease 2/1/0 0 1 1\n")], "--tags: scheme nurds refines closed meshes without tags only"),
+        bad_with("sharp-obj-tags-with-closed-only-scheme", &["subdivide", "m.obj", "--scheme", "doo-sabin", "-o", "o.obj"],
+            &[("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nt crease 2/1/0 0 1 1\n")], "tag line 9: crease and corner tags need --scheme catmull-clark or loop"),
+        bad_with("sharp-limit-needs-quads", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--levels", "0", "--limit", "-o", "o.obj"],
+            &[("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")], "--limit: face 0 has 3 corners; the Catmull-Clark limit masks needs an all-quad mesh"),
+        bad_with("sharp-loop-on-open-quads", &["subdivide", "m.obj", "--scheme", "loop", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "face 0 has 4 corners; --scheme loop needs an all-triangle mesh"),
+        bad_with("sharp-levels-too-many", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--levels", "40", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "--levels 40: the result would have"),
+        bad_with("sharp-levels-over-budget", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--levels", "13", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "--levels 13"),
+    ]);
+    // (end of section sharp-meshes)
 
     v
 }

@@ -1,6 +1,11 @@
 //! `subdivide`: refine a closed OBJ mesh with any built-in scheme, through
 //! its mesh rules ([`subdiv_lab::scheme::registry::mesh_rules`]): one flow that
 //! asks the rules for capabilities (knot intervals, per-level statistics).
+//! Rules with sharp-feature masks (Catmull-Clark, Loop) also refine open
+//! meshes and meshes with crease and corner tags (from the OBJ's `t` lines
+//! and `--tags FILE`) through [`subdiv_lab::mesh::sharp::SharpMesh`], with
+//! `--boundary` and `--creasing`; closed meshes without tags take the closed
+//! refiners.
 //!
 //! Conflicting outputs (`-o X --knots-out X`, an output naming the input) are
 //! refused before anything is written. All outputs are produced in memory
@@ -17,7 +22,9 @@ use std::path::PathBuf;
 use subdiv_lab::mesh::limit::LevelStats;
 use subdiv_lab::mesh::refine::half_edges_after;
 use subdiv_lab::mesh::rules::KnotUse;
-use subdiv_lab::mesh::{knot_file, obj, MAX_HALF_EDGES};
+use subdiv_lab::mesh::sharp::rules::{Boundary, Creasing, SdcScheme};
+use subdiv_lab::mesh::sharp::{tags, SharpMesh};
+use subdiv_lab::mesh::{knot_file, obj, Mesh, MeshError, MAX_HALF_EDGES};
 use subdiv_lab::scheme::choice::{validate, Choice, ChoiceError};
 use subdiv_lab::scheme::registry::mesh_rules;
 use subdiv_lab::schemes::SchemeKind;
@@ -37,6 +44,20 @@ pub(crate) struct SubdivideArgs {
     /// Interval of every directed edge not listed in --knots.
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     default_interval: f64,
+    /// Crease and corner tags, OpenSubdiv's OBJ tag lines ("t crease 2/1/0 V0
+    /// V1 S", "t corner 1/1/0 V S"; 0-based vertices) and comments only;
+    /// applied after the OBJ's own tags. Catmull-Clark and Loop.
+    #[arg(long)]
+    tags: Option<PathBuf>,
+    /// Boundary interpolation of open meshes (Catmull-Clark, Loop):
+    /// sharp boundary edges; edge-and-corner also keeps boundary vertices
+    /// with one face; none leaves the faces at the boundary out.
+    #[arg(long, value_enum)]
+    boundary: Option<BoundaryArg>,
+    /// Decay of semi-sharp creases (Catmull-Clark, Loop): sharpness - 1 per
+    /// level, or Chaikin's average with the neighbouring creases.
+    #[arg(long, value_enum)]
+    creasing: Option<CreasingArg>,
     /// Number of refinement steps.
     #[arg(long, default_value_t = 1)]
     levels: usize,
@@ -65,6 +86,21 @@ pub(crate) struct SubdivideArgs {
     force: bool,
 }
 
+/// `--boundary` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum BoundaryArg {
+    None,
+    EdgeOnly,
+    EdgeAndCorner,
+}
+
+/// `--creasing` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum CreasingArg {
+    Uniform,
+    Chaikin,
+}
+
 /// Refuses a refinement whose output (`half_edges` half-edges) exceeds the
 /// memory or time limit (before any level is refined).
 fn check_budget(args: &SubdivideArgs, half_edges: u64) -> CliResult {
@@ -89,6 +125,9 @@ fn check_outputs(args: &SubdivideArgs) -> CliResult {
     let mut inputs = vec![("the input", args.input.as_path())];
     if let Some(p) = &args.knots {
         inputs.push(("--knots", p.as_path()));
+    }
+    if let Some(p) = &args.tags {
+        inputs.push(("--tags", p.as_path()));
     }
     check_distinct(&outputs, &inputs)
 }
@@ -141,20 +180,63 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
             args.default_interval
         )));
     }
+    let sharp = rules.sharp_scheme();
+    if sharp.is_none() {
+        for (flag, given) in [
+            ("--tags", args.tags.is_some()),
+            ("--boundary", args.boundary.is_some()),
+            ("--creasing", args.creasing.is_some()),
+        ] {
+            if given {
+                return Err(CliError::usage(anyhow!(
+                    "{flag}: scheme {kind} refines closed meshes without tags only (use catmull-clark or loop)"
+                )));
+            }
+        }
+    }
     let text = std::fs::read_to_string(&args.input)
         .with_context(|| format!("cannot read {}", args.input.display()))
         .map_err(CliError::usage)?;
-    let (mut mesh, info) = obj::parse_obj(&text)
+    let mut data = obj::parse_obj_data(&text)
         .with_context(|| format!("{}", args.input.display()))
         .map_err(CliError::usage)?;
+    let sidecar = match &args.tags {
+        Some(path) => {
+            let t = std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read {}", path.display()))
+                .map_err(CliError::usage)?;
+            tags::parse_tag_file(&t)
+                .with_context(|| format!("{}", path.display()))
+                .map_err(CliError::usage)?
+        }
+        None => Vec::new(),
+    };
+    let input = || format!("{}", args.input.display());
+    let info = std::mem::take(&mut data.info);
+    let mut mesh = match sharp {
+        Some(scheme) => {
+            if !data.tags.is_empty() || args.tags.is_some() {
+                data.info = info;
+                return run_sharp(&args, kind, scheme, data, &sidecar);
+            }
+            // Closed meshes without tags take the closed refiners.
+            match Mesh::from_polygons(data.positions.clone(), &data.faces) {
+                Err(MeshError::BoundaryEdge { .. }) => {
+                    data.info = info;
+                    return run_sharp(&args, kind, scheme, data, &sidecar);
+                }
+                other => other,
+            }
+        }
+        None => match data.tags.first() {
+            Some(t) => Err(MeshError::TagsUnsupported { line: t.line }),
+            None => Mesh::from_polygons(data.positions, &data.faces),
+        },
+    }
+    .with_context(input)
+    .map_err(CliError::usage)?;
     // Printed only when the run succeeds: an error stays a single stderr line.
-    let note = (info.ignored_statements > 0).then(|| {
-        format!(
-            "note: ignored {} OBJ statements ({})",
-            info.ignored_statements,
-            info.ignored_keywords.join(", ")
-        )
-    });
+    let note = ignored_note(&info);
     let knot_text = match &args.knots {
         Some(path) => Some(
             std::fs::read_to_string(path)
@@ -241,6 +323,110 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     }
     staged.commit()?;
     if let Some(note) = note {
+        write_stderr(&note);
+    }
+    Ok(())
+}
+
+/// The note on ignored OBJ statements, if any.
+fn ignored_note(info: &obj::ObjInfo) -> Option<String> {
+    (info.ignored_statements > 0).then(|| {
+        format!(
+            "note: ignored {} OBJ statements ({})",
+            info.ignored_statements,
+            info.ignored_keywords.join(", ")
+        )
+    })
+}
+
+/// `subdivide` of an open or tagged mesh with the sharp-feature rules of
+/// `scheme`: validate, apply the OBJ's tags then the tag file's, refine,
+/// write (the faces that are holes under `--boundary none` are left out).
+fn run_sharp(
+    args: &SubdivideArgs,
+    kind: SchemeKind,
+    scheme: SdcScheme,
+    data: obj::ObjData,
+    sidecar: &[tags::Tag],
+) -> CliResult {
+    let boundary = match args.boundary.unwrap_or(BoundaryArg::EdgeOnly) {
+        BoundaryArg::None => Boundary::None,
+        BoundaryArg::EdgeOnly => Boundary::EdgeOnly,
+        BoundaryArg::EdgeAndCorner => Boundary::EdgeAndCorner,
+    };
+    let creasing = match args.creasing.unwrap_or(CreasingArg::Uniform) {
+        CreasingArg::Uniform => Creasing::Uniform,
+        CreasingArg::Chaikin => Creasing::Chaikin,
+    };
+    let input = || format!("{}", args.input.display());
+    let mut builder = SharpMesh::builder(data.positions, &data.faces)
+        .with_context(input)
+        .map_err(CliError::usage)?;
+    builder
+        .tags(&data.tags)
+        .with_context(input)
+        .map_err(CliError::usage)?;
+    if let Some(path) = &args.tags {
+        builder
+            .tags(sidecar)
+            .with_context(|| format!("{}", path.display()))
+            .map_err(CliError::usage)?;
+    }
+    let mesh = builder.build(boundary);
+    if scheme == SdcScheme::Loop {
+        if let Some(f) = (0..mesh.face_count()).find(|&f| mesh.face_vertices(f).len() != 3) {
+            return Err(CliError::usage(anyhow!(
+                "{}: face {f} has {} corners; --scheme {kind} needs an all-triangle mesh",
+                args.input.display(),
+                mesh.face_vertices(f).len()
+            )));
+        }
+    }
+    let needed = (mesh.corner_count() as u64)
+        .saturating_mul(4u64.saturating_pow(args.levels.min(64) as u32));
+    if needed > MAX_HALF_EDGES {
+        return Err(CliError::usage(anyhow!(
+            "--levels {}: the result would have {needed} half-edges (limit {MAX_HALF_EDGES})",
+            args.levels
+        )));
+    }
+    check_budget(args, needed)?;
+    let mut mesh = mesh;
+    let t = std::time::Instant::now();
+    for _ in 0..args.levels {
+        mesh = mesh.refine(scheme, creasing).map_err(CliError::lib)?;
+    }
+    let refine_secs = t.elapsed().as_secs_f64();
+    if args.timing {
+        write_stderr(&format!(
+            "refinement: {} levels, {} faces, {} vertices, {:.6} s, {:.0} output faces/s",
+            args.levels,
+            mesh.face_count(),
+            mesh.vertex_count(),
+            refine_secs,
+            mesh.face_count() as f64 / refine_secs.max(1e-9)
+        ));
+    }
+    if args.limit {
+        // OpenSubdiv's limit masks at the last level (math doc section 17).
+        let limit = mesh
+            .limit_positions(scheme)
+            .map_err(|e| CliError::usage(anyhow!("--limit: {e}")))?;
+        mesh.set_positions(limit).map_err(CliError::lib)?;
+    }
+    let mut buf = Vec::new();
+    if args.output.is_some() {
+        mesh.write_obj(&mut buf).map_err(CliError::failure)?;
+    }
+    match &args.output {
+        Some(path) if path.as_os_str() != "-" => {
+            let staged = Staged::write(&[(path.clone(), buf)])?;
+            staged.commit()?;
+        }
+        Some(_) => write_stdout(&buf)?,
+        None => {}
+    }
+    if let Some(note) = ignored_note(&data.info) {
         write_stderr(&note);
     }
     Ok(())

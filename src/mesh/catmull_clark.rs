@@ -202,4 +202,9 @@ impl super::rules::MeshRules for CatmullClarkRules {
     fn limit_mesh(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
         limit_mesh_cc(mesh, self.c)
     }
+
+    /// Catmull-Clark (`c = 1/2`) only.
+    fn sharp_scheme(&self) -> Option<super::sharp::rules::SdcScheme> {
+        (self.c == 0.5).then_some(super::sharp::rules::SdcScheme::CatmullClark)
+    }
 }

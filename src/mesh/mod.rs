@@ -48,6 +48,7 @@ pub mod obj;
 pub(crate) mod projection;
 pub mod refine;
 pub mod rules;
+pub mod sharp;
 
 use std::fmt;
 
@@ -284,6 +285,58 @@ pub enum MeshError {
         corners: usize,
         /// What needed triangles.
         operation: &'static str,
+    },
+    /// A malformed crease or corner tag line (OBJ or tag file).
+    #[error("tag line {line}: {message}")]
+    TagSyntax {
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A tag sharpness that is negative, NaN or infinite.
+    #[error("tag line {line}: sharpness {value} must be a finite number >= 0")]
+    TagSharpness {
+        /// 1-based line number.
+        line: usize,
+        /// The value, as text.
+        value: String,
+    },
+    /// A crease tag naming two vertices that share no edge.
+    #[error("tag line {line}: the mesh has no edge {u}-{v} (0-based vertex indices)")]
+    TagUnknownEdge {
+        /// 1-based line number.
+        line: usize,
+        /// One end (0-based).
+        u: usize,
+        /// The other end (0-based).
+        v: usize,
+    },
+    /// A corner tag naming a vertex the mesh does not have.
+    #[error("tag line {line}: the mesh has no vertex {vertex} (0-based; it has {vertex_count})")]
+    TagUnknownVertex {
+        /// 1-based line number.
+        line: usize,
+        /// The vertex (0-based).
+        vertex: usize,
+        /// Number of vertices.
+        vertex_count: usize,
+    },
+    /// An edge or vertex tagged twice.
+    #[error("tag line {line}: {what} was already tagged on line {first_line}")]
+    TagDuplicate {
+        /// 1-based line number of the repetition.
+        line: usize,
+        /// The edge or vertex (0-based indices).
+        what: String,
+        /// Line of the first tag.
+        first_line: usize,
+    },
+    /// Crease or corner tags given to a scheme or mesh that cannot carry them.
+    #[error("tag line {line}: crease and corner tags need --scheme catmull-clark or loop")]
+    TagsUnsupported {
+        /// 1-based line number of the first tag.
+        line: usize,
     },
     /// The shape parameter `c` of the Catmull-Clark family is outside `[0, 1]`.
     #[error("shape parameter c = {0} is not in [0, 1]")]

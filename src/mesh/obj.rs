@@ -2,7 +2,8 @@
 //!
 //! Read: `v x y z [w]` (w ignored), `f` with any number of corners in the
 //! forms `v`, `v/vt`, `v//vn`, `v/vt/vn`, positive (1-based) or negative
-//! (relative to the vertices read so far) indices. Every other statement
+//! (relative to the vertices read so far) indices, and OpenSubdiv's `t crease`
+//! / `t corner` tag lines ([`super::sharp::tags`]). Every other statement
 //! (`vt`, `vn`, `g`, `o`, `s`, `usemtl`, `mtllib`, `l`, `p`, ...) is ignored and
 //! counted. `#` starts a comment.
 //!
@@ -17,6 +18,7 @@
 //! assert_eq!(again.positions(), mesh.positions());
 //! ```
 
+use super::sharp::tags::{parse_tag_tokens, Tag};
 use super::{Mesh, MeshError};
 use std::io::{self, Write};
 
@@ -36,6 +38,8 @@ pub struct ObjData {
     pub positions: Vec<[f64; 3]>,
     /// Faces (0-based vertex indices).
     pub faces: Vec<Vec<usize>>,
+    /// Crease and corner tags (`t` lines).
+    pub tags: Vec<Tag>,
     /// Ignored statements.
     pub info: ObjInfo,
 }
@@ -92,6 +96,7 @@ pub fn parse_obj_data(text: &str) -> Result<ObjData, MeshError> {
                 }
                 data.faces.push(face);
             }
+            "t" => parse_tag_tokens(line, tokens, &mut data.tags)?,
             other => {
                 data.info.ignored_statements += 1;
                 if !data.info.ignored_keywords.iter().any(|k| k == other) {
@@ -103,9 +108,14 @@ pub fn parse_obj_data(text: &str) -> Result<ObjData, MeshError> {
     Ok(data)
 }
 
-/// Parses OBJ text into a validated mesh (all knot intervals 1).
+/// Parses OBJ text into a validated closed mesh (all knot intervals 1).
+/// Crease and corner tags are refused ([`MeshError::TagsUnsupported`]): a
+/// [`Mesh`] carries none ([`super::sharp::SharpMesh`] does).
 pub fn parse_obj(text: &str) -> Result<(Mesh, ObjInfo), MeshError> {
     let data = parse_obj_data(text)?;
+    if let Some(t) = data.tags.first() {
+        return Err(MeshError::TagsUnsupported { line: t.line });
+    }
     let mesh = Mesh::from_polygons(data.positions, &data.faces)?;
     Ok((mesh, data.info))
 }

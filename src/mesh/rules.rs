@@ -103,6 +103,13 @@ pub trait MeshRules: fmt::Debug + Send + Sync {
         Some(Ok((m, stats)))
     }
 
+    /// The scheme whose masks refine meshes with boundaries and crease or
+    /// corner tags ([`super::sharp::SharpMesh`], math doc section 17);
+    /// `None` (the default) when these rules refine closed meshes only.
+    fn sharp_scheme(&self) -> Option<super::sharp::rules::SdcScheme> {
+        None
+    }
+
     /// The local configuration that governs face `f` of `mesh` under these
     /// rules, for face-centred schemes whose extraordinary faces persist
     /// under refinement (the Doo-Sabin family: the face's own edge ratios

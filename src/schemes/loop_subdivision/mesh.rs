@@ -382,4 +382,8 @@ impl crate::mesh::rules::MeshRules for LoopRules {
     fn limit_mesh(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
         limit_mesh(mesh)
     }
+
+    fn sharp_scheme(&self) -> Option<crate::mesh::sharp::rules::SdcScheme> {
+        Some(crate::mesh::sharp::rules::SdcScheme::Loop)
+    }
 }

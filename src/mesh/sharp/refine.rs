@@ -1,0 +1,360 @@
+//! One level of Catmull-Clark or Loop refinement of a [`SharpMesh`] with the
+//! masks of [`super::rules`] (math doc section 17), and the sharpness of the
+//! child edges and vertices. Closed meshes without tags refine to the same
+//! points as the closed refiners ([`crate::mesh::catmull_clark`],
+//! [`crate::schemes::loop_subdivision::mesh`]) up to rounding, with the same
+//! index layout.
+
+use super::rules::{self, decrement, edge_weights, is_sharp, Creasing, SdcScheme, VertexMask};
+use super::{topology, SharpMesh, NONE};
+use crate::mesh::{MeshError, MAX_HALF_EDGES};
+
+fn add(a: &mut [f64; 3], b: &[f64; 3], w: f64) {
+    a[0] += w * b[0];
+    a[1] += w * b[1];
+    a[2] += w * b[2];
+}
+
+impl SharpMesh {
+    /// One refinement step with `scheme`'s masks and `creasing`'s
+    /// sharpness decay.
+    ///
+    /// Errors: [`MeshError::NotAllTriangles`] for Loop on a face that is
+    /// not a triangle; [`MeshError::TooLarge`] if the result would exceed
+    /// the 32-bit index range.
+    pub fn refine(&self, scheme: SdcScheme, creasing: Creasing) -> Result<SharpMesh, MeshError> {
+        if scheme == SdcScheme::Loop {
+            if let Some(f) = self.first_non_triangle() {
+                return Err(MeshError::NotAllTriangles {
+                    face: f,
+                    corners: self.face_vertices(f).len(),
+                    operation: "Loop refinement",
+                });
+            }
+        }
+        let nc = self.corner_count() as u64;
+        if 4 * nc > MAX_HALF_EDGES {
+            return Err(MeshError::TooLarge {
+                half_edges: 4 * nc,
+                max: MAX_HALF_EDGES,
+            });
+        }
+        let (nv, ne, nf) = (self.vertex_count(), self.edge_count(), self.face_count());
+        let p = &self.positions;
+
+        // Child sharpness of every edge at each of its ends.
+        let mut edge_child = vec![[0.0f32; 2]; ne];
+        let mut parent_buf: Vec<f32> = Vec::new();
+        let mut child_buf: Vec<f32> = Vec::new();
+        let mut vertex_sharp_edges = vec![false; nv];
+        for v in 0..nv {
+            let edges = self.vertex_edges(v);
+            if !edges
+                .iter()
+                .any(|&e| is_sharp(self.edge_sharpness[e as usize]))
+            {
+                continue;
+            }
+            vertex_sharp_edges[v] = true;
+            parent_buf.clear();
+            parent_buf.extend(edges.iter().map(|&e| self.edge_sharpness[e as usize]));
+            child_buf.clear();
+            child_buf.resize(edges.len(), 0.0);
+            rules::child_edge_sharpness(creasing, &parent_buf, &mut child_buf);
+            for (&e, &c) in edges.iter().zip(&child_buf) {
+                let end = usize::from(self.edge_verts[e as usize][0] as usize != v);
+                edge_child[e as usize][end] = c;
+            }
+        }
+
+        let face_points = scheme == SdcScheme::CatmullClark;
+        let total = nv + ne + if face_points { nf } else { 0 };
+        let mut positions = vec![[0.0f64; 3]; total];
+        if face_points {
+            for f in 0..nf {
+                let verts = self.face_vertices(f);
+                let w = 1.0 / verts.len() as f64;
+                let out = &mut positions[nv + ne + f];
+                for &v in verts {
+                    add(out, &p[v as usize], w);
+                }
+            }
+        }
+        // Edge points.
+        for e in 0..ne {
+            let [a, b] = self.edge_verts[e];
+            let (wv, wf) = edge_weights(scheme, self.edge_sharpness[e], edge_child[e]);
+            let mut out = [0.0; 3];
+            add(&mut out, &p[a as usize], wv);
+            add(&mut out, &p[b as usize], wv);
+            if wf != 0.0 {
+                for &f in &self.edge_faces[e] {
+                    if f == NONE {
+                        continue;
+                    }
+                    let point = if face_points {
+                        positions[nv + ne + f as usize]
+                    } else {
+                        let opposite = self
+                            .face_vertices(f as usize)
+                            .iter()
+                            .copied()
+                            .find(|&x| x != a && x != b)
+                            .unwrap_or(a);
+                        p[opposite as usize]
+                    };
+                    add(&mut out, &point, wf);
+                }
+            }
+            positions[nv + e] = out;
+        }
+        // Vertex points.
+        let mut mask = VertexMask::default();
+        for v in 0..nv {
+            let edges = self.vertex_edges(v);
+            let faces = self.vertex_faces(v);
+            let mut out = [0.0; 3];
+            let far = |e: u32| -> usize {
+                let [a, b] = self.edge_verts[e as usize];
+                if a as usize == v {
+                    b as usize
+                } else {
+                    a as usize
+                }
+            };
+            if !vertex_sharp_edges[v] && !is_sharp(self.vertex_sharpness[v]) {
+                let (wv, we, wf) = rules::smooth_vertex_weights(scheme, edges.len());
+                add(&mut out, &p[v], wv);
+                for &e in edges {
+                    add(&mut out, &p[far(e)], we);
+                }
+                if face_points {
+                    for &f in faces {
+                        let fp = positions[nv + ne + f as usize];
+                        add(&mut out, &fp, wf);
+                    }
+                }
+            } else {
+                parent_buf.clear();
+                parent_buf.extend(edges.iter().map(|&e| self.edge_sharpness[e as usize]));
+                mask.compute(
+                    scheme,
+                    creasing,
+                    self.vertex_sharpness[v],
+                    &parent_buf,
+                    faces.len(),
+                );
+                add(&mut out, &p[v], mask.v);
+                for (&e, &w) in edges.iter().zip(&mask.edges) {
+                    if w != 0.0 {
+                        add(&mut out, &p[far(e)], w);
+                    }
+                }
+                if face_points {
+                    for (&f, &w) in faces.iter().zip(&mask.faces) {
+                        if w != 0.0 {
+                            let fp = positions[nv + ne + f as usize];
+                            add(&mut out, &fp, w);
+                        }
+                    }
+                }
+            }
+            positions[v] = out;
+        }
+
+        // Child faces.
+        let (face_start, face_verts, hole) = if face_points {
+            let mut face_verts = Vec::with_capacity(4 * nc as usize);
+            let mut hole = Vec::with_capacity(nc as usize);
+            for f in 0..nf {
+                let (s, t) = (self.face_start[f] as usize, self.face_start[f + 1] as usize);
+                for c in s..t {
+                    let prev = if c == s { t - 1 } else { c - 1 };
+                    face_verts.extend_from_slice(&[
+                        self.face_verts[c],
+                        (nv + self.face_edges[c] as usize) as u32,
+                        (nv + ne + f) as u32,
+                        (nv + self.face_edges[prev] as usize) as u32,
+                    ]);
+                    hole.push(self.hole[f]);
+                }
+            }
+            let face_start: Vec<u32> = (0..=nc as usize).map(|f| (4 * f) as u32).collect();
+            (face_start, face_verts, hole)
+        } else {
+            let mut face_verts = Vec::with_capacity(4 * nc as usize);
+            let mut hole = Vec::with_capacity(4 * nf);
+            for f in 0..nf {
+                let s = self.face_start[f] as usize;
+                let ep = |k: usize| (nv + self.face_edges[s + k] as usize) as u32;
+                for k in 0..3 {
+                    face_verts.extend_from_slice(&[self.face_verts[s + k], ep(k), ep((k + 2) % 3)]);
+                }
+                face_verts.extend_from_slice(&[ep(0), ep(1), ep(2)]);
+                hole.extend_from_slice(&[self.hole[f]; 4]);
+            }
+            let face_start: Vec<u32> = (0..=4 * nf).map(|f| (3 * f) as u32).collect();
+            (face_start, face_verts, hole)
+        };
+        let t = topology(total, &face_start, &face_verts)?;
+        let mut child = SharpMesh {
+            positions,
+            face_start,
+            face_verts,
+            face_edges: t.face_edges,
+            edge_verts: t.edge_verts,
+            edge_faces: t.edge_faces,
+            vert_edge_start: t.vert_edge_start,
+            vert_edges: t.vert_edges,
+            vert_face_start: t.vert_face_start,
+            vert_faces: t.vert_faces,
+            edge_sharpness: Vec::new(),
+            vertex_sharpness: vec![0.0; total],
+            hole,
+        };
+        child.edge_sharpness = vec![0.0; child.edge_count()];
+        // Vertex points keep their parent's rotational edge order.
+        for v in 0..nv {
+            let start = child.vert_edge_start[v] as usize;
+            for (i, &e) in self.vertex_edges(v).iter().enumerate() {
+                let k = child.vert_edges[start + i..child.vert_edge_start[v + 1] as usize]
+                    .iter()
+                    .position(|&ce| {
+                        let [a, b] = child.edge_verts[ce as usize];
+                        a as usize == nv + e as usize || b as usize == nv + e as usize
+                    })
+                    .unwrap_or(0);
+                child.vert_edges.swap(start + i, start + i + k);
+            }
+        }
+        for e in 0..ne {
+            if !is_sharp(self.edge_sharpness[e]) {
+                continue;
+            }
+            let [a, b] = self.edge_verts[e];
+            for (end, x) in [a, b].into_iter().enumerate() {
+                if let Some(ce) = child.find_edge(x as usize, nv + e) {
+                    child.edge_sharpness[ce] = edge_child[e][end];
+                }
+            }
+        }
+        for v in 0..nv {
+            child.vertex_sharpness[v] = decrement(self.vertex_sharpness[v]);
+        }
+        Ok(child)
+    }
+
+    /// `levels` steps of [`refine`](Self::refine); the size of the result
+    /// is checked before the first step.
+    pub fn refine_levels(
+        &self,
+        scheme: SdcScheme,
+        creasing: Creasing,
+        levels: usize,
+    ) -> Result<SharpMesh, MeshError> {
+        let needed =
+            (self.corner_count() as u64).saturating_mul(4u64.saturating_pow(levels as u32));
+        if needed > MAX_HALF_EDGES {
+            return Err(MeshError::TooLarge {
+                half_edges: needed,
+                max: MAX_HALF_EDGES,
+            });
+        }
+        let mut m = self.clone();
+        for _ in 0..levels {
+            m = m.refine(scheme, creasing)?;
+        }
+        Ok(m)
+    }
+
+    /// Writes the mesh as OBJ (`v` lines with round-trip precision, then
+    /// the `f` lines of the faces that are not holes, 1-based).
+    pub fn write_obj<W: std::io::Write>(&self, out: &mut W) -> std::io::Result<()> {
+        let kept = (0..self.face_count()).filter(|&f| !self.hole[f]).count();
+        writeln!(
+            out,
+            "# subdiv-lab: {} vertices, {} faces",
+            self.vertex_count(),
+            kept
+        )?;
+        for p in &self.positions {
+            writeln!(out, "v {:?} {:?} {:?}", p[0], p[1], p[2])?;
+        }
+        let mut line = String::new();
+        for f in 0..self.face_count() {
+            if self.hole[f] {
+                continue;
+            }
+            line.clear();
+            line.push('f');
+            for &v in self.face_vertices(f) {
+                use std::fmt::Write as _;
+                let _ = write!(line, " {}", v + 1);
+            }
+            line.push('\n');
+            out.write_all(line.as_bytes())?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::rules::Boundary;
+    use super::*;
+    use crate::mesh::generators;
+
+    fn sharp_from(mesh: &crate::mesh::Mesh) -> SharpMesh {
+        let faces: Vec<Vec<usize>> = (0..mesh.face_count())
+            .map(|f| mesh.face_vertices(f).collect())
+            .collect();
+        SharpMesh::new(mesh.positions().to_vec(), &faces, &[], Boundary::EdgeOnly).unwrap()
+    }
+
+    fn max_diff(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
+        assert_eq!(a.len(), b.len());
+        a.iter()
+            .zip(b)
+            .flat_map(|(x, y)| (0..3).map(move |k| (x[k] - y[k]).abs()))
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn closed_untagged_meshes_agree_with_the_closed_refiners() {
+        let cube = generators::cube();
+        let ours = sharp_from(&cube)
+            .refine_levels(SdcScheme::CatmullClark, Creasing::Uniform, 2)
+            .unwrap();
+        let theirs = crate::mesh::catmull_clark::refine_cc_levels(&cube, 0.5, 2).unwrap();
+        assert!(max_diff(ours.positions(), theirs.positions()) < 1e-14);
+        for f in 0..theirs.face_count() {
+            let v: Vec<u32> = theirs.face_vertices(f).map(|v| v as u32).collect();
+            assert_eq!(ours.face_vertices(f), &v[..]);
+        }
+        let ico = generators::icosahedron();
+        let ours = sharp_from(&ico)
+            .refine_levels(SdcScheme::Loop, Creasing::Chaikin, 2)
+            .unwrap();
+        let theirs = crate::schemes::loop_subdivision::mesh::refine_levels(&ico, 2).unwrap();
+        assert!(max_diff(ours.positions(), theirs.positions()) < 1e-14);
+    }
+
+    #[test]
+    fn infinitely_sharp_boundary_is_a_cubic_b_spline() {
+        // a 3x1 strip of quads: the bottom boundary row refines by the
+        // cubic B-spline curve rules (1/8, 3/4, 1/8) and (1/2, 1/2)
+        let p: Vec<[f64; 3]> = (0..8)
+            .map(|i| [(i % 4) as f64, (i / 4) as f64, ((i % 4) * (i % 4)) as f64])
+            .collect();
+        let faces = vec![vec![0, 1, 5, 4], vec![1, 2, 6, 5], vec![2, 3, 7, 6]];
+        let m = SharpMesh::new(p.clone(), &faces, &[], Boundary::EdgeOnly).unwrap();
+        let r = m
+            .refine(SdcScheme::CatmullClark, Creasing::Uniform)
+            .unwrap();
+        let z1 = r.positions()[1][2];
+        assert!((z1 - (0.125 * 0.0 + 0.75 * 1.0 + 0.125 * 4.0)).abs() < 1e-15);
+        let e = m.find_edge(1, 2).unwrap();
+        let mid = r.positions()[8 + e];
+        assert!((mid[2] - 2.5).abs() < 1e-15);
+    }
+}
