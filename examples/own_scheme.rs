@@ -31,7 +31,7 @@
 use subdiv_lab::schemes::catmull_clark::patch_matrix;
 use subdiv_lab::schemes::{Assembler, LocalMatrix, PointLabel, Role};
 use subdiv_lab::spectral::{analyze, AnalyzeOptions};
-use subdiv_lab::sweep::own::{sweep, to_csv};
+use subdiv_lab::sweep::{run_csv, Plan, SchemeFactory, SweepSpec};
 use subdiv_lab::Scheme;
 
 /// Step 1: the configuration type. One valence, the scheme's parameters.
@@ -142,6 +142,21 @@ impl Scheme for VertexWeightCc {
     }
 }
 
+/// Step 4: a sweep plan over valences 3..=8 at the weights `beta`, `gamma`
+/// (a configuration that fails validation records its error in its row).
+pub fn valence_sweep(beta: f64, gamma: f64) -> Result<Plan, Box<dyn std::error::Error>> {
+    let spec = SweepSpec::from_toml(
+        "name = \"vertex-weight-cc\"\nscheme = \"catmull-clark\"\nvalences = [3, 4, 5, 6, 7, 8]\n\
+         [space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n\
+         [columns]\ncharmap = true\n",
+    )?;
+    let cost = VertexWeightCc::catmull_clark(5).cost_model();
+    let factory = SchemeFactory::new("vertex-weight-cc", cost, move |n| {
+        Ok(Box::new(VertexWeightCc::new(n, beta, gamma)?) as Box<dyn Scheme>)
+    });
+    Ok(Plan::with_scheme(spec, factory)?)
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // Analysis: the same `analyze` as `subdiv-lab analyze`.
     let s = VertexWeightCc::catmull_clark(5);
@@ -162,10 +177,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         too_big.what
     );
 
-    // A sweep over beta at n = 5 (gamma fixed at Catmull-Clark's).
-    let betas: Vec<f64> = (1..=9).map(|k| k as f64 / 20.0).collect();
-    let rows = sweep(&betas, |&b| VertexWeightCc::new(5, b, 0.05), false);
-    print!("{}", to_csv(&rows));
+    // A sweep over valences through the engine of `subdiv-lab sweep` (the
+    // same columns, shards and resume): a spec with a uniform space, and the
+    // scheme as a factory valence -> configuration.
+    print!("{}", run_csv(&valence_sweep(0.3, 0.05)?)?);
 
     // A report figure: the spectra of three members.
     let picks = [

@@ -78,6 +78,9 @@ pub enum Error {
         /// The operation asked for.
         operation: &'static str,
     },
+    /// A refused scheme file (the key and the valence it names).
+    #[error(transparent)]
+    SchemeFile(#[from] crate::schemes::user::SchemeFileError),
     /// Failures of the patch-to-limit-face distance bound (`ccss_bound`).
     #[error(transparent)]
     CcssBound(#[from] crate::ccss_bound::CcssBoundError),
@@ -122,7 +125,8 @@ impl Error {
             | E::CountMismatch { .. }
             | E::InvalidParameter { .. }
             | E::NotApplicable { .. }
-            | E::Mesh(_) => true,
+            | E::Mesh(_)
+            | E::SchemeFile(_) => true,
             E::Numerical { .. } => false,
             E::CcssBound(c) => matches!(
                 c,

@@ -2343,6 +2343,7 @@ fn cases() -> Vec<Case> {
     // ===================================================================
     // SECTION sharp-meshes: open meshes, crease and corner tags (OBJ `t`
     // lines and --tags), --boundary, --creasing.
+    // ============================================================
     // ===================================================================
     v.extend([
         bad_with("sharp-tag-bad-counts", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
@@ -2401,6 +2402,241 @@ fn cases() -> Vec<Case> {
             &[("m.obj", sharp_strip!())], "--levels 13"),
     ]);
     // (end of section sharp-meshes)
+=======
+    // SECTION scheme-files: --scheme-file of analyze, matrix, sweep and
+    // merge; every refusal of the scheme-file validator.
+    // ===================================================================
+    const SF_SUM: &str =
+        "name = \"t\"\ntopology = \"quad\"\n[vertex]\nself = \"1\"\nedge = \"1/n\"\nface = \"0\"\n";
+    const SF_DIV0: &str = "name = \"t\"\ntopology = \"quad\"\n[vertex]\nself = \"1 - 1/(n-5)\"\nedge = \"1/(n*(n-5))\"\nface = \"0\"\n";
+    const SF_LATE: &str = "name = \"t\"\ntopology = \"quad\"\n[vertex]\nself = \"1 - 1/(n-40)\"\nedge = \"1/(n*(n-40))\"\nface = \"0\"\n";
+    const SF_VAR: &str = "name = \"t\"\ntopology = \"quad\"\n[vertex]\nself = \"1 - m\"\nedge = \"0\"\nface = \"0\"\n";
+    const SF_NOFACE: &str =
+        "name = \"t\"\ntopology = \"quad\"\n[vertex]\nself = \"1\"\nedge = \"0\"\n";
+    const SF_UNKNOWN: &str = "name = \"t\"\ntopology = \"quad\"\ncolour = \"red\"\n[vertex]\nself = \"1\"\nedge = \"0\"\nface = \"0\"\n";
+    const SF_TOPO: &str =
+        "name = \"t\"\ntopology = \"hex\"\n[vertex]\nself = \"1\"\nedge = \"0\"\nface = \"0\"\n";
+    const SF_TRIFACE: &str = "name = \"t\"\ntopology = \"triangle\"\n[vertex]\nself = \"1\"\nedge = \"0\"\nface = \"0\"\n";
+    const SF_NAME: &str =
+        "name = \"loop\"\ntopology = \"triangle\"\n[vertex]\nself = \"1\"\nedge = \"0\"\n";
+    const SF_FLOAT: &str = "name = \"t\"\ntopology = \"quad\"\n[vertex]\nself = \"cos(0) + 1e-9\"\nedge = \"0\"\nface = \"0\"\n";
+    const SF_NAN: &str = "name = \"t\"\ntopology = \"quad\"\n[vertex]\nself = \"1 + 0*sqrt(4-n)\"\nedge = \"0\"\nface = \"0\"\n";
+    const SF_OK: &str = "name = \"t\"\ntopology = \"quad\"\n[vertex]\nself = \"1 - 7/(4*n)\"\nedge = \"3/(2*n^2)\"\nface = \"1/(4*n^2)\"\n";
+    const SF_SPEC_RATIOS: &str = "name = \"x\"\nscheme = \"nurds\"\nvalences = [5]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n";
+    const SF_SPEC_EXACT: &str = "name = \"x\"\nscheme = \"nurds\"\nvalences = [5]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\nexact_certificate = true\n";
+    const SF_SPEC: &str = "name = \"x\"\nscheme = \"catmull-clark\"\nvalences = [5]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n";
+    const A5: &[&str] = &["analyze", "--scheme-file", "f.toml", "--valence", "5"];
+    v.extend([
+        bad(
+            "scheme-file-missing",
+            &["analyze", "--scheme-file", "nope.toml", "--valence", "5"],
+            "--scheme-file nope.toml: cannot read",
+        ),
+        bad_with(
+            "scheme-file-with-scheme",
+            &[
+                "analyze",
+                "--scheme",
+                "loop",
+                "--scheme-file",
+                "f.toml",
+                "--valence",
+                "5",
+            ],
+            &[("f.toml", SF_OK)],
+            "cannot be used with",
+        ),
+        bad_with(
+            "scheme-file-with-c",
+            &[
+                "matrix",
+                "--scheme-file",
+                "f.toml",
+                "--c",
+                "0.3",
+                "--valence",
+                "5",
+            ],
+            &[("f.toml", SF_OK)],
+            "cannot be used with",
+        ),
+        bad_with(
+            "scheme-file-no-valence",
+            &["analyze", "--scheme-file", "f.toml"],
+            &[("f.toml", SF_OK)],
+            "--valence is required with --scheme-file",
+        ),
+        bad_with(
+            "scheme-file-valence-2",
+            &["matrix", "--scheme-file", "f.toml", "--valence", "2"],
+            &[("f.toml", SF_OK)],
+            "valence: must be at least 3, got 2",
+        ),
+        bad_with(
+            "scheme-file-sum",
+            A5,
+            &[("f.toml", SF_SUM)],
+            "vertex at valence 3: the weights self + n*edge + n*face sum to 2, not 1",
+        ),
+        bad_with(
+            "scheme-file-division-by-zero",
+            A5,
+            &[("f.toml", SF_DIV0)],
+            "vertex.self at valence 5: division by zero",
+        ),
+        bad_with(
+            "scheme-file-unknown-variable",
+            A5,
+            &[("f.toml", SF_VAR)],
+            "vertex.self: unknown variable m",
+        ),
+        bad_with(
+            "scheme-file-missing-key",
+            A5,
+            &[("f.toml", SF_NOFACE)],
+            "vertex.face: missing key",
+        ),
+        bad_with(
+            "scheme-file-unknown-key",
+            A5,
+            &[("f.toml", SF_UNKNOWN)],
+            "colour: unknown key",
+        ),
+        bad_with(
+            "scheme-file-bad-topology",
+            A5,
+            &[("f.toml", SF_TOPO)],
+            "topology: \"hex\" is not a topology",
+        ),
+        bad_with(
+            "scheme-file-triangle-face",
+            A5,
+            &[("f.toml", SF_TRIFACE)],
+            "vertex.face: a triangle scheme has no face-diagonal neighbours",
+        ),
+        bad_with(
+            "scheme-file-builtin-name",
+            A5,
+            &[("f.toml", SF_NAME)],
+            "name: \"loop\" is a built-in scheme's name",
+        ),
+        bad_with(
+            "scheme-file-float-sum",
+            A5,
+            &[("f.toml", SF_FLOAT)],
+            "in f64, not 1 within 1e-12",
+        ),
+        bad_with(
+            "scheme-file-nan-weight",
+            A5,
+            &[("f.toml", SF_NAN)],
+            "vertex.self at valence 5: the weight is NaN",
+        ),
+        bad_with(
+            "scheme-file-not-toml",
+            A5,
+            &[("f.toml", "name = \"t\n")],
+            "not valid TOML (line 1",
+        ),
+        bad_with(
+            "scheme-file-late-division-by-zero",
+            &["analyze", "--scheme-file", "f.toml", "--valence", "40"],
+            &[("f.toml", SF_LATE)],
+            "vertex.self at valence 40: division by zero",
+        ),
+        bad_with(
+            "scheme-file-analyze-exact",
+            &[
+                "analyze",
+                "--scheme-file",
+                "f.toml",
+                "--valence",
+                "5",
+                "--exact",
+            ],
+            &[("f.toml", SF_OK)],
+            "--exact is not available with --scheme-file",
+        ),
+        bad(
+            "scheme-file-matrix-exact-irrational",
+            &[
+                "matrix",
+                "--scheme-file",
+                "{A}/schemes/loop.toml",
+                "--valence",
+                "5",
+                "--exact",
+            ],
+            "has no exact matrix",
+        ),
+        bad_with(
+            "scheme-file-sweep-missing",
+            &[
+                "sweep",
+                "s.toml",
+                "--scheme-file",
+                "nope.toml",
+                "--out",
+                "o.csv",
+            ],
+            &[("s.toml", SF_SPEC)],
+            "--scheme-file nope.toml: cannot read",
+        ),
+        bad_with(
+            "scheme-file-sweep-invalid-file",
+            &[
+                "sweep",
+                "s.toml",
+                "--scheme-file",
+                "f.toml",
+                "--out",
+                "o.csv",
+            ],
+            &[("s.toml", SF_SPEC), ("f.toml", SF_SUM)],
+            "vertex at valence 3",
+        ),
+        bad_with(
+            "scheme-file-sweep-space-not-uniform",
+            &[
+                "sweep",
+                "s.toml",
+                "--scheme-file",
+                "f.toml",
+                "--out",
+                "o.csv",
+            ],
+            &[("s.toml", SF_SPEC_RATIOS), ("f.toml", SF_OK)],
+            "space.kind: scheme t sweeps valences only",
+        ),
+        bad_with(
+            "scheme-file-sweep-exact-certificate",
+            &[
+                "sweep",
+                "s.toml",
+                "--scheme-file",
+                "f.toml",
+                "--out",
+                "o.csv",
+            ],
+            &[("s.toml", SF_SPEC_EXACT), ("f.toml", SF_OK)],
+            "columns.exact_certificate: scheme t has no exact face-block certificate",
+        ),
+        bad_with(
+            "scheme-file-merge-invalid-file",
+            &[
+                "merge",
+                "a.csv",
+                "--spec",
+                "s.toml",
+                "--scheme-file",
+                "f.toml",
+                "--out",
+                "m.csv",
+            ],
+            &[("s.toml", SF_SPEC), ("f.toml", SF_DIV0)],
+            "vertex.self at valence 5: division by zero",
+        ),
+    ]);
 
     v
 }

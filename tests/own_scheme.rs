@@ -10,7 +10,7 @@ mod own_scheme;
 use own_scheme::VertexWeightCc;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::{analyze, AnalyzeOptions};
-use subdiv_lab::sweep::own::{sweep, to_csv};
+use subdiv_lab::sweep::{run_csv, Plan, SchemeFactory, SweepSpec};
 use subdiv_lab::Scheme;
 
 #[test]
@@ -90,21 +90,40 @@ fn the_vertex_rule_moves_only_the_k0_block() {
 }
 
 #[test]
-fn sweep_rows_in_input_order_with_errors_recorded() {
-    let betas = [0.1, 0.3, 1.5, 0.2];
-    let rows = sweep(&betas, |&b| VertexWeightCc::new(5, b, 0.05), true);
-    assert_eq!(
-        rows.iter().map(|r| r.index).collect::<Vec<_>>(),
-        [0, 1, 2, 3]
+fn the_spec_sweep_runs_the_scheme_and_records_errors_in_their_rows() {
+    // The tutorial's plan: one row per valence, no characteristic ring (the
+    // verdict says so instead of guessing).
+    let csv = run_csv(&own_scheme::valence_sweep(0.3, 0.05).unwrap()).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 7);
+    assert!(lines[0].starts_with("id,valence,class,"));
+    assert!(lines[1].starts_with("0,3,"));
+    assert!(lines[6].starts_with("5,8,"));
+    assert!(
+        lines[1..].iter().all(|l| l.contains(",no_charmap,")),
+        "{csv}"
     );
-    assert!(rows[2].subdominant.as_ref().unwrap_err().contains("beta"));
-    assert!(rows[0].subdominant.is_ok() && rows[3].subdominant.is_ok());
-    // no characteristic ring provided: the verdict says so instead of guessing
-    let map = rows[0].charmap.as_ref().unwrap().as_ref().unwrap();
-    assert_eq!(map.verdict.code(), "no_charmap");
-    let csv = to_csv(&rows);
-    assert_eq!(csv.lines().count(), 5);
-    assert!(csv.lines().nth(3).unwrap().contains("beta"));
+    // A configuration the factory refuses is a row with its error.
+    let spec = SweepSpec::from_toml(
+        "scheme = \"catmull-clark\"\nvalences = [4, 5, 6]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n",
+    )
+    .unwrap();
+    let cost = VertexWeightCc::catmull_clark(5).cost_model();
+    let factory = SchemeFactory::new("vertex-weight-cc", cost, |n| {
+        let beta = if n == 5 { 1.5 } else { 0.3 };
+        Ok(Box::new(VertexWeightCc::new(n, beta, 0.05)?) as Box<dyn Scheme>)
+    });
+    let csv = run_csv(&Plan::with_scheme(spec, factory).unwrap()).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 4);
+    assert!(
+        lines[2].starts_with("1,5,") && lines[2].contains("beta"),
+        "{csv}"
+    );
+    assert!(
+        !lines[1].contains("beta") && !lines[3].contains("beta"),
+        "{csv}"
+    );
 }
 
 #[test]

@@ -156,51 +156,109 @@ pub(crate) fn analyze_json(
     seed: Int,
     force: bool,
 ) -> PyResult<String> {
-    use subdiv_lab::spectral::{AnalyzeOptions, SpectrumPath};
     guard("analyze", || {
-        let levels = levels.usize("levels")?;
-        subdiv_lab::contraction::check_levels(levels, PY).map_err(value_err)?;
-        let seed = seed.u64("seed")?;
-        let path = match path {
-            "full" => SpectrumPath::Full,
-            "structured" => SpectrumPath::Structured,
-            other => {
-                return Err(value_err(format!(
-                    "path must be \"full\" or \"structured\", got {other:?}"
-                )))
-            }
-        };
+        let (levels, seed, path) = analyze_options(levels, seed, path)?;
         let r = resolve(scheme, valence, knots, ratios, uniform, c)?;
-        let n = r.scheme.valence();
-        let estimate = subdiv_lab::budget::analyze(
-            &r.scheme.cost_model(),
-            n,
-            matches!(path, SpectrumPath::Structured),
-        );
-        limit(
-            "analyze",
-            &format!("valence {n}"),
-            &estimate,
-            TIME_LIMIT_SECONDS,
-            force,
-        )?;
-        let options = AnalyzeOptions {
-            path,
-            measure: subdiv_lab::contraction::MeasureOptions {
-                levels,
-                seed,
+        analyze_resolved(py, r, path, levels, seed, force)
+    })
+}
+
+/// `analyze` of a scheme file's configuration at `valence` (`text`: the
+/// file's contents, read by the Python wrapper; errors name the key and the
+/// valence, as the CLI's `--scheme-file`).
+#[pyfunction]
+#[pyo3(signature = (text, valence, path="full", levels=Int(60), seed=Int(0x5EED), force=false))]
+pub(crate) fn analyze_file_json(
+    py: Python<'_>,
+    text: &str,
+    valence: Int,
+    path: &str,
+    levels: Int,
+    seed: Int,
+    force: bool,
+) -> PyResult<String> {
+    guard("analyze", || {
+        let (levels, seed, path) = analyze_options(levels, seed, path)?;
+        let n = valence.usize("valence")?;
+        let file = subdiv_lab::schemes::user::SchemeFile::parse_shared(text)
+            .map_err(|e| value_err(format!("scheme_file: {e}")))?;
+        let scheme = file
+            .at(n)
+            .map_err(|e| value_err(format!("scheme_file: {e}")))?;
+        let r = Resolved {
+            input: AnalysisInput {
+                scheme: file.name().to_owned(),
+                valence: n,
                 ..Default::default()
             },
+            scheme: Box::new(scheme),
         };
-        let Resolved { scheme, input } = r;
-        let scheme = std::sync::Arc::<dyn subdiv_lab::Scheme>::from(scheme);
-        let (result, charmap) = py.detach(move || -> PyResult<_> {
-            let result = subdiv_lab::spectral::analyze(&*scheme, &options).map_err(lib_err)?;
-            let charmap =
-                subdiv_lab::charmap::check_classified(&*scheme, &result.charmap_subdominant());
-            Ok((result, charmap))
-        })?;
-        let v = subdiv_lab::spectral::json::analysis_json(&result, &charmap, &input);
-        serde_json::to_string(&v).map_err(runtime_err)
+        analyze_resolved(py, r, path, levels, seed, force)
     })
+}
+
+/// The validated `levels`, `seed` and spectrum path of `analyze`.
+fn analyze_options(
+    levels: Int,
+    seed: Int,
+    path: &str,
+) -> PyResult<(usize, u64, subdiv_lab::spectral::SpectrumPath)> {
+    use subdiv_lab::spectral::SpectrumPath;
+    let levels = levels.usize("levels")?;
+    subdiv_lab::contraction::check_levels(levels, PY).map_err(value_err)?;
+    let seed = seed.u64("seed")?;
+    let path = match path {
+        "full" => SpectrumPath::Full,
+        "structured" => SpectrumPath::Structured,
+        other => {
+            return Err(value_err(format!(
+                "path must be \"full\" or \"structured\", got {other:?}"
+            )))
+        }
+    };
+    Ok((levels, seed, path))
+}
+
+/// The analysis of a resolved configuration, estimated and refused above the
+/// limits first, as JSON text.
+fn analyze_resolved(
+    py: Python<'_>,
+    r: Resolved,
+    path: subdiv_lab::spectral::SpectrumPath,
+    levels: usize,
+    seed: u64,
+    force: bool,
+) -> PyResult<String> {
+    use subdiv_lab::spectral::{AnalyzeOptions, SpectrumPath};
+    let n = r.scheme.valence();
+    let estimate = subdiv_lab::budget::analyze(
+        &r.scheme.cost_model(),
+        n,
+        matches!(path, SpectrumPath::Structured),
+    );
+    limit(
+        "analyze",
+        &format!("valence {n}"),
+        &estimate,
+        TIME_LIMIT_SECONDS,
+        force,
+    )?;
+    let options = AnalyzeOptions {
+        path,
+        measure: subdiv_lab::contraction::MeasureOptions {
+            levels,
+            seed,
+            ..Default::default()
+        },
+    };
+    let Resolved { scheme, input } = r;
+    let scheme = std::sync::Arc::<dyn subdiv_lab::Scheme>::from(scheme);
+    let (result, charmap) = py.detach(move || -> PyResult<_> {
+        let result = subdiv_lab::spectral::analyze(&*scheme, &options).map_err(lib_err)?;
+        let charmap =
+            subdiv_lab::charmap::check_classified(&*scheme, &result.charmap_subdominant());
+        Ok((result, charmap))
+    })?;
+    let v = subdiv_lab::spectral::json::analysis_json(&result, &charmap, &input);
+    serde_json::to_string(&v).map_err(runtime_err)
 }

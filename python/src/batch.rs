@@ -8,10 +8,9 @@ use pyo3::types::PyDict;
 use rayon::prelude::*;
 use std::cell::{Cell as StdCell, RefCell};
 use subdiv_lab::budget::{held_in_memory, BATCH_BYTES_PER_CELL, SWEEP_TIME_LIMIT_SECONDS};
-use subdiv_lab::scheme::registry::Builtin;
 use subdiv_lab::spectral::BATCH;
 use subdiv_lab::sweep::eval::CellSink;
-use subdiv_lab::sweep::{Configuration, Evaluate, Plan, SpectralEvaluator, SweepSpec};
+use subdiv_lab::sweep::{Configuration, Configured, Evaluate, Plan, SpectralEvaluator, SweepSpec};
 
 /// The distinct texts of one text column; a cell is stored as its index
 /// (`u32` code). Sweep text columns take a handful of values (class names,
@@ -440,7 +439,7 @@ fn classify_batch_body<'py>(
                                 valence: n,
                                 coordinates: Vec::with_capacity(n),
                             });
-                        let mut kept: [Option<Builtin>; BATCH] = Default::default();
+                        let mut kept: [Option<Configured>; BATCH] = Default::default();
                         for (bi, group) in chunk.chunks(BATCH * n).enumerate() {
                             let width = group.len() / n;
                             let base = (ci * CHUNK + bi * BATCH) as u64;

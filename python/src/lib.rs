@@ -282,6 +282,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", subdiv_lab::spectral::json::TOOL_VERSION)?;
     m.add_function(wrap_pyfunction!(analysis::matrix, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::analyze_json, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis::analyze_file_json, m)?)?;
     m.add_function(wrap_pyfunction!(sweeps::spec_json_to_toml, m)?)?;
     m.add_function(wrap_pyfunction!(batch::classify_batch, m)?)?;
     m.add_function(wrap_pyfunction!(sweeps::sweep, m)?)?;

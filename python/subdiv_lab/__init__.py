@@ -68,16 +68,32 @@ def matrix(scheme: str = "nurds", valence: Optional[int] = None, knots=None, rat
                           _float(c), block, bool(force))
 
 
-def analyze(scheme: str = "nurds", valence: Optional[int] = None, knots=None, ratios=None,
+def analyze(scheme: Optional[str] = None, valence: Optional[int] = None, knots=None, ratios=None,
             uniform: bool = False, c: Optional[float] = None, path: str = "full",
-            levels: int = 60, seed: int = 0x5EED, force: bool = False) -> Dict[str, Any]:
+            levels: int = 60, seed: int = 0x5EED, force: bool = False,
+            scheme_file: Optional[Union[str, os.PathLike]] = None) -> Dict[str, Any]:
     """Spectrum, subdominant class, Theorem 1 and the characteristic-map
     verdict of one configuration: the dict of ``subdiv-lab analyze --json``
-    (same keys, including ``input`` and ``tool_version``). ``levels`` is
-    1..10000. Refused above the limits, e.g. ``valence=600`` (~7 min);
-    ``force=True`` overrides, except above the physical memory."""
-    text = _native.analyze_json(scheme, valence, _knots(knots), _floats(ratios), bool(uniform),
-                                _float(c), path, levels, seed, bool(force))
+    (same keys, including ``input`` and ``tool_version``). ``scheme`` is a
+    built-in scheme's name (default ``"nurds"``); ``scheme_file`` a scheme
+    file (TOML, ``docs/scheme-files.md``) with ``valence``, in its place.
+    ``levels`` is 1..10000. Refused above the limits, e.g. ``valence=600``
+    (~7 min); ``force=True`` overrides, except above the physical memory."""
+    if scheme_file is not None:
+        if scheme is not None or knots is not None or ratios is not None or uniform or c is not None:
+            raise ValueError("scheme_file is mutually exclusive with scheme, knots, ratios, uniform and c")
+        if valence is None:
+            raise ValueError("valence is required with scheme_file")
+        try:
+            with open(os.fspath(scheme_file), encoding="utf-8") as f:
+                file_text = f.read()
+        except (OSError, UnicodeDecodeError) as e:
+            raise ValueError(f"scheme_file {os.fspath(scheme_file)}: cannot read: {e}") from None
+        text = _native.analyze_file_json(file_text, valence, path, levels, seed, bool(force))
+        return json.loads(text)
+    text = _native.analyze_json(scheme if scheme is not None else "nurds", valence, _knots(knots),
+                                _floats(ratios), bool(uniform), _float(c), path, levels, seed,
+                                bool(force))
     return json.loads(text)
 
 

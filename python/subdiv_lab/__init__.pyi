@@ -21,7 +21,7 @@ def matrix(
     force: bool = ...,
 ) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
 def analyze(
-    scheme: str = ...,
+    scheme: Optional[str] = ...,
     valence: Optional[int] = ...,
     knots: Optional[Sequence[Tuple[float, float]]] = ...,
     ratios: Optional[Sequence[float]] = ...,
@@ -31,6 +31,7 @@ def analyze(
     levels: int = ...,
     seed: int = ...,
     force: bool = ...,
+    scheme_file: Optional[Union[str, os.PathLike[str]]] = ...,
 ) -> Dict[str, Any]: ...
 def classify_batch(
     ratios: npt.ArrayLike,

@@ -61,6 +61,17 @@ def test_analyze_equals_cli_json():
                            "ratios": None, "uniform": False, "c": 0.25}
 
 
+def test_analyze_scheme_file_equals_cli_json():
+    for name, n in [("catmull-clark", 5), ("loop", 7)]:
+        f = str(ROOT / "analysis" / "schemes" / f"{name}.toml")
+        a = sl.analyze(scheme_file=f, valence=n)
+        doc = json.loads(cli("analyze", "--scheme-file", f, "--valence", str(n), "--json").stdout)
+        assert a == doc
+        assert a["input"]["scheme"] == f"{name}-file"
+        builtin = sl.analyze(scheme=name, valence=n)
+        assert a["subdominant"]["class"] == builtin["subdominant"]["class"]
+
+
 def test_bad_input_is_value_error_with_the_cli_message():
     p = cli("analyze", "--ratios", "0.3,1.5,0.7", "--json", check=False)
     assert p.returncode == 2

@@ -53,6 +53,14 @@ PRELUDE = textwrap.dedent('''
         f.write("id,valence,x\\n0,3,0.5\\n1,3,0.25\\n")
     with open("empty.csv", "w") as f:
         f.write("")
+    with open("sum.toml", "w") as f:
+        f.write('name = "t"\\ntopology = "quad"\\n[vertex]\\nself = "1"\\nedge = "1/n"\\nface = "0"\\n')
+    with open("div0.toml", "w") as f:
+        f.write('name = "t"\\ntopology = "quad"\\n[vertex]\\nself = "1 - 1/(n-5)"\\n'
+                'edge = "1/(n*(n-5))"\\nface = "0"\\n')
+    with open("cc.toml", "w") as f:
+        f.write('name = "t"\\ntopology = "quad"\\n[vertex]\\nself = "1 - 7/(4*n)"\\n'
+                'edge = "3/(2*n^2)"\\nface = "1/(4*n^2)"\\n')
 ''')
 
 # (id, call, expected): expected is (exception name, message fragments) or
@@ -137,6 +145,20 @@ CASES = [
      ("ValueError", ["valence must be at least 3, got 2"])),
     ("analyze-ratio-nan", "sl.analyze(ratios=[0.5, float('nan'), 0.5])", ("ValueError", ["r_1"])),
     ("analyze-path", "sl.analyze(uniform=True, valence=5, path='fast')", ("ValueError", ["path must be"])),
+    ("analyze-scheme-file-sum", "sl.analyze(scheme_file='sum.toml', valence=5)",
+     ("ValueError", ["vertex at valence 3", "sum to 2, not 1"])),
+    ("analyze-scheme-file-division-by-zero", "sl.analyze(scheme_file='div0.toml', valence=4)",
+     ("ValueError", ["vertex.self at valence 5: division by zero"])),
+    ("analyze-scheme-file-missing", "sl.analyze(scheme_file='nope.toml', valence=5)",
+     ("ValueError", ["nope.toml", "cannot read"])),
+    ("analyze-scheme-file-no-valence", "sl.analyze(scheme_file='cc.toml')",
+     ("ValueError", ["valence is required with scheme_file"])),
+    ("analyze-scheme-file-and-scheme", "sl.analyze(scheme='loop', scheme_file='cc.toml', valence=5)",
+     ("ValueError", ["mutually exclusive"])),
+    ("analyze-scheme-file-valence-2", "sl.analyze(scheme_file='cc.toml', valence=2)",
+     ("ValueError", ["valence: must be at least 3"])),
+    ("analyze-scheme-file-ok", "sl.analyze(scheme_file='cc.toml', valence=5)",
+     ("ok", "r['subdominant']['class'] == 'standard' and r['input']['scheme'] == 't'")),
     ("matrix-face-block-cc", "sl.matrix(scheme='catmull-clark', valence=5, block='face')",
      ("ValueError", ["face block"])),
     ("matrix-block", "sl.matrix(uniform=True, valence=3, block='diag')", ("ValueError", ["block must be"])),

@@ -46,6 +46,11 @@ enum Path {
 pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     subdiv_lab::contraction::check_levels(args.levels, subdiv_lab::budget::Spelling::Cli)
         .map_err(super::budget::usage)?;
+    if args.exact && args.scheme.scheme_file.is_some() {
+        return Err(CliError::usage(anyhow::anyhow!(
+            "--exact is not available with --scheme-file (the exact verdicts take a built-in configuration; `matrix --exact` prints a rational file's exact matrix)"
+        )));
+    }
     let resolved = args.scheme.resolve(args.exact)?;
     let n = resolved.scheme.valence();
     let estimate = subdiv_lab::budget::analyze(

@@ -55,15 +55,32 @@ pub(crate) fn run(args: MatrixArgs) -> CliResult {
         subdiv_lab::budget::TIME_LIMIT_SECONDS,
         args.force,
     )?;
-    let out = match &resolved.exact {
-        Some(exact) => render(
+    let file_exact = match (&args.scheme.scheme_file, args.exact) {
+        (Some(path), true) => Some(resolved.scheme.exact_local_matrix().ok_or_else(|| {
+            CliError::usage(anyhow::anyhow!(
+                "--exact: scheme file {} has no exact matrix (an expression uses pi, cos, sin, sqrt or a non-integer power, or the topology is triangle)",
+                path.display()
+            ))
+        })?),
+        _ => None,
+    };
+    let out = match (&resolved.exact, file_exact) {
+        (_, Some(full)) => {
+            let s = &*resolved.scheme;
+            let face = Err(subdiv_lab::Error::NotApplicable {
+                scheme: s.name().to_owned(),
+                operation: "the face block (a Doo-Sabin-family notion)",
+            });
+            render(s.name(), full, face, Vec::new(), &args)?
+        }
+        (Some(exact), None) => render(
             exact.kind().name(),
             exact.matrix(),
             exact.face_block().map(drop),
             exact.face_weights(),
             &args,
         )?,
-        None => {
+        (None, None) => {
             let s = &*resolved.scheme;
             // the face block exists for face-block schemes only (a typed error otherwise)
             let face = match s.spectral_structure() {

@@ -7,6 +7,7 @@ use clap::Args;
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
 use subdiv_lab::scalar::{parse_exact, Rational, Scalar};
 use subdiv_lab::scheme::choice::{validate, Choice, ChoiceError};
+use subdiv_lab::schemes::user::SchemeFile;
 use subdiv_lab::schemes::{LocalScheme, SchemeKind};
 use subdiv_lab::Scheme;
 
@@ -30,6 +31,21 @@ pub(crate) struct SchemeArgs {
     /// Shape parameter c in [0, 1] of --scheme adjustable-cc (read exactly: 0.3, 1/3, 25e-2).
     #[arg(long, allow_hyphen_values = true)]
     pub c: Option<String>,
+    /// A scheme file (TOML: a vertex rule in n; docs/scheme-files.md) instead of --scheme.
+    #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["scheme", "knots", "ratios", "uniform", "c"])]
+    pub scheme_file: Option<std::path::PathBuf>,
+}
+
+/// Reads and validates a scheme file; errors name the flag (or spec key)
+/// `what` and the file, on one line.
+pub(crate) fn read_scheme_file(
+    what: &str,
+    path: &std::path::Path,
+) -> CliResult<std::sync::Arc<SchemeFile>> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::usage(anyhow!("{what} {}: cannot read: {e}", path.display())))?;
+    SchemeFile::parse_shared(&text)
+        .map_err(|e| CliError::usage(anyhow!("{what} {}: {e}", path.display())))
 }
 
 /// The help text of `--scheme`: every known scheme (from
@@ -130,6 +146,9 @@ fn lib_err(e: subdiv_lab::Error) -> CliError {
 impl SchemeArgs {
     /// Validates the flags; `exact` also builds the exact-rational configuration.
     pub fn resolve(&self, exact: bool) -> CliResult<Resolved> {
+        if let Some(path) = &self.scheme_file {
+            return self.resolve_file(path);
+        }
         let given = [self.knots.is_some(), self.ratios.is_some(), self.uniform]
             .iter()
             .filter(|b| **b)
@@ -278,6 +297,27 @@ impl SchemeArgs {
                 uniform: self.uniform,
                 c: cf,
             },
+        })
+    }
+
+    /// `--scheme-file`: the file's configuration at `--valence` (no exact
+    /// built-in configuration: the exact matrix is the scheme's own).
+    fn resolve_file(&self, path: &std::path::Path) -> CliResult<Resolved> {
+        let file = read_scheme_file("--scheme-file", path)?;
+        let valence = self
+            .valence
+            .ok_or_else(|| CliError::usage(anyhow!("--valence is required with --scheme-file")))?;
+        let scheme = file
+            .at(valence)
+            .map_err(|e| CliError::usage(anyhow!("--scheme-file {}: {e}", path.display())))?;
+        Ok(Resolved {
+            input: subdiv_lab::spectral::json::AnalysisInput {
+                scheme: file.name().to_owned(),
+                valence,
+                ..Default::default()
+            },
+            scheme: Box::new(scheme),
+            exact: None,
         })
     }
 

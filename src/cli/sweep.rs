@@ -65,6 +65,10 @@ pub(crate) struct SweepArgs {
     /// Seconds between progress lines when stderr is not a terminal (testing).
     #[arg(long, hide = true, default_value_t = PROGRESS_EVERY.as_secs_f64())]
     progress_every: f64,
+    /// Sweep the spec's valences with a scheme file (TOML; docs/scheme-files.md)
+    /// in place of the spec's scheme (the spec's space must be "uniform").
+    #[arg(long, value_name = "FILE.toml")]
+    scheme_file: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -81,6 +85,29 @@ pub(crate) struct MergeArgs {
     /// The sweep spec the shards were run with: every row is verified against it.
     #[arg(long)]
     spec: PathBuf,
+    /// The scheme file the shards were run with (`sweep --scheme-file`).
+    #[arg(long, value_name = "FILE.toml")]
+    scheme_file: Option<PathBuf>,
+}
+
+/// The plan of `spec`, with the scheme file of `--scheme-file` when given
+/// (errors name the spec or the file).
+fn plan_of(spec: SweepSpec, spec_path: &Path, scheme_file: Option<&Path>) -> CliResult<Plan> {
+    match scheme_file {
+        None => Ok(Plan::new(spec)),
+        Some(path) => {
+            let file = super::scheme_args::read_scheme_file("--scheme-file", path)?;
+            Plan::with_scheme(spec, subdiv_lab::sweep::SchemeFactory::from_file(file)).map_err(
+                |e| {
+                    CliError::usage(anyhow!(
+                        "{}: {e} (with --scheme-file {})",
+                        spec_path.display(),
+                        path.display()
+                    ))
+                },
+            )
+        }
+    }
 }
 
 /// Output format of `sweep`.
@@ -467,7 +494,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         }
     }
     let shard = args.shard.unwrap_or(Shard::ALL);
-    let plan = Plan::new(spec);
+    let plan = plan_of(spec, &args.spec, args.scheme_file.as_deref())?;
     let layout = Layout::new(&plan);
     let eval = SpectralEvaluator::new(plan.spec().columns);
     let mut summary = Summary::new(&plan, &layout, shard, args.limit);
@@ -735,7 +762,7 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
         .map_err(CliError::usage)?;
     let spec = SweepSpec::from_toml(&text)
         .map_err(|e| CliError::usage(anyhow!("{}: {e}", args.spec.display())))?;
-    let plan = Plan::new(spec);
+    let plan = plan_of(spec, &args.spec, args.scheme_file.as_deref())?;
     let layout = Layout::new(&plan);
     let eval = SpectralEvaluator::new(plan.spec().columns);
     // The output and its summary are distinct from the spec, every shard and

@@ -25,6 +25,7 @@ pub(crate) mod assembly;
 pub mod catmull_clark;
 pub mod doo_sabin;
 pub mod loop_subdivision;
+pub mod user;
 
 pub use assembly::{Assembler, LocalMatrix, PointLabel, Role, ROW_SUM_TOL};
 

@@ -3,7 +3,6 @@
 
 use super::Plan;
 use crate::budget::*;
-use crate::scheme::registry::cost_model;
 
 /// Seconds of one sweep configuration at valence `n` with the columns of
 /// `plan` (structured classification `O(n^3)` with a small constant; the
@@ -35,9 +34,9 @@ fn sweep_seconds_per_configuration(plan: &Plan, model: &CostModel, n: usize) -> 
 /// a shard taking every `shard_count`-th).
 ///
 /// The per-scheme constants are the scheme's [`CostModel`]
-/// ([`crate::scheme::registry::cost_model`] of the spec's scheme).
+/// ([`Plan::cost_model`]: the spec's scheme's or the plan's own).
 pub fn sweep_rows(plan: &Plan, rows: u64, shard_count: u64, threads: usize) -> Estimate {
-    let model = cost_model(plan.spec().scheme);
+    let model = plan.cost_model();
     let mut left = rows;
     let mut seconds = 0.0;
     let mut max_n = 3;
@@ -63,7 +62,7 @@ pub fn sweep_rows(plan: &Plan, rows: u64, shard_count: u64, threads: usize) -> E
 /// the spec's enumeration (the rows of a batch given by the caller, e.g.
 /// Python's `classify_batch`).
 pub fn batch_rows(plan: &Plan, n: usize, rows: u64, threads: usize) -> Estimate {
-    let model = cost_model(plan.spec().scheme);
+    let model = plan.cost_model();
     let seconds = rows as f64 * sweep_seconds_per_configuration(plan, &model, n);
     Estimate {
         bytes: threads as f64 * bytes_per_thread(plan, &model, n) + 64e6,

@@ -10,6 +10,12 @@
 //!   [`run`](output::run()) driver and the shard [`merge`](output::merge());
 //! * `summary`: the mergeable summary accumulator ([`Summary`]).
 //!
+//! Every scheme runs through the one engine: the spec's built-in scheme, or a
+//! scheme of one's own (a Rust [`Scheme`](crate::Scheme), a scheme file, a
+//! Python object) given as a [`SchemeFactory`] to [`Plan::with_scheme`]; the
+//! columns, shards, resume and merge are the same. [`run_csv`] runs a whole
+//! plan into memory.
+//!
 //! The library does no file-system I/O: it writes to `impl std::io::Write` and
 //! reads lines the caller hands it. The `subdiv-lab sweep` and `subdiv-lab merge`
 //! commands do the files.
@@ -42,7 +48,6 @@
 pub(crate) mod estimate;
 pub mod eval;
 pub mod output;
-pub mod own;
 pub(crate) mod plan;
 pub mod sampler;
 mod sobol_table;
@@ -52,7 +57,7 @@ pub(crate) mod summary;
 pub use estimate::{batch_rows, sweep_rows};
 pub use eval::{Cell, Evaluate, SpectralEvaluator};
 pub use output::Layout;
-pub use plan::{Configuration, Plan, Shard};
+pub use plan::{Configuration, Configured, Plan, SchemeFactory, Shard};
 pub use spec::{Columns, Sampler, Space, SpaceKind, SweepSpec, MAX_CONFIGURATIONS};
 pub use summary::Summary;
 
@@ -107,6 +112,36 @@ pub enum SweepError {
     /// be read as a sweep writes it: not Parquet, torn, or of other types.
     #[error("read failed: {0}")]
     Read(String),
+}
+
+/// Runs every configuration of `plan` and returns the CSV text (the header
+/// and one line per configuration, in id order, as `subdiv-lab sweep` writes
+/// them after its fingerprint line): the library entry for a sweep in
+/// memory, e.g. of a scheme of one's own ([`Plan::with_scheme`]).
+///
+/// ```
+/// use subdiv_lab::sweep::{run_csv, Plan, SweepSpec};
+/// let spec = SweepSpec::from_toml("scheme = \"loop\"\nvalences = [3, 7]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n").unwrap();
+/// let csv = run_csv(&Plan::new(spec)).unwrap();
+/// assert_eq!(csv.lines().count(), 3);
+/// assert!(csv.lines().nth(2).unwrap().starts_with("1,7,standard,"));
+/// ```
+pub fn run_csv(plan: &Plan) -> Result<String, SweepError> {
+    let layout = Layout::new(plan);
+    let eval = SpectralEvaluator::new(plan.spec().columns);
+    let mut summary = Summary::new(plan, &layout, Shard::ALL, None);
+    let mut csv = Vec::new();
+    layout.write_header(&mut csv)?;
+    output::run(
+        plan,
+        &layout,
+        &eval,
+        0..plan.total(),
+        &mut csv,
+        &mut summary,
+        &mut |_| {},
+    )?;
+    String::from_utf8(csv).map_err(|e| SweepError::Io(e.to_string()))
 }
 
 impl From<std::io::Error> for SweepError {

@@ -25,13 +25,138 @@
 use super::sampler::{hash_uniform, Halton, Sobol};
 use super::spec::{Sampler, SpaceKind, SweepSpec};
 use super::SweepError;
+use crate::budget::CostModel;
 use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::scalar::{Rational, Scalar};
 use crate::scheme::registry::Builtin;
+use crate::scheme::Scheme;
+use crate::schemes::user::SchemeFile;
 use crate::schemes::LocalScheme;
 use crate::schemes::SchemeKind;
 use std::fmt;
+use std::ops::Deref;
 use std::str::FromStr;
+use std::sync::Arc;
+
+/// A scheme of one's own for the sweep engine (a Rust [`Scheme`], a scheme
+/// file, a Python object): its configuration at each valence, its name and
+/// its work model. A [`Plan`] built with one ([`Plan::with_scheme`]) sweeps
+/// the spec's valences with it instead of the spec's built-in scheme: same
+/// columns, resume and shards.
+///
+/// ```
+/// use subdiv_lab::schemes::user::SchemeFile;
+/// use subdiv_lab::sweep::{output, Layout, Plan, SchemeFactory, Shard, SpectralEvaluator, Summary, SweepSpec};
+/// let file = SchemeFile::parse_shared(include_str!("../../analysis/schemes/catmull-clark.toml")).unwrap();
+/// let factory = SchemeFactory::from_file(file);
+/// let spec = SweepSpec::from_toml(r#"
+/// scheme = "catmull-clark"
+/// valences = [3, 5]
+/// [space]
+/// kind = "uniform"
+/// [sampler]
+/// kind = "grid"
+/// points_per_axis = 1
+/// "#).unwrap();
+/// let plan = Plan::with_scheme(spec, factory).unwrap();
+/// let layout = Layout::new(&plan);
+/// let eval = SpectralEvaluator::new(plan.spec().columns);
+/// let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
+/// let mut csv = Vec::new();
+/// layout.write_header(&mut csv).unwrap();
+/// output::run(&plan, &layout, &eval, 0..plan.total(), &mut csv, &mut summary, &mut |_| {}).unwrap();
+/// let text = String::from_utf8(csv).unwrap();
+/// assert_eq!(text.lines().count(), 3);
+/// assert!(text.lines().nth(1).unwrap().starts_with("0,3,standard,"));
+/// ```
+#[derive(Clone)]
+pub struct SchemeFactory {
+    name: String,
+    identity: String,
+    cost_model: CostModel,
+    make: Arc<dyn Fn(usize) -> crate::Result<Box<dyn Scheme>> + Send + Sync>,
+}
+
+impl SchemeFactory {
+    /// The factory `make` (valence -> configuration) of the scheme `name`
+    /// with the work model `cost_model` (the sweep's estimate before it runs).
+    pub fn new(
+        name: &str,
+        cost_model: CostModel,
+        make: impl Fn(usize) -> crate::Result<Box<dyn Scheme>> + Send + Sync + 'static,
+    ) -> Self {
+        SchemeFactory {
+            name: name.to_owned(),
+            identity: name.to_owned(),
+            cost_model,
+            make: Arc::new(make),
+        }
+    }
+
+    /// The configurations of a scheme file ([`SchemeFile::at`]); its parsed
+    /// rule is the identity.
+    pub fn from_file(file: Arc<SchemeFile>) -> Self {
+        let identity = format!("{file:?}");
+        let name = file.name().to_owned();
+        let cost_model = file.cost_model();
+        SchemeFactory::new(&name, cost_model, move |n| {
+            Ok(Box::new(file.at(n)?) as Box<dyn Scheme>)
+        })
+        .with_identity(identity)
+    }
+
+    /// The scheme's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// What tells this scheme apart from others of the same name (default:
+    /// the name), e.g. a scheme file's text: it enters [`Plan::digest`], so
+    /// that `--resume` and `merge` refuse rows of another scheme.
+    pub fn with_identity(mut self, identity: impl Into<String>) -> Self {
+        self.identity = identity.into();
+        self
+    }
+}
+
+impl fmt::Debug for SchemeFactory {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("SchemeFactory")
+            .field("name", &self.name)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The scheme of one configuration of a [`Plan`]: a built-in one (no
+/// allocation) or one from a [`SchemeFactory`]; a `&dyn Scheme` through
+/// `Deref`.
+#[derive(Debug)]
+pub enum Configured {
+    /// A built-in scheme's configuration.
+    Builtin(Builtin),
+    /// A configuration of a scheme of one's own.
+    Own(Box<dyn Scheme>),
+}
+
+impl Configured {
+    /// The built-in configuration (`None` for a scheme of one's own).
+    pub fn builtin(&self) -> Option<&Builtin> {
+        match self {
+            Configured::Builtin(b) => Some(b),
+            Configured::Own(_) => None,
+        }
+    }
+}
+
+impl Deref for Configured {
+    type Target = dyn Scheme;
+    fn deref(&self) -> &(dyn Scheme + 'static) {
+        match self {
+            Configured::Builtin(b) => &**b,
+            Configured::Own(s) => &**s,
+        }
+    }
+}
 
 /// One configuration of a sweep.
 #[derive(Clone, Debug, PartialEq)]
@@ -76,6 +201,8 @@ pub struct Plan {
     spec: SweepSpec,
     blocks: Vec<Block>,
     total: u64,
+    /// The scheme of one's own, replacing the spec's built-in scheme.
+    own: Option<SchemeFactory>,
 }
 
 impl Plan {
@@ -122,6 +249,7 @@ impl Plan {
             spec,
             blocks,
             total: offset,
+            own: None,
         }
     }
 
@@ -319,11 +447,71 @@ impl Plan {
         Ok(())
     }
 
-    /// The scheme of a configuration, in `f64` (any built-in scheme, through
-    /// [`Builtin`]).
-    pub fn scheme(&self, c: &Configuration) -> crate::Result<Builtin> {
+    /// The plan of `spec` with a scheme of one's own in place of the spec's
+    /// scheme. The spec's space must be `uniform` (the factory's parameter is
+    /// the valence only) and its columns must not ask for the exact
+    /// certificate (a built-in notion of the Doo-Sabin family).
+    pub fn with_scheme(spec: SweepSpec, factory: SchemeFactory) -> Result<Plan, SweepError> {
+        let refuse = |key: &str, message: String| SweepError::Spec {
+            key: key.to_owned(),
+            line: None,
+            message,
+        };
+        if spec.space.kind != SpaceKind::Uniform {
+            return Err(refuse(
+                "space.kind",
+                format!(
+                    "space.kind: scheme {} sweeps valences only; use kind = \"uniform\"",
+                    factory.name
+                ),
+            ));
+        }
+        if spec.columns.exact_certificate {
+            return Err(refuse(
+                "columns.exact_certificate",
+                format!(
+                    "columns.exact_certificate: scheme {} has no exact face-block certificate (the Doo-Sabin family's)",
+                    factory.name
+                ),
+            ));
+        }
+        let mut plan = Plan::new(spec);
+        plan.own = Some(factory);
+        Ok(plan)
+    }
+
+    /// The digest that ties output files to this plan: the spec's
+    /// ([`SweepSpec::digest`]), or with a scheme of one's own the digest of
+    /// the spec's digest, the scheme's name and its identity
+    /// ([`SchemeFactory::with_identity`]).
+    pub fn digest(&self) -> String {
+        let spec = self.spec.digest();
+        match &self.own {
+            None => spec,
+            Some(f) => {
+                let text = format!("{spec}\n{}\n{}", f.name, f.identity);
+                format!("{:016x}", crate::hash::fnv1a64(text.as_bytes()))
+            }
+        }
+    }
+
+    /// The work model of the plan's scheme (the spec's built-in scheme or
+    /// the [`SchemeFactory`]'s).
+    pub fn cost_model(&self) -> CostModel {
+        match &self.own {
+            Some(f) => f.cost_model,
+            None => crate::scheme::registry::cost_model(self.spec.scheme),
+        }
+    }
+
+    /// The scheme of a configuration, in `f64` (a built-in scheme through
+    /// [`Builtin`], or the plan's [`SchemeFactory`]).
+    pub fn scheme(&self, c: &Configuration) -> crate::Result<Configured> {
+        if let Some(f) = &self.own {
+            return (f.make)(c.valence).map(Configured::Own);
+        }
         let (ratios, shape) = self.parameters_in(c)?;
-        Builtin::from_kind(self.spec.scheme, c.valence, ratios, shape)
+        Builtin::from_kind(self.spec.scheme, c.valence, ratios, shape).map(Configured::Builtin)
     }
 
     /// [`scheme`](Self::scheme), reusing the storage of `old` (the scheme of
@@ -335,14 +523,14 @@ impl Plan {
     pub fn scheme_reusing(
         &self,
         c: &Configuration,
-        old: Option<Builtin>,
-    ) -> crate::Result<Builtin> {
+        old: Option<Configured>,
+    ) -> crate::Result<Configured> {
         if self.spec.space.kind == SpaceKind::Ratios && self.spec.scheme == SchemeKind::Nurds {
-            if let Some(Builtin::Local(LocalScheme::Nurds(r))) = old {
+            if let Some(Configured::Builtin(Builtin::Local(LocalScheme::Nurds(r)))) = old {
                 if r.valence() == c.valence && c.coordinates.len() == c.valence {
-                    return Ok(Builtin::Local(LocalScheme::Nurds(
+                    return Ok(Configured::Builtin(Builtin::Local(LocalScheme::Nurds(
                         r.refilled(&c.coordinates)?,
-                    )));
+                    ))));
                 }
             }
         }
@@ -352,6 +540,12 @@ impl Plan {
     /// The scheme of a configuration in exact rational arithmetic (every `f64`
     /// coordinate is a dyadic rational; the ratios are derived exactly from it).
     pub fn exact_scheme(&self, c: &Configuration) -> crate::Result<LocalScheme<Rational>> {
+        if let Some(f) = &self.own {
+            return Err(crate::Error::NotApplicable {
+                scheme: f.name.clone(),
+                operation: "a built-in exact configuration",
+            });
+        }
         let (ratios, shape) = self.parameters_in(c)?;
         LocalScheme::from_kind_with_c(self.spec.scheme, c.valence, ratios, shape)
     }
@@ -506,6 +700,8 @@ mod tests {
                 let s = p.scheme(&c).unwrap();
                 let e = p.exact_scheme(&c).unwrap();
                 for (a, b) in s
+                    .builtin()
+                    .unwrap()
                     .ratios()
                     .unwrap()
                     .as_slice()

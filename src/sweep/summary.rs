@@ -247,7 +247,7 @@ impl Summary {
         let full = shard.len(plan.total());
         Summary {
             spec_name: plan.spec().name.clone(),
-            spec_digest: plan.spec().digest(),
+            spec_digest: plan.digest(),
             total_configurations: plan.total(),
             shard,
             limit,

@@ -127,6 +127,22 @@ fn scaled<T: Scalar>(s: &[(usize, T)], w: &T) -> Stencil<T> {
 struct OneRingRules<'a, T> {
     lay: &'a PatchLayout,
     c: T,
+    /// A vertex rule given by its weights instead of the family's (a scheme file).
+    vertex_rule: Option<&'a VertexWeights<T>>,
+}
+
+/// The weights of a vertex rule of Catmull-Clark type at valence `n`:
+/// `v' = own v + edge sum_j e_j + face sum_j f_j` over the one-ring
+/// (math doc section 12.1). The family's own rule is
+/// `own = 1 - 7/(4n)`, `edge = 3/(2n^2)`, `face = 1/(4n^2)` at `c = 1/2`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VertexWeights<T> {
+    /// Weight of the vertex itself.
+    pub own: T,
+    /// Weight of each edge neighbour `e_j`.
+    pub edge: T,
+    /// Weight of each face-diagonal neighbour `f_j`.
+    pub face: T,
 }
 
 impl<T: Scalar> OneRingRules<'_, T> {
@@ -157,6 +173,14 @@ impl<T: Scalar> OneRingRules<'_, T> {
     fn vertex(&self) -> Stencil<T> {
         let l = self.lay;
         let n = l.valence();
+        if let Some(w) = self.vertex_rule {
+            let mut s = vec![(l.v(), w.own.clone())];
+            for i in 0..n {
+                s.push((l.e(i), w.edge.clone()));
+                s.push((l.f(i), w.face.clone()));
+            }
+            return s;
+        }
         let nn = T::frac(n as i64, 1);
         let c = self.c.clone();
         let one = T::one();
@@ -195,7 +219,20 @@ pub(crate) fn one_ring_named<T: Scalar>(name: &str, n: usize, c: &T) -> Result<L
 }
 
 fn add_one_ring_rows<T: Scalar>(asm: &mut Assembler<T>, lay: &PatchLayout, c: &T) {
-    let rules = OneRingRules { lay, c: c.clone() };
+    add_rows_with_vertex(asm, lay, c, None);
+}
+
+fn add_rows_with_vertex<T: Scalar>(
+    asm: &mut Assembler<T>,
+    lay: &PatchLayout,
+    c: &T,
+    vertex_rule: Option<&VertexWeights<T>>,
+) {
+    let rules = OneRingRules {
+        lay,
+        c: c.clone(),
+        vertex_rule,
+    };
     asm.stencil(lay.v(), rules.vertex());
     for i in 0..lay.valence() {
         asm.stencil(lay.e(i), rules.edge(i));
@@ -256,11 +293,46 @@ pub fn patch_matrix<T: Scalar>(n: usize, c: &T) -> Result<LocalMatrix<T>> {
 }
 
 pub(crate) fn patch_named<T: Scalar>(name: &str, n: usize, c: &T) -> Result<LocalMatrix<T>> {
+    patch_with(name, n, c, None)
+}
+
+/// The one-ring matrix of Catmull-Clark's edge and face rules (`c = 1/2`)
+/// with the vertex rule `w` at the extraordinary vertex (a scheme file's).
+pub fn one_ring_with_vertex<T: Scalar>(
+    name: &str,
+    n: usize,
+    w: &VertexWeights<T>,
+) -> Result<LocalMatrix<T>> {
+    let c = T::frac(1, 2);
+    validate(n, &c)?;
+    let lay = PatchLayout::new(n)?;
+    let labels: Vec<PointLabel> = lay.labels()[..lay.one_ring_len()].to_vec();
+    let mut asm = Assembler::square(name, n, labels);
+    add_rows_with_vertex(&mut asm, &lay, &c, Some(w));
+    asm.finish()
+}
+
+/// The patch matrix of [`one_ring_with_vertex`]: its one-ring rows and the
+/// regular Catmull-Clark rows of the 7 outer points (math doc section 13.5).
+pub fn patch_with_vertex<T: Scalar>(
+    name: &str,
+    n: usize,
+    w: &VertexWeights<T>,
+) -> Result<LocalMatrix<T>> {
+    patch_with(name, n, &T::frac(1, 2), Some(w))
+}
+
+fn patch_with<T: Scalar>(
+    name: &str,
+    n: usize,
+    c: &T,
+    vertex_rule: Option<&VertexWeights<T>>,
+) -> Result<LocalMatrix<T>> {
     validate(n, c)?;
     let lay = PatchLayout::new(n)?;
     let labels = lay.labels()[..lay.patch_len()].to_vec();
     let mut asm = Assembler::square(name, n, labels);
-    add_one_ring_rows(&mut asm, &lay, c);
+    add_rows_with_vertex(&mut asm, &lay, c, vertex_rule);
     for k in 0..7 {
         add_regular_row(
             &mut asm,

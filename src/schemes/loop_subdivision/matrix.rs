@@ -63,13 +63,22 @@ fn vertex_point(p: usize, nb: &[usize]) -> Stencil {
 /// The rules on the two-ring layout.
 struct Rules {
     r: TwoRing,
+    /// The central vertex's rule `(own, edge)` instead of Loop's (a scheme file's).
+    vertex_rule: Option<(f64, f64)>,
 }
 
 impl Rules {
     fn vertex(&self) -> Stencil {
         let r = &self.r;
         let nb: Vec<usize> = (0..r.valence()).map(|i| r.e(i)).collect();
-        vertex_point(r.v(), &nb)
+        match self.vertex_rule {
+            Some((own, edge)) => {
+                let mut s = vec![(r.v(), own)];
+                s.extend(nb.iter().map(|&q| (q, edge)));
+                s
+            }
+            None => vertex_point(r.v(), &nb),
+        }
     }
     fn edge_e(&self, i: usize) -> Stencil {
         let r = &self.r;
@@ -125,11 +134,26 @@ fn add_two_ring_rows(asm: &mut Assembler<f64>, rules: &Rules, one_ring_only: boo
 /// points, columns: old points, both in the layout of [`TwoRing`]).
 /// Refuses valences whose dense matrix exceeds the memory budget.
 pub fn two_ring_matrix(n: usize) -> Result<LocalMatrix<f64>> {
+    two_ring_with(LOOP, n, None)
+}
+
+/// The two-ring matrix of Loop's edge rule and regular vertex rule with the
+/// vertex rule `v' = own v + edge sum_j e_j` at the central vertex (a scheme
+/// file's; math doc section 12.1), named `name`.
+pub fn two_ring_with_vertex(name: &str, n: usize, own: f64, edge: f64) -> Result<LocalMatrix<f64>> {
+    two_ring_with(name, n, Some((own, edge)))
+}
+
+fn two_ring_with(
+    name: &str,
+    n: usize,
+    vertex_rule: Option<(f64, f64)>,
+) -> Result<LocalMatrix<f64>> {
     let d = 3 * n as u128 + 1;
     check_size(n, d * d, "two-ring matrix")?;
     let r = TwoRing::new(n)?;
-    let mut asm = Assembler::square(LOOP, n, r.labels());
-    add_two_ring_rows(&mut asm, &Rules { r }, false);
+    let mut asm = Assembler::square(name, n, r.labels());
+    add_two_ring_rows(&mut asm, &Rules { r, vertex_rule }, false);
     asm.finish()
 }
 
@@ -141,7 +165,14 @@ pub fn one_ring_matrix(n: usize) -> Result<LocalMatrix<f64>> {
     let r = TwoRing::new(n)?;
     let labels = r.labels()[..r.one_ring_len()].to_vec();
     let mut asm = Assembler::square(LOOP, n, labels);
-    add_two_ring_rows(&mut asm, &Rules { r }, true);
+    add_two_ring_rows(
+        &mut asm,
+        &Rules {
+            r,
+            vertex_rule: None,
+        },
+        true,
+    );
     asm.finish()
 }
 
@@ -162,7 +193,10 @@ pub fn extended_matrix(n: usize) -> Result<LocalMatrix<f64>> {
     let mut labels = cols.clone();
     labels.extend((0..3 * n).map(|k| PointLabel::new(Role::Extended, k)));
     let mut asm = Assembler::new(LOOP, n, labels, cols);
-    let rules = Rules { r };
+    let rules = Rules {
+        r,
+        vertex_rule: None,
+    };
     add_two_ring_rows(&mut asm, &rules, false);
     for i in 0..n {
         let row = extended_row_a(n, i);

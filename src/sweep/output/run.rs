@@ -73,7 +73,7 @@ struct Staged {
     valence: usize,
     /// The scheme of the last row, whose storage the next row's reuses
     /// ([`Plan::scheme_reusing`]).
-    scheme: Option<crate::scheme::registry::Builtin>,
+    scheme: Option<crate::sweep::plan::Configured>,
 }
 
 impl Staged {
@@ -274,7 +274,7 @@ impl Layout {
         plan: &Plan,
         id: u64,
         row: &mut Staged,
-    ) -> Option<crate::scheme::registry::Builtin> {
+    ) -> Option<crate::sweep::plan::Configured> {
         row.stage.clear();
         row.coordinates.clear();
         row.coordinates.resize(self.coordinates, None);

@@ -106,7 +106,7 @@ pub fn prepare<'a, R: BufRead + 'a>(
     if shards.is_empty() {
         return Err(input("no shards to merge".into()));
     }
-    let digest = plan.spec().digest();
+    let digest = plan.digest();
     let mut summaries = Vec::with_capacity(shards.len());
     for s in &shards {
         let summary: Summary = serde_json::from_str(&s.summary)

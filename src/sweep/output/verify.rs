@@ -77,7 +77,7 @@ pub const RECHECK_SAMPLE: usize = 32;
 pub fn fingerprint_line(plan: &Plan, shard: Shard) -> String {
     format!(
         "{FINGERPRINT_PREFIX}{}, shard {shard}, {} configurations, spec {:?}\n",
-        plan.spec().digest(),
+        plan.digest(),
         plan.total(),
         plan.spec().name
     )
@@ -108,7 +108,7 @@ pub fn check_fingerprint(plan: &Plan, shard: Shard, line: &str) -> Result<(), St
                 .into(),
         );
     };
-    let want = plan.spec().digest();
+    let want = plan.digest();
     if digest != want {
         return Err(format!(
             "written by another spec (digest {digest}; this spec's is {want})"
