@@ -2343,7 +2343,6 @@ fn cases() -> Vec<Case> {
     // ===================================================================
     // SECTION sharp-meshes: open meshes, crease and corner tags (OBJ `t`
     // lines and --tags), --boundary, --creasing.
-    // ============================================================
     // ===================================================================
     v.extend([
         bad_with("sharp-tag-bad-counts", &["subdivide", "m.obj", "--scheme", "catmull-clark", "-o", "o.obj"],
@@ -2402,7 +2401,7 @@ fn cases() -> Vec<Case> {
             &[("m.obj", sharp_strip!())], "--levels 13"),
     ]);
     // (end of section sharp-meshes)
-=======
+    // ===================================================================
     // SECTION scheme-files: --scheme-file of analyze, matrix, sweep and
     // merge; every refusal of the scheme-file validator.
     // ===================================================================
