@@ -1,6 +1,7 @@
 //! Loop subdivision (Loop 1987) on triangle meshes: weights, the local
 //! subdivision matrix on the two-ring of an extraordinary vertex, its Fourier
-//! blocks, the certified characteristic map, and mesh refinement.
+//! blocks and the certified characteristic map; its mesh refinement is
+//! [`crate::mesh::loop_subdivision`].
 //!
 //! Weights (math doc section 11):
 //!
@@ -43,7 +44,6 @@
 pub mod charmap;
 pub mod fourier;
 pub mod matrix;
-pub mod mesh;
 mod scheme_impl;
 pub mod tri_bezier;
 
