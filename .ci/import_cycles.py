@@ -25,13 +25,18 @@ so doc links are not dependencies. Inline modules (`mod tests { ... }`)
 belong to their file, but paths inside them are resolved from the inline
 module.
 
-Usage: .ci/import_cycles.py [--ignore PREFIX]... [--root DIR] [--edges]
+Usage: .ci/import_cycles.py [--ignore PREFIX]... [--root DIR] [--edges] [--known FILE]
   --ignore PREFIX  drop the files whose path (relative to the root, e.g.
                    src/sweep/) starts with PREFIX, with their edges
   --root DIR       the crate root (default: the parent of this script's
                    directory)
   --edges          also print the edges inside each component and the file
                    edges behind each two-way module pair
+  --known FILE     loops and pairs that are known and still to be removed, one
+                   a line: `files A B ...` (a file loop, its members),
+                   `modules a b ...` (a module loop), `pair a b`; `#` starts a
+                   comment. Exits 1 on a loop or pair not listed and on a listed
+                   one that no longer occurs (the list can only shrink).
 """
 
 import argparse
@@ -400,12 +405,36 @@ def analyse(root, ignore=()):
     }
 
 
+def read_known(path):
+    """The set of findings listed in a --known file."""
+    known = set()
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            words = line.split("#", 1)[0].split()
+            if not words:
+                continue
+            if words[0] not in ("files", "modules", "pair") or len(words) < 3:
+                raise SystemExit(f"{path}: cannot read line: {line.strip()}")
+            known.add((words[0], tuple(sorted(words[1:]))))
+    return known
+
+
+def findings(r):
+    """The loops and pairs of an analysis as `--known` entries."""
+    out = [("files", tuple(c)) for c in r["loops"]]
+    out += [("modules", tuple(c)) for c in r["mod_loops"]]
+    out += [("pair", p) for p in r["pairs"]]
+    return out
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--ignore", action="append", default=[], metavar="PREFIX")
     ap.add_argument("--root", default=os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     ap.add_argument("--edges", action="store_true")
+    ap.add_argument("--known", metavar="FILE")
     args = ap.parse_args(argv)
+    known = read_known(args.known) if args.known else set()
     r = analyse(args.root, args.ignore)
     graph, loops = r["graph"], r["loops"]
     edges = sum(len(v) for v in graph.values())
@@ -415,8 +444,11 @@ def main(argv=None):
         f"{len(r['modgraph'])} top-level modules, {medges} edges, "
         f"{len(r['mod_loops'])} import loop(s) between modules, {len(r['pairs'])} two-way pair(s)"
     )
+    def tag(kind, members):
+        return " (known)" if (kind, tuple(sorted(members))) in known else ""
+
     for c in loops:
-        print(f"\nloop of {len(c)} files:")
+        print(f"\nloop of {len(c)} files{tag('files', c)}:")
         members = set(c)
         for f in c:
             print(f"  {f}")
@@ -424,14 +456,21 @@ def main(argv=None):
                 for d in sorted(graph[f] & members):
                     print(f"      -> {d}")
     for c in r["mod_loops"]:
-        print(f"\nloop of {len(c)} top-level modules: {' '.join(c)}")
+        print(f"\nloop of {len(c)} top-level modules{tag('modules', c)}: {' '.join(c)}")
     for a, b in r["pairs"]:
-        print(f"\ntwo-way pair: {a} <-> {b}")
+        print(f"\ntwo-way pair{tag('pair', (a, b))}: {a} <-> {b}")
         if args.edges:
             for x, y in ((a, b), (b, a)):
                 for f, d in r["behind"][(x, y)]:
                     print(f"  {f} -> {d}")
-    return 1 if loops or r["mod_loops"] or r["pairs"] else 0
+    found = {(k, tuple(sorted(m))) for k, m in findings(r)}
+    new = found - known
+    stale = sorted(known - found)
+    for kind, members in stale:
+        print(f"\nlisted in {args.known} but no longer found (remove the line): {kind} {' '.join(members)}")
+    if args.known:
+        print(f"\n{len(new)} new, {len(found & known)} known, {len(stale)} no longer found")
+    return 1 if new or stale else 0
 
 
 if __name__ == "__main__":
