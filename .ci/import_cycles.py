@@ -1,27 +1,42 @@
 #!/usr/bin/env python3
-"""Import loops between the source files of the crate (stdlib only).
+"""Import loops between the source files and the top-level modules of the crate
+(stdlib only).
 
-Builds the file-level dependency graph of src/**/*.rs and prints its strongly
-connected components of more than one file; exits 1 if there is any.
+Builds the file-level dependency graph of src/**/*.rs and, from it, the graph of
+the top-level modules (`spectral`, `scheme`, ...; the binary's modules are
+`bin:cli` etc.). Prints the strongly connected components of more than one
+file, the strongly connected components of more than one top-level module and
+the two-way pairs of top-level modules (`a <-> b`: a file of `a` uses `b` and a
+file of `b` uses `a`); exits 1 if there is any of them.
 
 Edges: a file depends on the file that defines the module a path names, for
-every `crate::...` and `super::...` path in it (in `use` trees, groups
-expanded, and in expressions and types), `subdiv_lab::...` in the binary's
-files counting as the library's `crate::...`. The module a path names is its
-longest prefix that is a module (so `crate::spectral::kernel::BATCH` names
-`spectral::kernel`, defined by src/spectral/kernel/mod.rs); a directory
-module's mod.rs stands for the module. Comments, strings and character
-literals are ignored, so doc links are not dependencies. Inline modules
-(`mod tests { ... }`) belong to their file, but `super::` inside them is
-resolved from the inline module. Bare relative paths (`child::X`, `self::`)
-are not counted: they name a module's own children.
+every path in it (in `use` trees, groups expanded, and in expressions and
+types) that starts with `crate::`, `super::`, `self::`, the name of a child
+module of the module it is written in (`pub use child::X`, `child::f()`),
+or a name a `use` in the same module bound to a module (`use
+crate::spectral::kernel;` then `kernel::BATCH`); `subdiv_lab::...` in the
+binary's files counts as the library's `crate::...`. The module a path names
+is its longest prefix that is a module (so `crate::spectral::kernel::BATCH`
+names `spectral::kernel`, defined by src/spectral/kernel/mod.rs); a directory
+module's mod.rs stands for the module. A path to an item that a module
+re-exports (`pub use`) names the file that defines the item. `mod child;`
+itself is not an edge. Comments, strings and character literals are ignored,
+so doc links are not dependencies. Inline modules (`mod tests { ... }`)
+belong to their file, but paths inside them are resolved from the inline
+module.
 
-Usage: .ci/import_cycles.py [--ignore PREFIX]... [--root DIR] [--edges]
+Usage: .ci/import_cycles.py [--ignore PREFIX]... [--root DIR] [--edges] [--known FILE]
   --ignore PREFIX  drop the files whose path (relative to the root, e.g.
                    src/sweep/) starts with PREFIX, with their edges
   --root DIR       the crate root (default: the parent of this script's
                    directory)
-  --edges          also print, for each component, the edges inside it
+  --edges          also print the edges inside each component and the file
+                   edges behind each two-way module pair
+  --known FILE     loops and pairs that are known and still to be removed, one
+                   a line: `files A B ...` (a file loop, its members),
+                   `modules a b ...` (a module loop), `pair a b`; `#` starts a
+                   comment. Exits 1 on a loop or pair not listed and on a listed
+                   one that no longer occurs (the list can only shrink).
 """
 
 import argparse
@@ -139,12 +154,16 @@ class Crate:
             if os.path.exists(os.path.join(root, top)):
                 self.walk(crate, top, ())
 
+    def read(self, rel):
+        with open(os.path.join(self.root, rel), encoding="utf-8") as f:
+            return f.read()
+
     def walk(self, crate, rel, modpath):
         if rel in self.files:
             return
         self.modules[crate][modpath] = rel
         self.files[rel] = (crate, modpath)
-        text = strip_code(open(os.path.join(self.root, rel), encoding="utf-8").read())
+        text = strip_code(self.read(rel))
         base = os.path.basename(rel)
         d = os.path.dirname(rel)
         if base not in ("lib.rs", "main.rs", "mod.rs"):
@@ -205,7 +224,7 @@ class Crate:
         if rel in self._reexports:
             return self._reexports[rel]
         crate, modpath = self.files[rel]
-        text = strip_code(open(os.path.join(self.root, rel), encoding="utf-8").read())
+        text = strip_code(self.read(rel))
         out = {}
         for m in re.finditer(r"\bpub(?:\s*\([^)]*\))?\s+use\s+([^;]*);", text):
             tree = re.sub(r"\s+as\s+(" + IDENT + ")", r"@\1", m.group(1))
@@ -236,9 +255,32 @@ class Crate:
             return list(here) + segs
         return None
 
+    def target(self, crate, here, segs, aliases):
+        """(crate, absolute path) of a path written in module `here`, or None
+        for a path into an external crate or to a local item (a variable, a
+        type's associated item)."""
+        first = segs[0]
+        if first == "crate":
+            return crate, segs[1:]
+        if first == "subdiv_lab" and crate == "bin":
+            return "lib", segs[1:]
+        if first in ("super", "self"):
+            base, k = list(here), 0
+            while k < len(segs) and segs[k] in ("super", "self"):
+                if segs[k] == "super":
+                    base = base[:-1]
+                k += 1
+            return crate, base + segs[k:]
+        if tuple(here) + (first,) in self.modules[crate]:
+            return crate, list(here) + segs
+        bound = aliases.get(tuple(here), {}).get(first)
+        if bound is not None:
+            return bound[0], bound[1] + segs[1:]
+        return None
+
     def deps(self, rel):
         crate, modpath = self.files[rel]
-        text = strip_code(open(os.path.join(self.root, rel), encoding="utf-8").read())
+        text = strip_code(self.read(rel))
         scopes = self.inline_scopes(text)
 
         def scope_at(pos):
@@ -250,39 +292,47 @@ class Crate:
 
         paths = []  # (position, segments)
         used = []
+        aliases = {}  # module path -> {name: (crate, absolute module path)}
         for m in re.finditer(r"\buse\s+([^;]*);", text):
             used.append((m.start(), m.end()))
-            tree = re.sub(r"\bas\s+" + IDENT, "", m.group(1))
+            here = scope_at(m.start())
+            tree = re.sub(r"\s+as\s+(" + IDENT + ")", r"@\1", m.group(1))
             for segs in expand_use_tree(tree):
+                if not segs:
+                    continue
+                name = segs[-1].split("@")[-1]
+                segs = segs[:-1] + [segs[-1].split("@")[0]]
                 paths.append((m.start(), segs))
-        for m in re.finditer(r"\b(crate|super|subdiv_lab)((?:\s*::\s*" + IDENT + r")+)", text):
+                t = self.target(crate, here, segs, aliases)
+                if t is not None and name not in ("*", "self", "_") and tuple(t[1]) in self.modules[t[0]]:
+                    aliases.setdefault(tuple(here), {})[name] = t
+        # A path in an expression or a type: an identifier not preceded by
+        # `::` (nor part of a longer identifier), followed by `::ident`s.
+        for m in re.finditer(r"(?<![:\w])(" + IDENT + r")((?:\s*::\s*" + IDENT + r")+)", text):
             if any(s <= m.start() < e for s, e in used):
+                continue
+            if text[: m.start()].rstrip().endswith("::"):
                 continue
             segs = [m.group(1)] + re.findall(IDENT, m.group(2))
             paths.append((m.start(), segs))
         out = set()
         for pos, segs in paths:
-            here = scope_at(pos)
-            if not segs:
+            t = self.target(crate, scope_at(pos), segs, aliases)
+            if t is None:
                 continue
-            target_crate = crate
-            if segs[0] == "crate":
-                absolute = segs[1:]
-            elif segs[0] == "subdiv_lab" and crate == "bin":
-                target_crate, absolute = "lib", segs[1:]
-            elif segs[0] == "super":
-                base = list(here)
-                k = 0
-                while k < len(segs) and segs[k] == "super":
-                    base = base[:-1]
-                    k += 1
-                absolute = base + segs[k:]
-            else:
-                continue
-            f = self.resolve(target_crate, here, absolute)
+            f = self.resolve(t[0], (), t[1])
             if f and f != rel:
                 out.add(f)
         return out
+
+    def top_module(self, rel):
+        """The top-level module a file belongs to: `spectral` for
+        src/spectral/kernel/mod.rs, `crate` for src/lib.rs, `bin:cli` for a
+        file of the binary's `cli` module, `bin` for src/main.rs."""
+        crate, modpath = self.files[rel]
+        if crate == "lib":
+            return modpath[0] if modpath else "crate"
+        return "bin:" + modpath[0] if modpath else "bin"
 
 
 def sccs(graph):
@@ -325,27 +375,102 @@ def sccs(graph):
     return out
 
 
-def main():
+def analyse(root, ignore=()):
+    """The file graph, its loops, the top-level module graph, its loops and
+    its two-way pairs (with the file edges behind each direction)."""
+    crate = Crate(root)
+    keep = [f for f in crate.files if not any(f.startswith(p) for p in ignore)]
+    keep_set = set(keep)
+    graph = {f: {d for d in crate.deps(f) if d in keep_set} for f in keep}
+    loops = sorted((c for c in sccs(graph) if len(c) > 1), key=lambda c: (-len(c), c))
+    modgraph, behind = {}, {}
+    for f in keep:
+        modgraph.setdefault(crate.top_module(f), set())
+    for f, ds in graph.items():
+        a = crate.top_module(f)
+        for d in ds:
+            b = crate.top_module(d)
+            if a != b:
+                modgraph[a].add(b)
+                behind.setdefault((a, b), []).append((f, d))
+    mod_loops = sorted((c for c in sccs(modgraph) if len(c) > 1), key=lambda c: (-len(c), c))
+    pairs = sorted((a, b) for a in modgraph for b in modgraph[a] if a < b and a in modgraph[b])
+    return {
+        "graph": graph,
+        "loops": loops,
+        "modgraph": modgraph,
+        "mod_loops": mod_loops,
+        "pairs": pairs,
+        "behind": {k: sorted(v) for k, v in behind.items()},
+    }
+
+
+def read_known(path):
+    """The set of findings listed in a --known file."""
+    known = set()
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            words = line.split("#", 1)[0].split()
+            if not words:
+                continue
+            if words[0] not in ("files", "modules", "pair") or len(words) < 3:
+                raise SystemExit(f"{path}: cannot read line: {line.strip()}")
+            known.add((words[0], tuple(sorted(words[1:]))))
+    return known
+
+
+def findings(r):
+    """The loops and pairs of an analysis as `--known` entries."""
+    out = [("files", tuple(c)) for c in r["loops"]]
+    out += [("modules", tuple(c)) for c in r["mod_loops"]]
+    out += [("pair", p) for p in r["pairs"]]
+    return out
+
+
+def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--ignore", action="append", default=[], metavar="PREFIX")
     ap.add_argument("--root", default=os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     ap.add_argument("--edges", action="store_true")
-    args = ap.parse_args()
-    crate = Crate(args.root)
-    keep = [f for f in crate.files if not any(f.startswith(p) for p in args.ignore)]
-    graph = {f: {d for d in crate.deps(f) if d in keep} for f in keep}
-    comps = sorted((c for c in sccs(graph) if len(c) > 1), key=lambda c: (-len(c), c))
+    ap.add_argument("--known", metavar="FILE")
+    args = ap.parse_args(argv)
+    known = read_known(args.known) if args.known else set()
+    r = analyse(args.root, args.ignore)
+    graph, loops = r["graph"], r["loops"]
     edges = sum(len(v) for v in graph.values())
-    print(f"{len(keep)} files, {edges} edges, {len(comps)} import loop(s)")
-    for c in comps:
-        print(f"\nloop of {len(c)} files:")
+    medges = sum(len(v) for v in r["modgraph"].values())
+    print(f"{len(graph)} files, {edges} edges, {len(loops)} import loop(s) between files")
+    print(
+        f"{len(r['modgraph'])} top-level modules, {medges} edges, "
+        f"{len(r['mod_loops'])} import loop(s) between modules, {len(r['pairs'])} two-way pair(s)"
+    )
+    def tag(kind, members):
+        return " (known)" if (kind, tuple(sorted(members))) in known else ""
+
+    for c in loops:
+        print(f"\nloop of {len(c)} files{tag('files', c)}:")
         members = set(c)
         for f in c:
             print(f"  {f}")
             if args.edges:
                 for d in sorted(graph[f] & members):
                     print(f"      -> {d}")
-    return 1 if comps else 0
+    for c in r["mod_loops"]:
+        print(f"\nloop of {len(c)} top-level modules{tag('modules', c)}: {' '.join(c)}")
+    for a, b in r["pairs"]:
+        print(f"\ntwo-way pair{tag('pair', (a, b))}: {a} <-> {b}")
+        if args.edges:
+            for x, y in ((a, b), (b, a)):
+                for f, d in r["behind"][(x, y)]:
+                    print(f"  {f} -> {d}")
+    found = {(k, tuple(sorted(m))) for k, m in findings(r)}
+    new = found - known
+    stale = sorted(known - found)
+    for kind, members in stale:
+        print(f"\nlisted in {args.known} but no longer found (remove the line): {kind} {' '.join(members)}")
+    if args.known:
+        print(f"\n{len(new)} new, {len(found & known)} known, {len(stale)} no longer found")
+    return 1 if new or stale else 0
 
 
 if __name__ == "__main__":

@@ -13,7 +13,7 @@
 //!   output face. Whole-process peak RSS of the CLI is measured separately
 //!   with `/usr/bin/time -v` by `benches/cgal/compare.sh`.
 //!
-//! Loop subdivision (`schemes::loop_subdivision::mesh`) has its own input,
+//! Loop subdivision (`mesh::loop_subdivision`) has its own input,
 //! a triangle mesh: the icosahedron refined 4 times with Loop (5,120
 //! triangles), refined 4 more times to 1,310,720 triangles; same two
 //! measurements. The comparison with CGAL and OpenSubdiv is
@@ -23,9 +23,9 @@
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use subdiv_lab::mesh::loop_subdivision as loop_mesh;
 use subdiv_lab::mesh::refine::refine_levels;
 use subdiv_lab::mesh::{generators, Mesh};
-use subdiv_lab::schemes::loop_subdivision::mesh as loop_mesh;
 use subdiv_lab::schemes::SchemeKind;
 
 struct PeakAlloc;

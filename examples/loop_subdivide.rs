@@ -1,5 +1,5 @@
 //! Loop subdivision of a closed triangle OBJ with the library functions
-//! (`schemes::loop_subdivision::mesh`), for the comparison scripts
+//! (`mesh::loop_subdivision`), for the comparison scripts
 //! `benches/cgal/compare_loop.sh` and `benches/opensubdiv/compare_loop.sh`
 //! (until `subdiv-lab subdivide --scheme loop` exists).
 //!
@@ -17,8 +17,8 @@
 use anyhow::{anyhow, bail, Context, Result};
 use std::io::Write;
 use subdiv_lab::budget::{format_bytes, format_seconds, MEMORY_LIMIT_BYTES, TIME_LIMIT_SECONDS};
+use subdiv_lab::mesh::loop_subdivision::{half_edges_after, limit_mesh, refine};
 use subdiv_lab::mesh::obj;
-use subdiv_lab::schemes::loop_subdivision::mesh::{half_edges_after, limit_mesh, refine};
 
 fn run() -> Result<()> {
     let mut positional = Vec::new();

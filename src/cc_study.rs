@@ -38,9 +38,10 @@
 //! ```
 
 use crate::charmap;
-use crate::error::{Error, Result};
+use crate::error::Error;
 use crate::schemes::catmull_clark::fourier;
 use crate::schemes::LocalScheme;
+use crate::spectral::Result;
 use crate::spectral::{classify_scheme, SubdominantClass};
 use serde::Serialize;
 
@@ -232,7 +233,7 @@ pub fn check_tol(tol: f64) -> Result<()> {
         name: "tol",
         value: format!("{tol:?}"),
         reason: "the bisection width must be at least 2^-52 (2.2e-16, the spacing f64 resolves in [0, 1]) and below 1",
-    })
+    }.into())
 }
 
 /// Bisection between `inside` (certified) and `outside` (not) to width `tol`
@@ -258,7 +259,8 @@ fn bisect(
                     inside.min(outside),
                     inside.max(outside)
                 ),
-            });
+            }
+            .into());
         }
         steps += 1;
         let v = verdict(n, mid, criterion)?;
@@ -351,7 +353,10 @@ mod tests {
     fn tolerance_below_f64_resolution_is_refused() {
         for tol in [1e-21, 0.0, -1.0, 1.0, f64::NAN, MIN_TOL / 2.0] {
             let e = intervals(5, 4, tol, Criterion::Standard).unwrap_err();
-            assert!(e.is_input_error(), "{tol}: {e}");
+            assert!(
+                crate::AnyError::from(e.clone()).is_input_error(),
+                "{tol}: {e}"
+            );
         }
         let iv = intervals(5, 4, MIN_TOL, Criterion::Standard).unwrap();
         assert!(iv[0].lo > 0.0 && (iv[0].lo - iv[0].lo_outside).abs() <= MIN_TOL);
@@ -374,7 +379,8 @@ mod tests {
             .expect("the bisection must stop");
         let e = r.unwrap_err();
         assert!(
-            !e.is_input_error() && e.to_string().contains("did not narrow"),
+            !crate::AnyError::from(e.clone()).is_input_error()
+                && e.to_string().contains("did not narrow"),
             "{e}"
         );
     }

@@ -4,8 +4,11 @@
 //! so the binary can print a one-line message without extra context. The core
 //! never panics on user input: invalid input is one of these variants.
 //!
-//! Modules with many failure modes of their own (meshes, sweep specs, reports)
-//! define their own error enums and convert into [`Error`] with `#[from]`.
+//! The modules above the core (spectral analysis, meshes, sweeps, the G2 cap,
+//! the CCSS bound, reports) define their own error enums, which wrap [`Error`]
+//! where their work calls into the core; [`Error`] wraps none of them.
+//! Whether an error is about the caller's input is decided by the front ends
+//! (`AnyError::is_input_error` in `any_error`).
 
 use thiserror::Error as ThisError;
 
@@ -81,9 +84,6 @@ pub enum Error {
     /// A refused scheme file (the key and the valence it names).
     #[error(transparent)]
     SchemeFile(#[from] crate::schemes::user::SchemeFileError),
-    /// Failures of the patch-to-limit-face distance bound (`ccss_bound`).
-    #[error(transparent)]
-    CcssBound(#[from] crate::ccss_bound::CcssBoundError),
     /// A numerical routine that did not converge or met a singular system.
     #[error("numerical failure in {routine}: {reason}")]
     Numerical {
@@ -92,72 +92,7 @@ pub enum Error {
         /// What went wrong.
         reason: String,
     },
-    /// Mesh construction, I/O parsing or refinement.
-    #[error(transparent)]
-    Mesh(#[from] crate::mesh::MeshError),
-    /// An error of the spectral engine.
-    #[error(transparent)]
-    Spectral(#[from] crate::spectral::SpectralError),
-    /// A sweep spec, resume or merge error.
-    #[error(transparent)]
-    Sweep(#[from] crate::sweep::SweepError),
-    /// The G2 cap construction refused its input or its result.
-    #[error(transparent)]
-    G2Cap(#[from] crate::g2cap::G2CapError),
 }
 
 /// Shorthand for results of the library core.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
-
-impl Error {
-    /// Whether the error is about the caller's input (a bad parameter, spec
-    /// or mesh: the CLI's exit 2, Python's `ValueError`) rather than a failure
-    /// while running (a numerical failure, an I/O error).
-    pub fn is_input_error(&self) -> bool {
-        use crate::ccss_bound::CcssBoundError as C;
-        use crate::spectral::SpectralError as S;
-        use crate::sweep::SweepError as W;
-        use Error as E;
-        match self {
-            E::ValenceTooSmall { .. }
-            | E::InvalidInterval { .. }
-            | E::InvalidRatio { .. }
-            | E::CountMismatch { .. }
-            | E::InvalidParameter { .. }
-            | E::NotApplicable { .. }
-            | E::Mesh(_)
-            | E::SchemeFile(_) => true,
-            E::Numerical { .. } => false,
-            E::CcssBound(c) => matches!(
-                c,
-                C::InvalidTolerance(_)
-                    | C::NonFinitePoint { .. }
-                    | C::RaggedNet { .. }
-                    | C::ToleranceBelowResolution { .. }
-            ),
-            E::Spectral(s) => matches!(s, S::NotDooSabinFamily { .. }),
-            E::Sweep(w) => !matches!(w, W::Io(_)),
-            E::G2Cap(g) => g.is_input_error(),
-            _ => false,
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::g2cap::G2CapError;
-
-    /// A G2 cap error keeps its own classification through [`Error`] (the
-    /// Python binding maps library errors through it).
-    #[test]
-    fn g2_cap_errors_keep_their_kind() {
-        assert!(Error::from(G2CapError::ShapeParameter { c: f64::NAN }).is_input_error());
-        let residual = G2CapError::Residual {
-            what: "g1",
-            value: 1.0,
-            tol: 1e-9,
-        };
-        assert!(!Error::from(residual).is_input_error());
-    }
-}

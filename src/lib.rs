@@ -72,6 +72,7 @@
 
 #![warn(missing_docs)]
 
+pub mod any_error;
 pub mod bezier;
 pub mod bspline;
 pub mod budget;
@@ -97,5 +98,6 @@ pub mod testing;
 pub(crate) mod toml_location;
 pub mod verify;
 
+pub use any_error::AnyError;
 pub use error::{Error, Result};
 pub use scheme::Scheme;

@@ -6,8 +6,8 @@
 mod common;
 use common::run;
 use std::f64::consts::PI;
+use subdiv_lab::mesh::loop_subdivision::{limit_mesh, refine_levels};
 use subdiv_lab::mesh::obj::{parse_obj, write_obj_string};
-use subdiv_lab::schemes::loop_subdivision::mesh::{limit_mesh, refine_levels};
 
 fn json(args: &[&str]) -> serde_json::Value {
     let (code, out, err) = run(args);

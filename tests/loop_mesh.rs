@@ -1,5 +1,5 @@
 //! Loop subdivision of whole triangle meshes
-//! (`schemes::loop_subdivision::mesh`): topology and counts per level, an
+//! (`mesh::loop_subdivision`): topology and counts per level, an
 //! independent reference implementation of one step, linear reproduction on a
 //! regular planar patch, the convex-hull property, convergence to the
 //! closed-form limit stencil at the rates of the subdivision matrix, the
@@ -9,11 +9,11 @@
 use proptest::prelude::*;
 use std::collections::HashMap;
 use std::path::PathBuf;
-use subdiv_lab::mesh::obj::{parse_obj, write_obj_string};
-use subdiv_lab::mesh::{generators, Mesh, MeshError, MAX_HALF_EDGES};
-use subdiv_lab::schemes::loop_subdivision::mesh::{
+use subdiv_lab::mesh::loop_subdivision::{
     counts_after, half_edges_after, limit_mesh, limit_positions, refine, refine_levels,
 };
+use subdiv_lab::mesh::obj::{parse_obj, write_obj_string};
+use subdiv_lab::mesh::{generators, Mesh, MeshError, MAX_HALF_EDGES};
 use subdiv_lab::schemes::loop_subdivision::{beta, subdominant_eigenvalue};
 
 // ---------------------------------------------------------------------------

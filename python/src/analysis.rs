@@ -259,6 +259,10 @@ fn analyze_resolved(
             subdiv_lab::charmap::check_classified(&*scheme, &result.charmap_subdominant());
         Ok((result, charmap))
     })?;
-    let v = subdiv_lab::spectral::json::analysis_json(&result, &charmap, &input);
+    let v = subdiv_lab::spectral::json::analysis_json(
+        &result,
+        subdiv_lab::charmap::charmap_json(&charmap),
+        &input,
+    );
     serde_json::to_string(&v).map_err(runtime_err)
 }

@@ -76,7 +76,7 @@ pub(crate) fn subdivide<'py>(
         let positions = points("vertices", &vertices)?;
         let faces = face_lists(faces)?;
         let mut mesh = Mesh::from_polygons(positions, &faces).map_err(lib_err)?;
-        let rules = subdiv_lab::scheme::registry::mesh_rules(kind, c).map_err(lib_err)?;
+        let rules = subdiv_lab::mesh::builtin::mesh_rules(kind, c).map_err(lib_err)?;
         if rules.knots() != KnotUse::None {
             // every directed edge 1, then the given ones (the CLI's default interval)
             knot_file::apply_knot_text(&mut mesh, "", 1.0).map_err(lib_err)?;
@@ -101,7 +101,7 @@ pub(crate) fn subdivide<'py>(
             TIME_LIMIT_SECONDS,
             force,
         )?;
-        let mesh = py.detach(move || -> subdiv_lab::Result<Mesh> {
+        let mesh = py.detach(move || -> Result<Mesh, subdiv_lab::mesh::MeshError> {
             for _ in 0..levels {
                 mesh = rules.refine(&mesh)?;
             }
@@ -268,7 +268,7 @@ pub(crate) fn g2_cap<'py>(
             }
         };
         let (json, mesh) = py
-            .detach(|| -> subdiv_lab::Result<_> {
+            .detach(|| -> Result<_, subdiv_lab::g2cap::G2CapError> {
                 let cap = G2Cap::build(&ring, c)?;
                 cap.check()?;
                 let json = cap.to_json().to_string();
@@ -372,7 +372,7 @@ pub(crate) fn cc_study(
             TIME_LIMIT_SECONDS,
             force,
         )?;
-        let rows = py.detach(|| -> subdiv_lab::Result<Vec<serde_json::Value>> {
+        let rows = py.detach(|| -> subdiv_lab::spectral::Result<Vec<serde_json::Value>> {
             let mut rows = Vec::new();
             for n in n_min..=n_max {
                 if curves {

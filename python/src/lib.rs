@@ -53,7 +53,7 @@ fn guard<T>(name: &str, body: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
 }
 
 /// A library error as a Python exception: input errors are `ValueError`.
-fn lib_err(e: impl Into<subdiv_lab::Error>) -> PyErr {
+fn lib_err(e: impl Into<subdiv_lab::AnyError>) -> PyErr {
     let e = e.into();
     if e.is_input_error() {
         PyValueError::new_err(e.to_string())

@@ -4,7 +4,7 @@
 use super::differences::{default_family, DifferenceFamily};
 use super::lp::{l1_representation, L1Solution};
 use super::patch::{bernstein, ExtraordinaryPatch, SubDomain};
-use crate::error::Result;
+use super::Result;
 use crate::schemes::catmull_clark::SubPatch;
 use nalgebra::DMatrix;
 

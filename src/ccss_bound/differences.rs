@@ -35,7 +35,8 @@
 //! under the patch's diagonal reflection and, around `v`, under rotation.
 
 use super::CcssBoundError;
-use crate::error::{Error, Result};
+use super::Result;
+use crate::error::Error;
 use crate::schemes::catmull_clark::PatchLayout;
 use std::collections::HashSet;
 
@@ -139,7 +140,8 @@ impl DifferenceFamily {
                 what: "control net points (2n+8)",
                 expected: len,
                 got: net.len(),
-            });
+            }
+            .into());
         }
         Ok(self
             .differences
@@ -192,8 +194,7 @@ impl DifferenceFamily {
                     index,
                     name: d.name.clone(),
                     reason,
-                }
-                .into())
+                })
             };
             if d.terms.iter().all(|t| t.1 == 0) {
                 return bad("all coefficients are zero".into());
@@ -300,7 +301,8 @@ pub fn default_family(n: usize) -> Result<DifferenceFamily> {
                 return Err(Error::Numerical {
                     routine: "default difference family",
                     reason: format!("grid line {y:?}-{x:?}-{z:?} leaves the patch"),
-                })
+                }
+                .into())
             }
         }
     }

@@ -11,7 +11,7 @@
 //! equality residual from the simplex tolerance down to rounding level.
 
 use super::CcssBoundError;
-use crate::error::Result;
+use super::Result;
 use good_lp::{constraint, microlp, variable, Expression, ProblemVariables, Solution, SolverModel};
 use nalgebra::{DMatrix, DVector};
 
@@ -36,12 +36,11 @@ pub struct L1Solution {
     pub residual: f64,
 }
 
-fn lp_err(what: &str, e: impl std::fmt::Display) -> crate::Error {
+fn lp_err(what: &str, e: impl std::fmt::Display) -> CcssBoundError {
     CcssBoundError::Lp {
         what: what.to_owned(),
         status: e.to_string(),
     }
-    .into()
 }
 
 /// `min ||x||_1` s.t. `alphas x = target` (`alphas` is `(2n+8) x L`, columns = differences).

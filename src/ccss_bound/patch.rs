@@ -2,7 +2,7 @@
 //! symbols: sub-patch control nets, their Bezier forms and the limit face, all
 //! as linear forms (coefficient vectors) over the original points.
 
-use crate::error::Result;
+use super::Result;
 use crate::schemes::catmull_clark::{
     extended_matrix, limit::limit_stencil, patch_matrix, PatchLayout, SubPatch,
 };

@@ -30,7 +30,7 @@ use super::differences::{default_family, DifferenceFamily};
 use super::lp::l1_representation;
 use super::patch::ExtraordinaryPatch;
 use super::CcssBoundError;
-use crate::error::Result;
+use super::Result;
 use crate::schemes::catmull_clark::SubPatch;
 use nalgebra::DMatrix;
 
@@ -179,11 +179,10 @@ fn check_net(net: &[Vec<f64>]) -> Result<()> {
             index,
             got: p.len(),
             expected,
-        }
-        .into());
+        });
     }
     if let Some(index) = net.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-        return Err(CcssBoundError::NonFinitePoint { index }.into());
+        return Err(CcssBoundError::NonFinitePoint { index });
     }
     Ok(())
 }
@@ -223,7 +222,7 @@ pub fn steps_needed(
     epsilon: f64,
 ) -> Result<StepsReport> {
     if !(epsilon.is_finite() && epsilon > 0.0) {
-        return Err(CcssBoundError::InvalidTolerance(epsilon).into());
+        return Err(CcssBoundError::InvalidTolerance(epsilon));
     }
     check_net(net)?;
     let magnitude = net
@@ -236,8 +235,7 @@ pub fn steps_needed(
             epsilon,
             magnitude,
             floor,
-        }
-        .into());
+        });
     }
     let (net, e) = normalized(net);
     let mut report = steps_needed_unit(patch, family, beta, &net, scale_pow2(epsilon, -e))?;
@@ -292,8 +290,7 @@ fn steps_needed_unit(
             return Err(CcssBoundError::Lp {
                 what: "steps needed".to_owned(),
                 status: format!("bound {bound:e} still above epsilon after {MAX_STEPS} steps"),
-            }
-            .into());
+            });
         }
         // One step: the new regular sub-patch nets and the new extraordinary patch.
         let refined = apply(&ext, &cur);
@@ -318,7 +315,7 @@ fn steps_needed_unit(
 /// with `C rho^k M_0 <= epsilon` (an upper bound for [`steps_needed`]), and `M_0`.
 pub fn steps_a_priori(c: &Contraction, net: &[Vec<f64>], epsilon: f64) -> Result<(u32, f64)> {
     if !(epsilon.is_finite() && epsilon > 0.0) {
-        return Err(CcssBoundError::InvalidTolerance(epsilon).into());
+        return Err(CcssBoundError::InvalidTolerance(epsilon));
     }
     check_net(net)?;
     let family = default_family(c.valence)?;
@@ -332,8 +329,7 @@ pub fn steps_a_priori(c: &Contraction, net: &[Vec<f64>], epsilon: f64) -> Result
         return Err(CcssBoundError::Lp {
             what: "contraction factor".to_owned(),
             status: format!("rho = {} is not below 1", c.rho),
-        }
-        .into());
+        });
     }
     let mut k = 0u32;
     let mut bound = c.constant * m0_unit;

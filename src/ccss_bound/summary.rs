@@ -4,10 +4,11 @@
 //! validate their arguments here ([`check_levels`], [`check_table_to`]).
 
 use super::bound::{bound, BoundReport};
+use super::Result;
 use super::StepsReport;
 use super::{contraction_with, default_family, steps_needed, Contraction, ExtraordinaryPatch};
 use crate::budget::Spelling;
-use crate::error::{Error, Result};
+use crate::error::Error;
 
 /// Most levels `k = 1..K` of sub-patches `Omega^k_m` (each level doubles the
 /// resolution near the vertex; 12 is far below `f64` resolution of `t`).

@@ -325,7 +325,10 @@ fn step_counts_are_scale_invariant_and_refuse_unresolvable_tolerances() {
     }
     let e = steps_needed(&patch, &family, c.beta, &net, 1e-300).unwrap_err();
     assert!(e.to_string().contains("below what f64 resolves"), "{e}");
-    assert!(e.is_input_error(), "{e}");
+    assert!(
+        matches!(e, super::CcssBoundError::ToleranceBelowResolution { .. }),
+        "{e}"
+    );
 }
 
 /// Derived: at the extraordinary vertex M shrinks by lambda_1 per step on

@@ -827,27 +827,32 @@ impl Certificate {
 /// cone test. Eigenstructures other than `standard` have no map here (for
 /// these symmetric schemes they only arise as `not_separated` or
 /// `indeterminate`, e.g. at `c = 0`).
-pub fn check(n: usize, c: f64) -> Result<CharmapReport<CcPatchId>> {
+pub fn check(n: usize, c: f64) -> crate::spectral::Result<CharmapReport<CcPatchId>> {
     check_with(n, c, Certificate::Cone)
 }
 
 /// Catmull-Clark (`c = 1/2`) with the bicubic Bezier certificate.
-pub fn check_bicubic(n: usize) -> Result<CharmapReport<CcPatchId>> {
+pub fn check_bicubic(n: usize) -> crate::spectral::Result<CharmapReport<CcPatchId>> {
     check_with(n, 0.5, Certificate::Bicubic)
 }
 
 /// [`check`] with a choice of certificate (`Bicubic` requires `c = 1/2`).
-pub fn check_with(n: usize, c: f64, cert: Certificate) -> Result<CharmapReport<CcPatchId>> {
+pub fn check_with(
+    n: usize,
+    c: f64,
+    cert: Certificate,
+) -> crate::spectral::Result<CharmapReport<CcPatchId>> {
     if cert == Certificate::Bicubic && c != 0.5 {
         return Err(Error::InvalidParameter {
             name: "c",
             value: c.to_string(),
             reason: "the bicubic Bezier certificate exists only for c = 1/2 (Catmull-Clark)",
-        });
+        }
+        .into());
     }
     let scheme = LocalScheme::<f64>::adjustable_cc(n, c)?;
     let sub = classify_scheme(&scheme)?;
-    check_classified(n, c, &sub, cert)
+    Ok(check_classified(n, c, &sub, cert)?)
 }
 
 /// The check when the classification `sub` of `(n, c)` is already known.

@@ -278,3 +278,16 @@ impl<P: fmt::Display> CharmapReport<P> {
         })
     }
 }
+
+/// The `"charmap"` object: the report's own JSON, or on a numerical failure
+/// an indeterminate verdict carrying the error (the analysis itself stands).
+pub fn charmap_json(c: &crate::Result<CharmapReport<AnyPatchId>>) -> serde_json::Value {
+    match c {
+        Ok(r) => r.to_json(),
+        Err(e) => serde_json::json!({
+            "regular": null, "min_jacobian_coeff": null, "winding_number": null,
+            "verdict": format!("indeterminate (characteristic map not computed: {e})"),
+            "verdict_code": "indeterminate", "error": e.to_string(),
+        }),
+    }
+}

@@ -101,7 +101,11 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     // reported inside the "charmap" object, not as a failure of the analysis.
     let charmap = charmap::check_classified(&*resolved.scheme, &result.charmap_subdominant());
     if args.json {
-        let value = subdiv_lab::spectral::json::analysis_json(&result, &charmap, &resolved.input);
+        let value = subdiv_lab::spectral::json::analysis_json(
+            &result,
+            charmap::charmap_json(&charmap),
+            &resolved.input,
+        );
         let text = serde_json::to_string_pretty(&value).map_err(CliError::failure)? + "\n";
         write_stdout(text.as_bytes())?;
     } else {

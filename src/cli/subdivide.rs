@@ -1,5 +1,5 @@
 //! `subdivide`: refine a closed OBJ mesh with any built-in scheme, through
-//! its mesh rules ([`subdiv_lab::scheme::registry::mesh_rules`]): one flow that
+//! its mesh rules ([`subdiv_lab::mesh::builtin::mesh_rules`]): one flow that
 //! asks the rules for capabilities (knot intervals, per-level statistics).
 //! Rules with sharp-feature masks (Catmull-Clark, Loop) also refine open
 //! meshes and meshes with crease and corner tags (from the OBJ's `t` lines
@@ -19,6 +19,7 @@ use anyhow::{anyhow, Context};
 use clap::Args;
 use std::io::Write;
 use std::path::PathBuf;
+use subdiv_lab::mesh::builtin::mesh_rules;
 use subdiv_lab::mesh::limit::LevelStats;
 use subdiv_lab::mesh::refine::half_edges_after;
 use subdiv_lab::mesh::rules::KnotUse;
@@ -26,7 +27,6 @@ use subdiv_lab::mesh::sharp::rules::{Boundary, Creasing, SdcScheme};
 use subdiv_lab::mesh::sharp::{tags, SharpMesh};
 use subdiv_lab::mesh::{knot_file, obj, Mesh, MeshError, MAX_HALF_EDGES};
 use subdiv_lab::scheme::choice::{validate, Choice, ChoiceError};
-use subdiv_lab::scheme::registry::mesh_rules;
 use subdiv_lab::schemes::SchemeKind;
 
 #[derive(Args, Debug)]

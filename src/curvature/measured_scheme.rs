@@ -53,11 +53,12 @@
 //! square).
 
 use super::measured::{apply, height, level_from_fit, tangent_frame, MeasuredLevel, PERTURBATION};
-use crate::error::{Error, Result};
+use crate::error::Error;
 use crate::rng::SplitMix64;
 use crate::scheme::Scheme;
 use crate::spectral::classify::SubdominantClass;
 use crate::spectral::svd::jacobi_svd;
+use crate::spectral::Result;
 use nalgebra::{DMatrix, Matrix4, Vector3, Vector4};
 use serde::Serialize;
 
@@ -146,7 +147,8 @@ fn measure_with<S: Scheme + ?Sized>(
             name: "levels",
             value: levels.to_string(),
             reason: "the measured curvature takes 1..=40 levels",
-        });
+        }
+        .into());
     }
     // The second-order matrix: it holds the support of the ring of patches
     // (math doc section 13.5), so its nets carry every eigenvalue that
@@ -159,15 +161,15 @@ fn measure_with<S: Scheme + ?Sized>(
         return Err(crate::spectral::SpectralError::NotSquare {
             rows: d,
             cols: s.ncols(),
-        }
-        .into());
+        });
     }
     if d > MAX_DIM {
         return Err(Error::InvalidParameter {
             name: "valence",
             value: scheme.valence().to_string(),
             reason: "the measured curvature takes local matrices of dimension up to 400",
-        });
+        }
+        .into());
     }
     let sub = crate::spectral::classify_local(scheme)?;
     let summary = crate::spectral::curvature::with_classification(scheme, &sub, None)?;
@@ -199,7 +201,7 @@ fn measure_with<S: Scheme + ?Sized>(
                     sub.class.name()
                 ),
                 operation: "the measured curvature (it needs a real subdominant pair: class standard or real_distinct)",
-            })
+            }.into())
         }
     };
     let mu = summary.mu;
@@ -279,7 +281,7 @@ fn null_space(a: &DMatrix<f64>, dim: usize, what: &str) -> Result<Vec<Vec<f64>>>
             reason: format!(
                 "the {what} do not span a {dim}-dimensional eigenspace (singular values {small:.3e} against {next:.3e})"
             ),
-        });
+        }.into());
     }
     Ok((d - dim..d)
         .map(|j| v.column(j).iter().copied().collect())
@@ -317,7 +319,8 @@ fn normalise_sum(v: &[f64]) -> Result<Vec<f64>> {
             routine: "measured curvature",
             reason: "the left eigenvector of 1 sums to zero: the scheme is not affine invariant"
                 .to_owned(),
-        });
+        }
+        .into());
     }
     Ok(v.iter().map(|x| x / s).collect())
 }
@@ -339,7 +342,8 @@ fn planar_layout(x: &[f64], y: &[f64]) -> Result<Vec<[f64; 2]>> {
         return Err(Error::Numerical {
             routine: "measured curvature",
             reason: "the subdominant eigenvectors are (nearly) parallel".to_owned(),
-        });
+        }
+        .into());
     }
     // eigenvector of e1
     let (vx, vy) = if sxy.abs() > 0.0 {
@@ -409,7 +413,7 @@ fn measure_level(
         .collect();
     let radius = pts.iter().map(|p| p.norm()).fold(0.0, f64::max);
     if !(radius > 0.0 && radius.is_finite()) {
-        return Err(degenerate("degenerate net"));
+        return Err(degenerate("degenerate net").into());
     }
     // Least squares z = a x^2 + b xy + c y^2 + d in coordinates scaled by the
     // net's radius (well-conditioned normal equations).

@@ -50,11 +50,12 @@
 //! assert_eq!(t.curve[20].sign, Sign::Positive); // c = 1/2: Catmull-Clark, unbounded at n = 5
 //! ```
 
-use crate::error::{Error, Result};
+use crate::error::Error;
 use crate::scalar::{f64_to_rational, rational_to_f64, Rational};
 use crate::schemes::catmull_clark::fourier;
 use crate::schemes::LocalScheme;
 use crate::spectral::poly::{Poly, Sturm};
+use crate::spectral::Result;
 use num_bigint::BigInt;
 use num_traits::One;
 use serde::Serialize;
@@ -213,7 +214,8 @@ pub fn cos_enclosures(n: usize) -> Result<Vec<Interval>> {
             name: "valence",
             value: n.to_string(),
             reason: "the curvature tuning takes valences 3..=64",
-        });
+        }
+        .into());
     }
     // Chebyshev T_0 = 1, T_1 = x, T_{k+1} = 2x T_k - T_{k-1}.
     let one = Rational::one();
@@ -236,7 +238,8 @@ pub fn cos_enclosures(n: usize) -> Result<Vec<Interval>> {
                 sturm.count_all(),
                 m + 1
             ),
-        });
+        }
+        .into());
     }
     // Candidate intervals around the f64 cosines, proved to hold one root
     // each (Sturm counts over (lo, hi]); disjoint and decreasing in l, they
@@ -258,7 +261,8 @@ pub fn cos_enclosures(n: usize) -> Result<Vec<Interval>> {
                 reason: format!(
                     "could not isolate cos(2 pi {l} / {n}) within 2^-{COS_ISOLATION_BITS}"
                 ),
-            });
+            }
+            .into());
         }
         out.push(Interval::out(rational_to_f64(&lo), rational_to_f64(&hi)));
         prev_lo = Some(lo);
@@ -384,7 +388,8 @@ pub fn tune(n: usize, grid: usize) -> Result<Tuning> {
             name: "grid",
             value: grid.to_string(),
             reason: "the number of grid cells must be in 1..=100000",
-        });
+        }
+        .into());
     }
     let cos = cos_enclosures(n)?;
     let mut curve = Vec::with_capacity(grid + 1);

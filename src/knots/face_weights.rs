@@ -30,7 +30,7 @@
 use super::EdgeRatios;
 use crate::scalar::Scalar;
 
-pub(crate) use super::weight_kernels::interval_kernel;
+pub(crate) use crate::scalar::weight_kernels::interval_kernel;
 
 /// Face-point weights `c_0..c_{n-1}` (they sum to 1) by the closed form.
 ///
@@ -101,8 +101,8 @@ pub fn stationary_distribution<T: Scalar>(ratios: &EdgeRatios<T>) -> Vec<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::knots::weight_kernels::*;
     use crate::knots::CornerIntervals;
+    use crate::scalar::weight_kernels::*;
     use crate::scalar::{f64_to_rational, Rational};
     use num_bigint::BigInt;
 

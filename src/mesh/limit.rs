@@ -4,7 +4,7 @@
 //! With [`super::refine`] this is that family's implementation of the mesh
 //! rules: the library reaches it only through
 //! [`FaceSplit`](super::rules::FaceSplit) (and so through
-//! [`crate::scheme::registry::mesh_rules`]); the [`SchemeKind`] the functions
+//! [`crate::mesh::builtin::mesh_rules`]); the [`SchemeKind`] the functions
 //! take selects the member of the family (NURDS uses the knot intervals, the
 //! others are uniform). [`convergence_series`] and the statistics types are
 //! scheme-independent.

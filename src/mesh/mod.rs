@@ -19,7 +19,7 @@
 //!
 //! Submodules: [`obj`] (OBJ text in and out), [`knot_file`] (the knot-interval
 //! sidecar), [`rules`] (a scheme's mesh rules behind one trait, the way the
-//! library refines: [`crate::scheme::registry::mesh_rules`]), [`refine`] and
+//! library refines: [`crate::mesh::builtin::mesh_rules`]), [`refine`] and
 //! [`limit`] (the Doo-Sabin family's rules: one step, limit points, limit
 //! meshes, per-level convergence statistics), [`catmull_clark`] (the
 //! Catmull-Clark family's rules), [`generators`] (the small closed meshes
@@ -39,10 +39,12 @@
 // Index loops mirror the subscripts of the formulas in the math doc.
 #![allow(clippy::needless_range_loop)]
 
+pub mod builtin;
 pub mod catmull_clark;
 pub mod generators;
 pub mod knot_file;
 pub mod limit;
+pub mod loop_subdivision;
 pub mod neighbourhood;
 pub mod obj;
 pub(crate) mod projection;
@@ -59,6 +61,9 @@ use std::fmt;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum MeshError {
+    /// An error of the core (a scheme parameter the mesh rules refuse).
+    #[error(transparent)]
+    Core(#[from] crate::error::Error),
     /// A mesh without faces.
     #[error("the mesh has no faces")]
     Empty,

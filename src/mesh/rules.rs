@@ -3,13 +3,13 @@
 //! capabilities the `subdivide` command and the mesh figures use (half-edge
 //! knot intervals, per-level statistics of extraordinary faces). The built-in
 //! rules are chosen by name in one place,
-//! [`crate::scheme::registry::mesh_rules`]; this file holds the trait and the
-//! Doo-Sabin family's implementation ([`FaceSplit`]), the Catmull-Clark
-//! family's and Loop's sit with their refinement code.
+//! [`mesh_rules`](crate::mesh::builtin::mesh_rules); this file holds the trait
+//! and the Doo-Sabin family's implementation ([`FaceSplit`]); the
+//! Catmull-Clark family's and Loop's sit with their refinement code.
 //!
 //! ```
 //! use subdiv_lab::mesh::{generators, rules::MeshRules};
-//! use subdiv_lab::scheme::registry::mesh_rules;
+//! use subdiv_lab::mesh::builtin::mesh_rules;
 //! use subdiv_lab::schemes::SchemeKind;
 //! let rules = mesh_rules(SchemeKind::Loop, None).unwrap();
 //! let ico = generators::icosahedron();

@@ -24,7 +24,7 @@ pub enum ReportError {
         /// Figure id.
         figure: String,
         /// The library error.
-        source: crate::Error,
+        source: crate::any_error::AnyError,
     },
     /// Drawing or encoding a figure failed.
     #[error("figure {figure:?}: rendering failed: {message}")]

@@ -9,6 +9,13 @@ use serde::de::DeserializeOwned;
 use toml::de::{DeValue, ValueDeserializer};
 use toml::Spanned;
 
+/// Default figure size in pixels (width, height).
+pub const DEFAULT_SIZE: (u32, u32) = (1600, 1000);
+/// Smallest accepted figure width or height in pixels: below this, text no longer fits.
+pub const MIN_PIXELS: u32 = 400;
+/// Largest accepted figure width or height in pixels (keeps the RGB buffer below ~200 MB).
+pub const MAX_PIXELS: u32 = 8000;
+
 /// Keys every figure table may carry, handled here rather than by the kind.
 pub const COMMON_KEYS: &[&str] = &["kind", "id", "title", "caption", "width", "height", "seed"];
 

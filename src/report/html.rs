@@ -2,25 +2,10 @@
 //! network; images and CSV files are linked by relative paths, so the page
 //! opens from disk and the directory can be moved as a whole.
 
+use super::manifest::Manifest;
+use super::markup::escape;
 use super::spec::ReportSpec;
-use super::Manifest;
 use std::fmt::Write;
-
-/// Escapes text for HTML element content and attribute values.
-pub fn escape(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
 
 const CSS: &str = "body{font-family:'DejaVu Sans',Verdana,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#111;line-height:1.45}\
 h1{font-size:1.7em}h2{font-size:1.3em;margin-top:2.2em;border-bottom:1px solid #bbb}\
@@ -120,16 +105,4 @@ pub fn index(spec: &ReportSpec, manifest: &Manifest, fragments: &[Option<String>
     }
     h.push_str("</body>\n</html>\n");
     h
-}
-
-#[cfg(test)]
-mod doc_examples {
-    //! The examples of this private module's items (not doctests: the module is
-    //! not public).
-    use super::*;
-
-    #[test]
-    fn escape_example() {
-        assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
-    }
 }

@@ -23,18 +23,12 @@
 use super::error::ReportError;
 use super::figure_spec::toml_error;
 pub use super::figure_spec::{Common, FigureSpec, COMMON_KEYS};
+pub use super::figure_spec::{DEFAULT_SIZE, MAX_PIXELS, MIN_PIXELS};
 use super::figures::{self, Figure};
 use crate::rng::derive_seed;
 use serde::Deserialize;
 use toml::de::{DeTable, DeValue, ValueDeserializer};
 use toml::Spanned;
-
-/// Default figure size in pixels (width, height).
-pub const DEFAULT_SIZE: (u32, u32) = (1600, 1000);
-/// Smallest accepted figure width or height in pixels: below this, text no longer fits.
-pub const MIN_PIXELS: u32 = 400;
-/// Largest accepted figure width or height in pixels (keeps the RGB buffer below ~200 MB).
-pub const MAX_PIXELS: u32 = 8000;
 
 /// A parsed, validated report spec.
 pub struct ReportSpec {

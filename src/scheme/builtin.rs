@@ -133,11 +133,12 @@ impl Scheme for LocalScheme<f64> {
             .then(|| doo_sabin::fill_face_like(self, self.valence(), out))
     }
 
+    /// The Catmull-Clark family: the closed-form Fourier blocks. The
+    /// Doo-Sabin family has a face block: the spectral engine computes its
+    /// structured spectrum ([`crate::spectral::structured::spectrum_of`]).
     fn structured_spectrum(&self) -> Option<Result<Vec<Complex64>>> {
-        Some(match self.shape_parameter() {
-            Some(c) => catmull_clark::fourier::spectrum(self.valence(), c),
-            None => crate::spectral::structured::structured_spectrum(self).map_err(Into::into),
-        })
+        let c = self.shape_parameter()?;
+        Some(catmull_clark::fourier::spectrum(self.valence(), c))
     }
 
     /// Doo-Sabin family: the face-block kernel
@@ -153,12 +154,6 @@ impl Scheme for LocalScheme<f64> {
                 .map(|l| catmull_clark::fourier::block_eigenvalues(n, l, c).map(|e| (l, e)))
                 .collect(),
         )
-    }
-
-    fn fast_classification(&self) -> Option<Result<Subdominant>> {
-        self.kind()
-            .is_doo_sabin_family()
-            .then(|| crate::spectral::classify_scheme(self))
     }
 
     fn face_contraction(&self, options: &MeasureOptions) -> Option<Result<FaceContraction>> {

@@ -19,8 +19,7 @@
 //! | [`regular_part_spectrum`](Scheme::regular_part_spectrum) | none: the second-order matrix adds no eigenvalues | `mu_regular_part`, the structured path above [`STRUCTURED_DENSE_MAX_DIM`](crate::curvature::STRUCTURED_DENSE_MAX_DIM) |
 //! | [`limit_stencil`](Scheme::limit_stencil) | none: the limit weights are reported without a closed-form check | `analyze` |
 //! | [`structured_spectrum`](Scheme::structured_spectrum) | none: only the dense path | `--path structured`, sweeps' `eigenvalues` |
-//! | [`spectral_structure`](Scheme::spectral_structure) | [`SpectralStructure::Dense`] | which closed-form cross-checks apply |
-//! | [`fast_classification`](Scheme::fast_classification) | none: dense classification of the local matrix | sweeps, reports |
+//! | [`spectral_structure`](Scheme::spectral_structure) | [`SpectralStructure::Dense`] | which closed-form cross-checks apply; `FaceBlock`: the subdominant classification by the face-block kernel |
 //! | [`face_contraction`](Scheme::face_contraction) | none: no Theorem 1 section | `analyze`, sweeps' `contraction` |
 //! | [`characteristic_map`](Scheme::characteristic_map) | none: `no_charmap` | sweeps' `charmap`, reports |
 //! | [`fourier_spectrum`](Scheme::fourier_spectrum) | none: the curvature's `mu_mode` is `null` | `analyze`'s `curvature` |
@@ -33,7 +32,8 @@
 //! tutorial in `examples/own_scheme.rs` and the doctest below.
 //!
 //! Names become implementations in one place, [`registry`] (configurations,
-//! mesh rules, cost models); the validation of a scheme choice is [`choice`].
+//! cost models; the mesh rules in [`crate::mesh::builtin`]); the validation of
+//! a scheme choice is [`choice`].
 //! The front ends (`analyze`, `matrix`, `sweep`, `report`, `subdivide`, the
 //! testing kit) dispatch there once and then only ask for capabilities.
 //! Code that *is* one family's implementation lives in that family's modules,
@@ -51,7 +51,8 @@
 //!   `exact_certificate`);
 //! * the Catmull-Clark family: [`crate::schemes::catmull_clark`],
 //!   [`crate::mesh::catmull_clark`], [`crate::charmap::catmull_clark`];
-//! * Loop: [`crate::schemes::loop_subdivision`] (all of it).
+//! * Loop: [`crate::schemes::loop_subdivision`], its mesh refinement
+//!   [`crate::mesh::loop_subdivision`].
 //!
 //! Studies of one particular scheme build the configurations they study
 //! directly: [`crate::cc_study`], `curvature::tuning` and the `c` intervals
@@ -247,12 +248,6 @@ pub trait Scheme: fmt::Debug + Send + Sync {
     /// known eigenvalues, or Fourier blocks), sorted by
     /// [`spectral_order`](crate::spectral::eigen::spectral_order); default none.
     fn structured_spectrum(&self) -> Option<Result<Vec<Complex64>>> {
-        None
-    }
-
-    /// The subdominant classification by the scheme's fast path (default
-    /// none: the dense classification of [`local_matrix`](Self::local_matrix)).
-    fn fast_classification(&self) -> Option<Result<Subdominant>> {
         None
     }
 

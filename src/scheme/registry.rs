@@ -13,9 +13,6 @@ use super::Scheme;
 use crate::budget::CostModel;
 use crate::error::{Error, Result};
 use crate::knots::EdgeRatios;
-use crate::mesh::catmull_clark::CatmullClarkRules;
-use crate::mesh::rules::{FaceSplit, MeshRules};
-use crate::schemes::loop_subdivision::mesh::LoopRules;
 use crate::schemes::loop_subdivision::{self, LoopScheme};
 use crate::schemes::{catmull_clark, doo_sabin, LocalScheme, SchemeKind};
 use std::ops::Deref;
@@ -165,46 +162,6 @@ pub fn cost_model(kind: SchemeKind) -> CostModel {
         SchemeKind::CatmullClark | SchemeKind::AdjustableCc => catmull_clark::COST_MODEL,
         SchemeKind::Loop => loop_subdivision::COST_MODEL,
     }
-}
-
-/// The mesh refinement rules of a built-in scheme, by kind: the one place
-/// where a scheme name becomes [`MeshRules`] (`subdivide` and the mesh
-/// figures dispatch here). `c` is the shape parameter of the adjustable
-/// scheme (Catmull-Clark proper has `c = 1/2`); other schemes refuse it.
-///
-/// ```
-/// use subdiv_lab::mesh::rules::KnotUse;
-/// use subdiv_lab::scheme::registry::mesh_rules;
-/// use subdiv_lab::schemes::SchemeKind;
-/// assert_eq!(mesh_rules(SchemeKind::Nurds, None).unwrap().knots(), KnotUse::Used);
-/// assert!(mesh_rules(SchemeKind::AdjustableCc, None).is_err());
-/// ```
-pub fn mesh_rules(kind: SchemeKind, c: Option<f64>) -> Result<Box<dyn MeshRules>> {
-    let rules: Box<dyn MeshRules> = match (kind, c) {
-        (SchemeKind::AdjustableCc, Some(c)) => {
-            Box::new(CatmullClarkRules::new(kind.name(), c).map_err(Error::from)?)
-        }
-        (SchemeKind::AdjustableCc, None) => {
-            return Err(Error::InvalidParameter {
-                name: "c",
-                value: "(missing)".to_owned(),
-                reason: "adjustable-cc needs the shape parameter c in [0, 1]",
-            })
-        }
-        (_, Some(c)) => {
-            return Err(Error::InvalidParameter {
-                name: "c",
-                value: c.to_string(),
-                reason: "only adjustable-cc takes the shape parameter c",
-            })
-        }
-        (SchemeKind::CatmullClark, None) => {
-            Box::new(CatmullClarkRules::new(kind.name(), 0.5).map_err(Error::from)?)
-        }
-        (SchemeKind::Loop, None) => Box::new(LoopRules),
-        (_, None) => Box::new(FaceSplit::new(kind).map_err(Error::from)?),
-    };
-    Ok(rules)
 }
 
 #[cfg(test)]

@@ -72,7 +72,7 @@
 //! assert_eq!(at(5).verdict, CurvatureVerdict::Unbounded);
 //! ```
 
-use crate::error::Result;
+use super::Result;
 use crate::scalar::Rational;
 use crate::scheme::Scheme;
 use crate::spectral::classify::BACKWARD_ERROR_FACTOR;

@@ -1,7 +1,9 @@
 //! The errors of the spectral engine (re-exported as
-//! [`crate::spectral::SpectralError`]). A leaf: it depends on no other module
-//! of the crate, so that the crate's top-level error can wrap it without
-//! depending on the engine itself.
+//! [`crate::spectral::SpectralError`]): its own failures, and the core's
+//! errors of the schemes and routines it calls.
+
+/// Results of the spectral engine.
+pub type Result<T, E = SpectralError> = std::result::Result<T, E>;
 
 /// Errors of the spectral engine.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -63,6 +65,10 @@ pub enum SpectralError {
         /// Matrix dimension.
         size: usize,
     },
+    /// An error of the scheme or of the core routines the analysis calls
+    /// (the scheme's local matrix at an invalid valence, for instance).
+    #[error(transparent)]
+    Core(#[from] crate::error::Error),
     /// An exact computation could not be carried out.
     #[error("exact analysis: {0}")]
     Exact(String),

@@ -48,9 +48,9 @@
 use super::certify::{self, IntPoly, RootStructure};
 use super::classify::{ClassName, Subdominant};
 use super::poly::{isolate_real_roots, roots_outside, Poly, Sturm};
+use super::Result;
 use super::SpectralError;
 use crate::contraction;
-use crate::error::Result;
 use crate::scalar::{rational_to_f64, Rational, Scalar};
 use crate::schemes::LocalScheme;
 use nalgebra::DMatrix;
@@ -553,8 +553,7 @@ fn verdict(
         return Err(SpectralError::Exact(format!(
             "1 is not an eigenvalue of the face block (p(1) = {})",
             r.coeffs()[0].to_text()
-        ))
-        .into());
+        )));
     }
     let one_is_simple = !q.eval(&Rational::one()).is_zero();
     let mut roots = Roots::new(&q, if fast { approx_eigenvalues(&a) } else { None });

@@ -1,11 +1,11 @@
 //! The JSON document of one local analysis (`subdiv-lab analyze --json` and the
 //! Python `analyze`): the [`LocalAnalysis`] fields, the characteristic-map
-//! verdict (math doc section 7), the echoed input and the tool version.
+//! object (math doc section 7, built by the characteristic-map module), the
+//! echoed input and the tool version.
 //!
 //! Built here, not in the CLI, so every front end prints the same keys.
 
 use super::LocalAnalysis;
-use crate::charmap::{AnyPatchId, CharmapReport};
 use serde::Serialize;
 
 /// The tool version echoed in every analysis document (the crate version).
@@ -32,21 +32,10 @@ pub struct AnalysisInput {
     pub c: Option<f64>,
 }
 
-/// The `"charmap"` object: the report's own JSON, or on a numerical failure
-/// an indeterminate verdict carrying the error (the analysis itself stands).
-pub fn charmap_json(c: &crate::Result<CharmapReport<AnyPatchId>>) -> serde_json::Value {
-    match c {
-        Ok(r) => r.to_json(),
-        Err(e) => serde_json::json!({
-            "regular": null, "min_jacobian_coeff": null, "winding_number": null,
-            "verdict": format!("indeterminate (characteristic map not computed: {e})"),
-            "verdict_code": "indeterminate", "error": e.to_string(),
-        }),
-    }
-}
-
-/// The analysis document: the fields of `result`, then `"charmap"`
-/// ([`charmap_json`]), `"input"` ([`AnalysisInput`]) and `"tool_version"`.
+/// The analysis document: the fields of `result`, then `"charmap"` (the
+/// characteristic-map object of the front end's check,
+/// `charmap::charmap_json`), `"input"` ([`AnalysisInput`]) and
+/// `"tool_version"`.
 ///
 /// ```
 /// use subdiv_lab::spectral::{analyze, AnalyzeOptions};
@@ -58,21 +47,22 @@ pub fn charmap_json(c: &crate::Result<CharmapReport<AnyPatchId>>) -> serde_json:
 ///     SchemeKind::Nurds, 3, Some(EdgeRatios::new(ratios.clone()).unwrap()), None).unwrap();
 /// let a = analyze(&s, &AnalyzeOptions::default()).unwrap();
 /// let input = AnalysisInput { scheme: "nurds".into(), valence: 3, ratios: Some(ratios), ..Default::default() };
-/// let v = analysis_json(&a, &subdiv_lab::charmap::check_classified(&s, &a.subdominant), &input);
+/// let map = subdiv_lab::charmap::check_classified(&s, &a.subdominant);
+/// let v = analysis_json(&a, subdiv_lab::charmap::charmap_json(&map), &input);
 /// assert_eq!(v["input"]["ratios"][2], 0.7);
 /// assert_eq!(v["tool_version"], TOOL_VERSION);
 /// assert!(v["subdominant"]["class"].is_string() && v["charmap"]["verdict"].is_string());
 /// ```
 pub fn analysis_json(
     result: &LocalAnalysis,
-    charmap: &crate::Result<CharmapReport<AnyPatchId>>,
+    charmap: serde_json::Value,
     input: &AnalysisInput,
 ) -> serde_json::Value {
     // LocalAnalysis and AnalysisInput are plain data (numbers, strings,
     // options): serialising them cannot fail, but stay total anyway.
     let mut value = serde_json::to_value(result).unwrap_or(serde_json::Value::Null);
     if let serde_json::Value::Object(map) = &mut value {
-        map.insert("charmap".to_owned(), charmap_json(charmap));
+        map.insert("charmap".to_owned(), charmap);
         map.insert(
             "input".to_owned(),
             serde_json::to_value(input).unwrap_or(serde_json::Value::Null),

@@ -27,7 +27,7 @@
 use super::eigen::spectral_order;
 use super::kernel::{KernelWorkspace, BATCH};
 use super::SpectralError;
-use crate::scheme::Scheme;
+use crate::scheme::{Scheme, SpectralStructure};
 use num_complex::Complex64;
 
 /// The eigenvalues of the E and C blocks, each of multiplicity `n`:
@@ -257,4 +257,19 @@ pub fn structured_spectrum<S: Scheme + ?Sized>(
     }
     all.sort_by(spectral_order);
     Ok(all)
+}
+
+/// The whole spectrum of `S` by the scheme's structure: [`structured_spectrum`]
+/// for a scheme with a face block ([`SpectralStructure::FaceBlock`]), else the
+/// scheme's own [`Scheme::structured_spectrum`]; `None` when it has neither.
+pub fn spectrum_of<S: Scheme + ?Sized>(
+    scheme: &S,
+) -> Option<Result<Vec<Complex64>, SpectralError>> {
+    if scheme.spectral_structure() == SpectralStructure::FaceBlock {
+        Some(structured_spectrum(scheme))
+    } else {
+        scheme
+            .structured_spectrum()
+            .map(|r| r.map_err(SpectralError::from))
+    }
 }

@@ -185,24 +185,6 @@ mod tests {
             2
         );
     }
-
-    /// The 7 x 7 matrix on which faer's SVD reports no
-    /// convergence: the second smallest singular value of `S - lambda I` for
-    /// the adjustable scheme, n = 3, c = 0.22986, at the classifier's
-    /// lambda_1. The fallback gives it; both eigenvalue copies (a standard
-    /// double eigenvalue) make it tiny.
-    #[test]
-    fn fallback_where_faer_does_not_converge() {
-        use crate::schemes::LocalScheme;
-        let scheme = LocalScheme::<f64>::adjustable_cc(3, 0.22986).unwrap();
-        let m = scheme.matrix().unwrap().into_matrix();
-        let sub = crate::spectral::classify_local(&scheme).unwrap();
-        assert_eq!(sub.class, crate::spectral::SubdominantClass::Standard);
-        let x = &m - DMatrix::identity(7, 7) * sub.lambda1.re;
-        let s = singular_values(&x).unwrap();
-        let (j, _) = jacobi_svd(&x, false).unwrap();
-        assert!(s[5] < 1e-12 && j[5] < 1e-12, "{s:?} {j:?}");
-    }
 }
 
 #[cfg(test)]

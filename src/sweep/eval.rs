@@ -238,7 +238,7 @@ pub trait Evaluate: Sync {
         plan: &Plan,
         c: &Configuration,
         scheme: &dyn Scheme,
-    ) -> crate::Result<Vec<Cell>>;
+    ) -> crate::spectral::Result<Vec<Cell>>;
 
     /// Writes the result cells of `c` to `out`, in order; the cells must equal
     /// those of [`evaluate`](Self::evaluate). On an error the cells already
@@ -251,7 +251,7 @@ pub trait Evaluate: Sync {
         c: &Configuration,
         scheme: &dyn Scheme,
         out: &mut dyn CellSink,
-    ) -> crate::Result<()> {
+    ) -> crate::spectral::Result<()> {
         for cell in &self.evaluate(plan, c, scheme)? {
             out.cell(cell);
         }
@@ -267,7 +267,7 @@ pub trait Evaluate: Sync {
         &self,
         plan: &Plan,
         items: [(&Configuration, &dyn Scheme, &mut dyn CellSink); BATCH],
-    ) -> [crate::Result<()>; BATCH] {
+    ) -> [crate::spectral::Result<()>; BATCH] {
         items.map(|(c, s, out)| self.write_results(plan, c, s, out))
     }
 }
@@ -325,7 +325,7 @@ impl Evaluate for SpectralEvaluator {
         plan: &Plan,
         c: &Configuration,
         scheme: &dyn Scheme,
-    ) -> crate::Result<Vec<Cell>> {
+    ) -> crate::spectral::Result<Vec<Cell>> {
         let mut out = Vec::with_capacity(16 + 2 * self.columns.eigenvalues);
         self.write_results(plan, c, scheme, &mut out)?;
         Ok(out)
@@ -337,7 +337,7 @@ impl Evaluate for SpectralEvaluator {
         c: &Configuration,
         scheme: &dyn Scheme,
         out: &mut dyn CellSink,
-    ) -> crate::Result<()> {
+    ) -> crate::spectral::Result<()> {
         SCRATCH.with(|cell| {
             let mut guard = cell.borrow_mut();
             let scratch = &mut guard.0[0];
@@ -350,12 +350,12 @@ impl Evaluate for SpectralEvaluator {
         &self,
         plan: &Plan,
         items: [(&Configuration, &dyn Scheme, &mut dyn CellSink); BATCH],
-    ) -> [crate::Result<()>; BATCH] {
+    ) -> [crate::spectral::Result<()>; BATCH] {
         SCRATCH.with(|cell| {
             let mut guard = cell.borrow_mut();
             let (scratch, subs) = &mut *guard;
             let schemes = items.each_ref().map(|(_, s, _)| *s);
-            let mut results: [crate::Result<()>; BATCH] = std::array::from_fn(|_| Ok(()));
+            let mut results: [crate::spectral::Result<()>; BATCH] = std::array::from_fn(|_| Ok(()));
             // Each lane's classification is written out where it lies: the
             // 192-byte results are not moved between arrays.
             if self.needs_subdominant() && schemes.iter().all(|s| face_block(*s)) {
@@ -404,7 +404,7 @@ impl SpectralEvaluator {
         &self,
         scratch: &mut Scratch,
         scheme: &dyn Scheme,
-    ) -> crate::Result<Option<Subdominant>> {
+    ) -> crate::spectral::Result<Option<Subdominant>> {
         if !self.needs_subdominant() {
             Ok(None)
         } else if face_block(scheme) {
@@ -428,7 +428,7 @@ impl SpectralEvaluator {
         scheme: &dyn Scheme,
         sub: Option<&Subdominant>,
         out: &mut dyn CellSink,
-    ) -> crate::Result<()> {
+    ) -> crate::spectral::Result<()> {
         let cols = &self.columns;
         let structured = face_block(scheme);
         if let Some(sub) = sub {

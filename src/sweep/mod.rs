@@ -45,6 +45,7 @@
 //! assert_eq!(summary.rows, 8);
 //! ```
 
+mod error;
 pub(crate) mod estimate;
 pub mod eval;
 pub mod output;
@@ -54,65 +55,13 @@ mod sobol_table;
 pub(crate) mod spec;
 pub(crate) mod summary;
 
+pub use error::SweepError;
 pub use estimate::{batch_rows, sweep_rows};
 pub use eval::{Cell, Evaluate, SpectralEvaluator};
 pub use output::Layout;
 pub use plan::{Configuration, Configured, Plan, SchemeFactory, Shard};
 pub use spec::{Columns, Sampler, Space, SpaceKind, SweepSpec, MAX_CONFIGURATIONS};
 pub use summary::Summary;
-
-use thiserror::Error as ThisError;
-
-/// Errors of sweep specs, enumeration, resume and merge.
-#[derive(Debug, Clone, PartialEq, ThisError)]
-#[non_exhaustive]
-pub enum SweepError {
-    /// An invalid spec; `message` starts with the TOML key path.
-    #[error("{message}{}", line.map(|l| format!(" (line {l})")).unwrap_or_default())]
-    Spec {
-        /// The TOML key path (`sampler.points_per_axis`, `space.fixed.r3`, ...).
-        key: String,
-        /// 1-based line in the spec, where known.
-        line: Option<usize>,
-        /// The full message.
-        message: String,
-    },
-    /// A shard that is not `I/N` with `0 <= I < N`.
-    #[error("shard must be I/N with 0 <= I < N, got {0:?}")]
-    BadShard(String),
-    /// A configuration id beyond the sweep.
-    #[error("configuration id {id} is out of range (the sweep has {total} configurations)")]
-    IdOutOfRange {
-        /// The id.
-        id: u64,
-        /// Number of configurations.
-        total: u64,
-    },
-    /// An existing CSV (resume or merge) does not match the spec.
-    #[error("{source_name}: line {line}: {message}")]
-    Mismatch {
-        /// File or stream name.
-        source_name: String,
-        /// 1-based line.
-        line: u64,
-        /// What does not match.
-        message: String,
-    },
-    /// Shards do not combine to the full sweep.
-    #[error("merge: {0}")]
-    Merge(String),
-    /// A shard or its summary is not what the merge needs (the message
-    /// names the file).
-    #[error("{0}")]
-    MergeInput(String),
-    /// Writing output failed.
-    #[error("write failed: {0}")]
-    Io(String),
-    /// An existing file (a Parquet file to resume, merge or plot) could not
-    /// be read as a sweep writes it: not Parquet, torn, or of other types.
-    #[error("read failed: {0}")]
-    Read(String),
-}
 
 /// Runs every configuration of `plan` and returns the CSV text (the header
 /// and one line per configuration, in id order, as `subdiv-lab sweep` writes
@@ -142,10 +91,4 @@ pub fn run_csv(plan: &Plan) -> Result<String, SweepError> {
         &mut |_| {},
     )?;
     String::from_utf8(csv).map_err(|e| SweepError::Io(e.to_string()))
-}
-
-impl From<std::io::Error> for SweepError {
-    fn from(e: std::io::Error) -> Self {
-        SweepError::Io(e.to_string())
-    }
 }

@@ -369,7 +369,7 @@ pub fn check_mesh_contraction(
         mesh.vertex_count()
     );
     // the scheme's mesh rules, through the one dispatch
-    let rules = crate::scheme::registry::mesh_rules(scheme, None)
+    let rules = crate::mesh::builtin::mesh_rules(scheme, None)
         .map_err(|e| Violation::new(check, &describe, format!("no mesh rules: {e}")))?;
     let (_, stats) = rules
         .refine_with_stats(mesh, levels)

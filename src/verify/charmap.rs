@@ -32,6 +32,7 @@ pub mod af;
 pub mod ivla;
 pub mod ratios;
 pub mod shape;
+mod tamper;
 pub mod winding;
 
 #[cfg(test)]
@@ -40,23 +41,7 @@ mod tests;
 use super::decide::Status;
 use super::spec::Region;
 use crate::spectral::ClassName;
-
-/// How the cell certificate may be weakened on purpose, to show that the
-/// soundness tests catch an unsound enclosure. Never set by the CLI.
-#[doc(hidden)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum CellTamper {
-    /// The sound certificate.
-    #[default]
-    None,
-    /// Drop the variation of the invariant subspace over the cell: NURDS
-    /// takes `rho = 0` (the centre's basis for every `r`), the `c` path
-    /// evaluates the eigenvector at the cell's midpoint only.
-    DropSubspaceVariation,
-    /// Shrink Stewart's radius: NURDS takes `rho / 64` for the ball of `P`
-    /// and drops the bound of its second-order part.
-    ShrinkStewartRadius,
-}
+pub use tamper::CellTamper;
 
 /// The status of the `charmap` property on the cell `[lo, hi]` of `region`
 /// whose certified class is `class` (`None`: not certified), and, for

@@ -2,7 +2,7 @@
 //! masks of [`super::rules`] (math doc section 17), and the sharpness of the
 //! child edges and vertices. Closed meshes without tags refine to the same
 //! points as the closed refiners ([`crate::mesh::catmull_clark`],
-//! [`crate::schemes::loop_subdivision::mesh`]) up to rounding, with the same
+//! [`crate::mesh::loop_subdivision`]) up to rounding, with the same
 //! index layout.
 
 use super::rules::{self, decrement, edge_weights, is_sharp, Creasing, SdcScheme, VertexMask};
@@ -335,7 +335,7 @@ mod tests {
         let ours = sharp_from(&ico)
             .refine_levels(SdcScheme::Loop, Creasing::Chaikin, 2)
             .unwrap();
-        let theirs = crate::schemes::loop_subdivision::mesh::refine_levels(&ico, 2).unwrap();
+        let theirs = crate::mesh::loop_subdivision::refine_levels(&ico, 2).unwrap();
         assert!(max_diff(ours.positions(), theirs.positions()) < 1e-14);
     }
 

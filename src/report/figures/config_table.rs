@@ -15,7 +15,7 @@ use crate::report::backend::Area;
 use crate::report::config::{check_analysis_budget, resolve_all, ConfigSpec, Configuration};
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
-use crate::report::html::escape;
+use crate::report::markup::escape;
 use crate::rng::derive_seed;
 use crate::spectral::{analyze, AnalyzeOptions, LocalAnalysis, SubdominantClass};
 use num_complex::Complex64;

@@ -111,7 +111,7 @@ pub(super) fn surfaces(s: &CapSetup, seed: u64) -> Result<(G2Cap, PlainSurface),
 
 /// A figure error from the cap construction.
 pub(super) fn cap_err(ctx: &Context<'_>, e: G2CapError) -> ReportError {
-    ctx.err(e.into())
+    ctx.err(e)
 }
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {

@@ -22,6 +22,7 @@
 //! ```
 
 use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use crate::mesh::builtin::mesh_rules;
 use crate::mesh::generators;
 use crate::mesh::limit::convergence_series;
 use crate::mesh::rules::MeshRules;
@@ -34,7 +35,6 @@ use crate::report::plot::{
 };
 use crate::rng::{log_uniform, SplitMix64};
 use crate::scheme::choice::{validate, Choice, ChoiceError};
-use crate::scheme::registry::mesh_rules;
 use crate::spectral::classify_scheme;
 use plotters::prelude::*;
 use serde::Deserialize;
@@ -107,7 +107,7 @@ pub(crate) fn built_in_mesh(
 
 /// The scheme of a mesh figure and its mesh rules, through the shared rules
 /// ([`crate::scheme::choice`]: `random_knots` is knot data) and the one
-/// dispatch ([`crate::scheme::registry::mesh_rules`]; mesh figures have no
+/// dispatch ([`crate::mesh::builtin::mesh_rules`]; mesh figures have no
 /// shape parameter).
 pub(crate) fn mesh_scheme(
     fs: &FigureSpec<'_>,
@@ -222,7 +222,7 @@ impl Figure for MeshConvergence {
             .rules
             .refine_with_stats(&self.mesh, self.levels)
             .ok_or_else(|| ctx.err(self.no_faces()))?
-            .map_err(|e| ctx.err(e.into()))?;
+            .map_err(|e| ctx.err(e))?;
         ctx.tick(self.levels as u64);
         let mut series = convergence_series(&stats);
         series.retain(|s| s.distances.len() >= 2);

@@ -116,7 +116,7 @@ impl Figure for MeshPicture {
         let refined = self
             .rules
             .refine_levels(&self.mesh, self.levels)
-            .map_err(|e| ctx.err(e.into()))?;
+            .map_err(|e| ctx.err(e))?;
         let after = project(&refined, &self.view);
         ctx.tick(1);
         Ok(Box::new(Output {

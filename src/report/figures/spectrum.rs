@@ -136,10 +136,10 @@ pub fn spectrum_svg(
             let e = eigenvalues(&a);
             Ok((s.label(), (a, e)))
         })
-        .collect::<crate::Result<Vec<_>>>()
+        .collect::<Result<Vec<_>, crate::spectral::SpectralError>>()
         .map_err(|source| ReportError::Analysis {
             figure: title.to_owned(),
-            source,
+            source: source.into(),
         })?;
     let cols = panels.len().min(3);
     crate::report::backend::render_svg(size, &|area| {

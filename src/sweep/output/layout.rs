@@ -312,7 +312,11 @@ impl Layout {
         };
         let mut cells = self.coordinate_row(plan, &c);
         let n_results = self.names.len() - self.coordinates;
-        let error = match plan.scheme(&c).and_then(|s| eval.evaluate(plan, &c, &*s)) {
+        let error = match plan
+            .scheme(&c)
+            .map_err(Into::into)
+            .and_then(|s| eval.evaluate(plan, &c, &*s))
+        {
             Ok(r) if r.len() == n_results => {
                 cells.extend(r);
                 None

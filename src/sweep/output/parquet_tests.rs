@@ -22,14 +22,15 @@ impl Evaluate for Synthetic {
         _plan: &Plan,
         c: &Configuration,
         _scheme: &dyn crate::scheme::Scheme,
-    ) -> crate::Result<Vec<Cell>> {
+    ) -> crate::spectral::Result<Vec<Cell>> {
         let id = c.id;
         if id % 997 == 13 {
             return Err(crate::Error::InvalidParameter {
                 name: "test",
                 value: format!("id {id}"),
                 reason: "a failure with a comma, \"quotes\"\nand a line break",
-            });
+            }
+            .into());
         }
         let class = [
             "standard",
@@ -211,7 +212,7 @@ fn typed_parquet_path_refuses_a_cell_of_the_wrong_kind() {
             _plan: &Plan,
             c: &Configuration,
             _scheme: &dyn crate::scheme::Scheme,
-        ) -> crate::Result<Vec<Cell>> {
+        ) -> crate::spectral::Result<Vec<Cell>> {
             let mut v = vec![Cell::Text("standard".into())];
             v.extend((0..5).map(|_| Cell::Num(0.5)));
             v[2] = if c.id == 4 {
@@ -280,7 +281,7 @@ impl Evaluate for ManyLabels {
         plan: &Plan,
         c: &Configuration,
         scheme: &dyn crate::scheme::Scheme,
-    ) -> crate::Result<Vec<Cell>> {
+    ) -> crate::spectral::Result<Vec<Cell>> {
         let mut v = Synthetic.evaluate(plan, c, scheme)?;
         if self.all_null {
             for cell in &mut v {

@@ -304,7 +304,7 @@ impl Layout {
 
     /// Records the outcome of an evaluation into `row`: a wrong cell count or
     /// an error empties the stage and becomes the row's error.
-    fn check_results(&self, row: &mut Staged, result: crate::Result<()>) {
+    fn check_results(&self, row: &mut Staged, result: crate::spectral::Result<()>) {
         let n_results = self.names.len() - self.coordinates;
         match result {
             Ok(()) if row.stage.slots.len() == n_results => {}
@@ -700,14 +700,15 @@ pub(super) mod tests {
             plan: &Plan,
             c: &Configuration,
             scheme: &dyn crate::scheme::Scheme,
-        ) -> crate::Result<Vec<Cell>> {
+        ) -> crate::spectral::Result<Vec<Cell>> {
             let mut v = self.0.evaluate(plan, c, scheme)?;
             if c.id % 5 == 0 {
                 return Err(crate::Error::InvalidParameter {
                     name: "test",
                     value: format!("id {}", c.id),
                     reason: "a failure with a comma, and \"quotes\"",
-                });
+                }
+                .into());
             }
             if c.id % 2 == 1 {
                 v.push(Cell::Text("extra".into()));

@@ -8,6 +8,8 @@
 //! Exact input comes from text: [`parse_exact`] reads decimals (`1.3`),
 //! fractions (`13/10`) and scientific notation (`1e-6`) without rounding.
 
+pub(crate) mod weight_kernels;
+
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Num, One, Signed, ToPrimitive, Zero};
@@ -48,7 +50,7 @@ pub trait Scalar:
     /// overrides it with an overflow-free extended-exponent evaluation.
     #[doc(hidden)]
     fn face_weights_kernel(r: &[Self], s: &[Self]) -> Vec<Self> {
-        crate::knots::weight_kernels::generic_kernel(r, s)
+        weight_kernels::generic_kernel(r, s)
     }
 }
 
@@ -67,7 +69,7 @@ impl Scalar for f64 {
         format!("{self:?}")
     }
     fn face_weights_kernel(r: &[Self], s: &[Self]) -> Vec<Self> {
-        crate::knots::weight_kernels::f64_kernel(r, s)
+        weight_kernels::f64_kernel(r, s)
     }
     fn edge_ratio(a: &Self, b: &Self) -> (Self, Self) {
         if !(*a > 0.0 && *b > 0.0 && a.is_finite() && b.is_finite()) {
@@ -75,7 +77,7 @@ impl Scalar for f64 {
             let sum = a + b;
             return (b / sum, a / sum);
         }
-        let (r, s) = crate::knots::weight_kernels::edge_ratio_ext(*a, *b);
+        let (r, s) = weight_kernels::edge_ratio_ext(*a, *b);
         (r.to_f64(), s.to_f64())
     }
     fn from_f64_lossless(x: f64) -> Self {
@@ -98,7 +100,7 @@ impl Scalar for Rational {
         Rational::from_float(x).unwrap_or_else(Rational::zero)
     }
     fn face_weights_kernel(r: &[Self], s: &[Self]) -> Vec<Self> {
-        crate::knots::weight_kernels::rational_kernel(r, s)
+        weight_kernels::rational_kernel(r, s)
     }
     fn to_text(&self) -> String {
         if self.denom().is_one() {

@@ -1,12 +1,12 @@
 //! The kernels of the face-point weights (math doc section 3): the closed
 //! form in generic exact or plain arithmetic, fraction-free for rationals, and
 //! with extended exponents for `f64` (formulas and error bounds in
-//! [`super::face_weights`](mod@super::face_weights)).
+//! [`crate::knots::face_weights`](mod@crate::knots::face_weights)).
 //!
 //! A leaf: it uses no other module of the crate, so that [`crate::scalar`]
 //! can dispatch to these kernels while
-//! [`super::face_weights`](mod@super::face_weights) is generic over
-//! [`crate::scalar::Scalar`].
+//! [`crate::knots::face_weights`](mod@crate::knots::face_weights) is generic
+//! over [`crate::scalar::Scalar`].
 
 use num_rational::BigRational as Rational;
 use num_traits::Num;
@@ -37,7 +37,7 @@ pub(crate) fn generic_kernel<T: Clone + Num>(r: &[T], s: &[T]) -> Vec<T> {
 }
 
 /// The same closed form for rationals, fraction-free (the kernel of
-/// [`face_weights`](super::face_weights()) for `Rational`).
+/// [`face_weights`](crate::knots::face_weights()) for `Rational`).
 ///
 /// With `D_i` the common denominator of `r_i` and `s_i` and the integers
 /// `a_i = r_i D_i`, `b_i = s_i D_i`, every term `T_m(j)` is a product over

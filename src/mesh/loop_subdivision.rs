@@ -48,7 +48,7 @@
 //!
 //! ```
 //! use subdiv_lab::mesh::generators;
-//! use subdiv_lab::schemes::loop_subdivision::mesh::{limit_positions, refine_levels};
+//! use subdiv_lab::mesh::loop_subdivision::{limit_positions, refine_levels};
 //! let ico = generators::icosahedron();
 //! let twice = refine_levels(&ico, 2).unwrap();
 //! assert_eq!((twice.vertex_count(), twice.face_count()), (162, 320));
@@ -57,8 +57,8 @@
 //! assert!((0..3).all(|k| (a[k] - b[k]).abs() < 1e-14));
 //! ```
 
-use super::beta;
 use crate::mesh::{Mesh, MeshError, MAX_HALF_EDGES};
+use crate::schemes::loop_subdivision::beta;
 
 /// The next corner of the same triangle (faces are `3f..3f+3`).
 #[inline]
@@ -183,7 +183,7 @@ fn one_ring_stencil(mesh: &Mesh, rule: fn(usize) -> (f64, f64), capacity: usize)
 ///
 /// ```
 /// use subdiv_lab::mesh::{generators, MeshError};
-/// use subdiv_lab::schemes::loop_subdivision::mesh::refine;
+/// use subdiv_lab::mesh::loop_subdivision::refine;
 /// let tet = generators::tetrahedron();
 /// let once = refine(&tet).unwrap();
 /// assert_eq!((once.vertex_count(), once.edge_count(), once.face_count()), (10, 24, 16));
@@ -291,7 +291,7 @@ pub fn refine_levels(mesh: &Mesh, levels: usize) -> Result<Mesh, MeshError> {
 ///
 /// ```
 /// use subdiv_lab::mesh::generators;
-/// use subdiv_lab::schemes::loop_subdivision::mesh::limit_positions;
+/// use subdiv_lab::mesh::loop_subdivision::limit_positions;
 /// // a regular tetrahedron: every limit point lies on the way to the centre
 /// let lim = limit_positions(&generators::tetrahedron()).unwrap();
 /// assert_eq!(lim.len(), 4);

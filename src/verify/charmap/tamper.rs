@@ -1,0 +1,18 @@
+//! The deliberate weakening of the cell certificate that the soundness tests use.
+
+/// How the cell certificate may be weakened on purpose, to show that the
+/// soundness tests catch an unsound enclosure. Never set by the CLI.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CellTamper {
+    /// The sound certificate.
+    #[default]
+    None,
+    /// Drop the variation of the invariant subspace over the cell: NURDS
+    /// takes `rho = 0` (the centre's basis for every `r`), the `c` path
+    /// evaluates the eigenvector at the cell's midpoint only.
+    DropSubspaceVariation,
+    /// Shrink Stewart's radius: NURDS takes `rho / 64` for the ball of `P`
+    /// and drops the bound of its second-order part.
+    ShrinkStewartRadius,
+}
