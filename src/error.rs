@@ -83,7 +83,7 @@ pub enum Error {
     },
     /// A refused scheme file (the key and the valence it names).
     #[error(transparent)]
-    SchemeFile(#[from] crate::schemes::user::SchemeFileError),
+    SchemeFile(#[from] SchemeFileError),
     /// A numerical routine that did not converge or met a singular system.
     #[error("numerical failure in {routine}: {reason}")]
     Numerical {
@@ -92,6 +92,27 @@ pub enum Error {
         /// What went wrong.
         reason: String,
     },
+}
+
+/// A refused scheme file (`schemes::user`): the key, the valence where it
+/// depends on one, and why.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub struct SchemeFileError {
+    /// The dotted key (`vertex.self`, `topology`, `vertex` for the sum).
+    pub key: String,
+    /// The valence the problem shows at, if it depends on one.
+    pub valence: Option<usize>,
+    /// What is wrong.
+    pub reason: String,
+}
+
+impl std::fmt::Display for SchemeFileError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.valence {
+            Some(n) => write!(f, "{} at valence {n}: {}", self.key, self.reason),
+            None => write!(f, "{}: {}", self.key, self.reason),
+        }
+    }
 }
 
 /// Shorthand for results of the library core.

@@ -104,26 +104,7 @@ impl Topology {
     }
 }
 
-/// A refused scheme file: the key, the valence where it depends on one, and
-/// why.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-pub struct SchemeFileError {
-    /// The dotted key (`vertex.self`, `topology`, `vertex` for the sum).
-    pub key: String,
-    /// The valence the problem shows at, if it depends on one.
-    pub valence: Option<usize>,
-    /// What is wrong.
-    pub reason: String,
-}
-
-impl fmt::Display for SchemeFileError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.valence {
-            Some(n) => write!(f, "{} at valence {n}: {}", self.key, self.reason),
-            None => write!(f, "{}: {}", self.key, self.reason),
-        }
-    }
-}
+pub use crate::error::SchemeFileError;
 
 fn err(key: &str, valence: Option<usize>, reason: impl Into<String>) -> SchemeFileError {
     SchemeFileError {
