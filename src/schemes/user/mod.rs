@@ -65,7 +65,6 @@ use crate::scalar::{Rational, Scalar};
 use crate::scheme::Scheme;
 use num_complex::Complex64;
 use num_traits::{One, Zero};
-use std::fmt;
 use std::sync::Arc;
 
 /// The largest valence [`SchemeFile::parse`] checks the rule at (every
