@@ -34,7 +34,7 @@
 //! ```
 //! use subdiv_lab::schemes::user::SchemeFile;
 //! use subdiv_lab::Scheme;
-//! let file = SchemeFile::parse(r#"
+//! let file = SchemeFile::parse_shared(r#"
 //! name = "my-cc"
 //! topology = "quad"
 //! [vertex]
