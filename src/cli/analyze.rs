@@ -32,7 +32,7 @@ pub(crate) struct AnalyzeArgs {
     /// Seed of the random control points of the measured contraction.
     #[arg(long, default_value_t = 0x5EED)]
     seed: u64,
-    /// Run even when the estimated memory or time exceeds the limits (see README).
+    /// Run even when the estimated memory or time exceeds the limits (see docs/guide/commands.md, "Work limits").
     #[arg(long)]
     force: bool,
 }

@@ -30,7 +30,7 @@ pub(crate) struct CcStudyArgs {
     /// and injective) or `standard` (the spectral part only).
     #[arg(long, value_enum, default_value_t = CriterionArg::C1)]
     criterion: CriterionArg,
-    /// Run even when the estimated time or memory exceeds the limits (see README).
+    /// Run even when the estimated time or memory exceeds the limits (see docs/guide/commands.md, "Work limits").
     #[arg(long)]
     force: bool,
 }

@@ -32,7 +32,7 @@ pub(crate) struct CcssBoundArgs {
     /// Tolerance for --net.
     #[arg(long, requires = "net", allow_hyphen_values = true)]
     epsilon: Option<f64>,
-    /// Run even when the estimated memory or time exceeds the limits (see README).
+    /// Run even when the estimated memory or time exceeds the limits (see docs/guide/commands.md, "Work limits").
     #[arg(long)]
     force: bool,
 }

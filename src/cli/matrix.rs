@@ -21,7 +21,7 @@ pub(crate) struct MatrixArgs {
     /// Exact rational entries (a/b) computed from the exact value of the input.
     #[arg(long)]
     exact: bool,
-    /// Run even when the estimated memory or time exceeds the limits (see README).
+    /// Run even when the estimated memory or time exceeds the limits (see docs/guide/commands.md, "Work limits").
     #[arg(long)]
     force: bool,
 }

@@ -1,6 +1,6 @@
 //! Output files of the CLI: conflict checks and atomic writes.
 //!
-//! The rule, one for every command (README, "Files"):
+//! The rule, one for every command (docs/guide/commands.md, "Files"):
 //!
 //! * **A single-file output** (`-o FILE`, `merge --out FILE`) replaces a
 //!   regular file atomically, as Unix tools do: it is written to a temporary

@@ -81,7 +81,7 @@ pub(crate) struct SubdivideArgs {
     /// Print the refinement wall time (excluding reading and writing) to standard error.
     #[arg(long)]
     timing: bool,
-    /// Run even when the estimated memory or time exceeds the limits (see README).
+    /// Run even when the estimated memory or time exceeds the limits (see docs/guide/commands.md, "Work limits").
     #[arg(long)]
     force: bool,
 }

@@ -49,7 +49,7 @@ pub(crate) struct SweepArgs {
     /// Stop after the first K configurations of the shard (a prefix of the full run).
     #[arg(long)]
     limit: Option<u64>,
-    /// Run even when the estimated time or memory exceeds the limits (see README).
+    /// Run even when the estimated time or memory exceeds the limits (see docs/guide/commands.md, "Work limits").
     #[arg(long)]
     force: bool,
     /// No progress output (neither the bar on a terminal nor the periodic
