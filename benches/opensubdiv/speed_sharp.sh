@@ -16,12 +16,7 @@
 # Peak resident memory of each whole process (reading, refining, writing) is
 # printed by /usr/bin/time when it is installed.
 #
-# Result (2 cores shared with other jobs, load average 4-7; Debian 12,
-# OpenSubdiv 3.5.0-2; defaults: 102400 quads -> 6553600 faces): best of 3,
-# subdiv-lab 2.76 s in one run and 3.96 s in another, OpenSubdiv 4.05 s and
-# 5.40 s in the same runs; peak resident memory 1.42 GB (subdiv-lab) against
-# 2.02 GB (OpenSubdiv, one refinement). The outputs agree to 5.6e-16. The
-# load makes single numbers vary by about 50 %.
+# The current result is in BENCHMARKS.md ("Creased open meshes against OpenSubdiv").
 set -eu
 N=${1:-320}
 LEVELS=${2:-3}
