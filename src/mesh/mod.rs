@@ -351,6 +351,65 @@ pub enum MeshError {
 /// Largest number of half-edges a mesh may have (indices are `u32`).
 pub const MAX_HALF_EDGES: u64 = u32::MAX as u64;
 
+/// The one validator of a polygon mesh's input, shared by the closed and the
+/// open (tagged) mesh builders: finite coordinates, at least one face, at most
+/// [`MAX_HALF_EDGES`] corners and vertices, and faces of at least 3 distinct
+/// existing vertices. Returns the faces flattened: `face_start` (one offset a
+/// face, then the total) and the corners' vertices. Errors name the element.
+pub(crate) fn polygon_soup<F: AsRef<[usize]>>(
+    positions: &[[f64; 3]],
+    faces: &[F],
+) -> Result<(Vec<u32>, Vec<u32>), MeshError> {
+    for (v, p) in positions.iter().enumerate() {
+        if let Some(x) = p.iter().find(|x| !x.is_finite()) {
+            return Err(MeshError::NonFiniteCoordinate {
+                vertex: v,
+                value: format!("{x:?}"),
+            });
+        }
+    }
+    if faces.is_empty() {
+        return Err(MeshError::Empty);
+    }
+    let nv = positions.len();
+    let total: u64 = faces.iter().map(|f| f.as_ref().len() as u64).sum();
+    if total > MAX_HALF_EDGES || nv as u64 > MAX_HALF_EDGES {
+        return Err(MeshError::TooLarge {
+            half_edges: total,
+            max: MAX_HALF_EDGES,
+        });
+    }
+    let mut face_start = Vec::with_capacity(faces.len() + 1);
+    let mut corners = Vec::with_capacity(total as usize);
+    face_start.push(0u32);
+    let mut seen = vec![u32::MAX; nv];
+    for (f, face) in faces.iter().enumerate() {
+        let face = face.as_ref();
+        if let Some(&v) = face.iter().find(|&&v| v >= nv) {
+            return Err(MeshError::DanglingIndex {
+                face: f,
+                index: v,
+                vertex_count: nv,
+            });
+        }
+        if face.len() < 3 {
+            return Err(MeshError::TooFewCorners {
+                face: f,
+                corners: face.len(),
+            });
+        }
+        for &v in face {
+            if seen[v] == f as u32 {
+                return Err(MeshError::RepeatedVertex { face: f, vertex: v });
+            }
+            seen[v] = f as u32;
+            corners.push(v as u32);
+        }
+        face_start.push(corners.len() as u32);
+    }
+    Ok((face_start, corners))
+}
+
 /// The half-edge count after one step that splits every face into as many
 /// faces as it has corners (every scheme here: `4H`), refused with
 /// [`MeshError::TooLarge`] above [`MAX_HALF_EDGES`] before anything is
@@ -407,56 +466,11 @@ impl Mesh {
         positions: Vec<[f64; 3]>,
         faces: &[F],
     ) -> Result<Mesh, MeshError> {
-        for (v, p) in positions.iter().enumerate() {
-            if let Some(x) = p.iter().find(|x| !x.is_finite()) {
-                return Err(MeshError::NonFiniteCoordinate {
-                    vertex: v,
-                    value: format!("{x:?}"),
-                });
-            }
-        }
-        if faces.is_empty() {
-            return Err(MeshError::Empty);
-        }
+        let (face_start, corner_vertex) = polygon_soup(&positions, faces)?;
         let nv = positions.len();
-        let total: u64 = faces.iter().map(|f| f.as_ref().len() as u64).sum();
-        if total > MAX_HALF_EDGES || nv as u64 > MAX_HALF_EDGES {
-            return Err(MeshError::TooLarge {
-                half_edges: total,
-                max: MAX_HALF_EDGES,
-            });
-        }
-        let mut face_start = Vec::with_capacity(faces.len() + 1);
-        let mut corner_vertex = Vec::with_capacity(total as usize);
-        let mut corner_face = Vec::with_capacity(total as usize);
-        face_start.push(0u32);
-        let mut seen: Vec<u32> = vec![u32::MAX; nv];
-        for (f, face) in faces.iter().enumerate() {
-            let face = face.as_ref();
-            for &v in face {
-                if v >= nv {
-                    return Err(MeshError::DanglingIndex {
-                        face: f,
-                        index: v,
-                        vertex_count: nv,
-                    });
-                }
-            }
-            if face.len() < 3 {
-                return Err(MeshError::TooFewCorners {
-                    face: f,
-                    corners: face.len(),
-                });
-            }
-            for &v in face {
-                if seen[v] == f as u32 {
-                    return Err(MeshError::RepeatedVertex { face: f, vertex: v });
-                }
-                seen[v] = f as u32;
-                corner_vertex.push(v as u32);
-                corner_face.push(f as u32);
-            }
-            face_start.push(corner_vertex.len() as u32);
+        let mut corner_face = Vec::with_capacity(corner_vertex.len());
+        for (f, w) in face_start.windows(2).enumerate() {
+            corner_face.extend(std::iter::repeat_n(f as u32, (w[1] - w[0]) as usize));
         }
         let h_count = corner_vertex.len();
         let next = |h: usize| -> usize {

@@ -34,7 +34,7 @@ pub mod refine;
 pub mod rules;
 pub mod tags;
 
-use super::{MeshError, MAX_HALF_EDGES};
+use super::MeshError;
 use rules::{is_infinite, Boundary, SHARPNESS_INFINITE};
 use tags::{Tag, TagTarget};
 
@@ -277,53 +277,8 @@ impl SharpMesh {
         positions: Vec<[f64; 3]>,
         faces: &[F],
     ) -> Result<SharpMeshBuilder, MeshError> {
-        for (v, p) in positions.iter().enumerate() {
-            if let Some(x) = p.iter().find(|x| !x.is_finite()) {
-                return Err(MeshError::NonFiniteCoordinate {
-                    vertex: v,
-                    value: format!("{x:?}"),
-                });
-            }
-        }
-        if faces.is_empty() {
-            return Err(MeshError::Empty);
-        }
+        let (face_start, face_verts) = super::polygon_soup(&positions, faces)?;
         let nv = positions.len();
-        let total: u64 = faces.iter().map(|f| f.as_ref().len() as u64).sum();
-        if total > MAX_HALF_EDGES || nv as u64 > MAX_HALF_EDGES {
-            return Err(MeshError::TooLarge {
-                half_edges: total,
-                max: MAX_HALF_EDGES,
-            });
-        }
-        let mut face_start = Vec::with_capacity(faces.len() + 1);
-        let mut face_verts = Vec::with_capacity(total as usize);
-        face_start.push(0u32);
-        let mut seen = vec![u32::MAX; nv];
-        for (f, face) in faces.iter().enumerate() {
-            let face = face.as_ref();
-            if let Some(&v) = face.iter().find(|&&v| v >= nv) {
-                return Err(MeshError::DanglingIndex {
-                    face: f,
-                    index: v,
-                    vertex_count: nv,
-                });
-            }
-            if face.len() < 3 {
-                return Err(MeshError::TooFewCorners {
-                    face: f,
-                    corners: face.len(),
-                });
-            }
-            for &v in face {
-                if seen[v] == f as u32 {
-                    return Err(MeshError::RepeatedVertex { face: f, vertex: v });
-                }
-                seen[v] = f as u32;
-                face_verts.push(v as u32);
-            }
-            face_start.push(face_verts.len() as u32);
-        }
         let t = topology(nv, &face_start, &face_verts)?;
         let mut mesh = SharpMesh {
             positions,
