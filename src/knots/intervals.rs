@@ -26,6 +26,31 @@ fn check_interval<T: Scalar>(name: &'static str, index: usize, v: &T) -> Result<
     }
 }
 
+/// Checks two interval vectors of one face: `first` of length `n >= 3`,
+/// `second` of the same length (`what` names it in the count error), every
+/// value finite and `> 0` (named `first_name[i]`, `second_name[i]`).
+fn check_interval_pair<T: Scalar>(
+    (first_name, first): (&'static str, &[T]),
+    (second_name, second): (&'static str, &[T]),
+    what: &'static str,
+) -> Result<()> {
+    check_valence(first.len())?;
+    if second.len() != first.len() {
+        return Err(Error::CountMismatch {
+            what,
+            expected: first.len(),
+            got: second.len(),
+        });
+    }
+    for (i, v) in first.iter().enumerate() {
+        check_interval(first_name, i, v)?;
+    }
+    for (i, v) in second.iter().enumerate() {
+        check_interval(second_name, i, v)?;
+    }
+    Ok(())
+}
+
 /// The knot intervals `(p_i, q_i)` at the corners of one n-sided face.
 ///
 /// ```
@@ -45,20 +70,7 @@ pub struct CornerIntervals<T = f64> {
 impl<T: Scalar> CornerIntervals<T> {
     /// Validates `p` and `q`: equal length `n >= 3`, every value finite and `> 0`.
     pub fn new(p: Vec<T>, q: Vec<T>) -> Result<Self> {
-        check_valence(p.len())?;
-        if q.len() != p.len() {
-            return Err(Error::CountMismatch {
-                what: "q intervals (one per corner)",
-                expected: p.len(),
-                got: q.len(),
-            });
-        }
-        for (i, v) in p.iter().enumerate() {
-            check_interval("p", i, v)?;
-        }
-        for (i, v) in q.iter().enumerate() {
-            check_interval("q", i, v)?;
-        }
+        check_interval_pair(("p", &p), ("q", &q), "q intervals (one per corner)")?;
         Ok(Self { p, q })
     }
 
@@ -257,20 +269,11 @@ impl<T: Scalar> EdgeRatios<T> {
     /// `forward_i = d(P_i -> P_{i+1})`, `backward_i = d(P_{i+1} -> P_i)`:
     /// `r_i = backward_i / (forward_i + backward_i)` (math doc section 3).
     pub fn face_ep(forward: &[T], backward: &[T]) -> Result<Self> {
-        check_valence(forward.len())?;
-        if backward.len() != forward.len() {
-            return Err(Error::CountMismatch {
-                what: "backward edge intervals",
-                expected: forward.len(),
-                got: backward.len(),
-            });
-        }
-        for (i, v) in forward.iter().enumerate() {
-            check_interval("forward", i, v)?;
-        }
-        for (i, v) in backward.iter().enumerate() {
-            check_interval("backward", i, v)?;
-        }
+        check_interval_pair(
+            ("forward", forward),
+            ("backward", backward),
+            "backward edge intervals",
+        )?;
         Self::from_edge_pairs(forward, backward)
     }
 

@@ -278,9 +278,26 @@ impl SharpMesh {
         faces: &[F],
     ) -> Result<SharpMeshBuilder, MeshError> {
         let (face_start, face_verts) = super::polygon_soup(&positions, faces)?;
+        let hole = vec![false; face_start.len() - 1];
+        let mut mesh = SharpMesh::assemble(positions, face_start, face_verts, hole)?;
+        mesh.check_vertices()?;
+        mesh.order_vertex_edges();
+        Ok(SharpMeshBuilder { mesh })
+    }
+
+    /// The mesh of `positions` and the flattened faces (`face_start`,
+    /// `face_verts`, as [`super::polygon_soup`] gives them) with its edge and
+    /// vertex topology, `hole` per face, and no sharpness yet.
+    fn assemble(
+        positions: Vec<[f64; 3]>,
+        face_start: Vec<u32>,
+        face_verts: Vec<u32>,
+        hole: Vec<bool>,
+    ) -> Result<SharpMesh, MeshError> {
         let nv = positions.len();
         let t = topology(nv, &face_start, &face_verts)?;
-        let mut mesh = SharpMesh {
+        let ne = t.edge_verts.len();
+        Ok(SharpMesh {
             positions,
             face_start,
             face_verts,
@@ -291,15 +308,10 @@ impl SharpMesh {
             vert_edges: t.vert_edges,
             vert_face_start: t.vert_face_start,
             vert_faces: t.vert_faces,
-            edge_sharpness: Vec::new(),
+            edge_sharpness: vec![0.0; ne],
             vertex_sharpness: vec![0.0; nv],
-            hole: Vec::new(),
-        };
-        mesh.edge_sharpness = vec![0.0; mesh.edge_count()];
-        mesh.hole = vec![false; mesh.face_count()];
-        mesh.check_vertices()?;
-        mesh.order_vertex_edges();
-        Ok(SharpMeshBuilder { mesh })
+            hole,
+        })
     }
 
     /// Refuses isolated vertices and vertices whose faces form more than

@@ -6,7 +6,7 @@
 //! index layout.
 
 use super::rules::{self, decrement, edge_weights, is_sharp, Creasing, SdcScheme, VertexMask};
-use super::{topology, SharpMesh, NONE};
+use super::{SharpMesh, NONE};
 use crate::mesh::{MeshError, MAX_HALF_EDGES};
 
 fn add(a: &mut [f64; 3], b: &[f64; 3], w: f64) {
@@ -196,23 +196,7 @@ impl SharpMesh {
             let face_start: Vec<u32> = (0..=4 * nf).map(|f| (3 * f) as u32).collect();
             (face_start, face_verts, hole)
         };
-        let t = topology(total, &face_start, &face_verts)?;
-        let mut child = SharpMesh {
-            positions,
-            face_start,
-            face_verts,
-            face_edges: t.face_edges,
-            edge_verts: t.edge_verts,
-            edge_faces: t.edge_faces,
-            vert_edge_start: t.vert_edge_start,
-            vert_edges: t.vert_edges,
-            vert_face_start: t.vert_face_start,
-            vert_faces: t.vert_faces,
-            edge_sharpness: Vec::new(),
-            vertex_sharpness: vec![0.0; total],
-            hole,
-        };
-        child.edge_sharpness = vec![0.0; child.edge_count()];
+        let mut child = SharpMesh::assemble(positions, face_start, face_verts, hole)?;
         // Vertex points keep their parent's rotational edge order.
         for v in 0..nv {
             let start = child.vert_edge_start[v] as usize;
