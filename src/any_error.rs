@@ -10,6 +10,7 @@
 //! error of whichever analysis it ran and map it to its exit code or
 //! exception with [`AnyError::is_input_error`].
 
+#[cfg(feature = "lp")]
 use crate::ccss_bound::CcssBoundError;
 use crate::error::Error;
 use crate::g2cap::G2CapError;
@@ -26,6 +27,7 @@ pub enum AnyError {
     #[error(transparent)]
     Core(#[from] Error),
     /// Failures of the patch-to-limit-face distance bound (`ccss_bound`).
+    #[cfg(feature = "lp")]
     #[error(transparent)]
     CcssBound(#[from] CcssBoundError),
     /// Mesh construction, I/O parsing or refinement.
@@ -56,6 +58,7 @@ impl AnyError {
     pub fn is_input_error(&self) -> bool {
         match self {
             AnyError::Core(e) => core_is_input(e),
+            #[cfg(feature = "lp")]
             AnyError::CcssBound(e) => ccss_bound_is_input(e),
             AnyError::Mesh(e) => mesh_is_input(e),
             AnyError::Spectral(e) => spectral_is_input(e),
@@ -69,6 +72,7 @@ fn core_is_input(e: &Error) -> bool {
     !matches!(e, Error::Numerical { .. })
 }
 
+#[cfg(feature = "lp")]
 fn ccss_bound_is_input(e: &CcssBoundError) -> bool {
     use CcssBoundError as C;
     match e {
@@ -115,6 +119,7 @@ mod tests {
 
     /// The CCSS bound's tolerance below the net's resolution is input; a
     /// failed linear program is not.
+    #[cfg(feature = "lp")]
     #[test]
     fn ccss_bound_errors_by_kind() {
         let below = CcssBoundError::ToleranceBelowResolution {
@@ -145,8 +150,11 @@ mod tests {
             assert_eq!(AnyError::from(spectral).is_input_error(), expected);
             let mesh = MeshError::from(e.clone());
             assert_eq!(AnyError::from(mesh).is_input_error(), expected);
-            let bound = CcssBoundError::from(e);
-            assert_eq!(AnyError::from(bound).is_input_error(), expected);
+            #[cfg(feature = "lp")]
+            {
+                let bound = CcssBoundError::from(e);
+                assert_eq!(AnyError::from(bound).is_input_error(), expected);
+            }
         }
     }
 }

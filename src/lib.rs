@@ -62,6 +62,24 @@
 //! cap's solvers, ...); what their users need is re-exported by the public
 //! module.
 //!
+//! # Cargo features
+//!
+//! * `cli` (default): the `subdiv-lab` command-line tool (clap, anyhow,
+//!   indicatif, libc); turns on `report` and `lp`;
+//! * `report`: the [`report`] module (plotters, png): figures and HTML;
+//! * `lp`: the [`ccss_bound`] module (good_lp with the pure-Rust microlp
+//!   solver);
+//! * `testing`: the `testing` module (proptest).
+//!
+//! With `default-features = false` the library builds the local matrices,
+//! the spectral analysis, characteristic maps, curvature, `verify`, meshes
+//! and sweeps without any of them:
+//!
+//! ```toml
+//! [dependencies]
+//! subdiv-lab = { version = "0.1", default-features = false }
+//! ```
+//!
 //! ```
 //! use subdiv_lab::knots::CornerIntervals;
 //! use subdiv_lab::schemes::LocalScheme;
@@ -77,6 +95,7 @@ pub mod bezier;
 pub mod bspline;
 pub mod budget;
 pub mod cc_study;
+#[cfg(feature = "lp")]
 pub mod ccss_bound;
 pub mod charmap;
 pub mod contraction;
@@ -86,6 +105,7 @@ pub mod g2cap;
 pub(crate) mod hash;
 pub mod knots;
 pub mod mesh;
+#[cfg(feature = "report")]
 pub mod report;
 pub mod rng;
 pub mod scalar;

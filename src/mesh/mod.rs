@@ -47,6 +47,7 @@ pub mod limit;
 pub mod loop_subdivision;
 pub mod neighbourhood;
 pub mod obj;
+#[cfg(feature = "report")]
 pub(crate) mod projection;
 pub mod refine;
 pub mod rules;
