@@ -424,7 +424,7 @@ impl Eigen {
             if let Some((k, r)) = res
                 .iter()
                 .enumerate()
-                .find(|(_, &r)| r.is_nan() || r > fail_at)
+                .find(|&(_, &r)| r.is_nan() || r > fail_at)
             {
                 return Err(SpectralError::ResidualTooLarge {
                     index: k,
