@@ -42,14 +42,17 @@ Spec = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 
 
 def _knots(knots):
+    """``knots`` as a list of ``(p, q)`` float pairs, or ``None``."""
     return None if knots is None else [(float(p), float(q)) for p, q in knots]
 
 
 def _floats(xs):
+    """``xs`` as a list of floats, or ``None``."""
     return None if xs is None else [float(x) for x in xs]
 
 
 def _float(x):
+    """``x`` as a float, or ``None``."""
     return None if x is None else float(x)
 
 

@@ -37,7 +37,7 @@
 //! `(mu / lambda^2)^{2k}`); the per-level ratio of the largest principal
 //! curvature converges to `mu / lambda^2` with a relative error of order
 //! `rho^k`, `rho = max(nu / mu, mu / lambda)`, `nu` the largest modulus below
-//! `mu` (math doc section 13.2 **\[derived\]**; tested in `tests/curvature.rs`).
+//! `mu` (math doc section 13.2 **\[derived\]**; tested in `tests/analysis/curvature.rs`).
 //! `mu`, `lambda` and `nu` are those of the patch matrix
 //! ([`fourier::patch_spectrum`]), the family's second-order matrix (math
 //! doc section 13.5).

@@ -75,7 +75,7 @@ fn scale_pow2(x: f64, k: i32) -> f64 {
 
 /// How the constrained least squares of the free points is solved (math
 /// doc section 14.5). Both give the same control points up to rounding
-/// (`tests/g2cap.rs` cross-checks them); the DFT path is the more accurate
+/// (`tests/analysis/g2cap.rs` cross-checks them); the DFT path is the more accurate
 /// (it keeps the rotational symmetry of the problem to `~1e-14 L`, the
 /// dense path to `~1e-9 L` at `n = 6`) and the faster one, so it is the
 /// default.

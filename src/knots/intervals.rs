@@ -418,7 +418,7 @@ mod tests {
     /// A ratio that rounds to 1 in `f64` (its complement `s_0 = p_0 / (p_0 +
     /// q_1)` is about `1e-600`) is refused naming the edge and "rounds to 1";
     /// one that rounds to 0 names "rounds to 0" (the other side, also in
-    /// tests/knots.rs). Both reach `from_edge_pairs` through `ratios` and
+    /// tests/analysis/knots.rs). Both reach `from_edge_pairs` through `ratios` and
     /// through the face-EP preset.
     #[test]
     fn ratios_that_round_to_zero_or_one_name_the_edge() {

@@ -20,7 +20,7 @@
 //!   limit points; the vertex's V-face shrinks to the patch's parameter
 //!   midpoint, which is the vertex's limit position **\[derived\]** (the
 //!   V-face's children carry the halved intervals of the centre span; checked
-//!   in `tests/mesh_tensor_limit.rs` against the face limit point of the V-face
+//!   in `tests/mesh/mesh_tensor_limit.rs` against the face limit point of the V-face
 //!   after one mesh step, an independent route).
 //! * **Limit mesh**: the dual of the mesh, its vertices the face limit points;
 //!   each dual face of a regular vertex is split into a fan of triangles around

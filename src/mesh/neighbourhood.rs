@@ -14,7 +14,7 @@
 //! level-1 faces, which include every extraordinary face). A face *created* by
 //! the second step (an E- or V-face of level 2) has the `4n` configuration but
 //! not yet equal transverse intervals around it, so `S_n` applies to it one
-//! level later (`tests/mesh_consistency.rs`).
+//! level later (`tests/mesh/mesh_consistency.rs`).
 //!
 //! ```
 //! use subdiv_lab::mesh::{generators, neighbourhood::face_neighbourhood, refine::refine_levels};

@@ -3,9 +3,7 @@
 //! certificate, the measured curvature rates, and the certified tuning of
 //! the shape-adjustable scheme.
 
-#[path = "../examples/own_scheme.rs"]
-#[allow(dead_code)]
-mod own_scheme;
+use crate::example_scheme as own_scheme;
 
 use own_scheme::VertexWeightCc;
 use proptest::prelude::*;

@@ -1,7 +1,7 @@
 //! CLI tests for the Catmull-Clark family (`matrix --scheme catmull-clark|adjustable-cc`)
 //! and `ccss-bound`.
 
-mod common;
+use crate::common;
 use common::run;
 
 #[test]

@@ -5,7 +5,7 @@
 //! Stewart radius caught, cells across the class boundary, exact tiling in
 //! rationals, the CLI's `g1` verdict.
 
-mod common;
+use crate::common;
 
 use num_traits::Zero;
 use proptest::prelude::*;

@@ -3,9 +3,7 @@
 //! Catmull-Clark at Catmull-Clark's weights, sweeps record rows and errors,
 //! and the spectrum figure renders.
 
-#[path = "../examples/own_scheme.rs"]
-#[allow(dead_code)]
-mod own_scheme;
+use crate::example_scheme as own_scheme;
 
 use own_scheme::VertexWeightCc;
 use subdiv_lab::schemes::LocalScheme;

@@ -1,6 +1,6 @@
 //! `subdiv-lab analyze`: the characteristic-map part (human and `--json`).
 
-mod common;
+use crate::common;
 use common::run;
 
 fn charmap_json(args: &[&str]) -> serde_json::Value {

@@ -1,6 +1,6 @@
 //! `subdiv-lab analyze`: JSON keys, agreement with the library, exact verdicts, bad input.
 
-mod common;
+use crate::common;
 use common::run;
 
 #[test]

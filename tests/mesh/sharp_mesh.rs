@@ -3,7 +3,7 @@
 //! `tests/data/opensubdiv/`, written by `benches/opensubdiv/osd_sharp.cpp`),
 //! the `subdivide` flags end to end, and closed untagged meshes unchanged.
 
-mod common;
+use crate::common;
 use common::run;
 use std::path::PathBuf;
 use subdiv_lab::mesh::obj::parse_obj_data;

@@ -1,9 +1,9 @@
 //! Bounded work. Every spec shipped in `analysis/` runs (at its full size, or
 //! with the `--limit` documented here and in the README), and the structured
-//! path classifies the 7 x 7 matrix on which faer's SVD does not converge. Refusals of heavy work are rows of `tests/hostile_inputs.rs`
+//! path classifies the 7 x 7 matrix on which faer's SVD does not converge. Refusals of heavy work are rows of `tests/cli/hostile_inputs.rs`
 //! (section bounded-work).
 
-mod common;
+use crate::common;
 
 use common::run;
 use std::path::{Path, PathBuf};

@@ -1,6 +1,6 @@
 //! `subdiv-lab matrix`: output round trips and bad-input handling.
 
-mod common;
+use crate::common;
 use common::run;
 use subdiv_lab::knots::CornerIntervals;
 use subdiv_lab::scalar::{parse_exact, Rational, Scalar};

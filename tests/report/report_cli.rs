@@ -649,7 +649,7 @@ fn default_spec_parses() {
     let kinds: BTreeSet<&str> = spec.figures.iter().map(|f| f.common.kind).collect();
     // `sweep` draws a user's sweep CSV (a file path): the default report is
     // embedded in the binary and runs from any directory, so it cannot carry
-    // one; tests/figure_layout.rs renders that kind from its own sample.
+    // one; tests/report/figure_layout.rs renders that kind from its own sample.
     const DRAWS_A_USER_FILE: &[&str] = &["sweep"];
     for k in subdiv_lab::report::figures::REGISTRY {
         if DRAWS_A_USER_FILE.contains(&k.name) {

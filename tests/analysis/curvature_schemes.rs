@@ -5,9 +5,7 @@
 //! from closed forms (Loop) or from the local matrix by nalgebra's SVD (the
 //! Jordan structure of Doo-Sabin), not by the measuring code.
 
-#[path = "../examples/own_scheme.rs"]
-#[allow(dead_code)]
-mod own_scheme;
+use crate::example_scheme as own_scheme;
 
 use nalgebra::DMatrix;
 use own_scheme::VertexWeightCc;
@@ -192,7 +190,7 @@ fn a_scheme_from_outside_the_crate_is_measured_too() {
         // method converges slowly for Catmull-Clark (the mean part, rate
         // 1.116, against the twist, rate 1.220: 0.91^K = 0.05 at K = 32,
         // measured 1.213; the family's own limit-point method is the one
-        // tested in tests/curvature.rs), so only n = 4 is held to RATE_TOL.
+        // tested in tests/analysis/curvature.rs), so only n = 4 is held to RATE_TOL.
         if n == 4 {
             let r = own.measured_rate;
             assert!((r - 1.0).abs() < 1e-6, "n={n}: {r}");

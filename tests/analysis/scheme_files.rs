@@ -1,7 +1,7 @@
 //! Scheme files (`--scheme-file`): the shipped restatements of Catmull-Clark
 //! and Loop give the built-ins' verdicts, matrices and sweep rows.
 
-mod common;
+use crate::common;
 use common::run;
 
 const CC: &str = concat!(

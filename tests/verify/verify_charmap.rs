@@ -6,7 +6,7 @@
 //! the subspace variation dropped is caught by the same check; the certified
 //! intervals of `c` agree with `cc-study`.
 
-mod common;
+use crate::common;
 
 use proptest::prelude::*;
 use std::fs;

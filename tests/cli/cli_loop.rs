@@ -3,7 +3,7 @@
 //! characteristic map), the matrix, and mesh refinement equal to the
 //! library's (math doc section 11).
 
-mod common;
+use crate::common;
 use common::run;
 use std::f64::consts::PI;
 use subdiv_lab::mesh::loop_subdivision::{limit_mesh, refine_levels};

@@ -1,6 +1,6 @@
 //! The `subdivide` subcommand end to end.
 
-mod common;
+use crate::common;
 use common::run;
 use std::path::{Path, PathBuf};
 fn mesh(name: &str) -> PathBuf {

@@ -377,9 +377,9 @@ fn render(spec_text: &str) -> Vec<(String, &'static str, String)> {
 
 #[test]
 fn every_figure_kind_passes_the_layout_check() {
-    let mut rendered = render(include_str!("../analysis/default.toml"));
+    let mut rendered = render(include_str!("../../analysis/default.toml"));
     rendered.extend(render(samples()));
-    let spec_kinds: Vec<&str> = ReportSpec::parse(include_str!("../analysis/default.toml"))
+    let spec_kinds: Vec<&str> = ReportSpec::parse(include_str!("../../analysis/default.toml"))
         .unwrap()
         .figures
         .iter()
@@ -407,7 +407,7 @@ fn every_figure_kind_passes_the_layout_check() {
 
 /// The default report's spectra with one SVG edit applied.
 fn spectra_svg() -> String {
-    let spec = include_str!("../analysis/default.toml");
+    let spec = include_str!("../../analysis/default.toml");
     let one = &spec[..spec
         .find("[[figure]]\nkind = \"subdominant-vs-valence\"")
         .unwrap()];

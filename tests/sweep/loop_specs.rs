@@ -3,7 +3,7 @@
 //! analysis and Loop's closed form (math doc section 11), and report specs
 //! draw Loop configurations and refine triangle meshes with Loop's rules.
 
-mod common;
+use crate::common;
 
 use subdiv_lab::charmap;
 use subdiv_lab::schemes::loop_subdivision::LoopScheme;

@@ -3,7 +3,7 @@
 //! thread-count independence, the `--out` rules and the Catmull-Clark path
 //! against `cc-study`.
 
-mod common;
+use crate::common;
 
 use num_traits::Zero;
 use proptest::prelude::*;

@@ -11,7 +11,7 @@ use subdiv_lab::charmap::winding::winding_number;
 use subdiv_lab::charmap::Verdict;
 use subdiv_lab::schemes::catmull_clark::{fourier, patch_matrix};
 
-mod common;
+use crate::common;
 
 #[test]
 fn catmull_clark_charmap_is_regular_and_injective_for_n_3_to_32_by_both_certificates() {
