@@ -74,8 +74,9 @@ use super::regularity::{
     check_bezier_patches, gamma, Coefficients, DomainPoint, Regularity, RegularityVerdict,
 };
 pub use super::report::CcPatchId;
+use super::verdict::{assemble_report, propagated_error, structure_of};
 use super::winding::{winding_number, HullCurve};
-use super::{assemble_report, CharmapReport, Eigenstructure, PlanarBasis};
+use super::{CharmapReport, Eigenstructure, PlanarBasis};
 use crate::bezier::{PlanarPatch, TensorBezier};
 use crate::error::{Error, Result};
 use crate::schemes::catmull_clark::{self, fourier, PatchLayout, SubPatch};
@@ -775,7 +776,7 @@ pub fn point_error(
     basis: &PlanarBasis,
     maps: &[[[f64; 2]; 2]],
 ) -> f64 {
-    let (e0, p0) = super::propagated_error(ext, basis);
+    let (e0, p0) = propagated_error(ext, basis);
     let g = maps
         .iter()
         .map(|m| (m[0][0].abs() + m[0][1].abs()).max(m[1][0].abs() + m[1][1].abs()))
@@ -865,7 +866,7 @@ pub fn check_classified(
     match &sub.class {
         SubdominantClass::Standard => {}
         other => {
-            let (class, reason) = match super::structure_of(other) {
+            let (class, reason) = match structure_of(other) {
                 Err(cr) => cr,
                 Ok(s) => (
                     s.as_str().to_owned(),

@@ -13,7 +13,7 @@
 //! (`--scheme`, `configs[2].scheme`, `space.kind`) and location.
 //!
 //! ```
-//! use subdiv_lab::scheme::choice::{validate, Choice, ChoiceError};
+//! use subdiv_lab::schemes::choice::{validate, Choice, ChoiceError};
 //! use subdiv_lab::schemes::SchemeKind;
 //! let ok = validate(&Choice { name: "nurds", knots: true, c: false }).unwrap();
 //! assert_eq!(ok, SchemeKind::Nurds);

@@ -3,7 +3,7 @@
 //! [`Scheme`] (math doc section 12).
 //!
 //! A leaf of the module graph on purpose: every scheme module may depend on
-//! [`crate::scheme`], and only this file depends on every scheme module.
+//! [`crate::schemes`], and only this file depends on every scheme module.
 //! [`Builtin`] is the closed set of built-in implementations (no allocation,
 //! so the sweep engine can build one per configuration); everything else
 //! sees it as `&dyn Scheme` through `Deref`, so the trait's capabilities
@@ -22,7 +22,7 @@ use std::ops::Deref;
 /// `Deref` (`&*builtin` is a `&dyn Scheme`).
 ///
 /// ```
-/// use subdiv_lab::scheme::registry::Builtin;
+/// use subdiv_lab::schemes::registry::Builtin;
 /// use subdiv_lab::schemes::SchemeKind;
 /// use subdiv_lab::spectral::classify_scheme;
 /// let s = Builtin::from_kind(SchemeKind::Loop, 5, None, None).unwrap();
@@ -130,7 +130,7 @@ impl From<LocalScheme<f64>> for Builtin {
 ///
 /// ```
 /// use subdiv_lab::schemes::SchemeKind;
-/// let s = subdiv_lab::scheme::registry::from_kind(SchemeKind::CatmullClark, 5, None, None).unwrap();
+/// let s = subdiv_lab::schemes::registry::from_kind(SchemeKind::CatmullClark, 5, None, None).unwrap();
 /// assert_eq!((s.name(), s.valence()), ("catmull-clark", 5));
 /// ```
 pub fn from_kind(
@@ -151,7 +151,7 @@ pub fn from_kind(
 /// plan).
 ///
 /// ```
-/// use subdiv_lab::scheme::registry::cost_model;
+/// use subdiv_lab::schemes::registry::cost_model;
 /// use subdiv_lab::schemes::SchemeKind;
 /// assert_eq!(cost_model(SchemeKind::Nurds).dimension(5), 20.0);
 /// assert_eq!(cost_model(SchemeKind::Loop).dimension(5), 16.0);
