@@ -13,6 +13,7 @@
 //! ```
 
 use super::assembly::LocalMatrix;
+use super::choice::{self, ChoiceError};
 use super::kind::SchemeKind;
 use super::{catmull_clark, doo_sabin};
 use crate::error::{Error, Result};
@@ -80,46 +81,19 @@ impl<T: Scalar> LocalScheme<T> {
         Ok(LocalScheme::AdjustableCc { valence: n, c })
     }
 
-    /// Like [`LocalScheme::from_kind`], with the shape parameter `c` (required
-    /// iff [`SchemeKind::takes_c`]).
+    /// The configuration of `kind` at `valence` with optional edge ratios
+    /// (`None`: uniform; non-uniform only for a scheme that takes knots) and
+    /// the shape parameter `c` (required iff [`SchemeKind::takes_c`]): the
+    /// rules of [`choice`](super::choice), then the family's own validation.
     pub fn from_kind_with_c(
         kind: SchemeKind,
         valence: usize,
         ratios: Option<EdgeRatios<T>>,
         c: Option<T>,
     ) -> Result<Self> {
-        match (kind.takes_c(), c) {
-            (true, Some(c)) => {
-                if ratios.as_ref().is_some_and(|r| !r.is_uniform()) {
-                    return Err(Error::InvalidParameter {
-                        name: "knots",
-                        value: kind.name().to_owned(),
-                        reason: "this scheme has no knot intervals",
-                    });
-                }
-                Self::adjustable_cc(valence, c)
-            }
-            (true, None) => Err(Error::InvalidParameter {
-                name: "c",
-                value: "(missing)".to_owned(),
-                reason: "adjustable-cc needs the shape parameter c in [0, 1]",
-            }),
-            (false, Some(c)) => Err(Error::InvalidParameter {
-                name: "c",
-                value: c.to_text(),
-                reason: "only adjustable-cc takes the shape parameter c",
-            }),
-            (false, None) => Self::from_kind(kind, valence, ratios),
-        }
-    }
-
-    /// A configuration of `kind` with optional ratios (required iff the scheme takes knots;
-    /// `None` means uniform for NURDS).
-    pub fn from_kind(
-        kind: SchemeKind,
-        valence: usize,
-        ratios: Option<EdgeRatios<T>>,
-    ) -> Result<Self> {
+        let knots = ratios.as_ref().is_some_and(|r| !r.is_uniform());
+        choice::check(kind, knots, c.is_some())
+            .map_err(|e| e.into_error(c.as_ref().map(Scalar::to_text)))?;
         if let Some(r) = &ratios {
             if r.valence() != valence {
                 return Err(Error::CountMismatch {
@@ -134,22 +108,27 @@ impl<T: Scalar> LocalScheme<T> {
                 Some(r) => r,
                 None => EdgeRatios::uniform(valence)?,
             })),
-            SchemeKind::DooSabin | SchemeKind::CcVariant | SchemeKind::CatmullClark if ratios.as_ref().is_some_and(|r| !r.is_uniform()) => {
-                Err(Error::InvalidParameter {
-                    name: "knots",
-                    value: kind.name().to_owned(),
-                    reason: "this scheme has no knot intervals; use --scheme nurds for non-uniform knots",
-                })
-            }
             SchemeKind::DooSabin => Self::doo_sabin(valence),
             SchemeKind::CcVariant => Self::cc_variant(valence),
             SchemeKind::CatmullClark => Self::catmull_clark(valence),
-            SchemeKind::AdjustableCc => Self::from_kind_with_c(kind, valence, ratios, None),
+            SchemeKind::AdjustableCc => match c {
+                Some(c) => Self::adjustable_cc(valence, c),
+                None => Err(ChoiceError::NeedsC(kind).into_error(None)),
+            },
             SchemeKind::Loop => Err(Error::NotApplicable {
                 scheme: kind.name().to_owned(),
                 operation: "a face- or one-ring configuration (use schemes::registry::from_kind)",
             }),
         }
+    }
+
+    /// [`from_kind_with_c`](Self::from_kind_with_c) without a shape parameter.
+    pub fn from_kind(
+        kind: SchemeKind,
+        valence: usize,
+        ratios: Option<EdgeRatios<T>>,
+    ) -> Result<Self> {
+        Self::from_kind_with_c(kind, valence, ratios, None)
     }
 
     /// The scheme kind.
