@@ -29,3 +29,21 @@ pub fn mesh_rules(kind: SchemeKind, c: Option<f64>) -> Result<Box<dyn MeshRules>
     };
     Ok(rules)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The mesh rules follow the rules of `schemes::choice` for `c` for every
+    /// scheme. (Planted: letting `choice::check` accept `c` for
+    /// catmull-clark fails here.)
+    #[test]
+    fn the_shape_parameter_follows_the_choice_rules() {
+        for &kind in SchemeKind::ALL {
+            for c in [None, Some(0.3)] {
+                let expect_ok = c.is_some() == kind.takes_c();
+                assert_eq!(mesh_rules(kind, c).is_ok(), expect_ok, "{kind} c={c:?}");
+            }
+        }
+    }
+}
