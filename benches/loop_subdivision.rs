@@ -4,7 +4,8 @@
 //!
 //! Run: `cargo bench --bench loop_subdivision`.
 
-use subdiv_lab::schemes::loop_subdivision::{charmap, fourier, matrix};
+use subdiv_lab::charmap::loop_subdivision as charmap;
+use subdiv_lab::schemes::loop_subdivision::{fourier, matrix};
 
 fn main() {
     divan::main();

@@ -16,7 +16,7 @@
 //!
 //! Only [`Scheme::local_matrix`] is required. Everything else is an optional
 //! capability with a documented default (the table in the docs of
-//! `subdiv_lab::scheme`): a closed-form limit stencil, an exact matrix, a
+//! `subdiv_lab::schemes`): a closed-form limit stencil, an exact matrix, a
 //! structured or Fourier spectrum, a characteristic ring, and the cost model
 //! the work estimates use ([`Scheme::cost_model`]; the default measures the
 //! local matrix once, enough for this scheme).

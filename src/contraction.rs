@@ -31,14 +31,15 @@
 //!
 //! Theorem 1 is a statement about the Doo-Sabin family (a central face whose
 //! corners contract towards its face point), so this module is part of that
-//! family's implementation: the analysis reaches it through the capability
-//! [`Scheme::face_contraction`](crate::Scheme::face_contraction), and its
+//! family's analysis: [`face_contraction`] reaches it for any [`Scheme`]
+//! through the scheme's ring of patches
+//! ([`RingPatches::Biquadratic`]: the face-centred family), and its
 //! functions take a [`LocalScheme`] and refuse the other families with
 //! [`Error::NotApplicable`](crate::Error::NotApplicable).
 
 use crate::error::Result;
 use crate::scalar::Scalar;
-use crate::schemes::LocalScheme;
+use crate::schemes::{LocalScheme, RingPatches, Scheme};
 use nalgebra::DMatrix;
 use serde::Serialize;
 
@@ -51,6 +52,39 @@ pub use crate::rng::SplitMix64;
 /// their error is below `8 eps`; `1e-13` leaves room for the `c_j` (accurate to
 /// `O(n eps)`, `n <= 256`). Rational input is checked exactly.
 pub const CERTIFICATE_TOL: f64 = 1e-13;
+
+/// Theorem 1 evidence of a face-centred scheme (math doc section 5): the
+/// certificate, the measured contraction and the face block whose spectrum
+/// bounds the rate ([`face_contraction`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceContraction {
+    /// The certificate (weights from the scheme's parameters, checked against the assembly).
+    pub certificate: Certificate<f64>,
+    /// The measured contraction of random control points.
+    pub measured: Measured,
+    /// The `n x n` central face block `A`.
+    pub face_block: DMatrix<f64>,
+}
+
+/// Theorem 1 evidence of any [`Scheme`]: [`certificate`], [`measure`] and the
+/// face block when the scheme is face-centred (its ring of patches is
+/// [`RingPatches::Biquadratic`]: the Doo-Sabin family, whose face contracts by
+/// 3/4); `None` for the others (no Theorem 1 section).
+pub fn face_contraction<S: Scheme + ?Sized>(
+    scheme: &S,
+    options: &MeasureOptions,
+) -> Option<Result<FaceContraction>> {
+    let Some(RingPatches::Biquadratic(s)) = scheme.ring_patches() else {
+        return None;
+    };
+    Some((|| {
+        Ok(FaceContraction {
+            certificate: certificate(s)?,
+            measured: measure(s, options)?,
+            face_block: s.face_block()?,
+        })
+    })())
+}
 
 /// Theorem 1 certificate for one configuration.
 #[derive(Clone, Debug, PartialEq)]

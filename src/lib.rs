@@ -3,7 +3,7 @@
 //! Numerical analysis and verification of subdivision surfaces: local
 //! subdivision matrices of NURDS (Non-Uniform Recursive Doo-Sabin), Doo-Sabin
 //! and its Catmull-Clark variant, Catmull-Clark and its shape-adjustable
-//! variant, Loop, and of schemes users define themselves ([`scheme`]), their
+//! variant, Loop, and of schemes users define themselves ([`schemes`]), their
 //! spectra, and the convergence facts about them.
 //!
 //! The mathematics is restated in the project's math document
@@ -17,11 +17,12 @@
 //! private). The public modules, one concept each:
 //!
 //! * schemes and their parameters:
-//!   * [`scheme`]: the scheme abstraction ([`Scheme`]): what a scheme
-//!     provides so that the whole toolkit runs on it; the registry of the
-//!     built-in schemes and the one validator of a scheme choice;
-//!   * [`schemes`]: the built-in schemes' local subdivision matrices, through
-//!     one assembly path (Doo-Sabin family, Catmull-Clark family, Loop);
+//!   * [`schemes`]: the rules layer: the scheme abstraction ([`Scheme`]),
+//!     what a scheme provides (data: matrices, blocks, stencils, its ring of
+//!     patches) so that every analysis runs on it; the built-in schemes'
+//!     local subdivision matrices through one assembly path (Doo-Sabin
+//!     family, Catmull-Clark family, Loop), scheme files, and the one
+//!     validator of a scheme choice;
 //!   * [`knots`]: knot intervals, edge ratios, extraordinary-point presets,
 //!     face weights;
 //!   * [`scalar`]: `f64` and exact rationals behind one trait;
@@ -109,7 +110,6 @@ pub mod mesh;
 pub mod report;
 pub mod rng;
 pub mod scalar;
-pub mod scheme;
 pub mod schemes;
 pub mod spectral;
 pub mod sweep;
@@ -120,4 +120,9 @@ pub mod verify;
 
 pub use any_error::AnyError;
 pub use error::{Error, Result};
-pub use scheme::Scheme;
+pub use schemes::Scheme;
+
+/// The path the sweep's output module names the scheme abstraction by
+/// (`crate::scheme::Scheme`); the module is [`schemes`].
+#[allow(unused_imports)]
+pub(crate) use schemes as scheme;

@@ -64,7 +64,7 @@ fn resolve(
         (None, Some(n)) => n,
         (None, None) => return Err(value_err(format!("valence is required with scheme {kind}"))),
     };
-    let s = subdiv_lab::scheme::registry::from_kind(kind, n, rf, c).map_err(lib_err)?;
+    let s = subdiv_lab::schemes::registry::from_kind(kind, n, rf, c).map_err(lib_err)?;
     Ok(Resolved {
         scheme: s,
         input: AnalysisInput {
@@ -113,7 +113,8 @@ pub(crate) fn matrix<'py>(
             TIME_LIMIT_SECONDS,
             force,
         )?;
-        if face && r.scheme.spectral_structure() != subdiv_lab::scheme::SpectralStructure::FaceBlock
+        if face
+            && r.scheme.spectral_structure() != subdiv_lab::schemes::SpectralStructure::FaceBlock
         {
             return Err(lib_err(subdiv_lab::Error::NotApplicable {
                 scheme: r.scheme.name().to_owned(),

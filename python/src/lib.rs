@@ -172,10 +172,10 @@ fn threads(threads: Option<Int>) -> PyResult<usize> {
 
 /// The scheme called `name`, checked with the knot data and shape parameter
 /// given with it by the library's one validator
-/// ([`subdiv_lab::scheme::choice`]), the message prefixed with the argument
+/// ([`subdiv_lab::schemes::choice`]), the message prefixed with the argument
 /// it is about (`scheme`, `knots/ratios`, `c`).
 fn scheme_choice(name: &str, knots: bool, c: bool) -> PyResult<subdiv_lab::schemes::SchemeKind> {
-    use subdiv_lab::scheme::choice::{validate, Choice, ChoiceError};
+    use subdiv_lab::schemes::choice::{validate, Choice, ChoiceError};
     validate(&Choice { name, knots, c }).map_err(|e| {
         let part = match e {
             ChoiceError::Unknown(_) => "scheme",

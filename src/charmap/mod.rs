@@ -73,25 +73,26 @@ pub mod basis;
 pub mod catmull_clark;
 pub mod extended;
 pub(crate) mod figure;
+pub mod loop_subdivision;
 mod planar;
 pub mod regularity;
 pub(crate) mod report;
 pub mod ring;
+mod verdict;
 pub mod winding;
 
 use crate::error::Result;
 use crate::knots::EdgeRatios;
-use crate::scheme::Scheme;
-use crate::schemes::LocalScheme;
+use crate::schemes::{LocalScheme, RingPatches, Scheme};
 use crate::spectral::{Subdominant, SubdominantClass};
 use extended::ExtendedMatrix;
-use nalgebra::DMatrix;
 pub use planar::{
     subspace_bound, PlanarBasis, MIN_BASIS_SINE, SUBSPACE_ERROR_SAFETY, SVD_ERROR_FACTOR,
 };
-use regularity::{check_regularity, gamma, Regularity, RegularityVerdict};
+use regularity::{check_regularity, gamma};
 pub use report::{charmap_json, AnyPatchId, CharmapReport, Eigenstructure, Verdict};
 use ring::Ring;
+use verdict::{assemble_report, propagated_error, structure_of};
 
 /// Error bound of the ring's Bezier control points for a basis with entry
 /// error `vector_error` **\[derived\]**: `Ext` has absolute row sums `rho`, so the
@@ -101,27 +102,6 @@ use ring::Ring;
 pub fn point_error(ext: &ExtendedMatrix<f64>, basis: &PlanarBasis) -> f64 {
     let (e, pmax) = propagated_error(ext.matrix().matrix(), basis);
     e + gamma(8) * pmax
-}
-
-/// The error of `m * [w1 w2]` for a basis with entry error `vector_error`,
-/// and a bound on its entries: `m` has absolute row sums `rho` and at most
-/// `K - 1` nonzeros per row, so each entry is off by at most
-/// `rho vector_error + gamma_K rho max|w|`. Returns `(error, rho max|w|)`.
-pub(crate) fn propagated_error(m: &DMatrix<f64>, basis: &PlanarBasis) -> (f64, f64) {
-    let mut rho = 0.0f64;
-    let mut nnz = 0usize;
-    for i in 0..m.nrows() {
-        let row = m.row(i);
-        rho = rho.max(row.iter().map(|x| x.abs()).sum());
-        nnz = nnz.max(row.iter().filter(|x| **x != 0.0).count());
-    }
-    let wmax = basis
-        .w1
-        .iter()
-        .chain(&basis.w2)
-        .fold(0.0f64, |a, x| a.max(x.abs()));
-    let pmax = rho * wmax;
-    (rho * basis.vector_error + gamma(nnz + 1) * pmax, pmax)
 }
 
 /// Runs the regularity and winding checks for a planar basis of `S_n`'s
@@ -152,95 +132,46 @@ pub fn check_ring(ring: &Ring, delta: f64, structure: Eigenstructure) -> Charmap
     assemble_report(reg, winding, inner, delta, structure)
 }
 
-/// The verdict from a regularity result and the certified winding numbers
-/// (shared by both scheme families).
-pub(crate) fn assemble_report<P>(
-    reg: Regularity<P>,
-    winding: Option<i64>,
-    inner: Option<i64>,
-    delta: f64,
-    structure: Eigenstructure,
-) -> CharmapReport<P> {
-    let verdict = match (reg.verdict, winding) {
-        _ if !delta.is_finite() => Verdict::Indeterminate {
-            reason: "the subdominant invariant subspace is not certified (Stewart's \
-                     separation hypothesis fails: eigenvalues too close for the residual)"
-                .to_owned(),
-        },
-        (RegularityVerdict::NotRegular, _) => Verdict::NotRegular,
-        (RegularityVerdict::Indeterminate, _) => Verdict::Indeterminate {
-            reason: format!(
-                "Jacobian sign not certified (min coefficient {:.3e}, error bound {:.3e}, relative)",
-                reg.min_coeff, reg.relative_error_bound
-            ),
-        },
-        (RegularityVerdict::Regular, None) => Verdict::Indeterminate {
-            reason: "winding number not certified (boundary within rounding of the origin)"
-                .to_owned(),
-        },
-        (RegularityVerdict::Regular, Some(1)) => match structure {
-            Eigenstructure::Standard => Verdict::C1Standard,
-            s => Verdict::TangentPlaneContinuous { structure: s },
-        },
-        (RegularityVerdict::Regular, Some(w)) => Verdict::NotInjective { winding: w },
-    };
-    CharmapReport {
-        structure: Some(structure),
-        regularity: Some(reg),
-        winding_number: winding,
-        inner_winding_number: inner,
-        point_error: delta,
-        verdict,
-    }
-}
-
-/// Why a class has no characteristic map, or `None` if it has one.
-fn structure_of(class: &SubdominantClass) -> std::result::Result<Eigenstructure, (String, String)> {
-    match class {
-        SubdominantClass::Standard => Ok(Eigenstructure::Standard),
-        SubdominantClass::RealDistinct => Ok(Eigenstructure::RealDistinct),
-        SubdominantClass::ComplexPair => Ok(Eigenstructure::ComplexPair),
-        SubdominantClass::Defective => Err((
-            "defective".to_owned(),
-            "lambda_1 = lambda_2 has a 1-dimensional eigenspace, so the subdominant \
-             eigenvectors span a line, not a plane; the generic limit surface has no \
-             regular tangent plane parametrisation from them"
-                .to_owned(),
-        )),
-        SubdominantClass::NotSeparated => Err((
-            "not_separated".to_owned(),
-            "|lambda_2| = |lambda_3| (or lambda_0 is not a simple 1): no 2-dimensional \
-             dominant invariant subspace determines the local shape"
-                .to_owned(),
-        )),
-        SubdominantClass::Indeterminate { between, reason } => Err((
-            "indeterminate".to_owned(),
-            format!(
-                "the eigenstructure is undecided between {} and {} ({reason}), so the planar \
-                 basis and the verdict's label are not determined",
-                between.0.as_str(),
-                between.1.as_str()
-            ),
-        )),
-    }
-}
-
 /// The characteristic-map check of one configuration of any [`Scheme`], given
-/// its subdominant classification (from [`crate::spectral`]): the scheme's
-/// own ring ([`Scheme::characteristic_map`]), or `no_charmap` when the scheme
-/// provides none.
+/// its subdominant classification (from [`crate::spectral`]), by the ring of
+/// patches the scheme provides ([`Scheme::ring_patches`]), or `no_charmap`
+/// when it provides none:
 ///
-/// Built-in schemes: the Doo-Sabin family's biquadratic ring
-/// ([`check_classified_doo_sabin`]), or for Catmull-Clark and the adjustable
-/// scheme the ring of [`catmull_clark`] (bicubic Bezier certificate at
-/// `c = 1/2`, cone certificate otherwise).
+/// * [`RingPatches::Biquadratic`]: the Doo-Sabin family's biquadratic ring
+///   ([`check_classified_doo_sabin`]);
+/// * [`RingPatches::Bicubic`]: the ring of [`catmull_clark`] (bicubic Bezier
+///   certificate at `c = 1/2`, cone certificate otherwise);
+/// * [`RingPatches::QuarticBoxSpline`]: Loop's ring
+///   ([`loop_subdivision::check`]), built on the standard eigenstructure
+///   (Loop's at every valence: the subdominant pair is the `k = +-1` Fourier
+///   eigenvalue); another class has no map, with the class that prevents it.
 pub fn check_classified<S: Scheme + ?Sized>(
     scheme: &S,
     sub: &Subdominant,
 ) -> Result<CharmapReport<AnyPatchId>> {
-    match scheme.characteristic_map(sub) {
-        Some(r) => r,
-        None => Ok(CharmapReport::no_map(
+    match scheme.ring_patches() {
+        Some(RingPatches::Biquadratic(s)) => check_classified_doo_sabin(s, sub),
+        Some(RingPatches::Bicubic { valence, c }) => {
+            let certificate = catmull_clark::Certificate::for_c(c);
+            catmull_clark::check_classified(valence, c, sub, certificate)
+                .map(|r| r.map_patches(AnyPatchId::CatmullClark))
+        }
+        Some(RingPatches::QuarticBoxSpline { valence }) => {
+            if sub.class != SubdominantClass::Standard {
+                return Ok(CharmapReport::no_map(
+                    sub.class.name(),
+                    "Loop's ring is built on the standard eigenstructure",
+                ));
+            }
+            loop_subdivision::check(valence).map(|r| {
+                r.map_patches(|p| AnyPatchId::Other {
+                    sector: p.sector,
+                    slot: p.kind.slot(),
+                    prefix: "T",
+                })
+            })
+        }
+        _ => Ok(CharmapReport::no_map(
             sub.class.name(),
             &format!("scheme {} provides no characteristic ring", scheme.name()),
         )),
@@ -302,17 +233,21 @@ pub fn check<S: Scheme + ?Sized>(scheme: &S) -> crate::spectral::Result<CharmapR
 
 /// The plot data of a configuration's ring and `levels - 1` further levels
 /// (see `figure::ring_plot`), with the report of the check; `None` for the
-/// plot when there is no characteristic map ([`Scheme::characteristic_plot`]).
+/// plot when the scheme's ring has no plot (Loop's) or there is no
+/// characteristic map.
 pub fn plot_data<S: Scheme + ?Sized>(
     scheme: &S,
     levels: usize,
     per_side: usize,
 ) -> crate::spectral::Result<(CharmapReport<AnyPatchId>, Option<figure::RingPlot>)> {
     let sub = crate::spectral::classify_local(scheme)?;
-    match scheme.characteristic_plot(&sub, levels, per_side) {
-        Some(r) => Ok(r?),
-        None => Ok((check_classified(scheme, &sub)?, None)),
-    }
+    Ok(match scheme.ring_patches() {
+        Some(RingPatches::Biquadratic(s)) => plot_data_doo_sabin(s, &sub, levels, per_side)?,
+        Some(RingPatches::Bicubic { valence, c }) => {
+            catmull_clark::plot_data(valence, c, &sub, levels, per_side)?
+        }
+        _ => (check_classified(scheme, &sub)?, None),
+    })
 }
 
 /// [`plot_data`] of the Doo-Sabin family given its classification.

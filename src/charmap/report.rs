@@ -1,7 +1,7 @@
 //! The result types of a characteristic-map check (math doc section 7): the
 //! verdict, the report and the patch identifiers of every scheme's ring.
 //!
-//! A leaf module: the scheme abstraction ([`crate::scheme::Scheme`]) returns
+//! A leaf module: the scheme abstraction ([`crate::schemes::Scheme`]) returns
 //! these types, so they depend on nothing above the ring geometry.
 
 use super::regularity::{Regularity, RegularityVerdict};

@@ -6,7 +6,7 @@ use super::{write_stdout, CliError, CliResult};
 use clap::{Args, ValueEnum};
 use subdiv_lab::charmap;
 use subdiv_lab::contraction::MeasureOptions;
-use subdiv_lab::scheme::SpectralStructure;
+use subdiv_lab::schemes::SpectralStructure;
 use subdiv_lab::schemes::{PointLabel, Role};
 use subdiv_lab::spectral::{
     analyze, AnalyzeOptions, BoundCheck, LocalAnalysis, SpectrumPath, SubdominantClass,

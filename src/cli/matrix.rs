@@ -5,7 +5,7 @@ use super::{write_stdout, CliError, CliResult};
 use clap::{Args, ValueEnum};
 use nalgebra::DMatrix;
 use subdiv_lab::scalar::Scalar;
-use subdiv_lab::scheme::SpectralStructure;
+use subdiv_lab::schemes::SpectralStructure;
 use subdiv_lab::schemes::{LocalMatrix, PointLabel};
 
 #[derive(Args, Debug)]

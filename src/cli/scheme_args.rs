@@ -6,7 +6,7 @@ use anyhow::anyhow;
 use clap::Args;
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
 use subdiv_lab::scalar::{parse_exact, Rational, Scalar};
-use subdiv_lab::scheme::choice::{validate, Choice, ChoiceError};
+use subdiv_lab::schemes::choice::{validate, Choice, ChoiceError};
 use subdiv_lab::schemes::user::SchemeFile;
 use subdiv_lab::schemes::{LocalScheme, SchemeKind};
 use subdiv_lab::Scheme;
@@ -158,7 +158,7 @@ impl SchemeArgs {
                 "--knots, --ratios and --uniform are mutually exclusive; give one"
             )));
         }
-        // The shared rules (subdiv_lab::scheme::choice), with the flag named.
+        // The shared rules (subdiv_lab::schemes::choice), with the flag named.
         let choice = Choice {
             name: &self.scheme,
             knots: self.knots.is_some() || self.ratios.is_some(),
@@ -274,7 +274,7 @@ impl SchemeArgs {
             None => (None, None),
         };
         let scheme =
-            subdiv_lab::scheme::registry::from_kind(kind, valence, rf, cf).map_err(lib_err)?;
+            subdiv_lab::schemes::registry::from_kind(kind, valence, rf, cf).map_err(lib_err)?;
         let exact = if exact {
             // The f64 configuration was accepted, so a failure here means the
             // scheme has no exact (rational) configuration.

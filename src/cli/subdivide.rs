@@ -26,7 +26,7 @@ use subdiv_lab::mesh::rules::KnotUse;
 use subdiv_lab::mesh::sharp::rules::{Boundary, Creasing, SdcScheme};
 use subdiv_lab::mesh::sharp::{tags, SharpMesh};
 use subdiv_lab::mesh::{knot_file, obj, Mesh, MeshError, MAX_HALF_EDGES};
-use subdiv_lab::scheme::choice::{validate, Choice, ChoiceError};
+use subdiv_lab::schemes::choice::{validate, Choice, ChoiceError};
 use subdiv_lab::schemes::SchemeKind;
 
 #[derive(Args, Debug)]
@@ -133,7 +133,7 @@ fn check_outputs(args: &SubdivideArgs) -> CliResult {
 }
 
 pub(crate) fn run(args: SubdivideArgs) -> CliResult {
-    // The shared rules (subdiv_lab::scheme::choice), with the flags named.
+    // The shared rules (subdiv_lab::schemes::choice), with the flags named.
     let choice = Choice {
         name: &args.scheme,
         knots: args.knots.is_some() || args.knots_out.is_some(),

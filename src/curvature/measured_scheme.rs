@@ -55,7 +55,7 @@
 use super::measured::{apply, height, level_from_fit, tangent_frame, MeasuredLevel, PERTURBATION};
 use crate::error::Error;
 use crate::rng::SplitMix64;
-use crate::scheme::Scheme;
+use crate::schemes::Scheme;
 use crate::spectral::classify::SubdominantClass;
 use crate::spectral::svd::jacobi_svd;
 use crate::spectral::Result;

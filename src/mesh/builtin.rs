@@ -4,8 +4,7 @@ use super::catmull_clark::CatmullClarkRules;
 use super::loop_subdivision::LoopRules;
 use super::rules::{FaceSplit, MeshRules};
 use super::MeshError;
-use crate::error::Error;
-use crate::schemes::SchemeKind;
+use crate::schemes::{choice, SchemeKind};
 
 /// The mesh refinement rules of a built-in scheme, by kind: the one place
 /// where a scheme name becomes [`MeshRules`] (`subdivide` and the mesh
@@ -20,27 +19,31 @@ use crate::schemes::SchemeKind;
 /// assert!(mesh_rules(SchemeKind::AdjustableCc, None).is_err());
 /// ```
 pub fn mesh_rules(kind: SchemeKind, c: Option<f64>) -> Result<Box<dyn MeshRules>, MeshError> {
+    choice::check(kind, false, c.is_some())
+        .map_err(|e| MeshError::from(e.into_error(c.map(|c| c.to_string()))))?;
     let rules: Box<dyn MeshRules> = match (kind, c) {
         (SchemeKind::AdjustableCc, Some(c)) => Box::new(CatmullClarkRules::new(kind.name(), c)?),
-        (SchemeKind::AdjustableCc, None) => {
-            return Err(Error::InvalidParameter {
-                name: "c",
-                value: "(missing)".to_owned(),
-                reason: "adjustable-cc needs the shape parameter c in [0, 1]",
-            }
-            .into())
-        }
-        (_, Some(c)) => {
-            return Err(Error::InvalidParameter {
-                name: "c",
-                value: c.to_string(),
-                reason: "only adjustable-cc takes the shape parameter c",
-            }
-            .into())
-        }
-        (SchemeKind::CatmullClark, None) => Box::new(CatmullClarkRules::new(kind.name(), 0.5)?),
-        (SchemeKind::Loop, None) => Box::new(LoopRules),
-        (_, None) => Box::new(FaceSplit::new(kind)?),
+        (SchemeKind::CatmullClark, _) => Box::new(CatmullClarkRules::new(kind.name(), 0.5)?),
+        (SchemeKind::Loop, _) => Box::new(LoopRules),
+        _ => Box::new(FaceSplit::new(kind)?),
     };
     Ok(rules)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The mesh rules follow the rules of `schemes::choice` for `c` for every
+    /// scheme. (Planted: letting `choice::check` accept `c` for
+    /// catmull-clark fails here.)
+    #[test]
+    fn the_shape_parameter_follows_the_choice_rules() {
+        for &kind in SchemeKind::ALL {
+            for c in [None, Some(0.3)] {
+                let expect_ok = c.is_some() == kind.takes_c();
+                assert_eq!(mesh_rules(kind, c).is_ok(), expect_ok, "{kind} c={c:?}");
+            }
+        }
+    }
 }

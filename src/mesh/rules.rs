@@ -21,7 +21,7 @@
 use super::limit::{face_local_scheme, level_stats, limit_mesh, LevelStats};
 use super::refine::refine;
 use super::{Mesh, MeshError};
-use crate::scheme::Scheme;
+use crate::schemes::Scheme;
 use crate::schemes::SchemeKind;
 use std::fmt;
 

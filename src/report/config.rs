@@ -18,10 +18,10 @@ use super::error::ReportError;
 use super::figure_spec::FigureSpec;
 use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::rng::{log_uniform, SplitMix64};
-use crate::scheme::choice::{validate, Choice, ChoiceError};
-use crate::scheme::registry::Builtin;
-use crate::scheme::SpectralStructure;
+use crate::schemes::choice::{validate, Choice, ChoiceError};
+use crate::schemes::registry::Builtin;
 use crate::schemes::SchemeKind;
+use crate::schemes::SpectralStructure;
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -81,7 +81,7 @@ impl ConfigSpec {
                 "give at most one of ratios, knots and random_knots",
             ));
         }
-        // The shared rules (crate::scheme::choice); the error names the key of
+        // The shared rules (crate::schemes::choice); the error names the key of
         // the wrong part.
         let choice = Choice {
             name: self.scheme.get_ref(),
@@ -227,7 +227,7 @@ pub fn check_analysis_budget(
     let seconds: f64 = configs
         .iter()
         .map(|c| {
-            let model = crate::scheme::registry::cost_model(c.scheme.kind());
+            let model = crate::schemes::registry::cost_model(c.scheme.kind());
             crate::budget::analyze(&model, c.scheme.valence(), false).seconds
         })
         .sum();

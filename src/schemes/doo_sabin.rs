@@ -35,7 +35,6 @@ use crate::budget::{
 use crate::error::{Error, Result};
 use crate::knots::{face_weights, EdgeRatios};
 use crate::scalar::Scalar;
-use crate::schemes::LocalScheme;
 use nalgebra::DMatrix;
 
 /// The work model of the family ([`crate::budget`]): the `4n x 4n` matrix
@@ -162,7 +161,7 @@ pub fn cos_2pi<T: Scalar>(k: usize, n: usize) -> Option<T> {
 
 /// `min(k mod n, n - k mod n)`: the index of `cos(2 pi k / n)` that makes it
 /// even in `k` bit for bit.
-fn fold(k: usize, n: usize) -> usize {
+pub(crate) fn fold(k: usize, n: usize) -> usize {
     let k = k % n;
     k.min(n - k)
 }
@@ -249,53 +248,16 @@ pub(crate) fn assemble<T: Scalar>(
     asm.finish()
 }
 
-/// Fills `f` (column major, `n x n`) with a matrix whose deflated block is `B`:
-/// `M = (I + R)/4` for NURDS and the CC variant, the face block for original Doo-Sabin.
-pub(crate) fn fill_face_like(scheme: &LocalScheme<f64>, n: usize, f: &mut [f64]) -> Result<()> {
-    match scheme {
-        LocalScheme::DooSabin { .. } => {
-            let den = 4.0 * n as f64;
-            for j in 0..n {
-                for i in 0..n {
-                    f[i + j * n] = if i == j {
-                        (n as f64 + 5.0) / den
-                    } else {
-                        let k = fold(i + n - j, n);
-                        (3.0 + 2.0 * (2.0 * std::f64::consts::PI * k as f64 / n as f64).cos()) / den
-                    };
-                }
-            }
-        }
-        LocalScheme::Nurds(ratios) => fill_m(n, ratios.as_slice(), ratios.complement(), f),
-        LocalScheme::CcVariant { .. } => {
-            // Uniform ratios 1/2 (no allocation): diagonal 1/2, neighbours 1/8.
-            for i in 0..n {
-                let (prev, next) = neighbours(i, n);
-                f[i + i * n] = 0.25 * 2.0;
-                f[i + prev * n] += 0.125;
-                f[i + next * n] += 0.125;
-            }
-        }
-        _ => {
-            return Err(Error::NotApplicable {
-                scheme: scheme.kind().name().to_owned(),
-                operation: "the face block (a Doo-Sabin-family notion)",
-            })
-        }
-    }
-    Ok(())
-}
-
 /// The cyclic neighbours `(i - 1, i + 1) mod n` of `i < n` (no integer division).
 #[inline(always)]
-fn neighbours(i: usize, n: usize) -> (usize, usize) {
+pub(crate) fn neighbours(i: usize, n: usize) -> (usize, usize) {
     let prev = if i == 0 { n - 1 } else { i - 1 };
     let next = if i + 1 == n { 0 } else { i + 1 };
     (prev, next)
 }
 
 /// `M = (I + R)/4`: diagonal `(1 + s_{i-1} + r_i)/4`, sub `r_{i-1}/4`, super `s_i/4`.
-fn fill_m(n: usize, r: &[f64], s: &[f64], f: &mut [f64]) {
+pub(crate) fn fill_m(n: usize, r: &[f64], s: &[f64], f: &mut [f64]) {
     for i in 0..n {
         let (prev, next) = neighbours(i, n);
         f[i + i * n] = 0.25 * (1.0 + s[prev] + r[i]);

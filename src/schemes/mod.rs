@@ -1,429 +1,117 @@
-//! Subdivision schemes and their local subdivision matrices.
+//! Subdivision schemes: the scheme abstraction ([`Scheme`]), the built-in
+//! families' rules and local matrices, scheme files ([`user`]), the names of
+//! the built-ins ([`SchemeKind`]) and the one validator of a scheme choice
+//! ([`choice`]). This is the rules layer: it returns data (matrices, blocks,
+//! stencils, spectra in closed form, rings of patches) and imports no
+//! analysis; the analyses ([`crate::spectral`], [`crate::charmap`],
+//! [`crate::contraction`], [`crate::curvature`]) take a `&dyn Scheme`
+//! (math doc section 12).
 //!
-//! Every scheme builds its matrices through [`assembly::Assembler`], the one
-//! assembly path; each family lives in its own module:
+//! A [`Scheme`] is one *local configuration*: a scheme with its parameters at
+//! one valence (a face of `n` sides for face-centred schemes, a vertex of
+//! valence `n` for vertex-centred ones). It must provide one thing, the local
+//! subdivision matrix with labelled points ([`Scheme::local_matrix`], built
+//! through the one assembly path [`Assembler`](crate::schemes::Assembler)); everything
+//! else is an optional capability with a documented default, and the analysis
+//! engine uses a capability when it is there and the dense general method when
+//! it is not:
 //!
-//! * [`doo_sabin`]: NURDS `S_n` (4n x 4n) and its face block, original
-//!   Doo-Sabin, and the Catmull-Clark variant (math doc sections 1-4).
-//! * [`catmull_clark`]: Catmull-Clark and the shape-adjustable scheme with
-//!   parameter `c` (one-ring, patch and extended matrices, Fourier blocks,
-//!   limit stencils; math doc sections 6 and 8).
+//! | capability | default | used by |
+//! |---|---|---|
+//! | [`exact_local_matrix`](Scheme::exact_local_matrix) | none: no exact verdicts | `--exact` |
+//! | [`second_order_matrix`](Scheme::second_order_matrix) | the local matrix | every verdict on eigenvalues beyond the subdominant pair (`mu`: the curvature) |
+//! | [`exact_second_order_matrix`](Scheme::exact_second_order_matrix) | the exact local matrix | the curvature's exact certificate |
+//! | [`regular_part_spectrum`](Scheme::regular_part_spectrum) | none: the second-order matrix adds no eigenvalues | `mu_regular_part`, the structured path above [`STRUCTURED_DENSE_MAX_DIM`](crate::curvature::STRUCTURED_DENSE_MAX_DIM) |
+//! | [`limit_stencil`](Scheme::limit_stencil) | none: the limit weights are reported without a closed-form check | `analyze` |
+//! | [`structured_spectrum`](Scheme::structured_spectrum) | none: only the dense path | `--path structured`, sweeps' `eigenvalues` |
+//! | [`spectral_structure`](Scheme::spectral_structure) | [`SpectralStructure::Dense`] | which closed-form cross-checks apply; `FaceBlock`: the subdominant classification by the face-block kernel |
+//! | [`ring_patches`](Scheme::ring_patches) | none: `no_charmap`, no Theorem 1 section | the characteristic map ([`crate::charmap::check_classified`]: sweeps' `charmap`, reports) and Theorem 1 ([`crate::contraction::face_contraction`]: `analyze`, sweeps' `contraction`) |
+//! | [`fourier_spectrum`](Scheme::fourier_spectrum) | none: the curvature's `mu_mode` is `null` | `analyze`'s `curvature` |
+//! | [`cost_model`](Scheme::cost_model) | [`CostModel::dense`] at the local matrix's size | the work estimates of [`crate::budget`] |
 //!
-//! [`LocalScheme`] names one configuration (scheme + valence + parameters) and
-//! is what the spectral analysis, sweeps and reports take.
+//! The built-in families implement it: [`LocalScheme`](crate::schemes::LocalScheme)
+//! (NURDS, Doo-Sabin, the Catmull-Clark variant, Catmull-Clark and the
+//! shape-adjustable scheme) and [`LoopScheme`](crate::schemes::loop_subdivision::LoopScheme).
+//! A scheme defined outside the crate implements it the same way; see the
+//! tutorial in `examples/own_scheme.rs` and the doctest below.
+//!
+//! Names become implementations in one place, [`registry`] (configurations,
+//! cost models; the mesh rules in [`crate::mesh::builtin`]); the validation of
+//! a scheme choice is [`choice`].
+//! The front ends (`analyze`, `matrix`, `sweep`, `report`, `subdivide`, the
+//! testing kit) dispatch there once and then only ask for capabilities.
+//! Code that *is* one family's implementation lives in that family's modules,
+//! and is reached only through the trait or the registry:
+//!
+//! * the Doo-Sabin family: [`crate::schemes::doo_sabin`]; its mesh
+//!   refinement and limit points [`crate::mesh::refine`] and
+//!   [`crate::mesh::limit`] (behind [`crate::mesh::rules::FaceSplit`]; the
+//!   [`SchemeKind`](crate::schemes::SchemeKind) they take selects the member
+//!   of the family, other schemes are refused); Theorem 1,
+//!   [`crate::contraction`] and the `9n`-point ring of [`crate::charmap`]
+//!   (both behind [`RingPatches::Biquadratic`]); the exact face-block verdicts of
+//!   [`crate::spectral::exact`] (`analyze --exact`, the sweeps'
+//!   `exact_certificate`);
+//! * the Catmull-Clark family: [`crate::schemes::catmull_clark`], its mesh
+//!   refinement [`crate::mesh::catmull_clark`], its characteristic map
+//!   [`crate::charmap::catmull_clark`] (behind [`RingPatches::Bicubic`]);
+//! * Loop: [`crate::schemes::loop_subdivision`], its mesh refinement
+//!   [`crate::mesh::loop_subdivision`], its characteristic map
+//!   [`crate::charmap::loop_subdivision`] (behind
+//!   [`RingPatches::QuarticBoxSpline`]).
+//!
+//! Studies of one particular scheme build the configurations they study
+//! directly: [`crate::cc_study`], `curvature::tuning` and the `c` intervals
+//! of [`crate::verify`] (the adjustable Catmull-Clark scheme), the ratio
+//! boxes of `verify` (NURDS), [`crate::ccss_bound`] (Catmull-Clark).
 //!
 //! ```
-//! use subdiv_lab::knots::EdgeRatios;
-//! use subdiv_lab::schemes::LocalScheme;
-//! let s = LocalScheme::nurds(EdgeRatios::new(vec![0.3, 0.6, 0.5, 0.2, 0.7]).unwrap());
-//! let m = s.matrix().unwrap();
-//! assert_eq!(m.matrix().shape(), (20, 20));
-//! assert_eq!(m.rows()[5].to_string(), "E0,1");
+//! use subdiv_lab::schemes::{Assembler, LocalMatrix, PointLabel, Role, Scheme};
+//! use subdiv_lab::spectral::{analyze, AnalyzeOptions};
+//!
+//! /// Catmull-Clark-type one-ring rules with a user-chosen vertex weight.
+//! #[derive(Debug)]
+//! struct MyScheme { n: usize, alpha: f64 }
+//!
+//! impl Scheme for MyScheme {
+//!     fn name(&self) -> &str { "my-scheme" }
+//!     fn valence(&self) -> usize { self.n }
+//!     fn local_matrix(&self) -> subdiv_lab::Result<LocalMatrix<f64>> {
+//!         let n = self.n;
+//!         let labels: Vec<PointLabel> = std::iter::once(PointLabel::new(Role::Vertex, 0))
+//!             .chain((0..n).map(|i| PointLabel::new(Role::EdgeNeighbour, i)))
+//!             .collect();
+//!         let mut a = Assembler::square("my-scheme", n, labels);
+//!         // vertex: (1 - alpha) v + alpha * mean of the neighbours
+//!         a.add(0, 0, 1.0 - self.alpha);
+//!         a.stencil(0, (0..n).map(|i| (1 + i, self.alpha / n as f64)));
+//!         // edge points: (v + e_i) / 2
+//!         for i in 0..n {
+//!             a.stencil(1 + i, [(0, 0.5), (1 + i, 0.5)]);
+//!         }
+//!         a.finish()
+//!     }
+//! }
+//!
+//! let s = MyScheme { n: 5, alpha: 0.5 };
+//! let r = analyze(&s, &AnalyzeOptions::default()).unwrap();
+//! assert_eq!(r.scheme, "my-scheme");
+//! assert!((r.eigenvalues[0][0] - 1.0).abs() < 1e-12);
 //! ```
 
 pub(crate) mod assembly;
+mod builtin;
 pub mod catmull_clark;
+pub mod choice;
 pub mod doo_sabin;
+mod kind;
+mod local;
 pub mod loop_subdivision;
+pub mod registry;
+mod scheme;
 pub mod user;
 
 pub use assembly::{Assembler, LocalMatrix, PointLabel, Role, ROW_SUM_TOL};
-
-use crate::error::{Error, Result};
-use crate::knots::{face_weights, EdgeRatios};
-use crate::scalar::{Rational, Scalar};
-use nalgebra::DMatrix;
-use std::fmt;
-use std::str::FromStr;
-
-/// The schemes the toolkit knows, by name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-#[non_exhaustive]
-pub enum SchemeKind {
-    /// Non-Uniform Recursive Doo-Sabin.
-    Nurds,
-    /// Original Doo-Sabin weights.
-    DooSabin,
-    /// The Catmull-Clark variant of Doo-Sabin (= uniform NURDS).
-    CcVariant,
-    /// Catmull-Clark (vertex-centred; one-ring matrix 2n+1).
-    CatmullClark,
-    /// The shape-adjustable Catmull-Clark scheme with parameter c in [0, 1] (**\[reconstructed\]**).
-    AdjustableCc,
-    /// Loop subdivision on triangle meshes (vertex-centred; two-ring matrix 3n+1;
-    /// [`loop_subdivision::LoopScheme`]).
-    Loop,
-}
-
-impl SchemeKind {
-    /// All known schemes.
-    pub const ALL: &'static [SchemeKind] = &[
-        SchemeKind::Nurds,
-        SchemeKind::DooSabin,
-        SchemeKind::CcVariant,
-        SchemeKind::CatmullClark,
-        SchemeKind::AdjustableCc,
-        SchemeKind::Loop,
-    ];
-
-    /// Every known scheme's name, in [`SchemeKind::ALL`] order, joined by
-    /// `sep` except the last two, which are joined by `last` when given
-    /// (`names_or` for help texts: `"nurds, ..., adjustable-cc or loop"`).
-    ///
-    /// ```
-    /// use subdiv_lab::schemes::SchemeKind;
-    /// assert!(SchemeKind::names(", ").starts_with("nurds, doo-sabin, "));
-    /// assert!(SchemeKind::names_or().ends_with(" or loop"));
-    /// ```
-    pub fn names(sep: &str) -> String {
-        let names: Vec<&str> = SchemeKind::ALL.iter().map(|k| k.name()).collect();
-        names.join(sep)
-    }
-
-    /// Every known scheme's name, `"a, b, ... or z"` (help texts).
-    pub fn names_or() -> String {
-        let names: Vec<&str> = SchemeKind::ALL.iter().map(|k| k.name()).collect();
-        match names.split_last() {
-            Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
-            _ => names.join(", "),
-        }
-    }
-
-    /// The scheme's command-line name.
-    pub fn name(self) -> &'static str {
-        match self {
-            SchemeKind::Nurds => "nurds",
-            SchemeKind::DooSabin => "doo-sabin",
-            SchemeKind::CcVariant => "cc-variant",
-            SchemeKind::CatmullClark => "catmull-clark",
-            SchemeKind::AdjustableCc => "adjustable-cc",
-            SchemeKind::Loop => "loop",
-        }
-    }
-
-    /// Whether the scheme takes knot intervals.
-    pub fn takes_knots(self) -> bool {
-        matches!(self, SchemeKind::Nurds)
-    }
-
-    /// Whether the scheme takes the shape parameter `c` (`--c`).
-    pub fn takes_c(self) -> bool {
-        matches!(self, SchemeKind::AdjustableCc)
-    }
-
-    /// Whether the scheme has the exact (rational) face-block certificate of
-    /// sweeps' `exact_certificate` column (the Doo-Sabin family: rational
-    /// weights for rational knots; math doc section 10).
-    pub fn has_exact_certificate(self) -> bool {
-        self.is_doo_sabin_family()
-    }
-
-    /// Whether the scheme belongs to the Catmull-Clark family ((2n+1) one-ring matrix).
-    pub fn is_catmull_clark_family(self) -> bool {
-        matches!(self, SchemeKind::CatmullClark | SchemeKind::AdjustableCc)
-    }
-
-    /// Whether the scheme belongs to the Doo-Sabin family (4n x 4n `S_n` with face block).
-    pub fn is_doo_sabin_family(self) -> bool {
-        matches!(
-            self,
-            SchemeKind::Nurds | SchemeKind::DooSabin | SchemeKind::CcVariant
-        )
-    }
-}
-
-impl fmt::Display for SchemeKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// Error for an unknown scheme name.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown scheme {name:?} (known: {known})", name = .0, known = SchemeKind::names(", "))]
-pub struct UnknownScheme(pub String);
-
-impl FromStr for SchemeKind {
-    type Err = UnknownScheme;
-    fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
-        SchemeKind::ALL
-            .iter()
-            .copied()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| UnknownScheme(s.to_owned()))
-    }
-}
-
-/// One local configuration: a scheme, a valence and the scheme's parameters.
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum LocalScheme<T = f64> {
-    /// NURDS around an n-sided face with the given edge ratios.
-    Nurds(EdgeRatios<T>),
-    /// Original Doo-Sabin around an n-sided face.
-    DooSabin {
-        /// Valence.
-        valence: usize,
-    },
-    /// The Catmull-Clark variant of Doo-Sabin around an n-sided face.
-    CcVariant {
-        /// Valence.
-        valence: usize,
-    },
-    /// Catmull-Clark around a vertex of valence n.
-    CatmullClark {
-        /// Valence.
-        valence: usize,
-    },
-    /// The shape-adjustable Catmull-Clark scheme around a vertex of valence n.
-    AdjustableCc {
-        /// Valence.
-        valence: usize,
-        /// Shape parameter in [0, 1] (1/2 is Catmull-Clark).
-        c: T,
-    },
-}
-
-impl<T: Scalar> LocalScheme<T> {
-    /// NURDS with these ratios.
-    pub fn nurds(ratios: EdgeRatios<T>) -> Self {
-        LocalScheme::Nurds(ratios)
-    }
-
-    /// Original Doo-Sabin of valence `n >= 3`.
-    pub fn doo_sabin(n: usize) -> Result<Self> {
-        EdgeRatios::<T>::uniform(n)?;
-        Ok(LocalScheme::DooSabin { valence: n })
-    }
-
-    /// Catmull-Clark variant of valence `n >= 3`.
-    pub fn cc_variant(n: usize) -> Result<Self> {
-        EdgeRatios::<T>::uniform(n)?;
-        Ok(LocalScheme::CcVariant { valence: n })
-    }
-
-    /// Catmull-Clark of valence `n >= 3`.
-    pub fn catmull_clark(n: usize) -> Result<Self> {
-        catmull_clark::validate(n, &T::frac(1, 2))?;
-        Ok(LocalScheme::CatmullClark { valence: n })
-    }
-
-    /// The shape-adjustable Catmull-Clark scheme of valence `n >= 3`, `c` in `[0, 1]`.
-    pub fn adjustable_cc(n: usize, c: T) -> Result<Self> {
-        catmull_clark::validate(n, &c)?;
-        Ok(LocalScheme::AdjustableCc { valence: n, c })
-    }
-
-    /// Like [`LocalScheme::from_kind`], with the shape parameter `c` (required
-    /// iff [`SchemeKind::takes_c`]).
-    pub fn from_kind_with_c(
-        kind: SchemeKind,
-        valence: usize,
-        ratios: Option<EdgeRatios<T>>,
-        c: Option<T>,
-    ) -> Result<Self> {
-        match (kind.takes_c(), c) {
-            (true, Some(c)) => {
-                if ratios.as_ref().is_some_and(|r| !r.is_uniform()) {
-                    return Err(Error::InvalidParameter {
-                        name: "knots",
-                        value: kind.name().to_owned(),
-                        reason: "this scheme has no knot intervals",
-                    });
-                }
-                Self::adjustable_cc(valence, c)
-            }
-            (true, None) => Err(Error::InvalidParameter {
-                name: "c",
-                value: "(missing)".to_owned(),
-                reason: "adjustable-cc needs the shape parameter c in [0, 1]",
-            }),
-            (false, Some(c)) => Err(Error::InvalidParameter {
-                name: "c",
-                value: c.to_text(),
-                reason: "only adjustable-cc takes the shape parameter c",
-            }),
-            (false, None) => Self::from_kind(kind, valence, ratios),
-        }
-    }
-
-    /// A configuration of `kind` with optional ratios (required iff the scheme takes knots;
-    /// `None` means uniform for NURDS).
-    pub fn from_kind(
-        kind: SchemeKind,
-        valence: usize,
-        ratios: Option<EdgeRatios<T>>,
-    ) -> Result<Self> {
-        if let Some(r) = &ratios {
-            if r.valence() != valence {
-                return Err(Error::CountMismatch {
-                    what: "edge ratios (one per edge)",
-                    expected: valence,
-                    got: r.valence(),
-                });
-            }
-        }
-        match kind {
-            SchemeKind::Nurds => Ok(LocalScheme::Nurds(match ratios {
-                Some(r) => r,
-                None => EdgeRatios::uniform(valence)?,
-            })),
-            SchemeKind::DooSabin | SchemeKind::CcVariant | SchemeKind::CatmullClark if ratios.as_ref().is_some_and(|r| !r.is_uniform()) => {
-                Err(Error::InvalidParameter {
-                    name: "knots",
-                    value: kind.name().to_owned(),
-                    reason: "this scheme has no knot intervals; use --scheme nurds for non-uniform knots",
-                })
-            }
-            SchemeKind::DooSabin => Self::doo_sabin(valence),
-            SchemeKind::CcVariant => Self::cc_variant(valence),
-            SchemeKind::CatmullClark => Self::catmull_clark(valence),
-            SchemeKind::AdjustableCc => Self::from_kind_with_c(kind, valence, ratios, None),
-            SchemeKind::Loop => Err(Error::NotApplicable {
-                scheme: kind.name().to_owned(),
-                operation: "a face- or one-ring configuration (use scheme::registry::from_kind)",
-            }),
-        }
-    }
-
-    /// The scheme kind.
-    pub fn kind(&self) -> SchemeKind {
-        match self {
-            LocalScheme::Nurds(_) => SchemeKind::Nurds,
-            LocalScheme::DooSabin { .. } => SchemeKind::DooSabin,
-            LocalScheme::CcVariant { .. } => SchemeKind::CcVariant,
-            LocalScheme::CatmullClark { .. } => SchemeKind::CatmullClark,
-            LocalScheme::AdjustableCc { .. } => SchemeKind::AdjustableCc,
-        }
-    }
-
-    /// Valence of the extraordinary face.
-    pub fn valence(&self) -> usize {
-        match self {
-            LocalScheme::Nurds(r) => r.valence(),
-            LocalScheme::DooSabin { valence } | LocalScheme::CcVariant { valence } => *valence,
-            LocalScheme::CatmullClark { valence } | LocalScheme::AdjustableCc { valence, .. } => {
-                *valence
-            }
-        }
-    }
-
-    /// The edge ratios used by the E/C rows (1/2 for the uniform schemes and
-    /// for the Catmull-Clark family, which has no knot intervals).
-    pub fn ratios(&self) -> EdgeRatios<T> {
-        match self {
-            LocalScheme::Nurds(r) => r.clone(),
-            LocalScheme::DooSabin { valence }
-            | LocalScheme::CcVariant { valence }
-            | LocalScheme::CatmullClark { valence }
-            | LocalScheme::AdjustableCc { valence, .. } => {
-                EdgeRatios::uniform(*valence).expect("valence validated at construction")
-            }
-        }
-    }
-
-    /// Face weights `c` (the left eigenvector of the face block for 1; `1/n` for
-    /// the uniform schemes). Empty for the Catmull-Clark family (vertex-centred:
-    /// there is no central face; see [`catmull_clark::limit::limit_stencil`]).
-    pub fn face_weights(&self) -> Vec<T> {
-        match self {
-            LocalScheme::Nurds(r) => face_weights(r),
-            LocalScheme::CatmullClark { .. } | LocalScheme::AdjustableCc { .. } => Vec::new(),
-            LocalScheme::DooSabin { valence } | LocalScheme::CcVariant { valence } => {
-                vec![T::frac(1, *valence as i64); *valence]
-            }
-        }
-    }
-
-    /// The n x n face block (the `P` rows restricted to the `P` columns).
-    pub fn face_block(&self) -> Result<DMatrix<T>> {
-        match self {
-            LocalScheme::Nurds(r) => Ok(doo_sabin::face_block_from(r, &face_weights(r))),
-            LocalScheme::DooSabin { valence } => doo_sabin::doo_sabin_face_block(*valence),
-            LocalScheme::CcVariant { .. } => Ok(doo_sabin::face_block_from(
-                &self.ratios(),
-                &self.face_weights(),
-            )),
-            LocalScheme::CatmullClark { .. } | LocalScheme::AdjustableCc { .. } => {
-                Err(Error::NotApplicable {
-                    scheme: self.kind().name().to_owned(),
-                    operation: "the face block (a Doo-Sabin-family notion)",
-                })
-            }
-        }
-    }
-
-    /// The shape parameter `c` of the Catmull-Clark family (`1/2` for
-    /// Catmull-Clark); `None` for the Doo-Sabin family.
-    pub fn shape_parameter(&self) -> Option<T> {
-        match self {
-            LocalScheme::CatmullClark { .. } => Some(T::frac(1, 2)),
-            LocalScheme::AdjustableCc { c, .. } => Some(c.clone()),
-            _ => None,
-        }
-    }
-
-    /// The full local subdivision matrix (`S_n`, 4n x 4n, for the Doo-Sabin
-    /// family; the (2n+1) one-ring matrix for the Catmull-Clark family).
-    pub fn matrix(&self) -> Result<LocalMatrix<T>> {
-        match self {
-            LocalScheme::CatmullClark { valence } => {
-                catmull_clark::one_ring_named(self.kind().name(), *valence, &T::frac(1, 2))
-            }
-            LocalScheme::AdjustableCc { valence, c } => {
-                catmull_clark::one_ring_named(self.kind().name(), *valence, c)
-            }
-            _ => doo_sabin::assemble(self.kind().name(), &self.face_block()?, &self.ratios()),
-        }
-    }
-}
-
-impl LocalScheme<Rational> {
-    /// The most bits a knot parameter needs: numerator plus denominator of
-    /// the largest NURDS edge ratio (0 for the schemes without knot
-    /// intervals), which sizes the exact path's work estimate
-    /// ([`crate::budget::analyze_exact`]).
-    pub fn parameter_bits(&self) -> u64 {
-        match self {
-            LocalScheme::Nurds(r) => r
-                .as_slice()
-                .iter()
-                .map(|x| x.numer().bits() + x.denom().bits())
-                .max()
-                .unwrap_or(0),
-            _ => 0,
-        }
-    }
-}
-
-impl LocalScheme<f64> {
-    /// The legend label reports generate for this configuration: NURDS with
-    /// its knots (`NURDS n=3, r=(0.300, 0.600, 0.500)` up to `n = 6`,
-    /// `NURDS n=8, non-uniform` beyond, `NURDS n=5, uniform`), the adjustable
-    /// scheme with its `c`, the others by name and valence. A non-empty
-    /// `suffix` (how random knots were drawn, `", random knots <= 4"`)
-    /// replaces the description of non-uniform knots.
-    ///
-    /// ```
-    /// use subdiv_lab::knots::EdgeRatios;
-    /// use subdiv_lab::schemes::LocalScheme;
-    /// let s = LocalScheme::nurds(EdgeRatios::new(vec![0.3, 0.6, 0.5]).unwrap());
-    /// assert_eq!(s.legend_label(""), "NURDS n=3, r=(0.300, 0.600, 0.500)");
-    /// assert_eq!(LocalScheme::<f64>::doo_sabin(5).unwrap().legend_label(""), "doo-sabin n=5");
-    /// ```
-    pub fn legend_label(&self, suffix: &str) -> String {
-        let n = self.valence();
-        match self {
-            LocalScheme::Nurds(r) if r.is_uniform() => format!("NURDS n={n}, uniform"),
-            LocalScheme::Nurds(r) if suffix.is_empty() && n <= 6 => {
-                let parts: Vec<String> = r.as_slice().iter().map(|x| format!("{x:.3}")).collect();
-                format!("NURDS n={n}, r=({})", parts.join(", "))
-            }
-            LocalScheme::Nurds(_) if suffix.is_empty() => format!("NURDS n={n}, non-uniform"),
-            LocalScheme::Nurds(_) => format!("NURDS n={n}{suffix}"),
-            LocalScheme::AdjustableCc { c, .. } => format!("adjustable-cc n={n}, c={c}"),
-            other => format!("{} n={n}", other.kind()),
-        }
-    }
-}
+pub use kind::{SchemeKind, UnknownScheme};
+pub use local::LocalScheme;
+pub use scheme::{spectral_order, FourierSpectrum, RingPatches, Scheme, SpectralStructure};

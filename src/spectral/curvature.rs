@@ -74,7 +74,7 @@
 
 use super::Result;
 use crate::scalar::Rational;
-use crate::scheme::Scheme;
+use crate::schemes::Scheme;
 use crate::spectral::classify::BACKWARD_ERROR_FACTOR;
 use crate::spectral::classify::{decide, Decision, Subdominant, SubdominantClass};
 use crate::spectral::eigen::{Eigen, EigenOptions};

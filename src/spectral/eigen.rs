@@ -36,7 +36,6 @@ use faer::linalg::evd::{evd_real, evd_scratch, ComputeEigenvectors};
 use faer::{Mat, Par};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
-use std::cmp::Ordering;
 
 /// Bound on `|sum(lambda) - trace| / (dim eps ||S||_F)` for a converged decomposition.
 ///
@@ -172,17 +171,7 @@ pub struct Eigen {
     conditions: Option<Vec<f64>>,
     frobenius: f64,
 }
-
-/// The deterministic ordering: non-increasing modulus, then larger real
-/// part, then larger imaginary part.
-///
-/// Moduli are compared through `|z|^2` (monotone, no `hypot`).
-pub fn spectral_order(a: &Complex64, b: &Complex64) -> Ordering {
-    b.norm_sqr()
-        .total_cmp(&a.norm_sqr())
-        .then(b.re.total_cmp(&a.re))
-        .then(b.im.total_cmp(&a.im))
-}
+pub use crate::schemes::spectral_order;
 
 /// Two steps of inverse iteration for every column whose residual exceeds
 /// `trigger` (columns are eigenvectors of `m` for `values`).

@@ -8,7 +8,7 @@ use super::classify::{classify, classify_into, DoubleTest, Evidence, BACKWARD_ER
 use super::eigen::spectral_order;
 use super::eigen::{Eigen, EigenOptions};
 use super::{kernel, pairing, structured, svd, Result, SpectralError, StructuredWorkspace};
-use crate::scheme::{Scheme, SpectralStructure};
+use crate::schemes::{Scheme, SpectralStructure};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use std::cell::RefCell;

@@ -45,6 +45,9 @@ pub(crate) mod poly;
 pub mod structured;
 pub(crate) mod svd;
 
+#[cfg(test)]
+mod closed_form_tests;
+
 mod error;
 pub use error::{Result, SpectralError};
 
@@ -62,11 +65,12 @@ pub use local::{
 };
 pub use structured::{structured_spectrum, StructuredWorkspace};
 
+use crate::contraction::FaceContraction;
 use crate::contraction::MeasureOptions;
 use crate::error::Error;
 use crate::scalar::Rational;
-use crate::scheme::{FaceContraction, Scheme, SpectralStructure};
 use crate::schemes::LocalScheme;
+use crate::schemes::{Scheme, SpectralStructure};
 use classify::{classify, Evidence, BACKWARD_ERROR_FACTOR};
 use num_complex::Complex64;
 use serde::Serialize;
@@ -453,33 +457,34 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
         .skip(1)
         .map(|z| z[0].hypot(z[1]))
         .fold(0.0, f64::max);
-    let contraction = if let Some(fc) = scheme.face_contraction(&options.measure) {
-        let FaceContraction {
-            certificate: cert,
-            measured,
-            face_block,
-        } = fc?;
-        let bound_radius = modulus_radius(&face_block, subdominant.radii[1])
-            + (spectral_bound - subdominant.lambda1.norm()).abs();
-        let bound_check = BoundCheck::of(spectral_bound, bound_radius, 0.75);
-        Some(ContractionSummary {
-            certificate_sum: cert.row_sums.iter().copied().fold(0.0, f64::max),
-            certificate_sum_defect: cert.max_sum_defect(),
-            certificate_nonnegative: cert.nonnegative,
-            certificate_min_weight: cert.min_positive_weight,
-            certificate_holds: cert.holds(),
-            spectral_bound,
-            spectral_bound_radius: bound_radius,
-            spectral_bound_check: bound_check,
-            spectral_bound_ok: bound_check != BoundCheck::Violated,
-            measured_rate: measured.fitted_rate,
-            measured_max_ratio: measured.max_ratio,
-            measured_distances: measured.distances,
-            measured_ratios: measured.ratios,
-        })
-    } else {
-        None
-    };
+    let contraction =
+        if let Some(fc) = crate::contraction::face_contraction(scheme, &options.measure) {
+            let FaceContraction {
+                certificate: cert,
+                measured,
+                face_block,
+            } = fc?;
+            let bound_radius = modulus_radius(&face_block, subdominant.radii[1])
+                + (spectral_bound - subdominant.lambda1.norm()).abs();
+            let bound_check = BoundCheck::of(spectral_bound, bound_radius, 0.75);
+            Some(ContractionSummary {
+                certificate_sum: cert.row_sums.iter().copied().fold(0.0, f64::max),
+                certificate_sum_defect: cert.max_sum_defect(),
+                certificate_nonnegative: cert.nonnegative,
+                certificate_min_weight: cert.min_positive_weight,
+                certificate_holds: cert.holds(),
+                spectral_bound,
+                spectral_bound_radius: bound_radius,
+                spectral_bound_check: bound_check,
+                spectral_bound_ok: bound_check != BoundCheck::Violated,
+                measured_rate: measured.fitted_rate,
+                measured_max_ratio: measured.max_ratio,
+                measured_distances: measured.distances,
+                measured_ratios: measured.ratios,
+            })
+        } else {
+            None
+        };
     let fourier_deviation = match scheme.spectral_structure() {
         SpectralStructure::Fourier => match scheme.structured_spectrum() {
             Some(blocks) => Some(fourier_deviation(&eigenvalues, &blocks?)),

@@ -28,8 +28,8 @@
 //! smaller in modulus by more than [`PAIR_MATCH_TOLERANCE`], and the
 //! candidate double eigenvalue of the dense evidence matches it.
 
-use crate::scheme::Scheme;
 use crate::schemes::assembly::{LocalMatrix, PointLabel, Role};
+use crate::schemes::Scheme;
 use crate::spectral::eigen::{Eigen, EigenOptions};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -240,7 +240,7 @@ fn permutation(labels: &[PointLabel], n: usize, mirror: bool) -> Option<Vec<usiz
 /// eigenvalue of `X_l`.
 ///
 /// ```
-/// use subdiv_lab::scheme::Scheme;
+/// use subdiv_lab::schemes::Scheme;
 /// use subdiv_lab::schemes::LocalScheme;
 /// use subdiv_lab::spectral::pairing::symmetric_pair;
 /// let s = LocalScheme::<f64>::catmull_clark(5).unwrap();

@@ -22,12 +22,12 @@
 //! [`Scheme::fill_face_block`]; it is tested against the full `4n x 4n`
 //! decomposition.
 //!
-//! [`SpectralStructure::FaceBlock`]: crate::scheme::SpectralStructure::FaceBlock
+//! [`SpectralStructure::FaceBlock`]: crate::schemes::SpectralStructure::FaceBlock
 
 use super::eigen::spectral_order;
 use super::kernel::{KernelWorkspace, BATCH};
 use super::SpectralError;
-use crate::scheme::{Scheme, SpectralStructure};
+use crate::schemes::{Scheme, SpectralStructure};
 use num_complex::Complex64;
 
 /// The eigenvalues of the E and C blocks, each of multiplicity `n`:

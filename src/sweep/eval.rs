@@ -24,7 +24,7 @@
 use super::plan::{Configuration, Plan};
 use super::spec::Columns;
 use crate::charmap;
-use crate::scheme::{Scheme, SpectralStructure};
+use crate::schemes::{Scheme, SpectralStructure};
 use crate::spectral::kernel::BATCH;
 use crate::spectral::structured::StructuredWorkspace;
 use crate::spectral::{self, Subdominant, SubdominantClass};

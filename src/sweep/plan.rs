@@ -28,10 +28,10 @@ use super::SweepError;
 use crate::budget::CostModel;
 use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::scalar::{Rational, Scalar};
-use crate::scheme::registry::Builtin;
-use crate::scheme::Scheme;
+use crate::schemes::registry::Builtin;
 use crate::schemes::user::SchemeFile;
 use crate::schemes::LocalScheme;
+use crate::schemes::Scheme;
 use crate::schemes::SchemeKind;
 use std::fmt;
 use std::ops::Deref;
@@ -500,7 +500,7 @@ impl Plan {
     pub fn cost_model(&self) -> CostModel {
         match &self.own {
             Some(f) => f.cost_model,
-            None => crate::scheme::registry::cost_model(self.spec.scheme),
+            None => crate::schemes::registry::cost_model(self.spec.scheme),
         }
     }
 

@@ -4,11 +4,12 @@
 use proptest::prelude::*;
 use subdiv_lab::cc_study::{c1_intervals, study_point};
 use subdiv_lab::charmap::catmull_clark::{
-    check, check_bicubic, check_ring, prepare_ring, CcRing, Certificate, UnivariateRule, Window,
+    check, check_bicubic, check_ring, prepare_ring, CcRing, Certificate,
 };
 use subdiv_lab::charmap::regularity::RegularityVerdict;
 use subdiv_lab::charmap::winding::winding_number;
 use subdiv_lab::charmap::Verdict;
+use subdiv_lab::schemes::catmull_clark::ring::{UnivariateRule, Window};
 use subdiv_lab::schemes::catmull_clark::{fourier, patch_matrix};
 
 use crate::common;

@@ -1,8 +1,8 @@
 //! `kind = "convergence"`: max_i |P^k_i - F| against the step k on a log scale.
 //!
-//! The distances come from the scheme's Theorem 1 capability
-//! ([`Scheme::face_contraction`](crate::Scheme::face_contraction), for the
-//! Doo-Sabin family [`crate::contraction::measure`]): the 4n points of
+//! The distances come from the Theorem 1 analysis
+//! ([`crate::contraction::face_contraction`], for the Doo-Sabin family
+//! [`crate::contraction::measure`]): the 4n points of
 //! the local neighbourhood (random in [-1, 1)^3, seed derived from the
 //! figure's seed and the configuration index) are refined with S_n, and
 //! max_i |P^k_i - F| over the face points is recorded relative to k = 0. Drawn with the
@@ -97,9 +97,7 @@ impl Figure for Convergence {
                 };
                 // the scheme's Theorem 1 capability (the figure's configurations
                 // were checked to have a face block when the spec was parsed)
-                let m = c
-                    .scheme
-                    .face_contraction(&options)
+                let m = crate::contraction::face_contraction(&*c.scheme, &options)
                     .ok_or_else(|| {
                         ctx.err(crate::Error::NotApplicable {
                             scheme: c.scheme.name().to_owned(),

@@ -11,7 +11,7 @@
 //! control points of the second-order net, a quadric with a constant term; the
 //! rate there is `mu / lambda_2^2`, which is `mu / lambda^2` except for a
 //! split subdominant pair). The scheme choice goes through the shared
-//! validator [`crate::scheme::choice`]. Per valence, the largest
+//! validator [`crate::schemes::choice`]. Per valence, the largest
 //! principal curvature (solid, markers) and the prediction
 //! `kappa_K (mu / lambda^2)^(k - K)` anchored at the last level `K` (dashed).
 //! The CSV has every level's Gaussian curvature `K`, mean curvature `H`, the
@@ -48,8 +48,8 @@ use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
     dash, draw_err, inner_legend, series_color, titled, LegendGlyph, Marker, Theme,
 };
-use crate::scheme::choice::{validate, Choice, ChoiceError};
-use crate::scheme::registry::Builtin;
+use crate::schemes::choice::{validate, Choice, ChoiceError};
+use crate::schemes::registry::Builtin;
 use crate::schemes::SchemeKind;
 use plotters::prelude::*;
 use rayon::prelude::*;
@@ -148,7 +148,7 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     Ok(Box::new(CurvatureFigure { what, levels }))
 }
 
-/// The scheme through the shared rules ([`crate::scheme::choice`]); the
+/// The scheme through the shared rules ([`crate::schemes::choice`]); the
 /// error names the key of the wrong part.
 fn scheme_kind(
     fs: &FigureSpec<'_>,

@@ -34,7 +34,7 @@ use crate::report::plot::{
     dash, draw_err, inner_legend, series_color, titled, LegendGlyph, Marker, Theme,
 };
 use crate::rng::{log_uniform, SplitMix64};
-use crate::scheme::choice::{validate, Choice, ChoiceError};
+use crate::schemes::choice::{validate, Choice, ChoiceError};
 use crate::spectral::classify_scheme;
 use plotters::prelude::*;
 use serde::Deserialize;
@@ -106,7 +106,7 @@ pub(crate) fn built_in_mesh(
 }
 
 /// The scheme of a mesh figure and its mesh rules, through the shared rules
-/// ([`crate::scheme::choice`]: `random_knots` is knot data) and the one
+/// ([`crate::schemes::choice`]: `random_knots` is knot data) and the one
 /// dispatch ([`crate::mesh::builtin::mesh_rules`]; mesh figures have no
 /// shape parameter).
 pub(crate) fn mesh_scheme(

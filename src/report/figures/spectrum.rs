@@ -19,7 +19,7 @@ use crate::report::plot::{
     circle_points, clip_polyline, dash, draw_err, equal_aspect, legend_rows, legend_rows_height,
     mix_white, tick, titled, viridis, LegendGlyph, Marker, Theme,
 };
-use crate::scheme::Scheme;
+use crate::schemes::Scheme;
 use crate::spectral::{analyze, AnalyzeOptions, LocalAnalysis};
 use num_complex::Complex64;
 use plotters::prelude::*;

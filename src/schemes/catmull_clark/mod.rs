@@ -63,6 +63,7 @@ pub mod fourier;
 mod layout;
 pub mod limit;
 pub(crate) mod linear;
+pub mod ring;
 
 pub use layout::{PatchLayout, SubPatch};
 

@@ -470,28 +470,3 @@ fn subdominant_patch_eigenvectors_are_eigenvectors() {
         }
     }
 }
-
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
-
-    /// The patch matrix's outer 7 x 7 block has exactly the characteristic
-    /// polynomial `prod (x - r)` over [`regular_part_eigenvalues`] (exact
-    /// rationals), so the patch spectrum is the one-ring's and these.
-    /// (Planted: `c/16` in place of `c^2/16` fails at once.)
-    #[test]
-    fn regular_part_is_the_outer_block_spectrum(n in 3usize..9, c in rational_c()) {
-        use crate::spectral::exact::charpoly;
-        use crate::spectral::poly::Poly;
-        let p = patch_matrix::<Rational>(n, &c).unwrap();
-        let m = 2 * n + 1;
-        let outer = p.matrix().view((m, m), (7, 7)).into_owned();
-        let mut expected = Poly::new(vec![q(1, 1)]);
-        for r in regular_part_eigenvalues(&c) {
-            expected = expected.mul(&Poly::new(vec![-r, q(1, 1)]));
-        }
-        prop_assert_eq!(charpoly(&outer), expected);
-        // c/4 is the largest of them on [0, 1].
-        let ev = regular_part_eigenvalues(&c);
-        prop_assert!(ev.iter().all(|x| num_traits::Signed::abs(x) <= ev[0]));
-    }
-}

@@ -51,7 +51,7 @@
 
 use super::{beta, check_size, subdominant_eigenvalue, TwoRing};
 use crate::error::{Error, Result};
-use crate::spectral::eigen::spectral_order;
+use crate::schemes::spectral_order;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use std::f64::consts::PI;
@@ -332,22 +332,8 @@ pub fn tangent_stencils(n: usize) -> Result<(f64, [Vec<f64>; 2])> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::limit_weights;
-    use super::super::matrix::{one_ring_matrix, two_ring_matrix};
+    use super::super::matrix::two_ring_matrix;
     use super::*;
-    use crate::spectral::eigen::{Eigen, EigenOptions};
-
-    /// Distance allowed between a closed-form eigenvalue and the dense one
-    /// (faer) for simple and semisimple eigenvalues: backward error
-    /// `~ dim eps ||S||_F` (`||S||_F < 3` here) times the condition number
-    /// (`<= 10` for these nearly normal blocks): `1e-12` is ample for `n <= 20`.
-    const DENSE_TOL: f64 = 1e-12;
-
-    /// The same for the eigenvalues inside a Jordan block: at `n = 3` the
-    /// `l = 0` eigenvalue `lambda^2 = 1/16` meets the `1/16` of `ĝ_0` and
-    /// forms a 2 x 2 Jordan block (tested below), which a perturbation
-    /// `eta ~ 1e-15` splits by `O(sqrt(eta)) ~ 3e-8`.
-    const DEFECTIVE_TOL: f64 = 1e-6;
 
     #[test]
     fn closed_form_blocks_match_the_assembled_matrix() {
@@ -404,53 +390,11 @@ mod tests {
         }
     }
 
-    /// Pairs every closed-form eigenvalue with a distinct dense one (greedy,
-    /// nearest first) and returns the largest distance, excluding `skip`
-    /// values near which the dense ones may split.
-    fn max_mismatch(closed: &[Complex64], dense: &[Complex64], loose: &[f64]) -> (f64, f64) {
-        let mut used = vec![false; dense.len()];
-        let (mut tight, mut wide) = (0.0f64, 0.0f64);
-        for z in closed {
-            let (k, d) = dense
-                .iter()
-                .enumerate()
-                .filter(|(k, _)| !used[*k])
-                .map(|(k, w)| (k, (w - z).norm()))
-                .min_by(|a, b| a.1.total_cmp(&b.1))
-                .unwrap();
-            used[k] = true;
-            if loose.iter().any(|x| (x - z.re).abs() < 1e-12) {
-                wide = wide.max(d);
-            } else {
-                tight = tight.max(d);
-            }
-        }
-        (tight, wide)
-    }
-
-    #[test]
-    fn block_spectrum_equals_dense_spectrum() {
-        for n in 3..=20 {
-            let s = two_ring_matrix(n).unwrap();
-            let e = Eigen::new(s.matrix(), EigenOptions::VALUES).unwrap();
-            let closed = spectrum(n).unwrap();
-            assert_eq!(e.values().len(), closed.len());
-            let loose: &[f64] = if n == 3 { &[0.0625] } else { &[] };
-            let (tight, wide) = max_mismatch(&closed, e.values(), loose);
-            assert!(tight < DENSE_TOL, "n = {n}: {tight:e}");
-            assert!(wide < DEFECTIVE_TOL, "n = {n}: {wide:e}");
-            // the subdominant pair itself is the dense pair at positions 1, 2
-            let lam = subdominant_eigenvalue(n);
-            for z in &e.values()[1..3] {
-                assert!((z - r(lam)).norm() < DENSE_TOL, "n = {n}: {z}");
-            }
-        }
-    }
-
     #[test]
     fn valence_three_has_a_jordan_block_at_one_sixteenth() {
         // rank of S - I/16 on the l = 0 block is 3 (geometric multiplicity 1,
-        // algebraic 2): the reason for DEFECTIVE_TOL
+        // algebraic 2): the reason for the wider tolerance of the dense comparison
+        // (`crate::spectral` closed-form tests)
         let b = &fourier_blocks(3).unwrap()[0].matrix;
         let m = b.map(|z| z.re) - DMatrix::identity(4, 4) * 0.0625;
         let sv = m.singular_values();
@@ -459,74 +403,6 @@ mod tests {
         let m2 = &m * &m;
         let sv2 = m2.singular_values();
         assert!(sv2[2] < 1e-14, "(S - I/16)^2 has rank 2: {sv2}");
-    }
-
-    #[test]
-    fn limit_stencil_is_the_dense_left_fixed_vector() {
-        for n in 3..=20 {
-            for s in [one_ring_matrix(n).unwrap(), two_ring_matrix(n).unwrap()] {
-                let e = Eigen::new(s.matrix(), EigenOptions::BOTH).unwrap();
-                let k = e
-                    .values()
-                    .iter()
-                    .position(|z| (z - r(1.0)).norm() < DENSE_TOL)
-                    .unwrap();
-                let u = e.left().unwrap().column(k).into_owned();
-                let u = (&u / u.sum()).map(|z| z.re);
-                let l = limit_weights(n).unwrap();
-                for j in 0..u.len() {
-                    let want = l.get(j).copied().unwrap_or(0.0);
-                    assert!(
-                        (u[j] - want).abs() < 1e-12,
-                        "n = {n}, j = {j}: {} vs {want}",
-                        u[j]
-                    );
-                }
-            }
-        }
-    }
-
-    /// Distance of the real vector `t` from the span of the columns `cols` of `u`.
-    fn distance_from_span(u: &DMatrix<Complex64>, cols: &[usize], t: &[f64]) -> f64 {
-        let mut basis: Vec<nalgebra::DVector<Complex64>> = Vec::new();
-        for &c in cols {
-            let mut v = u.column(c).into_owned();
-            for b in &basis {
-                let p = b.dotc(&v);
-                v -= b * p;
-            }
-            let nv = v.norm();
-            basis.push(v / r(nv));
-        }
-        let mut x = nalgebra::DVector::from_iterator(t.len(), t.iter().map(|&a| r(a)));
-        let nt = x.norm();
-        for b in &basis {
-            let p = b.dotc(&x);
-            x -= b * p;
-        }
-        x.norm() / nt
-    }
-
-    #[test]
-    fn tangent_stencils_are_dense_left_eigenvectors() {
-        for n in 3..=20 {
-            let s = one_ring_matrix(n).unwrap();
-            let (lam, ts) = tangent_stencils(n).unwrap();
-            let e = Eigen::new(s.matrix(), EigenOptions::BOTH).unwrap();
-            let cols: Vec<usize> = (0..n + 1)
-                .filter(|&k| (e.values()[k] - r(lam)).norm() < 1e-9)
-                .collect();
-            assert_eq!(cols.len(), 2, "n = {n}: {:?}", e.values());
-            for t in &ts {
-                // exact left eigenvector of the assembled matrix ...
-                let tv = nalgebra::DVector::from_vec(t.clone());
-                let res = (s.matrix().transpose() * &tv - &tv * lam).norm();
-                assert!(res < 1e-14, "n = {n}: residual {res:e}");
-                // ... and in the span of the dense solver's pair
-                let d = distance_from_span(e.left().unwrap(), &cols, t);
-                assert!(d < 1e-10, "n = {n}: distance {d:e}");
-            }
-        }
     }
 
     #[test]

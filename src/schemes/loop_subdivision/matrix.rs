@@ -23,7 +23,7 @@
 //! `a_i` (edge `e_i g_i`), `b_i` (edge `e_i f_i`) and `c_i` (edge
 //! `e_{i+1} f_i`): with them the `6n + 1` new points contain the 12-point
 //! control nets of the `3n` regular triangles of the first ring
-//! ([`super::charmap`]).
+//! ([`super::ring`]).
 //!
 //! ```
 //! use subdiv_lab::schemes::loop_subdivision::matrix::{one_ring_matrix, two_ring_matrix};

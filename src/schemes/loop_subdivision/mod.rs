@@ -1,6 +1,6 @@
 //! Loop subdivision (Loop 1987) on triangle meshes: weights, the local
 //! subdivision matrix on the two-ring of an extraordinary vertex, its Fourier
-//! blocks and the certified characteristic map; its mesh refinement is
+//! blocks and the Bezier ring of its characteristic map; its mesh refinement is
 //! [`crate::mesh::loop_subdivision`].
 //!
 //! Weights (math doc section 11):
@@ -30,7 +30,9 @@
 //! [`TwoRing`] computes these indices; [`matrix`] assembles the local
 //! matrices on them, [`fourier`] block-diagonalises them, [`tri_bezier`]
 //! holds the triangular Bezier machinery and the regular (box-spline) patch,
-//! and [`charmap`] certifies the characteristic map.
+//! and [`ring`] converts the regular patches of the ring around the vertex to
+//! Bezier form; the characteristic map is certified by
+//! [`crate::charmap::loop_subdivision`].
 //!
 //! ```
 //! use subdiv_lab::schemes::loop_subdivision::{beta, limit_weights, subdominant_eigenvalue};
@@ -41,9 +43,9 @@
 //! assert!((l[0] - 0.5).abs() < 1e-15 && (l[1] - 1.0 / 12.0).abs() < 1e-15);
 //! ```
 
-pub mod charmap;
 pub mod fourier;
 pub mod matrix;
+pub mod ring;
 mod rules;
 mod scheme_impl;
 pub mod tri_bezier;

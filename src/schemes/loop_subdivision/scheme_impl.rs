@@ -1,15 +1,13 @@
 //! Loop subdivision as a [`Scheme`]: the two-ring matrix, the Fourier-block
-//! spectrum, the limit stencil and the certified characteristic map of this
-//! module behind the scheme abstraction (math doc sections 11 and 12).
+//! spectrum, the limit stencil and the ring of quartic box-spline patches of
+//! this module behind the scheme abstraction (math doc sections 11 and 12).
 
-use super::{charmap, fourier, limit_weights, matrix, validate};
+use super::{fourier, limit_weights, matrix, validate};
 use crate::budget::CostModel;
-use crate::charmap::report::{AnyPatchId, CharmapReport};
 use crate::error::Result;
 use crate::scalar::Rational;
-use crate::scheme::{Scheme, SpectralStructure};
 use crate::schemes::assembly::{Assembler, LocalMatrix};
-use crate::spectral::classify::{Subdominant, SubdominantClass};
+use crate::schemes::scheme::{FourierSpectrum, RingPatches, Scheme, SpectralStructure};
 use num_complex::Complex64;
 
 /// Denominator of every entry of the two-ring matrix at the valences whose
@@ -126,7 +124,7 @@ impl Scheme for LoopScheme {
         Some(fourier::spectrum(self.n))
     }
 
-    fn fourier_spectrum(&self) -> Option<Result<crate::scheme::FourierSpectrum>> {
+    fn fourier_spectrum(&self) -> Option<Result<FourierSpectrum>> {
         Some(
             (0..self.n)
                 .map(|l| fourier::block_eigenvalues(self.n, l).map(|e| (l, e)))
@@ -139,26 +137,8 @@ impl Scheme for LoopScheme {
         super::COST_MODEL
     }
 
-    /// The certified ring of [`charmap::check`] when the classification is
-    /// standard (Loop's eigenstructure is standard at every valence: the
-    /// subdominant pair is the `k = +-1` Fourier eigenvalue); otherwise no
-    /// map, with the class that prevents it.
-    fn characteristic_map(
-        &self,
-        subdominant: &Subdominant,
-    ) -> Option<Result<CharmapReport<AnyPatchId>>> {
-        if subdominant.class != SubdominantClass::Standard {
-            return Some(Ok(CharmapReport::no_map(
-                subdominant.class.name(),
-                "Loop's ring is built on the standard eigenstructure",
-            )));
-        }
-        Some(charmap::check(self.n).map(|r| {
-            r.map_patches(|p| AnyPatchId::Other {
-                sector: p.sector,
-                slot: p.kind.slot(),
-                prefix: "T",
-            })
-        }))
+    /// The quartic box-spline triangles of the two-ring (math doc section 11).
+    fn ring_patches(&self) -> Option<RingPatches<'_>> {
+        Some(RingPatches::QuarticBoxSpline { valence: self.n })
     }
 }

@@ -62,7 +62,7 @@ use super::SchemeKind;
 use crate::budget::CostModel;
 use crate::error::Result;
 use crate::scalar::{Rational, Scalar};
-use crate::scheme::Scheme;
+use crate::schemes::Scheme;
 use num_complex::Complex64;
 use num_traits::{One, Zero};
 use std::sync::Arc;
@@ -226,7 +226,7 @@ impl SchemeFile {
     /// The work model: that of the built-in scheme whose matrices it shares
     /// ([`Topology::base`]).
     pub fn cost_model(&self) -> CostModel {
-        crate::scheme::registry::cost_model(self.topology.base())
+        crate::schemes::registry::cost_model(self.topology.base())
     }
 
     /// The validated vertex weights at valence `n` (module docs: the one

@@ -47,7 +47,8 @@
 //! 8 lanes runs no faster than AVX2 on Zen 4 (whose 512-bit units are
 //! double-pumped 256-bit ones), so only AVX2 is dispatched.
 
-use super::{Hqr, HqrMatrix, SpectralError, SAFE_MAX, SAFE_MIN};
+use super::qr::{negligible, Hqr, HqrMatrix, SAFE_MAX, SAFE_MIN};
+use crate::spectral::SpectralError;
 
 /// Matrices per lock-step batch.
 pub const BATCH: usize = 16;
@@ -335,7 +336,7 @@ pub(super) fn hqr(
             let d0 = u!(a[(i - 1) + (i - 1) * stride]);
             let d1 = u!(a[i + i * stride]);
             bits = std::array::from_fn(|l| {
-                bits[l] | ((super::negligible(sub[l], d0[l], d1[l], anorm[l]) as u64) << i)
+                bits[l] | ((negligible(sub[l], d0[l], d1[l], anorm[l]) as u64) << i)
             });
         }
         let mut chasing = [false; BATCH];

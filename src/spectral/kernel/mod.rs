@@ -33,7 +33,7 @@
 //! Speed notes (small `n` is latency-bound: the chain scale -> square root ->
 //! divisions of each 3x3 reflector dominates): reflectors use one reciprocal
 //! instead of several divisions, skip EISPACK's rescaling of `(p, q, r)` where
-//! it cannot matter ([`SAFE_MIN`]..[`SAFE_MAX`]), and the last reflector of
+//! it cannot matter ([`SAFE_MIN`](qr::SAFE_MIN)..[`SAFE_MAX`](qr::SAFE_MAX)), and the last reflector of
 //! a sweep has its own two-row loops. Many matrices of one dimension (a
 //! sweep) go through [`KernelWorkspace::eigenvalues_batch`]: [`BATCH`] of
 //! them in lock step, one per SIMD lane, with the same arithmetic bit for bit
@@ -45,8 +45,6 @@
 //! reduction), `qr` (the Francis double-shift QR iteration and its bounds),
 //! `condition` (eigenvalue condition numbers by inverse iteration) and
 //! `lockstep` (the SIMD-lane versions of the reduction and the iteration).
-
-use super::SpectralError;
 
 /// Unchecked read of `a[k]` in the kernel's inner loops, where every index
 /// is bounded by the loop invariants (checked in debug builds).
@@ -76,15 +74,8 @@ mod qr;
 mod workspace;
 
 pub use lockstep::BATCH;
-pub use qr::{
-    EXCEPTIONAL_SHIFT_PERIOD, MAX_SWEEPS_PER_DIMENSION, MAX_SWEEPS_PER_EIGENVALUE, SAFE_MAX,
-    SAFE_MIN,
-};
+pub use qr::{EXCEPTIONAL_SHIFT_PERIOD, MAX_SWEEPS_PER_DIMENSION, MAX_SWEEPS_PER_EIGENVALUE};
 pub use workspace::{KernelWorkspace, LOCKSTEP_MAX_DIM, LOCKSTEP_MIN_DIM};
-
-pub(crate) use hessenberg::hessenberg;
-pub(crate) use qr::hqr;
-use qr::{negligible, Hqr, HqrMatrix};
 
 #[cfg(test)]
 mod tests;

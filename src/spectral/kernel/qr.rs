@@ -2,7 +2,7 @@
 //! an upper Hessenberg matrix, with its iteration bounds and the range of the
 //! reflectors' rescaling.
 
-use super::SpectralError;
+use crate::spectral::SpectralError;
 
 /// QR sweeps allowed before one eigenvalue (or a 2x2 block) deflates.
 ///

@@ -3,6 +3,7 @@
 
 use super::condition::{inverse_iteration_kappa, kappa_2x2, LaneStorage};
 use super::*;
+use crate::spectral::SpectralError;
 use num_complex::Complex64;
 
 fn eig(n: usize, f: impl Fn(usize, usize) -> f64) -> Vec<Complex64> {

@@ -3,8 +3,10 @@
 //! ([`KernelWorkspace::eigenvalues_batch`]).
 
 use super::condition::{self, LaneStorage};
+use super::hessenberg::hessenberg;
 use super::lockstep::{self, BATCH};
-use super::{hessenberg, hqr, SpectralError};
+use super::qr::hqr;
+use crate::spectral::SpectralError;
 use num_complex::Complex64;
 
 /// Reusable storage for the kernel (grows to the largest size seen).

@@ -2,11 +2,11 @@
 //! space kind the scheme admits and its range (edge ratios, knot intervals or
 //! the shape parameter c), in one function, [`scheme_config`]; the rules for
 //! the scheme and its parameters are the shared ones of
-//! [`crate::scheme::choice`].
+//! [`crate::schemes::choice`].
 
 use super::raw::{forbid, range, Ctx, Domain, RawSpec};
 use super::{SpaceKind, MAX_VALENCE};
-use crate::scheme::choice::{validate, Choice, ChoiceError};
+use crate::schemes::choice::{validate, Choice, ChoiceError};
 use crate::schemes::SchemeKind;
 use crate::sweep::SweepError;
 use toml::Spanned;
@@ -29,7 +29,7 @@ pub(super) struct SchemeConfig {
 /// forbidden).
 pub(super) fn scheme_config(ctx: &Ctx, raw: &RawSpec) -> Result<SchemeConfig, SweepError> {
     // The scheme name first (its error names `scheme`), then the space kind,
-    // then the shared rules (crate::scheme::choice) for that pair.
+    // then the shared rules (crate::schemes::choice) for that pair.
     if let Err(e) = raw.scheme.get_ref().parse::<SchemeKind>() {
         return ctx.err("scheme", Some(raw.scheme.span()), format!("scheme: {e}"));
     }

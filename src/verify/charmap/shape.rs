@@ -63,7 +63,7 @@ pub struct ShapeRing {
     /// The patch eigenvector (`2n + 8` entries) for the `cos` and `sin` nets.
     pub x: [Vec<Iv>; 2],
     /// The windows of sector 0 (`Omega_1, Omega_2, Omega_3`), `w[a][b]` as in
-    /// [`crate::charmap::catmull_clark::Window`], as boxes in `(x_cos, x_sin)`.
+    /// [`crate::schemes::catmull_clark::ring::Window`], as boxes in `(x_cos, x_sin)`.
     pub windows: [[[P2; 4]; 4]; 3],
 }
 

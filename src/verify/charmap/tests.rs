@@ -160,8 +160,9 @@ fn small_c_cells_agree_with_the_floating_cone_test_on_the_same_windows() {
     // Cross-check: the floating-point cone test and winding number of that
     // module, run on the pointwise windows in the cell's normalisation with a
     // small error bound, certify the same maps.
-    use crate::charmap::catmull_clark::{check_ring, CcRing, Certificate, UnivariateRule};
+    use crate::charmap::catmull_clark::{check_ring, CcRing, Certificate};
     use crate::charmap::Verdict;
+    use crate::schemes::catmull_clark::ring::UnivariateRule;
     for (n, lo, hi) in [(3, 1e-6, 2e-6), (5, 3e-5, 3.1e-5), (16, 2e-4, 2.2e-4)] {
         assert!(shape::certified(n, lo, hi, CellTamper::None), "n={n}");
         let c = 0.5 * lo + 0.5 * hi;

@@ -1,23 +1,23 @@
 //! The certified characteristic map of Loop subdivision at valence `n`
 //! (math doc section 11; the method of math doc section 7).
 //!
-//! **Eigenstructure.** By the Fourier blocks ([`super::fourier`]) the
+//! **Eigenstructure.** By the Fourier blocks ([`fourier`](crate::schemes::loop_subdivision::fourier)) the
 //! two-ring matrix has the simple eigenvalue 1, the double subdominant
 //! eigenvalue `lambda = 3/8 + cos(2 pi/n)/4` (frequencies 1 and `n - 1`, two
 //! independent eigenvectors) and every other eigenvalue strictly smaller in
 //! modulus: the standard case of Reif's criterion, for every `n >= 3`.
 //!
 //! **The ring.** The eigenvector pair `(x_cos, x_sin)` on the two-ring
-//! ([`super::fourier::subdominant_eigenvectors`]) is orthonormalised into a
+//! ([`subdominant_eigenvectors`]) is orthonormalised into a
 //! [`PlanarBasis`] (whose Stewart bound gives the entry-wise error of the
-//! basis), and one Loop step ([`super::matrix::extended_matrix`]) maps it to
+//! basis), and one Loop step ([`extended_matrix`]) maps it to
 //! the `6n + 1` level-1 points. In sector `i` (the triangle `v, e_i, e_{i+1}`)
 //! the level-1 triangles at `e_i`, in the middle and at `e_{i+1}` have only
 //! valence-6 corners, so each is a regular patch whose 12-point net
-//! ([`tri_bezier::REGULAR_NET`]) lies among those points; the fourth
+//! ([`REGULAR_NET`](crate::schemes::loop_subdivision::tri_bezier::REGULAR_NET)) lies among those points; the fourth
 //! sub-triangle (at `v`) is the next level's irregular patch and not part of
 //! the ring. [`LoopRing`] converts the `3n` nets to quartic triangular Bezier
-//! form ([`tri_bezier::BOX_SPLINE_TO_BEZIER`]). The next ring is `lambda`
+//! form ([`BOX_SPLINE_TO_BEZIER`](crate::schemes::loop_subdivision::tri_bezier::BOX_SPLINE_TO_BEZIER)). The next ring is `lambda`
 //! times this one, so the ring decides the whole map.
 //!
 //! **Regularity.** The Jacobian of each patch is a degree-6 triangular
@@ -33,32 +33,30 @@
 //! **Injectivity.** The outer boundary of the ring (per sector the edges
 //! `g_i -> f_i -> g_{i+1}` of the level-1 net, two quartic curves) must have
 //! the certified winding number 1 around the origin
-//! ([`crate::charmap::winding::winding_number`]) once the plane is oriented
+//! ([`winding_number`]) once the plane is oriented
 //! so that the Jacobian is positive; regular plus winding 1 gives an
 //! injective map (math doc section 7). The inner boundary (the edges
 //! `e_i -> e_{i+1}`) is checked as well.
 //!
 //! ```
 //! use subdiv_lab::charmap::Verdict;
-//! use subdiv_lab::schemes::loop_subdivision::charmap::check;
+//! use subdiv_lab::charmap::loop_subdivision::check;
 //! let r = check(5).unwrap();
 //! assert_eq!(r.verdict, Verdict::C1Standard);
 //! assert_eq!(r.winding_number, Some(1));
 //! ```
 
-use super::fourier::{spectrum, subdominant_eigenvectors};
-use super::matrix::{extended_matrix, extended_row_a, two_ring_matrix};
-use super::tri_bezier::{self, PlanarTri, TriBezier, REGULAR_NET, SPLIT4};
-use super::{check_size, TwoRing};
-use crate::bezier::BezierCurve;
-use crate::charmap::regularity::{gamma, DomainPoint, Regularity, RegularityVerdict};
-use crate::charmap::winding::winding_number;
-use crate::charmap::{
-    assemble_report, propagated_error, CharmapReport, Eigenstructure, PlanarBasis,
-};
-use crate::error::{Error, Result};
+use super::regularity::{gamma, DomainPoint, Regularity, RegularityVerdict};
+use super::verdict::{assemble_report, propagated_error};
+use super::winding::winding_number;
+use super::{CharmapReport, Eigenstructure, PlanarBasis};
+use crate::error::Result;
+use crate::schemes::loop_subdivision::check_size;
+use crate::schemes::loop_subdivision::fourier::{spectrum, subdominant_eigenvectors};
+use crate::schemes::loop_subdivision::matrix::{extended_matrix, two_ring_matrix};
+use crate::schemes::loop_subdivision::ring::{LoopPatchId, LoopRing, DEGREE};
+use crate::schemes::loop_subdivision::tri_bezier::{self, TriBezier, SPLIT4};
 use num_complex::Complex64;
-use std::fmt;
 
 /// Maximum split depth of the regularity test per patch (pieces with sides
 /// `2^-8` of the patch's).
@@ -66,219 +64,6 @@ pub const MAX_DEPTH: u32 = 8;
 
 /// Maximum number of pieces examined per ring.
 pub const MAX_PIECES: usize = 50_000;
-
-/// Degree of the ring patches (quartic box splines).
-const DEGREE: usize = 4;
-
-/// Which of the three regular level-1 triangles of a sector.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
-pub enum LoopPatchKind {
-    /// The triangle `e_i, g_i, f_i` of level 1 (at the old `e_i`).
-    Start,
-    /// The triangle `f_i, e_{i+1}, e_i` of level 1 (the middle one).
-    Middle,
-    /// The triangle `e_{i+1}, f_i, g_{i+1}` of level 1 (at the old `e_{i+1}`).
-    End,
-}
-
-impl LoopPatchKind {
-    /// All three, in ring order.
-    pub const ALL: [LoopPatchKind; 3] = [
-        LoopPatchKind::Start,
-        LoopPatchKind::Middle,
-        LoopPatchKind::End,
-    ];
-
-    /// Position `0..3` within the sector.
-    pub fn slot(self) -> usize {
-        match self {
-            LoopPatchKind::Start => 0,
-            LoopPatchKind::Middle => 1,
-            LoopPatchKind::End => 2,
-        }
-    }
-}
-
-/// A patch of the Loop ring: sector and kind.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
-pub struct LoopPatchId {
-    /// Sector `i` (the triangle `v, e_i, e_{i+1}`).
-    pub sector: usize,
-    /// Which regular triangle.
-    pub kind: LoopPatchKind,
-}
-
-impl fmt::Display for LoopPatchId {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "T{}_{}", self.kind.slot(), self.sector)
-    }
-}
-
-/// Index of the level-1 point at lattice position `(a, b)` in sector `i`'s
-/// frame (`v = (0, 0)`, `e_i = (1, 0)`, `e_{i+1} = (0, 1)`), over the rows of
-/// the [`extended_matrix`]. Positions: `e_{i-1} = (1,-1)`, `e_{i+2} = (-1,1)`,
-/// `g_i = (2,0)`, `g_{i+1} = (0,2)`, `f_{i-1} = (2,-1)`, `f_i = (1,1)`,
-/// `f_{i+1} = (-1,2)`, `a_i = (3,0)`, `a_{i+1} = (0,3)`, `b_i = (2,1)`,
-/// `b_{i+1} = (-1,3)`, `c_{i-1} = (3,-1)`, `c_i = (1,2)`.
-fn sector_point(r: &TwoRing, i: usize, (a, b): (i32, i32)) -> Option<usize> {
-    let n = r.valence();
-    let (ip, i1, i2) = (r.prev(i), (i + 1) % n, (i + 2) % n);
-    Some(match (a, b) {
-        (0, 0) => r.v(),
-        (1, 0) => r.e(i),
-        (0, 1) => r.e(i1),
-        (1, -1) => r.e(ip),
-        (-1, 1) => r.e(i2),
-        (2, 0) => r.g(i),
-        (0, 2) => r.g(i1),
-        (2, -1) => r.f(ip),
-        (1, 1) => r.f(i),
-        (-1, 2) => r.f(i1),
-        (3, 0) => extended_row_a(n, i),
-        (0, 3) => extended_row_a(n, i1),
-        (2, 1) => extended_row_a(n, i) + 1,
-        (-1, 3) => extended_row_a(n, i1) + 1,
-        (3, -1) => extended_row_a(n, ip) + 2,
-        (1, 2) => extended_row_a(n, i) + 2,
-        _ => return None,
-    })
-}
-
-/// The 12 level-1 indices of the net of patch `kind` in sector `i`, ordered
-/// as [`REGULAR_NET`]: `Start` is the up-triangle at `(1, 0)`, `End` the one
-/// at `(0, 1)` (translations), `Middle` the down-triangle
-/// `(1, 1) - (up triangle at the origin)` (a rotation by `pi`); all three
-/// parametrisations keep the orientation of the sector.
-pub fn net_indices(n: usize, i: usize, kind: LoopPatchKind) -> Result<[usize; 12]> {
-    let r = TwoRing::new(n)?;
-    let place = |o: (i32, i32)| match kind {
-        LoopPatchKind::Start => (1 + o.0, o.1),
-        LoopPatchKind::Middle => (1 - o.0, 1 - o.1),
-        LoopPatchKind::End => (o.0, 1 + o.1),
-    };
-    let mut out = [0; 12];
-    for (x, o) in out.iter_mut().zip(REGULAR_NET) {
-        *x = sector_point(&r, i % n, place(o)).ok_or_else(|| Error::Numerical {
-            routine: "Loop ring nets",
-            reason: format!("lattice position {:?} is not a level-1 point", place(o)),
-        })?;
-    }
-    Ok(out)
-}
-
-/// The `3n` regular quartic patches of a Loop ring, ordered sector 0
-/// (`Start, Middle, End`), sector 1, ...
-#[derive(Clone, Debug, PartialEq)]
-pub struct LoopRing {
-    n: usize,
-    patches: Vec<(LoopPatchId, PlanarTri)>,
-}
-
-impl LoopRing {
-    /// The ring of the level-1 points `pts` (`6n + 1` planar points, the rows
-    /// of the [`extended_matrix`] applied to two-ring data).
-    ///
-    /// ```
-    /// use subdiv_lab::schemes::loop_subdivision::charmap::LoopRing;
-    /// let pts = vec![[1.0, 2.0]; 31];
-    /// let ring = LoopRing::from_points(5, &pts).unwrap();
-    /// assert_eq!(ring.patches().len(), 15);
-    /// assert!(LoopRing::from_points(5, &pts[..30]).is_err());
-    /// ```
-    pub fn from_points(n: usize, pts: &[[f64; 2]]) -> Result<Self> {
-        TwoRing::new(n)?;
-        if pts.len() != 6 * n + 1 {
-            return Err(Error::CountMismatch {
-                what: "level-1 points of a Loop ring (6n + 1)",
-                expected: 6 * n + 1,
-                got: pts.len(),
-            });
-        }
-        let mut patches = Vec::with_capacity(3 * n);
-        for i in 0..n {
-            for kind in LoopPatchKind::ALL {
-                let idx = net_indices(n, i, kind)?;
-                let net = idx.map(|k| pts[k]);
-                patches.push((
-                    LoopPatchId { sector: i, kind },
-                    tri_bezier::regular_patch(&net),
-                ));
-            }
-        }
-        Ok(Self { n, patches })
-    }
-
-    /// A ring from explicit patches (e.g. a deliberately broken one): `3n`
-    /// quartic patches, `n >= 3`, ordered and labelled as [`LoopRing::patches`].
-    pub fn from_patches(patches: Vec<(LoopPatchId, PlanarTri)>) -> Result<Self> {
-        let n = patches.len() / 3;
-        if n < 3 || patches.len() != 3 * n {
-            return Err(Error::CountMismatch {
-                what: "ring patches (3 per sector, at least 3 sectors)",
-                expected: 3 * n.max(3),
-                got: patches.len(),
-            });
-        }
-        for (k, (id, p)) in patches.iter().enumerate() {
-            let want = LoopPatchId {
-                sector: k / 3,
-                kind: LoopPatchKind::ALL[k % 3],
-            };
-            if *id != want || p.degree() != DEGREE || p.y.degree() != DEGREE {
-                return Err(Error::InvalidParameter {
-                    name: "ring patch",
-                    value: id.to_string(),
-                    reason:
-                        "patches must be quartic and ordered by sector, then Start, Middle, End",
-                });
-            }
-        }
-        Ok(Self { n, patches })
-    }
-
-    /// The valence.
-    pub fn valence(&self) -> usize {
-        self.n
-    }
-
-    /// The patches.
-    pub fn patches(&self) -> &[(LoopPatchId, PlanarTri)] {
-        &self.patches
-    }
-
-    /// The ring with the second coordinate negated (reverses orientation).
-    pub fn mirrored(&self) -> Self {
-        Self {
-            n: self.n,
-            patches: self
-                .patches
-                .iter()
-                .map(|(id, p)| (*id, p.mirrored()))
-                .collect(),
-        }
-    }
-
-    /// The outer boundary, counter-clockwise in the sector frames: per sector
-    /// the edge `g_i -> f_i` of `Start` and `f_i -> g_{i+1}` of `End` (their
-    /// corners 1 -> 2).
-    pub fn outer_boundary(&self) -> Vec<BezierCurve> {
-        self.patches
-            .iter()
-            .filter(|(id, _)| id.kind != LoopPatchKind::Middle)
-            .filter_map(|(_, p)| p.boundary(1, 2).ok())
-            .collect()
-    }
-
-    /// The inner boundary, same direction: per sector the edge
-    /// `e_i -> e_{i+1}` of `Middle` (its corners 2 -> 1).
-    pub fn inner_boundary(&self) -> Vec<BezierCurve> {
-        self.patches
-            .iter()
-            .filter(|(id, _)| id.kind == LoopPatchKind::Middle)
-            .filter_map(|(_, p)| p.boundary(2, 1).ok())
-            .collect()
-    }
-}
 
 /// The floating-point error model of the Jacobian coefficients of quartic
 /// triangular patches **\[derived\]**.
@@ -575,6 +360,10 @@ pub fn check(n: usize) -> Result<CharmapReport<LoopPatchId>> {
 mod tests {
     use super::*;
     use crate::charmap::Verdict;
+    use crate::schemes::loop_subdivision::matrix::extended_row_a;
+    use crate::schemes::loop_subdivision::ring::{net_indices, LoopPatchKind};
+    use crate::schemes::loop_subdivision::tri_bezier::PlanarTri;
+    use crate::schemes::loop_subdivision::TwoRing;
 
     #[test]
     fn valences_3_to_12_are_certified_c1() {

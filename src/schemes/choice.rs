@@ -10,10 +10,15 @@
 //!   ([`SchemeKind::takes_c`]): required there, refused elsewhere.
 //!
 //! The messages are front-end neutral; a front end prefixes its own key
-//! (`--scheme`, `configs[2].scheme`, `space.kind`) and location.
+//! (`--scheme`, `configs[2].scheme`, `space.kind`) and location. The
+//! library's constructors of a configuration from a [`SchemeKind`]
+//! ([`LocalScheme::from_kind_with_c`](super::LocalScheme::from_kind_with_c), [`Builtin::from_kind`](super::registry::Builtin::from_kind),
+//! [`crate::mesh::builtin::mesh_rules`]) apply the same rules through
+//! [`check`] and report them as [`Error::InvalidParameter`]
+//! ([`ChoiceError::into_error`]).
 //!
 //! ```
-//! use subdiv_lab::scheme::choice::{validate, Choice, ChoiceError};
+//! use subdiv_lab::schemes::choice::{validate, Choice, ChoiceError};
 //! use subdiv_lab::schemes::SchemeKind;
 //! let ok = validate(&Choice { name: "nurds", knots: true, c: false }).unwrap();
 //! assert_eq!(ok, SchemeKind::Nurds);
@@ -22,7 +27,8 @@
 //! assert!(e.to_string().contains("takes no knot intervals"));
 //! ```
 
-use crate::schemes::{SchemeKind, UnknownScheme};
+use super::kind::{SchemeKind, UnknownScheme};
+use crate::error::Error;
 
 /// What a front end was given with a scheme name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,16 +69,50 @@ impl ChoiceError {
             ChoiceError::TakesNoC(_) | ChoiceError::NeedsC(_) => "c",
         }
     }
+
+    /// The library's error for this refusal: [`Error::InvalidParameter`]
+    /// naming [`part`](Self::part), with the scheme's name (knots, an unknown
+    /// name), the value of `c` as given (`c`, `"(missing)"` when needed and
+    /// absent) as its value.
+    pub fn into_error(self, c: Option<String>) -> Error {
+        let part = self.part();
+        let (value, reason) = match self {
+            ChoiceError::Unknown(UnknownScheme(name)) => (name, "not a known scheme"),
+            ChoiceError::TakesNoKnots(kind) => (
+                kind.name().to_owned(),
+                "this scheme has no knot intervals; use --scheme nurds for non-uniform knots",
+            ),
+            ChoiceError::TakesNoC(_) => (
+                c.unwrap_or_default(),
+                "only adjustable-cc takes the shape parameter c",
+            ),
+            ChoiceError::NeedsC(_) => (
+                "(missing)".to_owned(),
+                "adjustable-cc needs the shape parameter c in [0, 1]",
+            ),
+        };
+        Error::InvalidParameter {
+            name: part,
+            value,
+            reason,
+        }
+    }
 }
 
 /// Validates a scheme choice (the rules of this module's documentation) and
 /// returns the scheme.
 pub fn validate(choice: &Choice<'_>) -> Result<SchemeKind, ChoiceError> {
-    let kind: SchemeKind = choice.name.parse()?;
-    if choice.knots && !kind.takes_knots() {
+    check(choice.name.parse()?, choice.knots, choice.c)
+}
+
+/// The rules of this module's documentation for a known scheme: `knots`
+/// whether non-uniform knot data was given, `c` whether a shape parameter
+/// was. Knot errors come before shape errors.
+pub fn check(kind: SchemeKind, knots: bool, c: bool) -> Result<SchemeKind, ChoiceError> {
+    if knots && !kind.takes_knots() {
         return Err(ChoiceError::TakesNoKnots(kind));
     }
-    match (kind.takes_c(), choice.c) {
+    match (kind.takes_c(), c) {
         (false, true) => Err(ChoiceError::TakesNoC(kind)),
         (true, false) => Err(ChoiceError::NeedsC(kind)),
         _ => Ok(kind),

@@ -6,18 +6,13 @@
 //! This impl is the one place where a [`LocalScheme`] is told apart by
 //! family: the analysis engine only sees the capabilities.
 
-use super::{FaceContraction, Scheme, SpectralStructure};
+use super::assembly::LocalMatrix;
+use super::local::LocalScheme;
+use super::scheme::{FourierSpectrum, RingPatches, Scheme, SpectralStructure};
+use super::{catmull_clark, doo_sabin};
 use crate::budget::CostModel;
-use crate::charmap::{
-    self,
-    figure::RingPlot,
-    report::{AnyPatchId, CharmapReport},
-};
-use crate::contraction::{self, MeasureOptions};
 use crate::error::Result;
 use crate::scalar::{f64_to_rational, Rational};
-use crate::schemes::{catmull_clark, doo_sabin, LocalMatrix, LocalScheme};
-use crate::spectral::classify::Subdominant;
 use num_complex::Complex64;
 
 impl Scheme for LocalScheme<f64> {
@@ -130,7 +125,7 @@ impl Scheme for LocalScheme<f64> {
     fn fill_face_block(&self, out: &mut [f64]) -> Option<Result<()>> {
         self.kind()
             .is_doo_sabin_family()
-            .then(|| doo_sabin::fill_face_like(self, self.valence(), out))
+            .then(|| self.fill_face_like(out))
     }
 
     /// The Catmull-Clark family: the closed-form Fourier blocks. The
@@ -146,7 +141,7 @@ impl Scheme for LocalScheme<f64> {
     /// Catmull-Clark family has no faster path than the dense one.
     /// Catmull-Clark family: the closed-form block eigenvalues
     /// ([`catmull_clark::fourier::block_eigenvalues`]).
-    fn fourier_spectrum(&self) -> Option<Result<crate::scheme::FourierSpectrum>> {
+    fn fourier_spectrum(&self) -> Option<Result<FourierSpectrum>> {
         let c = self.shape_parameter()?;
         let n = self.valence();
         Some(
@@ -156,32 +151,16 @@ impl Scheme for LocalScheme<f64> {
         )
     }
 
-    fn face_contraction(&self, options: &MeasureOptions) -> Option<Result<FaceContraction>> {
-        if !self.kind().is_doo_sabin_family() {
-            return None;
-        }
-        Some((|| {
-            Ok(FaceContraction {
-                certificate: contraction::certificate(self)?,
-                measured: contraction::measure(self, options)?,
-                face_block: self.face_block()?,
-            })
-        })())
-    }
-
-    fn characteristic_map(
-        &self,
-        subdominant: &Subdominant,
-    ) -> Option<Result<CharmapReport<AnyPatchId>>> {
-        let c = match self.shape_parameter() {
-            None => return Some(charmap::check_classified_doo_sabin(self, subdominant)),
-            Some(c) => c,
-        };
-        let certificate = charmap::catmull_clark::Certificate::for_c(c);
-        Some(
-            charmap::catmull_clark::check_classified(self.valence(), c, subdominant, certificate)
-                .map(|r| r.map_patches(AnyPatchId::CatmullClark)),
-        )
+    /// The Doo-Sabin family's biquadratic ring, the Catmull-Clark family's
+    /// bicubic one with its shape parameter.
+    fn ring_patches(&self) -> Option<RingPatches<'_>> {
+        Some(match self.shape_parameter() {
+            Some(c) => RingPatches::Bicubic {
+                valence: self.valence(),
+                c,
+            },
+            None => RingPatches::Biquadratic(self),
+        })
     }
 
     /// [`doo_sabin::COST_MODEL`] or [`catmull_clark::COST_MODEL`].
@@ -194,19 +173,5 @@ impl Scheme for LocalScheme<f64> {
                 catmull_clark::COST_MODEL
             }
         }
-    }
-
-    fn characteristic_plot(
-        &self,
-        subdominant: &Subdominant,
-        levels: usize,
-        per_side: usize,
-    ) -> Option<Result<(CharmapReport<AnyPatchId>, Option<RingPlot>)>> {
-        Some(match self.shape_parameter() {
-            Some(c) => {
-                charmap::catmull_clark::plot_data(self.valence(), c, subdominant, levels, per_side)
-            }
-            None => charmap::plot_data_doo_sabin(self, subdominant, levels, per_side),
-        })
     }
 }
