@@ -39,7 +39,7 @@ pub fn mesh_rules(kind: SchemeKind, c: Option<f64>) -> Result<Box<dyn MeshRules>
             .into())
         }
         (SchemeKind::CatmullClark, None) => Box::new(CatmullClarkRules::new(kind.name(), 0.5)?),
-        (SchemeKind::Loop, None) => Box::new(LoopRules),
+        (SchemeKind::Loop, None) => Box::new(LoopRules::default()),
         (_, None) => Box::new(FaceSplit::new(kind)?),
     };
     Ok(rules)
