@@ -246,3 +246,50 @@ fn a_modified_file_moves_the_extraordinary_vertex_as_its_rule_predicts() {
         }
     }
 }
+
+/// `subdivide --limit` with a modified file moves every vertex of the cube
+/// (valence 3) to `l_v v + l_e sum e_i + l_f sum f_i`, the left eigenvector
+/// for 1 that `analyze` computes from the file's one-ring matrix.
+#[test]
+fn the_limit_stencil_of_a_file_is_the_left_eigenvector_analyze_finds() {
+    use subdiv_lab::mesh::{generators, obj};
+    let flat = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/flat-cc.toml");
+    let a = json(&["analyze", "--scheme-file", flat, "--valence", "3", "--json"]);
+    let l: Vec<f64> = a["limit_weights"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(l.len(), 7);
+    let (code, out, err) = run(&[
+        "subdivide",
+        &mesh("cube"),
+        "--scheme-file",
+        flat,
+        "--levels",
+        "0",
+        "--limit",
+        "-o",
+        "-",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let got = obj::parse_obj_data(&out).unwrap().positions;
+    let m = generators::cube();
+    let p = m.positions();
+    for (v, g) in got.iter().enumerate() {
+        let mut want = p[v].map(|x| l[0] * x);
+        for &h in &m.vertex_ring(v) {
+            let (e, f) = (p[m.target(h)], p[m.target(m.next(h))]);
+            for k in 0..3 {
+                want[k] += l[1] * e[k] + l[4] * f[k];
+            }
+        }
+        for k in 0..3 {
+            assert!(
+                (g[k] - want[k]).abs() < 1e-9,
+                "vertex {v}: {g:?} vs {want:?}"
+            );
+        }
+    }
+}

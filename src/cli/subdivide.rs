@@ -1,6 +1,8 @@
 //! `subdivide`: refine a closed OBJ mesh with any built-in scheme, through
-//! its mesh rules ([`subdiv_lab::mesh::builtin::mesh_rules`]): one flow that
-//! asks the rules for capabilities (knot intervals, per-level statistics).
+//! its mesh rules ([`subdiv_lab::mesh::builtin::mesh_rules`]), or with a
+//! scheme file's vertex rule (`--scheme-file`,
+//! [`subdiv_lab::mesh::user::file_rules`]): one flow that asks the rules for
+//! capabilities (knot intervals, per-level statistics, sharp features).
 //! Rules with sharp-feature masks (Catmull-Clark, Loop) also refine open
 //! meshes and meshes with crease and corner tags (from the OBJ's `t` lines
 //! and `--tags FILE`) through [`subdiv_lab::mesh::sharp::SharpMesh`], with
