@@ -11,12 +11,6 @@ use std::sync::{Arc, Mutex};
 use subdiv_lab::schemes::{Assembler, LocalMatrix, PointLabel, Role};
 use subdiv_lab::sweep::SchemeFactory;
 
-/// The largest local matrix taken from Python (rows): the dense analysis of
-/// a `d x d` matrix costs `O(d^3)`; 4096 rows is about a minute and 130 MB
-/// per copy, the analysis limit's scale (`force=True` does not lift it:
-/// larger matrices come from a scheme, whose work is estimated first).
-pub(crate) const MAX_MATRIX_ROWS: usize = 4096;
-
 /// A scheme whose one configuration is a given local matrix.
 #[derive(Debug)]
 pub(crate) struct MatrixScheme {
@@ -106,12 +100,9 @@ pub(crate) fn local_matrix(
             "{what}: must be a non-empty square 2-D array, got shape {shape:?}"
         )));
     }
+    // The work is estimated (and refused above the limits) by the caller,
+    // from this matrix's size; it holds no more memory than the array given.
     let d = shape[0];
-    if d > MAX_MATRIX_ROWS {
-        return Err(value_err(format!(
-            "{what}: {d} rows exceed the limit of {MAX_MATRIX_ROWS}"
-        )));
-    }
     let ro = array.try_readonly()?;
     let a = ro.as_array();
     let labels: Vec<PointLabel> = match labels {

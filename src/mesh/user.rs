@@ -85,17 +85,12 @@ fn no_limit(n: usize) -> MeshError {
 
 /// The quad rule in the `(v, R, Q)` form, `[w_v, w_R, w_Q]` (module docs).
 fn quad_refine<T: Scalar>(n: &T, s: &T, e: &T, f: &T) -> [T; 3] {
-    let two = T::frac(2, 1);
-    let four = T::frac(4, 1);
+    let (two, four) = (T::frac(2, 1), T::frac(4, 1));
     [
         s.clone() - n.clone() * e.clone() + n.clone() * f.clone(),
-        two * n.clone() * (e.clone() - two_f(f)),
+        two.clone() * n.clone() * (e.clone() - two * f.clone()),
         four * n.clone() * f.clone(),
     ]
-}
-
-fn two_f<T: Scalar>(f: &T) -> T {
-    T::frac(2, 1) * f.clone()
 }
 
 /// The quad limit stencil `[l_v, l_e, l_f]` (module docs); `None` when
