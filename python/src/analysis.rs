@@ -267,3 +267,70 @@ fn analyze_resolved(
     );
     serde_json::to_string(&v).map_err(runtime_err)
 }
+
+/// `analyze` of a local matrix the user computed (`matrix`: any array-like;
+/// validated by [`crate::user::local_matrix`]), named `name`.
+#[pyfunction]
+#[pyo3(signature = (matrix, labels=None, valence=None, name="matrix", path="full", levels=Int(60), seed=Int(0x5EED), force=false))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn analyze_matrix_json(
+    py: Python<'_>,
+    matrix: &Bound<'_, PyAny>,
+    labels: Option<Vec<String>>,
+    valence: Option<Int>,
+    name: &str,
+    path: &str,
+    levels: Int,
+    seed: Int,
+    force: bool,
+) -> PyResult<String> {
+    guard("analyze", || {
+        let (levels, seed, path) = analyze_options(levels, seed, path)?;
+        let valence = valence.map(|v| v.usize("valence")).transpose()?;
+        if name.is_empty() {
+            return Err(value_err("name must not be empty"));
+        }
+        let lm = crate::user::local_matrix(py, "matrix", name, matrix, labels, valence)?;
+        let n = lm.valence();
+        let r = Resolved {
+            input: AnalysisInput {
+                scheme: name.to_owned(),
+                valence: n,
+                ..Default::default()
+            },
+            scheme: Box::new(crate::user::matrix_scheme(name, lm)),
+        };
+        analyze_resolved(py, r, path, levels, seed, force)
+    })
+}
+
+/// `analyze` of a duck-typed Python scheme at `valence`: its
+/// `matrix(valence) -> (S, labels)` ([`crate::user::call_matrix`]; an
+/// exception its code raises propagates as it is).
+#[pyfunction]
+#[pyo3(signature = (scheme, valence, path="full", levels=Int(60), seed=Int(0x5EED), force=false))]
+pub(crate) fn analyze_object_json(
+    py: Python<'_>,
+    scheme: &Bound<'_, PyAny>,
+    valence: Int,
+    path: &str,
+    levels: Int,
+    seed: Int,
+    force: bool,
+) -> PyResult<String> {
+    guard("analyze", || {
+        let (levels, seed, path) = analyze_options(levels, seed, path)?;
+        let n = valence.usize("valence")?;
+        let name = crate::user::scheme_name(scheme)?;
+        let s = crate::user::call_matrix(py, scheme, &name, n)?;
+        let r = Resolved {
+            input: AnalysisInput {
+                scheme: name,
+                valence: n,
+                ..Default::default()
+            },
+            scheme: Box::new(s),
+        };
+        analyze_resolved(py, r, path, levels, seed, force)
+    })
+}

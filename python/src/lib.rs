@@ -22,6 +22,7 @@ mod analysis;
 mod batch;
 mod commands;
 mod sweeps;
+mod user;
 
 use pyo3::exceptions::{PyOverflowError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -283,6 +284,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analysis::matrix, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::analyze_json, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::analyze_file_json, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis::analyze_matrix_json, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis::analyze_object_json, m)?)?;
     m.add_function(wrap_pyfunction!(sweeps::spec_json_to_toml, m)?)?;
     m.add_function(wrap_pyfunction!(batch::classify_batch, m)?)?;
     m.add_function(wrap_pyfunction!(sweeps::sweep, m)?)?;

@@ -12,10 +12,11 @@ use std::io::Read as _;
 use subdiv_lab::budget::{
     held_in_memory, Estimate, SWEEP_TIME_LIMIT_SECONDS, TABLE_BYTES_PER_CELL,
 };
+use subdiv_lab::schemes::user::SchemeFile;
 use subdiv_lab::sweep::eval::Cell;
 use subdiv_lab::sweep::output::shards::{self, summary_path, ShardData, ShardFile};
 use subdiv_lab::sweep::output::{self, Row};
-use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, SweepSpec};
+use subdiv_lab::sweep::{Layout, Plan, SchemeFactory, Shard, SpectralEvaluator, SweepSpec};
 
 /// A TOML sweep spec from its JSON form (the Python dict).
 #[pyfunction]
@@ -157,7 +158,11 @@ fn table<'py>(
 
 /// `sweep`: the rows of a sweep (all, one shard, or its first `limit` ids) as columns.
 #[pyfunction]
-#[pyo3(signature = (spec_toml, spec_path=None, from_dict=false, threads=None, shard=None, limit=None, force=false))]
+/// With `scheme_file` (a scheme file's text) or `scheme` (a duck-typed
+/// Python object, [`crate::user::python_factory`]) the spec's valences are
+/// swept with that scheme through the same engine ([`Plan::with_scheme`]);
+/// an exception raised by the object's code is re-raised as it is.
+#[pyo3(signature = (spec_toml, spec_path=None, from_dict=false, threads=None, shard=None, limit=None, force=false, scheme_file=None, scheme=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn sweep<'py>(
     py: Python<'py>,
@@ -168,6 +173,8 @@ pub(crate) fn sweep<'py>(
     shard: Option<(Int, Int)>,
     limit: Option<Int>,
     force: bool,
+    scheme_file: Option<String>,
+    scheme: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Vec<String>, Bound<'py, PyDict>)> {
     guard("sweep", || {
         let origin = SpecOrigin::new(spec_path, from_dict);
@@ -185,7 +192,24 @@ pub(crate) fn sweep<'py>(
             None => Shard::ALL,
         };
         let limit_rows = limit.map(|l| l.u64("limit")).transpose()?;
-        let plan = Plan::new(spec);
+        let raised = std::sync::Arc::new(std::sync::Mutex::new(None));
+        let factory = match (scheme_file, &scheme) {
+            (Some(_), Some(_)) => {
+                return Err(value_err(
+                    "scheme_file and scheme are mutually exclusive; give one",
+                ))
+            }
+            (Some(text), None) => Some(SchemeFactory::from_file(
+                SchemeFile::parse_shared(&text)
+                    .map_err(|e| value_err(format!("scheme_file: {e}")))?,
+            )),
+            (None, Some(obj)) => Some(crate::user::python_factory(py, obj, raised.clone())?),
+            (None, None) => None,
+        };
+        let plan = match factory {
+            Some(f) => Plan::with_scheme(spec, f).map_err(|e| origin.sweep_error(e))?,
+            None => Plan::new(spec),
+        };
         let layout = Layout::new(&plan);
         let count = shard.len(plan.total()).min(limit_rows.unwrap_or(u64::MAX));
         // The CLI's sweep estimate of these rows, and the rows held in memory.
@@ -216,6 +240,9 @@ pub(crate) fn sweep<'py>(
                     .collect()
             })
         });
+        if let Some(e) = raised.lock().ok().and_then(|mut slot| slot.take()) {
+            return Err(e);
+        }
         table(py, &layout, rows)
     })
 }

@@ -71,29 +71,71 @@ def matrix(scheme: str = "nurds", valence: Optional[int] = None, knots=None, rat
                           _float(c), block, bool(force))
 
 
-def analyze(scheme: Optional[str] = None, valence: Optional[int] = None, knots=None, ratios=None,
+def _read_scheme_file(scheme_file) -> str:
+    try:
+        with open(os.fspath(scheme_file), encoding="utf-8") as f:
+            return f.read()
+    except (OSError, UnicodeDecodeError) as e:
+        raise ValueError(f"scheme_file {os.fspath(scheme_file)}: cannot read: {e}") from None
+
+
+def analyze(scheme=None, valence: Optional[int] = None, knots=None, ratios=None,
             uniform: bool = False, c: Optional[float] = None, path: str = "full",
             levels: int = 60, seed: int = 0x5EED, force: bool = False,
-            scheme_file: Optional[Union[str, os.PathLike]] = None) -> Dict[str, Any]:
+            scheme_file: Optional[Union[str, os.PathLike]] = None,
+            matrix=None, labels: Optional[Sequence[str]] = None) -> Dict[str, Any]:
     """Spectrum, subdominant class, Theorem 1 and the characteristic-map
     verdict of one configuration: the dict of ``subdiv-lab analyze --json``
-    (same keys, including ``input`` and ``tool_version``). ``scheme`` is a
-    built-in scheme's name (default ``"nurds"``); ``scheme_file`` a scheme
-    file (TOML, ``docs/scheme-files.md``) with ``valence``, in its place.
+    (same keys, including ``input`` and ``tool_version``).
+
+    The configuration is one of:
+
+    * ``scheme``: a built-in scheme's name (default ``"nurds"``) with
+      ``valence``, ``knots``, ``ratios``, ``uniform`` or ``c``;
+    * ``scheme_file``: a scheme file (TOML, ``docs/scheme-files.md``) with
+      ``valence``;
+    * ``scheme``: an object of one's own with a ``name`` (str) and a method
+      ``matrix(valence) -> (S, labels)``, with ``valence``: ``S`` is its local
+      subdivision matrix at that valence, ``labels`` ``None`` or one label per
+      row (below);
+    * ``matrix``: a local subdivision matrix one computed (any array-like),
+      with ``labels`` (optional) and ``valence`` (optional).
+
+    A matrix must be square, finite, and its rows must sum to 1 within
+    ``ROW_SUM_TOL = 1e-12`` (``ValueError`` naming the row or entry
+    otherwise). Labels are those :func:`matrix` returns: ``v``, ``e<i>``,
+    ``f<i>``, ``g<i>`` (vertex-centred), ``P<i>``, ``E<i>,1``, ``E<i>,2``,
+    ``C<i>`` (face-centred), ``o<i>``, ``X<i>``; with them the analysis
+    certifies double eigenvalues by the rotation symmetry of the sectors.
+    Without ``valence`` it is the number of ``e`` labels, else of ``P``
+    labels, else the number of rows. An exception raised by the object's
+    ``matrix`` propagates as it is.
+
     ``levels`` is 1..10000. Refused above the limits, e.g. ``valence=600``
     (~7 min); ``force=True`` overrides, except above the physical memory."""
+    builtin_args = knots is not None or ratios is not None or uniform or c is not None
+    if matrix is not None:
+        if scheme is not None or scheme_file is not None or builtin_args:
+            raise ValueError("matrix is mutually exclusive with scheme, scheme_file, knots, ratios, uniform and c")
+        text = _native.analyze_matrix_json(matrix, None if labels is None else [str(x) for x in labels],
+                                           valence, "matrix", path, levels, seed, bool(force))
+        return json.loads(text)
+    if labels is not None:
+        raise ValueError("labels go with matrix")
     if scheme_file is not None:
-        if scheme is not None or knots is not None or ratios is not None or uniform or c is not None:
+        if scheme is not None or builtin_args:
             raise ValueError("scheme_file is mutually exclusive with scheme, knots, ratios, uniform and c")
         if valence is None:
             raise ValueError("valence is required with scheme_file")
-        try:
-            with open(os.fspath(scheme_file), encoding="utf-8") as f:
-                file_text = f.read()
-        except (OSError, UnicodeDecodeError) as e:
-            raise ValueError(f"scheme_file {os.fspath(scheme_file)}: cannot read: {e}") from None
+        file_text = _read_scheme_file(scheme_file)
         text = _native.analyze_file_json(file_text, valence, path, levels, seed, bool(force))
         return json.loads(text)
+    if scheme is not None and not isinstance(scheme, str):
+        if builtin_args:
+            raise ValueError("a scheme object takes valence only (not knots, ratios, uniform or c)")
+        if valence is None:
+            raise ValueError("valence is required with a scheme object")
+        return json.loads(_native.analyze_object_json(scheme, valence, path, levels, seed, bool(force)))
     text = _native.analyze_json(scheme if scheme is not None else "nurds", valence, _knots(knots),
                                 _floats(ratios), bool(uniform), _float(c), path, levels, seed,
                                 bool(force))
@@ -211,7 +253,8 @@ def _table(names, raw):
 
 def sweep(spec: Spec, threads: Optional[int] = None,
           shard: Optional[Union[str, Tuple[int, int]]] = None, limit: Optional[int] = None,
-          force: bool = False):
+          force: bool = False, scheme_file: Optional[Union[str, os.PathLike]] = None,
+          scheme=None):
     """Run a sweep in memory and return its rows as a ``pyarrow.Table``
     (``.to_pandas()``, ``polars.from_arrow(...)``), without writing a CSV.
 
@@ -223,7 +266,20 @@ def sweep(spec: Spec, threads: Optional[int] = None,
     ``error`` (string, null when the row succeeded). Refused above the sweep
     limit (one hour) or when the rows would not fit in memory
     (``force=True`` overrides the limits, never the physical memory).
+
+    A scheme of one's own replaces the spec's scheme and sweeps the spec's
+    valences through the same engine, with the same columns:
+    ``scheme_file`` (a scheme file, as ``subdiv-lab sweep --scheme-file``) or
+    ``scheme`` (an object with ``name`` and ``matrix(valence) -> (S,
+    labels)``, as in :func:`analyze`; it is called at valences 3 and 4 first
+    for the work estimate, then once per valence, with the GIL held). The
+    spec's ``space.kind`` must be ``"uniform"`` and
+    ``columns.exact_certificate`` off. An exception raised by the object's
+    code propagates as it is.
     """
+    if scheme is not None and isinstance(scheme, str):
+        raise ValueError("sweep: scheme takes an object with name and matrix(valence); a built-in scheme is the spec's scheme key")
+    file_text = None if scheme_file is None else _read_scheme_file(scheme_file)
     if isinstance(shard, str):
         try:
             i, n = (int(x) for x in shard.split("/"))
@@ -231,7 +287,8 @@ def sweep(spec: Spec, threads: Optional[int] = None,
             raise ValueError(f"shard must be I/N with 0 <= I < N, got {shard!r}") from None
         shard = (i, n)
     text, path, from_dict = _spec(spec)
-    names, raw = _native.sweep(text, path, from_dict, threads, shard, limit, bool(force))
+    names, raw = _native.sweep(text, path, from_dict, threads, shard, limit, bool(force),
+                               file_text, scheme)
     return _table(names, raw)
 
 

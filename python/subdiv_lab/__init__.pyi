@@ -1,6 +1,6 @@
 """Type stubs of the subdiv_lab package (see the docstrings in __init__.py)."""
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Protocol, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -20,8 +20,13 @@ def matrix(
     block: str = ...,
     force: bool = ...,
 ) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
+class SchemeLike(Protocol):
+    """A scheme of one's own: its name and its local matrix at a valence."""
+    name: str
+    def matrix(self, valence: int) -> Tuple[npt.ArrayLike, Optional[Sequence[str]]]: ...
+
 def analyze(
-    scheme: Optional[str] = ...,
+    scheme: Optional[Union[str, SchemeLike]] = ...,
     valence: Optional[int] = ...,
     knots: Optional[Sequence[Tuple[float, float]]] = ...,
     ratios: Optional[Sequence[float]] = ...,
@@ -32,6 +37,8 @@ def analyze(
     seed: int = ...,
     force: bool = ...,
     scheme_file: Optional[Union[str, os.PathLike[str]]] = ...,
+    matrix: Optional[npt.ArrayLike] = ...,
+    labels: Optional[Sequence[str]] = ...,
 ) -> Dict[str, Any]: ...
 def classify_batch(
     ratios: npt.ArrayLike,
@@ -46,6 +53,8 @@ def sweep(
     shard: Optional[Union[str, Tuple[int, int]]] = ...,
     limit: Optional[int] = ...,
     force: bool = ...,
+    scheme_file: Optional[Union[str, os.PathLike[str]]] = ...,
+    scheme: Optional[SchemeLike] = ...,
 ) -> pa.Table: ...
 def merge(
     inputs: Union[str, os.PathLike[str], Sequence[Union[str, os.PathLike[str]]]],

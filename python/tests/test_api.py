@@ -72,6 +72,100 @@ def test_analyze_scheme_file_equals_cli_json():
         assert a["subdominant"]["class"] == builtin["subdominant"]["class"]
 
 
+def _cc_one_ring(n, a, b, g):
+    """The (2n + 1) one-ring matrix of a Catmull-Clark-type vertex rule
+    (v' = a v + b sum e + g sum f), as a user would write it in numpy; rows
+    and columns v, e0.., f0.. (f_i between e_i and e_i+1)."""
+    s = np.zeros((2 * n + 1, 2 * n + 1))
+    s[0, 0], s[0, 1:n + 1], s[0, n + 1:] = a, b, g
+    for i in range(n):
+        e, f = 1 + i, 1 + n + i
+        s[e, 0] = s[e, e] = 3 / 8
+        for j in (1 + (i - 1) % n, 1 + (i + 1) % n, 1 + n + (i - 1) % n, f):
+            s[e, j] += 1 / 16
+        for j in (0, e, 1 + (i + 1) % n, f):
+            s[f, j] = 1 / 4
+    labels = ["v"] + [f"e{i}" for i in range(n)] + [f"f{i}" for i in range(n)]
+    return s, labels
+
+
+class _CC:
+    """Catmull-Clark from Python: an object with name and matrix(valence)."""
+    name = "py-cc"
+
+    def __init__(self):
+        self.calls = []
+
+    def matrix(self, valence):
+        self.calls.append(valence)
+        n = valence
+        return _cc_one_ring(n, 1 - 7 / (4 * n), 3 / (2 * n * n), 1 / (4 * n * n))
+
+
+def _close(xs, ys, tol=1e-12):
+    return len(xs) == len(ys) and all(abs(complex(*x) - complex(*y)) < tol for x, y in zip(xs, ys))
+
+
+def test_analyze_matrix_and_object_equal_the_builtin():
+    for n in (3, 5, 8):
+        builtin = sl.analyze(scheme="catmull-clark", valence=n)
+        s, labels = _CC().matrix(n)
+        a = sl.analyze(matrix=s, labels=labels)
+        b = sl.analyze(scheme=_CC(), valence=n)
+        for r in (a, b):
+            assert r["subdominant"]["class"] == builtin["subdominant"]["class"] == "standard"
+            assert r["curvature"]["verdict"] == builtin["curvature"]["verdict"]
+            assert _close(r["eigenvalues"], builtin["eigenvalues"])
+            assert r["input"]["valence"] == n
+        assert a["input"]["scheme"] == "matrix" and b["input"]["scheme"] == "py-cc"
+    # without labels: the same spectrum, but no symmetry certificate for the
+    # double subdominant pair; valence defaults to the number of rows
+    s, _ = _CC().matrix(5)
+    u = sl.analyze(matrix=s)
+    assert u["input"]["valence"] == 11
+    assert _close(u["eigenvalues"], sl.analyze(scheme="catmull-clark", valence=5)["eigenvalues"])
+    assert u["subdominant"]["class"] == "indeterminate"
+
+
+def test_sweep_with_a_scheme_file_or_object_runs_the_spec_engine():
+    spec = {"name": "u", "scheme": "catmull-clark", "valences": [3, 5, 6],
+            "space": {"kind": "uniform"}, "sampler": {"kind": "grid", "points_per_axis": 1},
+            "columns": {"eigenvalues": 4, "curvature": True}}
+    builtin = sl.sweep(spec, threads=1).to_pydict()
+    f = str(ROOT / "analysis" / "schemes" / "catmull-clark.toml")
+    by_file = sl.sweep(spec, threads=1, scheme_file=f).to_pydict()
+    obj = _CC()
+    by_obj = sl.sweep(spec, threads=1, scheme=obj).to_pydict()
+    assert obj.calls[:2] == [3, 4] and sorted(obj.calls[2:]) == [3, 5, 6]
+    for t in (by_file, by_obj):
+        assert list(t) == list(builtin)
+        assert t["class"] == builtin["class"]
+        assert all(e is None for e in t["error"])
+        for k, col in builtin.items():
+            if col and isinstance(col[0], float):
+                assert all(abs(x - y) < 1e-12 for x, y in zip(t[k], col)), k
+
+
+def test_exceptions_of_the_users_code_propagate_as_they_are():
+    class Boom(Exception):
+        pass
+
+    class Bad:
+        name = "bad"
+
+        def matrix(self, valence):
+            if valence == 5:
+                raise Boom(f"no rule at {valence}")
+            return sl.matrix(scheme="catmull-clark", valence=valence)
+
+    with pytest.raises(Boom, match="no rule at 5"):
+        sl.analyze(scheme=Bad(), valence=5)
+    spec = {"name": "u", "scheme": "catmull-clark", "valences": [3, 5],
+            "space": {"kind": "uniform"}, "sampler": {"kind": "grid", "points_per_axis": 1}}
+    with pytest.raises(Boom, match="no rule at 5"):
+        sl.sweep(spec, threads=1, scheme=Bad())
+
+
 def test_bad_input_is_value_error_with_the_cli_message():
     p = cli("analyze", "--ratios", "0.3,1.5,0.7", "--json", check=False)
     assert p.returncode == 2

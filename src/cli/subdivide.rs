@@ -1,6 +1,8 @@
 //! `subdivide`: refine a closed OBJ mesh with any built-in scheme, through
-//! its mesh rules ([`subdiv_lab::mesh::builtin::mesh_rules`]): one flow that
-//! asks the rules for capabilities (knot intervals, per-level statistics).
+//! its mesh rules ([`subdiv_lab::mesh::builtin::mesh_rules`]), or with a
+//! scheme file's vertex rule (`--scheme-file`,
+//! [`subdiv_lab::mesh::user::file_rules`]): one flow that asks the rules for
+//! capabilities (knot intervals, per-level statistics, sharp features).
 //! Rules with sharp-feature masks (Catmull-Clark, Loop) also refine open
 //! meshes and meshes with crease and corner tags (from the OBJ's `t` lines
 //! and `--tags FILE`) through [`subdiv_lab::mesh::sharp::SharpMesh`], with
@@ -22,9 +24,10 @@ use std::path::PathBuf;
 use subdiv_lab::mesh::builtin::mesh_rules;
 use subdiv_lab::mesh::limit::LevelStats;
 use subdiv_lab::mesh::refine::half_edges_after;
-use subdiv_lab::mesh::rules::KnotUse;
+use subdiv_lab::mesh::rules::{KnotUse, MeshRules};
 use subdiv_lab::mesh::sharp::rules::{Boundary, Creasing, SdcScheme};
 use subdiv_lab::mesh::sharp::{tags, SharpMesh};
+use subdiv_lab::mesh::user::file_rules;
 use subdiv_lab::mesh::{knot_file, obj, Mesh, MeshError, MAX_HALF_EDGES};
 use subdiv_lab::schemes::choice::{validate, Choice, ChoiceError};
 use subdiv_lab::schemes::SchemeKind;
@@ -33,8 +36,13 @@ use subdiv_lab::schemes::SchemeKind;
 pub(crate) struct SubdivideArgs {
     /// Input mesh (closed, oriented OBJ).
     input: PathBuf,
-    #[arg(long, help = super::scheme_args::scheme_help())]
-    scheme: String,
+    #[arg(long, help = super::scheme_args::scheme_help(), required_unless_present = "scheme_file")]
+    scheme: Option<String>,
+    /// A scheme file (TOML: a vertex rule in n; docs/scheme-files.md) instead
+    /// of --scheme: Catmull-Clark's (quad) or Loop's (triangle) refiner with
+    /// the file's vertex rule. Closed meshes without tags only.
+    #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["scheme", "c", "knots", "knots_out", "tags", "boundary", "creasing"])]
+    scheme_file: Option<PathBuf>,
     /// Shape parameter c in [0, 1] of --scheme adjustable-cc (0.3, 1/3, 25e-2).
     #[arg(long)]
     c: Option<String>,
@@ -132,10 +140,17 @@ fn check_outputs(args: &SubdivideArgs) -> CliResult {
     check_distinct(&outputs, &inputs)
 }
 
-pub(crate) fn run(args: SubdivideArgs) -> CliResult {
+/// The scheme's mesh rules: the one dispatch (`--scheme` through [`mesh_rules`], `--scheme-file` through
+/// [`file_rules`]); the flow below asks the rules for capabilities.
+fn resolve_rules(args: &SubdivideArgs) -> CliResult<Box<dyn MeshRules>> {
+    if let Some(path) = &args.scheme_file {
+        let file = super::scheme_args::read_scheme_file("--scheme-file", path)?;
+        return Ok(file_rules(file));
+    }
+    let name = args.scheme.as_deref().unwrap_or_default();
     // The shared rules (subdiv_lab::schemes::choice), with the flags named.
     let choice = Choice {
-        name: &args.scheme,
+        name,
         knots: args.knots.is_some() || args.knots_out.is_some(),
         c: args.c.is_some(),
     };
@@ -146,7 +161,6 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
             ChoiceError::TakesNoC(_) | ChoiceError::NeedsC(_) => anyhow!("--c: {e}"),
         })
     })?;
-    check_outputs(&args)?;
     let c = match &args.c {
         Some(t) => {
             let (_, x) = super::scheme_args::parse_c(t)?;
@@ -159,12 +173,16 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
         }
         None => None,
     };
-    // The one dispatch: the scheme's mesh rules; everything below asks them
-    // for capabilities, never for the family.
-    let rules = mesh_rules(kind, c).map_err(CliError::usage)?;
+    mesh_rules(kind, c).map_err(CliError::usage)
+}
+
+pub(crate) fn run(args: SubdivideArgs) -> CliResult {
+    let rules = resolve_rules(&args)?;
+    check_outputs(&args)?;
+    let name = rules.name().to_owned();
     if args.stats && !rules.has_level_stats() {
         return Err(CliError::usage(anyhow!(
-            "--stats: scheme {kind} has no per-level statistics of extraordinary faces (a face-centred notion)"
+            "--stats: scheme {name} has no per-level statistics of extraordinary faces (a face-centred notion)"
         )));
     }
     if args.output.is_none() && args.knots_out.is_none() && !args.stats && !args.timing {
@@ -189,7 +207,7 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
         ] {
             if given {
                 return Err(CliError::usage(anyhow!(
-                    "{flag}: scheme {kind} refines closed meshes without tags only (use catmull-clark or loop)"
+                    "{flag}: scheme {name} refines closed meshes without tags only (use catmull-clark or loop)"
                 )));
             }
         }
@@ -217,20 +235,38 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
         Some(scheme) => {
             if !data.tags.is_empty() || args.tags.is_some() {
                 data.info = info;
-                return run_sharp(&args, kind, scheme, data, &sidecar);
+                return run_sharp(&args, &name, scheme, data, &sidecar);
             }
             // Closed meshes without tags take the closed refiners.
             match Mesh::from_polygons(data.positions.clone(), &data.faces) {
                 Err(MeshError::BoundaryEdge { .. }) => {
                     data.info = info;
-                    return run_sharp(&args, kind, scheme, data, &sidecar);
+                    return run_sharp(&args, &name, scheme, data, &sidecar);
                 }
                 other => other,
             }
         }
-        None => match data.tags.first() {
-            Some(t) => Err(MeshError::TagsUnsupported { line: t.line }),
-            None => Mesh::from_polygons(data.positions, &data.faces),
+        None => match (data.tags.first(), &args.scheme_file) {
+            (Some(t), Some(path)) => {
+                return Err(CliError::usage(anyhow!(
+                    "{}: OBJ line {}: a crease or corner tag, but --scheme-file {} gives no crease or corner rules (scheme files refine closed meshes without tags)",
+                    args.input.display(),
+                    t.line,
+                    path.display()
+                )))
+            }
+            (Some(t), None) => Err(MeshError::TagsUnsupported { line: t.line }),
+            (None, Some(path)) => match Mesh::from_polygons(data.positions, &data.faces) {
+                Err(e @ MeshError::BoundaryEdge { .. }) => {
+                    return Err(CliError::usage(anyhow!(
+                        "{}: {e}; --scheme-file {} gives no boundary rules (scheme files refine closed meshes)",
+                        args.input.display(),
+                        path.display()
+                    )))
+                }
+                other => other,
+            },
+            (None, None) => Mesh::from_polygons(data.positions, &data.faces),
         },
     }
     .with_context(input)
@@ -313,7 +349,7 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     let staged = Staged::write(&outputs)?;
     let mut text = Vec::new();
     if args.stats {
-        print_stats(&mut text, kind, &stats).map_err(CliError::failure)?;
+        print_stats(&mut text, &name, &stats).map_err(CliError::failure)?;
     }
     if let Some(buf) = to_stdout {
         text.extend_from_slice(&buf);
@@ -344,7 +380,7 @@ fn ignored_note(info: &obj::ObjInfo) -> Option<String> {
 /// write (the faces that are holes under `--boundary none` are left out).
 fn run_sharp(
     args: &SubdivideArgs,
-    kind: SchemeKind,
+    kind: &str,
     scheme: SdcScheme,
     data: obj::ObjData,
     sidecar: &[tags::Tag],
@@ -434,11 +470,7 @@ fn run_sharp(
 
 /// A refinement error: an interval the refinement cannot halve comes from
 /// the input (exit 2); anything else is a failure while running (exit 1).
-fn print_stats(
-    out: &mut impl Write,
-    scheme: SchemeKind,
-    stats: &[LevelStats],
-) -> std::io::Result<()> {
+fn print_stats(out: &mut impl Write, scheme: &str, stats: &[LevelStats]) -> std::io::Result<()> {
     writeln!(out, "# subdivide --scheme {scheme}: per-level statistics")?;
     for s in stats {
         writeln!(

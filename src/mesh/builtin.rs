@@ -24,7 +24,7 @@ pub fn mesh_rules(kind: SchemeKind, c: Option<f64>) -> Result<Box<dyn MeshRules>
     let rules: Box<dyn MeshRules> = match (kind, c) {
         (SchemeKind::AdjustableCc, Some(c)) => Box::new(CatmullClarkRules::new(kind.name(), c)?),
         (SchemeKind::CatmullClark, _) => Box::new(CatmullClarkRules::new(kind.name(), 0.5)?),
-        (SchemeKind::Loop, _) => Box::new(LoopRules),
+        (SchemeKind::Loop, _) => Box::new(LoopRules::default()),
         _ => Box::new(FaceSplit::new(kind)?),
     };
     Ok(rules)

@@ -28,7 +28,9 @@
 //! assert_eq!((once.face_count(), once.vertex_count()), (24, 26));
 //! ```
 
+use super::rules::{ValenceCache, VertexRule};
 use super::{Mesh, MeshError};
+use std::sync::Arc;
 
 fn check_c(c: f64) -> Result<(), MeshError> {
     if (0.0..=1.0).contains(&c) {
@@ -64,6 +66,37 @@ fn edge_ids(mesh: &Mesh) -> (Vec<u32>, usize) {
 /// in `[0, 1]` (`c = 1/2` is Catmull-Clark).
 pub fn refine_cc(mesh: &Mesh, c: f64) -> Result<Mesh, MeshError> {
     check_c(c)?;
+    refine_quads(mesh, c, &ShapeRule(c))
+}
+
+/// The vertex rule of the shape-adjustable scheme at `c` (module docs):
+/// `w_v = (n - 4 c (2 - c)) / n`, `w_R = 8 c (1 - c) / n`, `w_Q = 4 c^2 / n`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct ShapeRule(f64);
+
+impl VertexRule for ShapeRule {
+    fn refine_weights(&self, n: usize) -> Result<[f64; 3], MeshError> {
+        let (c, n) = (self.0, n as f64);
+        let (wq, wr) = (4.0 * c * c / n, 8.0 * c * (1.0 - c) / n);
+        let wv = (n - 4.0 * c * (2.0 - c)) / n;
+        Ok([wv, wr, wq])
+    }
+
+    fn limit_weights(&self, n: usize) -> Result<[f64; 3], MeshError> {
+        let (c, n) = (self.0, n as f64);
+        let den = n * (n + 8.0 * c + 4.0 * c * c);
+        Ok([n * n / den, 8.0 * c / den, 4.0 * c * c / den])
+    }
+}
+
+/// One step of a Catmull-Clark-type scheme: the shape-adjustable edge rule
+/// at `c` and face centroids (module docs), and the vertex point
+/// `v' = w_v v + w_R R + w_Q Q` with the weights `vertex` gives at each
+/// valence ([`VertexRule::refine_weights`]). [`refine_cc`] is this with the
+/// shape-adjustable vertex rule; a scheme file's rule enters here too
+/// ([`crate::mesh::user`]).
+pub fn refine_quads(mesh: &Mesh, c: f64, vertex: &dyn VertexRule) -> Result<Mesh, MeshError> {
+    check_c(c)?;
     let hc = mesh.half_edge_count();
     crate::mesh::quadrupled_half_edges(mesh)?;
     let (nv, nf) = (mesh.vertex_count(), mesh.face_count());
@@ -95,12 +128,12 @@ pub fn refine_cc(mesh: &Mesh, c: f64) -> Result<Mesh, MeshError> {
         add(out, &fp[f2], 0.5 * c);
     }
     // Vertex points.
+    let mut weights = ValenceCache::new(vertex, false);
     let mut vp = vec![[0.0f64; 3]; nv];
     for (v, out) in vp.iter_mut().enumerate() {
         let ring = mesh.vertex_ring(v);
+        let [wv, wr, wq] = weights.get(ring.len())?;
         let n = ring.len() as f64;
-        let (wq, wr) = (4.0 * c * c / n, 8.0 * c * (1.0 - c) / n);
-        let wv = (n - 4.0 * c * (2.0 - c)) / n;
         add(out, &p[v], wv);
         for &h in &ring {
             add(out, &fp[mesh.face_of(h)], wq / n);
@@ -141,6 +174,17 @@ pub fn refine_cc_levels(mesh: &Mesh, c: f64, levels: usize) -> Result<Mesh, Mesh
 /// Refine once first for meshes with other faces.
 pub fn limit_positions(mesh: &Mesh, c: f64) -> Result<Vec<[f64; 3]>, MeshError> {
     check_c(c)?;
+    limit_positions_with(mesh, &ShapeRule(c))
+}
+
+/// Limit positions of the vertices of an all-quad mesh by the stencil
+/// `l_v v + l_e sum e_i + l_f sum f_i` that `vertex` gives at each valence
+/// ([`VertexRule::limit_weights`]; [`limit_positions`] for the
+/// shape-adjustable rule).
+pub fn limit_positions_with(
+    mesh: &Mesh,
+    vertex: &dyn VertexRule,
+) -> Result<Vec<[f64; 3]>, MeshError> {
     if let Some(f) = (0..mesh.face_count()).find(|&f| mesh.face_size(f) != 4) {
         return Err(MeshError::NotAllQuads {
             face: f,
@@ -149,22 +193,22 @@ pub fn limit_positions(mesh: &Mesh, c: f64) -> Result<Vec<[f64; 3]>, MeshError> 
         });
     }
     let p = mesh.positions();
-    Ok((0..mesh.vertex_count())
+    let mut weights = ValenceCache::new(vertex, true);
+    (0..mesh.vertex_count())
         .map(|v| {
             let ring = mesh.vertex_ring(v);
-            let n = ring.len() as f64;
-            let den = n * (n + 8.0 * c + 4.0 * c * c);
+            let [lv, le, lf] = weights.get(ring.len())?;
             let mut out = [0.0; 3];
-            add(&mut out, &p[v], n * n / den);
+            add(&mut out, &p[v], lv);
             for &h in &ring {
-                add(&mut out, &p[mesh.target(h)], 8.0 * c / den);
+                add(&mut out, &p[mesh.target(h)], le);
                 // Far corner of the quad of h: two steps along the face.
                 let far = mesh.target(mesh.next(h));
-                add(&mut out, &p[far], 4.0 * c * c / den);
+                add(&mut out, &p[far], lf);
             }
-            out
+            Ok(out)
         })
-        .collect())
+        .collect()
 }
 
 /// The mesh with every vertex moved to its limit position ([`limit_positions`]).
@@ -175,36 +219,64 @@ pub fn limit_mesh_cc(mesh: &Mesh, c: f64) -> Result<Mesh, MeshError> {
 }
 
 /// The Catmull-Clark family's mesh rules ([`refine_cc`], [`limit_mesh_cc`])
-/// at shape parameter `c` (`1/2`: Catmull-Clark).
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// at shape parameter `c` (`1/2`: Catmull-Clark), or Catmull-Clark's edge and
+/// face rules with another vertex rule ([`refine_quads`],
+/// [`limit_positions_with`]; a scheme file's, [`crate::mesh::user`]).
+#[derive(Clone, Debug)]
 pub struct CatmullClarkRules {
-    name: &'static str,
+    name: String,
     c: f64,
+    vertex: Option<Arc<dyn VertexRule>>,
 }
 
 impl CatmullClarkRules {
     /// The rules at `c` in `[0, 1]` (named `name` in messages).
-    pub fn new(name: &'static str, c: f64) -> Result<Self, MeshError> {
+    pub fn new(name: &str, c: f64) -> Result<Self, MeshError> {
         check_c(c)?;
-        Ok(CatmullClarkRules { name, c })
+        Ok(CatmullClarkRules {
+            name: name.to_owned(),
+            c,
+            vertex: None,
+        })
+    }
+
+    /// Catmull-Clark's edge and face rules (`c = 1/2`) with the vertex rule
+    /// `vertex` (named `name` in messages).
+    pub fn with_vertex_rule(name: &str, vertex: Arc<dyn VertexRule>) -> Self {
+        CatmullClarkRules {
+            name: name.to_owned(),
+            c: 0.5,
+            vertex: Some(vertex),
+        }
     }
 }
 
 impl super::rules::MeshRules for CatmullClarkRules {
     fn name(&self) -> &str {
-        self.name
+        &self.name
     }
 
     fn refine(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
-        refine_cc(mesh, self.c)
+        match &self.vertex {
+            None => refine_cc(mesh, self.c),
+            Some(rule) => refine_quads(mesh, self.c, rule.as_ref()),
+        }
     }
 
     fn limit_mesh(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
-        limit_mesh_cc(mesh, self.c)
+        let positions = match &self.vertex {
+            None => limit_positions(mesh, self.c)?,
+            Some(rule) => limit_positions_with(mesh, rule.as_ref())?,
+        };
+        let mut m = mesh.clone();
+        m.set_positions(positions)?;
+        Ok(m)
     }
 
-    /// Catmull-Clark (`c = 1/2`) only.
+    /// Catmull-Clark (`c = 1/2` with its own vertex rule) only: the
+    /// sharp-feature masks are Catmull-Clark's.
     fn sharp_scheme(&self) -> Option<super::sharp::rules::SdcScheme> {
-        (self.c == 0.5).then_some(super::sharp::rules::SdcScheme::CatmullClark)
+        (self.c == 0.5 && self.vertex.is_none())
+            .then_some(super::sharp::rules::SdcScheme::CatmullClark)
     }
 }

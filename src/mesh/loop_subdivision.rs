@@ -57,8 +57,10 @@
 //! assert!((0..3).all(|k| (a[k] - b[k]).abs() < 1e-14));
 //! ```
 
+use crate::mesh::rules::{ValenceCache, VertexRule};
 use crate::mesh::{Mesh, MeshError, MAX_HALF_EDGES};
 use crate::schemes::loop_subdivision::beta;
+use std::sync::Arc;
 
 /// The next corner of the same triangle (faces are `3f..3f+3`).
 #[inline]
@@ -103,30 +105,6 @@ pub fn check_triangles(mesh: &Mesh, operation: &'static str) -> Result<(), MeshE
     Ok(())
 }
 
-/// Per-valence pairs `(centre weight, neighbour weight)` of a stencil
-/// `w_v v + w_e sum e_i`, computed once per valence met.
-struct ValenceTable {
-    by_n: Vec<Option<(f64, f64)>>,
-    rule: fn(usize) -> (f64, f64),
-}
-
-impl ValenceTable {
-    fn new(rule: fn(usize) -> (f64, f64)) -> Self {
-        ValenceTable {
-            by_n: Vec::new(),
-            rule,
-        }
-    }
-
-    fn get(&mut self, n: usize) -> (f64, f64) {
-        if self.by_n.len() <= n {
-            self.by_n.resize(n + 1, None);
-        }
-        let rule = self.rule;
-        *self.by_n[n].get_or_insert_with(|| rule(n))
-    }
-}
-
 /// Loop's vertex rule: `(1 - n beta_n, beta_n)`.
 fn vertex_weights(n: usize) -> (f64, f64) {
     let b = beta(n);
@@ -140,11 +118,34 @@ fn limit_weights(n: usize) -> (f64, f64) {
     (1.0 - n as f64 * chi, chi)
 }
 
-/// Applies the one-ring stencil `rule(n)` to every vertex of a closed
-/// triangle mesh: `w_v(n) v + w_e(n) sum e_i`. The neighbour sums are
-/// accumulated over the half-edges (each directed edge `u -> v` adds `v` to
-/// `u`), `O(H)`, into the returned vector itself.
-fn one_ring_stencil(mesh: &Mesh, rule: fn(usize) -> (f64, f64), capacity: usize) -> Vec<[f64; 3]> {
+/// Loop's vertex rule and limit stencil ([`vertex_weights`],
+/// [`limit_weights`]) as a [`VertexRule`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct LoopVertexRule;
+
+impl VertexRule for LoopVertexRule {
+    fn refine_weights(&self, n: usize) -> Result<[f64; 3], MeshError> {
+        let (wv, we) = vertex_weights(n);
+        Ok([wv, we, 0.0])
+    }
+
+    fn limit_weights(&self, n: usize) -> Result<[f64; 3], MeshError> {
+        let (wv, we) = limit_weights(n);
+        Ok([wv, we, 0.0])
+    }
+}
+
+/// Applies the one-ring stencil of `rule` (its refinement weights, or with
+/// `limit` its limit stencil) to every vertex of a closed triangle mesh:
+/// `w_v(n) v + w_e(n) sum e_i`. The neighbour sums are accumulated over the
+/// half-edges (each directed edge `u -> v` adds `v` to `u`), `O(H)`, into the
+/// returned vector itself.
+fn one_ring_stencil(
+    mesh: &Mesh,
+    rule: &dyn VertexRule,
+    limit: bool,
+    capacity: usize,
+) -> Result<Vec<[f64; 3]>, MeshError> {
     let nv = mesh.vertex_count();
     let p = &mesh.positions;
     let mut out: Vec<[f64; 3]> = Vec::with_capacity(capacity.max(nv));
@@ -159,9 +160,9 @@ fn one_ring_stencil(mesh: &Mesh, rule: fn(usize) -> (f64, f64), capacity: usize)
         s[2] += v[2];
         valence[u] += 1;
     }
-    let mut table = ValenceTable::new(rule);
+    let mut table = ValenceCache::new(rule, limit);
     for (v, s) in out.iter_mut().enumerate() {
-        let (wv, we) = table.get(valence[v] as usize);
+        let [wv, we, _] = table.get(valence[v] as usize)?;
         let c = p[v];
         *s = [
             wv * c[0] + we * s[0],
@@ -169,7 +170,7 @@ fn one_ring_stencil(mesh: &Mesh, rule: fn(usize) -> (f64, f64), capacity: usize)
             wv * c[2] + we * s[2],
         ];
     }
-    out
+    Ok(out)
 }
 
 /// One Loop step on a closed triangle mesh (see the module docs for the
@@ -191,6 +192,14 @@ fn one_ring_stencil(mesh: &Mesh, rule: fn(usize) -> (f64, f64), capacity: usize)
 /// assert!(matches!(err, MeshError::NotAllTriangles { face: 0, corners: 4, .. }));
 /// ```
 pub fn refine(mesh: &Mesh) -> Result<Mesh, MeshError> {
+    refine_with(mesh, &LoopVertexRule)
+}
+
+/// One step of a Loop-type scheme: Loop's edge rule and split (module docs)
+/// with the vertex rule `vertex` (its [`VertexRule::refine_weights`]
+/// `[w_v, w_e, 0]`); [`refine`] is this with Loop's own rule, and a scheme
+/// file's rule enters here too ([`crate::mesh::user`]).
+pub fn refine_with(mesh: &Mesh, vertex: &dyn VertexRule) -> Result<Mesh, MeshError> {
     check_triangles(mesh, "Loop refinement")?;
     let h_count = mesh.half_edge_count();
     crate::mesh::quadrupled_half_edges(mesh)?;
@@ -201,7 +210,7 @@ pub fn refine(mesh: &Mesh) -> Result<Mesh, MeshError> {
     let cv = &mesh.corner_vertex;
 
     // Vertex points (indices 0..V), then edge points (V..V+E).
-    let mut positions = one_ring_stencil(mesh, vertex_weights, nv + ne);
+    let mut positions = one_ring_stencil(mesh, vertex, false, nv + ne)?;
     let mut vertex_out: Vec<u32> = Vec::with_capacity(nv + ne);
     vertex_out.extend(mesh.vertex_out.iter().map(|&h| tri(h as usize) as u32));
     // edge_vertex[h] = the new vertex of the edge of h (both half-edges).
@@ -297,8 +306,18 @@ pub fn refine_levels(mesh: &Mesh, levels: usize) -> Result<Mesh, MeshError> {
 /// assert_eq!(lim.len(), 4);
 /// ```
 pub fn limit_positions(mesh: &Mesh) -> Result<Vec<[f64; 3]>, MeshError> {
+    limit_positions_with(mesh, &LoopVertexRule)
+}
+
+/// Limit positions of every vertex of a closed triangle mesh by the limit
+/// stencil `l_v v + l_e sum e_i` of `vertex` ([`VertexRule::limit_weights`];
+/// [`limit_positions`] for Loop's own).
+pub fn limit_positions_with(
+    mesh: &Mesh,
+    vertex: &dyn VertexRule,
+) -> Result<Vec<[f64; 3]>, MeshError> {
     check_triangles(mesh, "the Loop limit stencil")?;
-    Ok(one_ring_stencil(mesh, limit_weights, 0))
+    one_ring_stencil(mesh, vertex, true, 0)
 }
 
 /// The mesh with every vertex moved to its limit position ([`limit_positions`]).
@@ -366,24 +385,53 @@ mod tests {
 }
 
 /// Loop's mesh rules ([`refine`], [`limit_mesh`]) behind
-/// [`MeshRules`](crate::mesh::rules::MeshRules).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct LoopRules;
+/// [`MeshRules`](crate::mesh::rules::MeshRules), or Loop's edge rule with
+/// another vertex rule ([`refine_with`], [`limit_positions_with`]; a scheme
+/// file's, [`crate::mesh::user`]).
+#[derive(Clone, Debug, Default)]
+pub struct LoopRules {
+    vertex: Option<(String, Arc<dyn VertexRule>)>,
+}
+
+impl LoopRules {
+    /// Loop's edge rule with the vertex rule `vertex` (named `name` in
+    /// messages).
+    pub fn with_vertex_rule(name: &str, vertex: Arc<dyn VertexRule>) -> Self {
+        LoopRules {
+            vertex: Some((name.to_owned(), vertex)),
+        }
+    }
+}
 
 impl crate::mesh::rules::MeshRules for LoopRules {
     fn name(&self) -> &str {
-        "loop"
+        match &self.vertex {
+            None => "loop",
+            Some((name, _)) => name,
+        }
     }
 
     fn refine(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
-        refine(mesh)
+        match &self.vertex {
+            None => refine(mesh),
+            Some((_, rule)) => refine_with(mesh, rule.as_ref()),
+        }
     }
 
     fn limit_mesh(&self, mesh: &Mesh) -> Result<Mesh, MeshError> {
-        limit_mesh(mesh)
+        let positions = match &self.vertex {
+            None => limit_positions(mesh)?,
+            Some((_, rule)) => limit_positions_with(mesh, rule.as_ref())?,
+        };
+        let mut m = mesh.clone();
+        m.set_positions(positions)?;
+        Ok(m)
     }
 
+    /// Loop with its own vertex rule only: the sharp-feature masks are Loop's.
     fn sharp_scheme(&self) -> Option<crate::mesh::sharp::rules::SdcScheme> {
-        Some(crate::mesh::sharp::rules::SdcScheme::Loop)
+        self.vertex
+            .is_none()
+            .then_some(crate::mesh::sharp::rules::SdcScheme::Loop)
     }
 }

@@ -52,6 +52,7 @@ pub(crate) mod projection;
 pub mod refine;
 pub mod rules;
 pub mod sharp;
+pub mod user;
 
 use std::fmt;
 

@@ -120,6 +120,60 @@ pub trait MeshRules: fmt::Debug + Send + Sync {
     }
 }
 
+/// A vertex rule by valence: the part of a one-ring scheme's mesh rules
+/// that a scheme file states (math doc section 12.1). The Catmull-Clark
+/// family's refiner ([`super::catmull_clark::refine_quads`]) and Loop's
+/// ([`super::loop_subdivision::refine_with`]) take one; the built-in rules
+/// and a scheme file's ([`super::user`]) implement it.
+pub trait VertexRule: fmt::Debug + Send + Sync {
+    /// The weights of one refinement step at valence `n`: quad meshes
+    /// `[w_v, w_R, w_Q]` in `v' = w_v v + w_R R + w_Q Q` (`R` the mean of
+    /// the edge midpoints, `Q` of the new face points around `v`); triangle
+    /// meshes `[w_v, w_e, 0]` in `v' = w_v v + w_e sum e_i`.
+    fn refine_weights(&self, n: usize) -> Result<[f64; 3], MeshError>;
+
+    /// The limit stencil at valence `n`, `[l_v, l_e, l_f]` in
+    /// `v_inf = l_v v + l_e sum e_i + l_f sum f_i` (`f_i` the face-diagonal
+    /// neighbours of a quad mesh; `l_f = 0` on triangle meshes).
+    fn limit_weights(&self, n: usize) -> Result<[f64; 3], MeshError>;
+}
+
+/// The weights of a [`VertexRule`] by valence, each valence asked once per
+/// refinement step.
+pub(crate) struct ValenceCache<'a> {
+    rule: &'a dyn VertexRule,
+    limit: bool,
+    by_n: Vec<Option<[f64; 3]>>,
+}
+
+impl<'a> ValenceCache<'a> {
+    /// The cache of `rule`'s refinement weights (`limit`: its limit stencil).
+    pub(crate) fn new(rule: &'a dyn VertexRule, limit: bool) -> Self {
+        ValenceCache {
+            rule,
+            limit,
+            by_n: Vec::new(),
+        }
+    }
+
+    /// The weights at valence `n`.
+    pub(crate) fn get(&mut self, n: usize) -> Result<[f64; 3], MeshError> {
+        if self.by_n.len() <= n {
+            self.by_n.resize(n + 1, None);
+        }
+        if let Some(w) = self.by_n[n] {
+            return Ok(w);
+        }
+        let w = if self.limit {
+            self.rule.limit_weights(n)?
+        } else {
+            self.rule.refine_weights(n)?
+        };
+        self.by_n[n] = Some(w);
+        Ok(w)
+    }
+}
+
 /// The Doo-Sabin family's rules (NURDS, original Doo-Sabin, the
 /// Catmull-Clark variant): [`refine`], [`limit_mesh`] and [`level_stats`] of
 /// this crate's `mesh` module (math doc sections 1-3).
