@@ -46,7 +46,7 @@ enum Command {
     CcssBound(ccss_bound::CcssBoundArgs),
     /// Adjustable Catmull-Clark parameter study: eigenvalues and class against c (CSV).
     CcStudy(cc_study::CcStudyArgs),
-    /// Refine a closed polygon mesh (OBJ): NURDS, Doo-Sabin, the Catmull-Clark variant, Catmull-Clark, adjustable-cc or Loop (triangles).
+    /// Refine a polygon mesh (OBJ, closed or open): NURDS, Doo-Sabin, the Catmull-Clark variant, Catmull-Clark, adjustable-cc or Loop (triangles).
     Subdivide(subdivide::SubdivideArgs),
     /// Run a report spec (default analysis/default.toml) and write reports/<name>/.
     Report(report::ReportArgs),

@@ -7,7 +7,8 @@
 //! meshes and meshes with crease and corner tags (from the OBJ's `t` lines
 //! and `--tags FILE`) through [`subdiv_lab::mesh::sharp::SharpMesh`], with
 //! `--boundary` and `--creasing`; closed meshes without tags take the closed
-//! refiners.
+//! refiners. The Doo-Sabin family refines open meshes without tags through
+//! [`subdiv_lab::mesh::open::OpenMesh`] (its boundary rule, math doc section 19).
 //!
 //! Conflicting outputs (`-o X --knots-out X`, an output naming the input) are
 //! refused before anything is written. All outputs are produced in memory
@@ -23,6 +24,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use subdiv_lab::mesh::builtin::mesh_rules;
 use subdiv_lab::mesh::limit::LevelStats;
+use subdiv_lab::mesh::open::OpenMesh;
 use subdiv_lab::mesh::refine::half_edges_after;
 use subdiv_lab::mesh::rules::{KnotUse, MeshRules};
 use subdiv_lab::mesh::sharp::rules::{Boundary, Creasing, SdcScheme};
@@ -34,7 +36,7 @@ use subdiv_lab::schemes::SchemeKind;
 
 #[derive(Args, Debug)]
 pub(crate) struct SubdivideArgs {
-    /// Input mesh (closed, oriented OBJ).
+    /// Input mesh (oriented manifold OBJ; open meshes: Catmull-Clark, Loop and the Doo-Sabin family).
     input: PathBuf,
     #[arg(long, help = super::scheme_args::scheme_help(), required_unless_present = "scheme_file")]
     scheme: Option<String>,
@@ -206,8 +208,13 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
             ("--creasing", args.creasing.is_some()),
         ] {
             if given {
+                let what = if rules.has_open_rule() {
+                    "takes no crease or corner tags and has one boundary rule (math doc section 19)"
+                } else {
+                    "refines closed meshes without tags only"
+                };
                 return Err(CliError::usage(anyhow!(
-                    "{flag}: scheme {name} refines closed meshes without tags only (use catmull-clark or loop)"
+                    "{flag}: scheme {name} {what} (use catmull-clark or loop)"
                 )));
             }
         }
@@ -266,6 +273,16 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
                 }
                 other => other,
             },
+            (None, None) if rules.has_open_rule() => {
+                // Closed meshes take the closed refiners; open ones the boundary rule.
+                match Mesh::from_polygons(data.positions.clone(), &data.faces) {
+                    Err(MeshError::BoundaryEdge { .. }) => {
+                        data.info = info;
+                        return run_open(&args, &name, rules.as_ref(), data);
+                    }
+                    other => other,
+                }
+            }
             (None, None) => Mesh::from_polygons(data.positions, &data.faces),
         },
     }
@@ -462,6 +479,96 @@ fn run_sharp(
         Some(_) => write_stdout(&buf)?,
         None => {}
     }
+    if let Some(note) = ignored_note(&data.info) {
+        write_stderr(&note);
+    }
+    Ok(())
+}
+
+/// `subdivide` of an open mesh (no tags) with the boundary rule of a
+/// Doo-Sabin-family scheme (math doc section 19): validate, apply the knot
+/// file (boundary directions included), refine, write the OBJ and the
+/// refined intervals.
+fn run_open(
+    args: &SubdivideArgs,
+    kind: &str,
+    rules: &dyn MeshRules,
+    data: obj::ObjData,
+) -> CliResult {
+    for (flag, given) in [("--limit", args.limit), ("--stats", args.stats)] {
+        if given {
+            return Err(CliError::usage(anyhow!(
+                "{flag}: {} has a boundary; --scheme {kind} gives {flag} for closed meshes only (open meshes: refined control meshes)",
+                args.input.display()
+            )));
+        }
+    }
+    let mut mesh = OpenMesh::from_polygons(data.positions, &data.faces)
+        .with_context(|| format!("{}", args.input.display()))
+        .map_err(CliError::usage)?;
+    let knot_text = match &args.knots {
+        Some(path) => std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read {}", path.display()))
+            .map_err(CliError::usage)?,
+        None => String::new(),
+    };
+    knot_file::apply_open_knot_text(&mut mesh, &knot_text, args.default_interval)
+        .with_context(|| match &args.knots {
+            Some(path) => format!("{}", path.display()),
+            None => "--default-interval".to_owned(),
+        })
+        .map_err(CliError::usage)?;
+    let needed = mesh.directed_edges_after(args.levels);
+    if needed > MAX_HALF_EDGES {
+        return Err(CliError::usage(anyhow!(
+            "--levels {}: the result would have {needed} half-edges (limit {MAX_HALF_EDGES})",
+            args.levels
+        )));
+    }
+    check_budget(args, needed)?;
+    let t = std::time::Instant::now();
+    for _ in 0..args.levels {
+        mesh = match rules.refine_open(&mesh) {
+            Some(r) => r.map_err(CliError::lib)?,
+            None => {
+                return Err(CliError::usage(anyhow!(
+                    "--scheme {kind}: no boundary rule"
+                )))
+            }
+        };
+    }
+    let refine_secs = t.elapsed().as_secs_f64();
+    if args.timing {
+        write_stderr(&format!(
+            "refinement: {} levels, {} faces, {} vertices, {:.6} s, {:.0} output faces/s",
+            args.levels,
+            mesh.face_count(),
+            mesh.vertex_count(),
+            refine_secs,
+            mesh.face_count() as f64 / refine_secs.max(1e-9)
+        ));
+    }
+    let mut outputs: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    let mut to_stdout: Option<Vec<u8>> = None;
+    if let Some(path) = &args.output {
+        let mut buf = Vec::new();
+        obj::write_open_obj(&mesh, &mut buf).map_err(CliError::failure)?;
+        if path.as_os_str() == "-" {
+            to_stdout = Some(buf);
+        } else {
+            outputs.push((path.clone(), buf));
+        }
+    }
+    if let Some(path) = &args.knots_out {
+        let mut buf = Vec::new();
+        knot_file::write_open_knots(&mesh, &mut buf).map_err(CliError::failure)?;
+        outputs.push((path.clone(), buf));
+    }
+    let staged = Staged::write(&outputs)?;
+    if let Some(buf) = to_stdout {
+        write_stdout(&buf)?;
+    }
+    staged.commit()?;
     if let Some(note) = ignored_note(&data.info) {
         write_stderr(&note);
     }

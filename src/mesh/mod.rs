@@ -47,6 +47,7 @@ pub mod limit;
 pub mod loop_subdivision;
 pub mod neighbourhood;
 pub mod obj;
+pub mod open;
 #[cfg(feature = "report")]
 pub(crate) mod projection;
 pub mod refine;
@@ -344,6 +345,17 @@ pub enum MeshError {
     TagsUnsupported {
         /// 1-based line number of the first tag.
         line: usize,
+    },
+    /// A knot file that gives one direction of a boundary edge but not the
+    /// other (the direction outside the faces, or the one inside).
+    #[error("knot file line {line}: boundary edge {u}->{v} (OBJ indices) is given, its direction {v}->{u} is not; a boundary edge needs both (the boundary curve's rule uses both)")]
+    BoundaryKnotMissing {
+        /// 1-based line number of the direction that is given.
+        line: usize,
+        /// Start vertex of the given direction (OBJ, 1-based).
+        u: usize,
+        /// Its end (OBJ, 1-based).
+        v: usize,
     },
     /// The shape parameter `c` of the Catmull-Clark family is outside `[0, 1]`.
     #[error("shape parameter c = {0} is not in [0, 1]")]

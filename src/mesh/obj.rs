@@ -145,6 +145,11 @@ pub fn write_obj<W: Write>(mesh: &Mesh, out: &mut W) -> io::Result<()> {
     Ok(())
 }
 
+/// Writes an open mesh as OBJ, as [`write_obj`].
+pub fn write_open_obj<W: Write>(mesh: &super::open::OpenMesh, out: &mut W) -> io::Result<()> {
+    write_obj(mesh.faces(), out)
+}
+
 /// [`write_obj`] into a `String`.
 pub fn write_obj_string(mesh: &Mesh) -> String {
     let mut buf = Vec::new();

@@ -156,46 +156,42 @@ pub(crate) fn nurds_face_weights(mesh: &Mesh, start: usize, n: usize) -> Vec<f64
 /// last bit. An inexact half would silently change the edge ratios (or give
 /// 0); [`MeshError::KnotNotHalvable`] names the edge instead.
 fn check_halvable(mesh: &Mesh) -> Result<(), MeshError> {
-    for (h, &d) in mesh.knots.iter().enumerate() {
-        let half = 0.5 * d;
-        if !(half > 0.0 && half * 2.0 == d) {
-            return Err(MeshError::KnotNotHalvable {
-                u: mesh.origin(h),
-                v: mesh.target(h),
-                value: format!("{d:?}"),
-            });
-        }
+    match first_not_halvable(&mesh.knots) {
+        Some(h) => Err(MeshError::KnotNotHalvable {
+            u: mesh.origin(h),
+            v: mesh.target(h),
+            value: format!("{:?}", mesh.knots[h]),
+        }),
+        None => Ok(()),
     }
-    Ok(())
 }
 
-/// One subdivision step of `scheme` (NURDS, original Doo-Sabin or the
-/// Catmull-Clark variant) with knot propagation; see the module docs for the
-/// index layout of the result.
+/// The new points of one step of `scheme`: `corners[c]` is the new vertex of
+/// old corner `c` (the member's face rule, module docs), for every face.
 ///
-/// The knot intervals of the input are used by NURDS only; the result always
-/// carries the propagated (halved) intervals.
-pub fn refine(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
-    if !scheme.is_doo_sabin_family() {
-        return Err(MeshError::UnsupportedScheme(scheme.name().to_owned()));
-    }
-    check_halvable(mesh)?;
+/// With `OPEN` (meshes with a boundary, [`super::open`], math doc section 19)
+/// `mesh.twin` and `mesh.knots` run on past the corners into the ghost
+/// half-edges: a corner `h` whose twin is the ghost `H + g` lies on a
+/// boundary edge `P_i -> P_{i+1}`, and `boundary[2g]`, `boundary[2g + 1]`
+/// get the two points of the curve rule on that edge (math doc section 2):
+/// `(P_i + E_i) / 2` and `(E_i + P_{i+1}) / 2`, with the edge point `E_i` of
+/// the face rule (NURDS: the ratio of the edge's two intervals; the uniform
+/// members: the midpoint). Without `OPEN` nothing else is computed.
+pub(crate) fn new_points<const OPEN: bool>(
+    mesh: &Mesh,
+    scheme: SchemeKind,
+    corners: &mut [[f64; 3]],
+    boundary: &mut [[f64; 3]],
+) {
     let h_count = mesh.half_edge_count();
-    crate::mesh::quadrupled_half_edges(mesh)?;
-    let nf = mesh.face_count();
-    let nv = mesh.vertex_count();
-    let ne = h_count / 2;
-
-    // --- new positions: one per old corner ---
-    let mut positions = vec![[0.0f64; 3]; h_count];
     let mut ds = DooSabinTables::default();
     let mut sc = Scratch::default();
-    for f in 0..nf {
+    for f in 0..mesh.face_count() {
         let start = mesh.face_start[f] as usize;
         let n = mesh.face_start[f + 1] as usize - start;
         sc.p.clear();
         sc.p.extend((start..start + n).map(|h| mesh.positions[mesh.corner_vertex[h] as usize]));
-        let out = &mut positions[start..start + n];
+        let out = &mut corners[start..start + n];
         match scheme {
             SchemeKind::DooSabin => {
                 let w = ds.get(n);
@@ -208,6 +204,17 @@ pub fn refine(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
                         }
                     }
                     *o = acc;
+                }
+                if OPEN {
+                    sc.e.clear();
+                    for i in 0..n {
+                        let (a, b) = (sc.p[i], sc.p[(i + 1) % n]);
+                        sc.e.push([
+                            0.5 * a[0] + 0.5 * b[0],
+                            0.5 * a[1] + 0.5 * b[1],
+                            0.5 * a[2] + 0.5 * b[2],
+                        ]);
+                    }
                 }
             }
             _ => {
@@ -253,7 +260,54 @@ pub fn refine(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
                 }
             }
         }
+        if OPEN {
+            for i in 0..n {
+                let t = mesh.twin[start + i] as usize;
+                if t < h_count {
+                    continue;
+                }
+                let g = t - h_count;
+                let (a, e, b) = (sc.p[i], sc.e[i], sc.p[(i + 1) % n]);
+                for k in 0..3 {
+                    boundary[2 * g][k] = 0.5 * (a[k] + e[k]);
+                    boundary[2 * g + 1][k] = 0.5 * (e[k] + b[k]);
+                }
+            }
+        }
     }
+}
+
+/// The first knot interval of `knots` that refinement cannot halve exactly
+/// (the refined mesh carries `d / 2`): none for a normal `f64`, and none for
+/// a subnormal one with an even last bit. An inexact half would silently
+/// change the edge ratios (or give 0).
+pub(crate) fn first_not_halvable(knots: &[f64]) -> Option<usize> {
+    knots.iter().position(|&d| {
+        let half = 0.5 * d;
+        !(half > 0.0 && half * 2.0 == d)
+    })
+}
+
+/// One subdivision step of `scheme` (NURDS, original Doo-Sabin or the
+/// Catmull-Clark variant) with knot propagation; see the module docs for the
+/// index layout of the result.
+///
+/// The knot intervals of the input are used by NURDS only; the result always
+/// carries the propagated (halved) intervals.
+pub fn refine(mesh: &Mesh, scheme: SchemeKind) -> Result<Mesh, MeshError> {
+    if !scheme.is_doo_sabin_family() {
+        return Err(MeshError::UnsupportedScheme(scheme.name().to_owned()));
+    }
+    check_halvable(mesh)?;
+    let h_count = mesh.half_edge_count();
+    crate::mesh::quadrupled_half_edges(mesh)?;
+    let nf = mesh.face_count();
+    let nv = mesh.vertex_count();
+    let ne = h_count / 2;
+
+    // --- new positions: one per old corner ---
+    let mut positions = vec![[0.0f64; 3]; h_count];
+    new_points::<false>(mesh, scheme, &mut positions, &mut []);
 
     // --- edges: representative half-edges h < twin(h) ---
     // edge_of[h] = index of the edge of h, for both half-edges.

@@ -110,6 +110,23 @@ pub trait MeshRules: fmt::Debug + Send + Sync {
         None
     }
 
+    /// One step of an open mesh without tags ([`super::open::OpenMesh`],
+    /// the boundary rule of math doc section 19); `None` (the default) when
+    /// these rules have no boundary rule of that kind.
+    fn refine_open(
+        &self,
+        mesh: &super::open::OpenMesh,
+    ) -> Option<Result<super::open::OpenMesh, MeshError>> {
+        let _ = mesh;
+        None
+    }
+
+    /// Whether [`refine_open`](Self::refine_open) refines (default `false`;
+    /// must agree with it).
+    fn has_open_rule(&self) -> bool {
+        false
+    }
+
     /// The local configuration that governs face `f` of `mesh` under these
     /// rules, for face-centred schemes whose extraordinary faces persist
     /// under refinement (the Doo-Sabin family: the face's own edge ratios
@@ -223,6 +240,17 @@ impl MeshRules for FaceSplit {
     }
 
     fn has_level_stats(&self) -> bool {
+        true
+    }
+
+    fn refine_open(
+        &self,
+        mesh: &super::open::OpenMesh,
+    ) -> Option<Result<super::open::OpenMesh, MeshError>> {
+        Some(mesh.refine(self.0))
+    }
+
+    fn has_open_rule(&self) -> bool {
         true
     }
 

@@ -2384,11 +2384,11 @@ fn cases() -> Vec<Case> {
         bad_with("sharp-creasing-bad-value", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--creasing", "linear", "-o", "o.obj"],
             &[("m.obj", sharp_strip!())], "linear"),
         bad("sharp-boundary-with-closed-only-scheme", &["subdivide", "{M}/cube.obj", "--scheme", "nurds", "--boundary", "edge-only", "-o", "o.obj"],
-            "--boundary: scheme nurds refines closed meshes without tags only"),
+            "--boundary: scheme nurds takes no crease or corner tags and has one boundary rule"),
         bad("sharp-creasing-with-closed-only-scheme", &["subdivide", "{M}/cube.obj", "--scheme", "adjustable-cc", "--c", "0.3", "--creasing", "chaikin", "-o", "o.obj"],
             "--creasing: scheme adjustable-cc refines closed meshes without tags only"),
         bad_with("sharp-tags-with-closed-only-scheme", &["subdivide", "{M}/cube.obj", "--scheme", "nurds", "--tags", "t.tags", "-o", "o.obj"],
-            &[("t.tags", "t crease 2/1/0 0 1 1\n")], "--tags: scheme nurds refines closed meshes without tags only"),
+            &[("t.tags", "t crease 2/1/0 0 1 1\n")], "--tags: scheme nurds takes no crease or corner tags and has one boundary rule"),
         bad_with("sharp-obj-tags-with-closed-only-scheme", &["subdivide", "m.obj", "--scheme", "doo-sabin", "-o", "o.obj"],
             &[("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nt crease 2/1/0 0 1 1\n")], "tag line 9: crease and corner tags need --scheme catmull-clark or loop"),
         bad_with("sharp-limit-needs-quads", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--levels", "0", "--limit", "-o", "o.obj"],
@@ -2401,6 +2401,49 @@ fn cases() -> Vec<Case> {
             &[("m.obj", sharp_strip!())], "--levels 13"),
     ]);
     // (end of section sharp-meshes)
+    // ===================================================================
+    // SECTION open-doo-sabin: open meshes under NURDS, Doo-Sabin and the
+    // CC variant (boundary rule of math doc section 19).
+    // ===================================================================
+    v.extend([
+        bad_with("open-ds-non-manifold-edge", &["subdivide", "m.obj", "--scheme", "nurds", "-o", "o.obj"],
+            &[("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n")], "non-manifold edge 0-1 (OBJ 1-2): it lies in 3 faces"),
+        bad_with("open-ds-non-manifold-vertex", &["subdivide", "m.obj", "--scheme", "doo-sabin", "-o", "o.obj"],
+            &[("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n")], "non-manifold vertex 0 (OBJ 1): its faces form 2 separate fans"),
+        bad_with("open-ds-inconsistent-orientation", &["subdivide", "m.obj", "--scheme", "cc-variant", "-o", "o.obj"],
+            &[("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 3 4\n")], "inconsistent orientation"),
+        bad_with("open-ds-knots-boundary-direction-missing", &["subdivide", "m.obj", "--scheme", "nurds", "--knots", "k.txt", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!()), ("k.txt", "1 2 0.5\n")], "k.txt: knot file line 1: boundary edge 1->2 (OBJ indices) is given, its direction 2->1 is not"),
+        bad_with("open-ds-knots-outer-direction-only", &["subdivide", "m.obj", "--scheme", "nurds", "--knots", "k.txt", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!()), ("k.txt", "# outer side\n2 1 0.5\n")], "knot file line 2: boundary edge 2->1 (OBJ indices) is given, its direction 1->2 is not"),
+        bad_with("open-ds-knots-boundary-negative", &["subdivide", "m.obj", "--scheme", "nurds", "--knots", "k.txt", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!()), ("k.txt", "1 2 0.5\n2 1 -1\n")], "knot file line 2: interval of 2->1 (OBJ indices) must be finite and > 0, got -1"),
+        bad_with("open-ds-knots-boundary-zero", &["subdivide", "m.obj", "--scheme", "nurds", "--knots", "k.txt", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!()), ("k.txt", "2 1 0\n1 2 1\n")], "knot file line 1: interval of 2->1 (OBJ indices) must be finite and > 0, got 0"),
+        bad_with("open-ds-knots-no-such-edge", &["subdivide", "m.obj", "--scheme", "nurds", "--knots", "k.txt", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!()), ("k.txt", "1 3 1\n")], "knot file line 1: the mesh has no directed edge 1->3"),
+        bad_with("open-ds-knots-duplicate-boundary-direction", &["subdivide", "m.obj", "--scheme", "nurds", "--knots", "k.txt", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!()), ("k.txt", "2 1 1\n1 2 1\n2 1 3\n")], "knot file line 3: directed edge 2->1 (OBJ indices) was already given on line 1"),
+        bad_with("open-ds-default-interval-negative", &["subdivide", "m.obj", "--scheme", "cc-variant", "--default-interval", "-1", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "--default-interval must be finite and > 0"),
+        bad_with("open-ds-obj-crease-tag", &["subdivide", "m.obj", "--scheme", "nurds", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t crease 2/1/0 0 1 1\n"))], "tag line 9: crease and corner tags need --scheme catmull-clark or loop"),
+        bad_with("open-ds-obj-corner-tag", &["subdivide", "m.obj", "--scheme", "doo-sabin", "-o", "o.obj"],
+            &[("m.obj", concat!(sharp_strip!(), "t corner 1/1/0 0 10\n"))], "tag line 9: crease and corner tags need --scheme catmull-clark or loop"),
+        bad_with("open-ds-tags-file", &["subdivide", "m.obj", "--scheme", "cc-variant", "--tags", "t.tags", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!()), ("t.tags", "t corner 1/1/0 0 1\n")], "--tags: scheme cc-variant takes no crease or corner tags"),
+        bad_with("open-ds-boundary-flag", &["subdivide", "m.obj", "--scheme", "doo-sabin", "--boundary", "edge-and-corner", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "--boundary: scheme doo-sabin takes no crease or corner tags and has one boundary rule"),
+        bad_with("open-ds-limit", &["subdivide", "m.obj", "--scheme", "nurds", "--limit", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "--limit: m.obj has a boundary; --scheme nurds gives --limit for closed meshes only"),
+        bad_with("open-ds-stats", &["subdivide", "m.obj", "--scheme", "doo-sabin", "--stats"],
+            &[("m.obj", sharp_strip!())], "--stats: m.obj has a boundary"),
+        bad_with("open-ds-levels-too-many", &["subdivide", "m.obj", "--scheme", "nurds", "--levels", "40", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "--levels 40: the result would have"),
+        bad_with("open-ds-levels-over-budget", &["subdivide", "m.obj", "--scheme", "doo-sabin", "--levels", "13", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "--levels 13"),
+    ]);
+    // (end of section open-doo-sabin)
     // ===================================================================
     // SECTION scheme-files: --scheme-file of analyze, matrix, sweep and
     // merge; every refusal of the scheme-file validator.
