@@ -13,3 +13,4 @@ mod mesh_props;
 mod mesh_shipped;
 mod mesh_tensor_limit;
 mod sharp_mesh;
+mod open_doo_sabin;
