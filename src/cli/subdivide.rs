@@ -32,7 +32,6 @@ use subdiv_lab::mesh::sharp::{tags, SharpMesh};
 use subdiv_lab::mesh::user::file_rules;
 use subdiv_lab::mesh::{knot_file, obj, Mesh, MeshError, MAX_HALF_EDGES};
 use subdiv_lab::schemes::choice::{validate, Choice, ChoiceError};
-use subdiv_lab::schemes::SchemeKind;
 
 #[derive(Args, Debug)]
 pub(crate) struct SubdivideArgs {

@@ -12,5 +12,5 @@ mod mesh_io;
 mod mesh_props;
 mod mesh_shipped;
 mod mesh_tensor_limit;
-mod sharp_mesh;
 mod open_doo_sabin;
+mod sharp_mesh;
