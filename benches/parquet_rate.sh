@@ -6,7 +6,7 @@
 #     to /dev/null (the evaluation with the least output);
 #   * csv: default columns, CSV to /dev/null (evaluation + CSV text);
 #   * csv file: the same written to a file (--out);
-#   * parquet: the same written as Parquet (--out, --format parquet).
+#   * parquet: the same written as a Parquet dataset (--out NAME.parquet).
 # Best of RUNS (default 3). BIN=path picks the binary (default: this checkout's
 # release build). Prints a Markdown table and the load average.
 set -euo pipefail
@@ -34,7 +34,7 @@ SPEC
 cpu() { # best user+sys over RUNS of the command
   local best=""
   for _ in $(seq "$RUNS"); do
-    rm -f "$TMP"/out.* "$TMP"/.out.*
+    rm -rf "$TMP"/out.* "$TMP"/.out.*
     /usr/bin/time -f "%U %S" -o "$TMP/time" "$@" >/dev/null 2>"$TMP/err" || { cat "$TMP/err" >&2; exit 1; }
     read -r u s < "$TMP/time"
     c=$(awk "BEGIN { print $u + $s }")

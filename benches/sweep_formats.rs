@@ -9,10 +9,10 @@
 //! * `evaluation alone`: [`output::run_discard`] (enumeration, evaluation,
 //!   summary; the cells are dropped, no row is formed);
 //! * `csv`: [`output::run`] into `io::sink` (the CSV text);
-//! * `parquet`: [`output::run_parquet`], the committed row groups and footers
-//!   copied into one buffer, kept from run to run (the typed column buffers,
-//!   the encoding, and the copy a write makes; the group buffers of the
-//!   writer are allocated in every run, as in a sweep).
+//! * `parquet`: [`output::run_parquet`] into part files of a dataset, each
+//!   written by the `parquet` crate's column writers and copied into one
+//!   buffer, kept from run to run (the typed column buffers, the encoding,
+//!   and the copy a write makes).
 //!
 //! No file is written (the CLI's I/O is in `benches/parquet_rate.sh`). Each
 //! cell is the best of `RUNS` runs (environment, default 5), the runs of the
@@ -25,7 +25,8 @@
 //! `MODES` (environment, e.g. `"discard parquet"`) some of the modes (for a
 //! profile of one mode; skipped cells print as `-`).
 
-use subdiv_lab::sweep::output::parquet::{Commit, ParquetRows};
+use std::sync::{Arc, Mutex};
+use subdiv_lab::sweep::output::parquet::ParquetRows;
 use subdiv_lab::sweep::{output, Layout, Plan, Shard, SpectralEvaluator, Summary, SweepSpec};
 
 /// CPU time (user + sys) of this process so far, in seconds.
@@ -65,8 +66,8 @@ impl Mode {
 }
 
 /// One sweep of `plan` in `mode`; returns the CPU seconds it took. `file`
-/// stands for the file: each commit copies its group and footer there, as a
-/// write copies them into the page cache. It is kept from run to run, so
+/// stands for the files: each part is copied there, as a write copies it
+/// into the page cache. It is kept from run to run, so
 /// that the first touch of its pages (the kernel zeroing fresh memory, which
 /// a write into the page cache does not do) is not counted in every run.
 fn one(
@@ -74,7 +75,7 @@ fn one(
     layout: &Layout,
     eval: &SpectralEvaluator,
     mode: Mode,
-    file: &mut Vec<u8>,
+    file: &Arc<Mutex<Vec<u8>>>,
 ) -> f64 {
     let total = plan.total();
     let mut summary = Summary::new(plan, layout, Shard::ALL, None);
@@ -91,16 +92,15 @@ fn one(
             &mut |_| {},
         ),
         Mode::Parquet => {
-            let commit = |c: Commit<'_>| {
-                file.clear();
-                for p in c.group {
-                    file.extend_from_slice(p);
-                }
-                file.extend_from_slice(c.footer);
+            let file = file.clone();
+            let commit = Box::new(move |_k: u64, _rows: u64, bytes: Vec<u8>| {
+                let mut f = file.lock().map_err(|_| std::io::Error::other("poisoned"))?;
+                f.clear();
+                f.extend_from_slice(&bytes);
                 Ok(())
-            };
+            });
             let fp = output::fingerprint_line(plan, Shard::ALL);
-            let mut pq = ParquetRows::new(layout, &fp, Vec::new(), 4, commit).expect("writer");
+            let mut pq = ParquetRows::parts(layout, &fp, 0, commit).expect("writer");
             let r = output::run_parquet(
                 plan,
                 layout,
@@ -160,7 +160,7 @@ fn main() {
         let layout = Layout::new(&plan);
         let eval = SpectralEvaluator::new(plan.spec().columns);
         let mut best = [f64::INFINITY; 3];
-        let mut file: Vec<u8> = Vec::new();
+        let file = Arc::new(Mutex::new(Vec::new()));
         for _ in 0..runs {
             for (k, mode) in [Mode::Discard, Mode::Csv, Mode::Parquet]
                 .into_iter()
@@ -169,7 +169,7 @@ fn main() {
                 if modes.as_ref().is_some_and(|m| !m.contains(&mode.name())) {
                     continue;
                 }
-                let dt = pool.install(|| one(&plan, &layout, &eval, mode, &mut file));
+                let dt = pool.install(|| one(&plan, &layout, &eval, mode, &file));
                 best[k] = best[k].min(dt);
             }
         }

@@ -8,7 +8,6 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
-use std::io::Read as _;
 use subdiv_lab::budget::{
     held_in_memory, Estimate, SWEEP_TIME_LIMIT_SECONDS, TABLE_BYTES_PER_CELL,
 };
@@ -247,10 +246,19 @@ pub(crate) fn sweep<'py>(
     })
 }
 
-/// Reads one shard of `merge`: its summary (beside it, as `sweep` writes it)
-/// and its rows (CSV, read line by line, or Parquet bytes).
-fn read_shard(path: &str) -> PyResult<ShardFile<std::io::BufReader<std::fs::File>>> {
+/// Reads the shards of one input of `merge`: a CSV shard (its summary
+/// beside it, as `sweep` writes it; the rows read line by line), or every
+/// shard of a Parquet dataset directory.
+fn read_shards(path: &str) -> PyResult<Vec<ShardFile<std::io::BufReader<std::fs::File>>>> {
     let p = std::path::Path::new(path);
+    if p.is_dir() {
+        return output::dataset::dataset_shards(p).map_err(lib_err);
+    }
+    if output::dataset::is_parquet_file(p) {
+        return Err(value_err(format!(
+            "{path}: a single Parquet file: merge takes the dataset directories NAME.parquet that sweep writes"
+        )));
+    }
     let sp = summary_path(p);
     let summary = std::fs::read_to_string(&sp).map_err(|e| {
         value_err(format!(
@@ -258,21 +266,13 @@ fn read_shard(path: &str) -> PyResult<ShardFile<std::io::BufReader<std::fs::File
             sp.display()
         ))
     })?;
-    let mut file = std::fs::File::open(p).map_err(|e| value_err(format!("opening {path}: {e}")))?;
-    let mut head = [0u8; 4];
-    let parquet = file.read_exact(&mut head).is_ok() && output::parquet::is_parquet(&head);
-    let data = if parquet {
-        ShardData::Parquet(std::fs::read(p).map_err(|e| value_err(format!("reading {path}: {e}")))?)
-    } else {
-        let file = std::fs::File::open(p).map_err(|e| value_err(format!("opening {path}: {e}")))?;
-        ShardData::Csv(std::io::BufReader::with_capacity(1 << 20, file))
-    };
-    Ok(ShardFile {
+    let file = std::fs::File::open(p).map_err(|e| value_err(format!("opening {path}: {e}")))?;
+    Ok(vec![ShardFile {
         name: path.to_owned(),
         summary_name: sp.display().to_string(),
         summary,
-        data,
-    })
+        data: ShardData::Csv(std::io::BufReader::with_capacity(1 << 20, file)),
+    }])
 }
 
 /// `merge`: the shards of one sweep (files written by `sweep --shard I/N`),
@@ -314,10 +314,10 @@ pub(crate) fn merge<'py>(
             SWEEP_TIME_LIMIT_SECONDS,
             force,
         )?;
-        let shards = inputs
-            .iter()
-            .map(|p| read_shard(p))
-            .collect::<PyResult<Vec<_>>>()?;
+        let mut shards = Vec::new();
+        for p in &inputs {
+            shards.extend(read_shards(p)?);
+        }
         let spec_name = match &origin {
             SpecOrigin::Path(p) => p.clone(),
             _ => "the spec".to_owned(),

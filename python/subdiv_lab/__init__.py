@@ -293,9 +293,10 @@ def sweep(spec: Spec, threads: Optional[int] = None,
 
 
 def merge(inputs: Sequence[Union[str, "os.PathLike[str]"]], spec: Spec, force: bool = False):
-    """Merge the shard files of one sweep (``subdiv-lab merge``): CSV or
-    Parquet files written by ``subdiv-lab sweep --shard I/N --out ...``, each
-    with its ``.summary.json`` beside it. Every row is verified as the
+    """Merge the shards of one sweep (``subdiv-lab merge``): CSV files
+    written by ``subdiv-lab sweep --shard I/N --out ...``, each with its
+    ``.summary.json`` beside it, or Parquet dataset directories (every
+    shard's part files in them). Every row is verified as the
     command verifies it (fingerprints, ids, parameters re-derived, a random
     sample re-evaluated; every configuration present once; the summaries
     matching their rows).

@@ -191,7 +191,7 @@ def test_sweep_equals_the_cli_csv(tmp_path):
     cli("sweep", str(spec), "--out", str(out))
     t = sl.sweep(SPEC, threads=2)
     assert isinstance(t, pa.Table)
-    lines = [l for l in out.read_text().splitlines() if not l.startswith("#")]
+    lines = out.read_text().splitlines()
     header = lines[0].split(",")
     assert t.column_names == header
     assert t.num_rows == len(lines) - 1 == 600
@@ -207,6 +207,42 @@ def test_sweep_equals_the_cli_csv(tmp_path):
                 assert got == text
             else:
                 assert got == float(text), (i, name, got, text)  # shortest round trip: exact
+
+
+def test_sweep_files_open_in_every_reader_without_options(tmp_path):
+    """The sweep CSV's first line is its header: pandas reads it with no
+    options. The Parquet dataset directory (parts of two shards written into
+    one directory) opens as one table in pyarrow.dataset, pandas, polars and
+    DuckDB, with the rows of the in-memory sweep."""
+    import duckdb
+    import pandas as pd
+    import polars as pl
+    import pyarrow.dataset as ds
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(SPEC)
+    out = tmp_path / "s.csv"
+    cli("sweep", str(spec), "--out", str(out), "--quiet")
+    want = sl.sweep(SPEC)
+    df = pd.read_csv(out)
+    assert list(df.columns) == want.column_names
+    assert df["id"].tolist() == list(range(600))
+    assert df["class"].tolist() == want.column("class").to_pylist()
+    data = tmp_path / "s.parquet"
+    for i in range(2):
+        cli("sweep", str(spec), "--out", str(data), "--shard", f"{i}/2", "--resume", "--quiet")
+    assert sorted(p.name for p in data.iterdir()) == [
+        "part-0-of-2-000000.parquet", "part-1-of-2-000000.parquet"]
+    t = ds.dataset(data, format="parquet").to_table().sort_by("id")
+    assert t.equals(want)
+    assert t.schema.metadata[b"subdiv-lab.format"] == b"sweep dataset part 1"
+    p = pd.read_parquet(data).sort_values("id", ignore_index=True)
+    assert p["class"].tolist() == want.column("class").to_pylist()
+    lf = pl.scan_parquet(str(data / "*.parquet"))
+    assert lf.filter(pl.col("valence") == 5).select(pl.len()).collect().item() == 300
+    assert pl.scan_parquet(str(data)).sort("id").collect()["id"].to_list() == list(range(600))
+    n, k = duckdb.sql(f"select count(*), count(distinct id) from read_parquet('{data}/*.parquet')").fetchone()
+    assert n == k == 600
 
 
 def test_sweep_from_dict_shard_and_limit():

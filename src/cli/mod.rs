@@ -15,7 +15,6 @@ mod report;
 mod scheme_args;
 mod subdivide;
 mod sweep;
-mod sweep_parquet;
 mod verify;
 
 use clap::{Parser, Subcommand};

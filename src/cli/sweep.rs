@@ -2,14 +2,16 @@
 //! (the enumeration, evaluation, CSV layout and summaries live in
 //! `subdiv_lab::sweep`).
 //!
-//! Files: `--out NAME.csv` gets the rows, `NAME.summary.json` the summary (written
-//! when the run starts and again when it ends). `--resume` re-reads `NAME.csv`,
-//! drops a torn last line, verifies every row against the spec, and continues.
+//! Files: `--out NAME.csv` gets the rows (the header first), `NAME.summary.json`
+//! the summary (written when the run starts, before the CSV, and again when it
+//! ends); the summary's spec digest and shard are the CSV's fingerprint.
+//! `--resume` re-reads `NAME.csv`, drops a torn last line, verifies every row
+//! against the spec, and continues.
 //!
 //! `sweep --out` is a resumable output (the rule of `super::outfiles`): a new
-//! file appears whole with its fingerprint line; an existing one is never
-//! replaced, and `--resume` continues it only if it carries this spec's
-//! fingerprint (an empty or foreign file is refused). `merge --out` is a
+//! file appears whole with its header; an existing one is never replaced, and
+//! `--resume` continues it only if its summary is of this spec and shard (an
+//! empty or foreign file is refused). `merge --out` is a
 //! single-file output: an existing regular file is replaced atomically. The
 //! extension `.csv` or `.parquet` of an output must match its format.
 
@@ -21,8 +23,9 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{BufRead, BufReader, BufWriter, IsTerminal, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use subdiv_lab::sweep::output::parquet::ParquetRows;
 use subdiv_lab::sweep::output::shards::{self, summary_path, ShardData, ShardFile};
-use subdiv_lab::sweep::output::{self, LineFault, Verifier};
+use subdiv_lab::sweep::output::{self, dataset, LineFault, Verifier};
 use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, Summary, SweepError, SweepSpec};
 
 #[derive(Args, Debug)]
@@ -32,7 +35,7 @@ pub(crate) struct SweepArgs {
     /// Output file, NAME.csv or NAME.parquet (default: CSV on standard output,
     /// without a summary file). The summary JSON goes beside it: NAME.csv ->
     /// NAME.summary.json. A resumable output: an existing file is never
-    /// replaced; --resume continues it if it carries this spec's fingerprint.
+    /// replaced; --resume continues it if its summary is of this spec and shard.
     #[arg(long)]
     out: Option<PathBuf>,
     /// Worker threads (default: all cores).
@@ -42,8 +45,8 @@ pub(crate) struct SweepArgs {
     #[arg(long, value_parser = parse_shard)]
     shard: Option<Shard>,
     /// Continue an interrupted run of the same command (needs --out; starts afresh
-    /// if the file does not exist; an existing file must carry this spec's
-    /// fingerprint: an empty or foreign file is refused).
+    /// if the file does not exist; an existing file's summary must be of this
+    /// spec and shard: an empty or foreign file is refused).
     #[arg(long)]
     resume: bool,
     /// Stop after the first K configurations of the shard (a prefix of the full run).
@@ -73,13 +76,14 @@ pub(crate) struct SweepArgs {
 
 #[derive(Args, Debug)]
 pub(crate) struct MergeArgs {
-    /// Shard files written by `sweep --shard I/N --out ...`, all CSV or all
-    /// Parquet (each with its .summary.json beside it).
+    /// Shards written by `sweep --shard I/N --out ...`: CSV files (each with
+    /// its .summary.json beside it), or Parquet dataset directories
+    /// NAME.parquet (every shard's parts and summary in them).
     #[arg(required = true)]
     inputs: Vec<PathBuf>,
-    /// Merged file, in the shards' format (NAME.csv or NAME.parquet; its
-    /// summary goes beside it). An existing regular file is replaced
-    /// atomically.
+    /// Merged file, in the shards' format (NAME.csv, or for datasets one
+    /// compacted Parquet file NAME.parquet; its summary goes beside it). An
+    /// existing regular file is replaced atomically.
     #[arg(long)]
     out: PathBuf,
     /// The sweep spec the shards were run with: every row is verified against it.
@@ -175,19 +179,24 @@ fn parse_shard(s: &str) -> Result<Shard, String> {
 /// shards and their summaries), and an existing file at the summary path is
 /// refused unless it is itself a sweep summary (this output's, or an earlier
 /// run's, e.g. of `NAME.csv` beside `NAME.parquet`): the tool never
-/// overwrites a file it did not write.
-fn check_out_paths(command: &str, out: &Path, inputs: &[(&str, &Path)]) -> CliResult {
+/// overwrites a file it did not write. `spath` is the output's summary.
+fn check_out_paths(command: &str, out: &Path, spath: &Path, inputs: &[(&str, &Path)]) -> CliResult {
     if super::outfiles::is_special(out) {
         return Err(CliError::usage(anyhow!(
             "--out {} is not a regular file: {command} writes a CSV (or Parquet) file and a summary beside it; to discard the rows, leave out --out and redirect standard output",
             out.display()
         )));
     }
-    let spath = summary_path(out);
-    super::outfiles::check_distinct(&[("--out", out), ("its summary", &spath)], inputs)?;
+    super::outfiles::check_distinct(&[("--out", out), ("its summary", spath)], inputs)?;
+    check_summary_path(out, spath)
+}
+
+/// Refuses an existing file at `spath`, the summary of `--out out`, unless
+/// it is a sweep summary.
+fn check_summary_path(out: &Path, spath: &Path) -> CliResult {
     let a_summary =
-        || fs::read_to_string(&spath).is_ok_and(|t| serde_json::from_str::<Summary>(&t).is_ok());
-    if fs::symlink_metadata(&spath).is_ok() && !a_summary() {
+        || fs::read_to_string(spath).is_ok_and(|t| serde_json::from_str::<Summary>(&t).is_ok());
+    if fs::symlink_metadata(spath).is_ok() && !a_summary() {
         return Err(CliError::usage(anyhow!(
             "{} exists and is not a sweep summary (the summary --out {} would write); remove it or choose another --out",
             spath.display(),
@@ -211,13 +220,13 @@ fn write_summary(path: &Path, summary: &Summary) -> CliResult {
 /// A salt for the verifier's re-evaluated sample (the library's).
 use subdiv_lab::sweep::output::fresh_salt as salt;
 
-/// Reads an existing CSV for `--resume`: checks the fingerprint line (same spec,
-/// same shard) and the header, verifies every complete line in full against the
-/// spec ([`Verifier`]: ids, parameters re-derived from the id, results well
-/// formed, a random sample re-evaluated), adds the rows to `summary`, and
-/// returns the number of rows, the byte length of the good prefix (a torn last
-/// line excluded; 0 when the fingerprint or header line is torn) and whether
-/// the preamble must be (re)written.
+/// Reads an existing CSV for `--resume`: checks its fingerprint (the summary
+/// JSON beside it: same spec, same shard) and the header, verifies every
+/// complete line in full against the spec ([`Verifier`]: ids, parameters
+/// re-derived from the id, results well formed, a random sample
+/// re-evaluated), adds the rows to `summary`, and returns the number of rows,
+/// the byte length of the good prefix (a torn last line excluded; 0 when the
+/// header line is torn) and whether the header must be (re)written.
 fn scan_existing(
     path: &Path,
     plan: &Plan,
@@ -234,7 +243,7 @@ fn scan_existing(
     let mut line = Vec::new();
     let mut good: u64 = 0;
     let mut lineno: u64 = 0;
-    let mut torn = false;
+    let torn;
     let header = layout.header();
     let mut verifier = Verifier::new(plan, layout, salt());
     let mismatch = |line: u64, message: String| {
@@ -247,58 +256,52 @@ fn scan_existing(
     let read_error = |e: std::io::Error| {
         CliError::failure(anyhow::Error::new(e).context(format!("reading {name}")))
     };
-    // The fingerprint and header lines.
-    while lineno < 2 {
-        line.clear();
-        let n = reader.read_until(b'\n', &mut line).map_err(read_error)?;
-        if n == 0 {
-            break;
-        }
-        if line.last() != Some(&b'\n') {
-            // Killed mid-write: the last line is incomplete. Drop it.
-            torn = true;
-            break;
-        }
-        lineno += 1;
-        let text = std::str::from_utf8(&line).map_err(|_| {
-            CliError::usage(anyhow!(
-                "{name}: line {lineno} is not UTF-8; not a sweep CSV"
-            ))
-        })?;
-        if lineno == 1 {
-            output::check_fingerprint(plan, shard, text)
-                .map_err(|m| mismatch(1, format!("{m}; cannot resume")))?;
-        } else if text != header {
-            return Err(CliError::usage(anyhow!(
-                "{name}: the header does not match this spec's columns; cannot resume (expected {:?})",
-                header.trim_end()
-            )));
-        }
-        good += n as u64;
-    }
-    if lineno == 0 && !torn {
-        // A file of this tool appears whole with its fingerprint line and
-        // header: an empty one is someone else's.
+    // The header line.
+    let n = reader.read_until(b'\n', &mut line).map_err(read_error)?;
+    if n == 0 {
+        // A file of this tool appears whole with its header: an empty one is
+        // someone else's.
         return Err(CliError::usage(anyhow!(
-            "{name} exists but is empty: not a sweep file of this tool (one is created whole, with its fingerprint line); remove it or choose another --out"
+            "{name} exists but is empty: not a sweep file of this tool (one is created whole, with its header); remove it or choose another --out"
         )));
     }
-    if lineno == 0
-        && !output::fingerprint_line(plan, shard)
-            .as_bytes()
-            .starts_with(&line)
-    {
-        // A torn first line that is not the start of this run's fingerprint.
-        return Err(mismatch(
-            1,
-            "an incomplete first line that is not this spec's fingerprint: not a sweep CSV of this spec and shard; cannot resume".into(),
-        ));
+    if output::is_old_csv_fingerprint(&line) {
+        return Err(mismatch(1, format!("{}; cannot resume", output::OLD_CSV)));
     }
-    if lineno < 2 {
-        // Torn inside this run's fingerprint or header line (a file not
-        // created whole by the temporary-file-and-link step): start afresh.
-        return Ok((0, 0, true, torn && good > 0));
+    // The fingerprint: the summary JSON beside the file.
+    let spath = summary_path(path);
+    let Some(old) = read_summary(&spath) else {
+        return Err(CliError::usage(anyhow!(
+            "{name}: its summary {} is missing or not a sweep summary; the summary ties a sweep CSV to its spec and shard; cannot resume",
+            spath.display()
+        )));
+    };
+    output::check_summary(plan, shard, &old).map_err(|m| {
+        CliError::usage(anyhow!(
+            "{name}: {m} (by its summary {}); cannot resume",
+            spath.display()
+        ))
+    })?;
+    if line.last() != Some(&b'\n') {
+        // Killed while the header was written (a file not created whole by
+        // the temporary-file-and-link step): start afresh if it is the start
+        // of this spec's header.
+        if !header.as_bytes().starts_with(&line) {
+            return Err(mismatch(
+                1,
+                "an incomplete first line that is not this spec's header: not a sweep CSV of this spec; cannot resume".into(),
+            ));
+        }
+        return Ok((0, 0, true, true));
     }
+    if line != header.as_bytes() {
+        return Err(CliError::usage(anyhow!(
+            "{name}: the header does not match this spec's columns; cannot resume (expected {:?})",
+            header.trim_end()
+        )));
+    }
+    lineno += 1;
+    good += n as u64;
     // The data lines, by blocks of about BLOCK_BYTES: each block's complete
     // lines are verified in parallel on the current pool while the next block
     // is read; the bytes after the last line end go to the next block, and at
@@ -357,7 +360,7 @@ fn scan_existing(
 /// Where the rows go: CSV text, or Parquet row groups.
 enum Sink {
     Csv(Box<dyn Write + Send>),
-    Parquet(Box<super::sweep_parquet::ParquetSink>),
+    Parquet(Box<ParquetRows>),
 }
 
 /// Progress lines for batch jobs (stderr not a terminal, e.g. a Slurm log): a
@@ -479,13 +482,28 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
             "--format parquet needs --out FILE.parquet (Parquet is not written to standard output)"
         )));
     }
-    // Whether --out exists (then it is continued, never replaced).
-    let exists = args
-        .out
-        .as_deref()
-        .is_some_and(|p| fs::symlink_metadata(p).is_ok());
+    let shard = args.shard.unwrap_or(Shard::ALL);
+    // Whether --out exists (then it is continued, never replaced); for a
+    // Parquet dataset, whether it holds a part of this shard (the shards of
+    // one run write into one directory).
+    let exists = match (&args.out, format) {
+        (Some(p), Format::Parquet) => {
+            dataset::check_dataset_path(p).map_err(CliError::usage)?;
+            let spath = dataset::summary_in(p, shard);
+            super::outfiles::check_distinct(
+                &[("its summary", &spath)],
+                &[("the spec", &args.spec)],
+            )?;
+            check_summary_path(p, &spath)?;
+            p.is_dir() && dataset::has_shard(p, shard)
+        }
+        (Some(p), Format::Csv) => {
+            check_out_paths("sweep", p, &summary_path(p), &[("the spec", &args.spec)])?;
+            fs::symlink_metadata(p).is_ok()
+        }
+        (None, _) => false,
+    };
     if let Some(out) = &args.out {
-        check_out_paths("sweep", out, &[("the spec", &args.spec)])?;
         if exists && !args.resume {
             return Err(CliError::usage(anyhow!(
                 "{} exists; pass --resume to continue it, or remove it",
@@ -493,7 +511,6 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
             )));
         }
     }
-    let shard = args.shard.unwrap_or(Shard::ALL);
     let plan = plan_of(spec, &args.spec, args.scheme_file.as_deref())?;
     let layout = Layout::new(&plan);
     let eval = SpectralEvaluator::new(plan.spec().columns);
@@ -528,16 +545,14 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     let (mut sink, done, summary_file): (Sink, u64, Option<PathBuf>) = match &args.out {
         None => {
             let mut w = BufWriter::with_capacity(1 << 20, std::io::stdout());
-            w.write_all(output::fingerprint_line(&plan, shard).as_bytes())
-                .map_err(CliError::failure)?;
             layout.write_header(&mut w).map_err(CliError::failure)?;
             (Sink::Csv(Box::new(w)), 0, None)
         }
         Some(path) if format == Format::Parquet => {
-            let spath = summary_path(path);
-            let (sink, done, recovered) = pool.install(|| {
-                super::sweep_parquet::open(path, &plan, &layout, &eval, shard, &mut summary, salt())
-            })?;
+            let spath = dataset::summary_in(path, shard);
+            let (sink, done, recovered) = pool
+                .install(|| dataset::open(path, &plan, &layout, &eval, shard, &mut summary, salt()))
+                .map_err(CliError::lib)?;
             if inferred && !exists && !args.quiet {
                 eprintln!(
                     "sweep: writing Parquet (from the extension of --out {})",
@@ -549,7 +564,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
                     "sweep: resuming {} at row {done} of {expected}{}",
                     path.display(),
                     if recovered {
-                        " (dropped the row groups after the last commit)"
+                        " (its short last part is written again)"
                     } else {
                         ""
                     }
@@ -558,8 +573,11 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
             (Sink::Parquet(Box::new(sink)), done, Some(spath))
         }
         Some(path) if !exists => {
-            // A new file appears whole with its fingerprint line and header
-            // (written to a temporary file of this run, then put in place).
+            // Its fingerprint first: the summary beside it (so a CSV of this
+            // tool never exists without one). A new file appears whole with
+            // its header (written to a temporary file of this run, then put
+            // in place).
+            write_summary(&summary_path(path), &summary)?;
             let name = path
                 .file_name()
                 .map(|n| n.to_string_lossy().into_owned())
@@ -568,10 +586,9 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
                 super::outfiles::create_temp_file(&super::outfiles::parent_dir(path), &name)
                     .with_context(|| format!("creating {}", path.display()))
                     .map_err(CliError::failure)?;
-            let preamble = file
-                .write_all(output::fingerprint_line(&plan, shard).as_bytes())
+            let preamble = layout
+                .write_header(&mut file)
                 .map_err(anyhow::Error::from)
-                .and_then(|()| layout.write_header(&mut file).map_err(anyhow::Error::from))
                 .and_then(|()| {
                     super::outfiles::install_new(&tmp, path).map_err(anyhow::Error::from)
                 })
@@ -613,8 +630,6 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
                 }
             }
             if preamble {
-                file.write_all(output::fingerprint_line(&plan, shard).as_bytes())
-                    .map_err(CliError::failure)?;
                 layout.write_header(&mut file).map_err(CliError::failure)?;
             }
             (
@@ -680,7 +695,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
             &layout,
             &eval,
             ids,
-            p.rows_mut(),
+            p,
             &mut summary,
             &mut moved,
             &counter,
@@ -705,7 +720,9 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     let evaluated = result.map_err(CliError::failure)?;
     match sink {
         Sink::Csv(mut w) => w.flush().map_err(CliError::failure)?,
-        Sink::Parquet(p) => p.finish().map_err(CliError::failure)?,
+        Sink::Parquet(p) => {
+            p.finish().map_err(CliError::failure)?;
+        }
     }
     let seconds = start.elapsed().as_secs_f64();
     if complete {
@@ -747,15 +764,6 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     Ok(())
 }
 
-/// Whether `path` starts as a Parquet file does (`PAR1`).
-fn is_parquet_file(path: &Path) -> bool {
-    let mut head = [0u8; 4];
-    File::open(path)
-        .and_then(|mut f| f.read_exact(&mut head))
-        .is_ok()
-        && subdiv_lab::sweep::output::parquet::is_parquet(&head)
-}
-
 pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     let text = fs::read_to_string(&args.spec)
         .with_context(|| format!("reading spec {}", args.spec.display()))
@@ -765,32 +773,56 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     let plan = plan_of(spec, &args.spec, args.scheme_file.as_deref())?;
     let layout = Layout::new(&plan);
     let eval = SpectralEvaluator::new(plan.spec().columns);
+    // The inputs: CSV shard files (each with its summary beside it) or
+    // Parquet dataset directories (the parts and summaries of their shards).
     // The output and its summary are distinct from the spec, every shard and
     // every shard's summary; an existing output file is replaced atomically,
     // an existing summary only if it is a sweep summary.
-    let shard_summaries: Vec<PathBuf> = args.inputs.iter().map(|p| summary_path(p)).collect();
-    let mut inputs: Vec<(&str, &Path)> = vec![("the spec", args.spec.as_path())];
-    for (p, sp) in args.inputs.iter().zip(&shard_summaries) {
-        inputs.push(("the input", p.as_path()));
-        inputs.push(("the summary of an input", sp.as_path()));
+    let datasets: Vec<bool> = args.inputs.iter().map(|p| p.is_dir()).collect();
+    for p in &args.inputs {
+        if !p.is_dir() && dataset::is_parquet_file(p) {
+            return Err(CliError::usage(anyhow!(
+                "{}: a single Parquet file: {}",
+                p.display(),
+                "merge takes the dataset directories NAME.parquet that sweep writes (a file of an older subdiv-lab, or a compacted dataset, is not one)"
+            )));
+        }
     }
-    check_out_paths("merge", &args.out, &inputs)?;
-    // One format for every shard, and an output named for it.
-    let parquet = args
-        .inputs
-        .iter()
-        .map(|p| is_parquet_file(p))
-        .collect::<Vec<_>>();
-    if parquet.iter().any(|&q| q != parquet[0]) {
+    if datasets.iter().any(|&q| q != datasets[0]) {
         return Err(CliError::usage(anyhow!(
-            "the shards mix CSV and Parquet files; merge shards of one format"
+            "the shards mix CSV files and Parquet datasets; merge shards of one format"
         )));
     }
-    let format = if parquet[0] {
+    let format = if datasets[0] {
         Format::Parquet
     } else {
         Format::Csv
     };
+    // The shards: per CSV file, or every shard of each dataset (summaries
+    // and parts read).
+    let mut shards = Vec::new();
+    let mut csv: Vec<(PathBuf, PathBuf)> = Vec::new();
+    let mut summaries: Vec<PathBuf> = Vec::new();
+    for p in &args.inputs {
+        if format == Format::Parquet {
+            for f in dataset::dataset_shards(p).map_err(CliError::lib)? {
+                summaries.push(PathBuf::from(&f.summary_name));
+                shards.push(f);
+            }
+            continue;
+        }
+        let sp = summary_path(p);
+        summaries.push(sp.clone());
+        csv.push((p.clone(), sp));
+    }
+    let mut inputs: Vec<(&str, &Path)> = vec![("the spec", args.spec.as_path())];
+    for p in &args.inputs {
+        inputs.push(("the input", p.as_path()));
+    }
+    for sp in &summaries {
+        inputs.push(("the summary of an input", sp.as_path()));
+    }
+    check_out_paths("merge", &args.out, &summary_path(&args.out), &inputs)?;
     if let Some(named) = Format::of_name(&args.out).filter(|&n| n != format) {
         return Err(CliError::usage(anyhow!(
             "the shards are {} files but --out {} names a {} file; name it NAME.{} (merge writes the shards' format)",
@@ -800,45 +832,29 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
             format.extension()
         )));
     }
-    // Summaries first: each must be of this spec (they give the throughput, and
-    // are compared with the rows).
-    let mut summaries = Vec::new();
-    for (p, sp) in args.inputs.iter().zip(&shard_summaries) {
-        let mut text = String::new();
-        File::open(sp)
-            .and_then(|mut f| f.read_to_string(&mut text))
+    // A CSV shard's summary first: it must be of this spec (it gives the
+    // throughput, and is compared with the rows).
+    for (p, sp) in csv {
+        let name = p.display().to_string();
+        let summary = fs::read_to_string(&sp)
             .with_context(|| {
                 format!(
-                    "reading {} (the summary `sweep` writes beside {}; merge needs it)",
-                    sp.display(),
-                    p.display()
+                    "reading {} (the summary `sweep` writes beside {name}; merge needs it)",
+                    sp.display()
                 )
             })
             .map_err(CliError::usage)?;
-        summaries.push(text);
-    }
-    let mut shards = Vec::new();
-    for ((p, sp), summary) in args.inputs.iter().zip(&shard_summaries).zip(summaries) {
-        let name = p.display().to_string();
-        let data = if is_parquet_file(p) {
-            ShardData::Parquet(
-                fs::read(p)
-                    .with_context(|| format!("reading {name}"))
-                    .map_err(CliError::usage)?,
-            )
-        } else {
-            let file = File::open(p)
-                .with_context(|| format!("opening {name}"))
-                .map_err(CliError::usage)?;
-            ShardData::Csv(BufReader::with_capacity(1 << 20, file))
-        };
+        let file = File::open(&p)
+            .with_context(|| format!("opening {name}"))
+            .map_err(CliError::usage)?;
         shards.push(ShardFile {
             name,
             summary_name: sp.display().to_string(),
             summary,
-            data,
+            data: ShardData::Csv(BufReader::with_capacity(1 << 20, file)),
         });
     }
+    let n_shards = shards.len();
     let prepared = shards::prepare(&plan, &layout, &args.spec.display().to_string(), shards)
         .map_err(CliError::usage)?;
     // Write to a new temporary file of this run; rename only when every
@@ -852,26 +868,25 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
         super::outfiles::create_temp_file(&super::outfiles::parent_dir(&args.out), &out_name)
             .with_context(|| format!("creating a temporary file for {}", args.out.display()))
             .map_err(CliError::failure)?;
-    let merge_err = |e: SweepError| match e {
-        SweepError::Io(_) => CliError::failure(e),
-        other => CliError::usage(other),
-    };
     let result = (|| -> CliResult<Summary> {
         if prepared.is_parquet() {
-            let mut w = super::sweep_parquet::merge_sink(file, &plan, &layout)?;
+            let mut w = ParquetRows::file(
+                &layout,
+                &output::fingerprint_line(&plan, Shard::ALL),
+                Box::new(BufWriter::with_capacity(1 << 20, file)),
+            )
+            .map_err(CliError::failure)?;
             let merged = prepared
                 .run(&plan, &layout, &eval, &mut w, salt())
-                .map_err(merge_err)?;
+                .map_err(CliError::lib)?;
             w.finish().map_err(CliError::failure)?;
             return Ok(merged);
         }
         let mut w = BufWriter::with_capacity(1 << 20, file);
-        w.write_all(output::fingerprint_line(&plan, Shard::ALL).as_bytes())
-            .map_err(CliError::failure)?;
         layout.write_header(&mut w).map_err(CliError::failure)?;
         let merged = prepared
             .run(&plan, &layout, &eval, &mut w, salt())
-            .map_err(merge_err)?;
+            .map_err(CliError::lib)?;
         w.flush().map_err(CliError::failure)?;
         Ok(merged)
     })();
@@ -900,7 +915,7 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     let total = plan.total();
     eprintln!(
         "merge: {n} rows from {} shards into {}; every configuration 0..{total} present once and verified",
-        args.inputs.len(),
+        n_shards,
         args.out.display()
     );
     Ok(())

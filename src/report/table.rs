@@ -1,8 +1,8 @@
 //! A table of named columns: the input of sweep plots ([`super::sweep_plot`]).
 //!
 //! The plots only see this type, never a file format: [`Table::from_csv`]
-//! reads the CSV that `subdiv-lab sweep` writes (the `#` fingerprint line is
-//! skipped), and any other reader (e.g. Parquet) plugs in by building a
+//! reads the CSV that `subdiv-lab sweep` writes (`#` comment lines, such as
+//! the fingerprint line older versions wrote first, are skipped), and any other reader (e.g. Parquet) plugs in by building a
 //! [`Table`] with [`Table::new`] from its columns. Cells are numbers, text or
 //! missing (an empty CSV field).
 //!

@@ -44,6 +44,10 @@ pub enum SweepError {
     /// names the file).
     #[error("{0}")]
     MergeInput(String),
+    /// An existing output, or an input, is refused (not this tool's, of an
+    /// older format, of another spec or shard; the message names the file).
+    #[error("{0}")]
+    Refused(String),
     /// Writing output failed.
     #[error("write failed: {0}")]
     Io(String),

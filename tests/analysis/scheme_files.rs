@@ -105,7 +105,6 @@ fn sweep_runs_the_file_through_the_spec_engine() {
     assert_eq!((c1, c2), (0, 0), "{e1} {e2}");
     let rows = |t: &str| -> Vec<Vec<String>> {
         t.lines()
-            .skip(1)
             .map(|l| l.split(',').map(str::to_owned).collect())
             .collect()
     };
@@ -121,7 +120,6 @@ fn sweep_runs_the_file_through_the_spec_engine() {
             }
         }
     }
-    assert_ne!(a.lines().next(), b.lines().next(), "another fingerprint");
     let out = dir.path().join("o.csv");
     let out = out.to_str().unwrap();
     assert_eq!(run(&["sweep", spec, "--quiet", "--out", out]).0, 0);

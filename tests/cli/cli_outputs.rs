@@ -86,7 +86,7 @@ fn single_file_outputs_replace_a_regular_file_atomically() {
         (
             "m.csv",
             vec!["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
-            "# subdiv-lab sweep",
+            "id,valence,",
         ),
     ];
     for (target, args, marker) in runs {
@@ -145,19 +145,20 @@ fn resuming_a_finished_sweep_changes_nothing() {
         err.contains("writing Parquet (from the extension of --out p.parquet)"),
         "{err}"
     );
-    assert!(fs::read(d.join("p.parquet")).unwrap().starts_with(b"PAR1"));
+    let part = "p.parquet/part-000000.parquet";
+    assert!(fs::read(d.join(part)).unwrap().starts_with(b"PAR1"));
     ok_in(d, &["sweep", "h.toml", "--out", "c.csv", "--quiet"]);
-    for name in ["c.csv", "p.parquet"] {
+    for (name, file) in [("c.csv", "c.csv"), ("p.parquet", part)] {
         let stem = name.split('.').next().unwrap();
         let summary = d.join(format!("{stem}.summary.json"));
-        let (rows, json) = (fs::read(d.join(name)).unwrap(), fs::read(&summary).unwrap());
+        let (rows, json) = (fs::read(d.join(file)).unwrap(), fs::read(&summary).unwrap());
         let o = ok_in(d, &["sweep", "h.toml", "--out", name, "--resume"]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(
             err.contains(&format!("{name} is already complete: 8 rows verified")),
             "{err}"
         );
-        assert_eq!(fs::read(d.join(name)).unwrap(), rows, "{name}");
+        assert_eq!(fs::read(d.join(file)).unwrap(), rows, "{name}");
         assert_eq!(
             fs::read(&summary).unwrap(),
             json,
@@ -244,7 +245,7 @@ fn help_states_ranges_and_the_output_rule() {
         (&["merge", "--help"], &["Parquet", "replaced atomically"]),
         (
             &["sweep", "--help"],
-            &["NAME.parquet", "never replaced", "fingerprint"],
+            &["NAME.parquet", "never replaced", "summary is of this spec"],
         ),
         (
             &["verify", "--help"],

@@ -97,9 +97,13 @@ const fn full(name: &'static str, args: &'static [&'static str]) -> Case {
 /// would otherwise succeed.
 const MERGE_SPEC: &str = "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n";
 /// The rows of [`MERGE_SPEC`]'s single shard.
-const MERGE_A_CSV: &str = "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n";
+const MERGE_A_CSV: &str = "id,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n";
 /// The summary of [`MERGE_A_CSV`].
 const MERGE_A_SUMMARY: &str = "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe5\",\"total_configurations\":8,\"shard\":{\"index\":0,\"count\":1},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}";
+/// A summary of [`MERGE_SPEC`]'s shard 1/2 (the fingerprint of a shard CSV).
+const MERGE_SHARD12_SUMMARY: &str = "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe5\",\"total_configurations\":8,\"shard\":{\"index\":1,\"count\":2},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}";
+/// A summary of another spec (digest ...e6) for [`MERGE_SPEC`]'s rows.
+const FOREIGN_SUMMARY: &str = "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe6\",\"total_configurations\":8,\"shard\":{\"index\":0,\"count\":1},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}";
 
 /// A small verify spec (n = 3, class only, wide cells: a fraction of a second).
 const VERIFY_SMALL: &str = "name = \"v\"\nscheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\nmin_width = 0.2\n";
@@ -1100,22 +1104,22 @@ fn cases() -> Vec<Case> {
             args: &["sweep", "h.toml", "--out", "o.dat", "--resume", "--format", "parquet"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("o.dat", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence\n"),
+                ("o.dat", "id,valence\n"),
             ],
             code: 2,
-            needle: "cannot read o.dat: not a Parquet file",
+            needle: "o.dat exists and is not a dataset directory",
             stdout: Stdout::Pipe,
         },
         Case {
-            name: "sweep-format-parquet-resume-torn",
+            name: "sweep-format-parquet-resume-torn-part",
             args: &["sweep", "h.toml", "--out", "o.parquet", "--resume", "--format", "parquet"],
-            files: &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"), ("o.parquet", "PAR1 torn row group")],
+            files: &[("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"), ("o.parquet/part-000000.parquet", "PAR1 torn row group")],
             code: 2,
-            needle: "torn",
+            needle: "o.parquet/part-000000.parquet: line 1: read failed: not a Parquet file, or torn",
             stdout: Stdout::Pipe,
         },
         Case {
-            name: "sweep-format-parquet-damaged-journal",
+            name: "sweep-parquet-old-single-file-with-journal",
             args: &["sweep", "h.toml", "--out", "o.parquet", "--resume", "--format", "parquet"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
@@ -1123,44 +1127,21 @@ fn cases() -> Vec<Case> {
                 (".o.parquet.commit", "subdiv-lab parquet commit v1\n4\n0000000000000000 3\nxyz"),
             ],
             code: 2,
-            needle: "damaged",
-            stdout: Stdout::Pipe,
-        },
-        Case {
-            name: "sweep-format-parquet-damaged-journal-v2",
-            args: &["sweep", "h.toml", "--out", "o.parquet", "--resume", "--format", "parquet"],
-            files: &[
-                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("o.parquet", "PAR1 torn row group"),
-                (".o.parquet.commit", "subdiv-lab parquet commit v2\n4\n0000000000000000 8\nxyzPAR1!"),
-            ],
-            code: 2,
-            needle: "damaged",
-            stdout: Stdout::Pipe,
-        },
-        Case {
-            name: "sweep-format-parquet-journal-of-an-unknown-form",
-            args: &["sweep", "h.toml", "--out", "o.parquet", "--resume", "--format", "parquet"],
-            files: &[
-                ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("o.parquet", "PAR1 torn row group"),
-                (".o.parquet.commit", "subdiv-lab parquet commit v3\n4\n0000000000000000 4\nPAR1"),
-            ],
-            code: 2,
-            needle: "journal",
+            needle: "o.parquet: written by an older subdiv-lab (a single Parquet file with a commit journal",
             stdout: Stdout::Pipe,
         },
     ]);
 
     // Resume and merge trust nothing: every row verified, files tied to their
-    // spec and shard by the fingerprint line (the set-up files are left as they were).
+    // spec and shard by the summary beside them (the set-up files are left as they were).
     v.extend([
         Case {
             name: "sweep-resume-edited-class",
             args: &["sweep", "h.toml", "--out", "o.csv", "--resume"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,0.123456789,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("o.csv", "id,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,0.123456789,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("o.summary.json", MERGE_A_SUMMARY),
             ],
             code: 2,
             needle: "class = \"0.123456789\"",
@@ -1171,7 +1152,8 @@ fn cases() -> Vec<Case> {
             args: &["sweep", "h.toml", "--out", "o.csv", "--resume"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.46,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("o.csv", "id,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.46,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("o.summary.json", MERGE_A_SUMMARY),
             ],
             code: 2,
             needle: "lambda1_re is \"0.46\" in the file",
@@ -1182,7 +1164,8 @@ fn cases() -> Vec<Case> {
             args: &["sweep", "h.toml", "--out", "o.csv", "--resume", "--shard", "1/4"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 1/2, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n"),
+                ("o.csv", "id,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n"),
+                ("o.summary.json", MERGE_SHARD12_SUMMARY),
             ],
             code: 2,
             needle: "the shard count must be the same",
@@ -1193,21 +1176,34 @@ fn cases() -> Vec<Case> {
             args: &["sweep", "h.toml", "--out", "o.csv", "--resume"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe6, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("o.csv", "id,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("o.summary.json", FOREIGN_SUMMARY),
             ],
             code: 2,
             needle: "written by another spec",
             stdout: Stdout::Pipe,
         },
         Case {
-            name: "sweep-resume-no-fingerprint",
+            name: "sweep-resume-no-summary",
             args: &["sweep", "h.toml", "--out", "o.csv", "--resume"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
                 ("o.csv", "id,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
             ],
             code: 2,
-            needle: "no fingerprint line",
+            needle: "its summary o.summary.json is missing or not a sweep summary",
+            stdout: Stdout::Pipe,
+        },
+        Case {
+            name: "sweep-resume-old-format",
+            args: &["sweep", "h.toml", "--out", "o.csv", "--resume"],
+            files: &[
+                ("h.toml", MERGE_SPEC),
+                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n"),
+                ("o.summary.json", MERGE_A_SUMMARY),
+            ],
+            code: 2,
+            needle: "o.csv: line 1: written by an older subdiv-lab",
             stdout: Stdout::Pipe,
         },
         Case {
@@ -1215,7 +1211,8 @@ fn cases() -> Vec<Case> {
             args: &["sweep", "h.toml", "--out", "o.csv", "--resume", "--limit", "7"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("o.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("o.csv", "id,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("o.summary.json", MERGE_A_SUMMARY),
             ],
             code: 2,
             needle: "more rows than this run expects (7)",
@@ -1226,7 +1223,7 @@ fn cases() -> Vec<Case> {
             args: &["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("a.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,bogus,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("a.csv", "id,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,bogus,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
                 ("a.summary.json", "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe5\",\"total_configurations\":8,\"shard\":{\"index\":0,\"count\":1},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}"),
             ],
             code: 2,
@@ -1234,15 +1231,15 @@ fn cases() -> Vec<Case> {
             stdout: Stdout::Pipe,
         },
         Case {
-            name: "merge-foreign-shard",
+            name: "merge-old-format-shard",
             args: &["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("a.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe6, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("a.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
                 ("a.summary.json", "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe5\",\"total_configurations\":8,\"shard\":{\"index\":0,\"count\":1},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}"),
             ],
             code: 2,
-            needle: "a.csv: line 1: written by another spec",
+            needle: "a.csv: line 1: written by an older subdiv-lab",
             stdout: Stdout::Pipe,
         },
         Case {
@@ -1250,7 +1247,7 @@ fn cases() -> Vec<Case> {
             args: &["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("a.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("a.csv", "id,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
             ],
             code: 2,
             needle: "a.summary.json",
@@ -1261,7 +1258,7 @@ fn cases() -> Vec<Case> {
             args: &["merge", "--spec", "h.toml", "--out", "m.csv", "a.csv"],
             files: &[
                 ("h.toml", "name = \"h\"\nscheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n"),
-                ("a.csv", "# subdiv-lab sweep: digest 0d1298a9b5daefe5, shard 0/1, 8 configurations, spec \"h\"\nid,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
+                ("a.csv", "id,valence,r0,r1,r2,class,lambda1_re,lambda1_im,lambda2_re,lambda2_im,abs_lambda3,gap,ratio,rho,theta,contraction_rate,error\n0,3,0.2,0.2,0.2,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n1,3,0.2,0.2,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n2,3,0.2,0.8,0.2,real_distinct,0.44999999999999996,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666669,,,0.44999999999999996,\n3,3,0.2,0.8,0.8,real_distinct,0.45,0.0,0.29999999999999993,0.0,0.25,0.04999999999999993,0.6666666666666665,,,0.45,\n4,3,0.8,0.2,0.2,real_distinct,0.45,0.0,0.3,0.0,0.25,0.04999999999999999,0.6666666666666666,,,0.45,\n5,3,0.8,0.2,0.8,real_distinct,0.45,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.6666666666666667,,,0.45,\n6,3,0.8,0.8,0.2,real_distinct,0.4499999999999999,0.0,0.30000000000000004,0.0,0.25,0.050000000000000044,0.666666666666667,,,0.4499999999999999,\n7,3,0.8,0.8,0.8,complex_pair,0.375,0.12990381056766587,0.375,-0.12990381056766587,0.25,0.1468626966596886,,0.3968626966596886,0.33347317225183226,0.3968626966596886,\n"),
                 ("a.summary.json", "{\"spec_name\":\"h\",\"spec_digest\":\"0d1298a9b5daefe6\",\"total_configurations\":8,\"shard\":{\"index\":0,\"count\":1},\"limit\":null,\"expected_rows\":8,\"rows\":8,\"complete\":true,\"errors\":0,\"classes\":{\"3\":{\"complex_pair\":2,\"real_distinct\":6}},\"columns\":[{\"name\":\"r0\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":4},{\"name\":\"r1\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":2},{\"name\":\"r2\",\"count\":8,\"non_finite\":0,\"min\":0.2,\"min_id\":0,\"max\":0.8,\"max_id\":1},{\"name\":\"lambda1_re\",\"count\":8,\"non_finite\":0,\"min\":0.375,\"min_id\":0,\"max\":0.45,\"max_id\":1},{\"name\":\"lambda1_im\",\"count\":8,\"non_finite\":0,\"min\":0.0,\"min_id\":1,\"max\":0.12990381056766587,\"max_id\":0},{\"name\":\"lambda2_re\",\"count\":8,\"non_finite\":0,\"min\":0.29999999999999993,\"min_id\":1,\"max\":0.375,\"max_id\":0},{\"name\":\"lambda2_im\",\"count\":8,\"non_finite\":0,\"min\":-0.12990381056766587,\"min_id\":0,\"max\":0.0,\"max_id\":1},{\"name\":\"abs_lambda3\",\"count\":8,\"non_finite\":0,\"min\":0.25,\"min_id\":0,\"max\":0.25,\"max_id\":0},{\"name\":\"gap\",\"count\":8,\"non_finite\":0,\"min\":0.04999999999999993,\"min_id\":1,\"max\":0.1468626966596886,\"max_id\":0},{\"name\":\"ratio\",\"count\":6,\"non_finite\":0,\"min\":0.6666666666666665,\"min_id\":1,\"max\":0.666666666666667,\"max_id\":6},{\"name\":\"rho\",\"count\":2,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.3968626966596886,\"max_id\":0},{\"name\":\"theta\",\"count\":2,\"non_finite\":0,\"min\":0.33347317225183226,\"min_id\":0,\"max\":0.33347317225183226,\"max_id\":0},{\"name\":\"contraction_rate\",\"count\":8,\"non_finite\":0,\"min\":0.3968626966596886,\"min_id\":0,\"max\":0.45,\"max_id\":1}],\"throughput\":{\"evaluated\":8,\"seconds\":0.000160557,\"configurations_per_second\":49826.54135291516,\"threads\":2}}"),
             ],
             code: 2,
@@ -1329,14 +1326,14 @@ fn cases() -> Vec<Case> {
         ),
     ]);
     // Resumable outputs are continued only when they are the tool's (a file
-    // of this tool is created whole with its fingerprint); the extension of
+    // of this tool is created whole with its header); the extension of
     // an output must match its format; reading a file is called reading.
     v.extend([
         bad_with(
             "sweep-resume-empty-parquet",
             &["sweep", "h.toml", "--out", "zero.parquet", "--resume"],
             &[("h.toml", MERGE_SPEC), ("zero.parquet", "")],
-            "zero.parquet exists but is empty: not a sweep file of this tool",
+            "zero.parquet exists and is not a dataset directory",
         ),
         bad_with(
             "sweep-resume-empty-csv",
@@ -1347,8 +1344,8 @@ fn cases() -> Vec<Case> {
         bad_with(
             "sweep-resume-foreign-torn-first-line",
             &["sweep", "h.toml", "--out", "f.csv", "--resume"],
-            &[("h.toml", MERGE_SPEC), ("f.csv", "my notes, no newline")],
-            "f.csv: line 1: an incomplete first line that is not this spec's fingerprint",
+            &[("h.toml", MERGE_SPEC), ("f.csv", "my notes, no newline"), ("f.summary.json", MERGE_A_SUMMARY)],
+            "f.csv: line 1: an incomplete first line that is not this spec's header",
         ),
         bad_with(
             "sweep-resume-summary-is-a-user-file",
@@ -1371,7 +1368,7 @@ fn cases() -> Vec<Case> {
         bad_with(
             "merge-parquet-shards-out-csv",
             &["merge", "--spec", "h.toml", "--out", "m.csv", "a.parquet"],
-            &[("h.toml", MERGE_SPEC), ("a.parquet", "PAR1 a shard"), ("a.summary.json", MERGE_A_SUMMARY)],
+            &[("h.toml", MERGE_SPEC), ("a.parquet/part-000000.parquet", "PAR1 a shard"), ("a.summary.json", MERGE_A_SUMMARY)],
             "the shards are Parquet files but --out m.csv names a CSV file",
         ),
         bad_with(
@@ -1383,14 +1380,32 @@ fn cases() -> Vec<Case> {
         bad_with(
             "merge-torn-parquet-shard",
             &["merge", "--spec", "h.toml", "--out", "m.parquet", "a.parquet"],
-            &[("h.toml", MERGE_SPEC), ("a.parquet", "PAR1 torn row group"), ("a.summary.json", MERGE_A_SUMMARY)],
-            "a.parquet: line 1: read failed: not a Parquet file, or torn",
+            &[("h.toml", MERGE_SPEC), ("a.parquet/part-000000.parquet", "PAR1 torn row group"), ("a.summary.json", MERGE_A_SUMMARY)],
+            "a.parquet/part-000000.parquet: line 1: read failed: not a Parquet file, or torn",
         ),
         bad_with(
-            "sweep-resume-torn-parquet-reads",
+            "merge-single-parquet-file",
+            &["merge", "--spec", "h.toml", "--out", "m.parquet", "a.parquet"],
+            &[("h.toml", MERGE_SPEC), ("a.parquet", "PAR1 a file"), ("a.summary.json", MERGE_A_SUMMARY)],
+            "a.parquet: a single Parquet file: merge takes the dataset directories",
+        ),
+        bad_with(
+            "merge-dataset-without-parts",
+            &["merge", "--spec", "h.toml", "--out", "m.parquet", "a.parquet"],
+            &[("h.toml", MERGE_SPEC), ("a.parquet/notes.txt", "mine")],
+            "a.parquet: no part files (part-*.parquet): not a sweep dataset",
+        ),
+        bad_with(
+            "sweep-resume-parquet-part-missing",
+            &["sweep", "h.toml", "--out", "o.parquet", "--resume"],
+            &[("h.toml", MERGE_SPEC), ("o.parquet/part-000001.parquet", "PAR1 x")],
+            "o.parquet: part-000000.parquet is missing but o.parquet/part-000001.parquet exists",
+        ),
+        bad_with(
+            "sweep-resume-old-single-parquet-file",
             &["sweep", "h.toml", "--out", "o.parquet", "--resume"],
             &[("h.toml", MERGE_SPEC), ("o.parquet", "PAR1 torn row group")],
-            "cannot read o.parquet: not a Parquet file, or torn",
+            "o.parquet: written by an older subdiv-lab",
         ),
         bad_with(
             "sweep-ratio-range-huge-bound",

@@ -49,21 +49,26 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
-fn summary(p: &Path) -> serde_json::Value {
-    let sp = p.with_file_name(
+/// The summary file beside a sweep CSV.
+fn summary_of(p: &Path) -> std::path::PathBuf {
+    p.with_file_name(
         p.file_name()
             .unwrap()
             .to_str()
             .unwrap()
             .replace(".csv", ".summary.json"),
-    );
+    )
+}
+
+fn summary(p: &Path) -> serde_json::Value {
+    let sp = summary_of(p);
     let mut v: serde_json::Value = serde_json::from_str(&fs::read_to_string(sp).unwrap()).unwrap();
     v.as_object_mut().unwrap().remove("throughput");
     v
 }
 
-/// Cuts the file in the middle of data row `row` (0-based; after the fingerprint
-/// and header lines), as a kill mid-write would.
+/// Cuts the file in the middle of data row `row` (0-based; after the header
+/// line), as a kill mid-write would.
 fn truncate_mid_line(path: &Path, row: usize) {
     let bytes = fs::read(path).unwrap();
     let starts: Vec<usize> = std::iter::once(0)
@@ -75,7 +80,7 @@ fn truncate_mid_line(path: &Path, row: usize) {
                 .map(|(i, _)| i + 1),
         )
         .collect();
-    let (a, b) = (starts[row + 2], starts[row + 3]);
+    let (a, b) = (starts[row + 1], starts[row + 2]);
     let cut = a + (b - a) / 2;
     assert!(cut > a && cut < b - 1);
     fs::write(path, &bytes[..cut]).unwrap();
@@ -89,15 +94,18 @@ fn full_run_shape_and_summary() {
     ok(&["sweep", s(&spec), "--out", s(&out)]);
     let text = fs::read_to_string(&out).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines.len(), 2 + 729 + 6561);
-    assert!(lines[0].starts_with("# subdiv-lab sweep: digest "));
-    assert!(lines[0].contains(", shard 0/1, 7290 configurations, spec \"test-grid\""));
-    assert!(lines[1].starts_with("id,valence,r0,r1,r2,r3,class,"));
-    for (j, l) in lines[2..].iter().enumerate() {
+    assert_eq!(lines.len(), 1 + 729 + 6561);
+    assert!(lines[0].starts_with("id,valence,r0,r1,r2,r3,class,"));
+    for (j, l) in lines[1..].iter().enumerate() {
         assert!(l.starts_with(&format!("{j},")), "{l}");
         assert!(l.ends_with(','), "row {j} has an error: {l}");
     }
     let sm = summary(&out);
+    // The fingerprint: spec, digest and shard in the summary.
+    assert_eq!(sm["spec_name"], "test-grid");
+    assert_eq!(sm["spec_digest"].as_str().unwrap().len(), 16);
+    assert_eq!(sm["shard"]["count"], 1);
+    assert_eq!(sm["total_configurations"], 7290);
     assert_eq!(sm["rows"], 7290);
     assert_eq!(sm["complete"], true);
     assert_eq!(sm["errors"], 0);
@@ -155,7 +163,7 @@ fn shards_partition_the_sweep_and_merge_back() {
             "--shard",
             &format!("{i}/{n}"),
         ]);
-        for l in fs::read_to_string(&p).unwrap().lines().skip(2) {
+        for l in fs::read_to_string(&p).unwrap().lines().skip(1) {
             let id: u64 = l.split(',').next().unwrap().parse().unwrap();
             assert_eq!(id % n, i);
             assert!(seen.insert(id), "id {id} in two shards");
@@ -227,6 +235,7 @@ fn resume_after_torn_write_is_byte_identical() {
             let p = dir.path().join(format!("cut-{cut_row}.csv"));
             let _ = fs::remove_file(&p);
             fs::copy(&reference, &p).unwrap();
+            fs::copy(summary_of(&reference), summary_of(&p)).unwrap();
             truncate_mid_line(&p, cut_row);
             // Without --resume the existing file is refused.
             let o = run(&["sweep", s(&spec), "--out", s(&p)]);
@@ -244,12 +253,11 @@ fn resume_after_torn_write_is_byte_identical() {
             assert_eq!(summary(&p), summary(&reference));
         }
     }
-    // Torn inside the header (after a complete fingerprint line), and an
+    // Torn inside the header (beside the summary written before it), and an
     // interrupted --limit run continued in steps.
     let p = dir.path().join("steps.csv");
-    let text = String::from_utf8_lossy(&expected).into_owned();
-    let fingerprint = &text[..=text.find('\n').unwrap()];
-    fs::write(&p, format!("{fingerprint}id,vale")).unwrap();
+    fs::copy(summary_of(&full), summary_of(&p)).unwrap();
+    fs::write(&p, "id,vale").unwrap();
     ok(&[
         "sweep",
         s(&spec),
@@ -260,7 +268,7 @@ fn resume_after_torn_write_is_byte_identical() {
         "10",
     ]);
     let ten = fs::read_to_string(&p).unwrap();
-    assert_eq!(ten.lines().count(), 12);
+    assert_eq!(ten.lines().count(), 11);
     assert!(String::from_utf8_lossy(&expected).starts_with(&ten));
     ok(&[
         "sweep",
@@ -286,7 +294,10 @@ fn resume_refuses_a_changed_spec() {
     let o = run(&["sweep", s(&other), "--out", s(&p), "--resume"]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("line 1: written by another spec"), "{err}");
+    assert!(
+        err.contains("g.csv: written by another spec (digest "),
+        "{err}"
+    );
     // And a row with a wrong id is named with its line.
     let text = fs::read_to_string(&p).unwrap().replacen("\n5,", "\n6,", 1);
     fs::write(&p, text).unwrap();
@@ -294,7 +305,7 @@ fn resume_refuses_a_changed_spec() {
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        err.contains("line 8: configuration id 6 where 5 was expected"),
+        err.contains("line 7: configuration id 6 where 5 was expected"),
         "{err}"
     );
 }
@@ -445,11 +456,11 @@ count = 60000
 fn edit_field(p: &Path, row: usize, col: &str, value: &str) {
     let text = fs::read_to_string(p).unwrap();
     let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
-    let k = lines[1].split(',').position(|c| c == col).unwrap();
-    let mut f: Vec<&str> = lines[row + 2].split(',').collect();
+    let k = lines[0].split(',').position(|c| c == col).unwrap();
+    let mut f: Vec<&str> = lines[row + 1].split(',').collect();
     assert_ne!(f[k], value);
     f[k] = value;
-    lines[row + 2] = f.join(",");
+    lines[row + 1] = f.join(",");
     fs::write(p, lines.join("\n") + "\n").unwrap();
 }
 
@@ -468,6 +479,8 @@ fn resume_verifies_every_row_in_full() {
     let good = dir.path().join("good.csv");
     ok(&["sweep", s(&spec), "--out", s(&good), "--limit", "20"]);
     let p = dir.path().join("g.csv");
+    // The summary written with the file (its fingerprint).
+    fs::copy(summary_of(&good), summary_of(&p)).unwrap();
     let resume = [
         "sweep",
         s(&spec),
@@ -481,13 +494,13 @@ fn resume_verifies_every_row_in_full() {
         (
             "class",
             "0.123456789",
-            "line 13: class = \"0.123456789\" is not a value",
+            "line 12: class = \"0.123456789\" is not a value",
         ),
         ("class", "bogus", "class = \"bogus\" is not a value"),
         (
             "lambda1_re",
             "0.5",
-            "line 13: configuration 10 differs from a fresh evaluation: lambda1_re",
+            "line 12: configuration 10 differs from a fresh evaluation: lambda1_re",
         ),
         ("lambda1_im", "x", "lambda1_im = \"x\" is not a number"),
         (
@@ -523,12 +536,12 @@ fn resume_verifies_every_row_in_full() {
         .unwrap()
         .replacen("\n10,", "\n10,3,", 1);
     fs::write(&p, text).unwrap();
-    refused(&resume, "line 13: expected 24 fields, found 25");
+    refused(&resume, "line 12: expected 24 fields, found 25");
     fs::copy(&good, &p).unwrap();
     let row10: Vec<String> = fs::read_to_string(&p)
         .unwrap()
         .lines()
-        .nth(12)
+        .nth(11)
         .unwrap()
         .split(',')
         .map(str::to_owned)
@@ -541,7 +554,7 @@ fn resume_verifies_every_row_in_full() {
     edit_field(&p, 10, "class", other);
     refused(
         &resume,
-        "line 13: configuration 10 differs from a fresh evaluation: class",
+        "line 12: configuration 10 differs from a fresh evaluation: class",
     );
     // The untouched file resumes.
     fs::copy(&good, &p).unwrap();
@@ -603,7 +616,7 @@ fn foreign_files_and_shard_counts_are_refused() {
             "--out",
             s(&bad),
         ],
-        "x-1.csv: line 1: written by another spec",
+        "x-1.csv: line 2: configuration 1 has p0 = ",
     );
     // Its own summary with it: the summary is refused first.
     refused(
@@ -632,7 +645,7 @@ fn foreign_files_and_shard_counts_are_refused() {
             "--out",
             s(&bad),
         ],
-        "y-1.csv: line 6: class = \"bogus\"",
+        "y-1.csv: line 5: class = \"bogus\"",
     );
     // An edited summary.
     fs::copy(d.join("a-1.csv"), d.join("z-1.csv")).unwrap();
@@ -758,4 +771,27 @@ fn progress_lines_without_a_terminal_and_quiet() {
     ]);
     assert_eq!(String::from_utf8_lossy(&o.stderr), "");
     assert_eq!(fs::read(&q).unwrap(), fs::read(&p).unwrap());
+}
+
+/// A row whose float class is indeterminate has an empty `exact_agrees`
+/// (the two classes cannot be compared): resume and merge accept it.
+#[test]
+fn resume_and_merge_accept_an_empty_exact_agrees() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(
+        dir.path(),
+        "x.toml",
+        "name = \"x\"\nscheme = \"nurds\"\nvalences = [4]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\nfixed = { r2 = 0.5, r3 = 0.5 }\n[sampler]\nkind = \"grid\"\npoints_per_axis = 3\n[columns]\nexact_certificate = true\n",
+    );
+    let p = dir.path().join("x.csv");
+    ok(&["sweep", s(&spec), "--out", s(&p), "--limit", "5"]);
+    let text = fs::read_to_string(&p).unwrap();
+    assert!(
+        text.contains(",indeterminate:") && text.contains(",,\n"),
+        "{text}"
+    );
+    ok(&["sweep", s(&spec), "--out", s(&p), "--resume"]);
+    let m = dir.path().join("m.csv");
+    ok(&["merge", "--spec", s(&spec), s(&p), "--out", s(&m)]);
+    assert_eq!(fs::read(&m).unwrap(), fs::read(&p).unwrap());
 }

@@ -1,12 +1,15 @@
-//! End-to-end tests of `sweep --format parquet` (math doc section 16.2):
-//! values equal to the CSV's, typed columns, byte identity for any thread
-//! count, resume after `kill -9` and after a torn trailing row group, resume
-//! verifies the committed rows.
+//! End-to-end tests of `sweep --out NAME.parquet` (math doc section 16.2):
+//! a dataset directory of part files whose values equal the CSV's, typed
+//! columns and metadata, byte identity for any thread count, resume after
+//! `kill -9` (complete parts kept, every row verified), shards written into
+//! one directory and merged (checked and compacted into one file).
 
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use subdiv_lab::sweep::output::parquet::{journal_bytes, read_table, Column, ROW_GROUP_ROWS};
+use subdiv_lab::sweep::output::parquet::{
+    read_table, Column, ParquetTable, FORMAT, FORMAT_KEY, NULLS_KEY, PART_ROWS, SCHEMA_KEY,
+};
 
 const BIN: &str = env!("CARGO_BIN_EXE_subdiv-lab");
 
@@ -30,27 +33,80 @@ fn ok(args: &[&str]) -> Output {
     o
 }
 
+fn refused(args: &[&str], needle: &str) {
+    let o = run(args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+    assert!(err.contains(needle), "{args:?}: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+}
+
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
-/// The summary without its throughput (which depends on the run).
+/// A JSON file without its throughput (which depends on the run).
+fn json(p: &Path) -> serde_json::Value {
+    let mut v: serde_json::Value = serde_json::from_str(&fs::read_to_string(p).unwrap()).unwrap();
+    v.as_object_mut().unwrap().remove("throughput");
+    v
+}
+
+/// The summary beside a CSV or compacted file.
 fn summary(p: &Path) -> serde_json::Value {
     let name = p.file_name().unwrap().to_str().unwrap();
     let stem = name
         .strip_suffix(".csv")
         .or_else(|| name.strip_suffix(".parquet"))
         .unwrap();
-    let text = fs::read_to_string(p.with_file_name(format!("{stem}.summary.json"))).unwrap();
-    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    v.as_object_mut().unwrap().remove("throughput");
+    json(&p.with_file_name(format!("{stem}.summary.json")))
+}
+
+/// The CSV's data lines (after the header line).
+fn csv_data(p: &Path) -> String {
+    let text = fs::read_to_string(p).unwrap();
+    text.split_once('\n').unwrap().1.to_owned()
+}
+
+/// The part files of a dataset directory, sorted by name, with their bytes.
+fn parts(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut v: Vec<(String, Vec<u8>)> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap())
+        .filter(|e| e.file_name().to_str().unwrap().ends_with(".parquet"))
+        .map(|e| {
+            (
+                e.file_name().to_str().unwrap().to_owned(),
+                fs::read(e.path()).unwrap(),
+            )
+        })
+        .collect();
+    v.sort();
     v
 }
 
-/// The CSV's data lines (after the fingerprint and header lines).
-fn csv_data(p: &Path) -> String {
-    let text = fs::read_to_string(p).unwrap();
-    text.splitn(3, '\n').nth(2).unwrap().to_owned()
+/// The rows of a dataset as CSV lines, part after part.
+fn dataset_lines(dir: &Path) -> String {
+    parts(dir)
+        .into_iter()
+        .map(|(_, b)| {
+            let t = read_table(b).unwrap();
+            t.csv_lines(0, t.rows())
+        })
+        .collect()
+}
+
+fn sweep_pq(spec: &Path, out: &Path, extra: &[&str]) {
+    let mut args = vec!["sweep", s(spec), "--out", s(out), "--quiet"];
+    args.extend_from_slice(extra);
+    ok(&args);
+}
+
+/// A single compacted Parquet file `out` of `spec`'s rows (a dataset merged).
+fn single_file(spec: &Path, out: &Path) {
+    let d = out.with_extension("d.parquet");
+    sweep_pq(spec, &d, &[]);
+    ok(&["merge", "--spec", s(spec), "--out", s(out), s(&d)]);
 }
 
 /// 3 and 4 with the exact certificate (labels, booleans, empty cells) and
@@ -71,7 +127,7 @@ eigenvalues = 3
 exact_certificate = true
 "#;
 
-/// More than two row groups of n = 3 (fast).
+/// More than two parts of n = 3 (fast).
 const BIG: &str = r#"
 name = "pq-big"
 scheme = "nurds"
@@ -91,16 +147,12 @@ fn parquet_values_equal_the_csv() {
     let csv = dir.path().join("s.csv");
     let pq = dir.path().join("s.parquet");
     ok(&["sweep", s(&spec), "--out", s(&csv), "--quiet"]);
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&pq),
-        "--format",
-        "parquet",
-        "--quiet",
-    ]);
-    let t = read_table(fs::read(&pq).unwrap()).unwrap();
+    sweep_pq(&spec, &pq, &[]);
+    assert!(pq.is_dir());
+    let p = parts(&pq);
+    assert_eq!(p.len(), 1);
+    assert_eq!(p[0].0, "part-000000.parquet");
+    let t: ParquetTable = read_table(p[0].1.clone()).unwrap();
     // The same lines, byte for byte (numbers in shortest round-trip form).
     assert_eq!(t.csv_lines(0, t.rows()), csv_data(&csv));
     assert_eq!(t.rows(), 80);
@@ -108,7 +160,7 @@ fn parquet_values_equal_the_csv() {
     let header: Vec<String> = fs::read_to_string(&csv)
         .unwrap()
         .lines()
-        .nth(1)
+        .next()
         .unwrap()
         .split(',')
         .map(str::to_owned)
@@ -118,285 +170,129 @@ fn parquet_values_equal_the_csv() {
     assert!(matches!(t.column("valence"), Some(Column::U32(_))));
     assert!(matches!(t.column("class"), Some(Column::Str(_))));
     assert!(matches!(t.column("exact_agrees"), Some(Column::Bool(_))));
-    let text = csv_data(&csv);
-    let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
-    let mut numbers = 0;
-    let mut booleans = 0;
-    for (k, name) in header.iter().enumerate() {
-        match t.column(name).unwrap() {
-            Column::F64(v) => {
-                for (r, x) in v.iter().enumerate() {
-                    let cell = rows[r][k];
-                    match x {
-                        Some(x) => {
-                            assert_eq!(cell.parse::<f64>().unwrap().to_bits(), x.to_bits());
-                            numbers += 1;
-                        }
-                        None => assert_eq!(cell, ""),
-                    }
-                }
-            }
-            Column::Bool(v) => {
-                for (r, b) in v.iter().enumerate() {
-                    let want = match rows[r][k] {
-                        "true" => Some(true),
-                        "false" => Some(false),
-                        "" => None,
-                        other => panic!("boolean cell {other:?}"),
-                    };
-                    assert_eq!(*b, want);
-                    booleans += usize::from(b.is_some());
-                }
-            }
-            _ => {}
-        }
-    }
-    assert!(numbers > 80 * 10, "{numbers}");
-    assert!(booleans > 40, "{booleans}");
-    // The fingerprint ties the file to the spec, as the CSV's first line does.
-    let first = fs::read_to_string(&csv).unwrap();
-    assert_eq!(t.fingerprint().unwrap(), first.lines().next().unwrap());
-    // The summary is the CSV run's (the same rows).
+    assert!(matches!(t.column("lambda1_re"), Some(Column::F64(_))));
+    // r3 is null on the rows of valence 3 (an empty CSV cell).
+    let Some(Column::F64(r3)) = t.column("r3") else {
+        panic!("r3")
+    };
+    assert!(r3.iter().any(Option::is_none) && r3.iter().any(Option::is_some));
+    // The metadata: the fingerprint (spec digest and shard), the format, the
+    // column documentation and the null rules.
+    let digest = summary(&pq)["spec_digest"].as_str().unwrap().to_owned();
+    let fp = t.fingerprint().unwrap();
+    assert!(
+        fp.starts_with(&format!("# subdiv-lab sweep: digest {digest}, shard 0/1")),
+        "{fp}"
+    );
+    assert_eq!(t.metadata(FORMAT_KEY), Some(FORMAT));
+    assert!(t
+        .metadata(NULLS_KEY)
+        .unwrap()
+        .contains("beyond the row's valence"));
+    let docs: serde_json::Value = serde_json::from_str(t.metadata(SCHEMA_KEY).unwrap()).unwrap();
+    assert_eq!(docs.as_array().unwrap().len(), header.len());
+    // The summary (beside the directory) is the CSV run's (the same rows).
     assert_eq!(summary(&pq), summary(&csv));
-    let schema = summary(&csv)["schema"].as_array().unwrap().clone();
-    assert_eq!(schema.len(), header.len());
-    assert_eq!(schema[0]["name"], "id");
-    assert!(schema
-        .iter()
-        .any(|c| c["name"] == "exact_agrees" && c["type"] == "bool"));
 }
 
 #[test]
-fn parquet_is_byte_identical_for_any_thread_count_and_groups_are_fixed() {
+fn parquet_is_byte_identical_for_any_thread_count_and_parts_are_fixed() {
     let dir = tempfile::tempdir().unwrap();
     let spec = write_spec(dir.path(), "b.toml", BIG);
     let one = dir.path().join("one.parquet");
     let two = dir.path().join("two.parquet");
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&one),
-        "--format",
-        "parquet",
-        "--threads",
-        "1",
-        "--quiet",
-    ]);
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&two),
-        "--format",
-        "parquet",
-        "--threads",
-        "2",
-        "--quiet",
-    ]);
-    let a = fs::read(&one).unwrap();
-    assert_eq!(a, fs::read(&two).unwrap());
-    let t = read_table(a).unwrap();
-    let g = ROW_GROUP_ROWS as u64;
-    assert_eq!(t.group_rows(), vec![g, g, 150_000 - 2 * g]);
-    // No journal is left after a finished run.
-    assert!(!dir.path().join(".one.parquet.commit").exists());
+    sweep_pq(&spec, &one, &["--threads", "1"]);
+    sweep_pq(&spec, &two, &["--threads", "2"]);
+    let a = parts(&one);
+    assert!(a == parts(&two), "the parts differ between thread counts");
+    let names: Vec<&str> = a.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "part-000000.parquet",
+            "part-000001.parquet",
+            "part-000002.parquet"
+        ]
+    );
+    let rows: Vec<usize> = a
+        .iter()
+        .map(|(_, b)| read_table(b.clone()).unwrap().rows())
+        .collect();
+    assert_eq!(rows, [PART_ROWS, PART_ROWS, 150_000 - 2 * PART_ROWS]);
+    // Only the parts are in the directory, and no temporary file is left.
+    assert_eq!(fs::read_dir(&one).unwrap().count(), 3);
+    let hidden = fs::read_dir(dir.path())
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .file_name()
+                .to_str()
+                .unwrap()
+                .starts_with('.')
+        })
+        .count();
+    assert_eq!(hidden, 0);
 }
 
-#[test]
-fn parquet_resume_drops_a_torn_trailing_group() {
-    let dir = tempfile::tempdir().unwrap();
-    let spec = write_spec(dir.path(), "b.toml", BIG);
-    let full = dir.path().join("full.parquet");
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&full),
-        "--format",
-        "parquet",
-        "--quiet",
-    ]);
-    let want = fs::read(&full).unwrap();
-    let table = read_table(want.clone()).unwrap();
-    // The state of a run killed while writing group 2: group 1 committed (its
-    // footer in the journal: the file of a run limited to one group), then
-    // part of group 2, and no footer.
-    let one = dir.path().join("one.parquet");
-    let limit = ROW_GROUP_ROWS.to_string();
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&one),
-        "--format",
-        "parquet",
-        "--limit",
-        &limit,
-        "--quiet",
-    ]);
-    let one_bytes = fs::read(&one).unwrap();
-    let end = table.end_of_groups(1) as usize;
-    assert_eq!(one_bytes[..end], want[..end]);
-    let footer = &one_bytes[end..];
-    let killed = dir.path().join("killed.parquet");
-    fs::write(&killed, &want[..end + 5000]).unwrap();
-    fs::write(
-        dir.path().join(".killed.parquet.commit"),
-        journal_bytes(end as u64, footer),
-    )
-    .unwrap();
-    let o = ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&killed),
-        "--format",
-        "parquet",
-        "--resume",
-    ]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains(&format!("at row {ROW_GROUP_ROWS}")), "{err}");
-    assert_eq!(fs::read(&killed).unwrap(), want);
-    assert_eq!(summary(&killed), summary(&full));
-    assert!(!dir.path().join(".killed.parquet.commit").exists());
-    // A finished file resumes to itself; a shorter last group (a finished
-    // --limit run) is evaluated again, so extending it gives the full file.
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&killed),
-        "--format",
-        "parquet",
-        "--resume",
-        "--quiet",
-    ]);
-    assert_eq!(fs::read(&killed).unwrap(), want);
-    let short = dir.path().join("short.parquet");
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&short),
-        "--format",
-        "parquet",
-        "--limit",
-        "70000",
-        "--quiet",
-    ]);
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&short),
-        "--format",
-        "parquet",
-        "--resume",
-        "--quiet",
-    ]);
-    assert_eq!(fs::read(&short).unwrap(), want);
-    // Torn without its journal: refused, the file left as it was.
-    let torn = dir.path().join("torn.parquet");
-    fs::write(&torn, &want[..end + 5000]).unwrap();
-    let o = run(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&torn),
-        "--format",
-        "parquet",
-        "--resume",
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("torn"));
-    assert_eq!(fs::read(&torn).unwrap(), &want[..end + 5000]);
+/// Kills (SIGKILL) a Parquet sweep of `spec` into `out` once `parts`
+/// part files exist (or after `at_least` when given), leaving what it wrote.
+fn kill_after(spec: &Path, out: &Path, parts_done: usize, threads: &str) {
+    let mut child = Command::new(BIN)
+        .args(["sweep", s(spec), "--out", s(out), "--threads", threads])
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while fs::read_dir(out).map_or(0, |d| {
+        d.filter(|e| {
+            e.as_ref()
+                .is_ok_and(|e| e.file_name().to_str().unwrap().starts_with("part-"))
+        })
+        .count()
+    }) < parts_done
+        && start.elapsed() < std::time::Duration::from_secs(120)
+    {
+        std::thread::sleep(std::time::Duration::from_millis(1));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
 }
 
 #[test]
 fn parquet_resume_after_sigkill_is_byte_identical() {
     let dir = tempfile::tempdir().unwrap();
-    let spec = write_spec(
-        dir.path(),
-        "k.toml",
-        r#"
-scheme = "nurds"
-valences = [6, 9]
-[space]
-kind = "face-ep"
-interval_range = [0.1, 10.0]
-[sampler]
-kind = "sobol"
-count = 100000
-"#,
-    );
+    let spec = write_spec(dir.path(), "b.toml", BIG);
     let full = dir.path().join("full.parquet");
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&full),
-        "--format",
-        "parquet",
-        "--quiet",
-    ]);
-    let want = fs::read(&full).unwrap();
-    for round in 0..2 {
+    sweep_pq(&spec, &full, &[]);
+    let want = parts(&full);
+    for (round, k) in [(0, 0), (1, 1), (2, 2)] {
         let p = dir.path().join(format!("killed{round}.parquet"));
-        let mut child = Command::new(BIN)
-            .args([
-                "sweep",
-                s(&spec),
-                "--out",
-                s(&p),
-                "--format",
-                "parquet",
-                "--threads",
-                "2",
-            ])
-            .stderr(std::process::Stdio::null())
-            .spawn()
-            .unwrap();
-        // Kill (SIGKILL) after the first commit (round 0) or a little later.
-        let target = (want.len() / 8 * (1 + 2 * round)) as u64;
-        let start = std::time::Instant::now();
-        while fs::metadata(&p).map(|m| m.len()).unwrap_or(0) < target
-            && start.elapsed() < std::time::Duration::from_secs(120)
-        {
-            std::thread::sleep(std::time::Duration::from_millis(1));
+        kill_after(&spec, &p, k, "2");
+        // Without --resume the existing parts are refused.
+        if k > 0 {
+            refused(&["sweep", s(&spec), "--out", s(&p)], "pass --resume");
         }
-        child.kill().unwrap();
-        child.wait().unwrap();
-        ok(&[
-            "sweep",
-            s(&spec),
-            "--out",
-            s(&p),
-            "--format",
-            "parquet",
-            "--resume",
-            "--quiet",
-        ]);
-        assert_eq!(fs::read(&p).unwrap(), want, "round {round}");
+        sweep_pq(&spec, &p, &["--resume"]);
+        assert!(parts(&p) == want, "round {round}");
         assert_eq!(summary(&p), summary(&full));
     }
+    // A run limited to a short last part, continued: that part is written again.
+    let p = dir.path().join("steps.parquet");
+    sweep_pq(&spec, &p, &["--limit", "70000"]);
+    assert_eq!(parts(&p).len(), 2);
+    sweep_pq(&spec, &p, &["--resume"]);
+    assert!(parts(&p) == want);
 }
 
 #[test]
-fn parquet_resume_verifies_the_committed_rows() {
+fn parquet_resume_verifies_the_parts() {
     let dir = tempfile::tempdir().unwrap();
-    let spec = write_spec(dir.path(), "s.toml", SMALL);
-    let pq = dir.path().join("s.parquet");
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&pq),
-        "--format",
-        "parquet",
-        "--quiet",
-    ]);
-    let bytes = fs::read(&pq).unwrap();
+    let spec = write_spec(dir.path(), "b.toml", BIG);
+    let pq = dir.path().join("b.parquet");
+    sweep_pq(&spec, &pq, &["--limit", "140000"]);
+    let part1 = pq.join("part-000001.parquet");
+    let bytes = fs::read(&part1).unwrap();
     let t = read_table(bytes.clone()).unwrap();
     // Change the bytes of one coordinate (PLAIN-encoded doubles): the
     // parameters re-derived from the id no longer match.
@@ -404,107 +300,108 @@ fn parquet_resume_verifies_the_committed_rows() {
         panic!("r1")
     };
     let x = r1[17].unwrap();
-    let needle = x.to_le_bytes();
     let at = bytes
         .windows(8)
-        .position(|w| w == needle)
+        .position(|w| w == x.to_le_bytes())
         .expect("the value's bytes");
     let mut edited = bytes.clone();
     edited[at..at + 8].copy_from_slice(&(x * 0.5).to_le_bytes());
-    fs::write(&pq, &edited).unwrap();
-    let o = run(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&pq),
-        "--format",
-        "parquet",
-        "--resume",
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("r1"), "{err}");
-    assert_eq!(fs::read(&pq).unwrap(), edited);
-    // Another spec's file is refused by its fingerprint.
-    fs::write(&pq, &bytes).unwrap();
-    let other = write_spec(dir.path(), "o.toml", &SMALL.replace("seed = 5", "seed = 6"));
-    let o = run(&[
-        "sweep",
-        s(&other),
-        "--out",
-        s(&pq),
-        "--format",
-        "parquet",
-        "--resume",
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("another spec"));
-    assert_eq!(fs::read(&pq).unwrap(), bytes);
+    fs::write(&part1, &edited).unwrap();
+    let resume = ["sweep", s(&spec), "--out", s(&pq), "--resume"];
+    refused(&resume, "r1");
+    assert_eq!(fs::read(&part1).unwrap(), edited);
+    // A part of another spec is refused by its fingerprint.
+    let other = write_spec(dir.path(), "o.toml", &BIG.replace("150000", "150001"));
+    let foreign = dir.path().join("o.parquet");
+    sweep_pq(&other, &foreign, &["--limit", "70000"]);
+    fs::copy(foreign.join("part-000001.parquet"), &part1).unwrap();
+    refused(&resume, "another spec");
+    // A torn part (not written by this tool: parts are renamed into place).
+    fs::write(&part1, &bytes[..bytes.len() / 2]).unwrap();
+    refused(&resume, "part-000001.parquet: line 1: read failed");
+    // A part renamed to another index.
+    fs::copy(pq.join("part-000000.parquet"), &part1).unwrap();
+    refused(&resume, "holds part 0 where part 1 was expected");
+    // A missing part before an existing one.
+    fs::write(&part1, &bytes).unwrap();
+    fs::remove_file(pq.join("part-000000.parquet")).unwrap();
+    refused(&resume, "part-000000.parquet is missing");
+    // An output of the older single-file format is refused by name.
+    let old = dir.path().join("old.parquet");
+    fs::copy(foreign.join("part-000000.parquet"), &old).unwrap();
+    refused(
+        &["sweep", s(&spec), "--out", s(&old), "--resume"],
+        "written by an older subdiv-lab",
+    );
 }
 
 #[test]
-fn parquet_shards_merge_to_the_unsharded_file() {
+fn parquet_shards_in_one_directory_merge_to_the_unsharded_rows() {
     let dir = tempfile::tempdir().unwrap();
     let spec = write_spec(dir.path(), "b.toml", &BIG.replace("150000", "70000"));
     let full = dir.path().join("full.parquet");
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&full),
-        "--format",
-        "parquet",
-        "--quiet",
-    ]);
-    let mut shards = Vec::new();
+    sweep_pq(&spec, &full, &[]);
+    // Three shards into one directory (as the Slurm recipe runs them).
+    let shared = dir.path().join("shared.parquet");
     for i in 0..3 {
-        let p = dir.path().join(format!("shard-{i}.parquet"));
-        let shard = format!("{i}/3");
-        ok(&[
-            "sweep",
-            s(&spec),
-            "--out",
-            s(&p),
-            "--format",
-            "parquet",
-            "--shard",
-            &shard,
-            "--quiet",
-        ]);
-        shards.push(p);
+        sweep_pq(&spec, &shared, &["--shard", &format!("{i}/3"), "--resume"]);
     }
+    let names: Vec<String> = parts(&shared).into_iter().map(|(n, _)| n).collect();
+    assert_eq!(
+        names,
+        [
+            "part-0-of-3-000000.parquet",
+            "part-1-of-3-000000.parquet",
+            "part-2-of-3-000000.parquet"
+        ]
+    );
+    assert!(dir.path().join("shared.shard-2-of-3.summary.json").exists());
+    // Compacted into one file: the rows of the unsharded run, in id order.
     let merged = dir.path().join("merged.parquet");
-    let mut args = vec!["merge", "--spec", s(&spec), "--out", s(&merged)];
-    args.extend(shards.iter().map(|p| s(p)));
-    ok(&args);
-    assert_eq!(fs::read(&merged).unwrap(), fs::read(&full).unwrap());
+    ok(&["merge", "--spec", s(&spec), "--out", s(&merged), s(&shared)]);
+    let t = read_table(fs::read(&merged).unwrap()).unwrap();
+    assert_eq!(t.csv_lines(0, t.rows()), dataset_lines(&full));
     assert_eq!(summary(&merged), summary(&full));
-    // A shard of another spec is refused by its fingerprint.
-    let other = write_spec(dir.path(), "o.toml", &BIG.replace("150000", "70001"));
-    let foreign = dir.path().join("foreign.parquet");
-    ok(&[
-        "sweep",
-        s(&other),
-        "--out",
-        s(&foreign),
-        "--format",
-        "parquet",
-        "--shard",
-        "2/3",
-        "--quiet",
-    ]);
-    fs::copy(
-        dir.path().join("foreign.summary.json"),
-        dir.path().join("shard-2.summary.json"),
+    // A missing shard: the error names the first missing id, and no output appears.
+    let out2 = dir.path().join("merged2.parquet");
+    fs::rename(
+        shared.join("part-1-of-3-000000.parquet"),
+        dir.path().join("away.parquet"),
     )
     .unwrap();
-    fs::copy(&foreign, &shards[2]).unwrap();
-    let out2 = dir.path().join("merged2.parquet");
-    let mut args = vec!["merge", "--spec", s(&spec), "--out", s(&out2)];
-    args.extend(shards.iter().map(|p| s(p)));
-    let o = run(&args);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("another spec"));
+    refused(
+        &["merge", "--spec", s(&spec), "--out", s(&out2), s(&shared)],
+        "configuration id 1 is missing",
+    );
+    assert!(!out2.exists());
+    // The same shard twice (a second directory holding a copy).
+    fs::rename(
+        dir.path().join("away.parquet"),
+        shared.join("part-1-of-3-000000.parquet"),
+    )
+    .unwrap();
+    let copy = dir.path().join("copy.parquet");
+    fs::create_dir(&copy).unwrap();
+    let f = "part-1-of-3-000000.parquet";
+    fs::copy(shared.join(f), copy.join(f)).unwrap();
+    let f = "shard-1-of-3.summary.json";
+    fs::copy(
+        dir.path().join(format!("shared.{f}")),
+        dir.path().join(format!("copy.{f}")),
+    )
+    .unwrap();
+    refused(
+        &[
+            "merge",
+            "--spec",
+            s(&spec),
+            "--out",
+            s(&out2),
+            s(&shared),
+            s(&copy),
+        ],
+        "configuration id 1 appears twice",
+    );
     assert!(!out2.exists());
 }
 
@@ -534,15 +431,7 @@ fn plot_from_parquet_equals_plot_from_csv() {
     let csv = dir.path().join("s.csv");
     let pq = dir.path().join("s.parquet");
     ok(&["sweep", s(&spec), "--out", s(&csv), "--quiet"]);
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&pq),
-        "--format",
-        "parquet",
-        "--quiet",
-    ]);
+    single_file(&spec, &pq);
     let cases: &[&[&str]] = &[
         &[],
         &["--kind", "fractions", "--x", "r0"],
@@ -597,15 +486,7 @@ fn plot_recognises_parquet_under_a_csv_name() {
     let spec = write_spec(dir.path(), "s.toml", SLICE);
     let pq = dir.path().join("s.parquet");
     let disguised = dir.path().join("d.csv");
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&pq),
-        "--format",
-        "parquet",
-        "--quiet",
-    ]);
+    single_file(&spec, &pq);
     fs::copy(&pq, &disguised).unwrap();
     let a = dir.path().join("a.svg");
     let b = dir.path().join("b.svg");
@@ -622,15 +503,7 @@ fn plot_refuses_bad_parquet_input() {
     let dir = tempfile::tempdir().unwrap();
     let spec = write_spec(dir.path(), "s.toml", SLICE);
     let pq = dir.path().join("s.parquet");
-    ok(&[
-        "sweep",
-        s(&spec),
-        "--out",
-        s(&pq),
-        "--format",
-        "parquet",
-        "--quiet",
-    ]);
+    single_file(&spec, &pq);
     let bytes = fs::read(&pq).unwrap();
     let cut = dir.path().join("cut.parquet");
     fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();

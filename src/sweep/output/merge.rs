@@ -10,13 +10,16 @@ use crate::sweep::SweepError;
 use std::collections::BinaryHeap;
 use std::io::Write;
 
-/// A source of CSV data lines for [`merge`] (fingerprint and header already
-/// checked): a name (for messages), the shard its fingerprint names, and its
-/// data lines without `\n`, in file order (the first is line 3 of the file).
+/// Line number of a sweep CSV's first data line (the header is line 1).
+pub const FIRST_DATA_LINE: u64 = 2;
+
+/// A source of CSV data lines for [`merge`] (its header already checked): a
+/// name (for messages), the shard it holds (its summary's), and its data
+/// lines without `\n`, in file order (the first is line [`FIRST_DATA_LINE`]).
 pub struct MergeSource<I> {
     /// File name.
     pub name: String,
-    /// The shard the file holds (from its fingerprint line).
+    /// The shard the file holds.
     pub shard: Shard,
     /// Data lines.
     pub lines: I,
@@ -75,7 +78,7 @@ where
         }
     };
     for (k, (src, ver)) in sources.iter_mut().zip(&mut verifiers).enumerate() {
-        match advance(src, ver, 3)? {
+        match advance(src, ver, FIRST_DATA_LINE)? {
             Some((id, h)) => {
                 heap.push(std::cmp::Reverse((id, k)));
                 heads.push(Some(h));
@@ -215,7 +218,7 @@ mod tests {
         assert!(e.contains("configuration id 0 appears twice"), "{e}");
         let e = go(vec![src("a", s0, &[l[0], l[1]])]);
         assert!(
-            e.contains("a: line 4: configuration id 1 where 2 was expected"),
+            e.contains("a: line 3: configuration id 1 where 2 was expected"),
             "{e}"
         );
         // A bogus class, an edited number, an edited parameter.
@@ -228,7 +231,7 @@ mod tests {
             src("a", s0, &[l[0], &bogus, l[4], l[6]]),
             src("b", s1, &odds),
         ]);
-        assert!(e.contains("a: line 4: class = \"bogus\""), "{e}");
+        assert!(e.contains("a: line 3: class = \"bogus\""), "{e}");
         let f: Vec<&str> = l[4].split(',').collect();
         let mut g = f.clone();
         let lam = format!("{}", f[6].parse::<f64>().unwrap() + 0.25);
@@ -239,7 +242,7 @@ mod tests {
             src("b", s1, &odds),
         ]);
         assert!(
-            e.contains("a: line 5: configuration 4 differs from a fresh evaluation: lambda1_re"),
+            e.contains("a: line 4: configuration 4 differs from a fresh evaluation: lambda1_re"),
             "{e}"
         );
         let mut g = f.clone();

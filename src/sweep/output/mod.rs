@@ -24,12 +24,17 @@
 //! * `merge.rs`: the shard merge ([`merge()`]);
 //! * `shards.rs`: the shard files of a merge and their summaries, checked
 //!   before and after it ([`shards::prepare`]);
-//! * `parquet.rs`: the Parquet form of the rows (typed columns, row groups as
-//!   commit units, reading back: [`parquet::read_table`]);
+//! * `parquet.rs`: the Parquet form of the rows (typed columns, a dataset of
+//!   part files written by the `parquet` crate, reading back:
+//!   [`parquet::read_table`]);
+//! * `dataset.rs`: the Parquet dataset directory on disk (part files
+//!   committed by rename, resume, the shards of a merge:
+//!   [`dataset::open`], [`dataset::dataset_shards`]);
 //! * `verify.rs`: the verification of existing files (resume and merge,
 //!   [`Verifier`]).
 
 pub(crate) mod csv;
+pub mod dataset;
 pub(crate) mod layout;
 mod merge;
 pub mod parquet;
@@ -46,6 +51,6 @@ pub use parquet::run_parquet;
 pub use run::{run, run_counting, run_discard, CHUNK, SUB_CHUNK};
 pub use shards::fresh_salt;
 pub use verify::{
-    check_fingerprint, fingerprint_digest, fingerprint_line, fingerprint_shard, LineFault,
-    Verifier, PIECE_BYTES, RECHECK_SAMPLE,
+    check_fingerprint, check_summary, fingerprint_digest, fingerprint_line, fingerprint_shard,
+    is_old_csv_fingerprint, LineFault, Verifier, OLD_CSV, PIECE_BYTES, RECHECK_SAMPLE,
 };

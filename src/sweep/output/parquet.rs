@@ -1,5 +1,6 @@
-//! The Parquet form of a sweep's rows (`sweep --format parquet`; math doc
-//! section 16.2).
+//! The Parquet form of a sweep's rows (`sweep --out NAME.parquet`; math doc
+//! section 16.2): a dataset directory of part files, each a complete Parquet
+//! file written by the `parquet` crate's column writers.
 //!
 //! # Columns
 //!
@@ -7,63 +8,50 @@
 //! `valence` `INT32` (unsigned), coordinates and float results `DOUBLE`,
 //! labels (`class`, verdicts) dictionary-encoded UTF-8 `BYTE_ARRAY`, booleans
 //! `BOOLEAN`, `error` UTF-8 `BYTE_ARRAY`; every column but `id` and `valence`
-//! is optional (an empty CSV cell is a null). The type of a result column is
-//! declared once, in the column table ([`result_columns`]).
+//! is optional (an empty CSV cell is a null, [`NULL_RULES`]). The type of a
+//! result column is declared once, in the column table ([`result_columns`]).
+//! The values are those of the CSV bit for bit (a float is the `f64` its CSV
+//! text reads back to). No compression and no statistics: the bytes depend
+//! only on the rows, so every part is byte-identical for any thread count.
 //!
-//! The values are those of the CSV: a row group is built from the CSV lines
-//! the sweep driver formats (numbers in shortest round-trip form, which read
-//! back to the same `f64` bit for bit), so the Parquet file holds exactly the
-//! numbers of the CSV of the same spec (a test reads both back and compares).
-//! No compression, no statistics, no page index: the bytes depend only on the
-//! rows, so the file is byte-identical for any thread count. The pages are
-//! written by the private `encode` module (one data page per column chunk, a dictionary page
-//! before a label column's); the `parquet` crate serialises the footer's
-//! parts (each group's metadata once; the private `footer` module assembles
-//! a commit's footer from them) and reads files back.
+//! # Parts
 //!
-//! # Commit units
-//!
-//! Rows are cut into row groups of [`ROW_GROUP_ROWS`] rows (the last one
-//! shorter). A row group is the unit of commit: [`ParquetRows`] hands each
-//! completed group to its caller as a [`Commit`] (the bytes of the group, the
-//! offset where they go, the footer that makes the file end there). The file
-//! on disk is `PAR1`, the committed groups, and the footer of the last commit:
-//! a valid Parquet file after every commit. Each group is encoded at its place
-//! in the file (its offsets are those of the file). The caller's journal of the last commit (offset and
-//! footer) lets a killed run find the last committed group: the CLI keeps it
-//! beside the file (see `docs/math.md` section 16.2).
-//!
-//! The key-value metadata `subdiv-lab.fingerprint` holds the CSV's fingerprint
-//! line ([`super::fingerprint_line`]: spec digest, shard, configurations), which
-//! ties the file to its spec and shard for resume and merge;
-//! `subdiv-lab.schema` holds the column documentation (JSON).
+//! Rows are cut into parts of [`PART_ROWS`] rows of the shard (the last one
+//! shorter); [`ParquetRows`] hands each completed part, a whole Parquet file
+//! of one row group, to its caller, which commits it by an atomic rename
+//! ([`part_name`]). The key-value metadata of every part holds the
+//! fingerprint ([`FINGERPRINT_KEY`]: spec digest, shard, configurations), the
+//! format ([`FORMAT_KEY`]), the part's index ([`PART_KEY`]), the column
+//! documentation ([`SCHEMA_KEY`]) and the null rules ([`NULLS_KEY`]).
+//! [`ParquetRows::file`] writes the same row groups into one file instead
+//! (a compacted dataset).
 //!
 //! [`result_columns`]: crate::sweep::eval::result_columns
 
 use super::csv::{canonical_number, push_number, push_text, split_csv_line};
 use super::layout::Layout;
 use crate::sweep::eval::{ColumnType, Evaluate};
-use crate::sweep::plan::Plan;
+use crate::sweep::plan::{Plan, Shard};
 use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
 use bytes::Bytes;
 use parquet::basic::{IntType, LogicalType, Repetition, Type as PhysicalType};
-use parquet::file::metadata::{KeyValue, RowGroupMetaData};
+use parquet::column::writer::ColumnWriter;
+use parquet::data_type::ByteArray;
+use parquet::file::metadata::KeyValue;
 use parquet::file::properties::{EnabledStatistics, WriterProperties, WriterVersion};
 use parquet::file::reader::{FileReader, SerializedFileReader};
+use parquet::file::writer::SerializedFileWriter;
 use parquet::record::Field;
-use parquet::schema::types::{SchemaDescPtr, SchemaDescriptor, Type, TypePtr};
+use parquet::schema::types::{ColumnPath, Type, TypePtr};
 use std::sync::Arc;
 
-mod encode;
-mod footer;
-
-/// Rows per row group (the commit unit; the last group of a file is
-/// shorter). Fixed, so that the groups, and with them the bytes of the file,
-/// do not depend on the thread count or on where a run was interrupted; 65 536
-/// rows of the default columns are about 8 MB, a common row-group size for
-/// readers, and a few seconds of evaluation at the sweep's rate.
-pub const ROW_GROUP_ROWS: usize = 65_536;
+/// Rows per part (per row group of a compacted file; the last part of a
+/// shard is shorter). Fixed, so that the parts, and with them the bytes of
+/// the files, do not depend on the thread count or on where a run was
+/// interrupted; 65 536 rows of the default columns are about 8 MB, a common
+/// row-group size for readers, and a few seconds of evaluation.
+pub const PART_ROWS: usize = 65_536;
 
 /// The key of the fingerprint line in the key-value metadata.
 pub const FINGERPRINT_KEY: &str = "subdiv-lab.fingerprint";
@@ -71,8 +59,64 @@ pub const FINGERPRINT_KEY: &str = "subdiv-lab.fingerprint";
 /// The key of the column documentation (JSON) in the key-value metadata.
 pub const SCHEMA_KEY: &str = "subdiv-lab.schema";
 
+/// The key of the format in the key-value metadata ([`FORMAT`]).
+pub const FORMAT_KEY: &str = "subdiv-lab.format";
+
+/// The format of a part file: files without it (a single file of the older
+/// format, with its commit journal) are refused, never misread.
+pub const FORMAT: &str = "sweep dataset part 1";
+
+/// The key of a part's index (within its shard) in the key-value metadata.
+pub const PART_KEY: &str = "subdiv-lab.part";
+
+/// The key of the null rules ([`NULL_RULES`]) in the key-value metadata.
+pub const NULLS_KEY: &str = "subdiv-lab.nulls";
+
+/// When a cell is null (the CSV's empty cell).
+pub const NULL_RULES: &str = "id and valence are never null; a coordinate is null beyond the row's valence; a result column is null where the result is not defined for the row (see its meaning in subdiv-lab.schema) and in every result column of a failed row; error is null when the row succeeded";
+
 /// The four bytes that start (and end) every Parquet file.
 pub const MAGIC: &[u8; 4] = b"PAR1";
+
+/// The file name of part `k` of `shard` in a dataset directory:
+/// `part-000017.parquet` for an unsharded run, `part-2-of-8-000017.parquet`
+/// for shard 2/8 (the shards of one run write into one directory).
+///
+/// ```
+/// use subdiv_lab::sweep::output::parquet::{part_name, parse_part_name};
+/// use subdiv_lab::sweep::Shard;
+/// assert_eq!(part_name(Shard::ALL, 17), "part-000017.parquet");
+/// let s: Shard = "2/8".parse().unwrap();
+/// assert_eq!(part_name(s, 3), "part-2-of-8-000003.parquet");
+/// assert_eq!(parse_part_name("part-2-of-8-000003.parquet"), Some((s, 3)));
+/// assert_eq!(parse_part_name("notes.txt"), None);
+/// ```
+pub fn part_name(shard: Shard, k: u64) -> String {
+    if shard == Shard::ALL {
+        format!("part-{k:06}.parquet")
+    } else {
+        format!("part-{}-of-{}-{k:06}.parquet", shard.index, shard.count)
+    }
+}
+
+/// The shard and index a [`part_name`] names, if `name` is one.
+pub fn parse_part_name(name: &str) -> Option<(Shard, u64)> {
+    let rest = name.strip_prefix("part-")?.strip_suffix(".parquet")?;
+    let parts: Vec<&str> = rest.split('-').collect();
+    let num = |t: &str| {
+        t.parse::<u64>()
+            .ok()
+            .filter(|_| t.bytes().all(|b| b.is_ascii_digit()))
+    };
+    let (shard, k) = match parts.as_slice() {
+        [k] => (Shard::ALL, *k),
+        [i, "of", n, k] => (format!("{}/{}", num(i)?, num(n)?).parse().ok()?, *k),
+        _ => return None,
+    };
+    (k.len() >= 6).then_some(())?;
+    let k = num(k)?;
+    (part_name(shard, k) == name).then_some((shard, k))
+}
 
 fn pq_err(e: parquet::errors::ParquetError) -> SweepError {
     SweepError::Io(format!("parquet: {e}"))
@@ -150,18 +194,30 @@ fn schema_of(layout: &Layout) -> Result<TypePtr, SweepError> {
     ))
 }
 
-/// Writer properties of the footer (format version, `created_by`); the
-/// pages themselves are written by `encode` (no compression, statistics or
-/// page index: the bytes depend on the rows only).
-fn properties() -> Arc<WriterProperties> {
-    Arc::new(
-        WriterProperties::builder()
-            .set_writer_version(WriterVersion::PARQUET_1_0)
-            .set_statistics_enabled(EnabledStatistics::None)
-            .set_offset_index_disabled(true)
-            .set_created_by(format!("subdiv-lab {}", env!("CARGO_PKG_VERSION")))
-            .build(),
-    )
+/// Writer properties: no compression or statistics (the bytes depend on the
+/// rows only), a dictionary for the label columns only, and the key-value
+/// metadata of every file of `layout` tied to `fingerprint`.
+fn properties(layout: &Layout, fingerprint: &str) -> Result<Arc<WriterProperties>, SweepError> {
+    let schema_json =
+        serde_json::to_string(layout.column_docs()).map_err(|e| SweepError::Io(e.to_string()))?;
+    let kv = |k: &str, v: &str| KeyValue::new(k.to_owned(), v.to_owned());
+    let mut b = WriterProperties::builder()
+        .set_writer_version(WriterVersion::PARQUET_1_0)
+        .set_statistics_enabled(EnabledStatistics::None)
+        .set_dictionary_enabled(false)
+        .set_created_by(format!("subdiv-lab {}", env!("CARGO_PKG_VERSION")))
+        .set_key_value_metadata(Some(vec![
+            kv(FORMAT_KEY, FORMAT),
+            kv(FINGERPRINT_KEY, fingerprint.trim_end_matches('\n')),
+            kv(SCHEMA_KEY, &schema_json),
+            kv(NULLS_KEY, NULL_RULES),
+        ]));
+    for (name, col) in layout.column_names().into_iter().zip(columns_of(layout)) {
+        if col == Col::Label {
+            b = b.set_column_dictionary_enabled(ColumnPath::from(name), true);
+        }
+    }
+    Ok(Arc::new(b.build()))
 }
 
 /// Labels interned in order of first appearance: a label column's
@@ -178,7 +234,7 @@ struct Dict {
 }
 
 /// The index of a null label (no dictionary has `u32::MAX` entries: a row
-/// group has [`ROW_GROUP_ROWS`] rows).
+/// group has [`PART_ROWS`] rows).
 const NULL_INDEX: u32 = u32::MAX;
 
 /// The bits of a null in a float column: a NaN whose payload no value
@@ -723,123 +779,179 @@ impl super::run::RowBlock for TypedBlock {
     }
 }
 
-/// One committed row group, handed to the caller of [`ParquetRows`]: write
-/// the pieces of `group` one after the other at byte `offset` of the file
-/// (dropping whatever follows), then `footer`; the file is then a valid
-/// Parquet file of `rows` rows. Record `(offset + group_len(), footer)` as
-/// the last commit.
-#[derive(Debug)]
-pub struct Commit<'a> {
-    /// Where the group's bytes go (the end of the previous group).
-    pub offset: u64,
-    /// The row group's bytes, in pieces (the values of a column are the
-    /// writer's own buffer, not a copy).
-    pub group: &'a [&'a [u8]],
-    /// The footer (metadata, its length, `PAR1`) of the file ending after `group`.
-    pub footer: &'a [u8],
-    /// Rows in the file after this commit.
-    pub rows: u64,
-}
-
-impl Commit<'_> {
-    /// Bytes of the row group (of all its pieces).
-    pub fn group_len(&self) -> u64 {
-        self.group.iter().map(|p| p.len() as u64).sum()
+/// Writes `values` (`rows` rows) as one row group, column by column, with the
+/// `parquet` crate's column writers: a null (the column's sentinel) becomes
+/// definition level 0, every other value level 1.
+fn write_group<W: std::io::Write + Send>(
+    w: &mut SerializedFileWriter<W>,
+    values: &[Values],
+    rows: usize,
+) -> Result<(), SweepError> {
+    let mut rg = w.next_row_group().map_err(pq_err)?;
+    let mut def: Vec<i16> = Vec::with_capacity(rows);
+    let mut j = 0;
+    while let Some(mut col) = rg.next_column().map_err(pq_err)? {
+        def.clear();
+        let written = match (col.untyped(), values.get(j)) {
+            (ColumnWriter::Int64ColumnWriter(c), Some(Values::U64(x))) => {
+                c.write_batch(x, None, None)
+            }
+            (ColumnWriter::Int32ColumnWriter(c), Some(Values::U32(x))) => {
+                c.write_batch(x, None, None)
+            }
+            (ColumnWriter::DoubleColumnWriter(c), Some(Values::F64(x, nulls))) => {
+                if *nulls == 0 {
+                    def.resize(x.len(), 1);
+                    c.write_batch(x, Some(&def), None)
+                } else {
+                    def.extend(x.iter().map(|v| i16::from(v.to_bits() != NULL_F64)));
+                    let present: Vec<f64> = x
+                        .iter()
+                        .copied()
+                        .filter(|v| v.to_bits() != NULL_F64)
+                        .collect();
+                    c.write_batch(&present, Some(&def), None)
+                }
+            }
+            (ColumnWriter::ByteArrayColumnWriter(c), Some(Values::Dict(d))) => {
+                let entries: Vec<ByteArray> =
+                    d.entries().iter().map(|e| ByteArray::from(&**e)).collect();
+                def.extend(d.indices().iter().map(|&i| i16::from(i != NULL_INDEX)));
+                let present: Vec<ByteArray> = d
+                    .indices()
+                    .iter()
+                    .filter(|&&i| i != NULL_INDEX)
+                    .map(|&i| entries[i as usize].clone())
+                    .collect();
+                c.write_batch(&present, Some(&def), None)
+            }
+            (ColumnWriter::ByteArrayColumnWriter(c), Some(Values::Str(s))) => {
+                def.resize(s.rows, 0);
+                for (r, _) in &s.texts {
+                    def[*r] = 1;
+                }
+                let present: Vec<ByteArray> = s
+                    .texts
+                    .iter()
+                    .map(|(_, t)| ByteArray::from(t.as_str()))
+                    .collect();
+                c.write_batch(&present, Some(&def), None)
+            }
+            (ColumnWriter::BoolColumnWriter(c), Some(Values::Bool(b))) => {
+                def.extend(b.iter().map(|&v| i16::from(v != NULL_BOOL)));
+                let present: Vec<bool> = b
+                    .iter()
+                    .filter(|&&v| v != NULL_BOOL)
+                    .map(|&v| v == 1)
+                    .collect();
+                c.write_batch(&present, Some(&def), None)
+            }
+            _ => {
+                return Err(SweepError::Io(format!(
+                    "parquet: column {j} does not match its values"
+                )))
+            }
+        };
+        written.map_err(pq_err)?;
+        col.close().map_err(pq_err)?;
+        j += 1;
     }
+    rg.close().map_err(pq_err)?;
+    Ok(())
 }
 
-/// Rows of a sweep in Parquet form: receives the CSV lines the sweep driver
-/// writes (as a [`std::io::Write`]), builds row groups of [`ROW_GROUP_ROWS`]
-/// rows and hands each completed one to `commit`; [`finish`](Self::finish)
-/// commits the last, shorter group. No I/O of its own.
-pub struct ParquetRows<F> {
+/// The callback of a dataset: part index, rows in the part, the part file's bytes.
+pub type PartFn = Box<dyn FnMut(u64, u64, Vec<u8>) -> std::io::Result<()> + Send>;
+
+/// Where [`ParquetRows`] puts its row groups.
+enum Target {
+    /// A dataset: each group is a part file of its own.
+    Parts(PartFn),
+    /// One file of many groups.
+    File(SerializedFileWriter<Box<dyn std::io::Write + Send>>),
+}
+
+/// Rows of a sweep in Parquet form: takes the sweep driver's typed blocks
+/// ([`run_parquet`]) or CSV lines (as a [`std::io::Write`]; the merge's
+/// path), builds row groups of [`PART_ROWS`] rows and writes each completed
+/// one: as a part file handed to the caller ([`ParquetRows::parts`]), or
+/// into one file ([`ParquetRows::file`]). [`finish`](Self::finish) writes
+/// the last, shorter group.
+pub struct ParquetRows {
     names: Vec<String>,
     schema: TypePtr,
-    descr: SchemaDescPtr,
     props: Arc<WriterProperties>,
     values: Vec<Values>,
     rows_in_group: usize,
-    /// The committed groups and their footers.
-    footers: footer::Footers,
-    /// End of the last committed group (the file's length without its footer).
-    data_end: u64,
+    /// Rows written (in completed groups).
+    written: u64,
+    /// Index of the next part.
+    next_part: u64,
     pending: Vec<u8>,
-    /// The pieces of the group being committed, reused group after group
-    /// (so that a sweep does not touch fresh memory for every group).
-    encoded: encode::GroupBytes,
-    commit: F,
+    target: Option<Target>,
     number: String,
     digits: zmij::Buffer,
 }
 
-impl<F> std::fmt::Debug for ParquetRows<F> {
+impl std::fmt::Debug for ParquetRows {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("ParquetRows")
-            .field("groups", &self.footers.groups().len())
-            .field("data_end", &self.data_end)
+            .field("written", &self.written)
+            .field("next_part", &self.next_part)
             .finish()
     }
 }
 
-impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
-    /// Rows for `layout` tied to `fingerprint` (the CSV's fingerprint line),
-    /// continuing after `existing` (row groups already in the file, from
-    /// [`ParquetTable::row_groups`], ending at byte `data_end`; none and 4 for
-    /// a new file, which starts with [`MAGIC`]).
-    pub fn new(
-        layout: &Layout,
-        fingerprint: &str,
-        existing: Vec<RowGroupMetaData>,
-        data_end: u64,
-        commit: F,
-    ) -> Result<Self, SweepError> {
-        let cols = columns_of(layout);
-        let schema = schema_of(layout)?;
-        let schema_json = serde_json::to_string(layout.column_docs())
-            .map_err(|e| SweepError::Io(e.to_string()))?;
-        let props = properties();
-        let key_value = vec![
-            KeyValue::new(
-                FINGERPRINT_KEY.to_owned(),
-                fingerprint.trim_end_matches('\n').to_owned(),
-            ),
-            KeyValue::new(SCHEMA_KEY.to_owned(), schema_json),
-        ];
-        let footers = footer::Footers::new(schema.clone(), props.clone(), key_value, existing)?;
+impl ParquetRows {
+    fn new(layout: &Layout, fingerprint: &str, target: Target) -> Result<Self, SweepError> {
         Ok(ParquetRows {
-            values: cols
+            values: columns_of(layout)
                 .iter()
-                .map(|c| Values::with_rows(*c, ROW_GROUP_ROWS))
+                .map(|c| Values::with_rows(*c, PART_ROWS))
                 .collect(),
-            encoded: encode::GroupBytes::default(),
             names: layout.column_names(),
-            descr: Arc::new(SchemaDescriptor::new(schema.clone())),
-            schema,
-            props,
+            schema: schema_of(layout)?,
+            props: properties(layout, fingerprint)?,
             rows_in_group: 0,
-            footers,
-            data_end,
+            written: 0,
+            next_part: 0,
             pending: Vec::new(),
-            commit,
+            target: Some(target),
             number: String::new(),
             digits: zmij::Buffer::new(),
         })
     }
 
-    /// Rows committed so far (in the file) plus rows of the open group.
+    /// Rows for `layout` tied to `fingerprint` ([`super::fingerprint_line`]),
+    /// as part files from part `first_part` on (the parts before it are
+    /// already committed): `commit(k, rows, bytes)` gets each.
+    pub fn parts(
+        layout: &Layout,
+        fingerprint: &str,
+        first_part: u64,
+        commit: PartFn,
+    ) -> Result<Self, SweepError> {
+        let mut r = ParquetRows::new(layout, fingerprint, Target::Parts(commit))?;
+        r.next_part = first_part;
+        Ok(r)
+    }
+
+    /// Rows for `layout` tied to `fingerprint`, as the row groups of one file
+    /// written to `out`.
+    pub fn file(
+        layout: &Layout,
+        fingerprint: &str,
+        out: Box<dyn std::io::Write + Send>,
+    ) -> Result<Self, SweepError> {
+        let schema = schema_of(layout)?;
+        let props = properties(layout, fingerprint)?;
+        let w = SerializedFileWriter::new(out, schema, props).map_err(pq_err)?;
+        ParquetRows::new(layout, fingerprint, Target::File(w))
+    }
+
+    /// Rows written plus rows of the open group.
     pub fn rows(&self) -> u64 {
-        self.footers.rows() + self.rows_in_group as u64
-    }
-
-    /// The footer of a file holding the committed groups (metadata, length,
-    /// `PAR1`), assembled from their serialised metadata.
-    fn footer(&self) -> Result<Vec<u8>, SweepError> {
-        self.footers.footer()
-    }
-
-    /// The footer of the file as committed so far (for a new file: no group).
-    pub fn current_footer(&self) -> Result<Vec<u8>, SweepError> {
-        self.footer()
+        self.written + self.rows_in_group as u64
     }
 
     fn push_line(&mut self, line: &str) -> Result<(), SweepError> {
@@ -867,14 +979,14 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
                 .map_err(bad)?;
         }
         self.rows_in_group += 1;
-        if self.rows_in_group == ROW_GROUP_ROWS {
+        if self.rows_in_group == PART_ROWS {
             self.commit_group()?;
         }
         Ok(())
     }
 
     /// Appends the rows of `block` (built by the sweep driver for this
-    /// layout), committing each group as it fills. A cell that does not fit
+    /// layout), writing each group as it fills. A cell that does not fit
     /// its column is refused with a message naming the configuration, the
     /// column and the value.
     pub fn push_block(&mut self, block: &TypedBlock) -> Result<(), SweepError> {
@@ -898,42 +1010,45 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
         }
         let mut start = 0;
         while start < block.rows {
-            let take = (block.rows - start).min(ROW_GROUP_ROWS - self.rows_in_group);
+            let take = (block.rows - start).min(PART_ROWS - self.rows_in_group);
             for (j, dst) in self.values.iter_mut().enumerate() {
                 dst.append_block(block, j, start..start + take);
             }
             start += take;
             self.rows_in_group += take;
-            if self.rows_in_group == ROW_GROUP_ROWS {
+            if self.rows_in_group == PART_ROWS {
                 self.commit_group()?;
             }
         }
         Ok(())
     }
 
-    /// Encodes the open group, moves it to its place and commits it.
+    /// Writes the open group: a part file handed to the caller, or a row
+    /// group of the one file.
     fn commit_group(&mut self) -> Result<(), SweepError> {
-        let meta = encode::encode_group(
-            &self.descr,
-            &self.values,
-            self.rows_in_group,
-            self.data_end,
-            self.footers.groups().len(),
-            &mut self.encoded,
-        )?;
-        let meta = as_read_back(&self.schema, &self.props, meta)?;
-        self.footers.push(meta)?;
-        let footer = self.footer()?;
-        let rows = self.rows();
-        let offset = self.data_end;
-        let pieces = self.encoded.pieces(&self.values);
-        (self.commit)(Commit {
-            offset,
-            group: &pieces,
-            footer: &footer,
-            rows,
-        })?;
-        self.data_end += self.encoded.len() as u64;
+        let rows = self.rows_in_group;
+        match self.target.as_mut() {
+            Some(Target::Parts(commit)) => {
+                let mut w = SerializedFileWriter::new(
+                    Vec::with_capacity(rows * 8 * self.values.len()),
+                    self.schema.clone(),
+                    self.props.clone(),
+                )
+                .map_err(pq_err)?;
+                w.append_key_value_metadata(KeyValue::new(
+                    PART_KEY.to_owned(),
+                    self.next_part.to_string(),
+                ));
+                write_group(&mut w, &self.values, rows)?;
+                let bytes = w.into_inner().map_err(pq_err)?;
+                commit(self.next_part, rows as u64, bytes)
+                    .map_err(|e| SweepError::Io(e.to_string()))?;
+            }
+            Some(Target::File(w)) => write_group(w, &self.values, rows)?,
+            None => return Err(SweepError::Io("parquet: rows after the end".into())),
+        }
+        self.next_part += 1;
+        self.written += rows as u64;
         for v in &mut self.values {
             v.clear();
         }
@@ -941,8 +1056,8 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
         Ok(())
     }
 
-    /// Commits the last (shorter) group, if any rows are open; returns the
-    /// rows of the file.
+    /// Writes the last (shorter) group, if any rows are open, and closes the
+    /// file; returns the rows written.
     pub fn finish(mut self) -> Result<u64, SweepError> {
         if !self.pending.is_empty() {
             return Err(SweepError::Io(
@@ -951,21 +1066,15 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> ParquetRows<F> {
         }
         if self.rows_in_group > 0 {
             self.commit_group()?;
-        } else if self.footers.groups().is_empty() {
-            // No row at all: the file is `PAR1` and the footer of no group.
-            let footer = self.footer()?;
-            (self.commit)(Commit {
-                offset: self.data_end,
-                group: &[],
-                footer: &footer,
-                rows: 0,
-            })?;
         }
-        Ok(self.rows())
+        if let Some(Target::File(w)) = self.target.take() {
+            w.close().map_err(pq_err)?;
+        }
+        Ok(self.written)
     }
 }
 
-impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> std::io::Write for ParquetRows<F> {
+impl std::io::Write for ParquetRows {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
         let to_io = |e: SweepError| std::io::Error::other(e.to_string());
         let utf8 = || std::io::Error::other("parquet: a row is not UTF-8");
@@ -989,37 +1098,6 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> std::io::Write for ParquetRows
     fn flush(&mut self) -> std::io::Result<()> {
         Ok(())
     }
-}
-
-/// `meta` as a reader decodes it from a footer: the form in which a resumed
-/// run finds the groups already in the file, so that the footers written
-/// after a resume are those of an uninterrupted run.
-fn as_read_back(
-    schema: &TypePtr,
-    props: &Arc<WriterProperties>,
-    meta: RowGroupMetaData,
-) -> Result<RowGroupMetaData, SweepError> {
-    let footer = footer_bytes(schema, props, &[], &[meta])?;
-    let n = footer.len();
-    let len =
-        u32::from_le_bytes([footer[n - 8], footer[n - 7], footer[n - 6], footer[n - 5]]) as usize;
-    let md = parquet::file::metadata::ParquetMetaDataReader::decode_metadata(
-        &footer[n - 8 - len..n - 8],
-    )
-    .map_err(pq_err)?;
-    md.row_groups()
-        .first()
-        .cloned()
-        .ok_or_else(|| SweepError::Io("parquet: a footer without its group".into()))
-}
-
-fn footer_bytes(
-    schema: &TypePtr,
-    props: &Arc<WriterProperties>,
-    key_value: &[KeyValue],
-    groups: &[RowGroupMetaData],
-) -> Result<Vec<u8>, SweepError> {
-    footer::with_trailer(footer::metadata_bytes(schema, props, key_value, groups)?)
 }
 
 /// A column of a [`ParquetTable`].
@@ -1050,7 +1128,7 @@ impl Column {
 }
 
 /// A sweep's Parquet file read back: the columns by name, the key-value
-/// metadata and the row groups.
+/// metadata.
 #[derive(Clone, Debug)]
 pub struct ParquetTable {
     /// Column names, in file order.
@@ -1059,7 +1137,6 @@ pub struct ParquetTable {
     pub columns: Vec<Column>,
     /// The key-value metadata.
     pub key_value: Vec<(String, String)>,
-    groups: Vec<RowGroupMetaData>,
 }
 
 impl ParquetTable {
@@ -1085,35 +1162,6 @@ impl ParquetTable {
     /// The fingerprint line (without `\n`), if the file has one.
     pub fn fingerprint(&self) -> Option<&str> {
         self.metadata(FINGERPRINT_KEY)
-    }
-
-    /// The row groups' metadata (offsets in the file).
-    pub fn row_groups(&self) -> &[RowGroupMetaData] {
-        &self.groups
-    }
-
-    /// Rows of each row group.
-    pub fn group_rows(&self) -> Vec<u64> {
-        self.groups.iter().map(|g| g.num_rows() as u64).collect()
-    }
-
-    /// The byte offset where row group `k` ends (where group `k + 1` starts;
-    /// 4 for `k` = none, i.e. `end_of_groups(0)` is the end of no group).
-    pub fn end_of_groups(&self, k: usize) -> u64 {
-        self.groups[..k]
-            .iter()
-            .map(|g| {
-                g.columns()
-                    .iter()
-                    .map(|c| {
-                        let (start, len) = c.byte_range();
-                        start + len
-                    })
-                    .max()
-                    .unwrap_or(MAGIC.len() as u64)
-            })
-            .max()
-            .unwrap_or(MAGIC.len() as u64)
     }
 
     /// The CSV lines (each with `\n`) of rows `from..to`, byte for byte those
@@ -1228,7 +1276,6 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<ParquetTable, SweepError> {
             ))),
         })
         .collect::<Result<_, _>>()?;
-    let groups = md.row_groups().to_vec();
     let rows = reader.get_row_iter(None).map_err(pq_read_err)?;
     for row in rows {
         let row = row.map_err(pq_read_err)?;
@@ -1293,114 +1340,14 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<ParquetTable, SweepError> {
         names,
         columns,
         key_value,
-        groups,
     })
 }
-
-/// The footer that makes a file of `table`'s first `groups` row groups end
-/// there (for dropping the groups after them), with `table`'s schema and
-/// key-value metadata.
-pub fn footer_for_groups(
-    layout: &Layout,
-    table: &ParquetTable,
-    groups: usize,
-) -> Result<Vec<u8>, SweepError> {
-    let kv: Vec<KeyValue> = table
-        .key_value
-        .iter()
-        .map(|(k, v)| KeyValue::new(k.clone(), v.clone()))
-        .collect();
-    footer_bytes(
-        &schema_of(layout)?,
-        &properties(),
-        &kv,
-        &table.groups[..groups],
-    )
-}
-
 /// Whether `bytes` start as a Parquet file does.
 pub fn is_parquet(bytes: &[u8]) -> bool {
     bytes.starts_with(MAGIC)
 }
 
-/// The first line of a commit journal ([`journal_bytes`]).
-const JOURNAL_HEADER: &str = "subdiv-lab parquet commit v2\n";
-
-/// The first line of a journal of the first form (checksum: byte-wise
-/// FNV-1a, eight times slower on the footer of a long sweep); still read, so
-/// that a run killed before an upgrade resumes after it.
-const JOURNAL_HEADER_V1: &str = "subdiv-lab parquet commit v1\n";
-
-/// A checksum of a journal's footer.
-type Checksum = fn(&[u8]) -> u64;
-
-/// The checksum of a journal's footer: FNV-1a over 64-bit words
-/// ([`crate::hash::fnv1a64_words`]; the footer of a sweep of `G` groups is
-/// about `0.7 G` kB, and a commit checks it whole).
-fn journal_checksum(bytes: &[u8]) -> u64 {
-    crate::hash::fnv1a64_words(bytes)
-}
-
-/// The journal of the last commit (the caller writes it beside the file,
-/// atomically, after each [`Commit`]): a header line, the end of the committed
-/// groups `data_end`, a checksum line and the footer. With it a killed run
-/// finds its last commit: truncate the file to `data_end` and append `footer`
-/// ([`parse_journal`]).
-///
-/// ```
-/// use subdiv_lab::sweep::output::parquet::{journal_bytes, parse_journal};
-/// let j = journal_bytes(1234, b"footer-bytes PAR1");
-/// assert_eq!(parse_journal(&j).unwrap(), (1234, b"footer-bytes PAR1".to_vec()));
-/// assert!(parse_journal(&j[..j.len() - 1]).is_err());
-/// ```
-pub fn journal_bytes(data_end: u64, footer: &[u8]) -> Vec<u8> {
-    let mut v = format!(
-        "{JOURNAL_HEADER}{data_end}\n{:016x} {}\n",
-        journal_checksum(footer),
-        footer.len()
-    )
-    .into_bytes();
-    v.extend_from_slice(footer);
-    v
-}
-
-/// Reads a journal written by [`journal_bytes`]: `(data_end, footer)`; the
-/// error names what is wrong (not a journal, damaged, truncated).
-pub fn parse_journal(bytes: &[u8]) -> Result<(u64, Vec<u8>), String> {
-    let (rest, checksum): (&[u8], Checksum) =
-        if let Some(rest) = bytes.strip_prefix(JOURNAL_HEADER.as_bytes()) {
-            (rest, journal_checksum)
-        } else if let Some(rest) = bytes.strip_prefix(JOURNAL_HEADER_V1.as_bytes()) {
-            (rest, crate::hash::fnv1a64)
-        } else {
-            return Err("not a subdiv-lab Parquet commit journal".into());
-        };
-    let mut parts = rest.splitn(3, |&b| b == b'\n');
-    let end = parts.next().and_then(|l| std::str::from_utf8(l).ok());
-    let check = parts.next().and_then(|l| std::str::from_utf8(l).ok());
-    let footer = parts.next().unwrap_or_default();
-    let end: u64 = end
-        .and_then(|e| e.parse().ok())
-        .ok_or("the commit journal's offset line is damaged")?;
-    let (hash, len) = check
-        .and_then(|c| c.split_once(' '))
-        .ok_or("the commit journal's checksum line is damaged")?;
-    if len.parse::<usize>().ok() != Some(footer.len())
-        || u64::from_str_radix(hash, 16).ok() != Some(checksum(footer))
-    {
-        return Err(
-            "the commit journal is damaged (its footer does not match its checksum)".into(),
-        );
-    }
-    if end < MAGIC.len() as u64 || !footer.ends_with(MAGIC) {
-        return Err("the commit journal names no valid commit".into());
-    }
-    Ok((end, footer.to_vec()))
-}
-
-impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> super::run::BlockWriter<TypedBlock>
-    for ParquetRows<F>
-{
+impl super::run::BlockWriter<TypedBlock> for ParquetRows {
     fn write_block(&mut self, block: &TypedBlock) -> Result<(), SweepError> {
         self.push_block(block)
     }
@@ -1409,25 +1356,23 @@ impl<F: FnMut(Commit<'_>) -> std::io::Result<()>> super::run::BlockWriter<TypedB
     }
 }
 
-/// [`run_counting`](super::run_counting) for a Parquet file: the rows go
-/// straight from the evaluator's cells into typed column buffers (no CSV text in between; math
-/// doc section 16.2), which `rows` cuts into row groups and commits. The file
-/// and the summary are those of the CSV path's rows turned into Parquet (a
-/// test compares them byte for byte).
+/// [`run_counting`](super::run_counting) for Parquet: the rows go straight
+/// from the evaluator's cells into typed column buffers (no CSV text in
+/// between; math doc section 16.2), which `rows` cuts into parts. The values
+/// and the summary are those of the CSV path (a test compares them).
 #[allow(clippy::too_many_arguments)]
-pub fn run_parquet<E, F, I>(
+pub fn run_parquet<E, I>(
     plan: &Plan,
     layout: &Layout,
     eval: &E,
     ids: I,
-    rows: &mut ParquetRows<F>,
+    rows: &mut ParquetRows,
     summary: &mut Summary,
     progress: &mut dyn FnMut(u64),
     evaluated: &std::sync::atomic::AtomicU64,
 ) -> Result<u64, SweepError>
 where
     E: Evaluate + ?Sized,
-    F: FnMut(Commit<'_>) -> std::io::Result<()>,
     I: IntoIterator<Item = u64>,
 {
     super::run::drive::<E, TypedBlock, _, I>(
@@ -1439,42 +1384,6 @@ where
 mod tests {
     use super::super::run::RowBlock;
     use super::*;
-
-    /// A journal is the header, the end, the checksum line and the footer;
-    /// the checksum is over 64-bit words (v2), and a journal of the first
-    /// form (v1, byte-wise FNV-1a) is still read. A footer changed in one
-    /// byte, a checksum of the other form, or a length that does not match
-    /// is refused.
-    #[test]
-    fn journals_of_both_forms_are_read_and_checked() {
-        let footer: Vec<u8> = (0..=255u8).cycle().take(3000).chain(*MAGIC).collect();
-        let j = journal_bytes(1234, &footer);
-        let want = format!(
-            "subdiv-lab parquet commit v2\n1234\n{:016x} 3004\n",
-            crate::hash::fnv1a64_words(&footer)
-        );
-        assert!(j.starts_with(want.as_bytes()));
-        assert_eq!(parse_journal(&j).unwrap(), (1234, footer.clone()));
-        let v1 = |h: u64, len: usize| {
-            let mut v =
-                format!("subdiv-lab parquet commit v1\n1234\n{h:016x} {len}\n").into_bytes();
-            v.extend_from_slice(&footer);
-            v
-        };
-        let old = v1(crate::hash::fnv1a64(&footer), footer.len());
-        assert_eq!(parse_journal(&old).unwrap(), (1234, footer.clone()));
-        assert!(parse_journal(&v1(crate::hash::fnv1a64_words(&footer), footer.len())).is_err());
-        assert!(parse_journal(&v1(crate::hash::fnv1a64(&footer), footer.len() + 1)).is_err());
-        for k in [0, 7, 8, 1500, footer.len() - 5] {
-            let mut bad = j.clone();
-            let at = j.len() - footer.len() + k;
-            bad[at] ^= 0x01;
-            assert!(parse_journal(&bad).is_err(), "byte {k} of the footer");
-        }
-        let mut v3 = j.clone();
-        v3[27] = b'3';
-        assert!(parse_journal(&v3).is_err());
-    }
 
     /// Rows of every cell kind into `block`: floats, labels, booleans and
     /// nulls, each cell a function of its row and column.
@@ -1540,40 +1449,57 @@ mod tests {
         }
     }
 
-    /// A block split between two row groups (its first 36 rows close the
-    /// first group) keeps every row's error text, floats and nulls, in both
-    /// groups. The float column checked has nulls, so its values are the
-    /// compacted copy, not the column's own buffer.
+    /// A block split between two parts (its first 36 rows close the first
+    /// part) keeps every row's error text, floats and nulls, in both parts,
+    /// and the parts are complete Parquet files carrying their index and the
+    /// fingerprint.
     #[test]
-    fn a_block_split_between_groups_keeps_its_rows() {
+    fn a_block_split_between_parts_keeps_its_rows() {
         let spec = "name = \"g\"\nscheme = \"nurds\"\nvalences = [4]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"random\"\ncount = 10\nseed = 1\n";
         let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
         let layout = Layout::new(&plan);
-        let first = ROW_GROUP_ROWS as u64 - 36;
+        let first = PART_ROWS as u64 - 36;
         let mut a = TypedBlock::with_rows(&layout, first as usize);
         fill(&mut a, first);
         let mut b = TypedBlock::with_rows(&layout, 100);
         fill(&mut b, 100);
-        let mut bytes = MAGIC.to_vec();
-        let commit = |c: Commit<'_>| {
-            bytes.truncate(c.offset as usize);
-            for p in c.group {
-                bytes.extend_from_slice(p);
-            }
-            bytes.extend_from_slice(c.footer);
+        let parts = Arc::new(std::sync::Mutex::new(Vec::new()));
+        let sink = parts.clone();
+        let commit: PartFn = Box::new(move |k, rows, bytes| {
+            sink.lock().unwrap().push((k, rows, bytes));
             Ok(())
-        };
-        let mut rows = ParquetRows::new(&layout, "fp", Vec::new(), 4, commit).unwrap();
+        });
+        let mut rows = ParquetRows::parts(&layout, "fp", 5, commit).unwrap();
         rows.push_block(&a).unwrap();
         rows.push_block(&b).unwrap();
         assert_eq!(rows.finish().unwrap(), first + 100);
-        let t = read_table(bytes).unwrap();
-        assert_eq!(t.group_rows(), vec![ROW_GROUP_ROWS as u64, 64]);
-        // Row i of the file is row r of block a or b.
+        let parts = parts.lock().unwrap();
+        assert_eq!(
+            parts.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>(),
+            vec![(5, PART_ROWS as u64), (6, 64)]
+        );
+        let tables: Vec<ParquetTable> = parts
+            .iter()
+            .map(|p| read_table(p.2.clone()).unwrap())
+            .collect();
+        assert_eq!(tables[1].metadata(PART_KEY), Some("6"));
+        assert_eq!(tables[0].fingerprint(), Some("fp"));
+        assert_eq!(tables[0].metadata(FORMAT_KEY), Some(FORMAT));
+        // Row i of the dataset is row r of block a or b.
         let r_of = |i: usize| (i as u64).checked_sub(first).unwrap_or(i as u64);
-        let Some(Column::Str(errors)) = t.column("error") else {
-            panic!("no error column")
+        let column = |name: &str| -> Vec<Column> {
+            tables
+                .iter()
+                .map(|t| t.column(name).unwrap().clone())
+                .collect()
         };
+        let errors: Vec<Option<String>> = column("error")
+            .into_iter()
+            .flat_map(|c| match c {
+                Column::Str(v) => v,
+                _ => panic!("error is not text"),
+            })
+            .collect();
         for (i, e) in errors.iter().enumerate() {
             let want = (r_of(i) % 7 == 3).then(|| "failed".to_owned());
             assert_eq!(*e, want, "error of row {i}");
@@ -1581,13 +1507,42 @@ mod tests {
         let j = (2..a.kinds.len() - 1)
             .find(|&j| a.kinds[j] == Col::Float)
             .unwrap();
-        let Some(Column::F64(x)) = t.column(&layout.column_names()[j]) else {
-            panic!("no float column {j}")
-        };
+        let x: Vec<Option<f64>> = column(&layout.column_names()[j])
+            .into_iter()
+            .flat_map(|c| match c {
+                Column::F64(v) => v,
+                _ => panic!("not a float column"),
+            })
+            .collect();
         for (i, x) in x.iter().enumerate() {
             let r = r_of(i);
             let want = ((r + j as u64) % 5 != 0).then_some(r as f64 * 100.0 + j as f64);
             assert_eq!(*x, want, "column {j}, row {i}");
+        }
+    }
+
+    /// Part names round-trip and nothing else parses as one.
+    #[test]
+    fn part_names_round_trip() {
+        for (s, k) in [
+            ("0/1", 0),
+            ("0/1", 999_999),
+            ("0/1", 1_234_567),
+            ("3/7", 12),
+        ] {
+            let shard: Shard = s.parse().unwrap();
+            assert_eq!(parse_part_name(&part_name(shard, k)), Some((shard, k)));
+        }
+        for bad in [
+            "part-17.parquet",
+            "part-0000017.parquet",
+            "part-000017.parquet.tmp",
+            "part-7-of-3-000001.parquet",
+            "part-+1-of-3-000001.parquet",
+            "part-1-of-3-000001.csv",
+            "_summary.json",
+        ] {
+            assert_eq!(parse_part_name(bad), None, "{bad}");
         }
     }
 }

@@ -2,13 +2,14 @@
 //! its own: it uses the CSV driver, the Parquet writer and the fingerprint,
 //! which do not depend on one another).
 
-use super::parquet::{read_table, run_parquet, Column, Commit, ParquetRows, MAGIC};
+use super::parquet::{read_table, run_parquet, Column, ParquetRows, PART_ROWS};
 use super::run::run;
 use super::run::tests::Faulty;
 use super::Layout;
 use crate::sweep::eval::{Cell, Evaluate, SpectralEvaluator};
 use crate::sweep::plan::{Configuration, Plan, Shard};
 use crate::sweep::summary::Summary;
+use std::sync::{Arc, Mutex};
 
 /// Cells of every kind from the id alone (no eigenvalues: cheap enough
 /// for several row groups): labels with commas, quotes, line breaks and
@@ -64,8 +65,52 @@ impl Evaluate for Synthetic {
     }
 }
 
-/// A Parquet file in memory, the rows after each commit, the summary.
+/// A Parquet file in memory, its row groups' rows, the summary.
 type Written = (Vec<u8>, Vec<u64>, Summary);
+
+/// A writer into a shared buffer (`ParquetRows::file` takes its writer).
+#[derive(Clone, Default)]
+pub(super) struct Shared(pub(super) Arc<Mutex<Vec<u8>>>);
+
+impl std::io::Write for Shared {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0
+            .lock()
+            .map_err(|_| std::io::Error::other("poisoned"))?
+            .extend_from_slice(buf);
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+impl Shared {
+    fn bytes(&self) -> Vec<u8> {
+        self.0.lock().unwrap().clone()
+    }
+}
+
+/// The rows of one file of row groups written into a [`Shared`] buffer.
+fn file_rows(layout: &Layout, fp: &str) -> (ParquetRows, Shared) {
+    let buf = Shared::default();
+    (
+        ParquetRows::file(layout, fp, Box::new(buf.clone())).unwrap(),
+        buf,
+    )
+}
+
+/// Rows of each row group of a file (from its footer).
+fn group_rows(bytes: &[u8]) -> Vec<u64> {
+    use parquet::file::reader::FileReader;
+    let r = parquet::file::reader::SerializedFileReader::new(bytes::Bytes::from(bytes.to_vec()))
+        .unwrap();
+    r.metadata()
+        .row_groups()
+        .iter()
+        .map(|g| g.num_rows() as u64)
+        .collect()
+}
 
 /// The Parquet file of `run_parquet` (the typed path) and of `run`'s CSV
 /// lines fed to `ParquetRows` as text (the path merge uses), with their
@@ -82,21 +127,9 @@ fn both_paths<E: Evaluate>(
         .build()
         .unwrap();
     let file = |typed: bool| {
-        let mut bytes = MAGIC.to_vec();
-        let mut commits = Vec::new();
         let mut summary = Summary::new(plan, layout, Shard::ALL, None);
-        let commit = |c: Commit<'_>| {
-            bytes.truncate(c.offset as usize);
-            for p in c.group {
-                bytes.extend_from_slice(p);
-            }
-            assert_eq!(bytes.len() as u64, c.offset + c.group_len());
-            bytes.extend_from_slice(c.footer);
-            commits.push(c.rows);
-            Ok(())
-        };
         let fp = super::fingerprint_line(plan, Shard::ALL);
-        let mut rows = ParquetRows::new(layout, &fp, Vec::new(), 4, commit).unwrap();
+        let (mut rows, buf) = file_rows(layout, &fp);
         pool.install(|| {
             if typed {
                 run_parquet(
@@ -123,7 +156,9 @@ fn both_paths<E: Evaluate>(
         })
         .unwrap();
         rows.finish().unwrap();
-        (bytes, commits, summary)
+        let bytes = buf.bytes();
+        let groups = group_rows(&bytes);
+        (bytes, groups, summary)
     };
     (file(true), file(false))
 }
@@ -140,8 +175,9 @@ fn typed_parquet_path_equals_the_csv_text_path() {
     let ids: Vec<u64> = (5..plan.total()).chain([plan.total() + 3]).collect();
     for threads in [1, 3] {
         let (typed, text) = both_paths(&plan, &layout, &Synthetic, &ids, threads);
-        assert_eq!(typed.1, text.1, "commits");
+        assert_eq!(typed.1, text.1, "row groups");
         assert_eq!(typed.1.len(), 3);
+        assert_eq!(typed.1[0], PART_ROWS as u64);
         assert!(typed.0 == text.0, "the two paths' bytes differ");
         assert_eq!(typed.2, text.2);
         let t = read_table(typed.0).unwrap();
@@ -180,20 +216,11 @@ fn recycled_row_blocks_write_the_rows_of_the_per_row_path() {
         let r = layout.row(&plan, &eval, id);
         layout.format_into(&r, &mut text);
     }
-    let mut want = MAGIC.to_vec();
-    let commit = |c: Commit<'_>| {
-        want.truncate(c.offset as usize);
-        for p in c.group {
-            want.extend_from_slice(p);
-        }
-        assert_eq!(want.len() as u64, c.offset + c.group_len());
-        want.extend_from_slice(c.footer);
-        Ok(())
-    };
     let fp = super::fingerprint_line(&plan, Shard::ALL);
-    let mut rows = ParquetRows::new(&layout, &fp, Vec::new(), 4, commit).unwrap();
+    let (mut rows, buf) = file_rows(&layout, &fp);
     rows.write_all(text.as_bytes()).unwrap();
     rows.finish().unwrap();
+    let want = buf.bytes();
     for threads in [1, 2] {
         let (typed, csv) = both_paths(&plan, &layout, &eval, &ids, threads);
         assert!(typed.0 == want, "typed path, {threads} threads");
@@ -236,7 +263,7 @@ fn typed_parquet_path_refuses_a_cell_of_the_wrong_kind() {
         Some(&Column::F64(vec![Some(0.25); 4]))
     );
     // Id 4: "oops" is not a number.
-    let mut rows = ParquetRows::new(&layout, "fp", Vec::new(), 4, |_: Commit<'_>| Ok(())).unwrap();
+    let mut rows = file_rows(&layout, "fp").0;
     let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
     let e = run_parquet(
         &plan,
@@ -254,7 +281,7 @@ fn typed_parquet_path_refuses_a_cell_of_the_wrong_kind() {
         e.contains("configuration 4") && e.contains("lambda1_im") && e.contains("\"oops\""),
         "{e}"
     );
-    let mut out = ParquetRows::new(&layout, "fp", Vec::new(), 4, |_: Commit<'_>| Ok(())).unwrap();
+    let mut out = file_rows(&layout, "fp").0;
     let mut summary = Summary::new(&plan, &layout, Shard::ALL, None);
     assert!(run(
         &plan,
@@ -334,7 +361,7 @@ fn reads_back_as_csv(eval: &ManyLabels, count: u64) -> (super::parquet::ParquetT
 #[test]
 fn parquet_reads_back_as_the_csv_lines() {
     let (t, csv) = reads_back_as_csv(&ManyLabels { all_null: false }, 70_000);
-    assert_eq!(t.group_rows(), vec![65_536, t.rows() as u64 - 65_536]);
+    assert_eq!(t.rows(), 70_000);
     // Every kind of cell occurs.
     assert!(matches!(t.column("exact_agrees"), Some(Column::Bool(v))
         if v.contains(&Some(true)) && v.contains(&Some(false)) && v.contains(&None)));

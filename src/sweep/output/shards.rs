@@ -7,8 +7,8 @@
 //! readers or bytes, and writes the merged rows to any [`Write`].
 
 use super::merge::{merge, MergeSource};
-use super::parquet::read_table;
-use super::verify::{check_fingerprint, fingerprint_shard};
+use super::parquet::{read_table, ParquetTable, FORMAT, FORMAT_KEY, PART_KEY};
+use super::verify::{check_fingerprint, fingerprint_shard, is_old_csv_fingerprint, OLD_CSV};
 use super::Layout;
 use crate::sweep::eval::Evaluate;
 use crate::sweep::plan::{Plan, Shard};
@@ -53,10 +53,11 @@ pub fn fresh_salt() -> u64 {
 
 /// The data of one shard file.
 pub enum ShardData<R> {
-    /// A CSV (fingerprint line, header, data lines), read line by line.
+    /// A CSV (header, data lines), read line by line.
     Csv(R),
-    /// A Parquet file's bytes.
-    Parquet(Vec<u8>),
+    /// The part files of one shard of a Parquet dataset, in part order:
+    /// (file name, bytes).
+    Parquet(Vec<(String, Vec<u8>)>),
 }
 
 /// One shard of a merge.
@@ -131,7 +132,7 @@ pub fn prepare<'a, R: BufRead + 'a>(
         let counter = Rc::new(Cell::new(0u64));
         formats.push(matches!(file.data, ShardData::Parquet(_)));
         let src = match file.data {
-            ShardData::Csv(r) => csv_source(&file.name, r, plan, layout, counter.clone())?,
+            ShardData::Csv(r) => csv_source(&file.name, r, summary.shard, layout, counter.clone())?,
             ShardData::Parquet(b) => parquet_source(&file.name, b, plan, layout, counter.clone())?,
         };
         if src.shard != summary.shard {
@@ -224,44 +225,36 @@ impl PreparedMerge<'_> {
     }
 }
 
-/// The data lines of one shard CSV, after its fingerprint line (checked
-/// against `plan`; it gives the shard) and its header (checked against
-/// `layout`); `rows` counts the lines read.
+/// The data lines of one shard CSV (of `shard`, the shard its summary
+/// names), after its header (checked against `layout`); `rows` counts the
+/// lines read.
 fn csv_source<'a, R: BufRead + 'a>(
     name: &str,
     mut reader: R,
-    plan: &Plan,
+    shard: Shard,
     layout: &Layout,
     rows: Rc<Cell<u64>>,
 ) -> Result<MergeSource<Lines<'a>>, SweepError> {
-    let mut first = String::new();
     let mut header = String::new();
     reader
-        .read_line(&mut first)
-        .and_then(|_| reader.read_line(&mut header))
+        .read_line(&mut header)
         .map_err(|e| input(format!("reading {name}: {e}")))?;
     let mismatch = |line: u64, message: String| SweepError::Mismatch {
         source_name: name.to_owned(),
         line,
         message,
     };
-    let shard = fingerprint_shard(&first).ok_or_else(|| {
-        mismatch(
-            1,
-            check_fingerprint(plan, Shard::ALL, &first)
-                .err()
-                .unwrap_or_else(|| "the fingerprint line names no shard".into()),
-        )
-    })?;
-    check_fingerprint(plan, shard, &first).map_err(|m| mismatch(1, m))?;
+    if is_old_csv_fingerprint(header.as_bytes()) {
+        return Err(mismatch(1, OLD_CSV.into()));
+    }
     if header != layout.header() {
         return Err(mismatch(
-            2,
+            1,
             "the header does not match the spec's columns".into(),
         ));
     }
     let n2 = name.to_owned();
-    let mut lineno = 2u64;
+    let mut lineno = 1u64;
     let mut buf = Vec::new();
     let iter = std::iter::from_fn(move || {
         buf.clear();
@@ -297,50 +290,90 @@ fn csv_source<'a, R: BufRead + 'a>(
     })
 }
 
-/// A Parquet shard as a merge source: its fingerprint (which gives the
-/// shard) checked against `plan`, its columns against `layout`, its rows as
-/// the CSV lines the sweep writes for them (verified by the merge like a
-/// CSV's); `rows` counts the lines read.
+/// A Parquet shard (its part files, in part order) as a merge source: each
+/// part's format, fingerprint (which gives the shard) and index checked
+/// against `plan`, its columns against `layout`, its rows as the CSV lines
+/// the sweep writes for them (verified by the merge like a CSV's); `rows`
+/// counts the lines read.
 fn parquet_source<'a>(
     name: &str,
-    bytes: Vec<u8>,
+    parts: Vec<(String, Vec<u8>)>,
     plan: &Plan,
     layout: &Layout,
     rows: Rc<Cell<u64>>,
 ) -> Result<MergeSource<Lines<'a>>, SweepError> {
-    let mismatch = |line: u64, message: String| SweepError::Mismatch {
-        source_name: name.to_owned(),
-        line,
-        message,
-    };
-    let table = read_table(bytes).map_err(|e| {
-        mismatch(
-            1,
-            format!("{e}; finish this shard with `sweep --resume` first"),
-        )
-    })?;
-    let fp = table.fingerprint().unwrap_or_default().to_owned() + "\n";
-    let shard = fingerprint_shard(&fp).ok_or_else(|| {
-        mismatch(
-            1,
-            check_fingerprint(plan, Shard::ALL, &fp)
-                .err()
-                .unwrap_or_else(|| "the fingerprint names no shard".into()),
-        )
-    })?;
-    check_fingerprint(plan, shard, &fp).map_err(|m| mismatch(1, m))?;
-    if table.names != layout.column_names() {
-        return Err(mismatch(1, "the columns do not match the spec's".into()));
+    let mut shard = None;
+    let mut lines: Vec<String> = Vec::new();
+    for (k, (part, bytes)) in parts.into_iter().enumerate() {
+        let table = check_part(&part, bytes, layout, Some(k as u64))?;
+        let fp = table.fingerprint().unwrap_or_default();
+        let s = fingerprint_shard(fp).unwrap_or(Shard::ALL);
+        check_fingerprint(plan, s, fp).map_err(|m| mismatch_in(&part, m))?;
+        shard.get_or_insert(s);
+        let text = table.csv_lines(0, table.rows());
+        lines.extend(text.lines().map(str::to_owned));
     }
-    let text = table.csv_lines(0, table.rows());
-    let lines: Vec<String> = text.lines().map(str::to_owned).collect();
     let iter = lines.into_iter().map(move |l| {
         rows.set(rows.get() + 1);
         Ok(l)
     });
     Ok(MergeSource {
         name: name.to_owned(),
-        shard,
+        shard: shard.unwrap_or(Shard::ALL),
         lines: Box::new(iter),
     })
 }
+
+fn mismatch_in(name: &str, message: String) -> SweepError {
+    SweepError::Mismatch {
+        source_name: name.to_owned(),
+        line: 1,
+        message,
+    }
+}
+
+/// Reads one part file of a sweep's Parquet dataset and checks its format,
+/// its columns (against `layout`) and, when given, its index `k` (the
+/// fingerprint is the caller's to check: it depends on the shard). A file of
+/// the older single-file format is refused by name.
+pub fn check_part(
+    name: &str,
+    bytes: Vec<u8>,
+    layout: &Layout,
+    k: Option<u64>,
+) -> Result<ParquetTable, SweepError> {
+    let table = read_table(bytes).map_err(|e| mismatch_in(name, e.to_string()))?;
+    match table.metadata(FORMAT_KEY) {
+        Some(f) if f == FORMAT => {}
+        Some(f) => {
+            return Err(mismatch_in(
+                name,
+                format!(
+                "a part of format {f:?}, not {FORMAT:?}: written by another version of subdiv-lab"
+            ),
+            ))
+        }
+        None => return Err(mismatch_in(name, OLD_PARQUET.into())),
+    }
+    if table.names != layout.column_names() {
+        return Err(mismatch_in(
+            name,
+            "the columns do not match the spec's".into(),
+        ));
+    }
+    if let Some(k) = k {
+        if table.metadata(PART_KEY) != Some(k.to_string().as_str()) {
+            return Err(mismatch_in(
+                name,
+                format!(
+                    "holds part {} where part {k} was expected (renamed?)",
+                    table.metadata(PART_KEY).unwrap_or("?")
+                ),
+            ));
+        }
+    }
+    Ok(table)
+}
+
+/// The refusal of a Parquet file written by an older version.
+pub const OLD_PARQUET: &str = "written by an older subdiv-lab (a single Parquet file with a commit journal; sweeps now write a dataset directory NAME.parquet/part-*.parquet): run the sweep into a new directory";

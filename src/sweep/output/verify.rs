@@ -62,9 +62,11 @@ use crate::sweep::summary::{PartialSummary, Summary};
 /// catch a corruption of 10% of the rows with probability `1 - 0.9^32 > 0.96`.
 pub const RECHECK_SAMPLE: usize = 32;
 
-/// The first line of a sweep CSV (with `\n`): ties the file to its spec (by
-/// [`SweepSpec::digest`](crate::sweep::SweepSpec::digest)) and its shard.
-/// Readers skip it: `pandas.read_csv(path, skiprows=1)` (or `comment="#"`).
+/// The fingerprint of a Parquet part file (key-value metadata
+/// [`parquet::FINGERPRINT_KEY`](super::parquet::FINGERPRINT_KEY)): ties the
+/// file to its spec (by [`SweepSpec::digest`](crate::sweep::SweepSpec::digest))
+/// and its shard. A sweep CSV has none: its first line is the header, and the
+/// summary JSON beside it carries the same facts ([`check_summary`]).
 ///
 /// ```
 /// use subdiv_lab::sweep::{output, Plan, Shard, SweepSpec};
@@ -85,6 +87,16 @@ pub fn fingerprint_line(plan: &Plan, shard: Shard) -> String {
 
 const FINGERPRINT_PREFIX: &str = "# subdiv-lab sweep: digest ";
 
+/// Whether `first_line` is the `#` fingerprint line that older versions wrote
+/// above a sweep CSV's header: such a file is refused, never misread.
+pub fn is_old_csv_fingerprint(first_line: &[u8]) -> bool {
+    first_line.starts_with(b"# subdiv-lab sweep")
+}
+
+/// The refusal of a CSV written by an older version (see
+/// [`is_old_csv_fingerprint`]).
+pub const OLD_CSV: &str = "written by an older subdiv-lab (a `# subdiv-lab sweep` line above the header; sweep CSVs now start with their header and the summary JSON ties them to the spec): run the sweep into a new file";
+
 /// The digest named by a fingerprint line, if `line` is one.
 pub fn fingerprint_digest(line: &str) -> Option<&str> {
     let rest = line.strip_prefix(FINGERPRINT_PREFIX)?;
@@ -98,13 +110,30 @@ pub fn fingerprint_shard(line: &str) -> Option<Shard> {
     after.split(',').next()?.parse().ok()
 }
 
-/// Checks the fingerprint line of an existing file against `plan` and `shard`
+/// The message naming how `found` (a file's shard) differs from `shard` (this
+/// run's), if it does.
+fn shard_differs(found: Shard, shard: Shard) -> Option<String> {
+    if found == shard {
+        None
+    } else if found.count != shard.count {
+        Some(format!(
+            "written as shard {found} of {} shards, but this run is shard {shard} of {}: the shard count must be the same",
+            found.count, shard.count
+        ))
+    } else {
+        Some(format!(
+            "written as shard {found}, but this run is shard {shard}"
+        ))
+    }
+}
+
+/// Checks the fingerprint of a Parquet part file against `plan` and `shard`
 /// (the file's own shard for merge, the run's for resume). The message names
-/// what differs: not a sweep CSV, another spec, or another shard (count).
+/// what differs: no fingerprint, another spec, or another shard (count).
 pub fn check_fingerprint(plan: &Plan, shard: Shard, line: &str) -> Result<(), String> {
     let Some(digest) = fingerprint_digest(line) else {
         return Err(
-            "no fingerprint line (`# subdiv-lab sweep: digest ...`): not a sweep CSV, or written by an older subdiv-lab"
+            "no sweep fingerprint: not a sweep file of this tool, or written by an older subdiv-lab"
                 .into(),
         );
     };
@@ -115,22 +144,33 @@ pub fn check_fingerprint(plan: &Plan, shard: Shard, line: &str) -> Result<(), St
         ));
     }
     match fingerprint_shard(line) {
-        Some(s) if s == shard => {}
-        Some(s) if s.count != shard.count => {
-            return Err(format!(
-                "written as shard {s} of {} shards, but this run is shard {shard} of {}: the shard count must be the same",
-                s.count, shard.count
-            ))
-        }
         Some(s) => {
-            return Err(format!(
-                "written as shard {s}, but this run is shard {shard}"
-            ))
+            if let Some(m) = shard_differs(s, shard) {
+                return Err(m);
+            }
         }
-        None => return Err("the fingerprint line names no shard".into()),
+        None => return Err("the fingerprint names no shard".into()),
     }
     if line.trim_end_matches('\n') != fingerprint_line(plan, shard).trim_end_matches('\n') {
-        return Err("the fingerprint line is not the one this spec writes".into());
+        return Err("the fingerprint is not the one this spec writes".into());
+    }
+    Ok(())
+}
+
+/// Checks the fingerprint of a sweep CSV, which its summary JSON carries
+/// (`spec_digest`, `total_configurations`, `shard`), against `plan` and this
+/// run's `shard` (math doc section 16.2; a `--limit` may differ: a prefix run
+/// can be continued further). The message names what differs.
+pub fn check_summary(plan: &Plan, shard: Shard, summary: &Summary) -> Result<(), String> {
+    let want = plan.digest();
+    if summary.spec_digest != want || summary.total_configurations != plan.total() {
+        return Err(format!(
+            "written by another spec (digest {}; this spec's is {want})",
+            summary.spec_digest
+        ));
+    }
+    if let Some(m) = shard_differs(summary.shard, shard) {
+        return Err(m);
     }
     Ok(())
 }
@@ -579,7 +619,9 @@ impl<'a> Verifier<'a> {
                 }
             } else {
                 let rule = self.text_rules[pos];
-                if f.is_empty() || !text_ok(rule, f) {
+                // `exact_agrees` is empty when either class is undecided.
+                let empty_ok = rule == TextRule::Bool;
+                if (f.is_empty() && !empty_ok) || (!f.is_empty() && !text_ok(rule, f)) {
                     return Err(format!(
                         "{name} = {f:?} is not a value this sweep writes{}",
                         match rule {
