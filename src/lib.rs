@@ -121,8 +121,3 @@ pub mod verify;
 pub use any_error::AnyError;
 pub use error::{Error, Result};
 pub use schemes::Scheme;
-
-/// The path the sweep's output module names the scheme abstraction by
-/// (`crate::scheme::Scheme`); the module is [`schemes`].
-#[allow(unused_imports)]
-pub(crate) use schemes as scheme;

@@ -22,7 +22,7 @@ impl Evaluate for Synthetic {
         &self,
         _plan: &Plan,
         c: &Configuration,
-        _scheme: &dyn crate::scheme::Scheme,
+        _scheme: &dyn crate::schemes::Scheme,
     ) -> crate::spectral::Result<Vec<Cell>> {
         let id = c.id;
         if id % 997 == 13 {
@@ -238,7 +238,7 @@ fn typed_parquet_path_refuses_a_cell_of_the_wrong_kind() {
             &self,
             _plan: &Plan,
             c: &Configuration,
-            _scheme: &dyn crate::scheme::Scheme,
+            _scheme: &dyn crate::schemes::Scheme,
         ) -> crate::spectral::Result<Vec<Cell>> {
             let mut v = vec![Cell::Text("standard".into())];
             v.extend((0..5).map(|_| Cell::Num(0.5)));
@@ -307,7 +307,7 @@ impl Evaluate for ManyLabels {
         &self,
         plan: &Plan,
         c: &Configuration,
-        scheme: &dyn crate::scheme::Scheme,
+        scheme: &dyn crate::schemes::Scheme,
     ) -> crate::spectral::Result<Vec<Cell>> {
         let mut v = Synthetic.evaluate(plan, c, scheme)?;
         if self.all_null {

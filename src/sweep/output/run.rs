@@ -699,7 +699,7 @@ pub(super) mod tests {
             &self,
             plan: &Plan,
             c: &Configuration,
-            scheme: &dyn crate::scheme::Scheme,
+            scheme: &dyn crate::schemes::Scheme,
         ) -> crate::spectral::Result<Vec<Cell>> {
             let mut v = self.0.evaluate(plan, c, scheme)?;
             if c.id % 5 == 0 {
