@@ -123,7 +123,17 @@ fn errors_leave_no_output() {
 
     let open = dir.path().join("open.obj");
     std::fs::write(&open, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
-    let (code, _, stderr) = run(&["subdivide", s(&open), "--scheme", "nurds", "-o", s(&out)]);
+    // (the Doo-Sabin family, Catmull-Clark and Loop refine open meshes; adjustable-cc does not)
+    let (code, _, stderr) = run(&[
+        "subdivide",
+        s(&open),
+        "--scheme",
+        "adjustable-cc",
+        "--c",
+        "0.3",
+        "-o",
+        s(&out),
+    ]);
     assert_eq!(code, 2);
     assert!(stderr.contains("boundary not supported"), "{stderr}");
     assert!(!out.exists());
