@@ -360,3 +360,43 @@ fn charmap_verdict(c: &SectorConfig, sub: &Subdominant) -> SectorCharmap {
         on_sharp_edges: on,
     }
 }
+
+/// The JSON document of one sector analysis (`analyze --vertex ... --json`):
+/// the fields of [`SectorAnalysis`] (with `subdominant.class`,
+/// `subdominant.lambda1`, `lambda2`, ... as in the interior document), the
+/// `charmap` object (`verdict`, `reason`, `on_sharp_edges`), a `curvature`
+/// object (`verdict: "not_computed"` with its reason: math doc section
+/// 18.5), the echoed `input` and the tool version.
+pub fn sector_json(a: &SectorAnalysis, c: &SectorConfig) -> serde_json::Value {
+    let mut value = serde_json::to_value(a).unwrap_or(serde_json::Value::Null);
+    if let serde_json::Value::Object(map) = &mut value {
+        if let Some(serde_json::Value::Object(cm)) = map.get_mut("charmap") {
+            cm.insert("verdict".to_owned(), a.charmap.verdict.as_str().into());
+        }
+        map.insert(
+            "curvature".to_owned(),
+            serde_json::json!({
+                "verdict": "not_computed",
+                "reason": CURVATURE_NOT_COMPUTED,
+            }),
+        );
+        map.insert(
+            "input".to_owned(),
+            serde_json::json!({
+                "scheme": super::scheme_name(c.scheme()),
+                "vertex": c.kind().name(),
+                "faces": c.faces(),
+                "angle_degrees": c.angle().map(f64::to_degrees),
+                "rules": c.rules().name(),
+            }),
+        );
+        map.insert(
+            "tool_version".to_owned(),
+            crate::spectral::json::TOOL_VERSION.into(),
+        );
+    }
+    value
+}
+
+/// Why there is no curvature verdict at a boundary, crease or corner vertex.
+pub const CURVATURE_NOT_COMPUTED: &str = "the curvature analysis needs the second-order neighbourhood of the sector (math doc 18.5), which is not built for boundary sectors";

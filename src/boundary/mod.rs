@@ -46,6 +46,12 @@ use crate::schemes::{Assembler, LocalMatrix, PointLabel, Role};
 use std::f64::consts::PI;
 use std::fmt;
 
+/// The largest face count of one sector: `2^20`, far beyond any matrix the
+/// work limits allow (a dense matrix of dimension `2^21` needs about
+/// `10^15` bytes), and small enough that the index arithmetic
+/// ([`SectorConfig::dimension`]) cannot overflow.
+pub const MAX_SECTOR_FACES: usize = 1 << 20;
+
 /// The kind of vertex at the centre of the configuration.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum VertexKind {
@@ -147,6 +153,13 @@ impl SectorConfig {
                 name: "faces",
                 value: k.to_string(),
                 reason: "a sector has at least 1 face",
+            });
+        }
+        if let Some(&k) = faces.iter().find(|&&k| k > MAX_SECTOR_FACES) {
+            return Err(Error::InvalidParameter {
+                name: "faces",
+                value: k.to_string(),
+                reason: "a sector has at most 2^20 faces",
             });
         }
         let angle = match (kind, angle_degrees) {
