@@ -285,9 +285,22 @@ pub fn analyze_sector(c: &SectorConfig) -> Result<SectorAnalysis> {
                 scale(u.iter().map(|z| z.im).collect()),
             ]
         } else {
-            (1..3)
-                .map(|k| scale(left.column(k).iter().map(|z| z.re).collect()))
-                .collect()
+            // real eigenvalues: the left null space of S - lambda I (one
+            // vector per eigenvalue, or the two-dimensional one of a
+            // double), from the singular value decomposition, so that a
+            // double eigenvalue's basis is independent
+            if subdominant.class == SubdominantClass::Standard {
+                left_null_space(s, subdominant.lambda1.re, 2)
+                    .into_iter()
+                    .map(scale)
+                    .collect()
+            } else {
+                [subdominant.lambda1.re, subdominant.lambda2.re]
+                    .iter()
+                    .flat_map(|&l| left_null_space(s, l, 1))
+                    .map(scale)
+                    .collect()
+            }
         }
     } else {
         Vec::new()
@@ -303,6 +316,26 @@ pub fn analyze_sector(c: &SectorConfig) -> Result<SectorAnalysis> {
         limit_stencil_error,
         tangent_stencils,
     })
+}
+
+/// The `count` right singular vectors of `(S - lambda I)^T` with the
+/// smallest singular values: a basis of the left null space of
+/// `S - lambda I` when `lambda` is an eigenvalue of that geometric
+/// multiplicity.
+fn left_null_space(s: &nalgebra::DMatrix<f64>, lambda: f64, count: usize) -> Vec<Vec<f64>> {
+    let n = s.nrows();
+    let m = (s - nalgebra::DMatrix::<f64>::identity(n, n) * lambda).transpose();
+    let svd = m.svd(false, true);
+    let Some(vt) = svd.v_t else {
+        return Vec::new();
+    };
+    let mut order: Vec<usize> = (0..svd.singular_values.len()).collect();
+    order.sort_by(|&a, &b| svd.singular_values[a].total_cmp(&svd.singular_values[b]));
+    order
+        .into_iter()
+        .take(count)
+        .map(|k| vt.row(k).iter().copied().collect())
+        .collect()
 }
 
 /// Whether `lambda` (error radius `radius`) is an eigenvalue of the
@@ -359,6 +392,55 @@ fn charmap_verdict(c: &SectorConfig, sub: &Subdominant) -> SectorCharmap {
         reason,
         on_sharp_edges: on,
     }
+}
+
+/// The limit position and unit normal at the vertex of a neighbourhood
+/// `points` (ordered like the local matrix's columns; math doc section
+/// 18.6): the position is the limit stencil applied to the points, the
+/// normal `t_1 x t_2 / |t_1 x t_2|` with the tangents `t_k` the tangent
+/// stencils applied to them. `None` without tangent stencils (no
+/// characteristic map), for a point count that does not match, or when the
+/// tangents are parallel (`|t_1 x t_2|` zero relative to `|t_1| |t_2|`).
+pub fn limit_frame(a: &SectorAnalysis, points: &[[f64; 3]]) -> Option<([f64; 3], [f64; 3])> {
+    if points.len() != a.limit_stencil.len() || a.tangent_stencils.len() != 2 {
+        return None;
+    }
+    let apply = |w: &[f64]| {
+        let mut q = [0.0; 3];
+        for (x, p) in w.iter().zip(points) {
+            for k in 0..3 {
+                q[k] += x * p[k];
+            }
+        }
+        q
+    };
+    let pos = apply(&a.limit_stencil);
+    let t1 = apply(&a.tangent_stencils[0]);
+    let t2 = apply(&a.tangent_stencils[1]);
+    let n = cross(t1, t2);
+    let len = norm(n);
+    if !(len > PARALLEL_TANGENTS * norm(t1) * norm(t2)) {
+        return None;
+    }
+    Some((pos, n.map(|x| x / len)))
+}
+
+/// `|t_1 x t_2| <= PARALLEL_TANGENTS |t_1| |t_2|` counts as parallel
+/// tangents (no normal): the sine of the angle between them at a few
+/// hundred rounding errors of the stencils' sums.
+pub const PARALLEL_TANGENTS: f64 = 1e-12;
+
+/// The cross product.
+pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
 
 /// The JSON document of one sector analysis (`analyze --vertex ... --json`):
