@@ -32,6 +32,8 @@
 //!   * [`contraction`]: Theorem 1, certified and measured (section 5);
 //!   * [`charmap`]: characteristic maps (regularity, injectivity);
 //!   * [`curvature`]: second order at an extraordinary point (section 13);
+//!   * [`boundary`]: local matrices and analysis at boundary, crease and
+//!     corner vertices of Catmull-Clark and Loop (section 18);
 //!   * [`cc_study`]: parameter study of the shape-adjustable Catmull-Clark
 //!     scheme (spectral part);
 //!   * [`ccss_bound`]: distance bound between a Catmull-Clark patch and its
@@ -93,6 +95,7 @@
 
 pub mod any_error;
 pub mod bezier;
+pub mod boundary;
 pub mod bspline;
 pub mod budget;
 pub mod cc_study;

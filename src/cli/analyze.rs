@@ -2,6 +2,7 @@
 //! characteristic-map verdict for one configuration.
 
 use super::scheme_args::SchemeArgs;
+use super::sector_args::{InteriorFlags, SectorArgs};
 use super::{write_stdout, CliError, CliResult};
 use clap::{Args, ValueEnum};
 use subdiv_lab::charmap;
@@ -16,6 +17,8 @@ use subdiv_lab::spectral::{
 pub(crate) struct AnalyzeArgs {
     #[command(flatten)]
     scheme: SchemeArgs,
+    #[command(flatten)]
+    sector: SectorArgs,
     /// Print the full result as JSON.
     #[arg(long)]
     json: bool,
@@ -44,6 +47,22 @@ enum Path {
 }
 
 pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
+    let interior = [
+        ("--valence", args.scheme.valence.is_some()),
+        ("--knots", args.scheme.knots.is_some()),
+        ("--ratios", args.scheme.ratios.is_some()),
+        ("--uniform", args.scheme.uniform),
+        ("--c", args.scheme.c.is_some()),
+        ("--scheme-file", args.scheme.scheme_file.is_some()),
+        ("--exact", args.exact),
+        ("--path structured", matches!(args.path, Path::Structured)),
+    ];
+    if let Some(c) = args
+        .sector
+        .resolve(&args.scheme.scheme, InteriorFlags { given: &interior })?
+    {
+        return super::sector::analyze(&c, args.json, args.force);
+    }
     subdiv_lab::contraction::check_levels(args.levels, subdiv_lab::budget::Spelling::Cli)
         .map_err(super::budget::usage)?;
     if args.exact && args.scheme.scheme_file.is_some() {

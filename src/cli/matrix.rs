@@ -1,6 +1,7 @@
 //! `subdiv-lab matrix`: print a local subdivision matrix.
 
 use super::scheme_args::SchemeArgs;
+use super::sector_args::{InteriorFlags, SectorArgs};
 use super::{write_stdout, CliError, CliResult};
 use clap::{Args, ValueEnum};
 use nalgebra::DMatrix;
@@ -12,6 +13,8 @@ use subdiv_lab::schemes::{LocalMatrix, PointLabel};
 pub(crate) struct MatrixArgs {
     #[command(flatten)]
     scheme: SchemeArgs,
+    #[command(flatten)]
+    sector: SectorArgs,
     /// Which block: the full 4n x 4n matrix or the n x n face block.
     #[arg(long, value_enum, default_value_t = Block::Full)]
     block: Block,
@@ -40,6 +43,35 @@ enum Format {
 }
 
 pub(crate) fn run(args: MatrixArgs) -> CliResult {
+    let interior = [
+        ("--valence", args.scheme.valence.is_some()),
+        ("--knots", args.scheme.knots.is_some()),
+        ("--ratios", args.scheme.ratios.is_some()),
+        ("--uniform", args.scheme.uniform),
+        ("--c", args.scheme.c.is_some()),
+        ("--scheme-file", args.scheme.scheme_file.is_some()),
+        ("--exact", args.exact),
+        ("--block face", matches!(args.block, Block::Face)),
+    ];
+    if let Some(c) = args
+        .sector
+        .resolve(&args.scheme.scheme, InteriorFlags { given: &interior })?
+    {
+        super::budget::check(
+            "matrix",
+            &c.describe(),
+            &super::sector::matrix_estimate(&c),
+            subdiv_lab::budget::TIME_LIMIT_SECONDS,
+            args.force,
+        )?;
+        let name = c.describe();
+        let face = Err(subdiv_lab::Error::NotApplicable {
+            scheme: name.clone(),
+            operation: "the face block (a Doo-Sabin-family notion)",
+        });
+        let out = render(&name, c.local_matrix(), face, Vec::new(), &args)?;
+        return write_stdout(out.as_bytes());
+    }
     let resolved = args.scheme.resolve(args.exact)?;
     let n = resolved.scheme.valence();
     let estimate = subdiv_lab::budget::matrix(

@@ -13,6 +13,8 @@ mod outfiles;
 mod plot;
 mod report;
 mod scheme_args;
+mod sector;
+mod sector_args;
 mod subdivide;
 mod sweep;
 mod verify;

@@ -2853,6 +2853,451 @@ fn cases() -> Vec<Case> {
         ),
     ]);
 
+    // ===================================================================
+    // SECTION boundary-analysis: `analyze` and `matrix` at boundary,
+    // crease and corner vertices (--vertex, --faces, --angle, --rules).
+    // ===================================================================
+    v.extend([
+        bad(
+            "sector-no-faces",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "boundary", "--rules", "blz",
+            ],
+            "--vertex boundary needs --faces",
+        ),
+        bad(
+            "sector-no-rules",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "boundary", "--faces", "3",
+            ],
+            "needs --rules standard or blz",
+        ),
+        bad(
+            "sector-bad-rules",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "boundary", "--faces", "3", "--rules",
+                "zorin",
+            ],
+            "invalid value 'zorin' for '--rules",
+        ),
+        bad(
+            "sector-bad-vertex",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "edge", "--faces", "3", "--rules", "blz",
+            ],
+            "invalid value 'edge' for '--vertex",
+        ),
+        bad(
+            "sector-faces-zero",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "boundary", "--faces", "0", "--rules",
+                "blz",
+            ],
+            "faces = 0: a sector has at least 1 face",
+        ),
+        bad(
+            "sector-faces-negative",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "boundary", "--faces", "-2", "--rules",
+                "blz",
+            ],
+            "--faces: \"-2\" is not a face count",
+        ),
+        bad(
+            "sector-faces-text",
+            &[
+                "matrix", "--scheme", "loop", "--vertex", "boundary", "--faces", "three",
+                "--rules", "blz",
+            ],
+            "--faces: \"three\" is not a face count",
+        ),
+        bad(
+            "sector-faces-empty-entry",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "crease", "--faces", "2,", "--rules",
+                "blz",
+            ],
+            "--faces: \"\" is not a face count",
+        ),
+        bad(
+            "sector-faces-overflow",
+            &[
+                "analyze",
+                "--scheme",
+                "loop",
+                "--vertex",
+                "boundary",
+                "--faces",
+                "99999999999999999999999",
+                "--rules",
+                "blz",
+            ],
+            "is not a face count",
+        ),
+        bad(
+            "sector-faces-above-limit",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "boundary", "--faces", "2000000",
+                "--rules", "blz",
+            ],
+            "a sector has at most 2^20 faces",
+        ),
+        bad(
+            "sector-boundary-two-counts",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "boundary", "--faces", "2,3", "--rules",
+                "blz",
+            ],
+            "a boundary or corner vertex takes one face count K",
+        ),
+        bad(
+            "sector-crease-one-count",
+            &[
+                "analyze",
+                "--scheme",
+                "catmull-clark",
+                "--vertex",
+                "crease",
+                "--faces",
+                "3",
+                "--rules",
+                "blz",
+            ],
+            "a crease takes two face counts K1,K2",
+        ),
+        bad(
+            "sector-crease-zero-count",
+            &[
+                "matrix",
+                "--scheme",
+                "catmull-clark",
+                "--vertex",
+                "crease",
+                "--faces",
+                "3,0",
+                "--rules",
+                "standard",
+            ],
+            "faces = 0",
+        ),
+        bad(
+            "sector-angle-on-boundary",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "boundary", "--faces", "3", "--angle",
+                "90", "--rules", "blz",
+            ],
+            "only a corner takes an angle",
+        ),
+        bad(
+            "sector-corner-no-angle",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "corner", "--faces", "3", "--rules",
+                "blz",
+            ],
+            "a corner needs its angle",
+        ),
+        bad(
+            "sector-angle-zero",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "corner", "--faces", "3", "--angle",
+                "0", "--rules", "blz",
+            ],
+            "angle = 0: the corner angle must be finite and strictly between 0 and 360",
+        ),
+        bad(
+            "sector-angle-360",
+            &[
+                "matrix", "--scheme", "loop", "--vertex", "corner", "--faces", "3", "--angle",
+                "360", "--rules", "blz",
+            ],
+            "angle = 360",
+        ),
+        bad(
+            "sector-angle-negative",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "corner", "--faces", "3", "--angle",
+                "-90", "--rules", "blz",
+            ],
+            "angle = -90",
+        ),
+        bad(
+            "sector-angle-nan",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "corner", "--faces", "3", "--angle",
+                "nan", "--rules", "blz",
+            ],
+            "angle = NaN",
+        ),
+        bad(
+            "sector-angle-inf",
+            &[
+                "analyze",
+                "--scheme",
+                "catmull-clark",
+                "--vertex",
+                "corner",
+                "--faces",
+                "3",
+                "--angle",
+                "inf",
+                "--rules",
+                "blz",
+            ],
+            "angle = inf",
+        ),
+        bad(
+            "sector-angle-text",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "corner", "--faces", "3", "--angle",
+                "right", "--rules", "blz",
+            ],
+            "--angle: \"right\" is not a number of degrees",
+        ),
+        bad(
+            "sector-scheme-nurds",
+            &[
+                "analyze", "--vertex", "boundary", "--faces", "3", "--rules", "blz",
+            ],
+            "--vertex needs --scheme catmull-clark or loop, got \"nurds\"",
+        ),
+        bad(
+            "sector-with-valence",
+            &[
+                "analyze",
+                "--scheme",
+                "loop",
+                "--valence",
+                "5",
+                "--vertex",
+                "boundary",
+                "--faces",
+                "3",
+                "--rules",
+                "blz",
+            ],
+            "--valence is not available with --vertex",
+        ),
+        bad(
+            "sector-with-knots",
+            &[
+                "analyze",
+                "--scheme",
+                "loop",
+                "--knots",
+                "1:1,1:1,1:1",
+                "--vertex",
+                "boundary",
+                "--faces",
+                "3",
+                "--rules",
+                "blz",
+            ],
+            "--knots is not available with --vertex",
+        ),
+        bad(
+            "sector-with-ratios",
+            &[
+                "matrix",
+                "--scheme",
+                "loop",
+                "--ratios",
+                "0.5,0.5,0.5",
+                "--vertex",
+                "boundary",
+                "--faces",
+                "3",
+                "--rules",
+                "blz",
+            ],
+            "--ratios is not available with --vertex",
+        ),
+        bad(
+            "sector-with-uniform",
+            &[
+                "analyze",
+                "--scheme",
+                "loop",
+                "--uniform",
+                "--vertex",
+                "boundary",
+                "--faces",
+                "3",
+                "--rules",
+                "blz",
+            ],
+            "--uniform is not available with --vertex",
+        ),
+        bad(
+            "sector-with-c",
+            &[
+                "analyze",
+                "--scheme",
+                "catmull-clark",
+                "--c",
+                "0.5",
+                "--vertex",
+                "boundary",
+                "--faces",
+                "3",
+                "--rules",
+                "blz",
+            ],
+            "--c is not available with --vertex",
+        ),
+        bad(
+            "sector-with-exact",
+            &[
+                "analyze", "--scheme", "loop", "--exact", "--vertex", "boundary", "--faces", "3",
+                "--rules", "standard",
+            ],
+            "--exact is not available with --vertex",
+        ),
+        bad(
+            "sector-matrix-with-exact",
+            &[
+                "matrix", "--scheme", "loop", "--exact", "--vertex", "boundary", "--faces", "3",
+                "--rules", "standard",
+            ],
+            "--exact is not available with --vertex",
+        ),
+        bad(
+            "sector-with-structured-path",
+            &[
+                "analyze",
+                "--scheme",
+                "loop",
+                "--path",
+                "structured",
+                "--vertex",
+                "boundary",
+                "--faces",
+                "3",
+                "--rules",
+                "blz",
+            ],
+            "--path structured is not available with --vertex",
+        ),
+        bad(
+            "sector-matrix-face-block",
+            &[
+                "matrix", "--scheme", "loop", "--block", "face", "--vertex", "boundary", "--faces",
+                "3", "--rules", "blz",
+            ],
+            "--block face is not available with --vertex",
+        ),
+        bad_with(
+            "sector-with-scheme-file",
+            &[
+                "analyze",
+                "--scheme-file",
+                "f.toml",
+                "--vertex",
+                "boundary",
+                "--faces",
+                "3",
+                "--rules",
+                "blz",
+            ],
+            &[("f.toml", "name = \"x\"\n")],
+            "--scheme-file is not available with --vertex",
+        ),
+        bad(
+            "sector-faces-without-vertex",
+            &[
+                "analyze",
+                "--scheme",
+                "loop",
+                "--valence",
+                "5",
+                "--faces",
+                "3",
+            ],
+            "--faces needs --vertex",
+        ),
+        bad(
+            "sector-angle-without-vertex",
+            &[
+                "matrix",
+                "--scheme",
+                "loop",
+                "--valence",
+                "5",
+                "--angle",
+                "90",
+            ],
+            "--angle needs --vertex",
+        ),
+        bad(
+            "sector-rules-without-vertex",
+            &[
+                "analyze",
+                "--scheme",
+                "loop",
+                "--valence",
+                "5",
+                "--rules",
+                "blz",
+            ],
+            "--rules needs --vertex",
+        ),
+        bad(
+            "sector-analyze-work-limit",
+            &[
+                "analyze",
+                "--scheme",
+                "catmull-clark",
+                "--vertex",
+                "boundary",
+                "--faces",
+                "1000",
+                "--rules",
+                "blz",
+            ],
+            "catmull-clark boundary K=1000 (blz) takes",
+        ),
+        bad(
+            "sector-matrix-physical-memory",
+            &[
+                "matrix",
+                "--scheme",
+                "loop",
+                "--vertex",
+                "crease",
+                "--faces",
+                "100000,100000",
+                "--rules",
+                "blz",
+                "--force",
+            ],
+            "refused even with --force",
+        ),
+        full(
+            "full-sector-analyze",
+            &[
+                "analyze", "--scheme", "loop", "--vertex", "boundary", "--faces", "4", "--rules",
+                "blz",
+            ],
+        ),
+        full(
+            "full-sector-matrix-json",
+            &[
+                "matrix",
+                "--scheme",
+                "catmull-clark",
+                "--vertex",
+                "corner",
+                "--faces",
+                "2",
+                "--angle",
+                "90",
+                "--rules",
+                "blz",
+                "--format",
+                "json",
+            ],
+        ),
+    ]);
+
     v
 }
 

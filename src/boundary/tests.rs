@@ -1,0 +1,403 @@
+use super::analysis::{closed_form_spectrum, HALF_MATCH_TOL};
+use super::*;
+use crate::mesh::sharp::rules::{Boundary, Creasing};
+use crate::mesh::sharp::tags::{Tag, TagTarget};
+use crate::mesh::sharp::SharpMesh;
+use crate::spectral::SubdominantClass;
+
+fn cfg(
+    scheme: SdcScheme,
+    kind: VertexKind,
+    faces: &[usize],
+    angle: Option<f64>,
+    rules: RuleSet,
+) -> SectorConfig {
+    SectorConfig::new(scheme, kind, faces, angle, rules).unwrap()
+}
+
+/// Deterministic scattered positions for the neighbourhood's points.
+fn positions(n: usize) -> Vec<[f64; 3]> {
+    (0..n)
+        .map(|i| {
+            let t = i as f64 + 1.0;
+            [
+                (t * 1.7).sin() * 3.0,
+                (t * 2.3).cos() * 2.0,
+                (t * 0.9).sin() + 0.1 * t,
+            ]
+        })
+        .collect()
+}
+
+/// The neighbourhood as an open mesh for the sharp-mesh refiner: faces
+/// `v, e_j, f_j, e_(j+1)` (Catmull-Clark) or `v, e_j, e_(j+1)` (Loop), the
+/// crease's sharp edges and the corner tagged infinitely sharp.
+fn neighbourhood_mesh(c: &SectorConfig, p: Vec<[f64; 3]>) -> SharpMesh {
+    let ne = c.edge_count();
+    let nf = c.face_count();
+    let e = |i: usize| 1 + i % ne;
+    let faces: Vec<Vec<usize>> = (0..nf)
+        .map(|j| match c.scheme() {
+            SdcScheme::CatmullClark => vec![0, e(j), 1 + ne + j, e(j + 1)],
+            SdcScheme::Loop => vec![0, e(j), e(j + 1)],
+        })
+        .collect();
+    let mut tags = Vec::new();
+    match c.kind() {
+        VertexKind::Crease => {
+            for (line, i) in c.sharp_edges().into_iter().enumerate() {
+                tags.push(Tag {
+                    line: line + 1,
+                    target: TagTarget::Edge(0, e(i)),
+                    sharpness: 10.0,
+                });
+            }
+        }
+        VertexKind::Corner => tags.push(Tag {
+            line: 1,
+            target: TagTarget::Vertex(0),
+            sharpness: 10.0,
+        }),
+        VertexKind::Boundary => {}
+    }
+    SharpMesh::new(p, &faces, &tags, Boundary::EdgeOnly).unwrap()
+}
+
+fn all_standard_configs() -> Vec<SectorConfig> {
+    let mut out = Vec::new();
+    for scheme in [SdcScheme::CatmullClark, SdcScheme::Loop] {
+        for k in 1..=7 {
+            out.push(cfg(
+                scheme,
+                VertexKind::Boundary,
+                &[k],
+                None,
+                RuleSet::Standard,
+            ));
+            out.push(cfg(
+                scheme,
+                VertexKind::Corner,
+                &[k],
+                Some(90.0),
+                RuleSet::Standard,
+            ));
+        }
+        // (Loop's K1 = K2 = 1 is no manifold neighbourhood: its two
+        // triangles share all three edges)
+        for (k1, k2) in [(1, 1), (1, 2), (2, 2), (2, 3), (3, 4), (1, 5)] {
+            if scheme == SdcScheme::Loop && k1 + k2 < 3 {
+                continue;
+            }
+            out.push(cfg(
+                scheme,
+                VertexKind::Crease,
+                &[k1, k2],
+                None,
+                RuleSet::Standard,
+            ));
+        }
+    }
+    out
+}
+
+/// The key independent check: the local matrix applied to the neighbourhood
+/// equals one step of the sharp-mesh refiner (OpenSubdiv's rules,
+/// implemented separately in `mesh::sharp`) on that neighbourhood, row by row.
+#[test]
+fn standard_matrix_is_one_step_of_the_mesh_refiner() {
+    for c in all_standard_configs() {
+        let d = c.dimension();
+        let p = positions(d);
+        let mesh = neighbourhood_mesh(&c, p.clone());
+        let scheme = c.scheme();
+        let r = mesh.refine(scheme, Creasing::Uniform).unwrap();
+        let nv = mesh.vertex_count();
+        let ne_mesh = mesh.edge_count();
+        let s = c.local_matrix().unwrap();
+        let s = s.matrix();
+        // where each local point went in the refined mesh
+        let mut new_index = vec![0usize];
+        for i in 0..c.edge_count() {
+            let edge = mesh.find_edge(0, 1 + i).unwrap();
+            new_index.push(nv + edge);
+        }
+        if scheme == SdcScheme::CatmullClark {
+            for j in 0..c.face_count() {
+                new_index.push(nv + ne_mesh + j);
+            }
+        }
+        for (row, &ni) in new_index.iter().enumerate() {
+            let mut q = [0.0; 3];
+            for (col, x) in p.iter().enumerate() {
+                for k in 0..3 {
+                    q[k] += s[(row, col)] * x[k];
+                }
+            }
+            let got = r.positions()[ni];
+            for k in 0..3 {
+                assert!(
+                    (q[k] - got[k]).abs() < 1e-13,
+                    "{c}: row {row} ({}) coordinate {k}: matrix {} vs refiner {}",
+                    s.nrows(),
+                    q[k],
+                    got[k]
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn spectrum_matches_the_closed_form() {
+    let mut configs = all_standard_configs();
+    for scheme in [SdcScheme::CatmullClark, SdcScheme::Loop] {
+        for k in 1..=9 {
+            configs.push(cfg(scheme, VertexKind::Boundary, &[k], None, RuleSet::Blz));
+            for a in [45.0, 90.0, 135.0, 270.0, 330.0] {
+                configs.push(cfg(scheme, VertexKind::Corner, &[k], Some(a), RuleSet::Blz));
+            }
+        }
+        configs.push(cfg(scheme, VertexKind::Crease, &[2, 5], None, RuleSet::Blz));
+    }
+    for c in configs {
+        let a = analyze_sector(&c).unwrap();
+        assert_eq!(closed_form_spectrum(&c).len(), c.dimension(), "{c}");
+        // a defective double eigenvalue (e.g. the two 1/4 of Catmull-Clark
+        // at K = 1) is computed only to about sqrt(eps) = 1.5e-8
+        assert!(
+            a.closed_form_deviation < 1e-7,
+            "{c}: {}",
+            a.closed_form_deviation
+        );
+        assert!(
+            a.limit_stencil_error < 1e-12,
+            "{c}: {}",
+            a.limit_stencil_error
+        );
+    }
+}
+
+/// BLZ: the smooth edges' `gamma` puts the first sine mode of every sector
+/// at exactly `1/2`, the eigenvalue of the sharp edges' tangent, for every
+/// `K` (math doc section 18.3).
+#[test]
+fn blz_boundary_is_standard_with_one_half() {
+    for scheme in [SdcScheme::CatmullClark, SdcScheme::Loop] {
+        for k in 2..=12 {
+            let c = cfg(scheme, VertexKind::Boundary, &[k], None, RuleSet::Blz);
+            let a = analyze_sector(&c).unwrap();
+            let s = &a.subdominant;
+            assert_eq!(s.class, SubdominantClass::Standard, "{c}");
+            assert!((s.lambda1.re - 0.5).abs() < 1e-12, "{c}");
+            assert!(s.abs_lambda3 < 0.5 - 1e-3, "{c}");
+            assert_eq!(a.charmap.on_sharp_edges, [Some(true), Some(true)], "{c}");
+            assert_eq!(a.tangent_stencils.len(), 2);
+        }
+    }
+}
+
+/// Standard rules: the first sine mode `3/8 + cos(pi/K)/4` (Loop) or the
+/// interior Catmull-Clark eigenvalue of valence `2K` dominates `1/2` beyond
+/// the regular boundary; from Loop `K = 7` and Catmull-Clark `K = 5` on the
+/// second sine mode does too, and the characteristic map collapses the
+/// boundary (math doc section 18.3).
+#[test]
+fn standard_boundary_known_eigenvalues_and_failures() {
+    for k in 1..=12usize {
+        let c = cfg(
+            SdcScheme::Loop,
+            VertexKind::Boundary,
+            &[k],
+            None,
+            RuleSet::Standard,
+        );
+        let a = analyze_sector(&c).unwrap();
+        let w = std::f64::consts::PI / k as f64;
+        let s = &a.subdominant;
+        if k >= 4 {
+            assert!(
+                (s.lambda1.re - (0.375 + w.cos() / 4.0)).abs() < 1e-12,
+                "{c}"
+            );
+        }
+        // K = 6: 1/2 is double (the sharp edges' tangent and the second
+        // sine mode) with lambda_1 above it: |lambda_2| = |lambda_3| cannot
+        // be certified without knowing the double is semisimple
+        let expect = match k {
+            3 => "standard",
+            6 => "indeterminate",
+            _ => "real_distinct",
+        };
+        assert_eq!(s.class.name(), expect, "{c}");
+        let collapses = a.charmap.verdict == SectorCharmapVerdict::BoundaryCollapses;
+        assert_eq!(collapses, k >= 7, "{c}: {:?}", a.charmap);
+    }
+    for k in 1..=12usize {
+        let c = cfg(
+            SdcScheme::CatmullClark,
+            VertexKind::Boundary,
+            &[k],
+            None,
+            RuleSet::Standard,
+        );
+        let a = analyze_sector(&c).unwrap();
+        let s = &a.subdominant;
+        if k >= 3 {
+            // the interior Catmull-Clark subdominant eigenvalue of valence 2K
+            let w = std::f64::consts::PI / k as f64;
+            let lam = (5.0 + w.cos() + (w / 2.0).cos() * (18.0 + 2.0 * w.cos()).sqrt()) / 16.0;
+            assert!((s.lambda1.re - lam).abs() < 1e-12, "{c}");
+        }
+        // K = 1: 1/4 is double (sharp edges and the far corner); K = 4: 1/2
+        // is double below lambda_1 (as Loop's K = 6)
+        let expect = match k {
+            2 => "standard",
+            1 | 4 => "indeterminate",
+            _ => "real_distinct",
+        };
+        assert_eq!(s.class.name(), expect, "{c}");
+        let collapses = a.charmap.verdict == SectorCharmapVerdict::BoundaryCollapses;
+        assert_eq!(collapses, k >= 5, "{c}: {:?}", a.charmap);
+    }
+}
+
+/// Where the two rule sets coincide: BLZ's `gamma` is `3/8` on a regular
+/// boundary (Catmull-Clark `K = 2`, Loop `K = 3`).
+#[test]
+fn rule_sets_coincide_on_the_regular_boundary() {
+    for (scheme, k) in [(SdcScheme::CatmullClark, 2), (SdcScheme::Loop, 3)] {
+        let a = cfg(scheme, VertexKind::Boundary, &[k], None, RuleSet::Standard);
+        let b = cfg(scheme, VertexKind::Boundary, &[k], None, RuleSet::Blz);
+        let d = a.local_matrix().unwrap().into_matrix() - b.local_matrix().unwrap().into_matrix();
+        assert!(d.amax() < 1e-15, "{a}");
+    }
+}
+
+#[test]
+fn blz_convex_corner_has_one_half_double() {
+    for scheme in [SdcScheme::CatmullClark, SdcScheme::Loop] {
+        for k in 2..=6 {
+            for angle in [30.0, 90.0, 150.0] {
+                let c = cfg(scheme, VertexKind::Corner, &[k], Some(angle), RuleSet::Blz);
+                let a = analyze_sector(&c).unwrap();
+                assert_eq!(a.subdominant.class, SubdominantClass::Standard, "{c}");
+                assert!(
+                    (a.subdominant.lambda1.re - 0.5).abs() < HALF_MATCH_TOL,
+                    "{c}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn validation() {
+    use crate::error::Error;
+    let bad = |kind, faces: &[usize], angle| {
+        matches!(
+            SectorConfig::new(SdcScheme::Loop, kind, faces, angle, RuleSet::Blz),
+            Err(Error::InvalidParameter { .. })
+        )
+    };
+    assert!(bad(VertexKind::Boundary, &[0], None));
+    assert!(bad(VertexKind::Boundary, &[2, 3], None));
+    assert!(bad(VertexKind::Crease, &[2], None));
+    assert!(bad(VertexKind::Crease, &[2, 0], None));
+    assert!(bad(VertexKind::Boundary, &[2], Some(90.0)));
+    assert!(bad(VertexKind::Corner, &[2], None));
+    assert!(bad(VertexKind::Corner, &[2], Some(0.0)));
+    assert!(bad(VertexKind::Corner, &[2], Some(360.0)));
+    assert!(bad(VertexKind::Corner, &[2], Some(f64::NAN)));
+    assert!(!bad(VertexKind::Corner, &[2], Some(359.0)));
+}
+
+/// Limit normals from the left eigenvectors: the normal of the refined
+/// neighbourhood, `(e_b - e_a) x (e_mid - v)` at level `L`, converges to
+/// the normal [`limit_frame`] gives. The levels are the local matrix's
+/// powers (one step equals the mesh refiner's on the neighbourhood,
+/// [`standard_matrix_is_one_step_of_the_mesh_refiner`]), applied to the
+/// points minus their limit position and rescaled each level, so that no
+/// cancellation hides the direction; the closest approach over 400 levels
+/// is compared (the slowest rate, Catmull-Clark corners of 8 faces, gets
+/// to `3e-7`).
+#[test]
+fn limit_normal_is_the_limit_of_the_refined_normals() {
+    use super::analysis::{cross, limit_frame};
+    let mut configs = Vec::new();
+    for k in 2..=5 {
+        configs.push(cfg(
+            SdcScheme::Loop,
+            VertexKind::Boundary,
+            &[k],
+            None,
+            RuleSet::Standard,
+        ));
+    }
+    for k in 2..=3 {
+        configs.push(cfg(
+            SdcScheme::CatmullClark,
+            VertexKind::Boundary,
+            &[k],
+            None,
+            RuleSet::Standard,
+        ));
+    }
+    for scheme in [SdcScheme::CatmullClark, SdcScheme::Loop] {
+        for k in 2..=8 {
+            configs.push(cfg(scheme, VertexKind::Boundary, &[k], None, RuleSet::Blz));
+            configs.push(cfg(
+                scheme,
+                VertexKind::Corner,
+                &[k],
+                Some(120.0),
+                RuleSet::Blz,
+            ));
+        }
+    }
+    for c in configs {
+        let a = analyze_sector(&c).unwrap();
+        let p = positions(c.dimension());
+        let (pos, normal) = limit_frame(&a, &p).unwrap_or_else(|| panic!("{c}: no normal"));
+        let s = c.local_matrix().unwrap().into_matrix();
+        let mut x: Vec<[f64; 3]> = p
+            .iter()
+            .map(|q| [q[0] - pos[0], q[1] - pos[1], q[2] - pos[2]])
+            .collect();
+        let [ia, ib] = c.sharp_edges().map(|i| 1 + i);
+        let mid = 1 + c.faces()[0] / 2;
+        let mut err = f64::INFINITY;
+        for _level in 0..400 {
+            let mut y = vec![[0.0; 3]; x.len()];
+            for (r, yr) in y.iter_mut().enumerate() {
+                for (col, xc) in x.iter().enumerate() {
+                    for k in 0..3 {
+                        yr[k] += s[(r, col)] * xc[k];
+                    }
+                }
+            }
+            // keep the eigenvalue-1 mode (rounding of the limit position) out
+            let mut c = [0.0; 3];
+            for (w, q) in a.limit_stencil.iter().zip(&y) {
+                for k in 0..3 {
+                    c[k] += w * q[k];
+                }
+            }
+            for q in &mut y {
+                for k in 0..3 {
+                    q[k] -= c[k];
+                }
+            }
+            let m = y.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
+            x = y.iter().map(|q| q.map(|v| v / m)).collect();
+            let d = |i: usize, j: usize| [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
+            let n = cross(d(ib, ia), d(mid, 0));
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let dot = (n[0] * normal[0] + n[1] * normal[1] + n[2] * normal[2]) / len;
+            // the closest approach: where the estimate's second direction has
+            // no lambda_1 part exactly (Loop K = 2), rounding seeds one that
+            // grows by lambda_1 / lambda_2 per level and eventually dominates
+            err = err.min(1.0 - dot.abs());
+        }
+        assert!(err < 1e-6, "{c}: 1 - |cos angle| = {err:e}");
+    }
+}
