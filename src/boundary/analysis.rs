@@ -419,7 +419,8 @@ pub fn limit_frame(a: &SectorAnalysis, points: &[[f64; 3]]) -> Option<([f64; 3],
     let t2 = apply(&a.tangent_stencils[1]);
     let n = cross(t1, t2);
     let len = norm(n);
-    if !(len > PARALLEL_TANGENTS * norm(t1) * norm(t2)) {
+    // (a NaN length fails the test too)
+    if len.is_nan() || len <= PARALLEL_TANGENTS * norm(t1) * norm(t2) {
         return None;
     }
     Some((pos, n.map(|x| x / len)))

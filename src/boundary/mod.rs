@@ -30,7 +30,7 @@
 //! use subdiv_lab::mesh::sharp::rules::SdcScheme;
 //! let c = SectorConfig::new(SdcScheme::Loop, VertexKind::Boundary, &[4], None, RuleSet::Blz).unwrap();
 //! let m = c.local_matrix().unwrap();
-//! assert_eq!(m.matrix().shape(), (7, 7));
+//! assert_eq!(m.matrix().shape(), (6, 6));
 //! assert_eq!(m.rows()[1].to_string(), "e0");
 //! ```
 
