@@ -231,7 +231,8 @@ pub fn limit_mask(c: &SectorConfig) -> Vec<f64> {
 /// Analyses one configuration (module docs).
 ///
 /// ```
-/// use subdiv_lab::boundary::{analyze_sector, RuleSet, SectorConfig, VertexKind};
+/// use subdiv_lab::boundary::analysis::analyze_sector;
+/// use subdiv_lab::boundary::{RuleSet, SectorConfig, VertexKind};
 /// use subdiv_lab::mesh::sharp::rules::SdcScheme;
 /// let c = SectorConfig::new(SdcScheme::CatmullClark, VertexKind::Boundary, &[5], None, RuleSet::Blz).unwrap();
 /// let a = analyze_sector(&c).unwrap();

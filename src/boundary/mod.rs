@@ -38,8 +38,6 @@ pub mod analysis;
 #[cfg(test)]
 mod tests;
 
-pub use analysis::{analyze_sector, SectorAnalysis, SectorCharmap, SectorCharmapVerdict};
-
 use crate::error::{Error, Result};
 use crate::mesh::sharp::rules::SdcScheme;
 use crate::schemes::{Assembler, LocalMatrix, PointLabel, Role};

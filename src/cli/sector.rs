@@ -2,8 +2,9 @@
 //! (`--vertex`): work estimate, analysis, text and JSON output.
 
 use super::{write_stdout, CliError, CliResult};
+use subdiv_lab::boundary::analysis::{analyze_sector, SectorAnalysis};
 use subdiv_lab::boundary::analysis::{sector_json, CURVATURE_NOT_COMPUTED};
-use subdiv_lab::boundary::{analyze_sector, SectorAnalysis, SectorConfig};
+use subdiv_lab::boundary::SectorConfig;
 use subdiv_lab::budget::{CostModel, Estimate};
 
 /// The sector's cost model: a dense matrix of [`SectorConfig::dimension`]
