@@ -21,7 +21,7 @@
 //! times this one, so the ring decides the whole map.
 //!
 //! **Regularity.** The Jacobian of each patch is a degree-6 triangular
-//! Bernstein polynomial ([`PlanarTri::jacobian`], 28 coefficients). If
+//! Bernstein polynomial ([`PlanarTri::jacobian`](crate::schemes::loop_subdivision::tri_bezier::PlanarTri::jacobian), 28 coefficients). If
 //! `sigma c > E` for all its coefficients (`sigma` the orientation, the sign
 //! of the total signed area; `E` the error bound of [`TriErrorModel`]) the
 //! patch is certified; otherwise it is split into four ([`TriBezier::split4`])

@@ -20,7 +20,7 @@ pub enum SchemeKind {
     /// The shape-adjustable Catmull-Clark scheme with parameter c in [0, 1] (**\[reconstructed\]**).
     AdjustableCc,
     /// Loop subdivision on triangle meshes (vertex-centred; two-ring matrix 3n+1;
-    /// [`loop_subdivision::LoopScheme`]).
+    /// [`LoopScheme`](crate::schemes::loop_subdivision::LoopScheme)).
     Loop,
 }
 

@@ -11,7 +11,7 @@
 //! one valence (a face of `n` sides for face-centred schemes, a vertex of
 //! valence `n` for vertex-centred ones). It must provide one thing, the local
 //! subdivision matrix with labelled points ([`Scheme::local_matrix`], built
-//! through the one assembly path [`Assembler`](crate::schemes::Assembler)); everything
+//! through the one assembly path [`Assembler`]); everything
 //! else is an optional capability with a documented default, and the analysis
 //! engine uses a capability when it is there and the dense general method when
 //! it is not:
@@ -27,9 +27,9 @@
 //! | [`spectral_structure`](Scheme::spectral_structure) | [`SpectralStructure::Dense`] | which closed-form cross-checks apply; `FaceBlock`: the subdominant classification by the face-block kernel |
 //! | [`ring_patches`](Scheme::ring_patches) | none: `no_charmap`, no Theorem 1 section | the characteristic map ([`crate::charmap::check_classified`]: sweeps' `charmap`, reports) and Theorem 1 ([`crate::contraction::face_contraction`]: `analyze`, sweeps' `contraction`) |
 //! | [`fourier_spectrum`](Scheme::fourier_spectrum) | none: the curvature's `mu_mode` is `null` | `analyze`'s `curvature` |
-//! | [`cost_model`](Scheme::cost_model) | [`CostModel::dense`] at the local matrix's size | the work estimates of [`crate::budget`] |
+//! | [`cost_model`](Scheme::cost_model) | [`CostModel::dense`](crate::budget::CostModel::dense) at the local matrix's size | the work estimates of [`crate::budget`] |
 //!
-//! The built-in families implement it: [`LocalScheme`](crate::schemes::LocalScheme)
+//! The built-in families implement it: [`LocalScheme`]
 //! (NURDS, Doo-Sabin, the Catmull-Clark variant, Catmull-Clark and the
 //! shape-adjustable scheme) and [`LoopScheme`](crate::schemes::loop_subdivision::LoopScheme).
 //! A scheme defined outside the crate implements it the same way; see the
@@ -46,7 +46,7 @@
 //! * the Doo-Sabin family: [`crate::schemes::doo_sabin`]; its mesh
 //!   refinement and limit points [`crate::mesh::refine`] and
 //!   [`crate::mesh::limit`] (behind [`crate::mesh::rules::FaceSplit`]; the
-//!   [`SchemeKind`](crate::schemes::SchemeKind) they take selects the member
+//!   [`SchemeKind`] they take selects the member
 //!   of the family, other schemes are refused); Theorem 1,
 //!   [`crate::contraction`] and the `9n`-point ring of [`crate::charmap`]
 //!   (both behind [`RingPatches::Biquadratic`]); the exact face-block verdicts of

@@ -15,7 +15,7 @@ pub const FIRST_DATA_LINE: u64 = 2;
 
 /// A source of CSV data lines for [`merge`] (its header already checked): a
 /// name (for messages), the shard it holds (its summary's), and its data
-/// lines without `\n`, in file order (the first is line [`FIRST_DATA_LINE`]).
+/// lines without `\n`, in file order (the first is line 2 of the file, after the header).
 pub struct MergeSource<I> {
     /// File name.
     pub name: String,
