@@ -248,7 +248,11 @@ def _table(names, raw):
                 arrays.append(pa.array(values, type=pa.float64(), mask=mask))
             else:
                 arrays.append(pa.array(values, type=pa.string(), mask=mask))
-    return pa.Table.from_arrays(arrays, names=names)
+    # The null rules of the sweep's schema (as in its Parquet files): ``id`` and
+    # ``valence`` are never null.
+    fields = [pa.field(name, a.type, nullable=name not in ("id", "valence"))
+              for name, a in zip(names, arrays)]
+    return pa.Table.from_arrays(arrays, schema=pa.schema(fields))
 
 
 def sweep(spec: Spec, threads: Optional[int] = None,

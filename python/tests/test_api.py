@@ -241,7 +241,8 @@ def test_sweep_files_open_in_every_reader_without_options(tmp_path):
     lf = pl.scan_parquet(str(data / "*.parquet"))
     assert lf.filter(pl.col("valence") == 5).select(pl.len()).collect().item() == 300
     assert pl.scan_parquet(str(data)).sort("id").collect()["id"].to_list() == list(range(600))
-    n, k = duckdb.sql(f"select count(*), count(distinct id) from read_parquet('{data}/*.parquet')").fetchone()
+    [(n, k)] = duckdb.sql(
+        f"select count(*), count(distinct id) from read_parquet('{data}/*.parquet')").fetchall()
     assert n == k == 600
 
 

@@ -3,6 +3,7 @@
 
 use super::scheme_args::SchemeArgs;
 use super::sector_args::{InteriorFlags, SectorArgs};
+use super::spectrum_text::{leading_eigenvalues, subdominant_pair};
 use super::{write_stdout, CliError, CliResult};
 use clap::{Args, ValueEnum};
 use subdiv_lab::charmap;
@@ -173,19 +174,6 @@ fn charmap_summary(c: &subdiv_lab::Result<charmap::CharmapReport<charmap::AnyPat
     out
 }
 
-fn cplx(z: [f64; 2]) -> String {
-    if z[1] == 0.0 {
-        format!("{:.10}", z[0])
-    } else {
-        format!(
-            "{:.10} {} {:.10}i",
-            z[0],
-            if z[1] < 0.0 { "-" } else { "+" },
-            z[1].abs()
-        )
-    }
-}
-
 /// Human-readable summary.
 /// How the local matrix is described in the summary: the centre (`face` or
 /// `vertex`), the full path's matrix and the structured path's method, from
@@ -255,11 +243,7 @@ fn summary(a: &LocalAnalysis, m: &MatrixText) -> String {
         },
         a.eigenvalues.len()
     );
-    out += "leading eigenvalues:";
-    for z in a.eigenvalues.iter().take(6) {
-        out += &format!("  {}", cplx(*z));
-    }
-    out.push('\n');
+    out += &leading_eigenvalues(&a.eigenvalues);
     out += &format!("subdominant class: {}", s.class.name());
     match &s.class {
         SubdominantClass::Indeterminate { between, reason } => {
@@ -278,13 +262,7 @@ fn summary(a: &LocalAnalysis, m: &MatrixText) -> String {
         out += &format!(" ({note})");
     }
     out.push('\n');
-    out += &format!(
-        "  lambda1 = {}, lambda2 = {}, |lambda3| = {:.10}, gap = {:.3e}\n",
-        cplx([s.lambda1.re, s.lambda1.im]),
-        cplx([s.lambda2.re, s.lambda2.im]),
-        s.abs_lambda3,
-        s.gap
-    );
+    out += &subdominant_pair(s);
     if let Some(full) = &a.subdominant_full {
         if full.class != s.class {
             out += &format!(

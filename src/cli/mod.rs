@@ -15,6 +15,7 @@ mod report;
 mod scheme_args;
 mod sector;
 mod sector_args;
+mod spectrum_text;
 mod subdivide;
 mod sweep;
 mod verify;

@@ -1,6 +1,7 @@
 //! `analyze` and `matrix` at a boundary, crease or corner vertex
 //! (`--vertex`): work estimate, analysis, text and JSON output.
 
+use super::spectrum_text::{leading_eigenvalues, subdominant_pair};
 use super::{write_stdout, CliError, CliResult};
 use subdiv_lab::boundary::analysis::{analyze_sector, SectorAnalysis};
 use subdiv_lab::boundary::analysis::{sector_json, CURVATURE_NOT_COMPUTED};
@@ -42,19 +43,6 @@ pub(crate) fn analyze(c: &SectorConfig, json: bool, force: bool) -> CliResult {
     write_stdout(text.as_bytes())
 }
 
-fn cplx(z: [f64; 2]) -> String {
-    if z[1] == 0.0 {
-        format!("{:.10}", z[0])
-    } else {
-        format!(
-            "{:.10} {} {:.10}i",
-            z[0],
-            if z[1] < 0.0 { "-" } else { "+" },
-            z[1].abs()
-        )
-    }
-}
-
 /// `x` with eight decimals, a value that rounds to zero printed as `0`
 /// (no `-0.00000000` for rounding noise of either sign).
 fn fixed8(x: f64) -> String {
@@ -94,11 +82,7 @@ fn summary(c: &SectorConfig, a: &SectorAnalysis) -> String {
         "{} ({} x {} matrix on {points}; sharp edges e_{sa}, e_{sb})\n",
         a.configuration, a.dimension, a.dimension
     );
-    out += "leading eigenvalues:";
-    for z in a.eigenvalues.iter().take(6) {
-        out += &format!("  {}", cplx(*z));
-    }
-    out.push('\n');
+    out += &leading_eigenvalues(&a.eigenvalues);
     out += &format!(
         "  spectrum vs closed form (sharp-edge block and sine modes): max difference {:.1e}\n",
         a.closed_form_deviation
@@ -116,13 +100,7 @@ fn summary(c: &SectorConfig, a: &SectorAnalysis) -> String {
         out += &format!(" ({note})");
     }
     out.push('\n');
-    out += &format!(
-        "  lambda1 = {}, lambda2 = {}, |lambda3| = {:.10}, gap = {:.3e}\n",
-        cplx([s.lambda1.re, s.lambda1.im]),
-        cplx([s.lambda2.re, s.lambda2.im]),
-        s.abs_lambda3,
-        s.gap
-    );
+    out += &subdominant_pair(s);
     out += &format!(
         "  eigenvalue of the sharp-edge block (1/2, 1/4 or the corner's 1/2): lambda1 {}, lambda2 {}\n",
         yes_no(a.charmap.on_sharp_edges[0]),
