@@ -177,6 +177,15 @@ fn resolve_rules(args: &SubdivideArgs) -> CliResult<Box<dyn MeshRules>> {
     mesh_rules(kind, c).map_err(CliError::usage)
 }
 
+/// `--timing`: the refinement's line on stderr (levels, output size, seconds,
+/// output faces per second), the same for closed, open and tagged meshes.
+fn write_timing(levels: usize, faces: usize, vertices: usize, secs: f64) {
+    write_stderr(&format!(
+        "refinement: {levels} levels, {faces} faces, {vertices} vertices, {secs:.6} s, {:.0} output faces/s",
+        faces as f64 / secs.max(1e-9)
+    ));
+}
+
 pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     let rules = resolve_rules(&args)?;
     check_outputs(&args)?;
@@ -328,14 +337,12 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
         }
     }
     if args.timing {
-        write_stderr(&format!(
-            "refinement: {} levels, {} faces, {} vertices, {:.6} s, {:.0} output faces/s",
+        write_timing(
             args.levels,
             mesh.face_count(),
             mesh.vertex_count(),
             refine_secs,
-            mesh.face_count() as f64 / refine_secs.max(1e-9)
-        ));
+        );
     }
 
     // Build every output in memory before touching the file system.
@@ -450,14 +457,12 @@ fn run_sharp(
     }
     let refine_secs = t.elapsed().as_secs_f64();
     if args.timing {
-        write_stderr(&format!(
-            "refinement: {} levels, {} faces, {} vertices, {:.6} s, {:.0} output faces/s",
+        write_timing(
             args.levels,
             mesh.face_count(),
             mesh.vertex_count(),
             refine_secs,
-            mesh.face_count() as f64 / refine_secs.max(1e-9)
-        ));
+        );
     }
     if args.limit {
         // OpenSubdiv's limit masks at the last level (math doc section 17).
@@ -538,14 +543,12 @@ fn run_open(
     }
     let refine_secs = t.elapsed().as_secs_f64();
     if args.timing {
-        write_stderr(&format!(
-            "refinement: {} levels, {} faces, {} vertices, {:.6} s, {:.0} output faces/s",
+        write_timing(
             args.levels,
             mesh.face_count(),
             mesh.vertex_count(),
             refine_secs,
-            mesh.face_count() as f64 / refine_secs.max(1e-9)
-        ));
+        );
     }
     let mut outputs: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     let mut to_stdout: Option<Vec<u8>> = None;
