@@ -18,7 +18,7 @@
 //! The per-scheme part of the models (the local matrix's dimension and the
 //! constants of its analysis) is a [`CostModel`] that each scheme provides
 //! ([`Scheme::cost_model`](crate::Scheme::cost_model); by name before any
-//! configuration exists, [`crate::schemes::registry::cost_model`]): this
+//! configuration exists, [`LocalScheme::cost_model_of`](crate::schemes::LocalScheme::cost_model_of)): this
 //! module never asks which scheme it is estimating.
 //!
 //! ```
@@ -746,7 +746,7 @@ mod tests {
 
     #[test]
     fn large_sizes_exceed_the_limits_and_small_ones_do_not() {
-        // (the per-scheme sizes: schemes::registry's tests, over every built-in cost model)
+        // (the per-scheme sizes: the tests of `schemes::builtin`, over every built-in cost model)
         assert!(ccss_bound(1000, 4).seconds > TIME_LIMIT_SECONDS);
         assert!(ccss_bound(50, 4).seconds < 10.0);
         assert!(ccss_bound(100_000, 4).bytes > MEMORY_LIMIT_BYTES);

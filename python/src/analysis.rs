@@ -64,7 +64,9 @@ fn resolve(
         (None, Some(n)) => n,
         (None, None) => return Err(value_err(format!("valence is required with scheme {kind}"))),
     };
-    let s = subdiv_lab::schemes::registry::from_kind(kind, n, rf, c).map_err(lib_err)?;
+    let s: Box<dyn subdiv_lab::schemes::Scheme> = Box::new(
+        subdiv_lab::schemes::LocalScheme::from_kind_with_c(kind, n, rf, c).map_err(lib_err)?,
+    );
     Ok(Resolved {
         scheme: s,
         input: AnalysisInput {

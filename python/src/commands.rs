@@ -141,7 +141,15 @@ pub(crate) fn report_files(
     use subdiv_lab::report::{figures::NoProgress, generate, ReportSpec, RunInfo};
     guard("report", || {
         let origin = SpecOrigin::new(spec_path.clone(), from_dict);
-        let spec = ReportSpec::parse(spec_toml).map_err(|e| report_err(e, &origin))?;
+        // Scheme files are read beside the spec file (the current directory
+        // for a spec given as text or a dict).
+        let base = spec_path
+            .as_deref()
+            .and_then(|p| std::path::Path::new(p).parent())
+            .map(std::path::Path::to_path_buf)
+            .unwrap_or_default();
+        let read = |p: &str| std::fs::read_to_string(base.join(p)).map_err(|e| e.to_string());
+        let spec = ReportSpec::parse_with(spec_toml, &read).map_err(|e| report_err(e, &origin))?;
         let run = RunInfo {
             version: Some(subdiv_lab::spectral::json::TOOL_VERSION.to_owned()),
             git_revision: None,

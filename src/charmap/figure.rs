@@ -6,8 +6,8 @@
 //! outline polyline, plus a grid of sample points per patch with the sign of
 //! the Jacobian (relative to the ring's orientation) for a sign overlay.
 
-use super::ring::Ring;
 use super::AnyPatchId;
+use crate::schemes::doo_sabin::ring::Ring;
 use serde::Serialize;
 
 /// One patch of one level, sampled.

@@ -2,8 +2,8 @@
 //!
 //! Math doc section 7. The characteristic map of a configuration is the
 //! planar map whose coordinates are the subdominant eigenfunctions; its ring
-//! is built from `3n` biquadratic patches ([`ring`]) whose control points are
-//! the extended matrix ([`extended`]) applied to a basis of the subdominant
+//! is built from `3n` biquadratic patches ([`ring`](crate::schemes::doo_sabin::ring)) whose control points are
+//! the extended matrix ([`extended`](crate::schemes::doo_sabin::extended)) applied to a basis of the subdominant
 //! real invariant subspace:
 //!
 //! * `standard` (`lambda_1 = lambda_2` real, 2-D eigenspace): any basis of the
@@ -22,8 +22,10 @@
 //! For non-standard eigenstructures the verdict is "tangent-plane continuous
 //! (non-standard: ...)", never "C1": the literature settles only the standard case.
 //!
-//! Submodules: [`extended`] (the `9n x 4n` matrix), [`ring`] (the `3n`
-//! patches and boundary chains), [`basis`] (the subdominant invariant
+//! The Doo-Sabin family's rules for the ring are the scheme's own:
+//! [`extended`](crate::schemes::doo_sabin::extended) (the `9n x 4n` matrix)
+//! and [`ring`](crate::schemes::doo_sabin::ring) (the `3n` patches and
+//! boundary chains). Submodules: [`basis`] (the subdominant invariant
 //! subspace from the face block), [`regularity`] (Jacobian sign with error
 //! bound and subdivision), [`winding`] (certified winding numbers), `figure`
 //! (plot data). Entry points: [`check`] (one configuration, classification
@@ -46,7 +48,7 @@
 //!
 //! ```
 //! use subdiv_lab::charmap::{check_basis, Eigenstructure, PlanarBasis};
-//! use subdiv_lab::charmap::extended::ExtendedMatrix;
+//! use subdiv_lab::schemes::doo_sabin::extended::ExtendedMatrix;
 //! use subdiv_lab::schemes::LocalScheme;
 //! use num_complex::Complex64;
 //! // n = 4, uniform: the subdominant eigenvectors are the linear functions of the grid.
@@ -71,27 +73,25 @@
 
 pub mod basis;
 pub mod catmull_clark;
-pub mod extended;
 pub(crate) mod figure;
 pub mod loop_subdivision;
 mod planar;
 pub mod regularity;
 pub(crate) mod report;
-pub mod ring;
 mod verdict;
 pub mod winding;
 
 use crate::error::Result;
 use crate::knots::EdgeRatios;
+use crate::schemes::doo_sabin::extended::ExtendedMatrix;
+use crate::schemes::doo_sabin::ring::Ring;
 use crate::schemes::{LocalScheme, RingPatches, Scheme};
 use crate::spectral::{Subdominant, SubdominantClass};
-use extended::ExtendedMatrix;
 pub use planar::{
     subspace_bound, PlanarBasis, MIN_BASIS_SINE, SUBSPACE_ERROR_SAFETY, SVD_ERROR_FACTOR,
 };
 use regularity::{check_regularity, gamma};
 pub use report::{charmap_json, AnyPatchId, CharmapReport, Eigenstructure, Verdict};
-use ring::Ring;
 use verdict::{assemble_report, propagated_error, structure_of};
 
 /// Error bound of the ring's Bezier control points for a basis with entry

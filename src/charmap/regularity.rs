@@ -19,9 +19,9 @@
 //! `sum_patches mean(coefficients of J)` (the mean of the Bernstein
 //! coefficients is the integral over the patch).
 
-use super::ring::{Ring, RingPatchId};
 use crate::bezier::{PlanarPatch, TensorBezier};
 use crate::error::{Error, Result};
+use crate::schemes::doo_sabin::ring::{Ring, RingPatchId};
 
 /// Maximum de Casteljau subdivision depth per patch (pieces of side `2^-10`).
 pub const MAX_DEPTH: u32 = 10;

@@ -5,8 +5,8 @@
 //! these types, so they depend on nothing above the ring geometry.
 
 use super::regularity::{Regularity, RegularityVerdict};
-use super::ring::{PatchKind, RingPatchId};
 use crate::schemes::catmull_clark::SubPatch;
+use crate::schemes::doo_sabin::ring::{PatchKind, RingPatchId};
 use std::fmt;
 
 /// The eigenstructures that have a characteristic map.

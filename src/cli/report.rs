@@ -195,8 +195,16 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
         ),
         None => (DEFAULT_SPEC_TEXT.to_owned(), DEFAULT_SPEC_PATH.to_owned()),
     };
-    let spec =
-        ReportSpec::parse(&text).map_err(|e| CliError::usage(anyhow!("{spec_name}: {e}")))?;
+    // The files a spec names (scheme files while it is parsed, the figures'
+    // sweep tables below): relative paths are read from the spec's directory.
+    let base = args
+        .spec
+        .as_deref()
+        .map(super::outfiles::parent_dir)
+        .unwrap_or_else(|| PathBuf::from("."));
+    let read = |p: &str| std::fs::read_to_string(base.join(p)).map_err(|e| e.to_string());
+    let spec = ReportSpec::parse_with(&text, &read)
+        .map_err(|e| CliError::usage(anyhow!("{spec_name}: {e}")))?;
     let out = args
         .out
         .clone()
@@ -208,14 +216,8 @@ pub(crate) fn run(args: ReportArgs) -> CliResult {
     if let Target::Existing { previous, changed } = &target {
         refuse_foreign(&out, ALWAYS_WRITTEN, previous, changed)?;
     }
-    // Input files of the figures (sweep CSVs): relative paths are read from
-    // the spec's directory. The library checks their columns before any
-    // figure is computed.
-    let base = args
-        .spec
-        .as_deref()
-        .map(super::outfiles::parent_dir)
-        .unwrap_or_else(|| PathBuf::from("."));
+    // Input files of the figures (sweep CSVs), beside the spec like its scheme
+    // files. The library checks their columns before any figure is computed.
     let mut inputs = Inputs::default();
     for p in spec.input_paths() {
         let path = base.join(&p);

@@ -273,8 +273,8 @@ impl SchemeArgs {
             }
             None => (None, None),
         };
-        let scheme =
-            subdiv_lab::schemes::registry::from_kind(kind, valence, rf, cf).map_err(lib_err)?;
+        let scheme: Box<dyn Scheme> =
+            Box::new(LocalScheme::from_kind_with_c(kind, valence, rf, cf).map_err(lib_err)?);
         let exact = if exact {
             // The f64 configuration was accepted, so a failure here means the
             // scheme has no exact (rational) configuration.

@@ -116,10 +116,10 @@ pub struct SchemeCurvature {
 ///
 /// ```
 /// use subdiv_lab::curvature::measured_scheme::measure_scheme;
-/// use subdiv_lab::schemes::loop_subdivision::LoopScheme;
+/// use subdiv_lab::schemes::LocalScheme;
 /// // Loop at n = 8: mu = 3/8 + cos(4 pi/8)/4 = 3/8 (Fourier block 2) exceeds
 /// // lambda^2, so the twist grows by mu/lambda^2 per level.
-/// let m = measure_scheme(&LoopScheme::new(8).unwrap(), 24, 3).unwrap();
+/// let m = measure_scheme(&LocalScheme::loop_subdivision(8).unwrap(), 24, 3).unwrap();
 /// let rate = m.twist_rate.unwrap();
 /// assert!((rate - m.predicted_rate).abs() < 1e-12);
 /// let t = m.levels[24].twist / m.levels[23].twist;
@@ -458,7 +458,6 @@ fn measure_level(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::schemes::loop_subdivision::LoopScheme;
     use crate::schemes::LocalScheme;
 
     fn quadratic(x: f64, y: f64) -> f64 {
@@ -475,7 +474,7 @@ mod tests {
     #[test]
     fn a_quadratic_is_recovered_exactly_in_the_regular_case() {
         let regular: Vec<Box<dyn Scheme>> = vec![
-            Box::new(LoopScheme::new(6).unwrap()),
+            Box::new(LocalScheme::loop_subdivision(6).unwrap()),
             Box::new(LocalScheme::<f64>::doo_sabin(4).unwrap()),
             Box::new(LocalScheme::<f64>::cc_variant(4).unwrap()),
             Box::new(LocalScheme::<f64>::catmull_clark(4).unwrap()),

@@ -7,8 +7,14 @@
 //!   { scheme = "nurds", knots = [[1, 2], [2, 1], [1, 1]] },    # [p_i, q_i] per corner
 //!   { scheme = "nurds", valence = 6, random_knots = 4.0 },     # p_i, q_i log-uniform in [1, 4]
 //!   { scheme = "doo-sabin", valence = 3, label = "Doo-Sabin, triangle" },
+//!   { scheme_file = "my-cc.toml", valence = 5 },              # a scheme file (math doc section 12.1)
 //! ]
 //! ```
+//!
+//! A configuration names a built-in `scheme` or a `scheme_file` (read by the
+//! front end, [`ReportSpec::parse_with`](super::ReportSpec::parse_with); the
+//! command-line tool reads it beside the spec), never both; a scheme file's
+//! configuration takes a `valence` and no knots or `c`.
 //!
 //! `scheme = "nurds"` without `ratios`, `knots` or `random_knots` is uniform
 //! NURDS of the given valence. Random knots are drawn while the spec is parsed,
@@ -19,10 +25,11 @@ use super::figure_spec::FigureSpec;
 use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::rng::{log_uniform, SplitMix64};
 use crate::schemes::choice::{validate, Choice, ChoiceError};
-use crate::schemes::registry::Builtin;
+use crate::schemes::LocalScheme;
 use crate::schemes::SchemeKind;
-use crate::schemes::SpectralStructure;
+use crate::schemes::{Scheme, SpectralStructure};
 use serde::Deserialize;
+use std::sync::Arc;
 use toml::Spanned;
 
 /// Largest accepted valence in a report configuration (the figures' cost grows like n^3).
@@ -32,8 +39,12 @@ pub const MAX_VALENCE: usize = 256;
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ConfigSpec {
-    /// Scheme name (`nurds`, `doo-sabin`, `cc-variant`, `catmull-clark`, `adjustable-cc`).
-    pub scheme: Spanned<String>,
+    /// Scheme name (`nurds`, `doo-sabin`, `cc-variant`, `catmull-clark`,
+    /// `adjustable-cc`, `loop`); exactly one of `scheme` and `scheme_file`.
+    pub scheme: Option<Spanned<String>>,
+    /// A scheme file (math doc section 12.1), read through the spec's file
+    /// reader.
+    pub scheme_file: Option<Spanned<String>>,
     /// Valence (inferred from `ratios`/`knots` when omitted).
     pub valence: Option<Spanned<usize>>,
     /// Edge ratios r_i in (0, 1).
@@ -49,12 +60,16 @@ pub struct ConfigSpec {
 }
 
 /// A validated configuration.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Configuration {
     /// Label used in legends and tables.
     pub label: String,
-    /// The configuration (a [`Scheme`](crate::Scheme) through `Deref`).
-    pub scheme: Builtin,
+    /// The configuration: a built-in [`LocalScheme`] or a scheme file's.
+    pub scheme: Arc<dyn Scheme>,
+    /// The edge ratios of the E/C rows that tables show (uniform for the
+    /// built-in schemes without knot intervals; empty for Loop and scheme
+    /// files, whose local matrices have no such rows).
+    pub ratios: Vec<f64>,
 }
 
 impl ConfigSpec {
@@ -66,6 +81,22 @@ impl ConfigSpec {
         key: &str,
         rng: &mut SplitMix64,
     ) -> Result<Configuration, ReportError> {
+        let scheme = match (&self.scheme, &self.scheme_file) {
+            (Some(s), None) => s,
+            (None, Some(f)) => return self.resolve_file(fs, key, f),
+            (Some(_), Some(f)) => {
+                return Err(fs.error_at(
+                    f,
+                    &format!("{key}.scheme_file"),
+                    "give either scheme or scheme_file, not both",
+                ))
+            }
+            (None, None) => {
+                return Err(fs.error(format!(
+                    "{key}: give scheme (a built-in name) or scheme_file"
+                )))
+            }
+        };
         let given = [
             self.ratios.is_some(),
             self.knots.is_some(),
@@ -74,9 +105,9 @@ impl ConfigSpec {
         .iter()
         .filter(|b| **b)
         .count();
-        if self.scheme.get_ref().parse::<SchemeKind>().is_ok() && given > 1 {
+        if scheme.get_ref().parse::<SchemeKind>().is_ok() && given > 1 {
             return Err(fs.error_at(
-                &self.scheme,
+                scheme,
                 key,
                 "give at most one of ratios, knots and random_knots",
             ));
@@ -84,7 +115,7 @@ impl ConfigSpec {
         // The shared rules (crate::schemes::choice); the error names the key of
         // the wrong part.
         let choice = Choice {
-            name: self.scheme.get_ref(),
+            name: scheme.get_ref(),
             knots: given > 0,
             c: self.c.is_some(),
         };
@@ -92,10 +123,8 @@ impl ConfigSpec {
             (ChoiceError::TakesNoC(_), Some(c)) => {
                 fs.error_at(c, &format!("{key}.c"), e.to_string())
             }
-            (ChoiceError::NeedsC(_), _) => {
-                fs.error_at(&self.scheme, &format!("{key}.c"), e.to_string())
-            }
-            _ => fs.error_at(&self.scheme, &format!("{key}.scheme"), e.to_string()),
+            (ChoiceError::NeedsC(_), _) => fs.error_at(scheme, &format!("{key}.c"), e.to_string()),
+            _ => fs.error_at(scheme, &format!("{key}.scheme"), e.to_string()),
         })?;
         if let Some(v) = &self.valence {
             let n = *v.get_ref();
@@ -162,29 +191,84 @@ impl ConfigSpec {
             (None, Some(v)) => *v.get_ref(),
             (None, None) => {
                 return Err(fs.error_at(
-                    &self.scheme,
+                    scheme,
                     key,
                     "valence is required unless ratios or knots are given",
                 ))
             }
         };
         let c = self.c.as_ref().map(|c| *c.get_ref());
-        let scheme =
-            Builtin::from_kind(kind, valence, ratios.clone(), c).map_err(|e| match &self.c {
+        let local = LocalScheme::from_kind_with_c(kind, valence, ratios.clone(), c).map_err(
+            |e| match &self.c {
                 Some(cv) => fs.error_at(cv, &format!("{key}.c"), e.to_string()),
-                None => fs.error_at(&self.scheme, key, e.to_string()),
-            })?;
+                None => fs.error_at(scheme, key, e.to_string()),
+            },
+        )?;
         let label = match &self.label {
             Some(l) => l.clone(),
-            None => default_label(&scheme, &suffix),
+            None => default_label(&local, &suffix),
         };
-        Ok(Configuration { label, scheme })
+        let ratios = match kind {
+            SchemeKind::Loop => Vec::new(),
+            _ => local.ratios().as_slice().to_vec(),
+        };
+        Ok(Configuration {
+            label,
+            scheme: Arc::new(local),
+            ratios,
+        })
+    }
+
+    /// A configuration from a scheme file: a `valence` and no knot data or
+    /// `c` (a scheme file's weights are functions of the valence only).
+    fn resolve_file(
+        &self,
+        fs: &FigureSpec<'_>,
+        key: &str,
+        path: &Spanned<String>,
+    ) -> Result<Configuration, ReportError> {
+        let refused = [
+            ("ratios", self.ratios.as_ref().map(|s| s.span())),
+            ("knots", self.knots.as_ref().map(|s| s.span())),
+            ("random_knots", self.random_knots.as_ref().map(|s| s.span())),
+            ("c", self.c.as_ref().map(|s| s.span())),
+        ];
+        if let Some((name, Some(span))) = refused.iter().find(|(_, s)| s.is_some()) {
+            return Err(fs.error_at(
+                &Spanned::new(span.clone(), ()),
+                &format!("{key}.{name}"),
+                format!("{name} is not taken with scheme_file (a scheme file's weights depend on the valence only)"),
+            ));
+        }
+        let Some(v) = &self.valence else {
+            return Err(fs.error_at(path, key, "scheme_file needs a valence"));
+        };
+        if !(3..=MAX_VALENCE).contains(v.get_ref()) {
+            return Err(fs.error_at(
+                v,
+                &format!("{key}.valence"),
+                format!(
+                    "valence must be between 3 and {MAX_VALENCE}, got {}",
+                    v.get_ref()
+                ),
+            ));
+        }
+        let file = fs.scheme_file(path, &format!("{key}.scheme_file"))?;
+        let scheme = file
+            .at(*v.get_ref())
+            .map_err(|e| fs.error_at(v, &format!("{key}.valence"), e.to_string()))?;
+        let label = self.label.clone().unwrap_or_else(|| scheme.label());
+        Ok(Configuration {
+            label,
+            scheme: Arc::new(scheme),
+            ratios: Vec::new(),
+        })
     }
 }
 
 /// The generated legend label of a configuration
-/// ([`Builtin::legend_label`]).
-pub fn default_label(scheme: &Builtin, suffix: &str) -> String {
+/// ([`LocalScheme::legend_label`]).
+pub fn default_label(scheme: &LocalScheme<f64>, suffix: &str) -> String {
     scheme.legend_label(suffix)
 }
 
@@ -226,10 +310,7 @@ pub fn check_analysis_budget(
 ) -> Result<(), ReportError> {
     let seconds: f64 = configs
         .iter()
-        .map(|c| {
-            let model = crate::schemes::registry::cost_model(c.scheme.kind());
-            crate::budget::analyze(&model, c.scheme.valence(), false).seconds
-        })
+        .map(|c| crate::budget::analyze(&c.scheme.cost_model(), c.scheme.valence(), false).seconds)
         .sum();
     if seconds > crate::budget::TIME_LIMIT_SECONDS {
         let largest = configs
@@ -262,12 +343,17 @@ pub fn require_doo_sabin_family(
 ) -> Result<(), ReportError> {
     for (i, (spec, c)) in specs.get_ref().iter().zip(configs).enumerate() {
         if c.scheme.spectral_structure() != SpectralStructure::FaceBlock {
+            let (at, key) = match (&spec.scheme, &spec.scheme_file) {
+                (Some(s), _) => (s, "scheme"),
+                (None, Some(f)) => (f, "scheme_file"),
+                (None, None) => return Err(fs.error(format!("configs[{i}]: no scheme"))),
+            };
             return Err(fs.error_at(
-                &spec.scheme,
-                &format!("configs[{i}].scheme"),
+                at,
+                &format!("configs[{i}].{key}"),
                 format!(
                     "scheme {} is not in the Doo-Sabin family (nurds, doo-sabin, cc-variant), which {what} needs",
-                    c.scheme.kind()
+                    c.scheme.name()
                 ),
             ));
         }

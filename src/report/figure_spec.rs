@@ -4,8 +4,10 @@
 //! parser ([`super::spec`]) depends on the figure registry.
 
 use super::error::ReportError;
+use crate::schemes::user::SchemeFile;
 use crate::toml_location::Location;
 use serde::de::DeserializeOwned;
+use std::sync::Arc;
 use toml::de::{DeValue, ValueDeserializer};
 use toml::Spanned;
 
@@ -36,6 +38,13 @@ pub struct Common {
     pub seed: u64,
 }
 
+/// Reads the text of a file a spec names (`scheme_file = "..."`), given the
+/// path as written; `Err` carries the reason (not found, not UTF-8, ...). The
+/// front end decides what a relative path is relative to: the command-line
+/// tool reads it beside the spec file. The library's `ReportSpec::parse`
+/// reads no files.
+pub type FileReader<'a> = &'a dyn Fn(&str) -> Result<String, String>;
+
 /// The kind-specific part of one `[[figure]]` table, with its position in the
 /// spec text so that errors can name the line.
 pub struct FigureSpec<'a> {
@@ -43,6 +52,7 @@ pub struct FigureSpec<'a> {
     pub(super) key: String,
     pub(super) value: Spanned<DeValue<'a>>,
     pub(super) seed: u64,
+    pub(super) files: Option<FileReader<'a>>,
 }
 
 impl<'a> FigureSpec<'a> {
@@ -73,6 +83,28 @@ impl<'a> FigureSpec<'a> {
             format!("{}.{key}", self.key),
             message,
         )
+    }
+
+    /// The scheme file a `scheme_file` key names (`key`: its dotted key
+    /// inside the figure), read through the spec's [`FileReader`] and
+    /// parsed ([`SchemeFile::parse`]); every failure names the key and its
+    /// line.
+    pub fn scheme_file(
+        &self,
+        path: &Spanned<String>,
+        key: &str,
+    ) -> Result<Arc<SchemeFile>, ReportError> {
+        let read = self.files.ok_or_else(|| {
+            self.error_at(
+                path,
+                key,
+                "scheme files are read only when the spec is parsed with a file reader (ReportSpec::parse_with; the command-line tool reads them beside the spec)",
+            )
+        })?;
+        let text = read(path.get_ref())
+            .map_err(|e| self.error_at(path, key, format!("{}: {e}", path.get_ref())))?;
+        SchemeFile::parse_shared(&text)
+            .map_err(|e| self.error_at(path, key, format!("{}: {e}", path.get_ref())))
     }
 
     /// An error about the figure table as a whole (e.g. a missing combination of keys).

@@ -22,7 +22,7 @@
 
 use super::error::ReportError;
 use super::figure_spec::toml_error;
-pub use super::figure_spec::{Common, FigureSpec, COMMON_KEYS};
+pub use super::figure_spec::{Common, FigureSpec, FileReader, COMMON_KEYS};
 pub use super::figure_spec::{DEFAULT_SIZE, MAX_PIXELS, MIN_PIXELS};
 use super::figures::{self, Figure};
 use crate::rng::derive_seed;
@@ -128,6 +128,33 @@ impl ReportSpec {
     /// assert!(err.contains("line 3") && err.contains("nonsense"), "{err}");
     /// ```
     pub fn parse(src: &str) -> Result<Self, ReportError> {
+        Self::parse_reading(src, None)
+    }
+
+    /// [`parse`](Self::parse), reading the files the spec names
+    /// (`scheme_file = "..."` in a configuration or a mesh figure) through
+    /// `files`.
+    ///
+    /// ```
+    /// use subdiv_lab::report::ReportSpec;
+    /// let cc = include_str!("../../analysis/schemes/catmull-clark.toml").to_owned();
+    /// let files = move |path: &str| match path {
+    ///     "cc.toml" => Ok(cc.clone()),
+    ///     _ => Err("no such file".to_owned()),
+    /// };
+    /// let spec = "name = \"demo\"\n[[figure]]\nkind = \"spectrum\"\nconfigs = [{ scheme_file = \"cc.toml\", valence = 5 }]\n";
+    /// let parsed = ReportSpec::parse_with(spec, &files).unwrap();
+    /// assert_eq!(parsed.figures.len(), 1);
+    /// let missing = spec.replace("cc.toml", "other.toml");
+    /// let err = ReportSpec::parse_with(&missing, &files).unwrap_err().to_string();
+    /// assert!(err.contains("scheme_file") && err.contains("no such file"), "{err}");
+    /// assert!(ReportSpec::parse(spec).is_err());
+    /// ```
+    pub fn parse_with(src: &str, files: FileReader<'_>) -> Result<Self, ReportError> {
+        Self::parse_reading(src, Some(files))
+    }
+
+    fn parse_reading(src: &str, files: Option<FileReader<'_>>) -> Result<Self, ReportError> {
         let root = DeTable::parse(src).map_err(|e| toml_error(src, e, None))?;
         let root_span = root.span();
         let mut rest = DeTable::new();
@@ -266,6 +293,7 @@ impl ReportSpec {
                 key: key.clone(),
                 value: Spanned::new(span, DeValue::Table(body)),
                 seed,
+                files,
             };
             let figure = (kind.parse)(&fs)?;
             let common = Common {

@@ -12,7 +12,7 @@
 //! The messages are front-end neutral; a front end prefixes its own key
 //! (`--scheme`, `configs[2].scheme`, `space.kind`) and location. The
 //! library's constructors of a configuration from a [`SchemeKind`]
-//! ([`LocalScheme::from_kind_with_c`](super::LocalScheme::from_kind_with_c), [`Builtin::from_kind`](super::registry::Builtin::from_kind),
+//! ([`LocalScheme::from_kind_with_c`](super::LocalScheme::from_kind_with_c),
 //! [`crate::mesh::builtin::mesh_rules`]) apply the same rules through
 //! [`check`] and report them as [`Error::InvalidParameter`]
 //! ([`ChoiceError::into_error`]).

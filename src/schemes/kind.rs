@@ -19,8 +19,7 @@ pub enum SchemeKind {
     CatmullClark,
     /// The shape-adjustable Catmull-Clark scheme with parameter c in [0, 1] (**\[reconstructed\]**).
     AdjustableCc,
-    /// Loop subdivision on triangle meshes (vertex-centred; two-ring matrix 3n+1;
-    /// [`LoopScheme`](crate::schemes::loop_subdivision::LoopScheme)).
+    /// Loop subdivision on triangle meshes (vertex-centred; two-ring matrix 3n+1).
     Loop,
 }
 

@@ -1,7 +1,14 @@
-//! [`LocalScheme`]: one configuration of the Doo-Sabin family (NURDS,
-//! Doo-Sabin, the Catmull-Clark variant) or of the Catmull-Clark family
-//! (Catmull-Clark, the shape-adjustable scheme): a scheme, a valence and its
-//! parameters (math doc sections 1-4, 6 and 8).
+//! [`LocalScheme`]: one configuration of a built-in scheme, of the Doo-Sabin
+//! family (NURDS, Doo-Sabin, the Catmull-Clark variant), of the Catmull-Clark
+//! family (Catmull-Clark, the shape-adjustable scheme) or Loop: a scheme, a
+//! valence and its parameters (math doc sections 1-4, 6, 8 and 11).
+//!
+//! A built-in scheme has two names: [`SchemeKind`] says which one it is (a
+//! name, no parameters), and a [`LocalScheme`] is one configuration of it,
+//! which implements the [`Scheme`](super::Scheme) trait like any scheme a user
+//! writes. [`LocalScheme::from_kind_with_c`] is the one constructor from a
+//! kind; it applies the rules of [`choice`](super::choice) once, and the named
+//! constructors ([`LocalScheme::catmull_clark`], ...) go through it.
 //!
 //! ```
 //! use subdiv_lab::knots::EdgeRatios;
@@ -15,7 +22,8 @@
 use super::assembly::LocalMatrix;
 use super::choice::{self, ChoiceError};
 use super::kind::SchemeKind;
-use super::{catmull_clark, doo_sabin};
+use super::{catmull_clark, doo_sabin, loop_subdivision};
+use crate::budget::CostModel;
 use crate::error::{Error, Result};
 use crate::knots::{face_weights, EdgeRatios};
 use crate::scalar::{Rational, Scalar};
@@ -49,6 +57,12 @@ pub enum LocalScheme<T = f64> {
         /// Shape parameter in [0, 1] (1/2 is Catmull-Clark).
         c: T,
     },
+    /// Loop subdivision around a vertex of valence n whose neighbours are
+    /// regular (the two-ring matrix, `3n + 1`).
+    Loop {
+        /// Valence.
+        valence: usize,
+    },
 }
 
 impl<T: Scalar> LocalScheme<T> {
@@ -59,32 +73,56 @@ impl<T: Scalar> LocalScheme<T> {
 
     /// Original Doo-Sabin of valence `n >= 3`.
     pub fn doo_sabin(n: usize) -> Result<Self> {
-        EdgeRatios::<T>::uniform(n)?;
-        Ok(LocalScheme::DooSabin { valence: n })
+        Self::from_kind_with_c(SchemeKind::DooSabin, n, None, None)
     }
 
     /// Catmull-Clark variant of valence `n >= 3`.
     pub fn cc_variant(n: usize) -> Result<Self> {
-        EdgeRatios::<T>::uniform(n)?;
-        Ok(LocalScheme::CcVariant { valence: n })
+        Self::from_kind_with_c(SchemeKind::CcVariant, n, None, None)
     }
 
     /// Catmull-Clark of valence `n >= 3`.
     pub fn catmull_clark(n: usize) -> Result<Self> {
-        catmull_clark::validate(n, &T::frac(1, 2))?;
-        Ok(LocalScheme::CatmullClark { valence: n })
+        Self::from_kind_with_c(SchemeKind::CatmullClark, n, None, None)
     }
 
     /// The shape-adjustable Catmull-Clark scheme of valence `n >= 3`, `c` in `[0, 1]`.
     pub fn adjustable_cc(n: usize, c: T) -> Result<Self> {
-        catmull_clark::validate(n, &c)?;
-        Ok(LocalScheme::AdjustableCc { valence: n, c })
+        Self::from_kind_with_c(SchemeKind::AdjustableCc, n, None, Some(c))
+    }
+
+    /// Loop subdivision at a vertex of valence `n >= 3`.
+    ///
+    /// ```
+    /// use subdiv_lab::schemes::{LocalScheme, Scheme};
+    /// use subdiv_lab::spectral::{analyze, AnalyzeOptions};
+    /// let s = LocalScheme::loop_subdivision(5).unwrap();
+    /// let a = analyze(&s, &AnalyzeOptions::default()).unwrap();
+    /// let lambda = 0.375 + 0.25 * (2.0 * std::f64::consts::PI / 5.0).cos();
+    /// assert!((a.subdominant.lambda1.re - lambda).abs() < 1e-12);
+    /// assert_eq!(a.eigenvalues.len(), 16);
+    /// assert_eq!(s.label(), "Loop n=5");
+    /// ```
+    pub fn loop_subdivision(n: usize) -> Result<Self> {
+        Self::from_kind_with_c(SchemeKind::Loop, n, None, None)
     }
 
     /// The configuration of `kind` at `valence` with optional edge ratios
     /// (`None`: uniform; non-uniform only for a scheme that takes knots) and
     /// the shape parameter `c` (required iff [`SchemeKind::takes_c`]): the
-    /// rules of [`choice`](super::choice), then the family's own validation.
+    /// rules of [`choice`](super::choice), then the family's own validation
+    /// of the valence and `c`.
+    ///
+    /// ```
+    /// use subdiv_lab::schemes::{LocalScheme, Scheme, SchemeKind};
+    /// use subdiv_lab::spectral::classify_scheme;
+    /// let s = LocalScheme::from_kind_with_c(SchemeKind::Loop, 5, None, None).unwrap();
+    /// let sub = classify_scheme(&s).unwrap();
+    /// let lambda = 0.375 + 0.25 * (2.0 * std::f64::consts::PI / 5.0).cos();
+    /// assert!((sub.lambda1.re - lambda).abs() < 1e-12);
+    /// assert_eq!((s.kind(), s.name()), (SchemeKind::Loop, "loop"));
+    /// assert!(LocalScheme::from_kind_with_c(SchemeKind::CatmullClark, 5, None, Some(0.3)).is_err());
+    /// ```
     pub fn from_kind_with_c(
         kind: SchemeKind,
         valence: usize,
@@ -108,17 +146,29 @@ impl<T: Scalar> LocalScheme<T> {
                 Some(r) => r,
                 None => EdgeRatios::uniform(valence)?,
             })),
-            SchemeKind::DooSabin => Self::doo_sabin(valence),
-            SchemeKind::CcVariant => Self::cc_variant(valence),
-            SchemeKind::CatmullClark => Self::catmull_clark(valence),
+            SchemeKind::DooSabin => {
+                EdgeRatios::<T>::uniform(valence)?;
+                Ok(LocalScheme::DooSabin { valence })
+            }
+            SchemeKind::CcVariant => {
+                EdgeRatios::<T>::uniform(valence)?;
+                Ok(LocalScheme::CcVariant { valence })
+            }
+            SchemeKind::CatmullClark => {
+                catmull_clark::validate(valence, &T::frac(1, 2))?;
+                Ok(LocalScheme::CatmullClark { valence })
+            }
             SchemeKind::AdjustableCc => match c {
-                Some(c) => Self::adjustable_cc(valence, c),
+                Some(c) => {
+                    catmull_clark::validate(valence, &c)?;
+                    Ok(LocalScheme::AdjustableCc { valence, c })
+                }
                 None => Err(ChoiceError::NeedsC(kind).into_error(None)),
             },
-            SchemeKind::Loop => Err(Error::NotApplicable {
-                scheme: kind.name().to_owned(),
-                operation: "a face- or one-ring configuration (use schemes::registry::from_kind)",
-            }),
+            SchemeKind::Loop => {
+                loop_subdivision::validate(valence)?;
+                Ok(LocalScheme::Loop { valence })
+            }
         }
     }
 
@@ -139,6 +189,27 @@ impl<T: Scalar> LocalScheme<T> {
             LocalScheme::CcVariant { .. } => SchemeKind::CcVariant,
             LocalScheme::CatmullClark { .. } => SchemeKind::CatmullClark,
             LocalScheme::AdjustableCc { .. } => SchemeKind::AdjustableCc,
+            LocalScheme::Loop { .. } => SchemeKind::Loop,
+        }
+    }
+
+    /// The work model of a built-in scheme, by kind (that of its
+    /// configurations, which does not depend on the parameters): for the
+    /// estimates a front end makes before any configuration exists (a sweep's
+    /// plan).
+    ///
+    /// ```
+    /// use subdiv_lab::schemes::{LocalScheme, SchemeKind};
+    /// assert_eq!(LocalScheme::<f64>::cost_model_of(SchemeKind::Nurds).dimension(5), 20.0);
+    /// assert_eq!(LocalScheme::<f64>::cost_model_of(SchemeKind::Loop).dimension(5), 16.0);
+    /// ```
+    pub fn cost_model_of(kind: SchemeKind) -> CostModel {
+        match kind {
+            SchemeKind::Nurds | SchemeKind::DooSabin | SchemeKind::CcVariant => {
+                doo_sabin::COST_MODEL
+            }
+            SchemeKind::CatmullClark | SchemeKind::AdjustableCc => catmull_clark::COST_MODEL,
+            SchemeKind::Loop => loop_subdivision::COST_MODEL,
         }
     }
 
@@ -147,33 +218,37 @@ impl<T: Scalar> LocalScheme<T> {
         match self {
             LocalScheme::Nurds(r) => r.valence(),
             LocalScheme::DooSabin { valence } | LocalScheme::CcVariant { valence } => *valence,
-            LocalScheme::CatmullClark { valence } | LocalScheme::AdjustableCc { valence, .. } => {
-                *valence
-            }
+            LocalScheme::CatmullClark { valence }
+            | LocalScheme::AdjustableCc { valence, .. }
+            | LocalScheme::Loop { valence } => *valence,
         }
     }
 
-    /// The edge ratios used by the E/C rows (1/2 for the uniform schemes and
-    /// for the Catmull-Clark family, which has no knot intervals).
+    /// The edge ratios used by the E/C rows (1/2 for the uniform schemes, and
+    /// for the Catmull-Clark family and Loop, which have no knot intervals).
     pub fn ratios(&self) -> EdgeRatios<T> {
         match self {
             LocalScheme::Nurds(r) => r.clone(),
             LocalScheme::DooSabin { valence }
             | LocalScheme::CcVariant { valence }
             | LocalScheme::CatmullClark { valence }
-            | LocalScheme::AdjustableCc { valence, .. } => {
+            | LocalScheme::AdjustableCc { valence, .. }
+            | LocalScheme::Loop { valence } => {
                 EdgeRatios::uniform(*valence).expect("valence validated at construction")
             }
         }
     }
 
     /// Face weights `c` (the left eigenvector of the face block for 1; `1/n` for
-    /// the uniform schemes). Empty for the Catmull-Clark family (vertex-centred:
-    /// there is no central face; see [`catmull_clark::limit::limit_stencil`]).
+    /// the uniform schemes). Empty for the Catmull-Clark family and Loop
+    /// (vertex-centred: there is no central face; see
+    /// [`catmull_clark::limit::limit_stencil`]).
     pub fn face_weights(&self) -> Vec<T> {
         match self {
             LocalScheme::Nurds(r) => face_weights(r),
-            LocalScheme::CatmullClark { .. } | LocalScheme::AdjustableCc { .. } => Vec::new(),
+            LocalScheme::CatmullClark { .. }
+            | LocalScheme::AdjustableCc { .. }
+            | LocalScheme::Loop { .. } => Vec::new(),
             LocalScheme::DooSabin { valence } | LocalScheme::CcVariant { valence } => {
                 vec![T::frac(1, *valence as i64); *valence]
             }
@@ -189,12 +264,12 @@ impl<T: Scalar> LocalScheme<T> {
                 &self.ratios(),
                 &self.face_weights(),
             )),
-            LocalScheme::CatmullClark { .. } | LocalScheme::AdjustableCc { .. } => {
-                Err(Error::NotApplicable {
-                    scheme: self.kind().name().to_owned(),
-                    operation: "the face block (a Doo-Sabin-family notion)",
-                })
-            }
+            LocalScheme::CatmullClark { .. }
+            | LocalScheme::AdjustableCc { .. }
+            | LocalScheme::Loop { .. } => Err(Error::NotApplicable {
+                scheme: self.kind().name().to_owned(),
+                operation: "the face block (a Doo-Sabin-family notion)",
+            }),
         }
     }
 
@@ -209,9 +284,14 @@ impl<T: Scalar> LocalScheme<T> {
     }
 
     /// The full local subdivision matrix (`S_n`, 4n x 4n, for the Doo-Sabin
-    /// family; the (2n+1) one-ring matrix for the Catmull-Clark family).
+    /// family; the (2n+1) one-ring matrix for the Catmull-Clark family; the
+    /// (3n+1) two-ring matrix for Loop, over the rationals only at the
+    /// valences with rational weights, n = 3, 4, 6).
     pub fn matrix(&self) -> Result<LocalMatrix<T>> {
         match self {
+            LocalScheme::Loop { valence } => {
+                loop_subdivision::matrix::two_ring_matrix_over(*valence)
+            }
             LocalScheme::CatmullClark { valence } => {
                 catmull_clark::one_ring_named(self.kind().name(), *valence, &T::frac(1, 2))
             }
@@ -309,6 +389,7 @@ impl LocalScheme<f64> {
             LocalScheme::Nurds(_) if suffix.is_empty() => format!("NURDS n={n}, non-uniform"),
             LocalScheme::Nurds(_) => format!("NURDS n={n}{suffix}"),
             LocalScheme::AdjustableCc { c, .. } => format!("adjustable-cc n={n}, c={c}"),
+            LocalScheme::Loop { .. } => format!("Loop n={n}"),
             other => format!("{} n={n}", other.kind()),
         }
     }

@@ -29,19 +29,22 @@
 //! | [`fourier_spectrum`](Scheme::fourier_spectrum) | none: the curvature's `mu_mode` is `null` | `analyze`'s `curvature` |
 //! | [`cost_model`](Scheme::cost_model) | [`CostModel::dense`](crate::budget::CostModel::dense) at the local matrix's size | the work estimates of [`crate::budget`] |
 //!
-//! The built-in families implement it: [`LocalScheme`]
-//! (NURDS, Doo-Sabin, the Catmull-Clark variant, Catmull-Clark and the
-//! shape-adjustable scheme) and [`LoopScheme`](crate::schemes::loop_subdivision::LoopScheme).
-//! A scheme defined outside the crate implements it the same way; see the
-//! tutorial in `examples/own_scheme.rs` and the doctest below.
+//! A built-in scheme has two names: [`SchemeKind`] says which one (a name,
+//! no parameters), and a [`LocalScheme`] is one configuration of it (NURDS,
+//! Doo-Sabin, the Catmull-Clark variant, Catmull-Clark, the shape-adjustable
+//! scheme, Loop), which implements the trait. A scheme defined outside the
+//! crate implements it the same way; see the tutorial in
+//! `examples/own_scheme.rs` and the doctest below.
 //!
-//! Names become implementations in one place, [`registry`] (configurations,
-//! cost models; the mesh rules in [`crate::mesh::builtin`]); the validation of
-//! a scheme choice is [`choice`].
+//! Names become implementations through one constructor each:
+//! [`LocalScheme::from_kind_with_c`] (configurations;
+//! [`LocalScheme::cost_model_of`] the work model by kind) and
+//! [`crate::mesh::builtin::mesh_rules`] (mesh rules); both apply the rules of
+//! a scheme choice, [`choice`], once.
 //! The front ends (`analyze`, `matrix`, `sweep`, `report`, `subdivide`, the
 //! testing kit) dispatch there once and then only ask for capabilities.
 //! Code that *is* one family's implementation lives in that family's modules,
-//! and is reached only through the trait or the registry:
+//! and is reached only through the trait or those constructors:
 //!
 //! * the Doo-Sabin family: [`crate::schemes::doo_sabin`]; its mesh
 //!   refinement and limit points [`crate::mesh::refine`] and
@@ -107,7 +110,6 @@ pub mod doo_sabin;
 mod kind;
 mod local;
 pub mod loop_subdivision;
-pub mod registry;
 mod scheme;
 pub mod user;
 

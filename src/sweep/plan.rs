@@ -28,7 +28,6 @@ use super::SweepError;
 use crate::budget::CostModel;
 use crate::knots::{CornerIntervals, EdgeRatios};
 use crate::scalar::{Rational, Scalar};
-use crate::schemes::registry::Builtin;
 use crate::schemes::user::SchemeFile;
 use crate::schemes::LocalScheme;
 use crate::schemes::Scheme;
@@ -133,14 +132,14 @@ impl fmt::Debug for SchemeFactory {
 #[derive(Debug)]
 pub enum Configured {
     /// A built-in scheme's configuration.
-    Builtin(Builtin),
+    Builtin(LocalScheme<f64>),
     /// A configuration of a scheme of one's own.
     Own(Box<dyn Scheme>),
 }
 
 impl Configured {
     /// The built-in configuration (`None` for a scheme of one's own).
-    pub fn builtin(&self) -> Option<&Builtin> {
+    pub fn builtin(&self) -> Option<&LocalScheme<f64>> {
         match self {
             Configured::Builtin(b) => Some(b),
             Configured::Own(_) => None,
@@ -152,7 +151,7 @@ impl Deref for Configured {
     type Target = dyn Scheme;
     fn deref(&self) -> &(dyn Scheme + 'static) {
         match self {
-            Configured::Builtin(b) => &**b,
+            Configured::Builtin(b) => b,
             Configured::Own(s) => &**s,
         }
     }
@@ -500,18 +499,19 @@ impl Plan {
     pub fn cost_model(&self) -> CostModel {
         match &self.own {
             Some(f) => f.cost_model,
-            None => crate::schemes::registry::cost_model(self.spec.scheme),
+            None => LocalScheme::<f64>::cost_model_of(self.spec.scheme),
         }
     }
 
     /// The scheme of a configuration, in `f64` (a built-in scheme through
-    /// [`Builtin`], or the plan's [`SchemeFactory`]).
+    /// [`LocalScheme`], or the plan's [`SchemeFactory`]).
     pub fn scheme(&self, c: &Configuration) -> crate::Result<Configured> {
         if let Some(f) = &self.own {
             return (f.make)(c.valence).map(Configured::Own);
         }
         let (ratios, shape) = self.parameters_in(c)?;
-        Builtin::from_kind(self.spec.scheme, c.valence, ratios, shape).map(Configured::Builtin)
+        LocalScheme::from_kind_with_c(self.spec.scheme, c.valence, ratios, shape)
+            .map(Configured::Builtin)
     }
 
     /// [`scheme`](Self::scheme), reusing the storage of `old` (the scheme of
@@ -526,11 +526,11 @@ impl Plan {
         old: Option<Configured>,
     ) -> crate::Result<Configured> {
         if self.spec.space.kind == SpaceKind::Ratios && self.spec.scheme == SchemeKind::Nurds {
-            if let Some(Configured::Builtin(Builtin::Local(LocalScheme::Nurds(r)))) = old {
+            if let Some(Configured::Builtin(LocalScheme::Nurds(r))) = old {
                 if r.valence() == c.valence && c.coordinates.len() == c.valence {
-                    return Ok(Configured::Builtin(Builtin::Local(LocalScheme::Nurds(
+                    return Ok(Configured::Builtin(LocalScheme::Nurds(
                         r.refilled(&c.coordinates)?,
-                    ))));
+                    )));
                 }
             }
         }
@@ -703,7 +703,6 @@ mod tests {
                     .builtin()
                     .unwrap()
                     .ratios()
-                    .unwrap()
                     .as_slice()
                     .iter()
                     .zip(e.ratios().as_slice())

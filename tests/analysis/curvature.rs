@@ -12,7 +12,6 @@ use subdiv_lab::curvature::measured::measure;
 use subdiv_lab::curvature::tuning::{cos_enclosures, enclosure, tune, Sign};
 use subdiv_lab::curvature::{certify_rational, curvature, CurvatureEvidence, CurvatureVerdict};
 use subdiv_lab::schemes::catmull_clark::fourier;
-use subdiv_lab::schemes::loop_subdivision::LoopScheme;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::{analyze, AnalyzeOptions, SpectrumPath};
 use subdiv_lab::Scheme;
@@ -115,7 +114,7 @@ fn loop_verdicts_from_its_closed_form_spectrum() {
             0.0
         };
         let mu = (lambda * lambda).max(block2.abs()).max(0.125);
-        let c = curvature(&LoopScheme::new(n).unwrap()).unwrap();
+        let c = curvature(&LocalScheme::loop_subdivision(n).unwrap()).unwrap();
         assert!((c.mu - mu).abs() < 1e-12, "n={n}");
         let rational = matches!(n, 3 | 4 | 6);
         let expected = if mu - lambda * lambda > 1e-6 {

@@ -12,7 +12,6 @@ use own_scheme::VertexWeightCc;
 use std::f64::consts::PI;
 use subdiv_lab::curvature::measured_scheme::{measure_scheme, SchemeCurvature};
 use subdiv_lab::knots::EdgeRatios;
-use subdiv_lab::schemes::loop_subdivision::LoopScheme;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::Scheme;
 
@@ -57,7 +56,7 @@ fn loop_rates_follow_the_closed_form_spectrum() {
         let block0 = l2.max(0.125);
         let block2 = (0.375 + 0.25 * (4.0 * PI / nf).cos()).abs().max(0.125);
         let mu = if n > 3 { block0.max(block2) } else { block0 };
-        let m = measure_scheme(&LoopScheme::new(n).unwrap(), K, 5).unwrap();
+        let m = measure_scheme(&LocalScheme::loop_subdivision(n).unwrap(), K, 5).unwrap();
         assert_eq!(m.class, "standard");
         assert!((m.lambda - lambda).abs() < 1e-12, "n={n}");
         assert!((m.mu - mu).abs() < 1e-12, "n={n}: {} vs {mu}", m.mu);
@@ -200,7 +199,7 @@ fn a_scheme_from_outside_the_crate_is_measured_too() {
 
 #[test]
 fn bad_levels_are_refused() {
-    let s = LoopScheme::new(5).unwrap();
+    let s = LocalScheme::loop_subdivision(5).unwrap();
     for levels in [0, 41] {
         let e = measure_scheme(&s, levels, 1).unwrap_err();
         assert!(

@@ -15,13 +15,13 @@
 
 use nalgebra::DMatrix;
 use num_complex::Complex64;
-use subdiv_lab::charmap::extended::ExtendedMatrix;
 use subdiv_lab::curvature::measured::measure;
 use subdiv_lab::curvature::{curvature, CurvatureSummary, CurvatureVerdict};
 use subdiv_lab::knots::EdgeRatios;
 use subdiv_lab::rng::SplitMix64;
 use subdiv_lab::schemes::catmull_clark;
-use subdiv_lab::schemes::loop_subdivision::{matrix as loop_matrix, LoopScheme};
+use subdiv_lab::schemes::doo_sabin::extended::ExtendedMatrix;
+use subdiv_lab::schemes::loop_subdivision::matrix as loop_matrix;
 use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::eigen::{spectral_order, Eigen, EigenOptions};
 use subdiv_lab::Scheme;
@@ -154,7 +154,7 @@ fn adjustable_patch_is_closed_on_a_fine_c_grid() {
 #[test]
 fn loop_two_ring_is_closed() {
     for n in 3..=12 {
-        let s = LoopScheme::new(n).unwrap();
+        let s = LocalScheme::loop_subdivision(n).unwrap();
         let ext = loop_matrix::extended_matrix(n).unwrap();
         compare(&s, &square_up(ext.matrix()), &format!("loop n={n}"));
     }

@@ -7,12 +7,10 @@ use num_complex::Complex64;
 use proptest::prelude::*;
 use subdiv_lab::bezier::BezierCurve;
 use subdiv_lab::bezier::{PlanarPatch, TensorBezier};
-use subdiv_lab::charmap::extended::{ExtLayout, ExtendedMatrix};
 use subdiv_lab::charmap::regularity::{
     check_bezier_patches, check_regularity, gamma, Coefficients, ErrorModel, RegularityVerdict,
     MAX_DEPTH, MAX_PIECES,
 };
-use subdiv_lab::charmap::ring::{PatchKind, Ring, RingPatchId};
 use subdiv_lab::charmap::winding::{winding_number, HullCurve, ANGLE_MARGIN, MAX_SPLIT_DEPTH};
 use subdiv_lab::charmap::{
     check, check_basis, CharmapReport, Eigenstructure, PlanarBasis, Verdict,
@@ -20,6 +18,8 @@ use subdiv_lab::charmap::{
 use subdiv_lab::knots::{CornerIntervals, EdgeRatios};
 use subdiv_lab::rng::Lcg64;
 use subdiv_lab::scalar::{f64_to_rational, Rational, Scalar};
+use subdiv_lab::schemes::doo_sabin::extended::{ExtLayout, ExtendedMatrix};
+use subdiv_lab::schemes::doo_sabin::ring::{PatchKind, Ring, RingPatchId};
 use subdiv_lab::schemes::LocalScheme;
 
 /// Independent eigen-decomposition (faer directly) of S_n: the subdominant pair's

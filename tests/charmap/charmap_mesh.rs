@@ -4,15 +4,15 @@
 //! pentagons, hexagons), refined twice with the mesh module; around every
 //! face the 4n points are extracted, the mesh is refined once more, and the
 //! new point of every (old face, old corner) among the 9n of
-//! `charmap::extended` is compared with `Ext M`. This validates the [derived]
+//! `schemes::doo_sabin::extended` is compared with `Ext M`. This validates the [derived]
 //! E-face and V-face ratios (non-uniform along the edge, uniform across) and
 //! the row layout, for NURDS, the CC variant and original Doo-Sabin.
 
-use subdiv_lab::charmap::extended::{ExtendedMatrix, OldFace};
 use subdiv_lab::knots::CornerIntervals;
 use subdiv_lab::mesh::neighbourhood::face_neighbourhood;
 use subdiv_lab::mesh::refine::refine;
 use subdiv_lab::mesh::{generators, Mesh};
+use subdiv_lab::schemes::doo_sabin::extended::{ExtendedMatrix, OldFace};
 use subdiv_lab::schemes::doo_sabin::Layout;
 use subdiv_lab::schemes::{LocalScheme, Role, SchemeKind};
 

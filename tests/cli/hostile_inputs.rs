@@ -2775,6 +2775,140 @@ fn cases() -> Vec<Case> {
             ],
             "cannot be used with",
         ),
+        // Report specs: `scheme_file` in configurations, mesh figures and
+        // the curvature figure (read beside the spec).
+        bad_with(
+            "report-scheme-file-missing",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme_file = \"nope.toml\", valence = 5 }]\n")],
+            "figure[0].configs[0].scheme_file: nope.toml:",
+        ),
+        bad_with(
+            "report-scheme-file-invalid",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme_file = \"f.toml\", valence = 5 }]\n"),
+                ("d/f.toml", SF_SUM),
+            ],
+            "figure[0].configs[0].scheme_file: f.toml:",
+        ),
+        bad_with(
+            "report-scheme-file-and-scheme",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme = \"loop\", scheme_file = \"f.toml\", valence = 5 }]\n"),
+                ("d/f.toml", SF_OK),
+            ],
+            "give either scheme or scheme_file, not both",
+        ),
+        bad_with(
+            "report-config-without-scheme",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ valence = 5 }]\n")],
+            "configs[0]: give scheme (a built-in name) or scheme_file",
+        ),
+        bad_with(
+            "report-scheme-file-with-ratios",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme_file = \"f.toml\", ratios = [0.5, 0.5, 0.5] }]\n"),
+                ("d/f.toml", SF_OK),
+            ],
+            "configs[0].ratios: ratios is not taken with scheme_file",
+        ),
+        bad_with(
+            "report-scheme-file-with-c",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme_file = \"f.toml\", valence = 5, c = 0.3 }]\n"),
+                ("d/f.toml", SF_OK),
+            ],
+            "configs[0].c: c is not taken with scheme_file",
+        ),
+        bad_with(
+            "report-scheme-file-without-valence",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme_file = \"f.toml\" }]\n"),
+                ("d/f.toml", SF_OK),
+            ],
+            "scheme_file needs a valence",
+        ),
+        bad_with(
+            "report-scheme-file-valence-2",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme_file = \"f.toml\", valence = 2 }]\n"),
+                ("d/f.toml", SF_OK),
+            ],
+            "configs[0].valence: valence must be between 3 and",
+        ),
+        bad_with(
+            "report-scheme-file-late-division-by-zero",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme_file = \"f.toml\", valence = 40 }]\n"),
+                ("d/f.toml", SF_LATE),
+            ],
+            "configs[0].valence:",
+        ),
+        bad_with(
+            "report-scheme-file-convergence-not-doo-sabin",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"convergence\"\nconfigs = [{ scheme_file = \"f.toml\", valence = 5 }]\n"),
+                ("d/f.toml", SF_OK),
+            ],
+            "configs[0].scheme_file: scheme t is not in the Doo-Sabin family",
+        ),
+        bad_with(
+            "report-mesh-picture-scheme-file-random-knots",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"mesh-picture\"\nmesh = \"cube\"\nscheme_file = \"f.toml\"\nrandom_knots = 2.0\n"),
+                ("d/f.toml", SF_OK),
+            ],
+            "figure[0].random_knots: random_knots is not taken with scheme_file",
+        ),
+        bad_with(
+            "report-mesh-picture-scheme-and-scheme-file",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"mesh-picture\"\nmesh = \"cube\"\nscheme = \"catmull-clark\"\nscheme_file = \"f.toml\"\n"),
+                ("d/f.toml", SF_OK),
+            ],
+            "figure[0].scheme_file: give either scheme or scheme_file, not both",
+        ),
+        bad_with(
+            "report-mesh-picture-without-scheme",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"mesh-picture\"\nmesh = \"cube\"\n")],
+            "give scheme (a built-in name) or scheme_file",
+        ),
+        bad_with(
+            "report-mesh-convergence-scheme-file",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"mesh-convergence\"\nmesh = \"cube\"\nscheme_file = \"f.toml\"\n"),
+                ("d/f.toml", SF_OK),
+            ],
+            "figure[0].scheme_file: scheme t has no per-level statistics",
+        ),
+        bad_with(
+            "report-curvature-scheme-file-with-c",
+            &["report", "d/s.toml", "--out", "r"],
+            &[
+                ("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nscheme_file = \"f.toml\"\nc = 0.5\n"),
+                ("d/f.toml", SF_OK),
+            ],
+            "figure[0].c: c is not taken with scheme_file",
+        ),
+        bad_with(
+            "report-curvature-scheme-file-missing",
+            &["report", "d/s.toml", "--out", "r"],
+            &[("d/s.toml", "name = \"t\"\n[[figure]]\nkind = \"curvature\"\nscheme_file = \"nope.toml\"\n")],
+            "figure[0].scheme_file: nope.toml:",
+        ),
         bad(
             "subdivide-scheme-file-open-mesh",
             &[

@@ -6,3 +6,4 @@ mod figure_layout;
 mod report_cli;
 mod report_data;
 mod report_mesh;
+mod report_scheme_file;

@@ -6,7 +6,7 @@
 use crate::common;
 
 use subdiv_lab::charmap;
-use subdiv_lab::schemes::loop_subdivision::LoopScheme;
+use subdiv_lab::schemes::LocalScheme;
 use subdiv_lab::spectral::{self, AnalyzeOptions};
 use subdiv_lab::sweep::output::{self, split_csv_line};
 use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, Summary, SweepSpec};
@@ -61,7 +61,7 @@ fn loop_valence_sweep_equals_analyze_and_the_closed_form() {
     for (row, n) in rows.iter().zip(3usize..) {
         assert_eq!(row[col("valence")], n.to_string());
         assert_eq!(row[col("error")], "", "n = {n}");
-        let s = LoopScheme::new(n).unwrap();
+        let s = LocalScheme::loop_subdivision(n).unwrap();
         let a = spectral::analyze(&s, &AnalyzeOptions::default()).unwrap();
         assert_eq!(row[col("class")], a.subdominant.class.name(), "n = {n}");
         let lambda: f64 = row[col("lambda1_re")].parse().unwrap();

@@ -211,7 +211,7 @@ fn derived_cells_are_the_edge_ratios_of_the_scheme() {
         let n = c.valence;
         let mut out = [Some(-1.0); 5];
         p.derived_into(&c, &mut out);
-        let r = p.scheme(&c).unwrap().builtin().unwrap().ratios().unwrap();
+        let r = p.scheme(&c).unwrap().builtin().unwrap().ratios();
         for (i, cell) in out.iter().enumerate() {
             if i < n {
                 let (pi, qn) = (c.coordinates[i], c.coordinates[n + (i + 1) % n]);

@@ -154,15 +154,11 @@ impl FigureOutput for Output {
             &["config", "index", "re", "im", "modulus"],
         );
         for (i, (c, a)) in self.rows.iter().enumerate() {
-            let r = c
-                .scheme
-                .ratios()
-                .map(|r| r.as_slice().to_vec())
-                .unwrap_or_default();
+            let r = &c.ratios;
             t.push(vec![
                 i.to_string(),
                 c.label.clone(),
-                c.scheme.kind().name().into(),
+                c.scheme.name().into(),
                 c.scheme.valence().to_string(),
                 r.iter().map(|x| num(*x)).collect::<Vec<_>>().join(";"),
                 a.subdominant.class.name().to_owned(),
@@ -207,11 +203,7 @@ impl FigureOutput for Output {
         let mut h = String::new();
         for (c, a) in &self.rows {
             let _ = writeln!(h, "<h3>{}</h3>", escape(&c.label));
-            let r = c
-                .scheme
-                .ratios()
-                .map(|r| r.as_slice().to_vec())
-                .unwrap_or_default();
+            let r = &c.ratios;
             let _ = writeln!(
                 h,
                 "<table><tr><th class=\"l\">scheme</th><td class=\"l\">{} (n = {})</td></tr>\
@@ -222,7 +214,7 @@ impl FigureOutput for Output {
                  <tr><th class=\"l\">gap |λ<sub>2</sub>| − |λ<sub>3</sub>|</th><td class=\"l\">{:.6}</td></tr>\
                  <tr><th class=\"l\">Theorem 1 certificate sum (weights ≥ 0: {})</th><td class=\"l\">{}</td></tr>\
                  <tr><th class=\"l\">measured contraction rate</th><td class=\"l\">{}</td></tr></table>",
-                escape(c.scheme.kind().name()),
+                escape(c.scheme.name()),
                 c.scheme.valence(),
                 escape(
                     &r.iter()

@@ -34,6 +34,11 @@
 //!
 //! [[figure]]
 //! kind = "curvature"
+//! scheme_file = "my-cc.toml"  # or a scheme file (read beside the spec); no knots or c
+//! valences = [3, 5]
+//!
+//! [[figure]]
+//! kind = "curvature"
 //! scheme = "nurds"
 //! ratios = [0.3, 0.6, 0.5]  # or knots = [[p, q], ..]; fixes the valence
 //! ```
@@ -49,8 +54,8 @@ use crate::report::plot::{
     dash, draw_err, inner_legend, series_color, titled, LegendGlyph, Marker, Theme,
 };
 use crate::schemes::choice::{validate, Choice, ChoiceError};
-use crate::schemes::registry::Builtin;
 use crate::schemes::SchemeKind;
+use crate::schemes::{LocalScheme, Scheme};
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Deserialize;
@@ -77,6 +82,7 @@ pub(crate) const KIND: FigureKind = FigureKind {
 #[serde(deny_unknown_fields)]
 struct Params {
     scheme: Option<Spanned<String>>,
+    scheme_file: Option<Spanned<String>>,
     valences: Option<Spanned<Vec<usize>>>,
     ratios: Option<Spanned<Vec<f64>>>,
     knots: Option<Spanned<Vec<[f64; 2]>>>,
@@ -84,12 +90,16 @@ struct Params {
     levels: Option<Spanned<usize>>,
 }
 
+/// A configuration with its legend label.
+type Labelled = (Box<dyn Scheme>, String);
+
 /// What is measured.
 enum Measured {
     /// The Catmull-Clark family at shape parameter `c`, per valence.
     CcFamily { valences: Vec<usize>, c: f64 },
-    /// Any other built-in scheme: one configuration per valence.
-    Scheme(Vec<Builtin>),
+    /// Any other built-in scheme, or a scheme file's: one configuration per
+    /// valence, with its legend label.
+    Scheme(Vec<Labelled>),
 }
 
 struct CurvatureFigure {
@@ -130,6 +140,10 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
         }
     };
     let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 16)?;
+    if let Some(f) = &p.scheme_file {
+        let what = Measured::Scheme(file_configurations(fs, f, &p, valences)?);
+        return Ok(Box::new(CurvatureFigure { what, levels }));
+    }
     let kind = match &p.scheme {
         None => None,
         Some(s) => Some((s, scheme_kind(fs, s, &p)?)),
@@ -169,6 +183,41 @@ fn scheme_kind(
     })
 }
 
+/// A scheme file's configurations, one per valence (default 3, 4, 5, 8):
+/// without `scheme`, knot data or `c`.
+fn file_configurations(
+    fs: &FigureSpec<'_>,
+    path: &Spanned<String>,
+    p: &Params,
+    valences: Option<Vec<usize>>,
+) -> Result<Vec<Labelled>, ReportError> {
+    let refused = [
+        ("scheme", p.scheme.as_ref().map(|s| s.span())),
+        ("ratios", p.ratios.as_ref().map(|s| s.span())),
+        ("knots", p.knots.as_ref().map(|s| s.span())),
+        ("c", p.c.as_ref().map(|s| s.span())),
+    ];
+    if let Some((name, Some(span))) = refused.iter().find(|(_, s)| s.is_some()) {
+        return Err(fs.error_at(
+            &Spanned::new(span.clone(), ()),
+            name,
+            format!("{name} is not taken with scheme_file"),
+        ));
+    }
+    let file = fs.scheme_file(path, "scheme_file")?;
+    valences
+        .unwrap_or_else(|| vec![3, 4, 5, 8])
+        .into_iter()
+        .map(|n| {
+            let s = file
+                .at(n)
+                .map_err(|e| fs.error_at(path, "scheme_file", e.to_string()))?;
+            let label = s.label();
+            Ok((Box::new(s) as Box<dyn Scheme>, label))
+        })
+        .collect()
+}
+
 /// One configuration per valence; `ratios` or `knots` (NURDS) fix the
 /// valence, and `valences`, if given, must be that one.
 fn configurations(
@@ -177,7 +226,7 @@ fn configurations(
     kind: SchemeKind,
     p: &Params,
     valences: Option<Vec<usize>>,
-) -> Result<Vec<Builtin>, ReportError> {
+) -> Result<Vec<Labelled>, ReportError> {
     let ratios = match (&p.ratios, &p.knots) {
         (Some(_), Some(k)) => {
             return Err(fs.error_at(k, "knots", "give at most one of ratios and knots"))
@@ -228,8 +277,10 @@ fn configurations(
     valences
         .iter()
         .map(|&n| {
-            Builtin::from_kind(kind, n, ratios.clone(), None)
-                .map_err(|e| fs.error_at(at, "scheme", e.to_string()))
+            let s = LocalScheme::from_kind_with_c(kind, n, ratios.clone(), None)
+                .map_err(|e| fs.error_at(at, "scheme", e.to_string()))?;
+            let label = s.legend_label("");
+            Ok((Box::new(s) as Box<dyn Scheme>, label))
         })
         .collect()
 }
@@ -261,10 +312,10 @@ impl Figure for CurvatureFigure {
                 .collect::<Result<Vec<_>, ReportError>>()?,
             Measured::Scheme(schemes) => schemes
                 .par_iter()
-                .map(|s| {
+                .map(|(s, label)| {
                     let m = measure_scheme(&**s, self.levels, seed).map_err(|e| ctx.err(e))?;
                     ctx.tick(1);
-                    let label = s.legend_label("");
+                    let label = label.clone();
                     Ok(Run {
                         n: m.n,
                         column: label.clone(),

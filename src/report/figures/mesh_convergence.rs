@@ -58,7 +58,8 @@ pub(crate) const KIND: FigureKind = FigureKind {
 #[serde(deny_unknown_fields)]
 struct Params {
     mesh: Spanned<String>,
-    scheme: Spanned<String>,
+    scheme: Option<Spanned<String>>,
+    scheme_file: Option<Spanned<String>>,
     levels: Option<Spanned<usize>>,
     random_knots: Option<Spanned<f64>>,
     max_faces: Option<Spanned<usize>>,
@@ -105,15 +106,43 @@ pub(crate) fn built_in_mesh(
     Ok(mesh)
 }
 
-/// The scheme of a mesh figure and its mesh rules, through the shared rules
-/// ([`crate::schemes::choice`]: `random_knots` is knot data) and the one
-/// dispatch ([`crate::mesh::builtin::mesh_rules`]; mesh figures have no
-/// shape parameter).
-pub(crate) fn mesh_scheme(
+/// A mesh figure's rules, with the value and key that name its scheme.
+pub(crate) type MeshScheme<'s> = (Box<dyn MeshRules>, &'s Spanned<String>, &'static str);
+
+/// The scheme of a mesh figure and its mesh rules, with the value and key
+/// later errors about the scheme name: exactly one of `scheme` (a built-in,
+/// through the shared rules, [`crate::schemes::choice`]: `random_knots` is
+/// knot data, and the one dispatch, [`crate::mesh::builtin::mesh_rules`];
+/// mesh figures have no shape parameter) and `scheme_file` (a scheme file's
+/// rules, [`crate::mesh::user::file_rules`]; no knots).
+pub(crate) fn mesh_scheme<'s>(
     fs: &FigureSpec<'_>,
-    s: &Spanned<String>,
+    scheme: Option<&'s Spanned<String>>,
+    scheme_file: Option<&'s Spanned<String>>,
     random_knots: Option<&Spanned<f64>>,
-) -> Result<Box<dyn MeshRules>, ReportError> {
+) -> Result<MeshScheme<'s>, ReportError> {
+    let s = match (scheme, scheme_file) {
+        (Some(s), None) => s,
+        (None, Some(f)) => {
+            if let Some(r) = random_knots {
+                return Err(fs.error_at(
+                    r,
+                    "random_knots",
+                    "random_knots is not taken with scheme_file (a scheme file's rules use no knot intervals)",
+                ));
+            }
+            let file = fs.scheme_file(f, "scheme_file")?;
+            return Ok((crate::mesh::user::file_rules(file), f, "scheme_file"));
+        }
+        (Some(_), Some(f)) => {
+            return Err(fs.error_at(
+                f,
+                "scheme_file",
+                "give either scheme or scheme_file, not both",
+            ))
+        }
+        (None, None) => return Err(fs.error("give scheme (a built-in name) or scheme_file")),
+    };
     let choice = Choice {
         name: s.get_ref(),
         knots: random_knots.is_some(),
@@ -128,7 +157,8 @@ pub(crate) fn mesh_scheme(
         ),
         _ => fs.error_at(s, "scheme", e.to_string()),
     })?;
-    mesh_rules(kind, None).map_err(|e| fs.error_at(s, "scheme", e.to_string()))
+    let rules = mesh_rules(kind, None).map_err(|e| fs.error_at(s, "scheme", e.to_string()))?;
+    Ok((rules, s, "scheme"))
 }
 
 struct MeshConvergence {
@@ -141,11 +171,16 @@ struct MeshConvergence {
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    let rules = mesh_scheme(fs, &p.scheme, p.random_knots.as_ref())?;
+    let (rules, at, key) = mesh_scheme(
+        fs,
+        p.scheme.as_ref(),
+        p.scheme_file.as_ref(),
+        p.random_knots.as_ref(),
+    )?;
     if !rules.has_level_stats() {
         return Err(fs.error_at(
-            &p.scheme,
-            "scheme",
+            at,
+            key,
             format!("scheme {} has no per-level statistics of extraordinary faces, which mesh-convergence plots (use mesh-picture)", rules.name()),
         ));
     }

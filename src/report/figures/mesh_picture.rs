@@ -44,7 +44,8 @@ pub(crate) const KIND: FigureKind = FigureKind {
 #[serde(deny_unknown_fields)]
 struct Params {
     mesh: Spanned<String>,
-    scheme: Spanned<String>,
+    scheme: Option<Spanned<String>>,
+    scheme_file: Option<Spanned<String>>,
     levels: Option<Spanned<usize>>,
     random_knots: Option<Spanned<f64>>,
     azimuth: Option<Spanned<f64>>,
@@ -62,7 +63,12 @@ struct MeshPicture {
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
-    let rules = mesh_scheme(fs, &p.scheme, p.random_knots.as_ref())?;
+    let (rules, _, _) = mesh_scheme(
+        fs,
+        p.scheme.as_ref(),
+        p.scheme_file.as_ref(),
+        p.random_knots.as_ref(),
+    )?;
     let mesh = built_in_mesh(fs, &p.mesh, p.random_knots.as_ref())?;
     let levels = bounded(fs, &p.levels, "levels", 1, MAX_LEVELS, 2)?;
     let angle = |a: &Option<Spanned<f64>>, key: &str, default: f64, lim: f64| match a {

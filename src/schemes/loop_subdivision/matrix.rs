@@ -35,8 +35,24 @@
 //! ```
 
 use super::{beta, check_size, TwoRing};
-use crate::error::Result;
+use crate::error::{Error, Result};
+use crate::scalar::Scalar;
 use crate::schemes::assembly::{Assembler, LocalMatrix, PointLabel, Role};
+
+/// Denominator of every entry of the two-ring matrix at the valences whose
+/// `cos(2 pi / n)` is rational, `n` in {3, 4, 6} **\[derived\]**: the
+/// vertex weights are `beta_3 = 3/16`, `beta_4 = 31/256`, `beta_6 = 1/16`
+/// (so `1 - n beta_n` = 7/16, 132/256, 10/16) and the fixed weights are 3/8,
+/// 1/8, 5/8 and 1/16: all multiples of 1/256.
+pub const EXACT_DENOMINATOR: i64 = 256;
+
+/// How far an `f64` entry of the two-ring matrix may lie from its multiple of
+/// `1/EXACT_DENOMINATOR` at `n` in {3, 4, 6}. The `f64` rules differ from the
+/// exact weights by a few rounding errors (`~1e-16`); `1e-12` is far above
+/// that and far below half the grid step (`1/512`), so rounding every entry to
+/// the grid recovers the exact matrix, and an entry outside it is an error,
+/// never a silently wrong exact matrix.
+pub const EXACT_ROUNDING_CHECK: f64 = 1e-12;
 
 /// Scheme name used in the matrix labels.
 pub const LOOP: &str = "loop";
@@ -135,6 +151,68 @@ fn add_two_ring_rows(asm: &mut Assembler<f64>, rules: &Rules, one_ring_only: boo
 /// Refuses valences whose dense matrix exceeds the memory budget.
 pub fn two_ring_matrix(n: usize) -> Result<LocalMatrix<f64>> {
     two_ring_with(LOOP, n, None)
+}
+
+/// The two-ring matrix over any [`Scalar`]: [`two_ring_matrix`] itself in
+/// `f64`; over the rationals, the exact matrix at `n` in {3, 4, 6}, where
+/// every weight is a multiple of `1/256` ([`EXACT_DENOMINATOR`]): the `f64`
+/// matrix with every entry rounded to that grid (each checked within
+/// [`EXACT_ROUNDING_CHECK`]; rows then sum to 1 exactly). Other valences have
+/// irrational weights and are refused over the rationals. This lets the
+/// curvature verdict certify `mu = lambda^2` exactly at `n` = 4 and 6 (math
+/// doc section 13).
+///
+/// ```
+/// use subdiv_lab::scalar::{Rational, Scalar};
+/// use subdiv_lab::schemes::loop_subdivision::matrix::two_ring_matrix_over;
+/// let q = two_ring_matrix_over::<Rational>(6).unwrap();
+/// assert_eq!(q.matrix()[(0, 0)], Rational::frac(10, 16));
+/// assert!(two_ring_matrix_over::<Rational>(5).is_err());
+/// ```
+pub fn two_ring_matrix_over<T: Scalar>(n: usize) -> Result<LocalMatrix<T>> {
+    if T::EXACT && !matches!(n, 3 | 4 | 6) {
+        return Err(Error::InvalidParameter {
+            name: "valence",
+            value: n.to_string(),
+            reason: "Loop weights are irrational for this valence; exact arithmetic supports n = 3, 4, 6",
+        });
+    }
+    let m = two_ring_matrix(n)?;
+    // In f64 the matrix is already the answer (no copy on the sweeps' path).
+    let m: LocalMatrix<f64> =
+        match (Box::new(m) as Box<dyn std::any::Any>).downcast::<LocalMatrix<T>>() {
+            Ok(same) => return Ok(*same),
+            Err(other) => *other.downcast().map_err(|_| Error::Numerical {
+                routine: "Loop two-ring matrix",
+                reason: "the f64 matrix changed type".to_owned(),
+            })?,
+        };
+    let mut a = Assembler::<T>::new(m.scheme(), n, m.rows().to_vec(), m.cols().to_vec());
+    let s = m.matrix();
+    for i in 0..s.nrows() {
+        for j in 0..s.ncols() {
+            let x = s[(i, j)];
+            if x == 0.0 {
+                continue;
+            }
+            if !T::EXACT {
+                a.add(i, j, T::from_f64_lossless(x));
+                continue;
+            }
+            let d = EXACT_DENOMINATOR as f64;
+            let k = (x * d).round();
+            if (x - k / d).abs() > EXACT_ROUNDING_CHECK {
+                return Err(Error::Numerical {
+                    routine: "exact Loop matrix",
+                    reason: format!(
+                        "entry ({i}, {j}) = {x} is not a multiple of 1/{EXACT_DENOMINATOR}"
+                    ),
+                });
+            }
+            a.add(i, j, T::frac(k as i64, EXACT_DENOMINATOR));
+        }
+    }
+    a.finish()
 }
 
 /// The two-ring matrix of Loop's edge rule and regular vertex rule with the

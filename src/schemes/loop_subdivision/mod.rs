@@ -47,7 +47,6 @@ pub mod fourier;
 pub mod matrix;
 pub mod ring;
 mod rules;
-mod scheme_impl;
 pub mod tri_bezier;
 
 pub(crate) use rules::check_size;
@@ -55,4 +54,3 @@ pub use rules::{
     beta, limit_weights, subdominant_eigenvalue, validate, TwoRing, ANALYZE_SECONDS_PER_N3,
     COST_MODEL, MIN_VALENCE, SWEEP_CHARMAP_SECONDS_PER_N3, SWEEP_CLASSIFY_SECONDS_PER_N3,
 };
-pub use scheme_impl::LoopScheme;

@@ -226,7 +226,7 @@ impl SchemeFile {
     /// The work model: that of the built-in scheme whose matrices it shares
     /// ([`Topology::base`]).
     pub fn cost_model(&self) -> CostModel {
-        crate::schemes::registry::cost_model(self.topology.base())
+        crate::schemes::LocalScheme::<f64>::cost_model_of(self.topology.base())
     }
 
     /// The validated vertex weights at valence `n` (module docs: the one

@@ -1,5 +1,4 @@
 use super::*;
-use crate::schemes::loop_subdivision::LoopScheme;
 use crate::schemes::LocalScheme;
 
 const CC: &str = include_str!("../../../analysis/schemes/catmull-clark.toml");
@@ -46,7 +45,7 @@ fn loop_file_is_the_builtin_bit_for_bit() {
     let file = shared(LOOP);
     for n in 3..=12 {
         let s = file.at(n).unwrap();
-        let b = LoopScheme::new(n).unwrap();
+        let b = crate::schemes::LocalScheme::loop_subdivision(n).unwrap();
         let (ms, mb) = (s.local_matrix().unwrap(), b.local_matrix().unwrap());
         assert_eq!(ms.rows(), mb.rows());
         let same = ms

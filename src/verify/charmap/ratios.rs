@@ -52,7 +52,7 @@ use super::af::{self, Af};
 use super::ivla::{mid, norm2_upper, verified_inverse, P2};
 use super::winding::{winding_number, BoxCurve};
 use super::CellTamper;
-use crate::charmap::ring::{patch_grid, PatchKind, RingPatchId};
+use crate::schemes::doo_sabin::ring::{patch_grid, PatchKind, RingPatchId};
 use crate::schemes::doo_sabin::Layout;
 use crate::spectral::eigen::{Eigen, EigenOptions};
 use crate::verify::interval::{down, up, Iv};
@@ -979,11 +979,11 @@ impl RatioRing {
     /// `[Z_1; Z_2] = Q^{-1} B`, `P = Z_2 Z_1^{-1}`; the restriction is
     /// `N = T11 + T12 P` of `Q^{-1} W(r) Q`; the lift is
     /// [`crate::charmap::basis::lift_subspace`] and the ring
-    /// [`crate::charmap::ring::ring_points`].
+    /// [`crate::schemes::doo_sabin::ring::ring_points`].
     pub fn pointwise(&self, r: &[f64]) -> crate::error::Result<(f64, Vec<[f64; 2]>)> {
-        use crate::charmap::extended::ExtendedMatrix;
         use crate::error::Error;
         use crate::knots::EdgeRatios;
+        use crate::schemes::doo_sabin::extended::ExtendedMatrix;
         use crate::schemes::LocalScheme;
         let n = r.len();
         let bad = |reason: &str| Error::Numerical {
@@ -1065,7 +1065,10 @@ impl RatioRing {
         let w1: Vec<f64> = full.iter().map(|x| x[0]).collect();
         let w2: Vec<f64> = full.iter().map(|x| x[1]).collect();
         let ext = ExtendedMatrix::new(&scheme)?;
-        Ok((p.norm(), crate::charmap::ring::ring_points(&ext, &w1, &w2)?))
+        Ok((
+            p.norm(),
+            crate::schemes::doo_sabin::ring::ring_points(&ext, &w1, &w2)?,
+        ))
     }
 
     /// How many coordinates of the pointwise ring `pts` lie outside the

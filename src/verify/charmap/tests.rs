@@ -6,9 +6,9 @@
 use super::ratios::ratio_ring;
 use super::shape::{pointwise_windows, shape_ring};
 use super::*;
-use crate::charmap::extended::ExtendedMatrix;
 use crate::knots::EdgeRatios;
 use crate::rng::SplitMix64;
+use crate::schemes::doo_sabin::extended::ExtendedMatrix;
 use crate::schemes::LocalScheme;
 
 /// Slack for the floating-point error of the pointwise computation.

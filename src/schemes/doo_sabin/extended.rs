@@ -34,7 +34,7 @@
 //! `(V_i, E_i1), (V_i, C_i), (V_i, E_{i-1,2})` for `i = 0..n`.
 //!
 //! ```
-//! use subdiv_lab::charmap::extended::ExtendedMatrix;
+//! use subdiv_lab::schemes::doo_sabin::extended::ExtendedMatrix;
 //! use subdiv_lab::schemes::LocalScheme;
 //! let s = LocalScheme::<f64>::cc_variant(5).unwrap();
 //! let x = ExtendedMatrix::new(&s).unwrap();

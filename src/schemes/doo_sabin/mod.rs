@@ -27,6 +27,9 @@
 //! * **Catmull-Clark variant**: uniform NURDS (`r_i = 1/2`, `c_j = 1/n`), i.e.
 //!   `P'_i = 1/2 P_i + 1/8 (P_{i-1} + P_{i+1}) + F/4`.
 
+pub mod extended;
+pub mod ring;
+
 use super::assembly::{Assembler, LocalMatrix, PointLabel, Role};
 use crate::budget::{
     CostModel, ANALYZE_BYTES_PER_ENTRY_DS, ANALYZE_SECONDS_PER_N3_DS_FULL,

@@ -38,7 +38,7 @@
 //! planar basis by the sign of the Jacobian, so this is immaterial.
 //!
 //! Planar control points come from a 2-D real invariant subspace of `S_n`
-//! (see [`super::PlanarBasis`]): `x = Ext w1`, `y = Ext w2`.
+//! (see [`crate::charmap::PlanarBasis`]): `x = Ext w1`, `y = Ext w2`.
 
 use super::extended::{ExtLayout, ExtendedMatrix};
 use crate::bezier::{BezierCurve, PlanarPatch};
