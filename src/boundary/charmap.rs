@@ -647,8 +647,19 @@ fn certify_ring(
             "a half-plane (up to the sweep margin)"
         };
         out.verdict = tpc_or_c1();
+        // a linear change of basis keeps a sector convex or reflex: compare
+        // with the corner's angle
+        let mismatch = match c.angle() {
+            Some(t) if t > PI && theta < PI - SWEEP_MARGIN => {
+                "; the corner angle is reflex but the image is convex, so the limit surface has a convex corner there (section 18.2)"
+            }
+            Some(t) if t < PI && theta > PI + SWEEP_MARGIN => {
+                "; the corner angle is convex but the image is reflex (section 18.2)"
+            }
+            _ => "",
+        };
         out.reason = format!(
-            "regular, and one-to-one onto {shape}: the sharp lines map onto two rays and the star-shaped outer arc between them sweeps {:.6} degrees",
+            "regular, and one-to-one onto {shape}: the sharp lines map onto two rays and the star-shaped outer arc between them sweeps {:.6} degrees{mismatch}",
             theta.to_degrees()
         );
     } else if theta > 2.0 * PI + SWEEP_MARGIN {
