@@ -158,6 +158,16 @@ pub enum SectorCharmapVerdict {
     NoCharacteristicMap,
     /// Neither certified nor refuted (the reason says why).
     Indeterminate,
+    /// Standard eigenstructure, regular and one-to-one onto a sector (or
+    /// around the vertex at a crease): C1 (math doc section 18.4).
+    C1Standard,
+    /// Real distinct subdominant eigenvalues, regular and one-to-one:
+    /// tangent-plane continuous (never "C1" for a non-standard structure).
+    TangentPlaneContinuous,
+    /// The Jacobian changes sign on the ring (a witness point).
+    NotRegular,
+    /// Regular, but the neighbourhood is covered more than once.
+    NotInjective,
 }
 
 impl SectorCharmapVerdict {
@@ -167,6 +177,10 @@ impl SectorCharmapVerdict {
             SectorCharmapVerdict::BoundaryCollapses => "boundary_collapses",
             SectorCharmapVerdict::NoCharacteristicMap => "no_charmap",
             SectorCharmapVerdict::Indeterminate => "indeterminate",
+            SectorCharmapVerdict::C1Standard => "c1",
+            SectorCharmapVerdict::TangentPlaneContinuous => "tpc_real_distinct",
+            SectorCharmapVerdict::NotRegular => "not_regular",
+            SectorCharmapVerdict::NotInjective => "not_injective",
         }
     }
 }
@@ -182,6 +196,17 @@ pub struct SectorCharmap {
     /// sharp-edge block (`Some(true)`), certainly not (`Some(false)`), or
     /// undecided within its error radius (`None`).
     pub on_sharp_edges: [Option<bool>; 2],
+    /// The smallest Bezier coefficient of the ring's oriented Jacobian
+    /// relative to the largest, when the ring was built
+    /// ([`super::charmap::certify`]).
+    pub min_jacobian_coeff: Option<f64>,
+    /// The error bound of the ring's control points, when the ring was built.
+    pub point_error: Option<f64>,
+    /// The certified angle (degrees) the outer arc of a boundary or corner
+    /// ring sweeps in the oriented orthonormal basis (below 180: a convex
+    /// sector, 180: a half-plane, above: a reflex sector; only this
+    /// comparison is independent of the basis).
+    pub swept_degrees: Option<f64>,
 }
 
 /// The analysis of one configuration.
@@ -372,6 +397,9 @@ fn charmap_verdict(c: &SectorConfig, sub: &Subdominant) -> SectorCharmap {
                 sub.class.name()
             ),
             on_sharp_edges: on,
+            min_jacobian_coeff: None,
+            point_error: None,
+            swept_degrees: None,
         };
     }
     let (verdict, reason) = match on {
@@ -383,15 +411,25 @@ fn charmap_verdict(c: &SectorConfig, sub: &Subdominant) -> SectorCharmap {
             SectorCharmapVerdict::Indeterminate,
             "whether a subdominant eigenvalue belongs to the sharp-edge block is within its error radius".to_owned(),
         ),
-        _ => (
-            SectorCharmapVerdict::Indeterminate,
-            "the sharp edges' limit curves are not collapsed; the Jacobian and the one-sheet covering of the sector are not certified for boundary sectors (the ring certificates of sections 7-8 cover closed rings)".to_owned(),
-        ),
+        _ => {
+            let r = super::charmap::certify(c, sub, on);
+            return SectorCharmap {
+                verdict: r.verdict,
+                reason: r.reason,
+                on_sharp_edges: on,
+                min_jacobian_coeff: r.min_jacobian_coeff,
+                point_error: r.point_error,
+                swept_degrees: r.swept_degrees,
+            };
+        }
     };
     SectorCharmap {
         verdict,
         reason,
         on_sharp_edges: on,
+        min_jacobian_coeff: None,
+        point_error: None,
+        swept_degrees: None,
     }
 }
 

@@ -35,6 +35,7 @@
 //! ```
 
 pub mod analysis;
+pub mod charmap;
 #[cfg(test)]
 mod tests;
 

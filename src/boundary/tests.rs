@@ -405,3 +405,247 @@ fn limit_normal_is_the_limit_of_the_refined_normals() {
         assert!(err < 1e-6, "{c}: 1 - |cos angle| = {err:e}");
     }
 }
+
+/// The sector grid of radius `r` as an open mesh for the sharp-mesh
+/// refiner: the quads of every quadrant, the crease lines' edges and the
+/// corner tagged infinitely sharp.
+fn grid_mesh(c: &SectorConfig, r: usize, p: Vec<[f64; 3]>) -> SharpMesh {
+    let g = super::charmap::Grid::new(c, r);
+    let mut faces = Vec::new();
+    for j in 0..c.face_count() {
+        for a in 0..r {
+            for b in 0..r {
+                faces.push(vec![
+                    g.pos(j, a, b),
+                    g.pos(j, a + 1, b),
+                    g.pos(j, a + 1, b + 1),
+                    g.pos(j, a, b + 1),
+                ]);
+            }
+        }
+    }
+    let mut tags = Vec::new();
+    match c.kind() {
+        VertexKind::Crease => {
+            for i in c.sharp_edges() {
+                // line i is the a axis of quad i
+                for d in 0..r {
+                    tags.push(Tag {
+                        line: tags.len() + 1,
+                        target: TagTarget::Edge(g.pos(i, d, 0), g.pos(i, d + 1, 0)),
+                        sharpness: 10.0,
+                    });
+                }
+            }
+        }
+        VertexKind::Corner => tags.push(Tag {
+            line: 1,
+            target: TagTarget::Vertex(0),
+            sharpness: 10.0,
+        }),
+        VertexKind::Boundary => {}
+    }
+    SharpMesh::new(p, &faces, &tags, Boundary::EdgeOnly).unwrap()
+}
+
+/// The sector grid's refinement (math doc section 18.4) against one step of
+/// the sharp-mesh refiner on the radius-4 grid, for every level-1 point of
+/// radius 5 (whose stencils stay inside the grid, away from its rim), and
+/// its radius-1 block against the local matrix (both rule sets).
+#[test]
+fn sector_grid_refinement_is_one_step_of_the_mesh_refiner() {
+    use super::charmap::{refinement_matrix, Grid};
+    for c in all_standard_configs() {
+        if c.scheme() != SdcScheme::CatmullClark {
+            continue;
+        }
+        let g0 = Grid::new(&c, 4);
+        let g1 = Grid::new(&c, 5);
+        let p = positions(g0.dim());
+        let mesh = grid_mesh(&c, 4, p.clone());
+        let r = mesh
+            .refine(SdcScheme::CatmullClark, Creasing::Uniform)
+            .unwrap();
+        let (nv, ne) = (mesh.vertex_count(), mesh.edge_count());
+        let m = refinement_matrix(&c, 4, 5).unwrap();
+        let m3 = refinement_matrix(&c, 3, 5).unwrap();
+        let g3 = Grid::new(&c, 3);
+        // the refined mesh's index of level-1 point (A, B) of quad j
+        let refined = |j: usize, big_a: usize, big_b: usize| -> usize {
+            let (a, b) = (big_a / 2, big_b / 2);
+            match (big_a % 2, big_b % 2) {
+                (0, 0) => g0.pos(j, a, b),
+                (1, 0) => {
+                    nv + mesh
+                        .find_edge(g0.pos(j, a, b), g0.pos(j, a + 1, b))
+                        .unwrap()
+                }
+                (0, _) => {
+                    nv + mesh
+                        .find_edge(g0.pos(j, a, b), g0.pos(j, a, b + 1))
+                        .unwrap()
+                }
+                _ => nv + ne + j * 16 + a * 4 + b,
+            }
+        };
+        for j in 0..c.face_count() {
+            for big_a in 0..=5 {
+                for big_b in 0..=5 {
+                    let row = g1.pos(j, big_a, big_b);
+                    let got = r.positions()[refined(j, big_a, big_b)];
+                    for k in 0..3 {
+                        let q: f64 = (0..g0.dim()).map(|col| m[(row, col)] * p[col][k]).sum();
+                        assert!(
+                            (q - got[k]).abs() < 1e-12,
+                            "{c}: point ({big_a}, {big_b}) of quad {j}: matrix {q} vs refiner {}",
+                            got[k]
+                        );
+                    }
+                    // radius 3 suffices for radius 5, with the same weights
+                    for a in 0..=4 {
+                        for b in 0..=4 {
+                            let w4 = m[(row, g0.pos(j, a, b))];
+                            let w3 = if a <= 3 && b <= 3 {
+                                m3[(row, g3.pos(j, a, b))]
+                            } else {
+                                0.0
+                            };
+                            assert_eq!(w4, w3, "{c}: ({big_a}, {big_b}) of quad {j} at ({a}, {b})");
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for rules in [RuleSet::Standard, RuleSet::Blz] {
+        for k in 1..=6 {
+            for c in [
+                cfg(
+                    SdcScheme::CatmullClark,
+                    VertexKind::Boundary,
+                    &[k],
+                    None,
+                    rules,
+                ),
+                cfg(
+                    SdcScheme::CatmullClark,
+                    VertexKind::Corner,
+                    &[k],
+                    Some(120.0),
+                    rules,
+                ),
+                cfg(
+                    SdcScheme::CatmullClark,
+                    VertexKind::Crease,
+                    &[k, 2],
+                    None,
+                    rules,
+                ),
+            ] {
+                let m = refinement_matrix(&c, 1, 1).unwrap();
+                assert_eq!(&m, c.local_matrix().unwrap().matrix(), "{c}");
+            }
+        }
+    }
+}
+
+/// The certified characteristic map on the sector (math doc section 18.4):
+/// BLZ boundaries are C1 onto a half-plane at every tested `K`, BLZ convex
+/// corners onto a convex sector; the standard rules are C1 only on the
+/// regular boundary, tangent-plane continuous (non-standard) at `K = 3` and
+/// collapse the boundary from `K = 5` on.
+#[test]
+fn sector_characteristic_map_verdicts() {
+    let cc = SdcScheme::CatmullClark;
+    for k in 2..=12 {
+        let c = cfg(cc, VertexKind::Boundary, &[k], None, RuleSet::Blz);
+        let m = analyze_sector(&c).unwrap().charmap;
+        assert_eq!(
+            m.verdict,
+            SectorCharmapVerdict::C1Standard,
+            "{c}: {}",
+            m.reason
+        );
+        let sweep = m.swept_degrees.unwrap();
+        assert!((sweep - 180.0).abs() < 1e-6, "{c}: {sweep}");
+    }
+    for k in 1..=5 {
+        for theta in [30.0, 90.0, 150.0] {
+            let c = cfg(cc, VertexKind::Corner, &[k], Some(theta), RuleSet::Blz);
+            let m = analyze_sector(&c).unwrap().charmap;
+            assert_eq!(
+                m.verdict,
+                SectorCharmapVerdict::C1Standard,
+                "{c}: {}",
+                m.reason
+            );
+            assert!(m.swept_degrees.unwrap() < 180.0, "{c}");
+        }
+    }
+    let standard = |k: usize| {
+        analyze_sector(&cfg(
+            cc,
+            VertexKind::Boundary,
+            &[k],
+            None,
+            RuleSet::Standard,
+        ))
+        .unwrap()
+        .charmap
+        .verdict
+    };
+    assert_eq!(standard(2), SectorCharmapVerdict::C1Standard);
+    assert_eq!(standard(3), SectorCharmapVerdict::TangentPlaneContinuous);
+    for k in 5..=8 {
+        assert_eq!(standard(k), SectorCharmapVerdict::BoundaryCollapses);
+    }
+    // Loop: honest indeterminate (no box-spline patches at a sharp edge)
+    let c = cfg(
+        SdcScheme::Loop,
+        VertexKind::Boundary,
+        &[4],
+        None,
+        RuleSet::Blz,
+    );
+    let m = analyze_sector(&c).unwrap().charmap;
+    assert_eq!(m.verdict, SectorCharmapVerdict::Indeterminate);
+    assert!(m.reason.contains("box spline"), "{}", m.reason);
+}
+
+/// The certificate can fail: on the standard `K = 3` boundary, the pair
+/// (`1/2`, the next eigenvalue: the second sine mode `sin(2 i pi/3)`) spans
+/// an invariant plane whose map has a coordinate that changes sign inside
+/// the sector while the other runs along it: the map folds (a certified
+/// witness), where the true pair is certified tangent-plane continuous.
+#[test]
+fn sector_certificate_refutes_a_folding_map() {
+    let c = cfg(
+        SdcScheme::CatmullClark,
+        VertexKind::Boundary,
+        &[3],
+        None,
+        RuleSet::Standard,
+    );
+    let a = analyze_sector(&c).unwrap();
+    assert_eq!(
+        a.charmap.verdict,
+        SectorCharmapVerdict::TangentPlaneContinuous
+    );
+    let third = a
+        .eigenvalues
+        .iter()
+        .map(|z| z[0])
+        .filter(|&x| x < 0.5 - 1e-6)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let mut sub = a.subdominant.clone();
+    sub.lambda1 = num_complex::Complex64::new(0.5, 0.0);
+    sub.lambda2 = num_complex::Complex64::new(third, 0.0);
+    sub.gap = (0.5 - third).min(third - 0.25);
+    let r = super::charmap::certify(&c, &sub, [Some(true), Some(false)]);
+    assert_eq!(
+        r.verdict,
+        SectorCharmapVerdict::NotRegular,
+        "{third}: {}",
+        r.reason
+    );
+}

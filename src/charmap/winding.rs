@@ -68,6 +68,26 @@ impl HullCurve for BezierCurve {
 /// points; consecutive curves must join (end of `k` = start of `k + 1`, and of
 /// the last = start of the first) up to rounding.
 pub fn winding_number<C: HullCurve>(curves: &[C], eps: f64) -> Option<i64> {
+    let total = accumulated_angle(curves, eps, true)?;
+    let turns = total / (2.0 * PI);
+    let w = turns.round();
+    if (turns - w).abs() <= INTEGRALITY_TOL {
+        Some(w as i64)
+    } else {
+        None
+    }
+}
+
+/// The certified change of argument (radians) along the open chain
+/// `curves` (consecutive curves join up to rounding, the last is not joined
+/// to the first), or `None` if it cannot be certified: the same pieces and
+/// bridges as [`winding_number`] without the closing bridge. Used for the
+/// outer boundary of a boundary or corner sector (math doc section 18.4).
+pub fn swept_angle<C: HullCurve>(curves: &[C], eps: f64) -> Option<f64> {
+    accumulated_angle(curves, eps, false)
+}
+
+fn accumulated_angle<C: HullCurve>(curves: &[C], eps: f64, closed: bool) -> Option<f64> {
     let mut total = 0.0;
     let mut scale = 0.0f64;
     let hulls: Vec<Vec<[f64; 2]>> = curves.iter().map(HullCurve::hull).collect();
@@ -83,7 +103,12 @@ pub fn winding_number<C: HullCurve>(curves: &[C], eps: f64) -> Option<i64> {
         let e0 = eps + c.hull_error(scale);
         total += curve_angle(c, &hulls[k], e0, split_err, 0)?;
     }
-    for k in 0..curves.len() {
+    let bridges = if closed {
+        curves.len()
+    } else {
+        curves.len().saturating_sub(1)
+    };
+    for k in 0..bridges {
         let (a, b) = (hulls[k].last()?, hulls[(k + 1) % curves.len()].first()?);
         if a != b {
             // bridge: both points must be clearly away from the origin
@@ -95,13 +120,7 @@ pub fn winding_number<C: HullCurve>(curves: &[C], eps: f64) -> Option<i64> {
             total += certified_angle(&[*a, *b], e)?;
         }
     }
-    let turns = total / (2.0 * PI);
-    let w = turns.round();
-    if (turns - w).abs() <= INTEGRALITY_TOL {
-        Some(w as i64)
-    } else {
-        None
-    }
+    Some(total)
 }
 
 fn curve_angle<C: HullCurve>(

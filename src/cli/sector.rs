@@ -111,6 +111,12 @@ fn summary(c: &SectorConfig, a: &SectorAnalysis) -> String {
         a.charmap.verdict.as_str(),
         a.charmap.reason
     );
+    if let (Some(m), Some(e)) = (a.charmap.min_jacobian_coeff, a.charmap.point_error) {
+        out += &format!(
+            "  ring of {} bicubic patches: min Jacobian coefficient {m:.3e} (relative), control-point error bound {e:.1e}\n",
+            12 * c.face_count()
+        );
+    }
     out += &format!("limit stencil ({points}):");
     for &x in &a.limit_stencil {
         out += &format!(" {}", fixed8(x));

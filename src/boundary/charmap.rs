@@ -1,0 +1,675 @@
+//! The characteristic map on a Catmull-Clark boundary, corner or crease
+//! neighbourhood, certified regular and injective (math doc section 18.4).
+//!
+//! **The grid.** Around the vertex every other vertex is regular, so the
+//! neighbourhood of radius `r` is `v`, the points `L_i(d)` at distance
+//! `d = 1..r` on every edge line `i` at the vertex, and per quad `j` the
+//! points `(a, b)`, `a, b = 1..r`, of the quadrant between lines `j` (the
+//! `a` axis) and `j + 1` (the `b` axis) ([`Grid`]). At radius 1 this is the
+//! local matrix's neighbourhood in its order (`v, e_i, f_j`). The rules
+//! ([`refinement_matrix`]): those of [`SectorConfig::local_matrix`] at the
+//! vertex and its edges, the crease rule `(1/8, 3/4, 1/8)` and the midpoint
+//! on the sharp lines, Catmull-Clark's regular rules everywhere else. A
+//! level-1 point at distance `<= 2 r - 1` needs level-0 points at distance
+//! `<= r` only, so radius `r >= 2` is closed under one step and radius 3
+//! refines to radius 5.
+//!
+//! **The ring.** The level-1 cells `[a, a+1] x [b, b+1]` of a quad with
+//! `a, b <= 3` and `max(a, b) >= 2` (12 per quad; the annulus between
+//! level-0 distances 1 and 2) never need a rule at the vertex or on its
+//! edges when refined, so each is the uniform bicubic B-spline patch of its
+//! 4 x 4 window. Across a sharp line the window takes the linearly
+//! extrapolated points `2 L - P` (the crease rules are the B-spline rules on
+//! that extension). The windows are linear in the radius-3 eigenvectors
+//! (the rows of [`window_matrix`]).
+//!
+//! **The certificate.** An orthonormal basis of the subdominant invariant
+//! subspace of the radius-3 matrix with Stewart's error bound
+//! ([`PlanarBasis`]); the Bezier Jacobian test of the interior rings
+//! ([`check_bezier_patches`]) on the ring; then injectivity:
+//!
+//! * crease (a closed ring): the outer boundary winds once around the
+//!   origin, as at interior points;
+//! * boundary and corner (an open ring): each sharp line's eigenvector
+//!   entries are linear (the eigenvalue `1/2` of the cubic B-spline curve) or
+//!   zero, so the lines map onto two rays from the origin; the outer arc is
+//!   **star-shaped** (`det(gamma, gamma') > 0`, certified on Bezier hulls)
+//!   and sweeps a certified angle `Theta < 2 pi`. Then the image of the
+//!   boundary of the neighbourhood is a Jordan curve and a regular map is
+//!   one-to-one onto the sector it bounds (degree argument). A sweep
+//!   `Theta > 2 pi` proves a double cover (not injective).
+
+use super::analysis::{SectorCharmapVerdict, HALF_MATCH_TOL};
+use super::{SectorConfig, VertexKind};
+use crate::bezier::{BezierCurve, PlanarPatch, TensorBezier};
+use crate::charmap::regularity::{check_bezier_patches, gamma, RegularityVerdict};
+use crate::charmap::winding::{swept_angle, winding_number, HullCurve};
+use crate::charmap::{Eigenstructure, PlanarBasis};
+use crate::error::{Error, Result};
+use crate::mesh::sharp::rules::SdcScheme;
+use crate::schemes::catmull_clark::ring::{bicubic_bezier, Window};
+use crate::spectral::{Subdominant, SubdominantClass};
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+use std::f64::consts::PI;
+use std::fmt;
+
+/// Radius of the neighbourhood whose eigenvectors are computed (the ring's
+/// windows reach level-1 distance 5 = `2 * 3 - 1`).
+pub const EIGEN_RADIUS: usize = 3;
+
+/// Radius (in level-1 units) of the points the ring's windows use.
+pub const RING_RADIUS: usize = 5;
+
+/// Largest face count whose characteristic map is certified: the radius-3
+/// matrix has `12 K + 4` rows and Stewart's bound takes the singular values
+/// of a Kronecker matrix of twice that size (`K = 32`: 776 x 776, well under
+/// a second); above it the verdict is `indeterminate` (not attempted).
+pub const MAX_CHARMAP_FACES: usize = 32;
+
+/// Maximum de Casteljau depth of the star-shape test per outer-arc curve.
+pub const STAR_MAX_DEPTH: u32 = 24;
+
+/// Margin (radians) between the certified sweep of the outer arc and
+/// `2 pi` (one turn): within it the verdict is `indeterminate`. The
+/// certified sweep is exact up to the winding module's per-piece angle
+/// uncertainty (about `1e-9` rad per piece at the error bounds seen here);
+/// `1e-6` leaves three orders of magnitude.
+pub const SWEEP_MARGIN: f64 = 1e-6;
+
+/// The points of a sector neighbourhood of radius `r` (module docs).
+#[derive(Clone, Copy, Debug)]
+pub struct Grid<'a> {
+    c: &'a SectorConfig,
+    r: usize,
+}
+
+impl<'a> Grid<'a> {
+    /// The grid of radius `r >= 1`.
+    pub fn new(c: &'a SectorConfig, r: usize) -> Self {
+        Self { c, r: r.max(1) }
+    }
+
+    /// Number of points: `1 + lines r + quads r^2`.
+    pub fn dim(&self) -> usize {
+        1 + self.c.edge_count() * self.r + self.c.face_count() * self.r * self.r
+    }
+
+    /// The index of point `(a, b)` of quad `j` (`a, b <= r`): `v` at
+    /// `(0, 0)`, line `j` at `(a, 0)`, line `j + 1` at `(0, b)`.
+    pub fn pos(&self, j: usize, a: usize, b: usize) -> usize {
+        let (nl, nf, r) = (self.c.edge_count(), self.c.face_count(), self.r);
+        let j = j % nf;
+        match (a, b) {
+            (0, 0) => 0,
+            (a, 0) => 1 + j * r + a - 1,
+            (0, b) => 1 + ((j + 1) % nl) * r + b - 1,
+            (a, b) => 1 + nl * r + j * r * r + (a - 1) * r + b - 1,
+        }
+    }
+
+    /// Point `d` of line `i` (`d = 0` is `v`).
+    fn line(&self, i: usize, d: usize) -> usize {
+        if d == 0 {
+            0
+        } else {
+            1 + i * self.r + d - 1
+        }
+    }
+}
+
+/// The matrix taking the level-0 points of radius `r0` to the level-1
+/// points of radius `r1` (module docs; `1 <= r1 <= 2 r0 - 1`; rows and
+/// columns in [`Grid`] order). Catmull-Clark only. At `r0 = r1 = 1` it is
+/// [`SectorConfig::local_matrix`].
+pub fn refinement_matrix(c: &SectorConfig, r0: usize, r1: usize) -> Result<DMatrix<f64>> {
+    if c.scheme() != SdcScheme::CatmullClark {
+        return Err(Error::InvalidParameter {
+            name: "scheme",
+            value: super::scheme_name(c.scheme()).to_owned(),
+            reason: "the sector grid is built for Catmull-Clark",
+        });
+    }
+    if r0 == 0 || r1 == 0 || r1 + 1 > 2 * r0 {
+        return Err(Error::InvalidParameter {
+            name: "radius",
+            value: format!("{r0} -> {r1}"),
+            reason: "a level-1 radius r1 needs 1 <= r1 <= 2 r0 - 1",
+        });
+    }
+    let g0 = Grid::new(c, r0);
+    let g1 = Grid::new(c, r1);
+    let (nl, nf) = (c.edge_count(), c.face_count());
+    let mut m = DMatrix::<f64>::zeros(g1.dim(), g0.dim());
+    let mut add = |row: usize, col: usize, w: f64| m[(row, col)] += w;
+    let [sa, sb] = c.sharp_edges();
+    match c.kind() {
+        VertexKind::Corner => add(0, 0, 1.0),
+        _ => {
+            add(0, 0, 0.75);
+            add(0, g0.line(sa, 1), 0.125);
+            add(0, g0.line(sb, 1), 0.125);
+        }
+    }
+    for i in 0..nl {
+        let sector = c.sector_of_edge(i);
+        // quad i has line i as its a axis, quad i - 1 as its b axis
+        let qi = |x: usize, y: usize| g0.pos(i, x, y);
+        let qp = |x: usize, y: usize| g0.pos(i + nf - 1, y, x);
+        for big_d in 1..=r1 {
+            let row = g1.line(i, big_d);
+            let d = big_d / 2;
+            match (sector, big_d % 2) {
+                (None, 0) => {
+                    add(row, g0.line(i, d - 1), 0.125);
+                    add(row, g0.line(i, d), 0.75);
+                    add(row, g0.line(i, d + 1), 0.125);
+                }
+                (None, _) => {
+                    add(row, g0.line(i, d), 0.5);
+                    add(row, g0.line(i, d + 1), 0.5);
+                }
+                (Some(_), 0) => {
+                    add(row, g0.line(i, d), 9.0 / 16.0);
+                    for p in [g0.line(i, d - 1), g0.line(i, d + 1), qi(d, 1), qp(d, 1)] {
+                        add(row, p, 3.0 / 32.0);
+                    }
+                    for p in [qi(d - 1, 1), qi(d + 1, 1), qp(d - 1, 1), qp(d + 1, 1)] {
+                        add(row, p, 1.0 / 64.0);
+                    }
+                }
+                (Some(s), _) => {
+                    let (w0, w1) = if d == 0 {
+                        let g = c.gamma(s);
+                        (0.75 - g, g)
+                    } else {
+                        (0.375, 0.375)
+                    };
+                    add(row, g0.line(i, d), w0);
+                    add(row, g0.line(i, d + 1), w1);
+                    for p in [qi(d, 1), qi(d + 1, 1), qp(d, 1), qp(d + 1, 1)] {
+                        add(row, p, 0.0625);
+                    }
+                }
+            }
+        }
+    }
+    for j in 0..nf {
+        let q = |x: usize, y: usize| g0.pos(j, x, y);
+        for big_a in 1..=r1 {
+            for big_b in 1..=r1 {
+                let row = g1.pos(j, big_a, big_b);
+                let (a, b) = (big_a / 2, big_b / 2);
+                match (big_a % 2, big_b % 2) {
+                    (0, 0) => {
+                        add(row, q(a, b), 9.0 / 16.0);
+                        for p in [q(a - 1, b), q(a + 1, b), q(a, b - 1), q(a, b + 1)] {
+                            add(row, p, 3.0 / 32.0);
+                        }
+                        for p in [
+                            q(a - 1, b - 1),
+                            q(a + 1, b - 1),
+                            q(a - 1, b + 1),
+                            q(a + 1, b + 1),
+                        ] {
+                            add(row, p, 1.0 / 64.0);
+                        }
+                    }
+                    (1, 0) => {
+                        add(row, q(a, b), 0.375);
+                        add(row, q(a + 1, b), 0.375);
+                        for p in [q(a, b - 1), q(a, b + 1), q(a + 1, b - 1), q(a + 1, b + 1)] {
+                            add(row, p, 0.0625);
+                        }
+                    }
+                    (0, _) => {
+                        add(row, q(a, b), 0.375);
+                        add(row, q(a, b + 1), 0.375);
+                        for p in [q(a - 1, b), q(a + 1, b), q(a - 1, b + 1), q(a + 1, b + 1)] {
+                            add(row, p, 0.0625);
+                        }
+                    }
+                    _ => {
+                        for p in [q(a, b), q(a + 1, b), q(a, b + 1), q(a + 1, b + 1)] {
+                            add(row, p, 0.25);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(m)
+}
+
+/// A cell of the sector's ring: quad `face`, level-1 cell `[a, a+1] x [b, b+1]`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+pub struct SectorCell {
+    /// The quad (`v, e_j, f_j, e_(j+1)`).
+    pub face: usize,
+    /// Cell offset along the quad's first edge line (level-1 units).
+    pub a: usize,
+    /// Cell offset along the quad's second edge line.
+    pub b: usize,
+}
+
+impl fmt::Display for SectorCell {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "cell ({}, {}) of quad {}", self.a, self.b, self.face)
+    }
+}
+
+/// The ring's cells in order: quad by quad, `a` then `b`.
+pub fn ring_cells(c: &SectorConfig) -> Vec<SectorCell> {
+    let mut out = Vec::new();
+    for face in 0..c.face_count() {
+        for a in 0..4 {
+            for b in 0..4 {
+                if a.max(b) >= 2 {
+                    out.push(SectorCell { face, a, b });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The window rows: row `16 k + 4 p + q` gives point `(a - 1 + p, b - 1 + q)`
+/// of cell `k` of [`ring_cells`] as a combination of the radius-3 points
+/// (the radius-5 level-1 points of [`refinement_matrix`], extrapolated
+/// across sharp lines; module docs).
+pub fn window_matrix(c: &SectorConfig) -> Result<DMatrix<f64>> {
+    let ext = refinement_matrix(c, EIGEN_RADIUS, RING_RADIUS)?;
+    let g1 = Grid::new(c, RING_RADIUS);
+    let nf = c.face_count();
+    let cells = ring_cells(c);
+    let cols = ext.ncols();
+    let row_of = |j: usize, a: usize, b: usize| -> Vec<f64> {
+        ext.row(g1.pos(j, a, b)).iter().copied().collect()
+    };
+    let combo = |x: Vec<f64>, y: Vec<f64>| -> Vec<f64> {
+        x.iter().zip(&y).map(|(p, q)| 2.0 * p - q).collect()
+    };
+    // point (aa, bb) of quad j, aa or bb possibly -1
+    let point = |j: usize, aa: i64, bb: i64| -> Vec<f64> {
+        match (aa, bb) {
+            (a, -1) => {
+                let a = a as usize;
+                if c.sector_of_edge(j).is_none() {
+                    combo(row_of(j, a, 0), row_of(j, a, 1))
+                } else {
+                    row_of(j + nf - 1, 1, a)
+                }
+            }
+            (-1, b) => {
+                let b = b as usize;
+                if c.sector_of_edge((j + 1) % c.edge_count()).is_none() {
+                    combo(row_of(j, 0, b), row_of(j, 1, b))
+                } else {
+                    row_of(j + 1, b, 1)
+                }
+            }
+            (a, b) => row_of(j, a as usize, b as usize),
+        }
+    };
+    let mut w = DMatrix::<f64>::zeros(16 * cells.len(), cols);
+    for (k, cell) in cells.iter().enumerate() {
+        for p in 0..4 {
+            for q in 0..4 {
+                let v = point(
+                    cell.face,
+                    cell.a as i64 - 1 + p as i64,
+                    cell.b as i64 - 1 + q as i64,
+                );
+                for (col, x) in v.into_iter().enumerate() {
+                    w[(16 * k + 4 * p + q, col)] = x;
+                }
+            }
+        }
+    }
+    Ok(w)
+}
+
+/// The right null vectors of `S - lambda I` (`count` of them, smallest
+/// singular values first).
+fn null_vectors(s: &DMatrix<f64>, lambda: f64, count: usize) -> Vec<Vec<f64>> {
+    let n = s.nrows();
+    let m = s - DMatrix::<f64>::identity(n, n) * lambda;
+    let svd = m.svd(false, true);
+    let Some(vt) = svd.v_t else {
+        return Vec::new();
+    };
+    let mut order: Vec<usize> = (0..svd.singular_values.len()).collect();
+    order.sort_by(|&a, &b| svd.singular_values[a].total_cmp(&svd.singular_values[b]));
+    order
+        .into_iter()
+        .take(count)
+        .map(|k| vt.row(k).iter().copied().collect())
+        .collect()
+}
+
+/// The certified result on the sector (math doc section 18.4).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SectorMapCheck {
+    /// The verdict.
+    pub verdict: SectorCharmapVerdict,
+    /// Why (one sentence).
+    pub reason: String,
+    /// The smallest Bezier coefficient of the oriented Jacobian relative to
+    /// the largest (`None` before the regularity test).
+    pub min_jacobian_coeff: Option<f64>,
+    /// The error bound of the ring's control points (`None` before it is known).
+    pub point_error: Option<f64>,
+    /// The certified angle (degrees) swept by the outer arc of a boundary or
+    /// corner ring, in the oriented orthonormal basis (a linear change of
+    /// basis changes it, but not whether it is below, at or above 180).
+    pub swept_degrees: Option<f64>,
+}
+
+impl SectorMapCheck {
+    fn undecided(reason: String) -> Self {
+        Self {
+            verdict: SectorCharmapVerdict::Indeterminate,
+            reason,
+            min_jacobian_coeff: None,
+            point_error: None,
+            swept_degrees: None,
+        }
+    }
+}
+
+/// Is `det(gamma, gamma') > 0` on the cubic Bezier curve? The curve lies in
+/// the hull of its points `b_i` and its derivative in the cone of the
+/// differences `d_k = b_(k+1) - b_k`, so `det(b_i, d_k) > E` for all pairs
+/// certifies it. `E` **\[derived\]**: points off by `e` (`eps` plus the
+/// splits' rounding), differences by `2 e`, so a determinant of magnitudes
+/// `pm`, `dm` is off by at most `2 (2 e pm + e dm + 2 e^2)` plus its own
+/// rounding `2 gamma_3 pm dm`. A start or end value below `-E` is a
+/// witness (the curve's end points and end tangents are `b_0`, `b_3` and
+/// multiples of `d_0`, `d_2`).
+fn star_shaped(c: &BezierCurve, eps: f64, split_err: f64, depth: u32) -> Option<bool> {
+    let p = &c.points;
+    let e = eps + split_err * depth as f64;
+    let d: Vec<[f64; 2]> = p
+        .windows(2)
+        .map(|w| [w[1][0] - w[0][0], w[1][1] - w[0][1]])
+        .collect();
+    let mag = |v: &[[f64; 2]]| {
+        v.iter()
+            .fold(0.0f64, |m, x| m.max(x[0].abs()).max(x[1].abs()))
+    };
+    let (pm, dm) = (mag(p), mag(&d));
+    let bound = 2.0 * (2.0 * e * pm + e * dm + 2.0 * e * e) + 2.0 * gamma(3) * pm * dm;
+    let det = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+    let lo = p
+        .iter()
+        .flat_map(|a| d.iter().map(move |b| det(*a, *b)))
+        .fold(f64::INFINITY, f64::min);
+    if lo > bound {
+        return Some(true);
+    }
+    let (first, last) = (p.len() - 1, d.len() - 1);
+    if det(p[0], d[0]) < -bound || det(p[first], d[last]) < -bound {
+        return Some(false);
+    }
+    if depth >= STAR_MAX_DEPTH || bound.is_nan() {
+        return None;
+    }
+    let (l, r) = c.split(0.5);
+    match star_shaped(&l, eps, split_err, depth + 1) {
+        Some(false) => Some(false),
+        left => match (left, star_shaped(&r, eps, split_err, depth + 1)) {
+            (_, Some(false)) => Some(false),
+            (Some(true), Some(true)) => Some(true),
+            _ => None,
+        },
+    }
+}
+
+/// Certifies the characteristic map of a Catmull-Clark sector whose
+/// subdominant pair `sub` (class standard or real_distinct) is not
+/// collapsed on the sharp lines; `on_sharp` says which of `lambda_1,
+/// lambda_2` are eigenvalues of the sharp-edge block (module docs).
+pub fn certify(c: &SectorConfig, sub: &Subdominant, on_sharp: [Option<bool>; 2]) -> SectorMapCheck {
+    if c.scheme() != SdcScheme::CatmullClark {
+        return SectorMapCheck::undecided(
+            "the Loop sector's patches next to a sharp edge are not quartic box splines (Loop's crease rule is not the box spline on extrapolated points), so the box-spline certificate of section 11 does not apply".to_owned(),
+        );
+    }
+    if c.face_count() > MAX_CHARMAP_FACES {
+        return SectorMapCheck::undecided(format!(
+            "not attempted above {MAX_CHARMAP_FACES} faces (the certificate's cost grows as the cube of the neighbourhood)"
+        ));
+    }
+    let structure = match sub.class {
+        SubdominantClass::Standard => Eigenstructure::Standard,
+        SubdominantClass::RealDistinct => Eigenstructure::RealDistinct,
+        _ => {
+            return SectorMapCheck::undecided(format!(
+                "the sector certificate is built for real subdominant eigenvalues (class {})",
+                sub.class.name()
+            ))
+        }
+    };
+    let open = c.kind() != VertexKind::Crease;
+    if open {
+        for (k, lam) in [sub.lambda1, sub.lambda2].iter().enumerate() {
+            if on_sharp[k] == Some(true) && (lam.re - 0.5).abs() > HALF_MATCH_TOL {
+                return SectorMapCheck::undecided(format!(
+                    "lambda{} = {} belongs to the sharp-edge block but is not 1/2, so the sharp lines' images are not known to be rays",
+                    k + 1,
+                    lam.re
+                ));
+            }
+        }
+    }
+    match certify_ring(c, sub, structure, open) {
+        Ok(r) => r,
+        Err(e) => SectorMapCheck::undecided(format!("the ring could not be built: {e}")),
+    }
+}
+
+fn certify_ring(
+    c: &SectorConfig,
+    sub: &Subdominant,
+    structure: Eigenstructure,
+    open: bool,
+) -> Result<SectorMapCheck> {
+    let s = refinement_matrix(c, EIGEN_RADIUS, EIGEN_RADIUS)?;
+    let (l1, l2) = (sub.lambda1.re, sub.lambda2.re);
+    let vecs = match structure {
+        Eigenstructure::Standard => null_vectors(&s, l1, 2),
+        _ => {
+            let mut v = null_vectors(&s, l1, 1);
+            v.extend(null_vectors(&s, l2, 1));
+            v
+        }
+    };
+    if vecs.len() != 2 {
+        return Ok(SectorMapCheck::undecided(
+            "no pair of null vectors from the singular value decomposition".to_owned(),
+        ));
+    }
+    let gap = sub.gap.min(1.0 - sub.lambda1.norm());
+    let lam = [Complex64::new(l1, 0.0), Complex64::new(l2, 0.0)];
+    let basis = PlanarBasis::new(&s, structure, lam, &vecs[0], &vecs[1], gap)?;
+    let wm = window_matrix(c)?;
+    let delta = crate::charmap::catmull_clark::point_error(&wm, &basis, &[]);
+    if !delta.is_finite() {
+        return Ok(SectorMapCheck::undecided(
+            "the subdominant invariant subspace of the radius-3 neighbourhood is not certified (Stewart's separation hypothesis fails)".to_owned(),
+        ));
+    }
+    let apply = |w: &[f64]| -> Vec<f64> {
+        (&wm * nalgebra::DVector::from_column_slice(w))
+            .iter()
+            .copied()
+            .collect()
+    };
+    let (x, y) = (apply(&basis.w1), apply(&basis.w2));
+    let cells = ring_cells(c);
+    let patches: Vec<(SectorCell, PlanarPatch)> = cells
+        .iter()
+        .enumerate()
+        .map(|(k, cell)| {
+            let win: Window = std::array::from_fn(|p| {
+                std::array::from_fn(|q| [x[16 * k + 4 * p + q], y[16 * k + 4 * p + q]])
+            });
+            let coord = |i: usize| {
+                let b = bicubic_bezier(&win, i);
+                TensorBezier::from_fn(3, 3, |a, bb| b[a][bb])
+            };
+            (
+                *cell,
+                PlanarPatch {
+                    x: coord(0),
+                    y: coord(1),
+                },
+            )
+        })
+        .collect();
+    let refs: Vec<(SectorCell, &PlanarPatch)> = patches.iter().map(|(i, p)| (*i, p)).collect();
+    let reg = check_bezier_patches(&refs, delta)?;
+    let mut out = SectorMapCheck {
+        verdict: SectorCharmapVerdict::Indeterminate,
+        reason: String::new(),
+        min_jacobian_coeff: Some(reg.min_coeff),
+        point_error: Some(delta),
+        swept_degrees: None,
+    };
+    match reg.verdict {
+        RegularityVerdict::NotRegular => {
+            out.verdict = SectorCharmapVerdict::NotRegular;
+            out.reason = match reg.witness {
+                Some((p, v)) => format!(
+                    "the Jacobian changes sign: {} at (s, t) = ({:.4}, {:.4}) has relative value {v:.3e}",
+                    p.patch, p.s, p.t
+                ),
+                None => "the Jacobian changes sign".to_owned(),
+            };
+            return Ok(out);
+        }
+        RegularityVerdict::Indeterminate => {
+            out.reason = format!(
+                "Jacobian sign not certified (min coefficient {:.3e}, error bound {:.3e}, relative)",
+                reg.min_coeff, reg.relative_error_bound
+            );
+            return Ok(out);
+        }
+        RegularityVerdict::Regular => {}
+    }
+    // the outer arc, oriented so that the Jacobian is positive
+    let sigma = if reg.orientation < 0 { -1.0 } else { 1.0 };
+    let index = |cell: SectorCell| cells.iter().position(|x| *x == cell);
+    let mut arc: Vec<BezierCurve> = Vec::new();
+    for face in 0..c.face_count() {
+        let pts = |a: usize, b: usize, ij: &dyn Fn(usize) -> (usize, usize)| {
+            let k = index(SectorCell { face, a, b }).unwrap_or(0);
+            let p = &patches[k].1;
+            BezierCurve::new(
+                (0..4)
+                    .map(|t| {
+                        let (i, j) = ij(t);
+                        [p.x.coeff(i, j), sigma * p.y.coeff(i, j)]
+                    })
+                    .collect(),
+            )
+        };
+        for b in 0..4 {
+            arc.push(pts(3, b, &|t| (3, t)));
+        }
+        for a in (0..4).rev() {
+            arc.push(pts(a, 3, &|t| (3 - t, 3)));
+        }
+    }
+    let tpc_or_c1 = || match structure {
+        Eigenstructure::Standard => SectorCharmapVerdict::C1Standard,
+        _ => SectorCharmapVerdict::TangentPlaneContinuous,
+    };
+    if !open {
+        return Ok(match winding_number(&arc, delta) {
+            Some(1) => SectorMapCheck {
+                verdict: tpc_or_c1(),
+                reason: "regular, and the ring's outer boundary winds once around the limit point (as at interior points)".to_owned(),
+                ..out
+            },
+            Some(w) => SectorMapCheck {
+                verdict: SectorCharmapVerdict::NotInjective,
+                reason: format!("regular, but the ring's outer boundary winds {w} times around the limit point"),
+                ..out
+            },
+            None => SectorMapCheck {
+                reason: "regular; the winding number of the outer boundary is not certified".to_owned(),
+                ..out
+            },
+        });
+    }
+    let mut scale = 0.0f64;
+    for cu in &arc {
+        for p in &cu.points {
+            scale = scale.max(p[0].abs()).max(p[1].abs());
+        }
+    }
+    let mut star = Some(true);
+    for cu in &arc {
+        let split_err = cu.split_error(scale);
+        match star_shaped(cu, delta, split_err, 0) {
+            Some(true) => {}
+            Some(false) => {
+                star = Some(false);
+                break;
+            }
+            None => star = None,
+        }
+    }
+    match star {
+        Some(false) => {
+            out.reason = "regular, but the outer arc is not star-shaped around the limit point, so the injectivity certificate (section 18.4) does not apply".to_owned();
+            return Ok(out);
+        }
+        None => {
+            out.reason = "regular; whether the outer arc is star-shaped around the limit point is not certified".to_owned();
+            return Ok(out);
+        }
+        Some(true) => {}
+    }
+    let Some(theta) = swept_angle(&arc, delta) else {
+        out.reason =
+            "regular and star-shaped; the angle swept by the outer arc is not certified".to_owned();
+        return Ok(out);
+    };
+    out.swept_degrees = Some(theta.to_degrees());
+    if theta < 2.0 * PI - SWEEP_MARGIN {
+        let shape = if theta < PI - SWEEP_MARGIN {
+            "a convex sector"
+        } else if theta > PI + SWEEP_MARGIN {
+            "a reflex sector"
+        } else {
+            "a half-plane (up to the sweep margin)"
+        };
+        out.verdict = tpc_or_c1();
+        // a linear change of basis keeps a sector convex or reflex: compare
+        // with the corner's angle
+        let mismatch = match c.angle() {
+            Some(t) if t > PI && theta < PI - SWEEP_MARGIN => {
+                "; the corner angle is reflex but the image is convex, so the limit surface has a convex corner there (section 18.2)"
+            }
+            Some(t) if t < PI && theta > PI + SWEEP_MARGIN => {
+                "; the corner angle is convex but the image is reflex (section 18.2)"
+            }
+            _ => "",
+        };
+        out.reason = format!(
+            "regular, and one-to-one onto {shape}: the sharp lines map onto two rays and the star-shaped outer arc between them sweeps {:.6} degrees{mismatch}",
+            theta.to_degrees()
+        );
+    } else if theta > 2.0 * PI + SWEEP_MARGIN {
+        out.verdict = SectorCharmapVerdict::NotInjective;
+        out.reason = format!(
+            "regular, but the star-shaped outer arc sweeps {:.6} degrees (more than one turn): the sector is covered twice near the limit point",
+            theta.to_degrees()
+        );
+    } else {
+        out.reason = "regular; the outer arc sweeps one turn within the margin".to_owned();
+    }
+    Ok(out)
+}
