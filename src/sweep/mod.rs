@@ -58,6 +58,7 @@ pub(crate) mod summary;
 pub use error::SweepError;
 pub use estimate::{batch_rows, sweep_rows};
 pub use eval::{Cell, Evaluate, SpectralEvaluator};
+pub use output::files::{run, run_plan, Opened, Progress, RunOptions, RunReport, Sink};
 pub use output::Layout;
 pub use plan::{Configuration, Configured, Plan, SchemeFactory, Shard};
 pub use spec::{Columns, Sampler, Space, SpaceKind, SweepSpec, MAX_CONFIGURATIONS};
