@@ -474,7 +474,17 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     let plan = plan_of(spec, &args.spec, args.scheme_file.as_deref())?;
     // The inputs: CSV shard files (each with its summary beside it) or
     // Parquet dataset directories (the parts and summaries of their shards).
-    let (shards, parquet) = files::merge_inputs(&args.inputs).map_err(CliError::lib)?;
+    // A dataset's shards are listed (and read) first, for their summaries'
+    // names; CSV shards are read after the output checks.
+    let parquet = files::merge_format(&args.inputs).map_err(CliError::lib)?;
+    let mut shards = Vec::new();
+    let mut summaries = Vec::new();
+    if parquet {
+        shards = files::merge_inputs(&args.inputs).map_err(CliError::lib)?;
+        summaries.extend(shards.iter().map(|s| PathBuf::from(&s.summary_name)));
+    } else {
+        summaries.extend(args.inputs.iter().map(|p| summary_path(p)));
+    }
     let format = if parquet {
         Format::Parquet
     } else {
@@ -487,8 +497,8 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     for p in &args.inputs {
         inputs.push(("the input", p.as_path()));
     }
-    for s in &shards {
-        inputs.push(("the summary of an input", Path::new(&s.summary_name)));
+    for s in &summaries {
+        inputs.push(("the summary of an input", s.as_path()));
     }
     let spath = summary_path(&args.out);
     files::check_not_special("merge", &args.out).map_err(CliError::lib)?;
@@ -502,6 +512,9 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
             named.name(),
             format.extension()
         )));
+    }
+    if !parquet {
+        shards = files::merge_inputs(&args.inputs).map_err(CliError::lib)?;
     }
     let merged = files::merge_files(&plan, shards, &args.spec.display().to_string(), &args.out)
         .map_err(CliError::lib)?;

@@ -567,13 +567,10 @@ pub struct MergeReport {
     pub shards: usize,
 }
 
-/// The shards of the merge inputs: CSV shard files (each with its summary
-/// beside it) or Parquet dataset directories (every shard's parts and
-/// summary), one format for all; returns them with the summary files read
-/// and whether they are Parquet.
-pub fn merge_inputs(
-    inputs: &[PathBuf],
-) -> Result<(Vec<ShardFile<BufReader<File>>>, bool), SweepError> {
+/// The format of the merge inputs: whether they are Parquet dataset
+/// directories (else CSV shard files), refusing a single Parquet file and a
+/// mix of formats.
+pub fn merge_format(inputs: &[PathBuf]) -> Result<bool, SweepError> {
     let Some(first) = inputs.first() else {
         return Err(SweepError::MergeInput(
             "give at least one shard file".into(),
@@ -593,6 +590,14 @@ pub fn merge_inputs(
             "the shards mix CSV files and Parquet datasets; merge shards of one format".into(),
         ));
     }
+    Ok(parquet)
+}
+
+/// The shards of the merge inputs ([`merge_format`]): every shard of each
+/// Parquet dataset directory (its summary and parts read), or each CSV shard
+/// file with the summary beside it (read) and the file opened.
+pub fn merge_inputs(inputs: &[PathBuf]) -> Result<Vec<ShardFile<BufReader<File>>>, SweepError> {
+    let parquet = merge_format(inputs)?;
     let mut shards = Vec::new();
     for p in inputs {
         if parquet {
@@ -616,7 +621,7 @@ pub fn merge_inputs(
             data: ShardData::Csv(BufReader::with_capacity(1 << 20, file)),
         });
     }
-    Ok((shards, parquet))
+    Ok(shards)
 }
 
 /// Merges `shards` ([`merge_inputs`]) of `plan` into the single file `out`
