@@ -14,7 +14,7 @@
 //!   touched unless the tool wrote them: a directory must be new, empty, or
 //!   an earlier output of the same command (recognised by the file it always
 //!   writes there); a resumable file is created whole with its fingerprint
-//!   ([`install_new`], so a file at that path without one is not the
+//!   ([`subdiv_lab::outfiles::install_new`], so a file at that path without one is not the
 //!   tool's) and continued only by `--resume`.
 //!
 //! A failed run leaves no new file, and the tool never deletes or renames
