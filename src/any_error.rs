@@ -62,7 +62,7 @@ impl AnyError {
             AnyError::CcssBound(e) => ccss_bound_is_input(e),
             AnyError::Mesh(e) => mesh_is_input(e),
             AnyError::Spectral(e) => spectral_is_input(e),
-            AnyError::Sweep(e) => !matches!(e, SweepError::Io(_)),
+            AnyError::Sweep(e) => !matches!(e, SweepError::Io(_) | SweepError::File(_)),
             AnyError::G2Cap(e) => e.is_input_error(),
         }
     }

@@ -109,6 +109,7 @@ pub mod g2cap;
 pub(crate) mod hash;
 pub mod knots;
 pub mod mesh;
+pub mod outfiles;
 #[cfg(feature = "report")]
 pub mod report;
 pub mod rng;

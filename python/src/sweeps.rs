@@ -13,8 +13,7 @@ use subdiv_lab::budget::{
 };
 use subdiv_lab::schemes::user::SchemeFile;
 use subdiv_lab::sweep::eval::Cell;
-use subdiv_lab::sweep::output::shards::{self, summary_path, ShardData, ShardFile};
-use subdiv_lab::sweep::output::{self, Row};
+use subdiv_lab::sweep::output::{self, files, shards, Row};
 use subdiv_lab::sweep::{Layout, Plan, SchemeFactory, Shard, SpectralEvaluator, SweepSpec};
 
 /// A TOML sweep spec from its JSON form (the Python dict).
@@ -155,13 +154,61 @@ fn table<'py>(
     Ok((names, out))
 }
 
-/// `sweep`: the rows of a sweep (all, one shard, or its first `limit` ids) as columns.
+/// Where an exception raised by a Python scheme object is kept.
+type Raised = std::sync::Arc<std::sync::Mutex<Option<PyErr>>>;
+
+/// A shard `(I, N)` as Python gave it (default: all configurations).
+fn shard_of(shard: Option<(Int, Int)>) -> PyResult<Shard> {
+    let Some((i, k)) = shard else {
+        return Ok(Shard::ALL);
+    };
+    let bad = || lib_err(subdiv_lab::sweep::SweepError::BadShard(format!("{i}/{k}")));
+    let (i, k) = (
+        i.u64("shard").map_err(|_| bad())?,
+        k.u64("shard").map_err(|_| bad())?,
+    );
+    Shard::new(i, k).map_err(lib_err)
+}
+
+/// The plan of a spec, with `scheme_file` (a scheme file's text) or
+/// `scheme` (a duck-typed Python object, [`crate::user::python_factory`],
+/// whose exceptions go to `raised`) in place of the spec's scheme.
+fn plan_of(
+    py: Python<'_>,
+    spec: SweepSpec,
+    origin: &SpecOrigin,
+    scheme_file: Option<String>,
+    scheme: Option<&Bound<'_, PyAny>>,
+    raised: &Raised,
+) -> PyResult<Plan> {
+    let factory = match (scheme_file, scheme) {
+        (Some(_), Some(_)) => {
+            return Err(value_err(
+                "scheme_file and scheme are mutually exclusive; give one",
+            ))
+        }
+        (Some(text), None) => Some(SchemeFactory::from_file(
+            SchemeFile::parse_shared(&text).map_err(|e| value_err(format!("scheme_file: {e}")))?,
+        )),
+        (None, Some(obj)) => Some(crate::user::python_factory(py, obj, raised.clone())?),
+        (None, None) => None,
+    };
+    match factory {
+        Some(f) => Plan::with_scheme(spec, f).map_err(|e| origin.sweep_error(e)),
+        None => Ok(Plan::new(spec)),
+    }
+}
+
+/// `sweep`: the rows of a sweep (all, one shard, or its first `limit` ids)
+/// as columns; with `out`, run into that file instead ([`files::run_plan`]:
+/// a CSV, or a Parquet dataset directory NAME.parquet, resumable as the
+/// command's) and return its summary (JSON text).
 #[pyfunction]
 /// With `scheme_file` (a scheme file's text) or `scheme` (a duck-typed
 /// Python object, [`crate::user::python_factory`]) the spec's valences are
 /// swept with that scheme through the same engine ([`Plan::with_scheme`]);
 /// an exception raised by the object's code is re-raised as it is.
-#[pyo3(signature = (spec_toml, spec_path=None, from_dict=false, threads=None, shard=None, limit=None, force=false, scheme_file=None, scheme=None))]
+#[pyo3(signature = (spec_toml, spec_path=None, from_dict=false, threads=None, shard=None, limit=None, force=false, scheme_file=None, scheme=None, out=None, resume=false))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn sweep<'py>(
     py: Python<'py>,
@@ -174,50 +221,29 @@ pub(crate) fn sweep<'py>(
     force: bool,
     scheme_file: Option<String>,
     scheme: Option<Bound<'py, PyAny>>,
-) -> PyResult<(Vec<String>, Bound<'py, PyDict>)> {
+    out: Option<std::path::PathBuf>,
+    resume: bool,
+) -> PyResult<Bound<'py, PyAny>> {
     guard("sweep", || {
         let origin = SpecOrigin::new(spec_path, from_dict);
         let spec = parse_spec(spec_toml, &origin)?;
         let threads = crate::threads(threads)?;
-        let shard = match shard {
-            Some((i, k)) => {
-                let bad = || lib_err(subdiv_lab::sweep::SweepError::BadShard(format!("{i}/{k}")));
-                let (i, k) = (
-                    i.u64("shard").map_err(|_| bad())?,
-                    k.u64("shard").map_err(|_| bad())?,
-                );
-                Shard::new(i, k).map_err(lib_err)?
-            }
-            None => Shard::ALL,
-        };
+        let shard = shard_of(shard)?;
         let limit_rows = limit.map(|l| l.u64("limit")).transpose()?;
-        let raised = std::sync::Arc::new(std::sync::Mutex::new(None));
-        let factory = match (scheme_file, &scheme) {
-            (Some(_), Some(_)) => {
-                return Err(value_err(
-                    "scheme_file and scheme are mutually exclusive; give one",
-                ))
-            }
-            (Some(text), None) => Some(SchemeFactory::from_file(
-                SchemeFile::parse_shared(&text)
-                    .map_err(|e| value_err(format!("scheme_file: {e}")))?,
-            )),
-            (None, Some(obj)) => Some(crate::user::python_factory(py, obj, raised.clone())?),
-            (None, None) => None,
-        };
-        let plan = match factory {
-            Some(f) => Plan::with_scheme(spec, f).map_err(|e| origin.sweep_error(e))?,
-            None => Plan::new(spec),
-        };
+        let raised = Raised::default();
+        let plan = plan_of(py, spec, &origin, scheme_file, scheme.as_ref(), &raised)?;
         let layout = Layout::new(&plan);
         let count = shard.len(plan.total()).min(limit_rows.unwrap_or(u64::MAX));
-        // The CLI's sweep estimate of these rows, and the rows held in memory.
-        let estimate = held_in_memory(
-            subdiv_lab::sweep::sweep_rows(&plan, count, shard.count, threads),
-            count,
-            layout.column_names().len(),
-            TABLE_BYTES_PER_CELL,
-        );
+        // The CLI's sweep estimate of these rows (and in memory, the rows held).
+        let mut estimate = subdiv_lab::sweep::sweep_rows(&plan, count, shard.count, threads);
+        if out.is_none() {
+            estimate = held_in_memory(
+                estimate,
+                count,
+                layout.column_names().len(),
+                TABLE_BYTES_PER_CELL,
+            );
+        }
         let subject = match &origin {
             SpecOrigin::Path(p) => p.clone(),
             _ => format!("spec {:?}", plan.spec().name),
@@ -229,6 +255,28 @@ pub(crate) fn sweep<'py>(
             SWEEP_TIME_LIMIT_SECONDS,
             force,
         )?;
+        let reraise = || raised.lock().ok().and_then(|mut slot| slot.take());
+        if let Some(out) = out {
+            let options = files::RunOptions {
+                shard,
+                limit: limit_rows,
+                resume,
+                threads,
+                progress: None,
+            };
+            let report = py.detach(|| files::run_plan(&plan, files::Sink::for_path(&out), options));
+            if let Some(e) = reraise() {
+                return Err(e);
+            }
+            let json =
+                serde_json::to_string(&report.map_err(lib_err)?.summary).map_err(runtime_err)?;
+            return Ok(pyo3::types::PyString::new(py, &json).into_any());
+        }
+        if resume {
+            return Err(value_err(
+                "resume=True needs out=FILE (a CSV or NAME.parquet)",
+            ));
+        }
         let eval = SpectralEvaluator::new(plan.spec().columns);
         let pool = crate::pool(threads)?;
         let rows: Vec<Row> = py.detach(|| {
@@ -239,40 +287,11 @@ pub(crate) fn sweep<'py>(
                     .collect()
             })
         });
-        if let Some(e) = raised.lock().ok().and_then(|mut slot| slot.take()) {
+        if let Some(e) = reraise() {
             return Err(e);
         }
-        table(py, &layout, rows)
+        Ok(table(py, &layout, rows)?.into_pyobject(py)?.into_any())
     })
-}
-
-/// Reads the shards of one input of `merge`: a CSV shard (its summary
-/// beside it, as `sweep` writes it; the rows read line by line), or every
-/// shard of a Parquet dataset directory.
-fn read_shards(path: &str) -> PyResult<Vec<ShardFile<std::io::BufReader<std::fs::File>>>> {
-    let p = std::path::Path::new(path);
-    if p.is_dir() {
-        return output::dataset::dataset_shards(p).map_err(lib_err);
-    }
-    if output::dataset::is_parquet_file(p) {
-        return Err(value_err(format!(
-            "{path}: a single Parquet file: merge takes the dataset directories NAME.parquet that sweep writes"
-        )));
-    }
-    let sp = summary_path(p);
-    let summary = std::fs::read_to_string(&sp).map_err(|e| {
-        value_err(format!(
-            "reading {} (the summary `sweep` writes beside {path}; merge needs it): {e}",
-            sp.display()
-        ))
-    })?;
-    let file = std::fs::File::open(p).map_err(|e| value_err(format!("opening {path}: {e}")))?;
-    Ok(vec![ShardFile {
-        name: path.to_owned(),
-        summary_name: sp.display().to_string(),
-        summary,
-        data: ShardData::Csv(std::io::BufReader::with_capacity(1 << 20, file)),
-    }])
 }
 
 /// `merge`: the shards of one sweep (files written by `sweep --shard I/N`),
@@ -314,10 +333,8 @@ pub(crate) fn merge<'py>(
             SWEEP_TIME_LIMIT_SECONDS,
             force,
         )?;
-        let mut shards = Vec::new();
-        for p in &inputs {
-            shards.extend(read_shards(p)?);
-        }
+        let paths: Vec<std::path::PathBuf> = inputs.iter().map(Into::into).collect();
+        let shards = files::merge_inputs(&paths).map_err(lib_err)?;
         let spec_name = match &origin {
             SpecOrigin::Path(p) => p.clone(),
             _ => "the spec".to_owned(),

@@ -258,9 +258,17 @@ def _table(names, raw):
 def sweep(spec: Spec, threads: Optional[int] = None,
           shard: Optional[Union[str, Tuple[int, int]]] = None, limit: Optional[int] = None,
           force: bool = False, scheme_file: Optional[Union[str, os.PathLike]] = None,
-          scheme=None):
+          scheme=None, out: Optional[Union[str, os.PathLike]] = None, resume: bool = False):
     """Run a sweep in memory and return its rows as a ``pyarrow.Table``
     (``.to_pandas()``, ``polars.from_arrow(...)``), without writing a CSV.
+
+    With ``out``, the rows go to that file instead, as ``subdiv-lab sweep
+    --out`` writes them: ``NAME.parquet`` a Parquet dataset directory, any
+    other name a CSV, with the summary JSON beside it; the summary (a dict)
+    is returned. An existing output is refused unless ``resume=True``, which
+    verifies its rows against the spec and continues it (the same bytes as
+    an uninterrupted run). Shards (``shard=``) of one Parquet ``out`` form
+    one dataset.
 
     ``spec`` is a dict, a path or TOML text (module docstring).
     ``shard="I/N"`` or ``(I, N)`` keeps the ids ``id % N == I``;
@@ -291,8 +299,14 @@ def sweep(spec: Spec, threads: Optional[int] = None,
             raise ValueError(f"shard must be I/N with 0 <= I < N, got {shard!r}") from None
         shard = (i, n)
     text, path, from_dict = _spec(spec)
-    names, raw = _native.sweep(text, path, from_dict, threads, shard, limit, bool(force),
-                               file_text, scheme)
+    if resume and out is None:
+        raise ValueError("sweep: resume=True needs out=FILE (a CSV file or a NAME.parquet dataset)")
+    result = _native.sweep(text, path, from_dict, threads, shard, limit, bool(force),
+                           file_text, scheme, None if out is None else os.fspath(out),
+                           bool(resume))
+    if out is not None:
+        return json.loads(result)
+    names, raw = result
     return _table(names, raw)
 
 

@@ -1,6 +1,6 @@
 """Type stubs of the subdiv_lab package (see the docstrings in __init__.py)."""
 import os
-from typing import Any, Dict, List, Mapping, Optional, Protocol, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Protocol, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -47,6 +47,7 @@ def classify_batch(
     threads: Optional[int] = ...,
     force: bool = ...,
 ) -> Dict[str, npt.NDArray[Any]]: ...
+@overload
 def sweep(
     spec: Spec,
     threads: Optional[int] = ...,
@@ -55,7 +56,22 @@ def sweep(
     force: bool = ...,
     scheme_file: Optional[Union[str, os.PathLike[str]]] = ...,
     scheme: Optional[SchemeLike] = ...,
+    out: None = ...,
+    resume: bool = ...,
 ) -> pa.Table: ...
+@overload
+def sweep(
+    spec: Spec,
+    threads: Optional[int] = ...,
+    shard: Optional[Union[str, Tuple[int, int]]] = ...,
+    limit: Optional[int] = ...,
+    force: bool = ...,
+    scheme_file: Optional[Union[str, os.PathLike[str]]] = ...,
+    scheme: Optional[SchemeLike] = ...,
+    *,
+    out: Union[str, os.PathLike[str]],
+    resume: bool = ...,
+) -> Dict[str, Any]: ...
 def merge(
     inputs: Union[str, os.PathLike[str], Sequence[Union[str, os.PathLike[str]]]],
     spec: Spec,

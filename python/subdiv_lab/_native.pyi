@@ -1,7 +1,7 @@
 """The compiled module (use the wrappers in subdiv_lab instead). Every
 function raises ValueError on bad input (integers of any size included) and
 RuntimeError on a failure, never a PanicException."""
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -28,7 +28,8 @@ def classify_batch(ratios: npt.NDArray[np.float64], scheme: str = ...,
 def sweep(spec_toml: str, spec_path: Optional[str] = ..., from_dict: bool = ...,
           threads: Optional[int] = ..., shard: Optional[Tuple[int, int]] = ...,
           limit: Optional[int] = ..., force: bool = ..., scheme_file: Optional[str] = ...,
-          scheme: Any = ...) -> Tuple[List[str], Dict[str, Any]]: ...
+          scheme: Any = ..., out: Optional[str] = ...,
+          resume: bool = ...) -> Union[Tuple[List[str], Dict[str, Any]], str]: ...
 def merge(inputs: List[str], spec_toml: str, spec_path: Optional[str] = ..., from_dict: bool = ...,
           force: bool = ...) -> Tuple[List[str], Dict[str, Any], str]: ...
 def subdivide(vertices: npt.NDArray[np.float64], faces: Sequence[Sequence[int]], scheme: str = ...,

@@ -15,18 +15,16 @@
 //! single-file output: an existing regular file is replaced atomically. The
 //! extension `.csv` or `.parquet` of an output must match its format.
 
-use super::outfiles::{write_atomic, Staged};
 use super::{CliError, CliResult};
 use anyhow::{anyhow, Context};
 use clap::Args;
-use std::fs::{self, File, OpenOptions};
-use std::io::{BufRead, BufReader, BufWriter, IsTerminal, Read, Seek, SeekFrom, Write};
+use std::fs;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use subdiv_lab::sweep::output::parquet::ParquetRows;
-use subdiv_lab::sweep::output::shards::{self, summary_path, ShardData, ShardFile};
-use subdiv_lab::sweep::output::{self, dataset, LineFault, Verifier};
-use subdiv_lab::sweep::{Layout, Plan, Shard, SpectralEvaluator, Summary, SweepError, SweepSpec};
+use subdiv_lab::sweep::output::files::{self, Opened, Progress, RunOptions, Sink};
+use subdiv_lab::sweep::output::shards::summary_path;
+use subdiv_lab::sweep::{Plan, Shard, SweepSpec};
 
 #[derive(Args, Debug)]
 pub(crate) struct SweepArgs {
@@ -172,197 +170,6 @@ fn parse_shard(s: &str) -> Result<Shard, String> {
     s.parse::<Shard>().map_err(|e| e.to_string())
 }
 
-/// Checks the output paths of `sweep --out` and `merge --out` before any work
-/// (exit 2): the output must not be a special file (a device such as
-/// `/dev/null`, a FIFO: the CSV is resumable and its summary goes beside it),
-/// the output and its summary must differ from every input (the spec, the
-/// shards and their summaries), and an existing file at the summary path is
-/// refused unless it is itself a sweep summary (this output's, or an earlier
-/// run's, e.g. of `NAME.csv` beside `NAME.parquet`): the tool never
-/// overwrites a file it did not write. `spath` is the output's summary.
-fn check_out_paths(command: &str, out: &Path, spath: &Path, inputs: &[(&str, &Path)]) -> CliResult {
-    if super::outfiles::is_special(out) {
-        return Err(CliError::usage(anyhow!(
-            "--out {} is not a regular file: {command} writes a CSV (or Parquet) file and a summary beside it; to discard the rows, leave out --out and redirect standard output",
-            out.display()
-        )));
-    }
-    super::outfiles::check_distinct(&[("--out", out), ("its summary", spath)], inputs)?;
-    check_summary_path(out, spath)
-}
-
-/// Refuses an existing file at `spath`, the summary of `--out out`, unless
-/// it is a sweep summary.
-fn check_summary_path(out: &Path, spath: &Path) -> CliResult {
-    let a_summary =
-        || fs::read_to_string(spath).is_ok_and(|t| serde_json::from_str::<Summary>(&t).is_ok());
-    if fs::symlink_metadata(spath).is_ok() && !a_summary() {
-        return Err(CliError::usage(anyhow!(
-            "{} exists and is not a sweep summary (the summary --out {} would write); remove it or choose another --out",
-            spath.display(),
-            out.display()
-        )));
-    }
-    Ok(())
-}
-
-/// The sweep summary at `path`, if it is one.
-fn read_summary(path: &Path) -> Option<Summary> {
-    let text = fs::read_to_string(path).ok()?;
-    serde_json::from_str(&text).ok()
-}
-
-fn write_summary(path: &Path, summary: &Summary) -> CliResult {
-    let json = serde_json::to_string_pretty(summary).map_err(CliError::failure)? + "\n";
-    write_atomic(path, json.as_bytes()).map_err(CliError::failure)
-}
-
-/// A salt for the verifier's re-evaluated sample (the library's).
-use subdiv_lab::sweep::output::fresh_salt as salt;
-
-/// Reads an existing CSV for `--resume`: checks its fingerprint (the summary
-/// JSON beside it: same spec, same shard) and the header, verifies every
-/// complete line in full against the spec ([`Verifier`]: ids, parameters
-/// re-derived from the id, results well formed, a random sample
-/// re-evaluated), adds the rows to `summary`, and returns the number of rows,
-/// the byte length of the good prefix (a torn last line excluded; 0 when the
-/// header line is torn) and whether the header must be (re)written.
-fn scan_existing(
-    path: &Path,
-    plan: &Plan,
-    layout: &Layout,
-    eval: &SpectralEvaluator,
-    shard: Shard,
-    summary: &mut Summary,
-) -> CliResult<(u64, u64, bool, bool)> {
-    let file = File::open(path)
-        .with_context(|| format!("opening {}", path.display()))
-        .map_err(CliError::failure)?;
-    let mut reader = BufReader::with_capacity(1 << 20, file);
-    let name = path.display().to_string();
-    let mut line = Vec::new();
-    let mut good: u64 = 0;
-    let mut lineno: u64 = 0;
-    let torn;
-    let header = layout.header();
-    let mut verifier = Verifier::new(plan, layout, salt());
-    let mismatch = |line: u64, message: String| {
-        CliError::usage(SweepError::Mismatch {
-            source_name: name.clone(),
-            line,
-            message,
-        })
-    };
-    let read_error = |e: std::io::Error| {
-        CliError::failure(anyhow::Error::new(e).context(format!("reading {name}")))
-    };
-    // The header line.
-    let n = reader.read_until(b'\n', &mut line).map_err(read_error)?;
-    if n == 0 {
-        // A file of this tool appears whole with its header: an empty one is
-        // someone else's.
-        return Err(CliError::usage(anyhow!(
-            "{name} exists but is empty: not a sweep file of this tool (one is created whole, with its header); remove it or choose another --out"
-        )));
-    }
-    if output::is_old_csv_fingerprint(&line) {
-        return Err(mismatch(1, format!("{}; cannot resume", output::OLD_CSV)));
-    }
-    // The fingerprint: the summary JSON beside the file.
-    let spath = summary_path(path);
-    let Some(old) = read_summary(&spath) else {
-        return Err(CliError::usage(anyhow!(
-            "{name}: its summary {} is missing or not a sweep summary; the summary ties a sweep CSV to its spec and shard; cannot resume",
-            spath.display()
-        )));
-    };
-    output::check_summary(plan, shard, &old).map_err(|m| {
-        CliError::usage(anyhow!(
-            "{name}: {m} (by its summary {}); cannot resume",
-            spath.display()
-        ))
-    })?;
-    if line.last() != Some(&b'\n') {
-        // Killed while the header was written (a file not created whole by
-        // the temporary-file-and-link step): start afresh if it is the start
-        // of this spec's header.
-        if !header.as_bytes().starts_with(&line) {
-            return Err(mismatch(
-                1,
-                "an incomplete first line that is not this spec's header: not a sweep CSV of this spec; cannot resume".into(),
-            ));
-        }
-        return Ok((0, 0, true, true));
-    }
-    if line != header.as_bytes() {
-        return Err(CliError::usage(anyhow!(
-            "{name}: the header does not match this spec's columns; cannot resume (expected {:?})",
-            header.trim_end()
-        )));
-    }
-    lineno += 1;
-    good += n as u64;
-    // The data lines, by blocks of about BLOCK_BYTES: each block's complete
-    // lines are verified in parallel on the current pool while the next block
-    // is read; the bytes after the last line end go to the next block, and at
-    // the end of the file they are a torn last line (killed mid-write: dropped).
-    const BLOCK_BYTES: u64 = 8 << 20;
-    let fill = |reader: &mut BufReader<File>, buf: &mut Vec<u8>| -> CliResult<usize> {
-        let n = reader
-            .by_ref()
-            .take(BLOCK_BYTES)
-            .read_to_end(buf)
-            .map_err(read_error)?;
-        Ok(n)
-    };
-    let mut block = Vec::with_capacity(BLOCK_BYTES as usize + (1 << 16));
-    let mut next = Vec::with_capacity(BLOCK_BYTES as usize + (1 << 16));
-    let mut at_end = fill(&mut reader, &mut block)? == 0;
-    let expected_id = |j: u64| shard.id(j);
-    let max_rows = summary.expected_rows;
-    loop {
-        let complete = memchr::memrchr(b'\n', &block).map_or(0, |p| p + 1);
-        next.clear();
-        next.extend_from_slice(&block[complete..]);
-        let (checked, read) = rayon::join(
-            || verifier.check_block(lineno + 1, &block[..complete], &expected_id, max_rows),
-            || {
-                if at_end {
-                    Ok(0)
-                } else {
-                    fill(&mut reader, &mut next)
-                }
-            },
-        );
-        let lines = checked.map_err(|(l, fault)| match fault {
-            LineFault::NotUtf8 => CliError::usage(anyhow!(
-                "{name}: line {l} is not UTF-8; not a sweep CSV"
-            )),
-            LineFault::TooManyRows => CliError::usage(anyhow!(
-                "{name}: has more rows than this run expects ({max_rows}); was it written with another --limit?"
-            )),
-            LineFault::Mismatch(m) => mismatch(l, m),
-        })?;
-        lineno += lines;
-        good += complete as u64;
-        if at_end {
-            torn = !next.is_empty();
-            break;
-        }
-        at_end = read? == 0;
-        std::mem::swap(&mut block, &mut next);
-    }
-    verifier.recheck(eval).map_err(|(l, m)| mismatch(l, m))?;
-    verifier.add_to(summary);
-    Ok((verifier.rows(), good, false, torn))
-}
-
-/// Where the rows go: CSV text, or Parquet row groups.
-enum Sink {
-    Csv(Box<dyn Write + Send>),
-    Parquet(Box<ParquetRows>),
-}
-
 /// Progress lines for batch jobs (stderr not a terminal, e.g. a Slurm log): a
 /// thread that prints `sweep: K/N rows (P%), R configurations/s, elapsed E,
 /// ETA T` when the run starts, then every [`PROGRESS_EVERY`] during the first
@@ -464,12 +271,96 @@ fn format_duration(secs: f64) -> String {
     }
 }
 
-pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
-    let text = fs::read_to_string(&args.spec)
-        .with_context(|| format!("reading spec {}", args.spec.display()))
+/// The progress of a run on stderr: a bar on a terminal, progress lines
+/// every few seconds otherwise (batch jobs: the Slurm log shows the run is
+/// alive and how far it got), and what a resumed run found.
+struct Printer {
+    quiet: bool,
+    /// The path of --out, and whether Parquet was inferred from its extension.
+    out: Option<(PathBuf, bool)>,
+    every: std::time::Duration,
+    bar: Option<indicatif::ProgressBar>,
+    reporter: Option<Reporter>,
+}
+
+impl Progress for Printer {
+    fn opened(&mut self, o: &Opened) {
+        if self.quiet {
+            return;
+        }
+        if let Some((path, inferred)) = &self.out {
+            if *inferred && !o.existed {
+                eprintln!(
+                    "sweep: writing Parquet (from the extension of --out {})",
+                    path.display()
+                );
+            }
+            if o.existed && (o.done > 0 || o.repaired.is_some() || path.is_file()) {
+                eprintln!(
+                    "sweep: resuming {} at row {} of {}{}",
+                    path.display(),
+                    o.done,
+                    o.expected,
+                    o.repaired.map(|r| format!(" ({r})")).unwrap_or_default()
+                );
+            }
+        }
+        if o.expected <= o.done {
+            return;
+        }
+        if !std::io::stderr().is_terminal() {
+            self.reporter = Some(Reporter::start(
+                o.evaluated.clone(),
+                o.done,
+                o.expected,
+                self.every,
+            ));
+            return;
+        }
+        let pb = indicatif::ProgressBar::new(o.expected);
+        if let Ok(style) = indicatif::ProgressStyle::with_template(
+            "{spinner} [{elapsed_precise}] {wide_bar} {pos}/{len} {rate} ETA {eta}",
+        ) {
+            pb.set_style(style.with_key(
+                "rate",
+                |state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                    let _ = write!(w, "{:.0} configurations/s", state.per_sec());
+                },
+            ));
+        }
+        pb.set_position(o.done);
+        pb.reset_eta();
+        self.bar = Some(pb);
+    }
+
+    fn written(&mut self, rows: u64) {
+        if let Some(pb) = &self.bar {
+            pb.set_position(rows);
+        }
+    }
+}
+
+impl Printer {
+    fn finish(&mut self) {
+        if let Some(r) = self.reporter.take() {
+            r.finish();
+        }
+        if let Some(pb) = self.bar.take() {
+            pb.finish_and_clear();
+        }
+    }
+}
+
+/// The spec of `path`, read and parsed (errors name the file).
+fn read_spec(path: &Path) -> CliResult<SweepSpec> {
+    let text = fs::read_to_string(path)
+        .with_context(|| format!("reading spec {}", path.display()))
         .map_err(CliError::usage)?;
-    let spec = SweepSpec::from_toml(&text)
-        .map_err(|e| CliError::usage(anyhow!("{}: {e}", args.spec.display())))?;
+    SweepSpec::from_toml(&text).map_err(|e| CliError::usage(anyhow!("{}: {e}", path.display())))
+}
+
+pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
+    let spec = read_spec(&args.spec)?;
     if let Some(t) = args.threads {
         super::budget::check_threads(t)?;
     }
@@ -483,44 +374,32 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         )));
     }
     let shard = args.shard.unwrap_or(Shard::ALL);
-    // Whether --out exists (then it is continued, never replaced); for a
-    // Parquet dataset, whether it holds a part of this shard (the shards of
-    // one run write into one directory).
-    let exists = match (&args.out, format) {
-        (Some(p), Format::Parquet) => {
-            dataset::check_dataset_path(p).map_err(CliError::usage)?;
-            let spath = dataset::summary_in(p, shard);
-            super::outfiles::check_distinct(
-                &[("its summary", &spath)],
-                &[("the spec", &args.spec)],
-            )?;
-            check_summary_path(p, &spath)?;
-            p.is_dir() && dataset::has_shard(p, shard)
-        }
-        (Some(p), Format::Csv) => {
-            check_out_paths("sweep", p, &summary_path(p), &[("the spec", &args.spec)])?;
-            fs::symlink_metadata(p).is_ok()
-        }
-        (None, _) => false,
+    let mut stdout = std::io::stdout();
+    let sink = match (&args.out, format) {
+        (Some(p), Format::Parquet) => Sink::Parquet(p.clone()),
+        (Some(p), Format::Csv) => Sink::Csv(p.clone()),
+        (None, _) => Sink::Stream(&mut stdout),
     };
-    if let Some(out) = &args.out {
-        if exists && !args.resume {
-            return Err(CliError::usage(anyhow!(
-                "{} exists; pass --resume to continue it, or remove it",
-                out.display()
-            )));
+    // The output checked before any work (a bad spec or flag creates no
+    // file): its kind, its paths distinct from the spec, an existing output
+    // only with --resume.
+    sink.check_kind().map_err(CliError::lib)?;
+    if let (Some(out), Some(spath)) = (sink.path(), sink.summary_path(shard)) {
+        let mut outputs = vec![("--out", out), ("its summary", spath.as_path())];
+        if format == Format::Parquet {
+            outputs.remove(0);
         }
+        super::outfiles::check_distinct(&outputs, &[("the spec", &args.spec)])?;
     }
+    sink.check_existing(shard, args.resume)
+        .map_err(CliError::lib)?;
     let plan = plan_of(spec, &args.spec, args.scheme_file.as_deref())?;
-    let layout = Layout::new(&plan);
-    let eval = SpectralEvaluator::new(plan.spec().columns);
-    let mut summary = Summary::new(&plan, &layout, shard, args.limit);
-    let expected = summary.expected_rows;
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     // Work estimate of this shard's rows (before --resume skips any: a
     // conservative bound), checked before any file is opened.
+    let expected = shard.len(plan.total()).min(args.limit.unwrap_or(u64::MAX));
     let estimate = subdiv_lab::sweep::sweep_rows(&plan, expected, shard.count, threads);
     super::budget::check(
         "sweep",
@@ -536,293 +415,95 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
             subdiv_lab::budget::format_seconds(estimate.seconds)
         );
     }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(CliError::failure)?;
-
-    // Open the output (only now: a bad spec or flag creates no file).
-    let (mut sink, done, summary_file): (Sink, u64, Option<PathBuf>) = match &args.out {
-        None => {
-            let mut w = BufWriter::with_capacity(1 << 20, std::io::stdout());
-            layout.write_header(&mut w).map_err(CliError::failure)?;
-            (Sink::Csv(Box::new(w)), 0, None)
-        }
-        Some(path) if format == Format::Parquet => {
-            let spath = dataset::summary_in(path, shard);
-            let (sink, done, recovered) = pool
-                .install(|| dataset::open(path, &plan, &layout, &eval, shard, &mut summary, salt()))
-                .map_err(CliError::lib)?;
-            if inferred && !exists && !args.quiet {
-                eprintln!(
-                    "sweep: writing Parquet (from the extension of --out {})",
-                    path.display()
-                );
-            }
-            if exists && (done > 0 || recovered) && !args.quiet {
-                eprintln!(
-                    "sweep: resuming {} at row {done} of {expected}{}",
-                    path.display(),
-                    if recovered {
-                        " (its short last part is written again)"
-                    } else {
-                        ""
-                    }
-                );
-            }
-            (Sink::Parquet(Box::new(sink)), done, Some(spath))
-        }
-        Some(path) if !exists => {
-            // Its fingerprint first: the summary beside it (so a CSV of this
-            // tool never exists without one). A new file appears whole with
-            // its header (written to a temporary file of this run, then put
-            // in place).
-            write_summary(&summary_path(path), &summary)?;
-            let name = path
-                .file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default();
-            let (mut file, tmp) =
-                super::outfiles::create_temp_file(&super::outfiles::parent_dir(path), &name)
-                    .with_context(|| format!("creating {}", path.display()))
-                    .map_err(CliError::failure)?;
-            let preamble = layout
-                .write_header(&mut file)
-                .map_err(anyhow::Error::from)
-                .and_then(|()| {
-                    super::outfiles::install_new(&tmp, path).map_err(anyhow::Error::from)
-                })
-                .with_context(|| format!("creating {}", path.display()));
-            if let Err(e) = preamble {
-                let _ = fs::remove_file(&tmp);
-                return Err(CliError::failure(e));
-            }
-            (
-                Sink::Csv(Box::new(BufWriter::with_capacity(1 << 20, file))),
-                0,
-                Some(summary_path(path)),
-            )
-        }
-        Some(path) => {
-            let spath = summary_path(path);
-            let (done, good, preamble, torn) =
-                pool.install(|| scan_existing(path, &plan, &layout, &eval, shard, &mut summary))?;
-            let mut file = OpenOptions::new()
-                .write(true)
-                .open(path)
-                .with_context(|| format!("opening {}", path.display()))
-                .map_err(CliError::failure)?;
-            {
-                file.set_len(good)
-                    .and_then(|_| file.seek(SeekFrom::End(0)).map(|_| ()))
-                    .with_context(|| format!("truncating {}", path.display()))
-                    .map_err(CliError::failure)?;
-                if (done > 0 || good > 0 || torn) && !args.quiet {
-                    eprintln!(
-                        "sweep: resuming {} at row {done} of {expected}{}",
-                        path.display(),
-                        if torn {
-                            " (dropped a torn last line)"
-                        } else {
-                            ""
-                        }
-                    );
-                }
-            }
-            if preamble {
-                layout.write_header(&mut file).map_err(CliError::failure)?;
-            }
-            (
-                Sink::Csv(Box::new(BufWriter::with_capacity(1 << 20, file))),
-                done,
-                Some(spath),
-            )
-        }
-    };
-
-    // A resumed file that is already complete: nothing is evaluated, and the
-    // summary keeps the throughput of the run that wrote the rows.
-    let complete = exists && done == expected;
-    if let Some(spath) = &summary_file {
-        if complete {
-            if let Some(old) = read_summary(spath) {
-                summary.throughput = old.throughput;
-            }
-        }
-        // The summary at the start (and, for a complete file, the only one).
-        write_summary(spath, &summary)?;
-    }
-
-    // A progress bar on a terminal; progress lines every few seconds otherwise
-    // (batch jobs: the Slurm log shows the run is alive and how far it got).
-    let terminal = std::io::stderr().is_terminal();
-    let counter = std::sync::Arc::new(std::sync::atomic::AtomicU64::new(0));
-    let reporter = (!terminal && !args.quiet && expected > done).then(|| {
-        let every = std::time::Duration::try_from_secs_f64(args.progress_every)
+    let mut printer = Printer {
+        quiet: args.quiet,
+        out: args.out.clone().map(|p| (p, inferred)),
+        every: std::time::Duration::try_from_secs_f64(args.progress_every)
             .unwrap_or(PROGRESS_EVERY)
-            .max(std::time::Duration::from_millis(1));
-        Reporter::start(counter.clone(), done, expected, every)
-    });
-    let bar = if terminal && !args.quiet && expected > done {
-        let pb = indicatif::ProgressBar::new(expected);
-        if let Ok(style) = indicatif::ProgressStyle::with_template(
-            "{spinner} [{elapsed_precise}] {wide_bar} {pos}/{len} {rate} ETA {eta}",
-        ) {
-            pb.set_style(style.with_key(
-                "rate",
-                |state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
-                    let _ = write!(w, "{:.0} configurations/s", state.per_sec());
-                },
-            ));
-        }
-        pb.set_position(done);
-        pb.reset_eta();
-        Some(pb)
-    } else {
-        None
+            .max(std::time::Duration::from_millis(1)),
+        bar: None,
+        reporter: None,
     };
-    let start = Instant::now();
-    let ids = (done..expected).map(|j| shard.id(j));
-    let mut moved = |k| {
-        if let Some(pb) = &bar {
-            pb.set_position(done + k);
-        }
+    let options = RunOptions {
+        shard,
+        limit: args.limit,
+        resume: args.resume,
+        threads,
+        progress: Some(&mut printer),
     };
-    let result = pool.install(|| match &mut sink {
-        // Parquet: the typed path (cells straight into column buffers).
-        Sink::Parquet(p) => output::run_parquet(
-            &plan,
-            &layout,
-            &eval,
-            ids,
-            p,
-            &mut summary,
-            &mut moved,
-            &counter,
-        ),
-        Sink::Csv(w) => output::run_counting(
-            &plan,
-            &layout,
-            &eval,
-            ids,
-            w,
-            &mut summary,
-            &mut moved,
-            &counter,
-        ),
-    });
-    if let Some(r) = reporter {
-        r.finish();
-    }
-    if let Some(pb) = &bar {
-        pb.finish_and_clear();
-    }
-    let evaluated = result.map_err(CliError::failure)?;
-    match sink {
-        Sink::Csv(mut w) => w.flush().map_err(CliError::failure)?,
-        Sink::Parquet(p) => {
-            p.finish().map_err(CliError::failure)?;
-        }
-    }
-    let seconds = start.elapsed().as_secs_f64();
-    if complete {
-        if !args.quiet {
-            eprintln!(
-                "sweep: {} is already complete: {} rows verified, nothing evaluated; summary {}",
-                args.out.as_deref().unwrap_or(Path::new("-")).display(),
-                summary.rows,
-                summary_file.as_deref().unwrap_or(Path::new("-")).display()
-            );
-        }
+    let result = files::run_plan(&plan, sink, options);
+    printer.finish();
+    let report = result.map_err(CliError::lib)?;
+    if args.quiet {
         return Ok(());
     }
-    summary.set_throughput(evaluated, seconds, threads);
-    if let Some(spath) = &summary_file {
-        write_summary(spath, &summary)?;
+    let summary_file = report
+        .summary_path
+        .as_deref()
+        .map(|p| p.display().to_string());
+    if report.complete {
+        eprintln!(
+            "sweep: {} is already complete: {} rows verified, nothing evaluated; summary {}",
+            args.out.as_deref().unwrap_or(Path::new("-")).display(),
+            report.summary.rows,
+            summary_file.as_deref().unwrap_or("-")
+        );
+        return Ok(());
     }
+    let (evaluated, seconds) = (report.evaluated, report.seconds);
     let rate = if seconds > 0.0 {
         evaluated as f64 / seconds
     } else {
         0.0
     };
-    if args.quiet {
-        return Ok(());
-    }
     eprintln!(
         "sweep: {} rows ({evaluated} evaluated in {seconds:.2} s, {rate:.0} configurations/s, {threads} threads){}{}",
-        summary.rows,
-        if summary.errors > 0 {
-            format!(", {} failed (see the error column)", summary.errors)
+        report.summary.rows,
+        if report.summary.errors > 0 {
+            format!(", {} failed (see the error column)", report.summary.errors)
         } else {
             String::new()
         },
-        match &summary_file {
-            Some(p) => format!("; summary {}", p.display()),
-            None => String::new(),
-        }
+        summary_file.map(|p| format!("; summary {p}")).unwrap_or_default()
     );
     Ok(())
 }
 
 pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
-    let text = fs::read_to_string(&args.spec)
-        .with_context(|| format!("reading spec {}", args.spec.display()))
-        .map_err(CliError::usage)?;
-    let spec = SweepSpec::from_toml(&text)
-        .map_err(|e| CliError::usage(anyhow!("{}: {e}", args.spec.display())))?;
+    let spec = read_spec(&args.spec)?;
     let plan = plan_of(spec, &args.spec, args.scheme_file.as_deref())?;
-    let layout = Layout::new(&plan);
-    let eval = SpectralEvaluator::new(plan.spec().columns);
     // The inputs: CSV shard files (each with its summary beside it) or
     // Parquet dataset directories (the parts and summaries of their shards).
-    // The output and its summary are distinct from the spec, every shard and
-    // every shard's summary; an existing output file is replaced atomically,
-    // an existing summary only if it is a sweep summary.
-    let datasets: Vec<bool> = args.inputs.iter().map(|p| p.is_dir()).collect();
-    for p in &args.inputs {
-        if !p.is_dir() && dataset::is_parquet_file(p) {
-            return Err(CliError::usage(anyhow!(
-                "{}: a single Parquet file: {}",
-                p.display(),
-                "merge takes the dataset directories NAME.parquet that sweep writes (a file of an older subdiv-lab, or a compacted dataset, is not one)"
-            )));
-        }
+    // A dataset's shards are listed (and read) first, for their summaries'
+    // names; CSV shards are read after the output checks.
+    let parquet = files::merge_format(&args.inputs).map_err(CliError::lib)?;
+    let mut shards = Vec::new();
+    let mut summaries = Vec::new();
+    if parquet {
+        shards = files::merge_inputs(&args.inputs).map_err(CliError::lib)?;
+        summaries.extend(shards.iter().map(|s| PathBuf::from(&s.summary_name)));
+    } else {
+        summaries.extend(args.inputs.iter().map(|p| summary_path(p)));
     }
-    if datasets.iter().any(|&q| q != datasets[0]) {
-        return Err(CliError::usage(anyhow!(
-            "the shards mix CSV files and Parquet datasets; merge shards of one format"
-        )));
-    }
-    let format = if datasets[0] {
+    let format = if parquet {
         Format::Parquet
     } else {
         Format::Csv
     };
-    // The shards: per CSV file, or every shard of each dataset (summaries
-    // and parts read).
-    let mut shards = Vec::new();
-    let mut csv: Vec<(PathBuf, PathBuf)> = Vec::new();
-    let mut summaries: Vec<PathBuf> = Vec::new();
-    for p in &args.inputs {
-        if format == Format::Parquet {
-            for f in dataset::dataset_shards(p).map_err(CliError::lib)? {
-                summaries.push(PathBuf::from(&f.summary_name));
-                shards.push(f);
-            }
-            continue;
-        }
-        let sp = summary_path(p);
-        summaries.push(sp.clone());
-        csv.push((p.clone(), sp));
-    }
+    // The output and its summary are distinct from the spec, every shard and
+    // every shard's summary; an existing output file is replaced atomically,
+    // an existing summary only if it is a sweep summary.
     let mut inputs: Vec<(&str, &Path)> = vec![("the spec", args.spec.as_path())];
     for p in &args.inputs {
         inputs.push(("the input", p.as_path()));
     }
-    for sp in &summaries {
-        inputs.push(("the summary of an input", sp.as_path()));
+    for s in &summaries {
+        inputs.push(("the summary of an input", s.as_path()));
     }
-    check_out_paths("merge", &args.out, &summary_path(&args.out), &inputs)?;
+    let spath = summary_path(&args.out);
+    files::check_not_special("merge", &args.out).map_err(CliError::lib)?;
+    super::outfiles::check_distinct(&[("--out", &args.out), ("its summary", &spath)], &inputs)?;
+    files::check_summary_path(&args.out, &spath).map_err(CliError::lib)?;
     if let Some(named) = Format::of_name(&args.out).filter(|&n| n != format) {
         return Err(CliError::usage(anyhow!(
             "the shards are {} files but --out {} names a {} file; name it NAME.{} (merge writes the shards' format)",
@@ -832,91 +513,17 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
             format.extension()
         )));
     }
-    // A CSV shard's summary first: it must be of this spec (it gives the
-    // throughput, and is compared with the rows).
-    for (p, sp) in csv {
-        let name = p.display().to_string();
-        let summary = fs::read_to_string(&sp)
-            .with_context(|| {
-                format!(
-                    "reading {} (the summary `sweep` writes beside {name}; merge needs it)",
-                    sp.display()
-                )
-            })
-            .map_err(CliError::usage)?;
-        let file = File::open(&p)
-            .with_context(|| format!("opening {name}"))
-            .map_err(CliError::usage)?;
-        shards.push(ShardFile {
-            name,
-            summary_name: sp.display().to_string(),
-            summary,
-            data: ShardData::Csv(BufReader::with_capacity(1 << 20, file)),
-        });
+    if !parquet {
+        shards = files::merge_inputs(&args.inputs).map_err(CliError::lib)?;
     }
-    let n_shards = shards.len();
-    let prepared = shards::prepare(&plan, &layout, &args.spec.display().to_string(), shards)
-        .map_err(CliError::usage)?;
-    // Write to a new temporary file of this run; rename only when every
-    // check passed.
-    let out_name = args
-        .out
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let (file, tmp) =
-        super::outfiles::create_temp_file(&super::outfiles::parent_dir(&args.out), &out_name)
-            .with_context(|| format!("creating a temporary file for {}", args.out.display()))
-            .map_err(CliError::failure)?;
-    let result = (|| -> CliResult<Summary> {
-        if prepared.is_parquet() {
-            let mut w = ParquetRows::file(
-                &layout,
-                &output::fingerprint_line(&plan, Shard::ALL),
-                Box::new(BufWriter::with_capacity(1 << 20, file)),
-            )
-            .map_err(CliError::failure)?;
-            let merged = prepared
-                .run(&plan, &layout, &eval, &mut w, salt())
-                .map_err(CliError::lib)?;
-            w.finish().map_err(CliError::failure)?;
-            return Ok(merged);
-        }
-        let mut w = BufWriter::with_capacity(1 << 20, file);
-        layout.write_header(&mut w).map_err(CliError::failure)?;
-        let merged = prepared
-            .run(&plan, &layout, &eval, &mut w, salt())
-            .map_err(CliError::lib)?;
-        w.flush().map_err(CliError::failure)?;
-        Ok(merged)
-    })();
-    let merged = match result {
-        Ok(m) => m,
-        Err(e) => {
-            let _ = fs::remove_file(&tmp);
-            return Err(e);
-        }
-    };
-    let n = merged.rows;
-    // The merged file and its summary are put in place together (the file
-    // first); a failure leaves neither new.
-    let staged = serde_json::to_string_pretty(&merged)
-        .map_err(CliError::failure)
-        .and_then(|j| Staged::write(&[(summary_path(&args.out), (j + "\n").into_bytes())]));
-    let mut staged = match staged {
-        Ok(st) => st,
-        Err(e) => {
-            let _ = fs::remove_file(&tmp);
-            return Err(e);
-        }
-    };
-    staged.adopt_first(tmp, args.out.clone());
-    staged.commit()?;
-    let total = plan.total();
+    let merged = files::merge_files(&plan, shards, &args.spec.display().to_string(), &args.out)
+        .map_err(CliError::lib)?;
     eprintln!(
-        "merge: {n} rows from {} shards into {}; every configuration 0..{total} present once and verified",
-        n_shards,
-        args.out.display()
+        "merge: {} rows from {} shards into {}; every configuration 0..{} present once and verified",
+        merged.summary.rows,
+        merged.shards,
+        args.out.display(),
+        plan.total()
     );
     Ok(())
 }

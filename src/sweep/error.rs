@@ -48,6 +48,10 @@ pub enum SweepError {
     /// older format, of another spec or shard; the message names the file).
     #[error("{0}")]
     Refused(String),
+    /// A file could not be created, read or put in place (the message names
+    /// the file and the step).
+    #[error("{0}")]
+    File(String),
     /// Writing output failed.
     #[error("write failed: {0}")]
     Io(String),

@@ -16,9 +16,11 @@
 //! columns, shards, resume and merge are the same. [`run_csv`] runs a whole
 //! plan into memory.
 //!
-//! The library does no file-system I/O: it writes to `impl std::io::Write` and
-//! reads lines the caller hands it. The `subdiv-lab sweep` and `subdiv-lab merge`
-//! commands do the files.
+//! [`run`] runs a sweep into its files (a CSV or a Parquet dataset with the
+//! summary beside it, or a stream): planning, shards, resume and the summary;
+//! [`output::files::merge_files`] merges shard files. The `subdiv-lab sweep`
+//! and `merge` commands and the Python `sweep(out=...)` and `merge` call them;
+//! the driver below them writes to any `impl std::io::Write`.
 //!
 //! ```
 //! use subdiv_lab::sweep::{output, Layout, Plan, Shard, SpectralEvaluator, Summary, SweepSpec};
@@ -58,6 +60,7 @@ pub(crate) mod summary;
 pub use error::SweepError;
 pub use estimate::{batch_rows, sweep_rows};
 pub use eval::{Cell, Evaluate, SpectralEvaluator};
+pub use output::files::{run, run_plan, Opened, Progress, RunOptions, RunReport, Sink};
 pub use output::Layout;
 pub use plan::{Configuration, Configured, Plan, SchemeFactory, Shard};
 pub use spec::{Columns, Sampler, Space, SpaceKind, SweepSpec, MAX_CONFIGURATIONS};

@@ -11,4 +11,5 @@ mod sweep_engine;
 mod sweep_parquet;
 mod sweep_plan;
 mod sweep_props;
+mod sweep_run;
 mod sweep_verify;

@@ -27,6 +27,8 @@
 //! * `parquet.rs`: the Parquet form of the rows (typed columns, a dataset of
 //!   part files written by the `parquet` crate, reading back:
 //!   [`parquet::read_table`]);
+//! * `files.rs`: a run into files and the merge of shard files
+//!   ([`files::run_plan`], [`files::merge_files`]);
 //! * `dataset.rs`: the Parquet dataset directory on disk (part files
 //!   committed by rename, resume, the shards of a merge:
 //!   [`dataset::open`], [`dataset::dataset_shards`]);
@@ -35,6 +37,7 @@
 
 pub(crate) mod csv;
 pub mod dataset;
+pub mod files;
 pub(crate) mod layout;
 mod merge;
 pub mod parquet;
