@@ -15,6 +15,12 @@
 //! part `(sum |x_i| + e_x)(sum |y_i| + e_y)` into `e`.
 
 use super::super::interval::{down, up, Iv};
+use smallvec::SmallVec;
+
+/// The symbol coefficients of a form, stored inline up to 24 symbols (the
+/// `n + 2 (n - 2)` symbols of a ratio cell up to valence 10; larger
+/// valences spill to the heap).
+pub type Coeffs = SmallVec<[f64; 24]>;
 
 /// `2^-52`: twice the unit roundoff, a bound on the relative rounding error.
 const EPS: f64 = f64::EPSILON;
@@ -30,7 +36,7 @@ pub struct Af {
     /// Central value.
     pub c: f64,
     /// Coefficients of the noise symbols.
-    pub l: Vec<f64>,
+    pub l: Coeffs,
     /// Remainder radius (an upper bound).
     pub e: f64,
 }
@@ -40,7 +46,7 @@ impl Af {
     pub fn constant(x: f64, s: usize) -> Af {
         Af {
             c: x,
-            l: vec![0.0; s],
+            l: Coeffs::from_elem(0.0, s),
             e: 0.0,
         }
     }
@@ -50,7 +56,7 @@ impl Af {
         let (m, r) = x.mid_rad();
         Af {
             c: m,
-            l: vec![0.0; s],
+            l: Coeffs::from_elem(0.0, s),
             e: r,
         }
     }
@@ -58,7 +64,7 @@ impl Af {
     /// `x0 + h eps_k` (the parameter `k` of a cell with centre `x0` and
     /// half-width `h`).
     pub fn symbol(x0: f64, h: f64, k: usize, s: usize) -> Af {
-        let mut l = vec![0.0; s];
+        let mut l = Coeffs::from_elem(0.0, s);
         l[k] = h;
         Af { c: x0, l, e: 0.0 }
     }
@@ -87,7 +93,7 @@ impl Af {
     pub fn add(&self, o: &Af) -> Af {
         let c = self.c + o.c;
         let mut e = up(up(self.e + o.e) + err(c));
-        let l: Vec<f64> = self
+        let l: Coeffs = self
             .l
             .iter()
             .zip(&o.l)
@@ -118,7 +124,7 @@ impl Af {
     pub fn scale(&self, s: f64) -> Af {
         let c = self.c * s;
         let mut e = up(up(self.e * s.abs()) + err(c));
-        let l: Vec<f64> = self
+        let l: Coeffs = self
             .l
             .iter()
             .map(|x| {
@@ -135,7 +141,7 @@ impl Af {
         let c = self.c * o.c;
         let mut e = up(up(up(self.c.abs() * o.e) + up(o.c.abs() * self.e)) + err(c));
         e = up(e + up(self.radius() * o.radius()));
-        let l: Vec<f64> = self
+        let l: Coeffs = self
             .l
             .iter()
             .zip(&o.l)

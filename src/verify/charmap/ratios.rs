@@ -59,6 +59,12 @@ use crate::verify::interval::{down, up, Iv};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
+/// Rounds of the a-posteriori bound of the subspace correction: Stewart's
+/// radius `rho` of the ball of `P` is replaced by `p_hat + ||D||_F` while that
+/// is smaller (each round is a valid bound; three reach the fixed point to
+/// a few per cent).
+pub const RHO_ITERATIONS: usize = 3;
+
 /// Most de Casteljau levels of the Jacobian per patch.
 pub const JACOBIAN_DEPTH: u32 = 5;
 
@@ -454,11 +460,58 @@ pub fn ratio_ring_with(
     if !(up(4.0 * up(gamma * eta)) < down(delta * delta)) {
         return None;
     }
-    let rho = match tamper {
-        CellTamper::DropSubspaceVariation => 0.0,
-        CellTamper::ShrinkStewartRadius => up(2.0 * gamma / delta) / 64.0,
-        CellTamper::None => up(2.0 * gamma / delta),
+    // affine forms: symbols 0..n the ratios, n + 2k + j the entries P_kj
+    let ns = n + 2 * m;
+    let t_af = |a: usize, b: usize| -> Af {
+        let (c, r) = m0[a * n + b].mid_rad();
+        let mut f = Af::constant(c, ns);
+        let mut e = r;
+        for (k, p) in yterms.iter().enumerate() {
+            let (pm, pr) = p[a * n + b].mid_rad();
+            let v = h[k] * pm;
+            f.l[k] = v;
+            e = up(up(e + up(h[k] * pr)) + up(up(v.abs() * f64::EPSILON) + f64::MIN_POSITIVE));
+        }
+        f.widen(e)
     };
+    let t21: Vec<Af> = (0..2 * m).map(|v| t_af(2 + v % m, v / m)).collect();
+    // P^ = L0^{-1}(T21(r)): first order in the ratios, with
+    // L0(P) = P mid(T11) - mid(T22) P (kinv encloses the inverse of its
+    // Kronecker matrix), and p_hat >= sup ||P^||_F over the cell
+    let phat: Vec<Af> = (0..2 * m)
+        .map(|v| {
+            let mut acc = Af::constant(0.0, ns);
+            for (u, tu) in t21.iter().enumerate() {
+                acc = acc.add(&tu.mul_iv(kinv[v * 2 * m + u]));
+            }
+            acc
+        })
+        .collect();
+    let p_hat = norm2_upper(phat.iter().map(|f| f.range().mag())).min(up(gamma * kinv_f));
+    // D = P - P^ (math doc section 15, "G1 over a cell"): from
+    // P = P^ - L0^{-1}(dL(P) + P T12 P), dL = L_r - L0,
+    // ||D||_F <= ((r11 + r22) p_hat + eta rho^2) / delta for every bound
+    // rho >= ||P||_F; then ||P||_F <= p_hat + ||D||_F is a new bound, and the
+    // two are iterated from Stewart's rho = 2 gamma / delta
+    let d_bound = |rho: f64| up(up(up(up(r11 + r22) * p_hat) + up(eta * up(rho * rho))) / delta);
+    let mut rho = up(2.0 * gamma / delta);
+    let mut eps2 = d_bound(rho);
+    for _ in 0..RHO_ITERATIONS {
+        let next = up(p_hat + eps2);
+        if !(next < rho) {
+            break;
+        }
+        rho = next;
+        eps2 = d_bound(rho);
+    }
+    match tamper {
+        CellTamper::DropSubspaceVariation => rho = 0.0,
+        CellTamper::ShrinkStewartRadius => {
+            rho = up(2.0 * gamma / delta) / 64.0;
+            eps2 = 0.0;
+        }
+        CellTamper::None => {}
+    }
     // N = T11 + T12 P
     let t12_row = |a: usize| norm2_upper((0..m).map(|k| tb(a, 2 + k).mag()));
     let nb: [Iv; 4] = std::array::from_fn(|ab| {
@@ -480,39 +533,13 @@ pub fn ratio_ring_with(
             return None;
         }
     }
-    // affine forms: symbols 0..n the ratios, n + 2k + j the entries P_kj
-    let ns = n + 2 * m;
-    let t_af = |a: usize, b: usize| -> Af {
-        let (c, r) = m0[a * n + b].mid_rad();
-        let mut f = Af::constant(c, ns);
-        let mut e = r;
-        for (k, p) in yterms.iter().enumerate() {
-            let (pm, pr) = p[a * n + b].mid_rad();
-            let v = h[k] * pm;
-            f.l[k] = v;
-            e = up(up(e + up(h[k] * pr)) + up(up(v.abs() * f64::EPSILON) + f64::MIN_POSITIVE));
-        }
-        f.widen(e)
-    };
-    // P = P^ + D: P^ = L0^{-1}(T21(r)) (first order in the ratios, with
-    // L0(P) = P mid(T11) - mid(T22) P) and ||D||_F <= eps2 (second order)
-    let mut eps2 = up(up(up(up(r11 + r22) * gamma) / down(delta * sigma_lo))
-        + up(up(eta * up(rho * rho)) / delta));
-    if tamper == CellTamper::ShrinkStewartRadius {
-        eps2 = 0.0;
-    }
-    let t21: Vec<Af> = (0..2 * m).map(|v| t_af(2 + v % m, v / m)).collect();
     let pmat: Vec<Af> = (0..2 * m)
         .map(|v| {
             let (k, j) = (v % m, v / m);
             if tamper == CellTamper::DropSubspaceVariation {
                 return Af::constant(0.0, ns);
             }
-            let mut acc = Af::symbol(0.0, eps2, n + 2 * k + j, ns);
-            for (u, tu) in t21.iter().enumerate() {
-                acc = acc.add(&tu.mul_iv(kinv[v * 2 * m + u]));
-            }
-            acc
+            phat[v].add(&Af::symbol(0.0, eps2, n + 2 * k + j, ns))
         })
         .collect();
     let pk = |k: usize, j: usize| pmat[k + m * j].clone();
