@@ -86,6 +86,11 @@ pub struct RatioRing {
     pub rho: f64,
     /// The restriction `N = T11 + T12 P` (row-major 2 x 2).
     pub restriction: [Iv; 4],
+    /// The first-order part `P^ = L_0^{-1}(T21(r))` of `P` as affine forms
+    /// (entry `(k, j)` at `k + (n - 2) j`).
+    pub correction: Vec<Af>,
+    /// `||P - P^||_F <= correction_radius` for every ratio vector of the cell.
+    pub correction_radius: f64,
     /// The lifted basis (`4n` rows in the order of `S_n`, two columns).
     pub basis: Vec<P2>,
     /// The `9n` ring points in the order of the extended matrix (ranges).
@@ -706,6 +711,8 @@ pub fn ratio_ring_with(
         q,
         rho,
         restriction,
+        correction: phat,
+        correction_radius: eps2,
         basis: boxes(&w),
         points: boxes(&pts),
         forms: pts,
@@ -1009,9 +1016,60 @@ impl RatioRing {
     /// [`crate::charmap::ring::ring_points`].
     pub fn pointwise(&self, r: &[f64]) -> crate::error::Result<(f64, Vec<[f64; 2]>)> {
         use crate::charmap::extended::ExtendedMatrix;
-        use crate::error::Error;
         use crate::knots::EdgeRatios;
         use crate::schemes::LocalScheme;
+        let n = r.len();
+        let (w, p, qinv) = self.pointwise_graph(r)?;
+        let mut ip = DMatrix::zeros(n, 2);
+        ip[(0, 0)] = 1.0;
+        ip[(1, 1)] = 1.0;
+        ip.rows_mut(2, n - 2).copy_from(&p);
+        let basis = &self.q * ip;
+        let t = &qinv * &w * &self.q;
+        let nmat = t.view((0, 0), (2, 2)).into_owned() + t.view((0, 2), (2, n - 2)) * &p;
+        let scheme = LocalScheme::nurds(EdgeRatios::new(r.to_vec())?);
+        let sn = scheme.matrix()?.into_matrix();
+        let wa: Vec<[f64; 2]> = (0..n).map(|i| [basis[(i, 0)], basis[(i, 1)]]).collect();
+        let m = [[nmat[(0, 0)], nmat[(0, 1)]], [nmat[(1, 0)], nmat[(1, 1)]]];
+        let full = crate::charmap::basis::lift_subspace(&sn, &wa, m)?;
+        let w1: Vec<f64> = full.iter().map(|x| x[0]).collect();
+        let w2: Vec<f64> = full.iter().map(|x| x[1]).collect();
+        let ext = ExtendedMatrix::new(&scheme)?;
+        Ok((p.norm(), crate::charmap::ring::ring_points(&ext, &w1, &w2)?))
+    }
+
+    /// How many entries of the pointwise `P(r)` (in this enclosure's
+    /// normalisation, as in [`RatioRing::pointwise`]) lie farther from the
+    /// first-order part `P^(r)` than the bound of `D = P - P^` allows (plus
+    /// the forms' rounding remainder and `tol`), for the soundness tests.
+    pub fn correction_misses(&self, r: &[f64], tol: f64) -> crate::error::Result<usize> {
+        let n = r.len();
+        let m = n - 2;
+        let (_, p, _) = self.pointwise_graph(r)?;
+        let mut bad = 0;
+        for (v, f) in self.correction.iter().enumerate() {
+            let (k, j) = (v % m, v / m);
+            let mut at = f.c;
+            for i in 0..n {
+                if self.half_width[i] > 0.0 {
+                    at += f.l[i] * (r[i] - self.centre[i]) / self.half_width[i];
+                }
+            }
+            let slack = f.l[n..].iter().fold(f.e, |a, x| a + x.abs());
+            if (p[(k, j)] - at).abs() > self.correction_radius + slack + tol {
+                bad += 1;
+            }
+        }
+        Ok(bad)
+    }
+
+    /// `(W(r), P(r), Q^{-1})` in floating point: `P = Z_2 Z_1^{-1}` for the
+    /// pair's eigenvectors `[Z_1; Z_2] = Q^{-1} B` of `W(r)`.
+    fn pointwise_graph(
+        &self,
+        r: &[f64],
+    ) -> crate::error::Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>)> {
+        use crate::error::Error;
         let n = r.len();
         let bad = |reason: &str| Error::Numerical {
             routine: "pointwise ring in the cell normalisation",
@@ -1077,22 +1135,7 @@ impl RatioRing {
             .try_inverse()
             .ok_or_else(|| bad("the pair is not a graph over Q's first two columns"))?;
         let p = z.rows(2, n - 2).into_owned() * z1;
-        let mut ip = DMatrix::zeros(n, 2);
-        ip[(0, 0)] = 1.0;
-        ip[(1, 1)] = 1.0;
-        ip.rows_mut(2, n - 2).copy_from(&p);
-        let basis = &self.q * ip;
-        let t = &qinv * &w * &self.q;
-        let nmat = t.view((0, 0), (2, 2)).into_owned() + t.view((0, 2), (2, n - 2)) * &p;
-        let scheme = LocalScheme::nurds(EdgeRatios::new(r.to_vec())?);
-        let sn = scheme.matrix()?.into_matrix();
-        let wa: Vec<[f64; 2]> = (0..n).map(|i| [basis[(i, 0)], basis[(i, 1)]]).collect();
-        let m = [[nmat[(0, 0)], nmat[(0, 1)]], [nmat[(1, 0)], nmat[(1, 1)]]];
-        let full = crate::charmap::basis::lift_subspace(&sn, &wa, m)?;
-        let w1: Vec<f64> = full.iter().map(|x| x[0]).collect();
-        let w2: Vec<f64> = full.iter().map(|x| x[1]).collect();
-        let ext = ExtendedMatrix::new(&scheme)?;
-        Ok((p.norm(), crate::charmap::ring::ring_points(&ext, &w1, &w2)?))
+        Ok((w, p, qinv))
     }
 
     /// How many coordinates of the pointwise ring `pts` lie outside the
