@@ -12,7 +12,7 @@
 //! Rounding: every float operation on a coefficient is followed by adding
 //! a bound of its rounding error to `e`: `|fl(x) - x| <= 2^-53 |x| + 2^-1075`,
 //! bounded by `2^-52 |fl(x)| + MIN_POSITIVE` (summed over a form's
-//! coefficients in one step, [`err_sum`]). Products bound the second-order
+//! coefficients in one step, `err_sum`). Products bound the second-order
 //! part `(sum |x_i| + e_x)(sum |y_i| + e_y)` into `e`.
 
 use super::super::interval::{down, up, Iv};
