@@ -11,10 +11,17 @@
 //!
 //! Rounding: every float operation on a coefficient is followed by adding
 //! a bound of its rounding error to `e`: `|fl(x) - x| <= 2^-53 |x| + 2^-1075`,
-//! bounded by `2^-52 |fl(x)| + MIN_POSITIVE`. Products bound the second-order
+//! bounded by `2^-52 |fl(x)| + MIN_POSITIVE` (summed over a form's
+//! coefficients in one step, `err_sum`). Products bound the second-order
 //! part `(sum |x_i| + e_x)(sum |y_i| + e_y)` into `e`.
 
 use super::super::interval::{down, up, Iv};
+use smallvec::SmallVec;
+
+/// The symbol coefficients of a form, stored inline up to 24 symbols (the
+/// `n + 2 (n - 2)` symbols of a ratio cell up to valence 10; larger
+/// valences spill to the heap).
+pub type Coeffs = SmallVec<[f64; 24]>;
 
 /// `2^-52`: twice the unit roundoff, a bound on the relative rounding error.
 const EPS: f64 = f64::EPSILON;
@@ -24,13 +31,25 @@ fn err(x: f64) -> f64 {
     up(up(x.abs() * EPS) + f64::MIN_POSITIVE)
 }
 
+/// Slack factor of [`err_sum`] over `2^-52`: covers the relative error
+/// `(1 + k 2^-53)` of a float sum of `k <= 2^30` non-negative terms.
+const SUM_SLACK: f64 = 1.001;
+
+/// Bound of the summed rounding errors of `k` operations whose float
+/// results have magnitudes summing (in floating point) to `mag`:
+/// `sum_i (2^-52 |x_i| + MIN_POSITIVE) <= 2^-52 SUM_SLACK mag + k MIN_POSITIVE`
+/// (one bound per coefficient vector instead of one per coefficient).
+fn err_sum(mag: f64, k: usize) -> f64 {
+    up(up(mag * (EPS * SUM_SLACK)) + k as f64 * f64::MIN_POSITIVE)
+}
+
 /// An affine form over `s` shared noise symbols.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Af {
     /// Central value.
     pub c: f64,
     /// Coefficients of the noise symbols.
-    pub l: Vec<f64>,
+    pub l: Coeffs,
     /// Remainder radius (an upper bound).
     pub e: f64,
 }
@@ -40,7 +59,7 @@ impl Af {
     pub fn constant(x: f64, s: usize) -> Af {
         Af {
             c: x,
-            l: vec![0.0; s],
+            l: Coeffs::from_elem(0.0, s),
             e: 0.0,
         }
     }
@@ -50,7 +69,7 @@ impl Af {
         let (m, r) = x.mid_rad();
         Af {
             c: m,
-            l: vec![0.0; s],
+            l: Coeffs::from_elem(0.0, s),
             e: r,
         }
     }
@@ -58,7 +77,7 @@ impl Af {
     /// `x0 + h eps_k` (the parameter `k` of a cell with centre `x0` and
     /// half-width `h`).
     pub fn symbol(x0: f64, h: f64, k: usize, s: usize) -> Af {
-        let mut l = vec![0.0; s];
+        let mut l = Coeffs::from_elem(0.0, s);
         l[k] = h;
         Af { c: x0, l, e: 0.0 }
     }
@@ -86,30 +105,38 @@ impl Af {
     /// Sum.
     pub fn add(&self, o: &Af) -> Af {
         let c = self.c + o.c;
-        let mut e = up(up(self.e + o.e) + err(c));
-        let l: Vec<f64> = self
-            .l
-            .iter()
-            .zip(&o.l)
-            .map(|(a, b)| {
-                let v = a + b;
-                e = up(e + err(v));
-                v
-            })
-            .collect();
+        let mut l = self.l.clone();
+        let mut mag = 0.0;
+        for (x, y) in l.iter_mut().zip(&o.l) {
+            *x += y;
+            mag += x.abs();
+        }
+        let e = up(up(up(self.e + o.e) + err(c)) + err_sum(mag, l.len()));
         Af { c, l, e }
     }
 
     /// Difference.
     pub fn sub(&self, o: &Af) -> Af {
-        self.add(&o.neg())
+        let c = self.c - o.c;
+        let mut l = self.l.clone();
+        let mut mag = 0.0;
+        for (x, y) in l.iter_mut().zip(&o.l) {
+            *x -= y;
+            mag += x.abs();
+        }
+        let e = up(up(up(self.e + o.e) + err(c)) + err_sum(mag, l.len()));
+        Af { c, l, e }
     }
 
     /// Negation (exact).
     pub fn neg(&self) -> Af {
+        let mut l = self.l.clone();
+        for x in l.iter_mut() {
+            *x = -*x;
+        }
         Af {
             c: -self.c,
-            l: self.l.iter().map(|x| -x).collect(),
+            l,
             e: self.e,
         }
     }
@@ -117,16 +144,13 @@ impl Af {
     /// Product with the float `s`.
     pub fn scale(&self, s: f64) -> Af {
         let c = self.c * s;
-        let mut e = up(up(self.e * s.abs()) + err(c));
-        let l: Vec<f64> = self
-            .l
-            .iter()
-            .map(|x| {
-                let v = x * s;
-                e = up(e + err(v));
-                v
-            })
-            .collect();
+        let mut l = self.l.clone();
+        let mut mag = 0.0;
+        for x in l.iter_mut() {
+            *x *= s;
+            mag += x.abs();
+        }
+        let e = up(up(up(self.e * s.abs()) + err(c)) + err_sum(mag, l.len()));
         Af { c, l, e }
     }
 
@@ -135,18 +159,16 @@ impl Af {
         let c = self.c * o.c;
         let mut e = up(up(up(self.c.abs() * o.e) + up(o.c.abs() * self.e)) + err(c));
         e = up(e + up(self.radius() * o.radius()));
-        let l: Vec<f64> = self
-            .l
-            .iter()
-            .zip(&o.l)
-            .map(|(a, b)| {
-                let p = self.c * b;
-                let q = o.c * a;
-                let v = p + q;
-                e = up(e + up(up(err(p) + err(q)) + err(v)));
-                v
-            })
-            .collect();
+        let mut l = self.l.clone();
+        // the rounding of c_x y_i, c_y x_i and their sum, per coefficient
+        let mut mag = 0.0;
+        for (x, y) in l.iter_mut().zip(&o.l) {
+            let p = self.c * y;
+            let q = o.c * *x;
+            *x = p + q;
+            mag += (p.abs() + q.abs()) + x.abs();
+        }
+        let e = up(e + err_sum(mag, 3 * l.len()));
         Af { c, l, e }
     }
 

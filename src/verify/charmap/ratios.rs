@@ -59,6 +59,12 @@ use crate::verify::interval::{down, up, Iv};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
+/// Rounds of the a-posteriori bound of the subspace correction: Stewart's
+/// radius `rho` of the ball of `P` is replaced by `p_hat + ||D||_F` while that
+/// is smaller (each round is a valid bound; three reach the fixed point to
+/// a few per cent).
+pub const RHO_ITERATIONS: usize = 3;
+
 /// Most de Casteljau levels of the Jacobian per patch.
 pub const JACOBIAN_DEPTH: u32 = 5;
 
@@ -80,6 +86,11 @@ pub struct RatioRing {
     pub rho: f64,
     /// The restriction `N = T11 + T12 P` (row-major 2 x 2).
     pub restriction: [Iv; 4],
+    /// The first-order part `P^ = L_0^{-1}(T21(r))` of `P` as affine forms
+    /// (entry `(k, j)` at `k + (n - 2) j`).
+    pub correction: Vec<Af>,
+    /// `||P - P^||_F <= correction_radius` for every ratio vector of the cell.
+    pub correction_radius: f64,
     /// The lifted basis (`4n` rows in the order of `S_n`, two columns).
     pub basis: Vec<P2>,
     /// The `9n` ring points in the order of the extended matrix (ranges).
@@ -454,11 +465,58 @@ pub fn ratio_ring_with(
     if !(up(4.0 * up(gamma * eta)) < down(delta * delta)) {
         return None;
     }
-    let rho = match tamper {
-        CellTamper::DropSubspaceVariation => 0.0,
-        CellTamper::ShrinkStewartRadius => up(2.0 * gamma / delta) / 64.0,
-        CellTamper::None => up(2.0 * gamma / delta),
+    // affine forms: symbols 0..n the ratios, n + 2k + j the entries P_kj
+    let ns = n + 2 * m;
+    let t_af = |a: usize, b: usize| -> Af {
+        let (c, r) = m0[a * n + b].mid_rad();
+        let mut f = Af::constant(c, ns);
+        let mut e = r;
+        for (k, p) in yterms.iter().enumerate() {
+            let (pm, pr) = p[a * n + b].mid_rad();
+            let v = h[k] * pm;
+            f.l[k] = v;
+            e = up(up(e + up(h[k] * pr)) + up(up(v.abs() * f64::EPSILON) + f64::MIN_POSITIVE));
+        }
+        f.widen(e)
     };
+    let t21: Vec<Af> = (0..2 * m).map(|v| t_af(2 + v % m, v / m)).collect();
+    // P^ = L0^{-1}(T21(r)): first order in the ratios, with
+    // L0(P) = P mid(T11) - mid(T22) P (kinv encloses the inverse of its
+    // Kronecker matrix), and p_hat >= sup ||P^||_F over the cell
+    let phat: Vec<Af> = (0..2 * m)
+        .map(|v| {
+            let mut acc = Af::constant(0.0, ns);
+            for (u, tu) in t21.iter().enumerate() {
+                acc = acc.add(&tu.mul_iv(kinv[v * 2 * m + u]));
+            }
+            acc
+        })
+        .collect();
+    let p_hat = norm2_upper(phat.iter().map(|f| f.range().mag())).min(up(gamma * kinv_f));
+    // D = P - P^ (math doc section 15, "G1 over a cell"): from
+    // P = P^ - L0^{-1}(dL(P) + P T12 P), dL = L_r - L0,
+    // ||D||_F <= ((r11 + r22) p_hat + eta rho^2) / delta for every bound
+    // rho >= ||P||_F; then ||P||_F <= p_hat + ||D||_F is a new bound, and the
+    // two are iterated from Stewart's rho = 2 gamma / delta
+    let d_bound = |rho: f64| up(up(up(up(r11 + r22) * p_hat) + up(eta * up(rho * rho))) / delta);
+    let mut rho = up(2.0 * gamma / delta);
+    let mut eps2 = d_bound(rho);
+    for _ in 0..RHO_ITERATIONS {
+        let next = up(p_hat + eps2);
+        if !(next < rho) {
+            break;
+        }
+        rho = next;
+        eps2 = d_bound(rho);
+    }
+    match tamper {
+        CellTamper::DropSubspaceVariation => rho = 0.0,
+        CellTamper::ShrinkStewartRadius => {
+            rho = up(2.0 * gamma / delta) / 64.0;
+            eps2 = 0.0;
+        }
+        CellTamper::None => {}
+    }
     // N = T11 + T12 P
     let t12_row = |a: usize| norm2_upper((0..m).map(|k| tb(a, 2 + k).mag()));
     let nb: [Iv; 4] = std::array::from_fn(|ab| {
@@ -480,39 +538,13 @@ pub fn ratio_ring_with(
             return None;
         }
     }
-    // affine forms: symbols 0..n the ratios, n + 2k + j the entries P_kj
-    let ns = n + 2 * m;
-    let t_af = |a: usize, b: usize| -> Af {
-        let (c, r) = m0[a * n + b].mid_rad();
-        let mut f = Af::constant(c, ns);
-        let mut e = r;
-        for (k, p) in yterms.iter().enumerate() {
-            let (pm, pr) = p[a * n + b].mid_rad();
-            let v = h[k] * pm;
-            f.l[k] = v;
-            e = up(up(e + up(h[k] * pr)) + up(up(v.abs() * f64::EPSILON) + f64::MIN_POSITIVE));
-        }
-        f.widen(e)
-    };
-    // P = P^ + D: P^ = L0^{-1}(T21(r)) (first order in the ratios, with
-    // L0(P) = P mid(T11) - mid(T22) P) and ||D||_F <= eps2 (second order)
-    let mut eps2 = up(up(up(up(r11 + r22) * gamma) / down(delta * sigma_lo))
-        + up(up(eta * up(rho * rho)) / delta));
-    if tamper == CellTamper::ShrinkStewartRadius {
-        eps2 = 0.0;
-    }
-    let t21: Vec<Af> = (0..2 * m).map(|v| t_af(2 + v % m, v / m)).collect();
     let pmat: Vec<Af> = (0..2 * m)
         .map(|v| {
             let (k, j) = (v % m, v / m);
             if tamper == CellTamper::DropSubspaceVariation {
                 return Af::constant(0.0, ns);
             }
-            let mut acc = Af::symbol(0.0, eps2, n + 2 * k + j, ns);
-            for (u, tu) in t21.iter().enumerate() {
-                acc = acc.add(&tu.mul_iv(kinv[v * 2 * m + u]));
-            }
-            acc
+            phat[v].add(&Af::symbol(0.0, eps2, n + 2 * k + j, ns))
         })
         .collect();
     let pk = |k: usize, j: usize| pmat[k + m * j].clone();
@@ -679,6 +711,8 @@ pub fn ratio_ring_with(
         q,
         rho,
         restriction,
+        correction: phat,
+        correction_radius: eps2,
         basis: boxes(&w),
         points: boxes(&pts),
         forms: pts,
@@ -981,10 +1015,64 @@ impl RatioRing {
     /// [`crate::charmap::basis::lift_subspace`] and the ring
     /// [`crate::schemes::doo_sabin::ring::ring_points`].
     pub fn pointwise(&self, r: &[f64]) -> crate::error::Result<(f64, Vec<[f64; 2]>)> {
-        use crate::error::Error;
         use crate::knots::EdgeRatios;
         use crate::schemes::doo_sabin::extended::ExtendedMatrix;
         use crate::schemes::LocalScheme;
+        let n = r.len();
+        let (w, p, qinv) = self.pointwise_graph(r)?;
+        let mut ip = DMatrix::zeros(n, 2);
+        ip[(0, 0)] = 1.0;
+        ip[(1, 1)] = 1.0;
+        ip.rows_mut(2, n - 2).copy_from(&p);
+        let basis = &self.q * ip;
+        let t = &qinv * &w * &self.q;
+        let nmat = t.view((0, 0), (2, 2)).into_owned() + t.view((0, 2), (2, n - 2)) * &p;
+        let scheme = LocalScheme::nurds(EdgeRatios::new(r.to_vec())?);
+        let sn = scheme.matrix()?.into_matrix();
+        let wa: Vec<[f64; 2]> = (0..n).map(|i| [basis[(i, 0)], basis[(i, 1)]]).collect();
+        let m = [[nmat[(0, 0)], nmat[(0, 1)]], [nmat[(1, 0)], nmat[(1, 1)]]];
+        let full = crate::charmap::basis::lift_subspace(&sn, &wa, m)?;
+        let w1: Vec<f64> = full.iter().map(|x| x[0]).collect();
+        let w2: Vec<f64> = full.iter().map(|x| x[1]).collect();
+        let ext = ExtendedMatrix::new(&scheme)?;
+        Ok((
+            p.norm(),
+            crate::schemes::doo_sabin::ring::ring_points(&ext, &w1, &w2)?,
+        ))
+    }
+
+    /// How many entries of the pointwise `P(r)` (in this enclosure's
+    /// normalisation, as in [`RatioRing::pointwise`]) lie farther from the
+    /// first-order part `P^(r)` than the bound of `D = P - P^` allows (plus
+    /// the forms' rounding remainder and `tol`), for the soundness tests.
+    pub fn correction_misses(&self, r: &[f64], tol: f64) -> crate::error::Result<usize> {
+        let n = r.len();
+        let m = n - 2;
+        let (_, p, _) = self.pointwise_graph(r)?;
+        let mut bad = 0;
+        for (v, f) in self.correction.iter().enumerate() {
+            let (k, j) = (v % m, v / m);
+            let mut at = f.c;
+            for i in 0..n {
+                if self.half_width[i] > 0.0 {
+                    at += f.l[i] * (r[i] - self.centre[i]) / self.half_width[i];
+                }
+            }
+            let slack = f.l[n..].iter().fold(f.e, |a, x| a + x.abs());
+            if (p[(k, j)] - at).abs() > self.correction_radius + slack + tol {
+                bad += 1;
+            }
+        }
+        Ok(bad)
+    }
+
+    /// `(W(r), P(r), Q^{-1})` in floating point: `P = Z_2 Z_1^{-1}` for the
+    /// pair's eigenvectors `[Z_1; Z_2] = Q^{-1} B` of `W(r)`.
+    fn pointwise_graph(
+        &self,
+        r: &[f64],
+    ) -> crate::error::Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>)> {
+        use crate::error::Error;
         let n = r.len();
         let bad = |reason: &str| Error::Numerical {
             routine: "pointwise ring in the cell normalisation",
@@ -1050,25 +1138,7 @@ impl RatioRing {
             .try_inverse()
             .ok_or_else(|| bad("the pair is not a graph over Q's first two columns"))?;
         let p = z.rows(2, n - 2).into_owned() * z1;
-        let mut ip = DMatrix::zeros(n, 2);
-        ip[(0, 0)] = 1.0;
-        ip[(1, 1)] = 1.0;
-        ip.rows_mut(2, n - 2).copy_from(&p);
-        let basis = &self.q * ip;
-        let t = &qinv * &w * &self.q;
-        let nmat = t.view((0, 0), (2, 2)).into_owned() + t.view((0, 2), (2, n - 2)) * &p;
-        let scheme = LocalScheme::nurds(EdgeRatios::new(r.to_vec())?);
-        let sn = scheme.matrix()?.into_matrix();
-        let wa: Vec<[f64; 2]> = (0..n).map(|i| [basis[(i, 0)], basis[(i, 1)]]).collect();
-        let m = [[nmat[(0, 0)], nmat[(0, 1)]], [nmat[(1, 0)], nmat[(1, 1)]]];
-        let full = crate::charmap::basis::lift_subspace(&sn, &wa, m)?;
-        let w1: Vec<f64> = full.iter().map(|x| x[0]).collect();
-        let w2: Vec<f64> = full.iter().map(|x| x[1]).collect();
-        let ext = ExtendedMatrix::new(&scheme)?;
-        Ok((
-            p.norm(),
-            crate::schemes::doo_sabin::ring::ring_points(&ext, &w1, &w2)?,
-        ))
+        Ok((w, p, qinv))
     }
 
     /// How many coordinates of the pointwise ring `pts` lie outside the
