@@ -110,7 +110,9 @@ fn angles(scheme: SdcScheme, extra: &[usize]) -> Vec<(f64, f64)> {
 /// level by level and is below [`FINEST_ANGLE`] after 7 more levels.
 fn check(scheme: SdcScheme) {
     let a = angles(scheme, &[3, 5, 7]);
-    println!("{scheme:?}: largest angles (smooth, boundary/corner) after 3, 5, 7 more levels: {a:?}");
+    println!(
+        "{scheme:?}: largest angles (smooth, boundary/corner) after 3, 5, 7 more levels: {a:?}"
+    );
     for w in a.windows(2) {
         assert!(
             w[1].0 < 0.5 * w[0].0 && w[1].1 < 0.5 * w[0].1,
