@@ -36,6 +36,7 @@
 
 pub mod analysis;
 pub mod charmap;
+pub mod normals;
 #[cfg(test)]
 mod tests;
 

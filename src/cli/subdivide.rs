@@ -22,6 +22,7 @@ use anyhow::{anyhow, Context};
 use clap::Args;
 use std::io::Write;
 use std::path::PathBuf;
+use subdiv_lab::boundary::normals::limit_normals;
 use subdiv_lab::mesh::builtin::mesh_rules;
 use subdiv_lab::mesh::limit::LevelStats;
 use subdiv_lab::mesh::open::OpenMesh;
@@ -84,6 +85,12 @@ pub(crate) struct SubdivideArgs {
     /// vertex moved to its limit position (needs --levels >= 1 for non-quads).
     #[arg(long)]
     limit: bool,
+    /// With --limit, on open or tagged Catmull-Clark and Loop meshes: also
+    /// write the limit normal of every vertex (`vn` lines, faces `f v//v`;
+    /// boundary, crease and corner vertices from the left eigenvectors of
+    /// their local matrix, docs/math.md section 18.6).
+    #[arg(long)]
+    normals: bool,
     /// Print per-level statistics (counts; every extraordinary face's max |P_i - F| and its ratio).
     #[arg(long)]
     stats: bool,
@@ -195,6 +202,16 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
             "--stats: scheme {name} has no per-level statistics of extraordinary faces (a face-centred notion)"
         )));
     }
+    if args.normals && !args.limit {
+        return Err(CliError::usage(anyhow!(
+            "--normals needs --limit (the normals are the limit surface's)"
+        )));
+    }
+    if args.normals && args.output.is_none() {
+        return Err(CliError::usage(anyhow!(
+            "--normals needs -o OUT.obj (the normals are written to the OBJ)"
+        )));
+    }
     if args.output.is_none() && args.knots_out.is_none() && !args.stats && !args.timing {
         return Err(CliError::usage(anyhow!(
             "nothing to do: give -o OUT.obj, --knots-out OUT.knots, --stats or --timing"
@@ -296,6 +313,12 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     }
     .with_context(input)
     .map_err(CliError::usage)?;
+    if args.normals {
+        return Err(CliError::usage(anyhow!(
+            "--normals: {}: limit normals are written for open or tagged meshes under catmull-clark or loop only",
+            args.input.display()
+        )));
+    }
     // Printed only when the run succeeds: an error stays a single stderr line.
     let note = ignored_note(&info);
     let knot_text = match &args.knots {
@@ -464,6 +487,13 @@ fn run_sharp(
             refine_secs,
         );
     }
+    // Limit normals from the control points of the last level (math doc
+    // section 18.6), before they move to their limit positions.
+    let normals = if args.normals {
+        Some(limit_normals(&mesh, scheme).map_err(|e| CliError::usage(anyhow!("--normals: {e}")))?)
+    } else {
+        None
+    };
     if args.limit {
         // OpenSubdiv's limit masks at the last level (math doc section 17).
         let limit = mesh
@@ -472,7 +502,10 @@ fn run_sharp(
         mesh.set_positions(limit).map_err(CliError::lib)?;
     }
     let mut buf = Vec::new();
-    if args.output.is_some() {
+    if let (Some(n), Some(_)) = (&normals, &args.output) {
+        mesh.write_obj_with_normals(&mut buf, n)
+            .map_err(CliError::failure)?;
+    } else if args.output.is_some() {
         mesh.write_obj(&mut buf).map_err(CliError::failure)?;
     }
     match &args.output {

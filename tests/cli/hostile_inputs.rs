@@ -2414,6 +2414,17 @@ fn cases() -> Vec<Case> {
             &[("m.obj", sharp_strip!())], "--levels 40: the result would have"),
         bad_with("sharp-levels-over-budget", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--levels", "13", "-o", "o.obj"],
             &[("m.obj", sharp_strip!())], "--levels 13"),
+        bad_with("sharp-normals-without-limit", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--normals", "-o", "o.obj"],
+            &[("m.obj", sharp_strip!())], "--normals needs --limit"),
+        bad_with("sharp-normals-without-output", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--limit", "--normals", "--timing"],
+            &[("m.obj", sharp_strip!())], "--normals needs -o OUT.obj"),
+        bad("sharp-normals-closed-mesh", &["subdivide", "{M}/cube.obj", "--scheme", "catmull-clark", "--limit", "--normals", "-o", "o.obj"],
+            "cube.obj: limit normals are written for open or tagged meshes"),
+        bad("sharp-normals-closed-only-scheme", &["subdivide", "{M}/cube.obj", "--scheme", "nurds", "--limit", "--normals", "-o", "o.obj"],
+            "limit normals are written for open or tagged meshes under catmull-clark or loop only"),
+        bad_with("sharp-normals-interior-corner", &["subdivide", "m.obj", "--scheme", "catmull-clark", "--levels", "1", "--boundary", "edge-and-corner", "--limit", "--normals", "-o", "o.obj"],
+            &[("m.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nv 0 2 0\nv 1 2 0\nv 2 2 0\nf 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\nf 5 6 9 8\nt corner 1/1/0 4 10\n")],
+            "--normals: vertex 4: an interior vertex with the Corner rule"),
     ]);
     // (end of section sharp-meshes)
     // ===================================================================

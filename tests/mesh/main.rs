@@ -14,3 +14,4 @@ mod mesh_shipped;
 mod mesh_tensor_limit;
 mod open_doo_sabin;
 mod sharp_mesh;
+mod sharp_normals;

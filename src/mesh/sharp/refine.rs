@@ -254,6 +254,35 @@ impl SharpMesh {
     /// Writes the mesh as OBJ (`v` lines with round-trip precision, then
     /// the `f` lines of the faces that are not holes, 1-based).
     pub fn write_obj<W: std::io::Write>(&self, out: &mut W) -> std::io::Result<()> {
+        self.write_obj_inner(out, None)
+    }
+
+    /// The OBJ text with one `vn` line per vertex (`normals`, indexed like
+    /// the vertices) after the `v` lines, and faces `f v//v`. A count that
+    /// does not match the vertices is an [`std::io::ErrorKind::InvalidInput`] error.
+    pub fn write_obj_with_normals<W: std::io::Write>(
+        &self,
+        out: &mut W,
+        normals: &[[f64; 3]],
+    ) -> std::io::Result<()> {
+        if normals.len() != self.vertex_count() {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                format!(
+                    "{} normals for {} vertices",
+                    normals.len(),
+                    self.vertex_count()
+                ),
+            ));
+        }
+        self.write_obj_inner(out, Some(normals))
+    }
+
+    fn write_obj_inner<W: std::io::Write>(
+        &self,
+        out: &mut W,
+        normals: Option<&[[f64; 3]]>,
+    ) -> std::io::Result<()> {
         let kept = (0..self.face_count()).filter(|&f| !self.hole[f]).count();
         writeln!(
             out,
@@ -264,6 +293,9 @@ impl SharpMesh {
         for p in &self.positions {
             writeln!(out, "v {:?} {:?} {:?}", p[0], p[1], p[2])?;
         }
+        for n in normals.unwrap_or(&[]) {
+            writeln!(out, "vn {:?} {:?} {:?}", n[0], n[1], n[2])?;
+        }
         let mut line = String::new();
         for f in 0..self.face_count() {
             if self.hole[f] {
@@ -273,7 +305,11 @@ impl SharpMesh {
             line.push('f');
             for &v in self.face_vertices(f) {
                 use std::fmt::Write as _;
-                let _ = write!(line, " {}", v + 1);
+                let _ = if normals.is_some() {
+                    write!(line, " {}//{}", v + 1, v + 1)
+                } else {
+                    write!(line, " {}", v + 1)
+                };
             }
             line.push('\n');
             out.write_all(line.as_bytes())?;
