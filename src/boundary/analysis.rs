@@ -5,6 +5,7 @@
 //! sector, and the limit position and tangent stencils from the left
 //! eigenvectors.
 
+use super::charmap::{null_vectors, SectorCharmapVerdict, HALF_MATCH_TOL};
 use super::{RuleSet, SectorConfig, VertexKind};
 use crate::mesh::sharp::rules::SdcScheme;
 use crate::spectral::classify::{decide, Decision};
@@ -13,18 +14,6 @@ use crate::spectral::{classify_matrix_with, Eigen, EigenOptions, Result, Subdomi
 use crate::spectral::{SpectralError, SubdominantClass};
 use num_complex::Complex64;
 use std::f64::consts::PI;
-
-/// How far a classifier's double-eigenvalue candidate may lie from `1/2`
-/// for the structural certificate of [`half_is_semisimple`] to speak about
-/// it: the candidate is the mean of two computed eigenvalues whose error
-/// radii (`kappa * eta`, about `1e-14` for these well-conditioned matrices
-/// of dimension below a few hundred) the classifier has already found
-/// consistent with equality, so a candidate for the exact eigenvalue `1/2`
-/// lies within `1e-12` of it, and a candidate farther than `1e-9` is some
-/// other double eigenvalue (the closed-form spectrum has no other eigenvalue
-/// within `1e-9` of `1/2` except at the configurations where one equals it
-/// exactly: math doc section 18.3).
-pub const HALF_MATCH_TOL: f64 = 1e-9;
 
 /// The eigenvalues of the sharp-edge block (the rows of `v` and the sharp
 /// edges' neighbours, which involve only those points): `1, 1/2, 1/4`
@@ -141,47 +130,6 @@ pub fn half_is_semisimple(c: &SectorConfig, lambda: f64) -> Option<&'static str>
                 .then_some("1/2 is a double eigenvalue of the corner's sharp-edge block with two eigenvectors, not an eigenvalue of the smooth block (math doc 18.3)")
         }
         _ => None,
-    }
-}
-
-/// What is certified about the characteristic map on the sector(s).
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SectorCharmapVerdict {
-    /// Not injective: neither subdominant eigenvalue is an eigenvalue of the
-    /// sharp-edge block, so the invariant subspace vanishes on `v` and the
-    /// sharp edges' neighbours, and the map sends the limit curves of the
-    /// sharp edges (which depend on those points only) to the origin.
-    BoundaryCollapses,
-    /// No characteristic map: the class is not standard, real_distinct or
-    /// complex_pair.
-    NoCharacteristicMap,
-    /// Neither certified nor refuted (the reason says why).
-    Indeterminate,
-    /// Standard eigenstructure, regular and one-to-one onto a sector (or
-    /// around the vertex at a crease): C1 (math doc section 18.4).
-    C1Standard,
-    /// Real distinct subdominant eigenvalues, regular and one-to-one:
-    /// tangent-plane continuous (never "C1" for a non-standard structure).
-    TangentPlaneContinuous,
-    /// The Jacobian changes sign on the ring (a witness point).
-    NotRegular,
-    /// Regular, but the neighbourhood is covered more than once.
-    NotInjective,
-}
-
-impl SectorCharmapVerdict {
-    /// The snake_case name.
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            SectorCharmapVerdict::BoundaryCollapses => "boundary_collapses",
-            SectorCharmapVerdict::NoCharacteristicMap => "no_charmap",
-            SectorCharmapVerdict::Indeterminate => "indeterminate",
-            SectorCharmapVerdict::C1Standard => "c1",
-            SectorCharmapVerdict::TangentPlaneContinuous => "tpc_real_distinct",
-            SectorCharmapVerdict::NotRegular => "not_regular",
-            SectorCharmapVerdict::NotInjective => "not_injective",
-        }
     }
 }
 
@@ -349,19 +297,7 @@ pub fn analyze_sector(c: &SectorConfig) -> Result<SectorAnalysis> {
 /// `S - lambda I` when `lambda` is an eigenvalue of that geometric
 /// multiplicity.
 fn left_null_space(s: &nalgebra::DMatrix<f64>, lambda: f64, count: usize) -> Vec<Vec<f64>> {
-    let n = s.nrows();
-    let m = (s - nalgebra::DMatrix::<f64>::identity(n, n) * lambda).transpose();
-    let svd = m.svd(false, true);
-    let Some(vt) = svd.v_t else {
-        return Vec::new();
-    };
-    let mut order: Vec<usize> = (0..svd.singular_values.len()).collect();
-    order.sort_by(|&a, &b| svd.singular_values[a].total_cmp(&svd.singular_values[b]));
-    order
-        .into_iter()
-        .take(count)
-        .map(|k| vt.row(k).iter().copied().collect())
-        .collect()
+    null_vectors(&s.transpose(), lambda, count)
 }
 
 /// Whether `lambda` (error radius `radius`) is an eigenvalue of the

@@ -39,7 +39,6 @@
 //!   one-to-one onto the sector it bounds (degree argument). A sweep
 //!   `Theta > 2 pi` proves a double cover (not injective).
 
-use super::analysis::{SectorCharmapVerdict, HALF_MATCH_TOL};
 use super::{SectorConfig, VertexKind};
 use crate::bezier::{BezierCurve, PlanarPatch, TensorBezier};
 use crate::charmap::regularity::{check_bezier_patches, gamma, RegularityVerdict};
@@ -53,6 +52,59 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 use std::fmt;
+
+/// How far a classifier's double-eigenvalue candidate may lie from `1/2`
+/// for the structural certificate of [`half_is_semisimple`] to speak about
+/// it: the candidate is the mean of two computed eigenvalues whose error
+/// radii (`kappa * eta`, about `1e-14` for these well-conditioned matrices
+/// of dimension below a few hundred) the classifier has already found
+/// consistent with equality, so a candidate for the exact eigenvalue `1/2`
+/// lies within `1e-12` of it, and a candidate farther than `1e-9` is some
+/// other double eigenvalue (the closed-form spectrum has no other eigenvalue
+/// within `1e-9` of `1/2` except at the configurations where one equals it
+/// exactly: math doc section 18.3).
+pub const HALF_MATCH_TOL: f64 = 1e-9;
+
+/// What is certified about the characteristic map on the sector(s).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SectorCharmapVerdict {
+    /// Not injective: neither subdominant eigenvalue is an eigenvalue of the
+    /// sharp-edge block, so the invariant subspace vanishes on `v` and the
+    /// sharp edges' neighbours, and the map sends the limit curves of the
+    /// sharp edges (which depend on those points only) to the origin.
+    BoundaryCollapses,
+    /// No characteristic map: the class is not standard, real_distinct or
+    /// complex_pair.
+    NoCharacteristicMap,
+    /// Neither certified nor refuted (the reason says why).
+    Indeterminate,
+    /// Standard eigenstructure, regular and one-to-one onto a sector (or
+    /// around the vertex at a crease): C1 (math doc section 18.4).
+    C1Standard,
+    /// Real distinct subdominant eigenvalues, regular and one-to-one:
+    /// tangent-plane continuous (never "C1" for a non-standard structure).
+    TangentPlaneContinuous,
+    /// The Jacobian changes sign on the ring (a witness point).
+    NotRegular,
+    /// Regular, but the neighbourhood is covered more than once.
+    NotInjective,
+}
+
+impl SectorCharmapVerdict {
+    /// The snake_case name.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            SectorCharmapVerdict::BoundaryCollapses => "boundary_collapses",
+            SectorCharmapVerdict::NoCharacteristicMap => "no_charmap",
+            SectorCharmapVerdict::Indeterminate => "indeterminate",
+            SectorCharmapVerdict::C1Standard => "c1",
+            SectorCharmapVerdict::TangentPlaneContinuous => "tpc_real_distinct",
+            SectorCharmapVerdict::NotRegular => "not_regular",
+            SectorCharmapVerdict::NotInjective => "not_injective",
+        }
+    }
+}
 
 /// Radius of the neighbourhood whose eigenvectors are computed (the ring's
 /// windows reach level-1 distance 5 = `2 * 3 - 1`).
@@ -331,7 +383,7 @@ pub fn window_matrix(c: &SectorConfig) -> Result<DMatrix<f64>> {
 
 /// The right null vectors of `S - lambda I` (`count` of them, smallest
 /// singular values first).
-fn null_vectors(s: &DMatrix<f64>, lambda: f64, count: usize) -> Vec<Vec<f64>> {
+pub(super) fn null_vectors(s: &DMatrix<f64>, lambda: f64, count: usize) -> Vec<Vec<f64>> {
     let n = s.nrows();
     let m = s - DMatrix::<f64>::identity(n, n) * lambda;
     let svd = m.svd(false, true);

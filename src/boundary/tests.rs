@@ -1,4 +1,5 @@
-use super::analysis::{analyze_sector, closed_form_spectrum, SectorCharmapVerdict, HALF_MATCH_TOL};
+use super::analysis::{analyze_sector, closed_form_spectrum};
+use super::charmap::{SectorCharmapVerdict, HALF_MATCH_TOL};
 use super::*;
 use crate::mesh::sharp::rules::{Boundary, Creasing};
 use crate::mesh::sharp::tags::{Tag, TagTarget};
