@@ -54,7 +54,7 @@ use std::f64::consts::PI;
 use std::fmt;
 
 /// How far a classifier's double-eigenvalue candidate may lie from `1/2`
-/// for the structural certificate of [`half_is_semisimple`] to speak about
+/// for the structural certificate of [`half_is_semisimple`](super::analysis::half_is_semisimple) to speak about
 /// it: the candidate is the mean of two computed eigenvalues whose error
 /// radii (`kappa * eta`, about `1e-14` for these well-conditioned matrices
 /// of dimension below a few hundred) the classifier has already found
