@@ -5,23 +5,32 @@
 //!                        Loop:  t_1 = sum cos(2 pi i/n) e_i,  t_2 = the same with sin
 //!                        Catmull-Clark: the tangent stencils of
 //!                        schemes::catmull_clark::limit::tangent_stencils (c = 1/2)
-//! boundary, corner:      n = t_1 x t_2 with t_k the left eigenvectors of the
-//!                        subdominant eigenvalues of the vertex's local matrix
-//!                        (SectorConfig, standard rules), applied to the
-//!                        neighbourhood v, e_0.., f_0.. (boundary::analysis::limit_frame)
+//! sector between two sharp edges (a boundary, an interior crease, three
+//! or more sharp edges):
+//!                        n = t_1 x t_2 with t_k the left eigenvectors of the
+//!                        subdominant eigenvalues of the sector's local matrix
+//!                        (SectorConfig, standard rules: a boundary sector of K
+//!                        faces under the crease rule, a corner sector under
+//!                        the corner rule), applied to the sector's points
+//!                        v, e_0..e_K, f_0..f_(K-1) (boundary::analysis::limit_frame)
 //! ```
 //!
-//! The ring `e_i` (and `f_i` for Catmull-Clark) runs in the order of the
-//! faces (face `i` is `v, e_i, f_i, e_(i+1)`), from boundary edge to
-//! boundary edge at boundary and corner vertices. An interior crease vertex
-//! has one tangent plane per sector and no vertex normal. A left eigenvector's sign is
-//! arbitrary, so a sector normal is turned to the side of the control fan
-//! `sum_i (e_i - v) x (e_(i+1) - v)` (the faces' orientation); the smooth
-//! masks' `t_1 x t_2` has that orientation by construction. The standard
-//! rules do not depend on a corner's angle, so a corner's configuration is
-//! built with [`CORNER_ANGLE_DEGREES`]. The vertex rule is the one of the
-//! level evaluated, as for the limit positions (math doc section 17): at
-//! semi-sharp features and darts the normal is OpenSubdiv's approximation.
+//! Under the standard rules a sector's points refine from the sector's
+//! points alone: the vertex follows its sharp edges, the sharp edges'
+//! points their ends, and every other new point of the sector lies in
+//! faces of the sector. So each sector of a crease or corner evolves as a
+//! boundary or corner sector with the same number of faces, and its
+//! tangent plane is that configuration's. The ring `e_i` (and `f_i` for
+//! Catmull-Clark) runs in the order of the faces (face `i` is `v, e_i, f_i,
+//! e_(i+1)`), from sharp edge to sharp edge. A left eigenvector's sign is
+//! arbitrary, so a sector normal is turned to the side of the sector's
+//! control fan `sum_i (e_i - v) x (e_(i+1) - v)` (the faces' orientation);
+//! the smooth masks' `t_1 x t_2` has that orientation by construction. The
+//! standard rules do not depend on a corner's angle, so a corner's
+//! configuration is built with [`CORNER_ANGLE_DEGREES`]. The vertex rule is
+//! the one of the level evaluated, as for the limit positions (math doc
+//! section 17): at semi-sharp features and darts the normal is OpenSubdiv's
+//! approximation.
 
 use super::analysis::{analyze_sector, cross, limit_frame, SectorAnalysis, PARALLEL_TANGENTS};
 use super::{RuleSet, SectorConfig, VertexKind};
@@ -46,27 +55,80 @@ pub struct NormalError {
     pub reason: String,
 }
 
-/// The unit limit normal of every vertex of `mesh` under `scheme` (module
-/// docs), indexed like the vertices. The mesh is all quads (Catmull-Clark)
-/// or all triangles (Loop). Fails, naming the vertex, at a vertex with more
-/// than two sharp edges, an interior crease or an interior corner (no
-/// single tangent plane), at
-/// an open fan without sharp boundary edges (`--boundary none`), when the
-/// honest class of the configuration's subdominant eigenvalues gives no
-/// pair of tangent eigenvectors (for example Catmull-Clark's boundary
-/// vertex with one face: `--boundary edge-and-corner` makes it a corner,
-/// which has one), or when the
-/// tangents are parallel.
-pub fn limit_normals(mesh: &SharpMesh, scheme: SdcScheme) -> Result<Vec<[f64; 3]>, NormalError> {
+/// The limit normals of a mesh's vertices, with one normal per sector at
+/// the vertices whose sharp edges cut the surface into sectors (an
+/// interior crease, three or more sharp edges, a crease that meets the
+/// boundary).
+///
+/// `normals[v]` is vertex `v`'s normal (at a vertex with sectors: its first
+/// sector's); the normals of the further sectors follow the vertices'.
+/// [`corner`](Self::corner) gives the normal of a face's corner, so a face
+/// takes the normal of its own sector.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LimitNormals {
+    /// Unit normals: one per vertex, then the further sectors' normals.
+    pub normals: Vec<[f64; 3]>,
+    /// `(face, vertex) -> index into normals` for the corners whose normal
+    /// is not `normals[vertex]`.
+    pub sector_corners: HashMap<(usize, usize), usize>,
+}
+
+impl LimitNormals {
+    /// The index into [`normals`](Self::normals) of the normal at the
+    /// corner of `face` at `vertex`.
+    pub fn corner(&self, face: usize, vertex: usize) -> usize {
+        self.sector_corners
+            .get(&(face, vertex))
+            .copied()
+            .unwrap_or(vertex)
+    }
+}
+
+/// The unit limit normals of `mesh` under `scheme` (module docs; math doc
+/// section 18.6). The mesh is all quads (Catmull-Clark) or all triangles
+/// (Loop), open or closed. A smooth or dart vertex gets the tangent masks'
+/// normal; a vertex whose sharp edges bound sectors gets one normal per
+/// sector, from the sector's own configuration (a boundary sector under the
+/// crease rule, a corner sector under the corner rule). Fails, naming the
+/// vertex, where there is no tangent plane: an interior vertex with the
+/// corner rule and fewer than two sharp edges (a cone point), an open fan
+/// without sharp boundary edges (`--boundary none`), a configuration whose
+/// honest class gives no pair of tangent eigenvectors (for example
+/// Catmull-Clark's boundary sector with one face: `--boundary
+/// edge-and-corner` makes a boundary vertex with one face a corner, which
+/// has one), or parallel tangents.
+pub fn limit_normals(mesh: &SharpMesh, scheme: SdcScheme) -> Result<LimitNormals, NormalError> {
     let mut cache: HashMap<(VertexKind, Vec<usize>), SectorAnalysis> = HashMap::new();
-    (0..mesh.vertex_count())
-        .map(|v| vertex_normal(mesh, scheme, v, &mut cache))
-        .collect()
+    let count = mesh.vertex_count();
+    let mut normals = Vec::with_capacity(count);
+    let mut further = Vec::new();
+    let mut sector_corners = HashMap::new();
+    for v in 0..count {
+        match vertex_normal(mesh, scheme, v, &mut cache)? {
+            VertexNormals::One(n) => normals.push(n),
+            VertexNormals::Sectors(sectors) => {
+                normals.push(sectors[0].1);
+                for (faces, n) in sectors.into_iter().skip(1) {
+                    let index = count + further.len();
+                    further.push(n);
+                    for f in faces {
+                        sector_corners.insert((f, v), index);
+                    }
+                }
+            }
+        }
+    }
+    normals.extend(further);
+    Ok(LimitNormals {
+        normals,
+        sector_corners,
+    })
 }
 
 /// The ordered neighbourhood of `v`: the ring `e_i`, the far corners `f_i`
 /// (Catmull-Clark) and whether the fan is open.
 struct Fan {
+    faces: Vec<usize>,
     e: Vec<usize>,
     f: Vec<usize>,
     open: bool,
@@ -79,7 +141,9 @@ fn fan(mesh: &SharpMesh, scheme: SdcScheme, v: usize) -> Result<Fan, String> {
     };
     // (next, opposite, previous) around every face at v
     let mut corners = Vec::new();
+    let mut ids = Vec::new();
     for &f in mesh.vertex_faces(v) {
+        ids.push(f as usize);
         let verts = mesh.face_vertices(f as usize);
         if verts.len() != size {
             return Err(format!("face {f} has {} corners", verts.len()));
@@ -130,7 +194,14 @@ fn fan(mesh: &SharpMesh, scheme: SdcScheme, v: usize) -> Result<Fan, String> {
     } else {
         Vec::new()
     };
-    Ok(Fan { e, f, open })
+    let faces = order.iter().map(|&j| ids[j]).collect();
+    Ok(Fan { faces, e, f, open })
+}
+
+/// One vertex's normals: one, or one per sector with the sector's faces.
+enum VertexNormals {
+    One([f64; 3]),
+    Sectors(Vec<(Vec<usize>, [f64; 3])>),
 }
 
 fn vertex_normal(
@@ -138,7 +209,7 @@ fn vertex_normal(
     scheme: SdcScheme,
     v: usize,
     cache: &mut HashMap<(VertexKind, Vec<usize>), SectorAnalysis>,
-) -> Result<[f64; 3], NormalError> {
+) -> Result<VertexNormals, NormalError> {
     let err = |reason: String| NormalError { vertex: v, reason };
     let fan = fan(mesh, scheme, v).map_err(err)?;
     let p = mesh.positions();
@@ -149,58 +220,87 @@ fn vertex_normal(
         })
         .collect();
     let rule = vertex_rule(mesh.vertex_sharpness()[v], sharp.len());
-    let k = fan.e.len() - usize::from(fan.open);
-    let (kind, faces) = match (fan.open, rule) {
-        (false, Rule::Smooth | Rule::Dart) => {
-            return smooth_normal(p, scheme, v, &fan).map_err(err);
+    let faces = fan.faces.len();
+    // The sectors: the faces between consecutive sharp edges (math doc
+    // section 18.6). An open fan starts and ends at a boundary edge, which
+    // is sharp; a closed fan needs two sharp edges to have sectors.
+    let kind = match rule {
+        Rule::Smooth | Rule::Dart if !fan.open => {
+            return smooth_normal(p, scheme, v, &fan)
+                .map(VertexNormals::One)
+                .map_err(err);
         }
-        (true, Rule::Crease) if sharp == [0, k] => (VertexKind::Boundary, vec![k]),
-        (true, Rule::Corner) if sharp == [0, k] => (VertexKind::Corner, vec![k]),
-        (false, Rule::Crease) => {
-            return Err(err(
-                "an interior crease vertex has one limit tangent plane per sector (the surface has a kink there): no single vertex normal"
-                    .to_owned(),
-            ));
-        }
-        (open, rule) => {
-            let place = if open { "a boundary" } else { "an interior" };
+        Rule::Crease => VertexKind::Boundary,
+        Rule::Corner if fan.open || sharp.len() >= 2 => VertexKind::Corner,
+        _ => {
+            let place = if fan.open {
+                "a boundary"
+            } else {
+                "an interior"
+            };
             return Err(err(format!(
-                "{place} vertex with the {rule:?} rule and {} sharp edges has no single limit tangent plane",
+                "{place} vertex with the {rule:?} rule and {} sharp edges has no limit tangent plane (no sector between two sharp edges)",
                 sharp.len()
             )));
         }
     };
-    let angle = (kind == VertexKind::Corner).then_some(CORNER_ANGLE_DEGREES);
-    let key = (kind, faces.clone());
-    if !cache.contains_key(&key) {
-        let c = SectorConfig::new(scheme, kind, &faces, angle, RuleSet::Standard)
-            .map_err(|e| err(e.to_string()))?;
-        let a = analyze_sector(&c).map_err(|e| err(e.to_string()))?;
-        cache.insert(key.clone(), a);
+    if fan.open && (sharp.first() != Some(&0) || sharp.last() != Some(&faces)) {
+        return Err(err(
+            "an open fan whose boundary edges are not sharp (--boundary none) has no limit tangent plane"
+                .to_owned(),
+        ));
     }
-    let a = &cache[&key];
-    let mut points = vec![p[v]];
-    points.extend(fan.e.iter().map(|&i| p[i]));
-    points.extend(fan.f.iter().map(|&i| p[i]));
-    let (_, n) = limit_frame(a, &points).ok_or_else(|| {
-        err(format!(
-            "the {} has no pair of tangent eigenvectors (subdominant class {}) or its limit tangents are parallel",
-            a.configuration,
-            a.subdominant.class.name()
-        ))
-    })?;
-    let c = control_fan(p, v, &fan);
-    let s = if dot(n, c) < 0.0 { -1.0 } else { 1.0 };
-    Ok(n.map(|x| s * x))
+    let n = fan.e.len();
+    let bounds: Vec<(usize, usize)> = if fan.open {
+        sharp.windows(2).map(|w| (w[0], w[1])).collect()
+    } else {
+        (0..sharp.len())
+            .map(|j| (sharp[j], sharp[(j + 1) % sharp.len()]))
+            .collect()
+    };
+    let mut out = Vec::with_capacity(bounds.len());
+    for (a, b) in bounds {
+        // the sector's faces a, a+1, .., b-1 (cyclically for a closed fan)
+        let k = if b > a { b - a } else { b + faces - a };
+        let sector: Vec<usize> = (0..k).map(|i| (a + i) % faces).collect();
+        let angle = (kind == VertexKind::Corner).then_some(CORNER_ANGLE_DEGREES);
+        let key = (kind, vec![k]);
+        if !cache.contains_key(&key) {
+            let c = SectorConfig::new(scheme, kind, &[k], angle, RuleSet::Standard)
+                .map_err(|e| err(e.to_string()))?;
+            let s = analyze_sector(&c).map_err(|e| err(e.to_string()))?;
+            cache.insert(key.clone(), s);
+        }
+        let s = &cache[&key];
+        let mut points = vec![p[v]];
+        points.extend((0..=k).map(|i| p[fan.e[(a + i) % n]]));
+        if !fan.f.is_empty() {
+            points.extend(sector.iter().map(|&i| p[fan.f[i]]));
+        }
+        let (_, normal) = limit_frame(s, &points).ok_or_else(|| {
+            err(format!(
+                "the {} has no pair of tangent eigenvectors (subdominant class {}) or its limit tangents are parallel",
+                s.configuration,
+                s.subdominant.class.name()
+            ))
+        })?;
+        let c = control_fan(p, v, &fan, &sector);
+        let sign = if dot(normal, c) < 0.0 { -1.0 } else { 1.0 };
+        let faces_of_sector = sector.iter().map(|&i| fan.faces[i]).collect();
+        out.push((faces_of_sector, normal.map(|x| sign * x)));
+    }
+    Ok(match out.len() {
+        1 => VertexNormals::One(out[0].1),
+        _ => VertexNormals::Sectors(out),
+    })
 }
 
-/// `sum_i (e_i - v) x (e_(i+1) - v)` over the faces of the fan.
-fn control_fan(p: &[[f64; 3]], v: usize, fan: &Fan) -> [f64; 3] {
+/// `sum_i (e_i - v) x (e_(i+1) - v)` over the faces `i` of a sector of the fan.
+fn control_fan(p: &[[f64; 3]], v: usize, fan: &Fan, sector: &[usize]) -> [f64; 3] {
     let n = fan.e.len();
-    let faces = if fan.open { n - 1 } else { n };
     let d = |a: usize| sub(p[a], p[v]);
     let mut s = [0.0; 3];
-    for i in 0..faces {
+    for &i in sector {
         let c = cross(d(fan.e[i]), d(fan.e[(i + 1) % n]));
         for k in 0..3 {
             s[k] += c[k];

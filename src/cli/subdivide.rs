@@ -85,10 +85,10 @@ pub(crate) struct SubdivideArgs {
     /// vertex moved to its limit position (needs --levels >= 1 for non-quads).
     #[arg(long)]
     limit: bool,
-    /// With --limit, on open or tagged Catmull-Clark and Loop meshes: also
-    /// write the limit normal of every vertex (`vn` lines, faces `f v//v`;
-    /// boundary, crease and corner vertices from the left eigenvectors of
-    /// their local matrix, docs/math.md section 18.6).
+    /// With --limit, on Catmull-Clark and Loop meshes: also write the limit
+    /// normal of every vertex (`vn` lines, faces `f v//n`; one normal per
+    /// sector where sharp edges cut the surface, from the left eigenvectors
+    /// of the sector's local matrix, docs/math.md section 18.6).
     #[arg(long)]
     normals: bool,
     /// Print per-level statistics (counts; every extraordinary face's max |P_i - F| and its ratio).
@@ -226,6 +226,11 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
         )));
     }
     let sharp = rules.sharp_scheme();
+    if args.normals && sharp.is_none() {
+        return Err(CliError::usage(anyhow!(
+            "--normals: scheme {name}: limit normals are written under catmull-clark or loop only"
+        )));
+    }
     if sharp.is_none() {
         for (flag, given) in [
             ("--tags", args.tags.is_some()),
@@ -265,7 +270,9 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     let info = std::mem::take(&mut data.info);
     let mut mesh = match sharp {
         Some(scheme) => {
-            if !data.tags.is_empty() || args.tags.is_some() {
+            // Tagged meshes, and limit normals (which are the sharp-feature
+            // rules' on closed meshes too), take the sharp-feature refiner.
+            if !data.tags.is_empty() || args.tags.is_some() || args.normals {
                 data.info = info;
                 return run_sharp(&args, &name, scheme, data, &sidecar);
             }
@@ -313,12 +320,6 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
     }
     .with_context(input)
     .map_err(CliError::usage)?;
-    if args.normals {
-        return Err(CliError::usage(anyhow!(
-            "--normals: {}: limit normals are written for open or tagged meshes under catmull-clark or loop only",
-            args.input.display()
-        )));
-    }
     // Printed only when the run succeeds: an error stays a single stderr line.
     let note = ignored_note(&info);
     let knot_text = match &args.knots {
@@ -503,7 +504,7 @@ fn run_sharp(
     }
     let mut buf = Vec::new();
     if let (Some(n), Some(_)) = (&normals, &args.output) {
-        mesh.write_obj_with_normals(&mut buf, n)
+        mesh.write_obj_with_normals(&mut buf, &n.normals, |f, v| n.corner(f, v))
             .map_err(CliError::failure)?;
     } else if args.output.is_some() {
         mesh.write_obj(&mut buf).map_err(CliError::failure)?;

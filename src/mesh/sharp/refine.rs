@@ -15,6 +15,9 @@ fn add(a: &mut [f64; 3], b: &[f64; 3], w: f64) {
     a[2] += w * b[2];
 }
 
+/// The normal index of a face's corner: `(face, vertex) -> index`.
+type CornerNormal<'a> = &'a dyn Fn(usize, usize) -> usize;
+
 impl SharpMesh {
     /// One refinement step with `scheme`'s masks and `creasing`'s
     /// sharpness decay.
@@ -257,31 +260,42 @@ impl SharpMesh {
         self.write_obj_inner(out, None)
     }
 
-    /// The OBJ text with one `vn` line per vertex (`normals`, indexed like
-    /// the vertices) after the `v` lines, and faces `f v//v`. A count that
-    /// does not match the vertices is an [`std::io::ErrorKind::InvalidInput`] error.
+    /// The OBJ text with the `vn` lines of `normals` after the `v` lines,
+    /// and faces `f v//n` with `n = corner(face, v)` (0-based; written
+    /// 1-based). With one normal per vertex, `corner` returns `v`: `f v//v`.
+    /// Fewer normals than vertices, or a corner index beyond `normals`, is
+    /// an [`std::io::ErrorKind::InvalidInput`] error.
     pub fn write_obj_with_normals<W: std::io::Write>(
         &self,
         out: &mut W,
         normals: &[[f64; 3]],
+        corner: impl Fn(usize, usize) -> usize,
     ) -> std::io::Result<()> {
-        if normals.len() != self.vertex_count() {
-            return Err(std::io::Error::new(
-                std::io::ErrorKind::InvalidInput,
-                format!(
-                    "{} normals for {} vertices",
-                    normals.len(),
-                    self.vertex_count()
-                ),
-            ));
+        let invalid = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, m);
+        if normals.len() < self.vertex_count() {
+            return Err(invalid(format!(
+                "{} normals for {} vertices",
+                normals.len(),
+                self.vertex_count()
+            )));
         }
-        self.write_obj_inner(out, Some(normals))
+        if let Some((f, v)) = (0..self.face_count())
+            .flat_map(|f| self.face_vertices(f).iter().map(move |&v| (f, v as usize)))
+            .find(|&(f, v)| corner(f, v) >= normals.len())
+        {
+            return Err(invalid(format!(
+                "the corner of face {f} at vertex {v} names normal {} of {}",
+                corner(f, v),
+                normals.len()
+            )));
+        }
+        self.write_obj_inner(out, Some((normals, &corner)))
     }
 
     fn write_obj_inner<W: std::io::Write>(
         &self,
         out: &mut W,
-        normals: Option<&[[f64; 3]]>,
+        normals: Option<(&[[f64; 3]], CornerNormal<'_>)>,
     ) -> std::io::Result<()> {
         let kept = (0..self.face_count()).filter(|&f| !self.hole[f]).count();
         writeln!(
@@ -293,7 +307,7 @@ impl SharpMesh {
         for p in &self.positions {
             writeln!(out, "v {:?} {:?} {:?}", p[0], p[1], p[2])?;
         }
-        for n in normals.unwrap_or(&[]) {
+        for n in normals.map_or(&[][..], |(n, _)| n) {
             writeln!(out, "vn {:?} {:?} {:?}", n[0], n[1], n[2])?;
         }
         let mut line = String::new();
@@ -305,8 +319,8 @@ impl SharpMesh {
             line.push('f');
             for &v in self.face_vertices(f) {
                 use std::fmt::Write as _;
-                let _ = if normals.is_some() {
-                    write!(line, " {}//{}", v + 1, v + 1)
+                let _ = if let Some((_, corner)) = normals {
+                    write!(line, " {}//{}", v + 1, corner(f, v as usize) + 1)
                 } else {
                     write!(line, " {}", v + 1)
                 };
