@@ -117,6 +117,7 @@ pub mod scalar;
 pub mod schemes;
 pub mod spectral;
 pub mod sweep;
+pub mod table;
 #[cfg(feature = "testing")]
 pub mod testing;
 pub(crate) mod toml_location;

@@ -311,13 +311,12 @@ pub(crate) fn plot<'py>(
     force: bool,
 ) -> PyResult<Bound<'py, PyBytes>> {
     use subdiv_lab::report::sweep_plot::{self, PlotRequest, SweepPlot};
-    use subdiv_lab::report::table::Table;
     use subdiv_lab::report::{render_png, render_svg, Area};
     guard("plot", || {
         let (width, height) = (width.u32("width")?, height.u32("height")?);
         let kind = sweep_plot::check_options(kind, width, height, PY).map_err(value_err)?;
-        let table =
-            Table::from_named_bytes(name, data).map_err(|e| value_err(format!("{name}: {e}")))?;
+        let table = subdiv_lab::sweep::output::read_output(name, data)
+            .map_err(|e| value_err(format!("{name}: {e}")))?;
         limit(
             "plot",
             name,

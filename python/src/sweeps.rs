@@ -12,9 +12,9 @@ use subdiv_lab::budget::{
     held_in_memory, Estimate, SWEEP_TIME_LIMIT_SECONDS, TABLE_BYTES_PER_CELL,
 };
 use subdiv_lab::schemes::user::SchemeFile;
-use subdiv_lab::sweep::eval::Cell;
 use subdiv_lab::sweep::output::{self, files, shards, Row};
 use subdiv_lab::sweep::{Layout, Plan, SchemeFactory, Shard, SpectralEvaluator, SweepSpec};
+use subdiv_lab::table::Column;
 
 /// A TOML sweep spec from its JSON form (the Python dict).
 #[pyfunction]
@@ -31,126 +31,50 @@ fn parse_spec(text: &str, origin: &SpecOrigin) -> PyResult<SweepSpec> {
     SweepSpec::from_toml(text).map_err(|e| origin.sweep_error(e))
 }
 
-/// Columns of evaluated rows, filled in row order.
-struct Columns {
-    names: Vec<String>,
-    numeric: Vec<bool>,
-    nums: Vec<Vec<f64>>,
-    valid: Vec<Vec<bool>>,
-    texts: Vec<Vec<String>>,
-}
-
-impl Columns {
-    fn new(names: Vec<String>, numeric: Vec<bool>, rows: usize) -> Self {
-        let k = names.len();
-        Columns {
-            nums: numeric
-                .iter()
-                .map(|&n| {
-                    if n {
-                        Vec::with_capacity(rows)
-                    } else {
-                        Vec::new()
-                    }
-                })
-                .collect(),
-            valid: (0..k).map(|_| Vec::with_capacity(rows)).collect(),
-            texts: numeric
-                .iter()
-                .map(|&n| {
-                    if n {
-                        Vec::new()
-                    } else {
-                        Vec::with_capacity(rows)
-                    }
-                })
-                .collect(),
-            names,
-            numeric,
-        }
-    }
-
-    fn push(&mut self, cells: &[Cell]) {
-        for (j, numeric) in self.numeric.iter().enumerate() {
-            let cell = cells.get(j).unwrap_or(&Cell::Empty);
-            let ok = !matches!(cell, Cell::Empty);
-            self.valid[j].push(ok);
-            if *numeric {
-                self.nums[j].push(match cell {
-                    Cell::Num(x) => *x,
-                    _ => f64::NAN,
-                });
-            } else {
-                self.texts[j].push(match cell {
-                    Cell::Text(t) => t.clone(),
-                    Cell::Num(x) => x.to_string(),
-                    Cell::Empty => String::new(),
-                });
-            }
-        }
-    }
-
-    /// `{name: (values, valid)}`: numpy float64 arrays or lists of str, with a numpy bool mask.
-    fn into_dict<'py>(self, py: Python<'py>, out: &Bound<'py, PyDict>) -> PyResult<()> {
-        let Columns {
-            names,
-            numeric,
-            nums,
-            valid,
-            texts,
-        } = self;
-        for ((((name, numeric), num), ok), text) in names
-            .into_iter()
-            .zip(numeric)
-            .zip(nums)
-            .zip(valid)
-            .zip(texts)
-        {
-            let mask = PyArray1::from_vec(py, ok);
-            if numeric {
-                out.set_item(name, (PyArray1::from_vec(py, num), mask))?;
-            } else {
-                out.set_item(name, (text, mask))?;
-            }
-        }
-        Ok(())
-    }
-}
-
-/// `(column names, {name: column})` of `rows` (the layout's columns): `id`
-/// (uint64), `valence` (uint32), each coordinate and result column as
-/// `(values, valid)` and `error` (str, empty when the row succeeded).
+/// `(column names, {name: column})` of `rows` (the layout's columns, as
+/// [`Layout::table`] types them): `id` (uint64), `valence` (uint32), each
+/// coordinate and result column as `(values, valid)` (numpy float64 with NaN
+/// where not valid, or a list of str with `""`, and a numpy bool mask) and
+/// `error` (list of str, empty when the row succeeded).
 fn table<'py>(
     py: Python<'py>,
     layout: &Layout,
     rows: Vec<Row>,
 ) -> PyResult<(Vec<String>, Bound<'py, PyDict>)> {
-    let names = layout.column_names();
-    let inner: Vec<String> = names
-        .get(2..names.len().saturating_sub(1))
-        .map(<[String]>::to_vec)
-        .unwrap_or_default();
-    let mut numeric = vec![false; inner.len()];
-    for (pos, _) in layout.numeric_columns() {
-        if let Some(x) = numeric.get_mut(*pos) {
-            *x = true;
+    let table = layout.table(rows).map_err(runtime_err)?;
+    let names = table.names().to_vec();
+    let out = PyDict::new(py);
+    for (name, column) in table.into_columns() {
+        match column {
+            Column::U64(v) => out.set_item(name, PyArray1::from_vec(py, v))?,
+            Column::U32(v) => out.set_item(name, PyArray1::from_vec(py, v))?,
+            Column::Str(v) if name == "error" => {
+                let v: Vec<String> = v.into_iter().map(Option::unwrap_or_default).collect();
+                out.set_item(name, v)?;
+            }
+            Column::Str(v) => {
+                let mask: Vec<bool> = v.iter().map(Option::is_some).collect();
+                let v: Vec<String> = v.into_iter().map(Option::unwrap_or_default).collect();
+                out.set_item(name, (v, PyArray1::from_vec(py, mask)))?;
+            }
+            Column::F64(v) => {
+                let mask: Vec<bool> = v.iter().map(Option::is_some).collect();
+                let v: Vec<f64> = v.into_iter().map(|x| x.unwrap_or(f64::NAN)).collect();
+                out.set_item(
+                    name,
+                    (PyArray1::from_vec(py, v), PyArray1::from_vec(py, mask)),
+                )?;
+            }
+            Column::Bool(v) => {
+                let mask: Vec<bool> = v.iter().map(Option::is_some).collect();
+                let v: Vec<bool> = v.into_iter().map(Option::unwrap_or_default).collect();
+                out.set_item(
+                    name,
+                    (PyArray1::from_vec(py, v), PyArray1::from_vec(py, mask)),
+                )?;
+            }
         }
     }
-    let mut cols = Columns::new(inner, numeric, rows.len());
-    let mut ids = Vec::with_capacity(rows.len());
-    let mut valences = Vec::with_capacity(rows.len());
-    let mut errors = Vec::with_capacity(rows.len());
-    for r in rows {
-        ids.push(r.id);
-        valences.push(u32::try_from(r.valence).unwrap_or(u32::MAX));
-        cols.push(&r.cells);
-        errors.push(r.error.unwrap_or_default());
-    }
-    let out = PyDict::new(py);
-    out.set_item("id", PyArray1::from_vec(py, ids))?;
-    out.set_item("valence", PyArray1::from_vec(py, valences))?;
-    cols.into_dict(py, &out)?;
-    out.set_item("error", errors)?;
     Ok((names, out))
 }
 

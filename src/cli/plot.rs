@@ -8,7 +8,7 @@
 //! for an axis, an unknown kind, a bad output name) exits 2 with one line
 //! naming the problem, before anything is written. The work is estimated
 //! before the table is read (rows and columns from the file,
-//! [`Table::shape`]) and an SVG of more than
+//! [`output_shape`]) and an SVG of more than
 //! [`sweep_plot::MAX_SVG_ITEMS`] points or cells is refused (a PNG has a
 //! fixed size) unless `--force`. Rows left out for a missing, NaN or
 //! infinite coordinate are counted on stderr. The figure replaces `-o`
@@ -21,8 +21,8 @@ use clap::Args;
 use std::path::PathBuf;
 use subdiv_lab::budget::format_bytes;
 use subdiv_lab::report::sweep_plot::{self, PlotRequest, SweepPlot, MAX_SVG_ITEMS};
-use subdiv_lab::report::table::Table;
 use subdiv_lab::report::{render_png, render_svg, Area};
+use subdiv_lab::sweep::output::{output_shape, read_output};
 
 #[derive(Args, Debug)]
 pub(crate) struct PlotArgs {
@@ -92,11 +92,11 @@ pub(crate) fn run(args: PlotArgs) -> CliResult {
         .map_err(|e| CliError::usage(anyhow!("cannot read {in_name}: {e}")))?;
     // Reading and drawing the table: checked before it is parsed.
     let (rows, columns) =
-        Table::shape(&in_name, &bytes).map_err(|e| CliError::usage(anyhow!("{in_name}: {e}")))?;
+        output_shape(&in_name, &bytes).map_err(|e| CliError::usage(anyhow!("{in_name}: {e}")))?;
     let estimate = sweep_plot::estimate(rows, columns, file_bytes);
     super::budget::check("plot", &in_name, &estimate, limit, args.force)?;
-    let table = Table::from_named_bytes(&in_name, &bytes)
-        .map_err(|e| CliError::usage(anyhow!("{in_name}: {e}")))?;
+    let table =
+        read_output(&in_name, &bytes).map_err(|e| CliError::usage(anyhow!("{in_name}: {e}")))?;
     drop(bytes);
     let request = PlotRequest {
         kind,

@@ -48,7 +48,6 @@ pub(crate) mod markup;
 pub(crate) mod plot;
 pub(crate) mod spec;
 pub mod sweep_plot;
-pub mod table;
 
 pub use backend::{render_png, render_svg, Area};
 pub use error::{Location, ReportError};

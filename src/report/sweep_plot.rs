@@ -37,7 +37,7 @@
 //! are left out and counted ([`SweepPlot::dropped`]).
 //!
 //! ```
-//! use subdiv_lab::report::table::Table;
+//! use subdiv_lab::table::Table;
 //! use subdiv_lab::report::sweep_plot::{PlotKind, PlotRequest, SweepPlot};
 //! let t = Table::from_csv(b"id,valence,class\n0,3,standard\n1,3,defective\n2,4,standard\n").unwrap();
 //! let p = SweepPlot::build(&t, &PlotRequest::default()).unwrap();
@@ -53,8 +53,8 @@ use super::plot::{
     class_color, colorbar, draw_err, series_color, side_legend, titled, viridis, LegendGlyph,
     Marker, Theme,
 };
-use super::table::{Table, TableError};
 use crate::budget::Estimate;
+use crate::table::{Table, TableError};
 use plotters::prelude::*;
 
 /// Fewest histogram bins.

@@ -8,8 +8,9 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use subdiv_lab::sweep::output::parquet::{
-    read_table, Column, ParquetTable, FORMAT, FORMAT_KEY, NULLS_KEY, PART_ROWS, SCHEMA_KEY,
+    csv_lines, read_table, FINGERPRINT_KEY, FORMAT, FORMAT_KEY, NULLS_KEY, PART_ROWS, SCHEMA_KEY,
 };
+use subdiv_lab::table::{Column, Table};
 
 const BIN: &str = env!("CARGO_BIN_EXE_subdiv-lab");
 
@@ -91,7 +92,7 @@ fn dataset_lines(dir: &Path) -> String {
         .into_iter()
         .map(|(_, b)| {
             let t = read_table(b).unwrap();
-            t.csv_lines(0, t.rows())
+            csv_lines(&t, 0, t.len())
         })
         .collect()
 }
@@ -152,10 +153,10 @@ fn parquet_values_equal_the_csv() {
     let p = parts(&pq);
     assert_eq!(p.len(), 1);
     assert_eq!(p[0].0, "part-000000.parquet");
-    let t: ParquetTable = read_table(p[0].1.clone()).unwrap();
+    let t: Table = read_table(p[0].1.clone()).unwrap();
     // The same lines, byte for byte (numbers in shortest round-trip form).
-    assert_eq!(t.csv_lines(0, t.rows()), csv_data(&csv));
-    assert_eq!(t.rows(), 80);
+    assert_eq!(csv_lines(&t, 0, t.len()), csv_data(&csv));
+    assert_eq!(t.len(), 80);
     // Typed columns, and the numbers bit for bit those of the CSV text.
     let header: Vec<String> = fs::read_to_string(&csv)
         .unwrap()
@@ -165,7 +166,7 @@ fn parquet_values_equal_the_csv() {
         .split(',')
         .map(str::to_owned)
         .collect();
-    assert_eq!(t.names, header);
+    assert_eq!(t.names(), header);
     assert!(matches!(t.column("id"), Some(Column::U64(_))));
     assert!(matches!(t.column("valence"), Some(Column::U32(_))));
     assert!(matches!(t.column("class"), Some(Column::Str(_))));
@@ -179,7 +180,7 @@ fn parquet_values_equal_the_csv() {
     // The metadata: the fingerprint (spec digest and shard), the format, the
     // column documentation and the null rules.
     let digest = summary(&pq)["spec_digest"].as_str().unwrap().to_owned();
-    let fp = t.fingerprint().unwrap();
+    let fp = t.metadata(FINGERPRINT_KEY).unwrap();
     assert!(
         fp.starts_with(&format!("# subdiv-lab sweep: digest {digest}, shard 0/1")),
         "{fp}"
@@ -216,7 +217,7 @@ fn parquet_is_byte_identical_for_any_thread_count_and_parts_are_fixed() {
     );
     let rows: Vec<usize> = a
         .iter()
-        .map(|(_, b)| read_table(b.clone()).unwrap().rows())
+        .map(|(_, b)| read_table(b.clone()).unwrap().len())
         .collect();
     assert_eq!(rows, [PART_ROWS, PART_ROWS, 150_000 - 2 * PART_ROWS]);
     // Only the parts are in the directory, and no temporary file is left.
@@ -360,7 +361,7 @@ fn parquet_shards_in_one_directory_merge_to_the_unsharded_rows() {
     let merged = dir.path().join("merged.parquet");
     ok(&["merge", "--spec", s(&spec), "--out", s(&merged), s(&shared)]);
     let t = read_table(fs::read(&merged).unwrap()).unwrap();
-    assert_eq!(t.csv_lines(0, t.rows()), dataset_lines(&full));
+    assert_eq!(csv_lines(&t, 0, t.len()), dataset_lines(&full));
     assert_eq!(summary(&merged), summary(&full));
     // A missing shard: the error names the first missing id, and no output appears.
     let out2 = dir.path().join("merged2.parquet");

@@ -24,8 +24,9 @@ use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::sweep_plot::{PlotKind, PlotRequest, SweepPlot};
-use crate::report::table::{Table, TableError};
 use crate::report::Inputs;
+use crate::sweep::output::read_output;
+use crate::table::TableError;
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -91,8 +92,7 @@ impl Sweep {
         let bytes = inputs
             .get(&self.path)
             .ok_or_else(|| err("not read (the caller passed no such input)".to_owned()))?;
-        let table = Table::from_named_bytes(&self.path, bytes)
-            .map_err(|e: TableError| err(e.to_string()))?;
+        let table = read_output(&self.path, bytes).map_err(|e: TableError| err(e.to_string()))?;
         SweepPlot::build(&table, &self.request).map_err(|e| err(e.to_string()))
     }
 }

@@ -14,7 +14,9 @@
 //! shards of one run write into one directory; [`dataset_shards`] reads them
 //! back for the merge.
 
-use super::parquet::{parse_part_name, part_name, ParquetRows, PartFn, MAGIC, PART_ROWS};
+use super::parquet::{
+    csv_lines, parse_part_name, part_name, ParquetRows, PartFn, MAGIC, PART_ROWS,
+};
 use super::shards::{check_part, ShardData, ShardFile, OLD_PARQUET};
 use super::{check_fingerprint, fingerprint_line, Layout, LineFault, Verifier};
 use crate::sweep::eval::Evaluate;
@@ -171,9 +173,15 @@ pub fn open<E: Evaluate + ?Sized>(
             line,
             message,
         };
-        check_fingerprint(plan, shard, table.fingerprint().unwrap_or_default())
-            .map_err(|m| mismatch(1, format!("{m}; cannot resume")))?;
-        let rows = table.rows() as u64;
+        check_fingerprint(
+            plan,
+            shard,
+            table
+                .metadata(super::parquet::FINGERPRINT_KEY)
+                .unwrap_or_default(),
+        )
+        .map_err(|m| mismatch(1, format!("{m}; cannot resume")))?;
+        let rows = table.len() as u64;
         let want = (expected - done.min(expected)).min(PART_ROWS as u64);
         if rows > want || (rows < want && i + 1 < parts.len()) {
             return Err(mismatch(
@@ -186,7 +194,7 @@ pub fn open<E: Evaluate + ?Sized>(
             redo = true;
             break;
         }
-        let lines = table.csv_lines(0, rows as usize);
+        let lines = csv_lines(&table, 0, rows as usize);
         let expected_id = |j: u64| shard.id(j);
         verifier
             .check_block(1, lines.as_bytes(), &expected_id, expected)

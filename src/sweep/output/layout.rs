@@ -6,6 +6,7 @@ use super::csv::{itoa_buf, push_number, push_text, small_uint, split_csv_line};
 use crate::sweep::eval::{result_columns, Cell, ColumnType, Evaluate};
 use crate::sweep::plan::Plan;
 use crate::sweep::SweepError;
+use crate::table::{Column, Table, TableError};
 use std::io::Write;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -175,6 +176,47 @@ impl Layout {
     pub fn write_header<W: Write>(&self, out: &mut W) -> Result<(), SweepError> {
         out.write_all(self.header().as_bytes())?;
         Ok(())
+    }
+
+    /// The rows as a [`Table`] with the CSV's columns, `id` (`U64`) and
+    /// `valence` (`U32`), then a `F64` column per numeric cell and a `Str`
+    /// column per text cell (an empty cell is null), then `error` (`Str`,
+    /// null when the row succeeded): the table [`Table::from_csv`] reads
+    /// from the CSV of the same rows, up to the empty columns it cannot
+    /// type.
+    pub fn table(&self, rows: Vec<Row>) -> Result<Table, TableError> {
+        let n = rows.len();
+        let mut ids = Vec::with_capacity(n);
+        let mut valences = Vec::with_capacity(n);
+        let mut errors = Vec::with_capacity(n);
+        let mut cells: Vec<Column> = self
+            .kinds
+            .iter()
+            .map(|k| match k {
+                Kind::Numeric => Column::F64(Vec::with_capacity(n)),
+                Kind::Text => Column::Str(Vec::with_capacity(n)),
+            })
+            .collect();
+        for r in rows {
+            ids.push(r.id);
+            valences.push(u32::try_from(r.valence).unwrap_or(u32::MAX));
+            for (j, col) in cells.iter_mut().enumerate() {
+                let cell = r.cells.get(j).unwrap_or(&Cell::Empty);
+                match (col, cell) {
+                    (Column::F64(v), Cell::Num(x)) => v.push(Some(*x)),
+                    (Column::F64(v), _) => v.push(None),
+                    (Column::Str(v), Cell::Text(t)) => v.push(Some(t.clone())),
+                    (Column::Str(v), Cell::Num(x)) => v.push(Some(x.to_string())),
+                    (Column::Str(v), Cell::Empty) => v.push(None),
+                    _ => {}
+                }
+            }
+            errors.push(r.error);
+        }
+        let mut columns = vec![Column::U64(ids), Column::U32(valences)];
+        columns.extend(cells);
+        columns.push(Column::Str(errors));
+        Table::new(self.column_names(), columns)
     }
 
     /// Numeric cells: (cell index, column name).

@@ -33,7 +33,8 @@
 //!   committed by rename, resume, the shards of a merge:
 //!   [`dataset::open`], [`dataset::dataset_shards`]);
 //! * `verify.rs`: the verification of existing files (resume and merge,
-//!   [`Verifier`]).
+//!   [`Verifier`]);
+//! * here: a sweep's output read back as a [`Table`] ([`read_output`]).
 
 pub(crate) mod csv;
 pub mod dataset;
@@ -57,3 +58,80 @@ pub use verify::{
     check_fingerprint, check_summary, fingerprint_digest, fingerprint_line, fingerprint_shard,
     is_old_csv_fingerprint, LineFault, Verifier, OLD_CSV, PIECE_BYTES, RECHECK_SAMPLE,
 };
+
+use crate::table::{Table, TableError};
+
+/// Reads a sweep's output from its bytes (the library does no I/O) as a
+/// [`Table`]: as Parquet ([`parquet::read_table`]) when `name` ends in
+/// `.parquet` or the bytes begin and end with the Parquet magic `PAR1` (a
+/// Parquet file under another name), as CSV ([`Table::from_csv`])
+/// otherwise. At least one row. The cells read from a Parquet file are
+/// those read from the CSV of the same rows (a figure drawn from one equals
+/// the one drawn from the other).
+///
+/// ```
+/// use subdiv_lab::sweep::output::read_output;
+/// let e = read_output("x.parquet", b"PAR1").unwrap_err().to_string();
+/// assert!(e.contains("not a Parquet file, or torn"), "{e}");
+/// assert_eq!(read_output("x.csv", b"id,class\n0,a\n").unwrap().len(), 1);
+/// ```
+pub fn read_output(name: &str, bytes: &[u8]) -> Result<Table, TableError> {
+    if !is_parquet(name, bytes) {
+        return Table::from_csv(bytes);
+    }
+    let t = parquet::read_table(bytes.to_vec()).map_err(|e| match e {
+        crate::sweep::SweepError::Io(m) | crate::sweep::SweepError::Read(m) => {
+            TableError::Parquet(m)
+        }
+        other => TableError::Parquet(other.to_string()),
+    })?;
+    if t.is_empty() {
+        return Err(TableError::NoRows);
+    }
+    Ok(t)
+}
+
+/// An upper bound of the rows and the number of columns of the table
+/// [`read_output`] would read from `bytes`, without reading it (a work
+/// estimate): for CSV the line count and the fields of the first line that
+/// is not a `#` comment; for Parquet the footer's counts.
+pub fn output_shape(name: &str, bytes: &[u8]) -> Result<(usize, usize), TableError> {
+    if is_parquet(name, bytes) {
+        let (rows, columns) = parquet::shape(bytes).map_err(|e| match e {
+            crate::sweep::SweepError::Read(m) => TableError::Parquet(m),
+            other => TableError::Parquet(other.to_string()),
+        })?;
+        return Ok((usize::try_from(rows).unwrap_or(usize::MAX), columns));
+    }
+    let lines = memchr::memchr_iter(b'\n', bytes).count() + 1;
+    let header = bytes
+        .split(|&b| b == b'\n')
+        .find(|l| !l.starts_with(b"#"))
+        .unwrap_or_default();
+    let columns = memchr::memchr_iter(b',', header).count() + 1;
+    Ok((lines, columns))
+}
+
+/// Whether [`read_output`] reads `bytes` as Parquet.
+fn is_parquet(name: &str, bytes: &[u8]) -> bool {
+    let magic = parquet::MAGIC;
+    let parquet_bytes =
+        bytes.len() >= 2 * magic.len() && bytes.starts_with(magic) && bytes.ends_with(magic);
+    name.ends_with(".parquet") || parquet_bytes
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The shape is read without parsing: a bound of the rows (the lines)
+    /// and the header's fields; a Parquet file's from its footer.
+    #[test]
+    fn shape_bounds_rows_before_parsing() {
+        let csv = b"# fingerprint\nid,valence,class\n0,3,a\n1,3,b\n";
+        let (rows, cols) = output_shape("s.csv", csv).unwrap();
+        assert_eq!(cols, 3);
+        assert!(rows >= read_output("s.csv", csv).unwrap().len());
+        assert!(output_shape("s.parquet", b"PAR1").is_err());
+    }
+}

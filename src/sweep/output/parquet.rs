@@ -34,6 +34,7 @@ use crate::sweep::eval::{ColumnType, Evaluate};
 use crate::sweep::plan::{Plan, Shard};
 use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
+use crate::table::{Column, Table};
 use bytes::Bytes;
 use parquet::basic::{IntType, LogicalType, Repetition, Type as PhysicalType};
 use parquet::column::writer::ColumnWriter;
@@ -1100,104 +1101,40 @@ impl std::io::Write for ParquetRows {
     }
 }
 
-/// A column of a [`ParquetTable`].
-#[derive(Clone, Debug, PartialEq)]
-pub enum Column {
-    /// `u64` values (`id`).
-    U64(Vec<u64>),
-    /// `u32` values (`valence`).
-    U32(Vec<u32>),
-    /// `f64` values (`None`: null, an empty CSV cell).
-    F64(Vec<Option<f64>>),
-    /// Strings.
-    Str(Vec<Option<String>>),
-    /// Booleans.
-    Bool(Vec<Option<bool>>),
-}
-
-impl Column {
-    fn len(&self) -> usize {
-        match self {
-            Column::U64(v) => v.len(),
-            Column::U32(v) => v.len(),
-            Column::F64(v) => v.len(),
-            Column::Str(v) => v.len(),
-            Column::Bool(v) => v.len(),
-        }
-    }
-}
-
-/// A sweep's Parquet file read back: the columns by name, the key-value
-/// metadata.
-#[derive(Clone, Debug)]
-pub struct ParquetTable {
-    /// Column names, in file order.
-    pub names: Vec<String>,
-    /// The columns, in file order.
-    pub columns: Vec<Column>,
-    /// The key-value metadata.
-    pub key_value: Vec<(String, String)>,
-}
-
-impl ParquetTable {
-    /// Rows.
-    pub fn rows(&self) -> usize {
-        self.columns.first().map_or(0, Column::len)
-    }
-
-    /// The column named `name`.
-    pub fn column(&self, name: &str) -> Option<&Column> {
-        let i = self.names.iter().position(|n| n == name)?;
-        self.columns.get(i)
-    }
-
-    /// The value of key-value metadata `key`.
-    pub fn metadata(&self, key: &str) -> Option<&str> {
-        self.key_value
-            .iter()
-            .find(|(k, _)| k == key)
-            .map(|(_, v)| v.as_str())
-    }
-
-    /// The fingerprint line (without `\n`), if the file has one.
-    pub fn fingerprint(&self) -> Option<&str> {
-        self.metadata(FINGERPRINT_KEY)
-    }
-
-    /// The CSV lines (each with `\n`) of rows `from..to`, byte for byte those
-    /// the sweep writes for them (numbers in shortest round-trip form).
-    pub fn csv_lines(&self, from: usize, to: usize) -> String {
-        let mut s = String::new();
-        let mut digits = zmij::Buffer::new();
-        for r in from..to {
-            for (k, c) in self.columns.iter().enumerate() {
-                if k > 0 {
-                    s.push(',');
+/// The CSV lines (each with `\n`) of rows `from..to` of a sweep's table,
+/// byte for byte those the sweep writes for them (numbers in shortest
+/// round-trip form).
+pub fn csv_lines(table: &Table, from: usize, to: usize) -> String {
+    let mut s = String::new();
+    let mut digits = zmij::Buffer::new();
+    for r in from..to {
+        for (k, c) in table.columns().iter().enumerate() {
+            if k > 0 {
+                s.push(',');
+            }
+            match c {
+                Column::U64(v) => s.push_str(&v[r].to_string()),
+                Column::U32(v) => s.push_str(&v[r].to_string()),
+                Column::F64(v) => {
+                    if let Some(x) = v[r] {
+                        push_number(&mut s, &mut digits, x);
+                    }
                 }
-                match c {
-                    Column::U64(v) => s.push_str(&v[r].to_string()),
-                    Column::U32(v) => s.push_str(&v[r].to_string()),
-                    Column::F64(v) => {
-                        if let Some(x) = v[r] {
-                            push_number(&mut s, &mut digits, x);
-                        }
+                Column::Str(v) => {
+                    if let Some(t) = &v[r] {
+                        push_text(&mut s, t);
                     }
-                    Column::Str(v) => {
-                        if let Some(t) = &v[r] {
-                            push_text(&mut s, t);
-                        }
-                    }
-                    Column::Bool(v) => {
-                        if let Some(b) = v[r] {
-                            s.push_str(if b { "true" } else { "false" });
-                        }
+                }
+                Column::Bool(v) => {
+                    if let Some(b) = v[r] {
+                        s.push_str(if b { "true" } else { "false" });
                     }
                 }
             }
-            s.push('\n');
         }
-        s
+        s.push('\n');
     }
+    s
 }
 
 /// The number of rows and of columns of a Parquet file, from its footer
@@ -1233,11 +1170,10 @@ pub fn shape(bytes: &[u8]) -> Result<(u64, usize), SweepError> {
 /// is refused with a message naming the problem.
 ///
 /// ```
-/// use subdiv_lab::sweep::output::parquet::{read_table, Column};
+/// use subdiv_lab::sweep::output::parquet::read_table;
 /// assert!(read_table(b"not parquet".to_vec()).is_err());
-/// # let _ = Column::U64(vec![]);
 /// ```
-pub fn read_table(bytes: impl Into<Bytes>) -> Result<ParquetTable, SweepError> {
+pub fn read_table(bytes: impl Into<Bytes>) -> Result<Table, SweepError> {
     let bytes: Bytes = bytes.into();
     if bytes.len() < 12 || &bytes[..4] != MAGIC || &bytes[bytes.len() - 4..] != MAGIC {
         return Err(SweepError::Read(
@@ -1336,11 +1272,9 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<ParquetTable, SweepError> {
             }
         }
     }
-    Ok(ParquetTable {
-        names,
-        columns,
-        key_value,
-    })
+    Table::new(names, columns)
+        .map(|t| t.with_metadata(key_value))
+        .map_err(|e| SweepError::Read(format!("parquet: {e}")))
 }
 /// Whether `bytes` start as a Parquet file does.
 pub fn is_parquet(bytes: &[u8]) -> bool {
@@ -1478,12 +1412,12 @@ mod tests {
             parts.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>(),
             vec![(5, PART_ROWS as u64), (6, 64)]
         );
-        let tables: Vec<ParquetTable> = parts
+        let tables: Vec<Table> = parts
             .iter()
             .map(|p| read_table(p.2.clone()).unwrap())
             .collect();
         assert_eq!(tables[1].metadata(PART_KEY), Some("6"));
-        assert_eq!(tables[0].fingerprint(), Some("fp"));
+        assert_eq!(tables[0].metadata(FINGERPRINT_KEY), Some("fp"));
         assert_eq!(tables[0].metadata(FORMAT_KEY), Some(FORMAT));
         // Row i of the dataset is row r of block a or b.
         let r_of = |i: usize| (i as u64).checked_sub(first).unwrap_or(i as u64);

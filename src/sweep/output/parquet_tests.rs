@@ -2,13 +2,14 @@
 //! its own: it uses the CSV driver, the Parquet writer and the fingerprint,
 //! which do not depend on one another).
 
-use super::parquet::{read_table, run_parquet, Column, ParquetRows, PART_ROWS};
+use super::parquet::{csv_lines, read_table, run_parquet, ParquetRows, PART_ROWS};
 use super::run::run;
 use super::run::tests::Faulty;
 use super::Layout;
 use crate::sweep::eval::{Cell, Evaluate, SpectralEvaluator};
 use crate::sweep::plan::{Configuration, Plan, Shard};
 use crate::sweep::summary::Summary;
+use crate::table::{Column, Table};
 use std::sync::{Arc, Mutex};
 
 /// Cells of every kind from the id alone (no eigenvalues: cheap enough
@@ -181,9 +182,9 @@ fn typed_parquet_path_equals_the_csv_text_path() {
         assert!(typed.0 == text.0, "the two paths' bytes differ");
         assert_eq!(typed.2, text.2);
         let t = read_table(typed.0).unwrap();
-        assert_eq!(t.rows(), ids.len());
+        assert_eq!(t.len(), ids.len());
         // Line breaks are spaces in both forms; NaN reads back as NaN.
-        assert!(t.csv_lines(0, 20).contains("x y"));
+        assert!(csv_lines(&t, 0, 20).contains("x y"));
     }
     // The built-in evaluator, and error rows of a faulty one.
     let small = "scheme = \"nurds\"\nvalences = [3, 5]\n[space]\nkind = \"corner-intervals\"\ninterval_range = [0.001, 1000.0]\n[sampler]\nkind = \"random\"\ncount = 300\nseed = 5\n[columns]\neigenvalues = 4\nexact_certificate = true\n";
@@ -326,7 +327,7 @@ impl Evaluate for ManyLabels {
 /// The typed path's file for `count` Halton points read back (through the
 /// arrow-rs reader, not our encoder), and the CSV text of the same rows;
 /// asserts that the file reads back as exactly those CSV lines.
-fn reads_back_as_csv(eval: &ManyLabels, count: u64) -> (super::parquet::ParquetTable, String) {
+fn reads_back_as_csv(eval: &ManyLabels, count: u64) -> (Table, String) {
     let spec = format!("scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = {count}\n[columns]\nexact_certificate = true\n");
     let plan = Plan::new(crate::sweep::SweepSpec::from_toml(&spec).unwrap());
     let layout = Layout::new(&plan);
@@ -346,7 +347,7 @@ fn reads_back_as_csv(eval: &ManyLabels, count: u64) -> (super::parquet::ParquetT
     .unwrap();
     let t = read_table(typed.0).unwrap();
     let csv = String::from_utf8(csv).unwrap();
-    let back = t.csv_lines(0, t.rows());
+    let back = csv_lines(&t, 0, t.len());
     assert_eq!(back.lines().count(), csv.lines().count());
     for (k, (a, b)) in back.lines().zip(csv.lines()).enumerate() {
         assert_eq!(a, b, "row {k}");
@@ -361,7 +362,7 @@ fn reads_back_as_csv(eval: &ManyLabels, count: u64) -> (super::parquet::ParquetT
 #[test]
 fn parquet_reads_back_as_the_csv_lines() {
     let (t, csv) = reads_back_as_csv(&ManyLabels { all_null: false }, 70_000);
-    assert_eq!(t.rows(), 70_000);
+    assert_eq!(t.len(), 70_000);
     // Every kind of cell occurs.
     assert!(matches!(t.column("exact_agrees"), Some(Column::Bool(v))
         if v.contains(&Some(true)) && v.contains(&Some(false)) && v.contains(&None)));

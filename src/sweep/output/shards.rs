@@ -7,13 +7,14 @@
 //! readers or bytes, and writes the merged rows to any [`Write`].
 
 use super::merge::{merge, MergeSource};
-use super::parquet::{read_table, ParquetTable, FORMAT, FORMAT_KEY, PART_KEY};
+use super::parquet::{csv_lines, read_table, FORMAT, FORMAT_KEY, PART_KEY};
 use super::verify::{check_fingerprint, fingerprint_shard, is_old_csv_fingerprint, OLD_CSV};
 use super::Layout;
 use crate::sweep::eval::Evaluate;
 use crate::sweep::plan::{Plan, Shard};
 use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
+use crate::table::Table;
 use std::cell::Cell;
 use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
@@ -306,11 +307,13 @@ fn parquet_source<'a>(
     let mut lines: Vec<String> = Vec::new();
     for (k, (part, bytes)) in parts.into_iter().enumerate() {
         let table = check_part(&part, bytes, layout, Some(k as u64))?;
-        let fp = table.fingerprint().unwrap_or_default();
+        let fp = table
+            .metadata(super::parquet::FINGERPRINT_KEY)
+            .unwrap_or_default();
         let s = fingerprint_shard(fp).unwrap_or(Shard::ALL);
         check_fingerprint(plan, s, fp).map_err(|m| mismatch_in(&part, m))?;
         shard.get_or_insert(s);
-        let text = table.csv_lines(0, table.rows());
+        let text = csv_lines(&table, 0, table.len());
         lines.extend(text.lines().map(str::to_owned));
     }
     let iter = lines.into_iter().map(move |l| {
@@ -341,7 +344,7 @@ pub fn check_part(
     bytes: Vec<u8>,
     layout: &Layout,
     k: Option<u64>,
-) -> Result<ParquetTable, SweepError> {
+) -> Result<Table, SweepError> {
     let table = read_table(bytes).map_err(|e| mismatch_in(name, e.to_string()))?;
     match table.metadata(FORMAT_KEY) {
         Some(f) if f == FORMAT => {}
@@ -355,7 +358,7 @@ pub fn check_part(
         }
         None => return Err(mismatch_in(name, OLD_PARQUET.into())),
     }
-    if table.names != layout.column_names() {
+    if table.names() != layout.column_names() {
         return Err(mismatch_in(
             name,
             "the columns do not match the spec's".into(),
