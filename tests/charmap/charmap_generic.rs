@@ -247,7 +247,7 @@ fn planted_fold_is_not_c1_with_a_sign_change() {
     assert_eq!(generic_of(&q).verdict, GenericVerdict::C1);
 }
 
-/// Every cell the certificate signs at level 3 has no clearly wrong-signed
+/// Every cell the certificate signs at level 4 has no clearly wrong-signed
 /// discrete Jacobian among the level-8 samples inside it (a folded net, so
 /// that cells near the fold are tested).
 #[test]
@@ -255,57 +255,62 @@ fn certified_cells_hold_their_sign_under_dense_sampling() {
     let (delta, eps) = find_fold(5);
     let prep = prepared(&planted_loop(5, delta, eps)).unwrap();
     let mut nets = vec![prep.net.clone()];
-    for k in 0..8 {
+    for k in 0..9 {
         let next = prep.refine(&nets[k as usize], k);
         nets.push(next);
     }
-    let (coarse, fine) = (3u32, 8u32);
-    let scale = 1i64 << (fine - coarse);
     let (mut signed, mut checked) = (0, 0);
     let mut seen = [false; 2];
-    for s in 0..5 {
-        for cell in cells::annulus(prep.rules.lattice, s, coarse) {
-            let cs = cells::cell_sign(&nets[coarse as usize], &prep.rules, &cell);
-            if cs.sign == 0 {
-                continue;
-            }
-            signed += 1;
-            seen[usize::from(cs.sign < 0)] = true;
-            let net = &nets[fine as usize];
-            for a in 0..scale {
-                for b in 0..scale {
-                    // sample points inside the cell (triangles: the right half of the square)
-                    let inside = match cell.kind {
-                        0 => a + b < scale - 1,
-                        _ => a + b > scale,
-                    };
-                    if !inside {
-                        continue;
+    for coarse in 4u32..=6 {
+        let fine = coarse + 3;
+        let scale = 1i64 << (fine - coarse);
+        for s in 0..5 {
+            for cell in cells::annulus(prep.rules.lattice, s, coarse) {
+                let cs = cells::cell_sign(&nets[coarse as usize], &prep.rules, &cell);
+                if cs.sign == 0 {
+                    continue;
+                }
+                signed += 1;
+                seen[usize::from(cs.sign < 0)] = true;
+                let net = &nets[fine as usize];
+                for a in 0..scale {
+                    for b in 0..scale {
+                        // sample points inside the cell (triangles: the right half of the square)
+                        let inside = match cell.kind {
+                            0 => a + b < scale - 1,
+                            _ => a + b > scale,
+                        };
+                        if !inside {
+                            continue;
+                        }
+                        let x = [cell.i * scale + a, cell.j * scale + b];
+                        let (Some(o), Some(u), Some(v)) = (
+                            net.at(s, x),
+                            net.at(s, [x[0] + 1, x[1]]),
+                            net.at(s, [x[0], x[1] + 1]),
+                        ) else {
+                            continue;
+                        };
+                        let du = [u.mid[0] - o.mid[0], u.mid[1] - o.mid[1]];
+                        let dv = [v.mid[0] - o.mid[0], v.mid[1] - o.mid[1]];
+                        let det = du[0] * dv[1] - du[1] * dv[0];
+                        let size = du[0].hypot(du[1]) * dv[0].hypot(dv[1]);
+                        checked += 1;
+                        assert!(
+                            det * f64::from(cs.sign) > -1e-3 * size,
+                            "{cell} certified {} but samples {det:e} (relative {:e})",
+                            cs.sign,
+                            det / size
+                        );
                     }
-                    let x = [cell.i * scale + a, cell.j * scale + b];
-                    let (Some(o), Some(u), Some(v)) = (
-                        net.at(s, x),
-                        net.at(s, [x[0] + 1, x[1]]),
-                        net.at(s, [x[0], x[1] + 1]),
-                    ) else {
-                        continue;
-                    };
-                    let du = [u.mid[0] - o.mid[0], u.mid[1] - o.mid[1]];
-                    let dv = [v.mid[0] - o.mid[0], v.mid[1] - o.mid[1]];
-                    let det = du[0] * dv[1] - du[1] * dv[0];
-                    let size = du[0].hypot(du[1]) * dv[0].hypot(dv[1]);
-                    checked += 1;
-                    assert!(
-                        det * f64::from(cs.sign) > -1e-3 * size,
-                        "{cell} certified {} but samples {det:e} (relative {:e})",
-                        cs.sign,
-                        det / size
-                    );
                 }
             }
         }
     }
-    assert!(signed > 0 && checked > 0);
+    assert!(
+        signed > 0 && checked > 0,
+        "{signed} cells signed, {checked} samples"
+    );
     // both signs were certified: the fold runs through the annulus
     assert!(seen[0] && seen[1], "{seen:?}");
 }
