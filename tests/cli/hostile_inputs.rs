@@ -954,7 +954,7 @@ fn cases() -> Vec<Case> {
                 "--charmap",
                 "generic",
             ],
-            "analyze --charmap generic: valence 300 needs ~",
+            "analyze --charmap generic: valence 300 takes ~",
         ),
         bad(
             "analyze-force-still-refuses-beyond-memory",
