@@ -74,6 +74,7 @@
 pub mod basis;
 pub mod catmull_clark;
 pub(crate) mod figure;
+pub mod generic;
 pub mod loop_subdivision;
 mod planar;
 pub mod regularity;

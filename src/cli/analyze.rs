@@ -39,6 +39,17 @@ pub(crate) struct AnalyzeArgs {
     /// Run even when the estimated memory or time exceeds the limits (see docs/guide/commands.md, "Work limits").
     #[arg(long)]
     force: bool,
+    /// Characteristic-map certificate: `ring` (the scheme's ring of patches)
+    /// or `generic` (any vertex-centred scheme, from its local matrix and its
+    /// regular rules; docs/guide/is-it-c1.md).
+    #[arg(long, value_enum, default_value_t = CharmapMethod::Ring)]
+    charmap: CharmapMethod,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum CharmapMethod {
+    Ring,
+    Generic,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -57,6 +68,7 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         ("--scheme-file", args.scheme.scheme_file.is_some()),
         ("--exact", args.exact),
         ("--path structured", matches!(args.path, Path::Structured)),
+        ("--charmap generic", args.charmap == CharmapMethod::Generic),
     ];
     if let Some(c) = args
         .sector
@@ -85,6 +97,15 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
         subdiv_lab::budget::TIME_LIMIT_SECONDS,
         args.force,
     )?;
+    if args.charmap == CharmapMethod::Generic {
+        super::budget::check(
+            "analyze --charmap generic",
+            &format!("valence {n}"),
+            &charmap::generic::estimate(&*resolved.scheme),
+            subdiv_lab::budget::TIME_LIMIT_SECONDS,
+            args.force,
+        )?;
+    }
     if let Some(exact) = &resolved.exact {
         super::budget::check(
             "analyze --exact",
@@ -117,25 +138,49 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
                 failure => failure,
             })?;
     }
-    // Characteristic map (math doc section 7); a numerical failure there is
-    // reported inside the "charmap" object, not as a failure of the analysis.
-    let charmap = charmap::check_classified(&*resolved.scheme, &result.charmap_subdominant());
+    // Characteristic map (math doc sections 7 and 20); a numerical failure
+    // there is reported inside the "charmap" object, not as a failure of the
+    // analysis.
+    let (charmap_value, charmap_text) = if args.charmap == CharmapMethod::Generic {
+        let g = charmap::generic::check(&*resolved.scheme, &result.charmap_subdominant());
+        (charmap::generic::report_json(&g), generic_summary(&g))
+    } else {
+        let c = charmap::check_classified(&*resolved.scheme, &result.charmap_subdominant());
+        (charmap::charmap_json(&c), charmap_summary(&c))
+    };
     if args.json {
-        let value = subdiv_lab::spectral::json::analysis_json(
-            &result,
-            charmap::charmap_json(&charmap),
-            &resolved.input,
-        );
+        let value =
+            subdiv_lab::spectral::json::analysis_json(&result, charmap_value, &resolved.input);
         let text = serde_json::to_string_pretty(&value).map_err(CliError::failure)? + "\n";
         write_stdout(text.as_bytes())?;
     } else {
         let lm = resolved.scheme.local_matrix().map_err(CliError::lib)?;
         let m = MatrixText::of(lm.rows(), n, resolved.scheme.spectral_structure());
         let mut text = summary(&result, &m);
-        text += &charmap_summary(&charmap);
+        text += &charmap_text;
         write_stdout(text.as_bytes())?;
     }
     Ok(())
+}
+
+/// Human-readable lines of the generic certificate.
+fn generic_summary(g: &subdiv_lab::Result<charmap::generic::GenericReport>) -> String {
+    let r = match g {
+        Ok(r) => r,
+        Err(e) => return format!("characteristic map (generic): not computed ({e})\n"),
+    };
+    let mut out = format!("characteristic map (generic): {}\n", r.verdict);
+    if let Some(level) = r.level {
+        let opt = |x: Option<i64>| x.map_or("undecided".to_owned(), |w| w.to_string());
+        out += &format!(
+            "  {} cells tested down to level {level}; orientation {}; winding number {}; point error {:.1e}\n",
+            r.cells,
+            opt(r.orientation.map(i64::from)),
+            opt(r.winding_number),
+            r.point_error.unwrap_or(f64::NAN)
+        );
+    }
+    out
 }
 
 /// Human-readable characteristic-map lines.

@@ -39,6 +39,19 @@ impl Scheme for LocalScheme<f64> {
         self.matrix()
     }
 
+    /// Loop at valence 6, the Catmull-Clark family at valence 4 with the
+    /// same `c` (its regular part is the tensor product of the `c` rule);
+    /// none for the face-centred Doo-Sabin family.
+    fn regular_configuration(&self) -> Option<Result<Box<dyn Scheme>>> {
+        let boxed = |s: Result<LocalScheme<f64>>| s.map(|s| Box::new(s) as Box<dyn Scheme>);
+        match self {
+            LocalScheme::Loop { .. } => Some(boxed(LocalScheme::loop_subdivision(6))),
+            LocalScheme::CatmullClark { .. } => Some(boxed(LocalScheme::catmull_clark(4))),
+            LocalScheme::AdjustableCc { c, .. } => Some(boxed(LocalScheme::adjustable_cc(4, *c))),
+            _ => None,
+        }
+    }
+
     /// The same configuration over the rationals, from the exact values of
     /// its `f64` parameters (every finite `f64` is a dyadic rational): NURDS
     /// and the Catmull-Clark variant (rational knot weights), Catmull-Clark

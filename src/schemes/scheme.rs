@@ -191,6 +191,16 @@ pub trait Scheme: fmt::Debug + Send + Sync {
         None
     }
 
+    /// The same scheme at its regular valence (6 on triangle meshes, 4 on
+    /// quad meshes), whose labelled local matrix holds the rules every point
+    /// away from the extraordinary vertex follows: the generic
+    /// characteristic-map certificate ([`crate::charmap::generic`]; math doc
+    /// section 20) reads the regular mask from it. Default none (the
+    /// certificate is then `indeterminate`).
+    fn regular_configuration(&self) -> Option<Result<Box<dyn Scheme>>> {
+        None
+    }
+
     /// The spectrum by Fourier mode (rotationally symmetric schemes): one
     /// entry `(l, eigenvalues of block l)` per frequency `l = 0..n`, block 0
     /// first with its eigenvalue 1 first (default none: the dense spectrum

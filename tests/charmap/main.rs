@@ -7,5 +7,6 @@ mod common;
 
 mod charmap;
 mod charmap_cc;
+mod charmap_generic;
 mod charmap_mesh;
 mod charmap_report;

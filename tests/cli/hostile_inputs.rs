@@ -916,6 +916,47 @@ fn cases() -> Vec<Case> {
             "valence 20000 needs ~",
         ),
         bad(
+            "analyze-charmap-unknown-method",
+            &[
+                "analyze",
+                "--scheme",
+                "loop",
+                "--valence",
+                "5",
+                "--charmap",
+                "bogus",
+            ],
+            "bogus",
+        ),
+        bad(
+            "analyze-charmap-generic-at-a-sector-vertex",
+            &[
+                "analyze",
+                "--scheme",
+                "loop",
+                "--vertex",
+                "boundary",
+                "--faces",
+                "3",
+                "--charmap",
+                "generic",
+            ],
+            "--charmap generic is not available with --vertex",
+        ),
+        bad(
+            "analyze-charmap-generic-above-the-time-limit",
+            &[
+                "analyze",
+                "--scheme",
+                "loop",
+                "--valence",
+                "300",
+                "--charmap",
+                "generic",
+            ],
+            "analyze --charmap generic: valence 300 takes ~",
+        ),
+        bad(
             "analyze-force-still-refuses-beyond-memory",
             &[
                 "analyze",

@@ -443,6 +443,16 @@ impl Scheme for UserScheme {
         }
     }
 
+    /// The file's rule is the extraordinary vertex's only: the regular part
+    /// is Catmull-Clark's (quad) or Loop's (triangle).
+    fn regular_configuration(&self) -> Option<Result<Box<dyn Scheme>>> {
+        let s = match self.file.topology {
+            Topology::Quad => super::LocalScheme::catmull_clark(4),
+            Topology::Triangle => super::LocalScheme::loop_subdivision(6),
+        };
+        Some(s.map(|s| Box::new(s) as Box<dyn Scheme>))
+    }
+
     fn cost_model(&self) -> CostModel {
         self.file.cost_model()
     }

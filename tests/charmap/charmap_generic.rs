@@ -1,0 +1,379 @@
+//! The generic C1 certificate (`charmap::generic`): agreement with the ring
+//! certificates, planted folds, and soundness of its enclosures.
+
+use num_traits::Signed;
+use proptest::prelude::*;
+use subdiv_lab::charmap::generic::net::{combine, Ball, Net};
+use subdiv_lab::charmap::generic::{self, cells, GenericVerdict, Witness};
+use subdiv_lab::charmap::{self as cm};
+use subdiv_lab::schemes::{LocalMatrix, LocalScheme, Scheme};
+use subdiv_lab::spectral::classify_scheme;
+
+fn generic_of<S: Scheme + ?Sized>(s: &S) -> generic::GenericReport {
+    let sub = classify_scheme(s).unwrap();
+    generic::check(s, &sub).unwrap()
+}
+
+fn ring_code<S: Scheme + ?Sized>(s: &S) -> &'static str {
+    let sub = classify_scheme(s).unwrap();
+    cm::check_classified(s, &sub).unwrap().verdict.code()
+}
+
+/// `c1` from one certificate is `c1` from the other; a negative verdict
+/// of one is never `c1` of the other.
+fn assert_agree<S: Scheme + ?Sized>(s: &S) {
+    let g = generic_of(s);
+    let ring = ring_code(s);
+    let label = s.label();
+    match g.verdict.code() {
+        "c1" => assert_eq!(ring, "c1", "{label}: generic c1, ring {ring}"),
+        "not_c1" => assert!(
+            ring == "not_regular" || ring == "not_injective" || ring == "indeterminate",
+            "{label}: generic {}, ring {ring}",
+            g.verdict
+        ),
+        _ => panic!("{label}: generic {}, ring {ring}", g.verdict),
+    }
+    if ring == "c1" {
+        assert_eq!(g.verdict, GenericVerdict::C1, "{label}");
+    }
+}
+
+#[test]
+fn loop_agrees_with_the_ring_certificate_n3_to_16() {
+    for n in 3..=16 {
+        assert_agree(&LocalScheme::loop_subdivision(n).unwrap());
+    }
+}
+
+#[test]
+fn catmull_clark_agrees_with_the_ring_certificate_n3_to_16() {
+    for n in 3..=16 {
+        assert_agree(&LocalScheme::catmull_clark(n).unwrap());
+    }
+}
+
+#[test]
+fn adjustable_scheme_agrees_with_the_cone_certificate() {
+    for c in [0.2, 0.35, 0.5, 0.65, 0.8] {
+        for n in [3, 5, 8] {
+            assert_agree(&LocalScheme::adjustable_cc(n, c).unwrap());
+        }
+    }
+}
+
+#[test]
+fn scheme_files_get_the_certificate_with_no_extra_code() {
+    // Catmull-Clark's and Loop's vertex rules, written as files: the files
+    // have no ring of patches (the ring certificate says no_charmap), the
+    // generic certificate gives the built-in schemes' ring verdicts
+    let quad = subdiv_lab::schemes::user::SchemeFile::parse_shared(
+        "name = \"my-cc\"\ntopology = \"quad\"\n[vertex]\nself = \"1 - 7/(4*n)\"\nedge = \"3/(2*n^2)\"\nface = \"1/(4*n^2)\"\n",
+    )
+    .unwrap();
+    let tri = subdiv_lab::schemes::user::SchemeFile::parse_shared(
+        "name = \"my-loop\"\ntopology = \"triangle\"\n[vertex]\nself = \"1 - (5/8 - (3/8 + cos(2*pi/n)/4)^2)\"\nedge = \"(5/8 - (3/8 + cos(2*pi/n)/4)^2)/n\"\n",
+    )
+    .unwrap();
+    for n in [3, 5, 9] {
+        let q = quad.at(n).unwrap();
+        assert_eq!(ring_code(&q), "no_charmap");
+        assert_eq!(
+            generic_of(&q).verdict.code(),
+            ring_code(&LocalScheme::catmull_clark(n).unwrap())
+        );
+        let t = tri.at(n).unwrap();
+        assert_eq!(
+            generic_of(&t).verdict.code(),
+            ring_code(&LocalScheme::loop_subdivision(n).unwrap())
+        );
+    }
+}
+
+#[test]
+fn face_centred_schemes_are_indeterminate_with_the_reason() {
+    let g = generic_of(&LocalScheme::doo_sabin(5).unwrap());
+    let GenericVerdict::Indeterminate { reason } = g.verdict else {
+        panic!("{:?}", g.verdict)
+    };
+    assert!(reason.contains("regular configuration"), "{reason}");
+}
+
+/// A scheme given by a modified local matrix on an unchanged regular part.
+#[derive(Debug)]
+struct Planted {
+    base: LocalScheme,
+    /// `(row, column, delta)`: `delta` added at `(row, column)` and taken
+    /// from `(row, 0)` (the centre), so rows still sum to 1.
+    changes: Vec<(usize, usize, f64)>,
+}
+
+impl Scheme for Planted {
+    fn name(&self) -> &str {
+        "planted"
+    }
+    fn valence(&self) -> usize {
+        self.base.valence()
+    }
+    fn local_matrix(&self) -> subdiv_lab::Result<LocalMatrix<f64>> {
+        let m = self.base.local_matrix()?;
+        let mut a = m.matrix().clone();
+        for &(r, c, d) in &self.changes {
+            a[(r, c)] += d;
+            a[(r, 0)] -= d;
+        }
+        let mut asm = subdiv_lab::schemes::Assembler::<f64>::new(
+            "planted",
+            m.valence(),
+            m.rows().to_vec(),
+            m.cols().to_vec(),
+        );
+        for r in 0..a.nrows() {
+            for c in 0..a.ncols() {
+                if a[(r, c)] != 0.0 {
+                    asm.add(r, c, a[(r, c)]);
+                }
+            }
+        }
+        asm.finish()
+    }
+    fn regular_configuration(&self) -> Option<subdiv_lab::Result<Box<dyn Scheme>>> {
+        self.base.regular_configuration()
+    }
+}
+
+/// Dense sampling of the discrete Jacobian of the net at `level`: the
+/// signs of `det(p_{x+e1} - p_x, p_{x+e2} - p_x)` over the annulus, counted
+/// where they are clearly away from zero (relative `1e-6`).
+fn sampled_signs(prep: &generic::Prepared, level: u32) -> (usize, usize) {
+    let mut net: Net = prep.net.clone();
+    for k in 0..level {
+        net = prep.refine(&net, k);
+    }
+    let l = 1i64 << level;
+    let (mut pos, mut neg) = (0, 0);
+    for s in 0..net.n {
+        for i in 0..l {
+            for j in 0..l {
+                let outside = match prep.rules.lattice {
+                    generic::layout::Lattice::Triangle => i + j < l / 2 || i + j >= l,
+                    _ => i.max(j) < l / 2,
+                };
+                if outside {
+                    continue;
+                }
+                let (Some(p), Some(a), Some(b)) = (
+                    net.at(s, [i, j]),
+                    net.at(s, [i + 1, j]),
+                    net.at(s, [i, j + 1]),
+                ) else {
+                    continue;
+                };
+                let u = [a.mid[0] - p.mid[0], a.mid[1] - p.mid[1]];
+                let v = [b.mid[0] - p.mid[0], b.mid[1] - p.mid[1]];
+                let det = u[0] * v[1] - u[1] * v[0];
+                let scale = (u[0].hypot(u[1])) * (v[0].hypot(v[1]));
+                if det > 1e-6 * scale {
+                    pos += 1;
+                } else if det < -1e-6 * scale {
+                    neg += 1;
+                }
+            }
+        }
+    }
+    (pos, neg)
+}
+
+fn prepared<S: Scheme + ?Sized>(s: &S) -> Option<generic::Prepared> {
+    let sub = classify_scheme(s).ok()?;
+    generic::prepare_scheme(s, &sub).ok()?.ok()
+}
+
+/// Loop at valence `n` with the regular vertex rule of every `e_i`
+/// (the row of `g_i`) given `delta` more weight on `e_i` (taken from `v`),
+/// and the edge rule of `e_i e_{i+1}` (the row of `f_i`) `eps` more on both
+/// ends: the spectrum is Loop's (the one-ring block is untouched), the
+/// characteristic map moves its outer points.
+fn planted_loop(n: usize, delta: f64, eps: f64) -> Planted {
+    let mut changes = Vec::new();
+    for i in 0..n {
+        changes.push((1 + n + 2 * i, 1 + i, delta));
+        changes.push((2 + n + 2 * i, 1 + i, eps));
+        changes.push((2 + n + 2 * i, 1 + (i + 1) % n, eps));
+    }
+    Planted {
+        base: LocalScheme::loop_subdivision(n).unwrap(),
+        changes,
+    }
+}
+
+/// The first `(delta, eps)` of a grid at which dense sampling of the
+/// planted Loop net at valence `n` finds both Jacobian signs.
+fn find_fold(n: usize) -> (f64, f64) {
+    for delta in [-0.8, -1.0, -1.3, -1.6, -2.0, -2.5, 0.8, 1.5, 2.5] {
+        for eps in [0.0, -0.3, 0.3] {
+            let p = planted_loop(n, delta, eps);
+            if let Some(prep) = prepared(&p) {
+                let (pos, neg) = sampled_signs(&prep, 6);
+                if pos > 0 && neg > 0 {
+                    return (delta, eps);
+                }
+            }
+        }
+    }
+    panic!("no fold found at valence {n}");
+}
+
+#[test]
+fn planted_fold_is_not_c1_with_a_sign_change() {
+    for n in [4, 5, 7] {
+        let (delta, eps) = find_fold(n);
+        let g = generic_of(&planted_loop(n, delta, eps));
+        assert!(
+            matches!(
+                g.verdict,
+                GenericVerdict::NotC1 {
+                    witness: Witness::JacobianSignChange { .. }
+                }
+            ),
+            "n = {n}, delta = {delta}, eps = {eps}: {}",
+            g.verdict
+        );
+    }
+    // the unperturbed scheme samples one sign and is c1
+    let q = planted_loop(5, 0.0, 0.0);
+    let (pos, neg) = sampled_signs(&prepared(&q).unwrap(), 6);
+    assert!(pos == 0 || neg == 0);
+    assert_eq!(generic_of(&q).verdict, GenericVerdict::C1);
+}
+
+/// Every cell the certificate signs at level 4 has no clearly wrong-signed
+/// discrete Jacobian among the level-8 samples inside it (a folded net, so
+/// that cells near the fold are tested).
+#[test]
+fn certified_cells_hold_their_sign_under_dense_sampling() {
+    let (delta, eps) = find_fold(5);
+    let prep = prepared(&planted_loop(5, delta, eps)).unwrap();
+    let mut nets = vec![prep.net.clone()];
+    for k in 0..9 {
+        let next = prep.refine(&nets[k as usize], k);
+        nets.push(next);
+    }
+    let (mut signed, mut checked) = (0, 0);
+    let mut seen = [false; 2];
+    for coarse in 4u32..=6 {
+        let fine = coarse + 3;
+        let scale = 1i64 << (fine - coarse);
+        for s in 0..5 {
+            for cell in cells::annulus(prep.rules.lattice, s, coarse) {
+                let cs = cells::cell_sign(&nets[coarse as usize], &prep.rules, &cell);
+                if cs.sign == 0 {
+                    continue;
+                }
+                signed += 1;
+                seen[usize::from(cs.sign < 0)] = true;
+                let net = &nets[fine as usize];
+                for a in 0..scale {
+                    for b in 0..scale {
+                        // sample points inside the cell (triangles: the right half of the square)
+                        let inside = match cell.kind {
+                            0 => a + b < scale - 1,
+                            _ => a + b > scale,
+                        };
+                        if !inside {
+                            continue;
+                        }
+                        let x = [cell.i * scale + a, cell.j * scale + b];
+                        let (Some(o), Some(u), Some(v)) = (
+                            net.at(s, x),
+                            net.at(s, [x[0] + 1, x[1]]),
+                            net.at(s, [x[0], x[1] + 1]),
+                        ) else {
+                            continue;
+                        };
+                        let du = [u.mid[0] - o.mid[0], u.mid[1] - o.mid[1]];
+                        let dv = [v.mid[0] - o.mid[0], v.mid[1] - o.mid[1]];
+                        let det = du[0] * dv[1] - du[1] * dv[0];
+                        let size = du[0].hypot(du[1]) * dv[0].hypot(dv[1]);
+                        checked += 1;
+                        assert!(
+                            det * f64::from(cs.sign) > -1e-3 * size,
+                            "{cell} certified {} but samples {det:e} (relative {:e})",
+                            cs.sign,
+                            det / size
+                        );
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        signed > 0 && checked > 0,
+        "{signed} cells signed, {checked} samples"
+    );
+    // both signs were certified: the fold runs through the annulus
+    assert!(seen[0] && seen[1], "{seen:?}");
+}
+
+#[test]
+fn rounding_terms_of_a_combination_cover_the_exact_sum() {
+    use num_rational::BigRational;
+    let mut rng = 0x2545F4914F6CDD1Du64;
+    let mut next = || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let mut inexact = 0;
+    for _ in 0..200 {
+        let terms: Vec<(f64, Ball)> = (0..9)
+            .map(|_| {
+                (
+                    next() / 3.0,
+                    Ball {
+                        mid: [next() * 7.0, next()],
+                        rad: 0.0,
+                    },
+                )
+            })
+            .collect();
+        let b = combine(&terms);
+        for k in 0..2 {
+            let exact: BigRational = terms
+                .iter()
+                .map(|(w, p)| {
+                    BigRational::from_float(*w).unwrap()
+                        * BigRational::from_float(p.mid[k]).unwrap()
+                })
+                .sum();
+            let err = (exact - BigRational::from_float(b.mid[k]).unwrap()).abs();
+            assert!(err <= BigRational::from_float(b.rad).unwrap());
+            if err > BigRational::from_float(0.0).unwrap() {
+                inexact += 1;
+            }
+        }
+    }
+    assert!(inexact > 0, "the test needs inexact sums to mean anything");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+    /// Random perturbations of Loop's outer rows (Loop's spectrum kept) are
+    /// never certified C1 where dense sampling of the net finds a fold.
+    #[test]
+    fn perturbations_that_fold_are_never_certified(
+        n in 3usize..9,
+        delta in -2.5f64..2.5,
+        eps in -0.4f64..0.4,
+    ) {
+        let p = planted_loop(n, delta, eps);
+        if let Some(prep) = prepared(&p) {
+            let (pos, neg) = sampled_signs(&prep, 6);
+            let g = generic_of(&p);
+            if pos > 0 && neg > 0 {
+                prop_assert_ne!(g.verdict, GenericVerdict::C1);
+            }
+        }
+    }
+}
