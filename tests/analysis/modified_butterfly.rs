@@ -49,7 +49,10 @@ fn the_subdominant_eigenvalue_is_one_half_at_every_valence() {
     for n in 3..=16 {
         let e = eigenvalues(local_matrix(n).unwrap().matrix());
         assert!((e[0] - 1.0).norm() < EIG_TOL, "n={n}");
-        assert!((e[1] - 0.5).norm() < EIG_TOL && (e[2] - 0.5).norm() < EIG_TOL, "n={n}: {e:?}");
+        assert!(
+            (e[1] - 0.5).norm() < EIG_TOL && (e[2] - 0.5).norm() < EIG_TOL,
+            "n={n}: {e:?}"
+        );
         assert!(e[3].norm() < 0.25 + 1e-4, "n={n}: {}", e[3]);
     }
 }

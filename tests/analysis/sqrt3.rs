@@ -30,7 +30,10 @@ fn one_step_has_the_turned_complex_pair() {
         assert!((e[0] - 1.0).norm() < EIG_TOL);
         let hit = |w: num_complex::Complex64| e.iter().any(|z| (z - w).norm() < EIG_TOL);
         assert!(hit(want) && hit(want.conj()), "n={n}: {e:?}");
-        assert!((e[1].norm() - 2.0 * (PI / n as f64).cos() / 3.0).abs() < EIG_TOL, "n={n}");
+        assert!(
+            (e[1].norm() - 2.0 * (PI / n as f64).cos() / 3.0).abs() < EIG_TOL,
+            "n={n}"
+        );
         assert!(e[1].im.abs() > 0.1, "n={n}: the one-step pair is complex");
     }
 }
@@ -46,8 +49,14 @@ fn two_steps_have_kobbelts_real_eigenvalues() {
         let e = eigenvalues(local_matrix(n).unwrap().matrix());
         let lambda = (2.0 + 2.0 * (2.0 * PI / n as f64).cos()) / 9.0;
         assert!((e[0] - 1.0).norm() < EIG_TOL, "n={n}");
-        assert!((e[1] - lambda).norm() < EIG_TOL && (e[2] - lambda).norm() < EIG_TOL, "n={n}: {e:?}");
-        assert!(e.iter().any(|z| (z - lambda * lambda).norm() < EIG_TOL), "n={n}");
+        assert!(
+            (e[1] - lambda).norm() < EIG_TOL && (e[2] - lambda).norm() < EIG_TOL,
+            "n={n}: {e:?}"
+        );
+        assert!(
+            e.iter().any(|z| (z - lambda * lambda).norm() < EIG_TOL),
+            "n={n}"
+        );
         let a: f64 = alpha(n).unwrap();
         assert!(((2.0 / 3.0 - a) - lambda).abs() < 1e-15);
     }
@@ -92,7 +101,9 @@ fn the_limit_stencil_is_the_left_eigenvector_and_exactness_follows_alpha() {
     for n in [3, 4, 6] {
         let s = LocalScheme::from_kind(SchemeKind::Sqrt3, n, None).unwrap();
         let q = s.exact_local_matrix().unwrap().unwrap().to_f64();
-        let d = (q.matrix() - s.local_matrix().unwrap().matrix()).abs().max();
+        let d = (q.matrix() - s.local_matrix().unwrap().matrix())
+            .abs()
+            .max();
         assert!(d < 1e-15, "n={n}: {d}");
     }
     let s5 = LocalScheme::from_kind(SchemeKind::Sqrt3, 5, None).unwrap();
