@@ -11,8 +11,8 @@
 //!
 //! an edge between two extraordinary vertices averages the two stencils
 //! (math doc section 20). The old vertices are kept. The local matrix lives
-//! on the three-ring (`6n + 1` points; the one-ring is closed too, but the
-//! regular butterfly part reaches the third ring).
+//! on the three-ring (`6n + 1` points; for `n != 6` the one-ring is closed
+//! too, but the regular butterfly part reaches the third ring).
 //!
 //! ```
 //! use subdiv_lab::schemes::modified_butterfly::extraordinary_weights;

@@ -79,8 +79,8 @@ fn the_one_ring_is_not_closed_and_the_three_ring_nests_in_the_four_ring() {
 /// At the regular valence the butterfly scheme reproduces cubic
 /// polynomials (Dyn, Gregory, Levin 1990), so its local matrix has the
 /// eigenvalues 1, 1/2 (twice), 1/4 (three times) and 1/8 (four times) of the
-/// polynomials of degree 0..3 (Zorin 2000, section 6). Planted: a wing weight
-/// of -1/16 moved to another lattice point of the mask makes this fail.
+/// polynomials of degree 0..3. Planted: the wings of the edge's second end
+/// read one neighbour off (`tq +- 1` for `tq +- 2`) make this fail.
 #[test]
 fn the_regular_valence_has_the_spectrum_of_cubic_precision() {
     let s = local_matrix(6).unwrap();

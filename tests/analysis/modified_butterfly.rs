@@ -40,10 +40,32 @@ fn the_weights_have_the_designed_fourier_coefficients() {
     assert!(extraordinary_weights::<Rational>(5).is_err());
 }
 
+/// On the one-ring (closed under the extraordinary stencil) the matrix is
+/// `[[1, 0], [3/4, circulant(s)]]`, whose eigenvalues are 1 and the Fourier
+/// coefficients of `s`: 1/4 (mode 0), 1/2 (modes 1, K - 1), 1/4 (modes 2,
+/// K - 2), 0 elsewhere: the spectrum Zorin, Schroder and Sweldens (1996)
+/// designed. Planted: the K >= 5 formula with `cos(4 pi j / K)` weighted 1/4
+/// instead of 1/2 makes this fail (its modes 2 become 1/8).
+#[test]
+fn the_one_ring_has_the_designed_spectrum() {
+    // (at n = 6 every edge takes the regular butterfly stencil, which
+    // reaches beyond the one-ring)
+    for n in (3..=16).filter(|&n| n != 6) {
+        let e = eigenvalues(local_matrix_on::<f64>(n, 1).unwrap().matrix());
+        let mut want = vec![1.0, 0.5, 0.5, 0.25];
+        want.extend(std::iter::repeat_n(0.25, 2.min(n - 3)));
+        want.resize(n + 1, 0.0);
+        for (z, w) in e.iter().zip(&want) {
+            assert!((z - w).norm() < EIG_TOL, "n={n}: {e:?}");
+        }
+    }
+}
+
 /// Zorin, Schroder and Sweldens (1996) chose the stencil so that the
-/// subdominant eigenvalue is 1/2 (double) at every valence, with 1/4 next.
-/// Planted: the K >= 5 formula with `cos(4 pi j / K)` weighted 1/4 instead
-/// of 1/2 makes this fail.
+/// subdominant eigenvalue is 1/2 (double) at every valence, with 1/4 next,
+/// also on the three-ring (the regular part adds nothing above 1/4).
+/// Planted: a wing of the regular butterfly stencil read one neighbour off
+/// makes this fail.
 #[test]
 fn the_subdominant_eigenvalue_is_one_half_at_every_valence() {
     for n in 3..=16 {

@@ -18,8 +18,8 @@ const EIG_TOL: f64 = 1e-10;
 /// One step maps the neighbour `e_i` direction onto the face point between
 /// `e_i` and `e_{i+1}`: the Fourier mode `l = 1` of the one-ring has the
 /// eigenvalue `(1 + exp(2 pi i / n)) / 3`, modulus `2 cos(pi / n) / 3`,
-/// argument `pi / n` (Kobbelt 2000, section 4). Planted: face points at
-/// `(2 v + e_i + e_{i+1}) / 4` make this fail.
+/// argument `pi / n` (Kobbelt 2000, section 4). Planted: face points with
+/// the weights (1/2, 1/4, 1/4) instead of 1/3 each make this fail.
 #[test]
 fn one_step_has_the_turned_complex_pair() {
     for n in 3..=12 {
