@@ -125,3 +125,17 @@ fn analyze_uses_the_two_step_matrix_and_reports_the_one_step_spectrum() {
     let c = subdiv_lab::charmap::check_classified(&s, &a.charmap_subdominant()).unwrap();
     assert_eq!(c.verdict.code(), "no_charmap");
 }
+
+/// The second ring is needed: two steps take `g_0` to non-zero new points of
+/// the two-ring, which lie within distance `2/3` of `v` (two steps scale by
+/// 1/3), inside the old one-ring (math doc section 20).
+#[test]
+fn a_second_ring_point_reaches_the_one_ring_in_two_steps() {
+    for n in [3, 5, 6, 8] {
+        let s = local_matrix_on::<f64>(n, 2).unwrap().into_matrix();
+        let mut x = nalgebra::DVector::zeros(s.ncols());
+        x[n + 1] = 1.0; // g_0
+        let y = &s * x;
+        assert!(y.iter().any(|v| v.abs() > 1e-3), "n={n}");
+    }
+}
