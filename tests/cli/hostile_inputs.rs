@@ -729,7 +729,7 @@ fn cases() -> Vec<Case> {
         bad(
             "matrix-exact-modified-butterfly-irrational",
             &["matrix", "--exact", "--scheme", "modified-butterfly", "--valence", "5"],
-            "modified-butterfly",
+            "modified butterfly weights are irrational for this valence",
         ),
         bad_with(
             "sweep-spec-sqrt3-knots",
