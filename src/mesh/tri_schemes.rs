@@ -13,8 +13,8 @@
 //! * **sqrt3**: vertex `v < V` is the moved old vertex
 //!   `(1 - alpha_n) v + alpha_n / n sum e_i`, vertex `V + f` the centroid of
 //!   old face `f`; old half-edge `h` (from `a`, in face `f`, its twin in face
-//!   `g`) becomes the triangle `(a, V + g, V + f)` (the flipped edge), so
-//!   `F' = 3F`. The limit position of a vertex is `(1 - beta) v + beta / n
+//!   `g`) becomes face `h`, the triangle `(a, V + g, V + f)` (the flipped
+//!   edge), so `F' = 3F`. The limit position of a vertex is `(1 - beta) v + beta / n
 //!   sum e_i` with `beta = 3 alpha_n / (1 + 3 alpha_n)` (math doc section 20).
 //!
 //! ```
@@ -184,14 +184,34 @@ fn refine_sqrt3(mesh: &Mesh) -> Result<Mesh, MeshError> {
         let st: Vec<(usize, f64)> = mesh.face_vertices(f).map(|v| (v, third)).collect();
         positions.push(combine(p, &st));
     }
-    let faces: Vec<[usize; 3]> = (0..h)
-        .map(|e| {
-            let f = mesh.face_of(e);
-            let g = mesh.face_of(mesh.twin(e));
-            [mesh.origin(e), nv + g, nv + f]
-        })
-        .collect();
-    Mesh::from_polygons(positions, &faces)
+    // Triangle `e` (corners 3e..3e+3) of old half-edge `e` (from `a`, in face
+    // `f`, its twin in face `g`): `a -> V+g -> V+f`. Its twins: `a -> V+g`
+    // against corner 2 of `next(twin(e))` (also from `a`, in `g`); `V+g ->
+    // V+f` against corner 1 of `twin(e)`; `V+f -> a` against corner 0 of
+    // `twin(prev(e))`.
+    let hn = 3 * h;
+    let mut corner_vertex = vec![0u32; hn];
+    let mut twin = vec![0u32; hn];
+    for e in 0..h {
+        let t = mesh.twin(e);
+        corner_vertex[3 * e] = mesh.corner_vertex[e];
+        corner_vertex[3 * e + 1] = (nv + mesh.face_of(t)) as u32;
+        corner_vertex[3 * e + 2] = (nv + mesh.face_of(e)) as u32;
+        twin[3 * e] = (3 * mesh.next(t) + 2) as u32;
+        twin[3 * e + 1] = (3 * t + 1) as u32;
+        twin[3 * e + 2] = (3 * mesh.twin(mesh.prev(e))) as u32;
+    }
+    let mut vertex_out: Vec<u32> = mesh.vertex_out.iter().map(|&e| 3 * e).collect();
+    vertex_out.extend((0..nf).map(|f| (3 * mesh.twin(mesh.face_start[f] as usize) + 1) as u32));
+    Ok(Mesh {
+        positions,
+        face_start: (0..=h).map(|e| (3 * e) as u32).collect(),
+        corner_vertex,
+        corner_face: (0..hn).map(|c| (c / 3) as u32).collect(),
+        twin,
+        vertex_out,
+        knots: vec![1.0; hn],
+    })
 }
 
 /// The sqrt(3) limit position of every vertex: `(1 - beta) v + beta / n sum

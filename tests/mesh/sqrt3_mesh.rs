@@ -32,6 +32,8 @@ fn one_step_matches_the_reference_on_every_shipped_triangle_mesh() {
         let nv = mesh.vertex_count();
         let s = scale(&mesh);
         let r = rules.refine(&mesh).unwrap();
+        r.check_invariants().unwrap();
+        rules.refine(&r).unwrap().check_invariants().unwrap();
         assert_eq!(r.face_count(), 3 * mesh.face_count(), "{name}");
         assert_eq!(r.vertex_count(), nv + mesh.face_count(), "{name}");
         for v in 0..nv {
