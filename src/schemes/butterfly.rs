@@ -43,7 +43,7 @@ pub const RING: usize = 3;
 /// assert_eq!(m.len(), 8);
 /// assert!((m.iter().map(|x| x.1).sum::<f64>() - 1.0).abs() < 1e-15);
 /// ```
-pub fn regular_edge_mask() -> Vec<([i64; 2], f64)> {
+pub fn regular_edge_mask() -> tri_rings::Mask {
     vec![
         ([0, 0], 0.5),
         ([1, 0], 0.5),

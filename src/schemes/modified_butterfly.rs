@@ -128,6 +128,6 @@ pub fn local_matrix(n: usize) -> Result<LocalMatrix<f64>> {
 
 /// The regular part's rule as plain data: the butterfly edge mask
 /// ([`super::butterfly::regular_edge_mask`]).
-pub fn regular_edge_mask() -> Vec<([i64; 2], f64)> {
+pub fn regular_edge_mask() -> tri_rings::Mask {
     super::butterfly::regular_edge_mask()
 }

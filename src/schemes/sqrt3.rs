@@ -29,7 +29,7 @@
 
 use super::assembly::LocalMatrix;
 use super::loop_subdivision::check_size;
-use super::tri_rings::{self, Lattice, Stencil, TriNeighbourhood};
+use super::tri_rings::{self, Lattice, Mask, Stencil, TriNeighbourhood};
 use crate::error::{Error, Result};
 use crate::scalar::Scalar;
 
@@ -75,7 +75,7 @@ pub fn vertex_stencil<T: Scalar>(g: &impl TriNeighbourhood, p: usize, alpha: T) 
 /// at `(0, 0)` (`alpha_6 = 1/3`) and the face point of the triangle
 /// `(0, 0), (1, 0), (0, 1)`. The new lattice is spanned by the face points
 /// `(u + w) / 3` and `(2 w - u) / 3`.
-pub fn regular_masks() -> (Vec<([i64; 2], f64)>, Vec<([i64; 2], f64)>) {
+pub fn regular_masks() -> (Mask, Mask) {
     let third = 1.0 / 3.0;
     let vertex = std::iter::once(([0, 0], 2.0 / 3.0))
         .chain(

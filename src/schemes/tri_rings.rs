@@ -37,6 +37,10 @@ use crate::scalar::Scalar;
 /// A stencil: `(point, weight)` pairs.
 pub type Stencil<T> = Vec<(usize, T)>;
 
+/// A regular-part mask as plain data: `(lattice offset (a, b) = a u + b w,
+/// weight)` pairs, `u` and `w` two lattice directions 60 degrees apart.
+pub type Mask = Vec<([i64; 2], f64)>;
+
 /// Counter-clockwise neighbour lists of a closed triangle mesh or of the
 /// lattice around an extraordinary vertex: the one thing the edge stencils
 /// of the butterfly schemes read, so the local matrices and the mesh
