@@ -173,7 +173,7 @@ def test_bad_input_is_value_error_with_the_cli_message():
         sl.analyze(ratios=[0.3, 1.5, 0.7])
     assert str(e.value) in p.stderr
     with pytest.raises(ValueError, match="unknown scheme"):
-        sl.matrix(scheme="butterfly", valence=3)
+        sl.matrix(scheme="midedge", valence=3)
     with pytest.raises(ValueError, match="mutually exclusive"):
         sl.matrix(ratios=[0.5] * 3, uniform=True)
     with pytest.raises(ValueError, match="sampler.count"):

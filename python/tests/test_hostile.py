@@ -89,8 +89,8 @@ CASES = [
      ("ValueError", ["threads must be >= 0, got -1"])),
     ("classify_batch-bad-columns", "sl.classify_batch(np.full((1, 3), 0.5), columns={'eigenvalues': -1})",
      ("ValueError", ["columns.eigenvalues"])),
-    ("classify_batch-bad-scheme", "sl.classify_batch(np.full((1, 3), 0.5), scheme='butterfly')",
-     ("ValueError", ["butterfly"])),
+    ("classify_batch-bad-scheme", "sl.classify_batch(np.full((1, 3), 0.5), scheme='midedge')",
+     ("ValueError", ["midedge"])),
     # item 2: estimates and limits
     ("analyze-doo-sabin-100000", "sl.analyze(scheme='doo-sabin', valence=100000)",
      ("ValueError", ["analyze: valence 100000 needs ~", "400000 x 400000"])),

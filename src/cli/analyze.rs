@@ -238,10 +238,17 @@ impl MatrixText {
         // one-ring` / `(3n+1) two-ring` around a vertex (by the labels' roles)
         let (a, b) = (d / n.max(1), d % n.max(1));
         let two_ring = labels.iter().any(|l| l.role == Role::SecondRing);
+        let three_ring = labels.iter().any(|l| l.role == Role::OuterRing);
         let full = if !vertex && b == 0 && a > 0 {
             format!("full {a}n x {a}n")
         } else if vertex && a > 0 && b > 0 {
-            let ring = if two_ring { "two-ring" } else { "one-ring" };
+            let ring = if three_ring {
+                "three-ring"
+            } else if two_ring {
+                "two-ring"
+            } else {
+                "one-ring"
+            };
             format!("full ({a}n+{b}) {ring}")
         } else {
             format!("full {d} x {d}")
@@ -288,6 +295,16 @@ fn summary(a: &LocalAnalysis, m: &MatrixText) -> String {
         },
         a.eigenvalues.len()
     );
+    if let Some(st) = &a.steps {
+        out += &format!(
+            "local matrix: {} subdivision steps (one step turns the ring); every verdict below refers to the {}-step matrix\n",
+            st.matrix_steps, st.matrix_steps
+        );
+        out += &format!(
+            "one-step matrix, {}",
+            leading_eigenvalues(&st.one_step_eigenvalues)
+        );
+    }
     out += &leading_eigenvalues(&a.eigenvalues);
     out += &format!("subdominant class: {}", s.class.name());
     match &s.class {

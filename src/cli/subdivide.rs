@@ -26,7 +26,6 @@ use subdiv_lab::boundary::normals::limit_normals;
 use subdiv_lab::mesh::builtin::mesh_rules;
 use subdiv_lab::mesh::limit::LevelStats;
 use subdiv_lab::mesh::open::OpenMesh;
-use subdiv_lab::mesh::refine::half_edges_after;
 use subdiv_lab::mesh::rules::{KnotUse, MeshRules};
 use subdiv_lab::mesh::sharp::rules::{Boundary, Creasing, SdcScheme};
 use subdiv_lab::mesh::sharp::{tags, SharpMesh};
@@ -338,7 +337,7 @@ pub(crate) fn run(args: SubdivideArgs) -> CliResult {
         knot_file::apply_knot_text(&mut mesh, "", args.default_interval)
             .map_err(CliError::usage)?;
     }
-    let needed = half_edges_after(&mesh, args.levels);
+    let needed = rules.half_edges_after(&mesh, args.levels);
     if needed > MAX_HALF_EDGES {
         return Err(CliError::usage(anyhow!(
             "--levels {}: the result would have {needed} half-edges (limit {MAX_HALF_EDGES})",

@@ -3,6 +3,7 @@
 use super::catmull_clark::CatmullClarkRules;
 use super::loop_subdivision::LoopRules;
 use super::rules::{FaceSplit, MeshRules};
+use super::tri_schemes::TriRules;
 use super::MeshError;
 use crate::schemes::{choice, SchemeKind};
 
@@ -25,6 +26,7 @@ pub fn mesh_rules(kind: SchemeKind, c: Option<f64>) -> Result<Box<dyn MeshRules>
         (SchemeKind::AdjustableCc, Some(c)) => Box::new(CatmullClarkRules::new(kind.name(), c)?),
         (SchemeKind::CatmullClark, _) => Box::new(CatmullClarkRules::new(kind.name(), 0.5)?),
         (SchemeKind::Loop, _) => Box::new(LoopRules::default()),
+        (k, _) if k.is_triangle_lattice_scheme() => Box::new(TriRules::new(k)?),
         _ => Box::new(FaceSplit::new(kind)?),
     };
     Ok(rules)

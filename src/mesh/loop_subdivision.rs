@@ -201,16 +201,39 @@ pub fn refine(mesh: &Mesh) -> Result<Mesh, MeshError> {
 /// file's rule enters here too ([`crate::mesh::user`]).
 pub fn refine_with(mesh: &Mesh, vertex: &dyn VertexRule) -> Result<Mesh, MeshError> {
     check_triangles(mesh, "Loop refinement")?;
-    let h_count = mesh.half_edge_count();
     crate::mesh::quadrupled_half_edges(mesh)?;
+    let ne = mesh.half_edge_count() / 2;
+    let p = &mesh.positions;
+    let cv = &mesh.corner_vertex;
+    let vertex_points = one_ring_stencil(mesh, vertex, false, mesh.vertex_count() + ne)?;
+    Ok(split_with(mesh, vertex_points, |h, t| {
+        let (a, b) = (p[cv[h] as usize], p[cv[t] as usize]);
+        let (c, d) = (p[cv[prev3(h)] as usize], p[cv[prev3(t)] as usize]);
+        let mut e = [0.0; 3];
+        for k in 0..3 {
+            e[k] = 0.375 * (a[k] + b[k]) + 0.125 * (c[k] + d[k]);
+        }
+        e
+    }))
+}
+
+/// The one-to-four split of a closed triangle mesh (module docs: the index
+/// layout of the result) with the given vertex points (indices `0..V`,
+/// capacity for `V + E`) and the new point `edge_point(h, twin(h))` of the
+/// edge of every half-edge `h < twin(h)`: Loop's step and the butterfly
+/// schemes' ([`crate::mesh::tri_schemes`]). The caller has checked that the
+/// mesh is all triangles and that the result fits the index range.
+pub(crate) fn split_with(
+    mesh: &Mesh,
+    vertex_points: Vec<[f64; 3]>,
+    mut edge_point: impl FnMut(usize, usize) -> [f64; 3],
+) -> Mesh {
+    let h_count = mesh.half_edge_count();
     let nv = mesh.vertex_count();
     let nf = mesh.face_count();
     let ne = h_count / 2;
-    let p = &mesh.positions;
     let cv = &mesh.corner_vertex;
-
-    // Vertex points (indices 0..V), then edge points (V..V+E).
-    let mut positions = one_ring_stencil(mesh, vertex, false, nv + ne)?;
+    let mut positions = vertex_points;
     let mut vertex_out: Vec<u32> = Vec::with_capacity(nv + ne);
     vertex_out.extend(mesh.vertex_out.iter().map(|&h| tri(h as usize) as u32));
     // edge_vertex[h] = the new vertex of the edge of h (both half-edges).
@@ -221,13 +244,7 @@ pub fn refine_with(mesh: &Mesh, vertex: &dyn VertexRule) -> Result<Mesh, MeshErr
             let id = positions.len() as u32;
             edge_vertex[h] = id;
             edge_vertex[t] = id;
-            let (a, b) = (p[cv[h] as usize], p[cv[t] as usize]);
-            let (c, d) = (p[cv[prev3(h)] as usize], p[cv[prev3(t)] as usize]);
-            let mut e = [0.0; 3];
-            for k in 0..3 {
-                e[k] = 0.375 * (a[k] + b[k]) + 0.125 * (c[k] + d[k]);
-            }
-            positions.push(e);
+            positions.push(edge_point(h, t));
             // E(h) -> E(prev h) is the second corner of h's corner triangle.
             vertex_out.push((tri(h) + 1) as u32);
         }
@@ -264,7 +281,7 @@ pub fn refine_with(mesh: &Mesh, vertex: &dyn VertexRule) -> Result<Mesh, MeshErr
     }
     let corner_face: Vec<u32> = (0..hn).map(|c| (c / 3) as u32).collect();
     let face_start: Vec<u32> = (0..=4 * nf).map(|f| (3 * f) as u32).collect();
-    Ok(Mesh {
+    Mesh {
         positions,
         face_start,
         corner_vertex,
@@ -272,7 +289,7 @@ pub fn refine_with(mesh: &Mesh, vertex: &dyn VertexRule) -> Result<Mesh, MeshErr
         twin,
         vertex_out,
         knots: vec![1.0; hn],
-    })
+    }
 }
 
 /// `levels` steps of [`refine`]. The size of the final mesh is checked

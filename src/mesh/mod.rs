@@ -53,6 +53,7 @@ pub(crate) mod projection;
 pub mod refine;
 pub mod rules;
 pub mod sharp;
+pub mod tri_schemes;
 pub mod user;
 
 use std::fmt;

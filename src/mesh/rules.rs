@@ -73,6 +73,14 @@ pub trait MeshRules: fmt::Debug + Send + Sync {
         false
     }
 
+    /// Number of half-edges after `levels` steps of a closed mesh,
+    /// saturating (default: four times as many per step,
+    /// [`super::refine::half_edges_after`]); lets callers refuse a request
+    /// before allocating.
+    fn half_edges_after(&self, mesh: &Mesh, levels: usize) -> u64 {
+        super::refine::half_edges_after(mesh, levels)
+    }
+
     /// `levels` steps of [`refine`](Self::refine).
     fn refine_levels(&self, mesh: &Mesh, levels: usize) -> Result<Mesh, MeshError> {
         let mut m = mesh.clone();

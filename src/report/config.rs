@@ -210,6 +210,7 @@ impl ConfigSpec {
         };
         let ratios = match kind {
             SchemeKind::Loop => Vec::new(),
+            k if k.is_triangle_lattice_scheme() => Vec::new(),
             _ => local.ratios().as_slice().to_vec(),
         };
         Ok(Configuration {

@@ -37,6 +37,10 @@ pub enum Role {
     PatchOuter,
     /// `g_i`: the Loop two-ring vertex straight beyond the edge neighbour `e_i`.
     SecondRing,
+    /// `h_i`: a point of the third or a further ring around a vertex of a
+    /// triangle mesh (the butterfly schemes' three-ring), counted from the
+    /// first point of the third ring.
+    OuterRing,
 }
 
 /// Role and index of one point of a local configuration.
@@ -69,6 +73,7 @@ impl fmt::Display for PointLabel {
             Role::FaceNeighbour => write!(f, "f{i}"),
             Role::PatchOuter => write!(f, "o{i}"),
             Role::SecondRing => write!(f, "g{i}"),
+            Role::OuterRing => write!(f, "h{i}"),
         }
     }
 }

@@ -12,7 +12,7 @@
 use super::assembly::LocalMatrix;
 use super::local::LocalScheme;
 use super::scheme::{FourierSpectrum, RingPatches, Scheme, SpectralStructure};
-use super::{catmull_clark, loop_subdivision};
+use super::{catmull_clark, loop_subdivision, sqrt3};
 use crate::budget::CostModel;
 use crate::error::Result;
 use crate::scalar::{f64_to_rational, Rational};
@@ -79,6 +79,21 @@ impl Scheme for LocalScheme<f64> {
             LocalScheme::Loop { valence } if matches!(valence, 3 | 4 | 6) => {
                 LocalScheme::loop_subdivision(*valence)
             }
+            // butterfly: rational weights at every valence; sqrt3 and the
+            // modified butterfly where cos(2 pi / n) is rational
+            LocalScheme::Butterfly { valence } => {
+                LocalScheme::from_kind(crate::schemes::SchemeKind::Butterfly, *valence, None)
+            }
+            LocalScheme::Sqrt3 { valence } if matches!(valence, 3 | 4 | 6) => {
+                LocalScheme::from_kind(crate::schemes::SchemeKind::Sqrt3, *valence, None)
+            }
+            LocalScheme::ModifiedButterfly { valence } if matches!(valence, 3 | 4 | 6) => {
+                LocalScheme::from_kind(
+                    crate::schemes::SchemeKind::ModifiedButterfly,
+                    *valence,
+                    None,
+                )
+            }
             LocalScheme::CcVariant { valence } => LocalScheme::cc_variant(*valence),
             LocalScheme::CatmullClark { valence } => LocalScheme::catmull_clark(*valence),
             LocalScheme::AdjustableCc { valence, c } => match f64_to_rational(*c) {
@@ -135,8 +150,19 @@ impl Scheme for LocalScheme<f64> {
     /// stencil over the one-ring (math doc section 6). Loop: over the one-ring
     /// (the two-ring entries are zero; math doc section 11).
     fn limit_stencil(&self) -> Option<Result<Vec<f64>>> {
-        if let LocalScheme::Loop { valence } = self {
-            return Some(loop_subdivision::limit_weights(*valence));
+        match self {
+            LocalScheme::Loop { valence } => {
+                return Some(loop_subdivision::limit_weights(*valence))
+            }
+            LocalScheme::Sqrt3 { valence } => return Some(sqrt3::limit_weights(*valence)),
+            // interpolatory: the limit point is the vertex itself
+            LocalScheme::Butterfly { valence } | LocalScheme::ModifiedButterfly { valence } => {
+                let d = crate::schemes::tri_rings::ring_len(*valence, 3);
+                let mut w = vec![0.0; d];
+                w[0] = 1.0;
+                return Some(Ok(w));
+            }
+            _ => {}
         }
         Some(match self.shape_parameter() {
             Some(c) => catmull_clark::limit::limit_stencil(self.valence(), &c),
@@ -151,6 +177,8 @@ impl Scheme for LocalScheme<f64> {
     fn spectral_structure(&self) -> SpectralStructure {
         if self.kind().is_doo_sabin_family() {
             SpectralStructure::FaceBlock
+        } else if self.kind().is_triangle_lattice_scheme() {
+            SpectralStructure::Dense
         } else {
             SpectralStructure::Fourier
         }
@@ -203,6 +231,9 @@ impl Scheme for LocalScheme<f64> {
         if let LocalScheme::Loop { valence } = self {
             return Some(RingPatches::QuarticBoxSpline { valence: *valence });
         }
+        if self.kind().is_triangle_lattice_scheme() {
+            return None;
+        }
         Some(match self.shape_parameter() {
             Some(c) => RingPatches::Bicubic {
                 valence: self.valence(),
@@ -210,6 +241,17 @@ impl Scheme for LocalScheme<f64> {
             },
             None => RingPatches::Biquadratic(self),
         })
+    }
+
+    /// sqrt3: its local matrix is two steps; the one-step matrix turns the
+    /// ring by half a sector ([`sqrt3::one_step_matrix`]).
+    fn one_step_matrix(&self) -> Option<(usize, Result<LocalMatrix<f64>>)> {
+        match self {
+            LocalScheme::Sqrt3 { valence } => {
+                Some((sqrt3::STEPS, sqrt3::one_step_matrix(*valence)))
+            }
+            _ => None,
+        }
     }
 
     /// [`LocalScheme::cost_model_of`] its kind.

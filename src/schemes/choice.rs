@@ -142,13 +142,13 @@ mod tests {
             }
         }
         let e = validate(&Choice {
-            name: "butterfly",
+            name: "midedge",
             knots: false,
             c: false,
         })
         .unwrap_err();
         assert_eq!(e.part(), "scheme");
-        assert!(e.to_string().contains("butterfly"));
+        assert!(e.to_string().contains("midedge"));
     }
 
     #[test]

@@ -21,6 +21,15 @@ pub enum SchemeKind {
     AdjustableCc,
     /// Loop subdivision on triangle meshes (vertex-centred; two-ring matrix 3n+1).
     Loop,
+    /// Kobbelt's sqrt(3) subdivision on triangle meshes (vertex-centred;
+    /// two-step two-ring matrix 3n+1).
+    Sqrt3,
+    /// The butterfly scheme (w = 1/16, regular stencil at every valence;
+    /// interpolatory; three-ring matrix 6n+1).
+    Butterfly,
+    /// The modified butterfly scheme of Zorin, Schroder and Sweldens
+    /// (interpolatory; three-ring matrix 6n+1).
+    ModifiedButterfly,
 }
 
 impl SchemeKind {
@@ -32,6 +41,9 @@ impl SchemeKind {
         SchemeKind::CatmullClark,
         SchemeKind::AdjustableCc,
         SchemeKind::Loop,
+        SchemeKind::Sqrt3,
+        SchemeKind::Butterfly,
+        SchemeKind::ModifiedButterfly,
     ];
 
     /// Every known scheme's name, in [`SchemeKind::ALL`] order, joined by
@@ -41,7 +53,7 @@ impl SchemeKind {
     /// ```
     /// use subdiv_lab::schemes::SchemeKind;
     /// assert!(SchemeKind::names(", ").starts_with("nurds, doo-sabin, "));
-    /// assert!(SchemeKind::names_or().ends_with(" or loop"));
+    /// assert!(SchemeKind::names_or().ends_with(" or modified-butterfly"));
     /// ```
     pub fn names(sep: &str) -> String {
         let names: Vec<&str> = SchemeKind::ALL.iter().map(|k| k.name()).collect();
@@ -66,6 +78,9 @@ impl SchemeKind {
             SchemeKind::CatmullClark => "catmull-clark",
             SchemeKind::AdjustableCc => "adjustable-cc",
             SchemeKind::Loop => "loop",
+            SchemeKind::Sqrt3 => "sqrt3",
+            SchemeKind::Butterfly => "butterfly",
+            SchemeKind::ModifiedButterfly => "modified-butterfly",
         }
     }
 
@@ -89,6 +104,16 @@ impl SchemeKind {
     /// Whether the scheme belongs to the Catmull-Clark family ((2n+1) one-ring matrix).
     pub fn is_catmull_clark_family(self) -> bool {
         matches!(self, SchemeKind::CatmullClark | SchemeKind::AdjustableCc)
+    }
+
+    /// Whether the scheme is one of the triangle schemes without a ring of
+    /// polynomial patches (sqrt3, butterfly, modified butterfly; math doc
+    /// section 21).
+    pub fn is_triangle_lattice_scheme(self) -> bool {
+        matches!(
+            self,
+            SchemeKind::Sqrt3 | SchemeKind::Butterfly | SchemeKind::ModifiedButterfly
+        )
     }
 
     /// Whether the scheme belongs to the Doo-Sabin family (4n x 4n `S_n` with face block).

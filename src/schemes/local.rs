@@ -22,7 +22,7 @@
 use super::assembly::LocalMatrix;
 use super::choice::{self, ChoiceError};
 use super::kind::SchemeKind;
-use super::{catmull_clark, doo_sabin, loop_subdivision};
+use super::{butterfly, catmull_clark, doo_sabin, loop_subdivision, modified_butterfly, sqrt3};
 use crate::budget::CostModel;
 use crate::error::{Error, Result};
 use crate::knots::{face_weights, EdgeRatios};
@@ -60,6 +60,24 @@ pub enum LocalScheme<T = f64> {
     /// Loop subdivision around a vertex of valence n whose neighbours are
     /// regular (the two-ring matrix, `3n + 1`).
     Loop {
+        /// Valence.
+        valence: usize,
+    },
+    /// Kobbelt's sqrt(3) scheme around a vertex of valence n (the two-step
+    /// two-ring matrix, `3n + 1`; math doc section 21).
+    Sqrt3 {
+        /// Valence.
+        valence: usize,
+    },
+    /// The butterfly scheme around a vertex of valence n (the three-ring
+    /// matrix, `6n + 1`).
+    Butterfly {
+        /// Valence.
+        valence: usize,
+    },
+    /// The modified butterfly scheme around a vertex of valence n (the
+    /// three-ring matrix, `6n + 1`).
+    ModifiedButterfly {
         /// Valence.
         valence: usize,
     },
@@ -169,6 +187,18 @@ impl<T: Scalar> LocalScheme<T> {
                 loop_subdivision::validate(valence)?;
                 Ok(LocalScheme::Loop { valence })
             }
+            SchemeKind::Sqrt3 => {
+                loop_subdivision::validate(valence)?;
+                Ok(LocalScheme::Sqrt3 { valence })
+            }
+            SchemeKind::Butterfly => {
+                loop_subdivision::validate(valence)?;
+                Ok(LocalScheme::Butterfly { valence })
+            }
+            SchemeKind::ModifiedButterfly => {
+                loop_subdivision::validate(valence)?;
+                Ok(LocalScheme::ModifiedButterfly { valence })
+            }
         }
     }
 
@@ -190,6 +220,9 @@ impl<T: Scalar> LocalScheme<T> {
             LocalScheme::CatmullClark { .. } => SchemeKind::CatmullClark,
             LocalScheme::AdjustableCc { .. } => SchemeKind::AdjustableCc,
             LocalScheme::Loop { .. } => SchemeKind::Loop,
+            LocalScheme::Sqrt3 { .. } => SchemeKind::Sqrt3,
+            LocalScheme::Butterfly { .. } => SchemeKind::Butterfly,
+            LocalScheme::ModifiedButterfly { .. } => SchemeKind::ModifiedButterfly,
         }
     }
 
@@ -210,6 +243,9 @@ impl<T: Scalar> LocalScheme<T> {
             }
             SchemeKind::CatmullClark | SchemeKind::AdjustableCc => catmull_clark::COST_MODEL,
             SchemeKind::Loop => loop_subdivision::COST_MODEL,
+            // dense only: the two-ring (3n+1) and the three-ring (6n+1)
+            SchemeKind::Sqrt3 => CostModel::dense(3.0, 1.0),
+            SchemeKind::Butterfly | SchemeKind::ModifiedButterfly => CostModel::dense(6.0, 1.0),
         }
     }
 
@@ -220,7 +256,10 @@ impl<T: Scalar> LocalScheme<T> {
             LocalScheme::DooSabin { valence } | LocalScheme::CcVariant { valence } => *valence,
             LocalScheme::CatmullClark { valence }
             | LocalScheme::AdjustableCc { valence, .. }
-            | LocalScheme::Loop { valence } => *valence,
+            | LocalScheme::Loop { valence }
+            | LocalScheme::Sqrt3 { valence }
+            | LocalScheme::Butterfly { valence }
+            | LocalScheme::ModifiedButterfly { valence } => *valence,
         }
     }
 
@@ -233,7 +272,10 @@ impl<T: Scalar> LocalScheme<T> {
             | LocalScheme::CcVariant { valence }
             | LocalScheme::CatmullClark { valence }
             | LocalScheme::AdjustableCc { valence, .. }
-            | LocalScheme::Loop { valence } => {
+            | LocalScheme::Loop { valence }
+            | LocalScheme::Sqrt3 { valence }
+            | LocalScheme::Butterfly { valence }
+            | LocalScheme::ModifiedButterfly { valence } => {
                 EdgeRatios::uniform(*valence).expect("valence validated at construction")
             }
         }
@@ -248,7 +290,10 @@ impl<T: Scalar> LocalScheme<T> {
             LocalScheme::Nurds(r) => face_weights(r),
             LocalScheme::CatmullClark { .. }
             | LocalScheme::AdjustableCc { .. }
-            | LocalScheme::Loop { .. } => Vec::new(),
+            | LocalScheme::Loop { .. }
+            | LocalScheme::Sqrt3 { .. }
+            | LocalScheme::Butterfly { .. }
+            | LocalScheme::ModifiedButterfly { .. } => Vec::new(),
             LocalScheme::DooSabin { valence } | LocalScheme::CcVariant { valence } => {
                 vec![T::frac(1, *valence as i64); *valence]
             }
@@ -266,7 +311,10 @@ impl<T: Scalar> LocalScheme<T> {
             )),
             LocalScheme::CatmullClark { .. }
             | LocalScheme::AdjustableCc { .. }
-            | LocalScheme::Loop { .. } => Err(Error::NotApplicable {
+            | LocalScheme::Loop { .. }
+            | LocalScheme::Sqrt3 { .. }
+            | LocalScheme::Butterfly { .. }
+            | LocalScheme::ModifiedButterfly { .. } => Err(Error::NotApplicable {
                 scheme: self.kind().name().to_owned(),
                 operation: "the face block (a Doo-Sabin-family notion)",
             }),
@@ -286,11 +334,21 @@ impl<T: Scalar> LocalScheme<T> {
     /// The full local subdivision matrix (`S_n`, 4n x 4n, for the Doo-Sabin
     /// family; the (2n+1) one-ring matrix for the Catmull-Clark family; the
     /// (3n+1) two-ring matrix for Loop, over the rationals only at the
-    /// valences with rational weights, n = 3, 4, 6).
+    /// valences with rational weights, n = 3, 4, 6; the two-step (3n+1)
+    /// two-ring matrix for sqrt3 (rational at n = 3, 4, 6); the (6n+1)
+    /// three-ring matrix for the butterfly schemes (butterfly: rational at
+    /// every n; modified butterfly at n = 3, 4, 6)).
     pub fn matrix(&self) -> Result<LocalMatrix<T>> {
         match self {
             LocalScheme::Loop { valence } => {
                 loop_subdivision::matrix::two_ring_matrix_over(*valence)
+            }
+            LocalScheme::Sqrt3 { valence } => sqrt3::local_matrix_on(*valence, sqrt3::RING),
+            LocalScheme::Butterfly { valence } => {
+                butterfly::local_matrix_on(*valence, butterfly::RING)
+            }
+            LocalScheme::ModifiedButterfly { valence } => {
+                modified_butterfly::local_matrix_on(*valence, modified_butterfly::RING)
             }
             LocalScheme::CatmullClark { valence } => {
                 catmull_clark::one_ring_named(self.kind().name(), *valence, &T::frac(1, 2))

@@ -62,6 +62,10 @@
 //!   [`crate::mesh::loop_subdivision`], its characteristic map
 //!   [`crate::charmap::loop_subdivision`] (behind
 //!   [`RingPatches::QuarticBoxSpline`]).
+//! * sqrt(3), butterfly and modified butterfly: [`crate::schemes::sqrt3`],
+//!   [`crate::schemes::butterfly`], [`crate::schemes::modified_butterfly`]
+//!   on the lattice rings of [`crate::schemes::tri_rings`]; their mesh
+//!   refinement [`crate::mesh::tri_schemes`]; no ring of patches (`no_charmap`).
 //!
 //! Studies of one particular scheme build the configurations they study
 //! directly: [`crate::cc_study`], `curvature::tuning` and the `c` intervals
@@ -104,13 +108,17 @@
 
 pub(crate) mod assembly;
 mod builtin;
+pub mod butterfly;
 pub mod catmull_clark;
 pub mod choice;
 pub mod doo_sabin;
 mod kind;
 mod local;
 pub mod loop_subdivision;
+pub mod modified_butterfly;
 mod scheme;
+pub mod sqrt3;
+pub mod tri_rings;
 pub mod user;
 
 pub use assembly::{Assembler, LocalMatrix, PointLabel, Role, ROW_SUM_TOL};

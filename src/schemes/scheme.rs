@@ -210,6 +210,15 @@ pub trait Scheme: fmt::Debug + Send + Sync {
         None
     }
 
+    /// For a scheme whose [`local_matrix`](Self::local_matrix) covers several
+    /// subdivision steps because one step turns the ring (sqrt(3): two steps,
+    /// math doc section 21): the number of steps and the one-step matrix,
+    /// whose spectrum `analyze` reports beside the verdicts (which refer to
+    /// the local matrix). Default none: the local matrix is one step.
+    fn one_step_matrix(&self) -> Option<(usize, Result<LocalMatrix<f64>>)> {
+        None
+    }
+
     /// The work model of the heavy steps ([`crate::budget`]: the local
     /// matrix's dimension as a function of the valence and the constants of
     /// its analysis), so that a front end can estimate and refuse work before

@@ -189,6 +189,31 @@ impl BoundCheck {
     }
 }
 
+/// The one-step spectrum of a scheme whose local matrix covers several steps
+/// ([`LocalAnalysis::steps`]).
+#[derive(Clone, Debug, Serialize)]
+pub struct StepsSummary {
+    /// Subdivision steps the local matrix (and every verdict) covers.
+    pub matrix_steps: usize,
+    /// The one-step matrix's spectrum `[re, im]`, sorted by non-increasing
+    /// modulus (complex subdominant pair where one step turns the ring).
+    pub one_step_eigenvalues: Vec<[f64; 2]>,
+}
+
+/// The [`StepsSummary`] of `scheme`, if its local matrix covers several steps.
+fn steps_summary<S: Scheme + ?Sized>(scheme: &S) -> Result<Option<StepsSummary>> {
+    let Some((steps, m)) = scheme.one_step_matrix() else {
+        return Ok(None);
+    };
+    let e = Eigen::new(m?.matrix(), EigenOptions::VALUES)?;
+    let mut values = e.values().to_vec();
+    values.sort_by(crate::schemes::spectral_order);
+    Ok(Some(StepsSummary {
+        matrix_steps: steps,
+        one_step_eigenvalues: values.iter().map(|&z| c64(z)).collect(),
+    }))
+}
+
 /// Everything `subdiv-lab analyze --json` prints.
 #[derive(Clone, Debug, Serialize)]
 pub struct LocalAnalysis {
@@ -242,6 +267,12 @@ pub struct LocalAnalysis {
     /// ([`add_exact`](Self::add_exact)); `None` otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub float_class: Option<&'static str>,
+    /// Present only for a scheme whose local matrix covers several steps
+    /// ([`Scheme::one_step_matrix`]: sqrt(3)): how many, and the one-step
+    /// matrix's spectrum. Every other field, and every verdict, refers to
+    /// the local (multi-step) matrix.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub steps: Option<StepsSummary>,
     /// Second order at the extraordinary point: `mu` against `lambda^2`
     /// ([`crate::curvature`], math doc section 13), on the second-order
     /// matrix ([`Scheme::second_order_matrix`]; the reported spectrum is the
@@ -513,6 +544,7 @@ pub fn analyze<S: Scheme + ?Sized>(scheme: &S, options: &AnalyzeOptions) -> Resu
         exact: None,
         float_class: None,
         fourier_deviation,
+        steps: steps_summary(scheme)?,
         curvature,
     })
 }

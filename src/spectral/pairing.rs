@@ -203,6 +203,10 @@ fn moved(label: PointLabel, n: usize, mirror: bool) -> Option<PointLabel> {
         (Role::FaceNeighbour, true) => (Role::FaceNeighbour, neg(i + 1)),
         (Role::EdgeFirst, true) => (Role::EdgeSecond, neg(i + 1)),
         (Role::EdgeSecond, true) => (Role::EdgeFirst, neg(i + 1)),
+        (Role::OuterRing, mirror) => (
+            Role::OuterRing,
+            crate::schemes::tri_rings::moved_outer(label.index, n, mirror),
+        ),
         _ => return None,
     };
     Some(PointLabel::new(role, index))

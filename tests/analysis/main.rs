@@ -8,16 +8,19 @@ mod common;
 #[allow(dead_code)]
 mod example_scheme;
 
+mod butterfly;
 mod cc_analysis;
 mod contraction;
 mod curvature;
 mod curvature_schemes;
 mod g2cap;
 mod knots;
+mod modified_butterfly;
 mod own_scheme;
 mod scheme_files;
 mod schemes;
 mod second_order;
 mod spectral;
+mod sqrt3;
 #[cfg(feature = "testing")]
 mod testing_kit;

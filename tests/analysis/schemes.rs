@@ -226,11 +226,11 @@ fn scheme_kinds_parse_and_validate() {
     for k in SchemeKind::ALL {
         assert_eq!(k.name().parse::<SchemeKind>().unwrap(), *k);
     }
-    assert!("butterfly"
+    assert!("midedge"
         .parse::<SchemeKind>()
         .unwrap_err()
         .to_string()
-        .contains("\"butterfly\""));
+        .contains("\"midedge\""));
     let r = EdgeRatios::new(vec![0.3, 0.5, 0.5]).unwrap();
     assert!(LocalScheme::from_kind(SchemeKind::DooSabin, 3, Some(r.clone())).is_err());
     assert!(LocalScheme::from_kind(SchemeKind::Nurds, 4, Some(r)).is_err());

@@ -184,12 +184,12 @@ fn bad_inputs() {
             &[
                 "matrix",
                 "--scheme",
-                "butterfly",
+                "midedge",
                 "--valence",
                 "4",
                 "--uniform",
             ],
-            "\"butterfly\"",
+            "\"midedge\"",
         ),
         (
             &["matrix", "--uniform", "--ratios", "0.5,0.5,0.5"],

@@ -634,6 +634,112 @@ fn cases() -> Vec<Case> {
             )],
             "figure[0].configs[0].scheme: scheme loop takes no knot intervals",
         ),
+        // sqrt3, butterfly and modified butterfly
+        bad(
+            "sqrt3-of-quad-mesh",
+            &["subdivide", "{M}/cube.obj", "--scheme", "sqrt3", "--levels", "1", "-o", "out.obj"],
+            "face 0 has 4 corners; sqrt3 refinement needs an all-triangle mesh",
+        ),
+        bad(
+            "butterfly-of-quad-mesh",
+            &["subdivide", "{M}/cube.obj", "--scheme", "butterfly", "-o", "out.obj"],
+            "butterfly refinement needs an all-triangle mesh",
+        ),
+        bad(
+            "modified-butterfly-of-open-mesh",
+            &[
+                "subdivide",
+                "{M}/sharp/grid_quads_untagged.obj",
+                "--scheme",
+                "modified-butterfly",
+                "-o",
+                "out.obj",
+            ],
+            "boundary",
+        ),
+        bad(
+            "butterfly-of-tagged-mesh",
+            &["subdivide", "{M}/sharp/grid_tris.obj", "--scheme", "butterfly", "-o", "out.obj"],
+            "tag line",
+        ),
+        bad(
+            "sqrt3-with-tag-file",
+            &[
+                "subdivide",
+                "{M}/icosahedron.obj",
+                "--scheme",
+                "sqrt3",
+                "--tags",
+                "t.tags",
+                "-o",
+                "out.obj",
+            ],
+            "--tags: scheme sqrt3 refines closed meshes without tags only",
+        ),
+        bad(
+            "modified-butterfly-with-stats",
+            &["subdivide", "{M}/icosahedron.obj", "--scheme", "modified-butterfly", "--stats"],
+            "--stats: scheme modified-butterfly has no per-level statistics",
+        ),
+        bad(
+            "sqrt3-with-knots-out",
+            &["subdivide", "{M}/icosahedron.obj", "--scheme", "sqrt3", "--knots-out", "k.knots"],
+            "scheme sqrt3 takes no knot intervals",
+        ),
+        bad(
+            "sqrt3-levels-too-many",
+            &["subdivide", "{M}/icosahedron.obj", "--scheme", "sqrt3", "--levels", "40", "-o", "out.obj"],
+            "half-edges",
+        ),
+        bad(
+            "butterfly-valence-2",
+            &["analyze", "--scheme", "butterfly", "--valence", "2"],
+            "valence must be at least 3",
+        ),
+        bad(
+            "modified-butterfly-with-c",
+            &["analyze", "--scheme", "modified-butterfly", "--valence", "5", "--c", "0.3"],
+            "c",
+        ),
+        bad(
+            "sqrt3-with-ratios",
+            &["matrix", "--scheme", "sqrt3", "--ratios", "0.3,0.5,0.5"],
+            "takes no knot intervals",
+        ),
+        bad(
+            "butterfly-absurd-valence",
+            &["analyze", "--scheme", "butterfly", "--valence", "100000"],
+            "600001 x 600001",
+        ),
+        bad(
+            "sqrt3-absurd-valence-matrix",
+            &["matrix", "--scheme", "sqrt3", "--valence", "100000"],
+            "300001 x 300001",
+        ),
+        bad(
+            "face-block-butterfly",
+            &["matrix", "--scheme", "butterfly", "--valence", "5", "--block", "face"],
+            "butterfly",
+        ),
+        bad(
+            "exact-sqrt3",
+            &["analyze", "--exact", "--scheme", "sqrt3", "--valence", "6"],
+            "--exact is not available for --scheme sqrt3",
+        ),
+        bad(
+            "matrix-exact-modified-butterfly-irrational",
+            &["matrix", "--exact", "--scheme", "modified-butterfly", "--valence", "5"],
+            "modified butterfly weights are irrational for this valence",
+        ),
+        bad_with(
+            "sweep-spec-sqrt3-knots",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[(
+                "s.toml",
+                "name = \"x\"\nscheme = \"sqrt3\"\nvalences = [5]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n",
+            )],
+            "space.kind: scheme sqrt3 takes no knot intervals",
+        ),
         bad_with(
             "sweep-spec-loop",
             &["sweep", "s.toml", "--out", "o.csv"],

@@ -160,7 +160,7 @@ fn errors_leave_no_output() {
     );
 
     for (args, needle) in [
-        (vec!["--scheme", "butterfly"], "unknown scheme"),
+        (vec!["--scheme", "midedge"], "unknown scheme"),
         (
             vec!["--scheme", "doo-sabin", "--knots", s(&bad_knots), "--stats"],
             "takes no knot intervals",

@@ -564,8 +564,8 @@ fn bad_specs() -> Vec<(&'static str, String, Vec<&'static str>)> {
     vec![
         (
             "unknown scheme",
-            format!("{head}kind = \"spectrum\"\nconfigs = [\n  {{ scheme = \"butterfly\", valence = 5 }},\n]\n"),
-            vec!["line 5", "configs[0].scheme", "unknown scheme \"butterfly\""],
+            format!("{head}kind = \"spectrum\"\nconfigs = [\n  {{ scheme = \"midedge\", valence = 5 }},\n]\n"),
+            vec!["line 5", "configs[0].scheme", "unknown scheme \"midedge\""],
         ),
         (
             "bad knots",

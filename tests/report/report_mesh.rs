@@ -86,7 +86,7 @@ style = "wireframe"
 fn bad_mesh_figure_specs_name_the_key() {
     for (body, needle) in [
         ("mesh = \"teapot\"\nscheme = \"nurds\"", "unknown mesh"),
-        ("mesh = \"cube\"\nscheme = \"butterfly\"", "unknown scheme"),
+        ("mesh = \"cube\"\nscheme = \"midedge\"", "unknown scheme"),
         (
             "mesh = \"cube\"\nscheme = \"loop\"",
             "no per-level statistics",
