@@ -39,15 +39,21 @@ impl Scheme for LocalScheme<f64> {
         self.matrix()
     }
 
-    /// Loop at valence 6, the Catmull-Clark family at valence 4 with the
-    /// same `c` (its regular part is the tensor product of the `c` rule);
-    /// none for the face-centred Doo-Sabin family.
+    /// Loop, sqrt(3), butterfly and modified butterfly at valence 6, the
+    /// Catmull-Clark family at valence 4 with the same `c` (its regular part
+    /// is the tensor product of the `c` rule); none for the face-centred
+    /// Doo-Sabin family.
     fn regular_configuration(&self) -> Option<Result<Box<dyn Scheme>>> {
         let boxed = |s: Result<LocalScheme<f64>>| s.map(|s| Box::new(s) as Box<dyn Scheme>);
         match self {
             LocalScheme::Loop { .. } => Some(boxed(LocalScheme::loop_subdivision(6))),
             LocalScheme::CatmullClark { .. } => Some(boxed(LocalScheme::catmull_clark(4))),
             LocalScheme::AdjustableCc { c, .. } => Some(boxed(LocalScheme::adjustable_cc(4, *c))),
+            LocalScheme::Sqrt3 { .. }
+            | LocalScheme::Butterfly { .. }
+            | LocalScheme::ModifiedButterfly { .. } => {
+                Some(boxed(LocalScheme::from_kind_with_c(self.kind(), 6, None, None)))
+            }
             _ => None,
         }
     }
