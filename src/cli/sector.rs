@@ -113,8 +113,9 @@ fn summary(c: &SectorConfig, a: &SectorAnalysis) -> String {
     );
     if let (Some(m), Some(e)) = (a.charmap.min_jacobian_coeff, a.charmap.point_error) {
         out += &format!(
-            "  ring of {} bicubic patches: min Jacobian coefficient {m:.3e} (relative), control-point error bound {e:.1e}\n",
-            12 * c.face_count()
+            "  ring of {} {} patches: min Jacobian coefficient {m:.3e} (relative), control-point error bound {e:.1e}\n",
+            12 * c.face_count(),
+            if cc { "bicubic" } else { "quartic triangular" }
         );
     }
     out += &format!("limit stencil ({points}):");
