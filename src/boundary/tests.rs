@@ -903,3 +903,42 @@ fn loop_sector_certificate_refutes_a_folding_map() {
     let r = super::charmap::certify(&c, &sub, [Some(true), Some(false)]);
     assert_eq!(r.verdict, SectorCharmapVerdict::NotRegular, "{}", r.reason);
 }
+
+/// The curvature verdict at sectors (math doc section 18.5): the regular
+/// boundaries (Catmull-Clark `K = 2`, Loop `K = 3`, either rule set) are
+/// certified `bounded` exactly (`mu = lambda^2 = 1/4`, two eigenvectors);
+/// the BLZ boundaries with more faces have the second sine mode of the
+/// sector above `1/4` (`mu > lambda^2`: `unbounded`); a real distinct pair
+/// (the standard rules' sine mode above `1/2`) has no rate.
+#[test]
+fn sector_curvature_verdicts() {
+    use crate::spectral::curvature::{CurvatureEvidence, CurvatureVerdict};
+    let at = |scheme, k: usize, rules| {
+        analyze_sector(&cfg(scheme, VertexKind::Boundary, &[k], None, rules))
+            .unwrap()
+            .curvature
+    };
+    for (scheme, k) in [(SdcScheme::CatmullClark, 2), (SdcScheme::Loop, 3)] {
+        for rules in [RuleSet::Standard, RuleSet::Blz] {
+            let cv = at(scheme, k, rules);
+            assert_eq!(cv.verdict, CurvatureVerdict::Bounded, "{}", cv.reason);
+            assert_eq!(cv.evidence, CurvatureEvidence::Exact);
+            assert!((cv.mu - 0.25).abs() < 1e-12 && (cv.lambda - 0.5).abs() < 1e-12);
+        }
+    }
+    for scheme in [SdcScheme::CatmullClark, SdcScheme::Loop] {
+        for k in 4..=8 {
+            let cv = at(scheme, k, RuleSet::Blz);
+            assert_eq!(
+                cv.verdict,
+                CurvatureVerdict::Unbounded,
+                "{scheme:?} {k}: {}",
+                cv.reason
+            );
+            assert!(cv.mu > 0.3, "{}", cv.mu);
+        }
+    }
+    let cv = at(SdcScheme::Loop, 4, RuleSet::Standard);
+    assert_eq!(cv.verdict, CurvatureVerdict::NotApplicable);
+    assert!(cv.reason.contains("real_distinct"), "{}", cv.reason);
+}

@@ -3,8 +3,8 @@
 
 use super::spectrum_text::{leading_eigenvalues, subdominant_pair};
 use super::{write_stdout, CliError, CliResult};
+use subdiv_lab::boundary::analysis::sector_json;
 use subdiv_lab::boundary::analysis::{analyze_sector, SectorAnalysis};
-use subdiv_lab::boundary::analysis::{sector_json, CURVATURE_NOT_COMPUTED};
 use subdiv_lab::boundary::SectorConfig;
 use subdiv_lab::budget::{CostModel, Estimate};
 
@@ -134,6 +134,6 @@ fn summary(c: &SectorConfig, a: &SectorAnalysis) -> String {
         }
         out.push('\n');
     }
-    out += &format!("curvature: not computed ({CURVATURE_NOT_COMPUTED})\n");
+    out += &a.curvature.human_line();
     out
 }
