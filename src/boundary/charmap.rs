@@ -538,8 +538,8 @@ fn loop_net(cell: &SectorCell) -> [(i64, i64); 12] {
 /// (and `(-1, b)` beyond line `j + 1` is `L(b-1) + L(b) - (1, b-1)`). With
 /// these points Loop's regular rules reproduce the crease rules on the
 /// line: the vertex rule gives `5/8 L + 1/16 (L_- + L_+ + P_1 + P_2 + G_1 +
-/// G_2) = 3/4 L + 1/8 (L_- + L_+)`, the boundary edge's rule `3/8 (L + L_+)
-/// + 1/8 (P + G) = (L + L_+)/2`, and the reflected points of the refined
+/// G_2) = 3/4 L + 1/8 (L_- + L_+)`, the boundary edge's rule
+/// `3/8 (L + L_+) + 1/8 (P + G) = (L + L_+)/2`, and the reflected points of the refined
 /// lattice are the edge rule's values across the line (math doc 18.4).
 fn loop_window_matrix(c: &SectorConfig) -> Result<DMatrix<f64>> {
     let ext = refinement_matrix(c, EIGEN_RADIUS, RING_RADIUS)?;

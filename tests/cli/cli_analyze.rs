@@ -147,8 +147,21 @@ fn sector_json_curvature_has_the_interior_keys() {
     assert_eq!(code, 0, "{err}");
     let interior: serde_json::Value = serde_json::from_str(&out).unwrap();
     for (args, verdict) in [
-        (["--scheme", "loop", "--faces", "8", "--rules", "blz"], "unbounded"),
-        (["--scheme", "catmull-clark", "--faces", "2", "--rules", "standard"], "bounded"),
+        (
+            ["--scheme", "loop", "--faces", "8", "--rules", "blz"],
+            "unbounded",
+        ),
+        (
+            [
+                "--scheme",
+                "catmull-clark",
+                "--faces",
+                "2",
+                "--rules",
+                "standard",
+            ],
+            "bounded",
+        ),
     ] {
         let mut cmd = vec!["analyze", "--vertex", "boundary", "--json"];
         cmd.extend(args);
