@@ -2,13 +2,14 @@
 //! section 18.3-18.5): the spectrum with its closed-form cross-check, the
 //! honest subdominant class (the classifier of [`crate::spectral`],
 //! unchanged), what can be certified about the characteristic map on the
-//! sector, and the limit position and tangent stencils from the left
-//! eigenvectors.
+//! sector, the curvature verdict, and the limit position and tangent
+//! stencils from the left eigenvectors.
 
 use super::charmap::{null_vectors, SectorCharmapVerdict, HALF_MATCH_TOL};
 use super::{RuleSet, SectorConfig, VertexKind};
 use crate::mesh::sharp::rules::SdcScheme;
 use crate::spectral::classify::{decide, Decision};
+use crate::spectral::curvature::CurvatureSummary;
 use crate::spectral::eigen::spectral_order;
 use crate::spectral::{classify_matrix_with, Eigen, EigenOptions, Result, Subdominant};
 use crate::spectral::{SpectralError, SubdominantClass};
@@ -183,6 +184,9 @@ pub struct SectorAnalysis {
     /// (real parts; real and imaginary part of one vector for a complex
     /// pair), each scaled to largest entry 1; empty without a characteristic map.
     pub tangent_stencils: Vec<Vec<f64>>,
+    /// The curvature verdict on the sector's second-order matrix (math doc
+    /// section 18.5; [`super::curvature::sector_curvature`]).
+    pub curvature: CurvatureSummary,
 }
 
 /// The closed-form limit mask over the neighbourhood (math doc section 17):
@@ -239,6 +243,7 @@ pub fn analyze_sector(c: &SectorConfig) -> Result<SectorAnalysis> {
         .map(|(a, b)| (a - b).abs())
         .fold(0.0, f64::max);
     let charmap = charmap_verdict(c, &subdominant);
+    let curvature = super::curvature::sector_curvature(c, &subdominant, e.values())?;
     let has_map = matches!(
         subdominant.class,
         SubdominantClass::Standard | SubdominantClass::RealDistinct | SubdominantClass::ComplexPair
@@ -289,6 +294,7 @@ pub fn analyze_sector(c: &SectorConfig) -> Result<SectorAnalysis> {
         limit_stencil,
         limit_stencil_error,
         tangent_stencils,
+        curvature,
     })
 }
 
@@ -422,22 +428,16 @@ fn norm(a: [f64; 3]) -> f64 {
 /// The JSON document of one sector analysis (`analyze --vertex ... --json`):
 /// the fields of [`SectorAnalysis`] (with `subdominant.class`,
 /// `subdominant.lambda1`, `lambda2`, ... as in the interior document), the
-/// `charmap` object (`verdict`, `reason`, `on_sharp_edges`), a `curvature`
-/// object (`verdict: "not_computed"` with its reason: math doc section
-/// 18.5), the echoed `input` and the tool version.
+/// `charmap` object (`verdict`, `reason`, `on_sharp_edges`), the
+/// `curvature` object of the interior document (`verdict`, `lambda`, `mu`,
+/// `mu_over_lambda_squared`, ...: math doc section 18.5), the echoed
+/// `input` and the tool version.
 pub fn sector_json(a: &SectorAnalysis, c: &SectorConfig) -> serde_json::Value {
     let mut value = serde_json::to_value(a).unwrap_or(serde_json::Value::Null);
     if let serde_json::Value::Object(map) = &mut value {
         if let Some(serde_json::Value::Object(cm)) = map.get_mut("charmap") {
             cm.insert("verdict".to_owned(), a.charmap.verdict.as_str().into());
         }
-        map.insert(
-            "curvature".to_owned(),
-            serde_json::json!({
-                "verdict": "not_computed",
-                "reason": CURVATURE_NOT_COMPUTED,
-            }),
-        );
         map.insert(
             "input".to_owned(),
             serde_json::json!({
@@ -455,6 +455,3 @@ pub fn sector_json(a: &SectorAnalysis, c: &SectorConfig) -> serde_json::Value {
     }
     value
 }
-
-/// Why there is no curvature verdict at a boundary, crease or corner vertex.
-pub const CURVATURE_NOT_COMPUTED: &str = "the curvature analysis needs the second-order neighbourhood of the sector (math doc 18.5), which is not built for boundary sectors";

@@ -47,6 +47,7 @@ use crate::charmap::{Eigenstructure, PlanarBasis};
 use crate::error::{Error, Result};
 use crate::mesh::sharp::rules::SdcScheme;
 use crate::schemes::catmull_clark::ring::{bicubic_bezier, Window};
+use crate::schemes::loop_subdivision::tri_bezier::{regular_patch, PlanarTri, REGULAR_NET};
 use crate::spectral::{Subdominant, SubdominantClass};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -142,13 +143,34 @@ impl<'a> Grid<'a> {
         Self { c, r: r.max(1) }
     }
 
-    /// Number of points: `1 + lines r + quads r^2`.
+    /// Number of points: `1 + lines r + faces w`, with `w = r^2` points
+    /// `(a, b)`, `a, b = 1..r`, per quad (Catmull-Clark) and
+    /// `w = r (r - 1)/2` points `a, b >= 1`, `a + b <= r`, per triangle (Loop).
     pub fn dim(&self) -> usize {
-        1 + self.c.edge_count() * self.r + self.c.face_count() * self.r * self.r
+        1 + self.c.edge_count() * self.r + self.c.face_count() * self.wedge_points()
     }
 
-    /// The index of point `(a, b)` of quad `j` (`a, b <= r`): `v` at
-    /// `(0, 0)`, line `j` at `(a, 0)`, line `j + 1` at `(0, b)`.
+    /// The points strictly inside one face's wedge.
+    fn wedge_points(&self) -> usize {
+        match self.c.scheme() {
+            SdcScheme::CatmullClark => self.r * self.r,
+            SdcScheme::Loop => self.r * (self.r - 1) / 2,
+        }
+    }
+
+    /// The offset of the inner point `(a, b)` (`a, b >= 1`) within its wedge.
+    fn wedge_offset(&self, a: usize, b: usize) -> usize {
+        match self.c.scheme() {
+            SdcScheme::CatmullClark => (a - 1) * self.r + b - 1,
+            // rows a = 1, 2, .. hold r - a points each
+            SdcScheme::Loop => (a - 1) * self.r - (a - 1) * a / 2 + b - 1,
+        }
+    }
+
+    /// The index of point `(a, b)` of face `j` (`a, b <= r`, Loop also
+    /// `a + b <= r`): `v` at `(0, 0)`, line `j` at `(a, 0)`, line `j + 1` at
+    /// `(0, b)`. A Loop face's lattice has the edges `(1, 0)`, `(0, 1)` and
+    /// `(-1, 1)`.
     pub fn pos(&self, j: usize, a: usize, b: usize) -> usize {
         let (nl, nf, r) = (self.c.edge_count(), self.c.face_count(), self.r);
         let j = j % nf;
@@ -156,7 +178,20 @@ impl<'a> Grid<'a> {
             (0, 0) => 0,
             (a, 0) => 1 + j * r + a - 1,
             (0, b) => 1 + ((j + 1) % nl) * r + b - 1,
-            (a, b) => 1 + nl * r + j * r * r + (a - 1) * r + b - 1,
+            (a, b) => 1 + nl * r + j * self.wedge_points() + self.wedge_offset(a, b),
+        }
+    }
+
+    /// A Loop lattice point of face `j` with one coordinate possibly `-1`:
+    /// `(a, -1)` is point `(1, a - 1)` of face `j - 1` and `(-1, b)` point
+    /// `(b - 1, 1)` of face `j + 1` (the lattice continues across a smooth
+    /// edge line).
+    fn loop_point(&self, j: usize, a: i64, b: i64) -> usize {
+        let nf = self.c.face_count();
+        match (a, b) {
+            (a, -1) => self.pos(j + nf - 1, 1, (a - 1) as usize),
+            (-1, b) => self.pos(j + 1, (b - 1) as usize, 1),
+            (a, b) => self.pos(j, a as usize, b as usize),
         }
     }
 
@@ -175,13 +210,6 @@ impl<'a> Grid<'a> {
 /// columns in [`Grid`] order). Catmull-Clark only. At `r0 = r1 = 1` it is
 /// [`SectorConfig::local_matrix`].
 pub fn refinement_matrix(c: &SectorConfig, r0: usize, r1: usize) -> Result<DMatrix<f64>> {
-    if c.scheme() != SdcScheme::CatmullClark {
-        return Err(Error::InvalidParameter {
-            name: "scheme",
-            value: super::scheme_name(c.scheme()).to_owned(),
-            reason: "the sector grid is built for Catmull-Clark",
-        });
-    }
     if r0 == 0 || r1 == 0 || r1 + 1 > 2 * r0 {
         return Err(Error::InvalidParameter {
             name: "radius",
@@ -202,6 +230,10 @@ pub fn refinement_matrix(c: &SectorConfig, r0: usize, r1: usize) -> Result<DMatr
             add(0, g0.line(sa, 1), 0.125);
             add(0, g0.line(sb, 1), 0.125);
         }
+    }
+    if c.scheme() == SdcScheme::Loop {
+        loop_rows(c, &g0, &g1, &mut add);
+        return Ok(m);
     }
     for i in 0..nl {
         let sector = c.sector_of_edge(i);
@@ -293,31 +325,189 @@ pub fn refinement_matrix(c: &SectorConfig, r0: usize, r1: usize) -> Result<DMatr
     Ok(m)
 }
 
-/// A cell of the sector's ring: quad `face`, level-1 cell `[a, a+1] x [b, b+1]`.
+/// The Loop rows of [`refinement_matrix`] below the vertex's: on a sharp
+/// line the crease rule and the midpoint; on a smooth line and inside a
+/// face Loop's regular rules (vertex `5/8` and `1/16` per neighbour, edge
+/// `3/8` per end and `1/8` per opposite vertex), except the edge at the
+/// vertex, whose ends get `3/4 - g` and `g` ([`SectorConfig::gamma`]). In
+/// face `j`'s lattice the edge `(a, b)-(a+1, b)` has the opposite vertices
+/// `(a, b+1)` and `(a+1, b-1)`, the edge `(a, b)-(a, b+1)` the vertices
+/// `(a+1, b)` and `(a-1, b+1)`, the edge `(a+1, b)-(a, b+1)` the vertices
+/// `(a, b)` and `(a+1, b+1)`; a level-1 point at distance `D` needs level-0
+/// points at distance `<= (D + 1)/2`, so `r1 <= 2 r0 - 1` suffices, as for
+/// Catmull-Clark.
+fn loop_rows(c: &SectorConfig, g0: &Grid, g1: &Grid, add: &mut impl FnMut(usize, usize, f64)) {
+    let (nl, nf, r1) = (c.edge_count(), c.face_count(), g1.r);
+    let p = |j: usize, a: i64, b: i64| g0.loop_point(j, a, b);
+    for i in 0..nl {
+        let sector = c.sector_of_edge(i);
+        for big_d in 1..=r1 {
+            let row = g1.line(i, big_d);
+            let d = (big_d / 2) as i64;
+            match (sector, big_d % 2) {
+                (None, 0) => {
+                    add(row, g0.line(i, d as usize - 1), 0.125);
+                    add(row, g0.line(i, d as usize), 0.75);
+                    add(row, g0.line(i, d as usize + 1), 0.125);
+                }
+                (None, _) => {
+                    add(row, g0.line(i, d as usize), 0.5);
+                    add(row, g0.line(i, d as usize + 1), 0.5);
+                }
+                // line i is the a axis of face i (a smooth line has face i - 1 too)
+                (Some(_), 0) => {
+                    add(row, p(i, d, 0), 0.625);
+                    for q in [
+                        p(i, d - 1, 0),
+                        p(i, d + 1, 0),
+                        p(i, d, 1),
+                        p(i, d - 1, 1),
+                        p(i, d + 1, -1),
+                        p(i, d, -1),
+                    ] {
+                        add(row, q, 0.0625);
+                    }
+                }
+                (Some(s), _) => {
+                    let (w0, w1) = if d == 0 {
+                        let g = c.gamma(s);
+                        (0.75 - g, g)
+                    } else {
+                        (0.375, 0.375)
+                    };
+                    add(row, p(i, d, 0), w0);
+                    add(row, p(i, d + 1, 0), w1);
+                    add(row, p(i, d, 1), 0.125);
+                    add(row, p(i, d + 1, -1), 0.125);
+                }
+            }
+        }
+    }
+    for j in 0..nf {
+        for big_a in 1..r1 {
+            for big_b in 1..=r1 - big_a {
+                let row = g1.pos(j, big_a, big_b);
+                let (a, b) = ((big_a / 2) as i64, (big_b / 2) as i64);
+                let mut put = |pts: &[(i64, i64)], w: f64| {
+                    for &(x, y) in pts {
+                        add(row, p(j, x, y), w);
+                    }
+                };
+                match (big_a % 2, big_b % 2) {
+                    (0, 0) => {
+                        put(&[(a, b)], 0.625);
+                        put(
+                            &[
+                                (a - 1, b),
+                                (a + 1, b),
+                                (a, b - 1),
+                                (a, b + 1),
+                                (a + 1, b - 1),
+                                (a - 1, b + 1),
+                            ],
+                            0.0625,
+                        );
+                    }
+                    (1, 0) => {
+                        put(&[(a, b), (a + 1, b)], 0.375);
+                        put(&[(a, b + 1), (a + 1, b - 1)], 0.125);
+                    }
+                    (0, _) => {
+                        put(&[(a, b), (a, b + 1)], 0.375);
+                        put(&[(a + 1, b), (a - 1, b + 1)], 0.125);
+                    }
+                    _ => {
+                        put(&[(a + 1, b), (a, b + 1)], 0.375);
+                        put(&[(a, b), (a + 1, b + 1)], 0.125);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The shape of a ring cell.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CellShape {
+    /// A Catmull-Clark cell `[a, a+1] x [b, b+1]` (a bicubic patch).
+    Square,
+    /// A Loop triangle `(a, b), (a+1, b), (a, b+1)` (a quartic patch).
+    Up,
+    /// A Loop triangle `(a+1, b+1), (a, b+1), (a+1, b)` (a quartic patch).
+    Down,
+}
+
+/// A cell of the sector's ring: face `face`, level-1 cell `[a, a+1] x [b,
+/// b+1]` of a quad or the level-1 triangle at `(a, b)` of a Loop face.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 pub struct SectorCell {
-    /// The quad (`v, e_j, f_j, e_(j+1)`).
+    /// The face (`v, e_j, f_j, e_(j+1)` or `v, e_j, e_(j+1)`).
     pub face: usize,
-    /// Cell offset along the quad's first edge line (level-1 units).
+    /// Cell offset along the face's first edge line (level-1 units).
     pub a: usize,
-    /// Cell offset along the quad's second edge line.
+    /// Cell offset along the face's second edge line.
     pub b: usize,
+    /// Square, or which Loop triangle.
+    pub shape: CellShape,
 }
 
 impl fmt::Display for SectorCell {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "cell ({}, {}) of quad {}", self.a, self.b, self.face)
+        match self.shape {
+            CellShape::Square => write!(f, "cell ({}, {}) of quad {}", self.a, self.b, self.face),
+            CellShape::Up => write!(
+                f,
+                "triangle (a, b) + (0,0), (1,0), (0,1) at (a, b) = ({}, {}) of face {}",
+                self.a, self.b, self.face
+            ),
+            CellShape::Down => write!(
+                f,
+                "triangle (a, b) + (1,1), (0,1), (1,0) at (a, b) = ({}, {}) of face {}",
+                self.a, self.b, self.face
+            ),
+        }
     }
 }
 
-/// The ring's cells in order: quad by quad, `a` then `b`.
+/// The ring's cells in order, 12 per face. Catmull-Clark: quad by quad, `a`
+/// then `b`, the cells with `a, b <= 3` and `max(a, b) >= 2`. Loop: face by
+/// face, the level-1 triangles whose corners lie at level-1 distances 2 to 4
+/// (`a + b` in the face's lattice): the up triangles with `a + b = 2, 3`
+/// (in order of `a + b`, then decreasing `a`) and the down triangles with
+/// `a + b = 1, 2`. Their corners are at distance `>= 2`, so no edge at a
+/// corner ends at the vertex and refining them never uses a rule of the
+/// vertex or of its edges (math doc 18.4).
 pub fn ring_cells(c: &SectorConfig) -> Vec<SectorCell> {
     let mut out = Vec::new();
     for face in 0..c.face_count() {
-        for a in 0..4 {
-            for b in 0..4 {
-                if a.max(b) >= 2 {
-                    out.push(SectorCell { face, a, b });
+        match c.scheme() {
+            SdcScheme::CatmullClark => {
+                for a in 0..4 {
+                    for b in 0..4 {
+                        if a.max(b) >= 2 {
+                            out.push(SectorCell {
+                                face,
+                                a,
+                                b,
+                                shape: CellShape::Square,
+                            });
+                        }
+                    }
+                }
+            }
+            SdcScheme::Loop => {
+                for (shape, sums) in [(CellShape::Up, [2, 3]), (CellShape::Down, [1, 2])] {
+                    for sum in sums {
+                        for a in (0..=sum).rev() {
+                            out.push(SectorCell {
+                                face,
+                                a,
+                                b: sum - a,
+                                shape,
+                            });
+                        }
+                    }
                 }
             }
         }
@@ -325,11 +515,77 @@ pub fn ring_cells(c: &SectorConfig) -> Vec<SectorCell> {
     out
 }
 
+/// The 12-point net of a Loop ring triangle in its face's lattice, ordered
+/// as [`REGULAR_NET`]: an up triangle at `(a, b)` is the translate, a down
+/// triangle `(a+1, b+1) - o` (a rotation by `pi`, which keeps the
+/// orientation, as the middle patch of the interior ring).
+fn loop_net(cell: &SectorCell) -> [(i64, i64); 12] {
+    let (a, b) = (cell.a as i64, cell.b as i64);
+    REGULAR_NET.map(|(x, y)| {
+        let (x, y) = (x as i64, y as i64);
+        match cell.shape {
+            CellShape::Down => (a + 1 - x, b + 1 - y),
+            _ => (a + x, b + y),
+        }
+    })
+}
+
+/// The window rows of a Loop ring: row `12 k + m` is net point `m` of cell
+/// `k` of [`ring_cells`] over the radius-3 points. Across a smooth line the
+/// lattice continues into the next face; across a sharp line the net takes
+/// the **point reflection in the edge's midpoint**: the point `(a, -1)`
+/// beyond the edge `L(a-1) L(a)` of line `j` is `L(a-1) + L(a) - (a-1, 1)`
+/// (and `(-1, b)` beyond line `j + 1` is `L(b-1) + L(b) - (1, b-1)`). With
+/// these points Loop's regular rules reproduce the crease rules on the
+/// line: the vertex rule gives `5/8 L + 1/16 (L_- + L_+ + P_1 + P_2 + G_1 +
+/// G_2) = 3/4 L + 1/8 (L_- + L_+)`, the boundary edge's rule
+/// `3/8 (L + L_+) + 1/8 (P + G) = (L + L_+)/2`, and the reflected points of the refined
+/// lattice are the edge rule's values across the line (math doc 18.4).
+fn loop_window_matrix(c: &SectorConfig) -> Result<DMatrix<f64>> {
+    let ext = refinement_matrix(c, EIGEN_RADIUS, RING_RADIUS)?;
+    let g1 = Grid::new(c, RING_RADIUS);
+    let nl = c.edge_count();
+    let cells = ring_cells(c);
+    let row = |j: usize, a: i64, b: i64| -> Vec<f64> {
+        ext.row(g1.loop_point(j, a, b)).iter().copied().collect()
+    };
+    let reflect = |x: Vec<f64>, y: Vec<f64>, z: Vec<f64>| -> Vec<f64> {
+        x.iter()
+            .zip(&y)
+            .zip(&z)
+            .map(|((p, q), r)| p + q - r)
+            .collect()
+    };
+    let point = |j: usize, a: i64, b: i64| -> Vec<f64> {
+        match (a, b) {
+            (a, -1) if c.sector_of_edge(j).is_none() => {
+                reflect(row(j, a - 1, 0), row(j, a, 0), row(j, a - 1, 1))
+            }
+            (-1, b) if c.sector_of_edge((j + 1) % nl).is_none() => {
+                reflect(row(j, 0, b - 1), row(j, 0, b), row(j, 1, b - 1))
+            }
+            (a, b) => row(j, a, b),
+        }
+    };
+    let mut w = DMatrix::<f64>::zeros(12 * cells.len(), ext.ncols());
+    for (k, cell) in cells.iter().enumerate() {
+        for (m, (a, b)) in loop_net(cell).into_iter().enumerate() {
+            for (col, x) in point(cell.face, a, b).into_iter().enumerate() {
+                w[(12 * k + m, col)] = x;
+            }
+        }
+    }
+    Ok(w)
+}
+
 /// The window rows: row `16 k + 4 p + q` gives point `(a - 1 + p, b - 1 + q)`
 /// of cell `k` of [`ring_cells`] as a combination of the radius-3 points
 /// (the radius-5 level-1 points of [`refinement_matrix`], extrapolated
 /// across sharp lines; module docs).
 pub fn window_matrix(c: &SectorConfig) -> Result<DMatrix<f64>> {
+    if c.scheme() == SdcScheme::Loop {
+        return loop_window_matrix(c);
+    }
     let ext = refinement_matrix(c, EIGEN_RADIUS, RING_RADIUS)?;
     let g1 = Grid::new(c, RING_RADIUS);
     let nf = c.face_count();
@@ -482,11 +738,6 @@ fn star_shaped(c: &BezierCurve, eps: f64, split_err: f64, depth: u32) -> Option<
 /// collapsed on the sharp lines; `on_sharp` says which of `lambda_1,
 /// lambda_2` are eigenvalues of the sharp-edge block (module docs).
 pub fn certify(c: &SectorConfig, sub: &Subdominant, on_sharp: [Option<bool>; 2]) -> SectorMapCheck {
-    if c.scheme() != SdcScheme::CatmullClark {
-        return SectorMapCheck::undecided(
-            "the Loop sector's patches next to a sharp edge are not quartic box splines (Loop's crease rule is not the box spline on extrapolated points), so the box-spline certificate of section 11 does not apply".to_owned(),
-        );
-    }
     if c.face_count() > MAX_CHARMAP_FACES {
         return SectorMapCheck::undecided(format!(
             "not attempted above {MAX_CHARMAP_FACES} faces (the certificate's cost grows as the cube of the neighbourhood)"
@@ -520,6 +771,100 @@ pub fn certify(c: &SectorConfig, sub: &Subdominant, on_sharp: [Option<bool>; 2])
     }
 }
 
+/// The Catmull-Clark ring (12 bicubic patches per quad, from the windows
+/// `x`, `y` of [`window_matrix`]): its regularity and its outer arc (per
+/// quad the cells' outer edges from line `j` to line `j + 1`, unoriented).
+fn cc_ring(
+    c: &SectorConfig,
+    cells: &[SectorCell],
+    x: &[f64],
+    y: &[f64],
+    delta: f64,
+) -> Result<(
+    crate::charmap::regularity::Regularity<SectorCell>,
+    Vec<BezierCurve>,
+)> {
+    let patches: Vec<(SectorCell, PlanarPatch)> = cells
+        .iter()
+        .enumerate()
+        .map(|(k, cell)| {
+            let win: Window = std::array::from_fn(|p| {
+                std::array::from_fn(|q| [x[16 * k + 4 * p + q], y[16 * k + 4 * p + q]])
+            });
+            let coord = |i: usize| {
+                let b = bicubic_bezier(&win, i);
+                TensorBezier::from_fn(3, 3, |a, bb| b[a][bb])
+            };
+            (
+                *cell,
+                PlanarPatch {
+                    x: coord(0),
+                    y: coord(1),
+                },
+            )
+        })
+        .collect();
+    let refs: Vec<(SectorCell, &PlanarPatch)> = patches.iter().map(|(i, p)| (*i, p)).collect();
+    let reg = check_bezier_patches(&refs, delta)?;
+    let index = |cell: SectorCell| cells.iter().position(|x| *x == cell);
+    let mut arc: Vec<BezierCurve> = Vec::new();
+    for face in 0..c.face_count() {
+        let pts = |a: usize, b: usize, ij: &dyn Fn(usize) -> (usize, usize)| {
+            let shape = CellShape::Square;
+            let k = index(SectorCell { face, a, b, shape }).unwrap_or(0);
+            let p = &patches[k].1;
+            BezierCurve::new(
+                (0..4)
+                    .map(|t| {
+                        let (i, j) = ij(t);
+                        [p.x.coeff(i, j), p.y.coeff(i, j)]
+                    })
+                    .collect(),
+            )
+        };
+        for b in 0..4 {
+            arc.push(pts(3, b, &|t| (3, t)));
+        }
+        for a in (0..4).rev() {
+            arc.push(pts(a, 3, &|t| (3 - t, 3)));
+        }
+    }
+    Ok((reg, arc))
+}
+
+/// The Loop ring (12 quartic triangular patches per face, the box splines
+/// of the nets of [`window_matrix`]): its regularity (the triangular
+/// Jacobian test of section 11) and its outer arc (per face the edges
+/// `(a+1, b) -> (a, b+1)` of the up triangles with `a + b = 3`, from line
+/// `j` to line `j + 1`, unoriented).
+fn loop_ring(
+    cells: &[SectorCell],
+    x: &[f64],
+    y: &[f64],
+    delta: f64,
+) -> Result<(
+    crate::charmap::regularity::Regularity<SectorCell>,
+    Vec<BezierCurve>,
+)> {
+    let patches: Vec<(SectorCell, PlanarTri)> = cells
+        .iter()
+        .enumerate()
+        .map(|(k, cell)| {
+            let net: [[f64; 2]; 12] = std::array::from_fn(|m| [x[12 * k + m], y[12 * k + m]]);
+            (*cell, regular_patch(&net))
+        })
+        .collect();
+    let refs: Vec<(SectorCell, &PlanarTri)> = patches.iter().map(|(i, p)| (*i, p)).collect();
+    let reg = crate::charmap::loop_subdivision::check_tri_patches(&refs, delta)?;
+    let mut arc = Vec::new();
+    for (cell, p) in &patches {
+        if cell.shape == CellShape::Up && cell.a + cell.b == 3 {
+            arc.push(p.boundary(1, 2)?);
+        }
+    }
+    Ok((reg, arc))
+}
+
 fn certify_ring(
     c: &SectorConfig,
     sub: &Subdominant,
@@ -545,7 +890,10 @@ fn certify_ring(
     let lam = [Complex64::new(l1, 0.0), Complex64::new(l2, 0.0)];
     let basis = PlanarBasis::new(&s, structure, lam, &vecs[0], &vecs[1], gap)?;
     let wm = window_matrix(c)?;
-    let delta = crate::charmap::catmull_clark::point_error(&wm, &basis, &[]);
+    let delta = match c.scheme() {
+        SdcScheme::CatmullClark => crate::charmap::catmull_clark::point_error(&wm, &basis, &[]),
+        SdcScheme::Loop => crate::charmap::loop_subdivision::point_error(&wm, &basis),
+    };
     if !delta.is_finite() {
         return Ok(SectorMapCheck::undecided(
             "the subdominant invariant subspace of the radius-3 neighbourhood is not certified (Stewart's separation hypothesis fails)".to_owned(),
@@ -559,28 +907,10 @@ fn certify_ring(
     };
     let (x, y) = (apply(&basis.w1), apply(&basis.w2));
     let cells = ring_cells(c);
-    let patches: Vec<(SectorCell, PlanarPatch)> = cells
-        .iter()
-        .enumerate()
-        .map(|(k, cell)| {
-            let win: Window = std::array::from_fn(|p| {
-                std::array::from_fn(|q| [x[16 * k + 4 * p + q], y[16 * k + 4 * p + q]])
-            });
-            let coord = |i: usize| {
-                let b = bicubic_bezier(&win, i);
-                TensorBezier::from_fn(3, 3, |a, bb| b[a][bb])
-            };
-            (
-                *cell,
-                PlanarPatch {
-                    x: coord(0),
-                    y: coord(1),
-                },
-            )
-        })
-        .collect();
-    let refs: Vec<(SectorCell, &PlanarPatch)> = patches.iter().map(|(i, p)| (*i, p)).collect();
-    let reg = check_bezier_patches(&refs, delta)?;
+    let (reg, mut arc) = match c.scheme() {
+        SdcScheme::CatmullClark => cc_ring(c, &cells, &x, &y, delta)?,
+        SdcScheme::Loop => loop_ring(&cells, &x, &y, delta)?,
+    };
     let mut out = SectorMapCheck {
         verdict: SectorCharmapVerdict::Indeterminate,
         reason: String::new(),
@@ -610,27 +940,11 @@ fn certify_ring(
         RegularityVerdict::Regular => {}
     }
     // the outer arc, oriented so that the Jacobian is positive
-    let sigma = if reg.orientation < 0 { -1.0 } else { 1.0 };
-    let index = |cell: SectorCell| cells.iter().position(|x| *x == cell);
-    let mut arc: Vec<BezierCurve> = Vec::new();
-    for face in 0..c.face_count() {
-        let pts = |a: usize, b: usize, ij: &dyn Fn(usize) -> (usize, usize)| {
-            let k = index(SectorCell { face, a, b }).unwrap_or(0);
-            let p = &patches[k].1;
-            BezierCurve::new(
-                (0..4)
-                    .map(|t| {
-                        let (i, j) = ij(t);
-                        [p.x.coeff(i, j), sigma * p.y.coeff(i, j)]
-                    })
-                    .collect(),
-            )
-        };
-        for b in 0..4 {
-            arc.push(pts(3, b, &|t| (3, t)));
-        }
-        for a in (0..4).rev() {
-            arc.push(pts(a, 3, &|t| (3 - t, 3)));
+    if reg.orientation < 0 {
+        for cu in &mut arc {
+            for p in &mut cu.points {
+                p[1] = -p[1];
+            }
         }
     }
     let tpc_or_c1 = || match structure {

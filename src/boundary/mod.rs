@@ -36,6 +36,7 @@
 
 pub mod analysis;
 pub mod charmap;
+pub mod curvature;
 pub mod normals;
 #[cfg(test)]
 mod tests;

@@ -408,7 +408,8 @@ fn limit_normal_is_the_limit_of_the_refined_normals() {
 }
 
 /// The sector grid of radius `r` as an open mesh for the sharp-mesh
-/// refiner: the quads of every quadrant, the crease lines' edges and the
+/// refiner: the quads of every quadrant (Loop: the triangles of every face's
+/// lattice), the crease lines' edges and the
 /// corner tagged infinitely sharp.
 fn grid_mesh(c: &SectorConfig, r: usize, p: Vec<[f64; 3]>) -> SharpMesh {
     let g = super::charmap::Grid::new(c, r);
@@ -416,12 +417,31 @@ fn grid_mesh(c: &SectorConfig, r: usize, p: Vec<[f64; 3]>) -> SharpMesh {
     for j in 0..c.face_count() {
         for a in 0..r {
             for b in 0..r {
-                faces.push(vec![
-                    g.pos(j, a, b),
-                    g.pos(j, a + 1, b),
-                    g.pos(j, a + 1, b + 1),
-                    g.pos(j, a, b + 1),
-                ]);
+                match c.scheme() {
+                    SdcScheme::CatmullClark => faces.push(vec![
+                        g.pos(j, a, b),
+                        g.pos(j, a + 1, b),
+                        g.pos(j, a + 1, b + 1),
+                        g.pos(j, a, b + 1),
+                    ]),
+                    // Loop: the up triangles with a + b < r, the down ones with a + b < r - 1
+                    SdcScheme::Loop => {
+                        if a + b < r {
+                            faces.push(vec![
+                                g.pos(j, a, b),
+                                g.pos(j, a + 1, b),
+                                g.pos(j, a, b + 1),
+                            ]);
+                        }
+                        if a + b + 1 < r {
+                            faces.push(vec![
+                                g.pos(j, a + 1, b),
+                                g.pos(j, a + 1, b + 1),
+                                g.pos(j, a, b + 1),
+                            ]);
+                        }
+                    }
+                }
             }
         }
     }
@@ -600,17 +620,71 @@ fn sector_characteristic_map_verdicts() {
     for k in 5..=8 {
         assert_eq!(standard(k), SectorCharmapVerdict::BoundaryCollapses);
     }
-    // Loop: honest indeterminate (no box-spline patches at a sharp edge)
-    let c = cfg(
-        SdcScheme::Loop,
-        VertexKind::Boundary,
-        &[4],
-        None,
-        RuleSet::Blz,
-    );
-    let m = analyze_sector(&c).unwrap().charmap;
-    assert_eq!(m.verdict, SectorCharmapVerdict::Indeterminate);
-    assert!(m.reason.contains("box spline"), "{}", m.reason);
+}
+
+/// The certified characteristic map on Loop sectors (math doc section
+/// 18.4), the same certificate on quartic box-spline rings: BLZ boundaries
+/// C1 onto a half-plane for `K = 2..12`, BLZ convex corners onto a convex
+/// sector; the standard rules C1 only on the regular boundary (`K = 3`),
+/// tangent-plane continuous at `K = 2, 4, 5` (a real distinct pair),
+/// undecided at `K = 6` (the second sine mode is exactly `1/2`) and
+/// collapsing from `K = 7` on.
+#[test]
+fn loop_sector_characteristic_map_verdicts() {
+    let lp = SdcScheme::Loop;
+    for k in 2..=12 {
+        let c = cfg(lp, VertexKind::Boundary, &[k], None, RuleSet::Blz);
+        let m = analyze_sector(&c).unwrap().charmap;
+        assert_eq!(
+            m.verdict,
+            SectorCharmapVerdict::C1Standard,
+            "{c}: {}",
+            m.reason
+        );
+        let sweep = m.swept_degrees.unwrap();
+        assert!((sweep - 180.0).abs() < 1e-6, "{c}: {sweep}");
+    }
+    for k in 1..=5 {
+        for theta in [30.0, 90.0, 150.0] {
+            let c = cfg(lp, VertexKind::Corner, &[k], Some(theta), RuleSet::Blz);
+            let m = analyze_sector(&c).unwrap().charmap;
+            assert_eq!(
+                m.verdict,
+                SectorCharmapVerdict::C1Standard,
+                "{c}: {}",
+                m.reason
+            );
+            assert!(m.swept_degrees.unwrap() < 180.0, "{c}");
+        }
+    }
+    let standard = |k: usize| {
+        analyze_sector(&cfg(
+            lp,
+            VertexKind::Boundary,
+            &[k],
+            None,
+            RuleSet::Standard,
+        ))
+        .unwrap()
+        .charmap
+        .verdict
+    };
+    assert_eq!(standard(3), SectorCharmapVerdict::C1Standard);
+    for k in [2, 4, 5] {
+        assert_eq!(
+            standard(k),
+            SectorCharmapVerdict::TangentPlaneContinuous,
+            "K = {k}"
+        );
+    }
+    assert_eq!(standard(6), SectorCharmapVerdict::NoCharacteristicMap);
+    for k in 7..=10 {
+        assert_eq!(
+            standard(k),
+            SectorCharmapVerdict::BoundaryCollapses,
+            "K = {k}"
+        );
+    }
 }
 
 /// The certificate can fail: on the standard `K = 3` boundary, the pair
@@ -649,4 +723,222 @@ fn sector_certificate_refutes_a_folding_map() {
         "{third}: {}",
         r.reason
     );
+}
+
+/// The index, in a once-refined Loop grid mesh `mesh -> refined`, of the
+/// level-1 point `(A, B)` of face `j` (`A + B <= 2 r`): a vertex point or
+/// the edge point of its edge (vertices first, then edges, as the refiner
+/// numbers them).
+fn loop_refined_index(
+    g: &super::charmap::Grid,
+    mesh: &SharpMesh,
+    j: usize,
+    big_a: usize,
+    big_b: usize,
+) -> usize {
+    let (a, b) = (big_a / 2, big_b / 2);
+    let edge = |p: usize, q: usize| mesh.vertex_count() + mesh.find_edge(p, q).unwrap();
+    match (big_a % 2, big_b % 2) {
+        (0, 0) => g.pos(j, a, b),
+        (1, 0) => edge(g.pos(j, a, b), g.pos(j, a + 1, b)),
+        (0, _) => edge(g.pos(j, a, b), g.pos(j, a, b + 1)),
+        _ => edge(g.pos(j, a + 1, b), g.pos(j, a, b + 1)),
+    }
+}
+
+/// The Loop sector grid's refinement (math doc section 18.4) against one
+/// step of the sharp-mesh refiner on the radius-4 grid, for every level-1
+/// point of radius 5, with the radius-3 matrix giving the same weights, and
+/// its radius-1 block against the local matrix (both rule sets).
+#[test]
+fn loop_sector_grid_refinement_is_one_step_of_the_mesh_refiner() {
+    use super::charmap::{refinement_matrix, Grid};
+    for c in all_standard_configs() {
+        if c.scheme() != SdcScheme::Loop {
+            continue;
+        }
+        let (g0, g1, g3) = (Grid::new(&c, 4), Grid::new(&c, 5), Grid::new(&c, 3));
+        let p = positions(g0.dim());
+        let mesh = grid_mesh(&c, 4, p.clone());
+        let r = mesh.refine(SdcScheme::Loop, Creasing::Uniform).unwrap();
+        let m = refinement_matrix(&c, 4, 5).unwrap();
+        let m3 = refinement_matrix(&c, 3, 5).unwrap();
+        assert_eq!(m.nrows(), g1.dim());
+        for j in 0..c.face_count() {
+            for big_a in 0..=5 {
+                for big_b in 0..=5 - big_a {
+                    let row = g1.pos(j, big_a, big_b);
+                    let got = r.positions()[loop_refined_index(&g0, &mesh, j, big_a, big_b)];
+                    for k in 0..3 {
+                        let q: f64 = (0..g0.dim()).map(|col| m[(row, col)] * p[col][k]).sum();
+                        assert!(
+                            (q - got[k]).abs() < 1e-12,
+                            "{c}: point ({big_a}, {big_b}) of face {j}: matrix {q} vs refiner {}",
+                            got[k]
+                        );
+                    }
+                    for a in 0..=4 {
+                        for b in 0..=4 - a {
+                            let w4 = m[(row, g0.pos(j, a, b))];
+                            let w3 = if a + b <= 3 {
+                                m3[(row, g3.pos(j, a, b))]
+                            } else {
+                                0.0
+                            };
+                            assert_eq!(w4, w3, "{c}: ({big_a}, {big_b}) of face {j} at ({a}, {b})");
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for rules in [RuleSet::Standard, RuleSet::Blz] {
+        for k in 1..=6 {
+            for c in [
+                cfg(SdcScheme::Loop, VertexKind::Boundary, &[k], None, rules),
+                cfg(
+                    SdcScheme::Loop,
+                    VertexKind::Corner,
+                    &[k],
+                    Some(120.0),
+                    rules,
+                ),
+                cfg(SdcScheme::Loop, VertexKind::Crease, &[k, 2], None, rules),
+            ] {
+                let m = refinement_matrix(&c, 1, 1).unwrap();
+                assert_eq!(&m, c.local_matrix().unwrap().matrix(), "{c}");
+            }
+        }
+    }
+}
+
+/// The Loop ring's patches are the limit surface (math doc section 18.4):
+/// on data over the radius-4 grid, each ring triangle's box-spline patch
+/// (its net from [`super::charmap::window_matrix`], reflected across sharp
+/// lines in the edges' midpoints) evaluated at the six points `(s, t)` of
+/// `{0, 1/2, 1}` equals the limit position of the matching vertex of the
+/// sharp-mesh refiner's level-2 mesh (OpenSubdiv's limit masks), sharp lines
+/// included.
+#[test]
+fn loop_sector_ring_patches_are_the_limit_surface() {
+    use super::charmap::{ring_cells, window_matrix, CellShape, Grid};
+    use crate::schemes::loop_subdivision::tri_bezier::regular_patch_scalar;
+    for c in all_standard_configs() {
+        if c.scheme() != SdcScheme::Loop {
+            continue;
+        }
+        let (g4, g3) = (Grid::new(&c, 4), Grid::new(&c, 3));
+        let p = positions(g4.dim());
+        let mesh = grid_mesh(&c, 4, p.clone());
+        let r1 = mesh.refine(SdcScheme::Loop, Creasing::Uniform).unwrap();
+        let r2 = r1.refine(SdcScheme::Loop, Creasing::Uniform).unwrap();
+        let limit = r2.limit_positions(SdcScheme::Loop).unwrap();
+        // the level-1 grid of radius 8 as numbered in r1
+        let level1 = |j: usize, x: usize, y: usize| loop_refined_index(&g4, &mesh, j, x, y);
+        let level2 = |j: usize, x: usize, y: usize| -> usize {
+            let (a, b) = (x / 2, y / 2);
+            let edge = |p: usize, q: usize| r1.vertex_count() + r1.find_edge(p, q).unwrap();
+            match (x % 2, y % 2) {
+                (0, 0) => level1(j, a, b),
+                (1, 0) => edge(level1(j, a, b), level1(j, a + 1, b)),
+                (0, _) => edge(level1(j, a, b), level1(j, a, b + 1)),
+                _ => edge(level1(j, a + 1, b), level1(j, a, b + 1)),
+            }
+        };
+        // the radius-3 data in the window matrix's column order
+        let mut d3 = vec![[0.0; 3]; g3.dim()];
+        for j in 0..c.face_count() {
+            for a in 0..=3 {
+                for b in 0..=3 - a {
+                    d3[g3.pos(j, a, b)] = p[g4.pos(j, a, b)];
+                }
+            }
+        }
+        let w = window_matrix(&c).unwrap();
+        for (k, cell) in ring_cells(&c).iter().enumerate() {
+            for coord in 0..3 {
+                let net: [f64; 12] = std::array::from_fn(|m| {
+                    (0..w.ncols())
+                        .map(|col| w[(12 * k + m, col)] * d3[col][coord])
+                        .sum()
+                });
+                let patch = regular_patch_scalar(&net);
+                for (s2, t2) in [(0, 0), (1, 0), (2, 0), (0, 1), (1, 1), (0, 2)] {
+                    let (s, t) = (s2 as f64 / 2.0, t2 as f64 / 2.0);
+                    let (x, y) = match cell.shape {
+                        CellShape::Down => (2 * cell.a + 2 - s2, 2 * cell.b + 2 - t2),
+                        _ => (2 * cell.a + s2, 2 * cell.b + t2),
+                    };
+                    let want = limit[level2(cell.face, x, y)][coord];
+                    let got = patch.eval(s, t);
+                    assert!(
+                        (got - want).abs() < 1e-12,
+                        "{c}: {cell} at ({s}, {t}): patch {got} vs limit {want}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The Loop certificate can fail too: on the standard `K = 4` boundary the
+/// invariant plane of `1/2` (the boundary tangent) and the second sine mode
+/// `sin(2 i pi/4)` (eigenvalue `3/8`, which changes sign inside the sector)
+/// gives a map that folds: a certified witness.
+#[test]
+fn loop_sector_certificate_refutes_a_folding_map() {
+    let c = cfg(
+        SdcScheme::Loop,
+        VertexKind::Boundary,
+        &[4],
+        None,
+        RuleSet::Standard,
+    );
+    let a = analyze_sector(&c).unwrap();
+    let mut sub = a.subdominant.clone();
+    sub.lambda1 = num_complex::Complex64::new(0.5, 0.0);
+    sub.lambda2 = num_complex::Complex64::new(0.375, 0.0);
+    // distance of the pair from the rest: 3/8 + cos(pi/4)/4 above, 1/4 below
+    sub.gap = (0.375 + (std::f64::consts::PI / 4.0).cos() / 4.0 - 0.5).min(0.125);
+    let r = super::charmap::certify(&c, &sub, [Some(true), Some(false)]);
+    assert_eq!(r.verdict, SectorCharmapVerdict::NotRegular, "{}", r.reason);
+}
+
+/// The curvature verdict at sectors (math doc section 18.5): the regular
+/// boundaries (Catmull-Clark `K = 2`, Loop `K = 3`, either rule set) are
+/// certified `bounded` exactly (`mu = lambda^2 = 1/4`, two eigenvectors);
+/// the BLZ boundaries with more faces have the second sine mode of the
+/// sector above `1/4` (`mu > lambda^2`: `unbounded`); a real distinct pair
+/// (the standard rules' sine mode above `1/2`) has no rate.
+#[test]
+fn sector_curvature_verdicts() {
+    use crate::spectral::curvature::{CurvatureEvidence, CurvatureVerdict};
+    let at = |scheme, k: usize, rules| {
+        analyze_sector(&cfg(scheme, VertexKind::Boundary, &[k], None, rules))
+            .unwrap()
+            .curvature
+    };
+    for (scheme, k) in [(SdcScheme::CatmullClark, 2), (SdcScheme::Loop, 3)] {
+        for rules in [RuleSet::Standard, RuleSet::Blz] {
+            let cv = at(scheme, k, rules);
+            assert_eq!(cv.verdict, CurvatureVerdict::Bounded, "{}", cv.reason);
+            assert_eq!(cv.evidence, CurvatureEvidence::Exact);
+            assert!((cv.mu - 0.25).abs() < 1e-12 && (cv.lambda - 0.5).abs() < 1e-12);
+        }
+    }
+    for scheme in [SdcScheme::CatmullClark, SdcScheme::Loop] {
+        for k in 4..=8 {
+            let cv = at(scheme, k, RuleSet::Blz);
+            assert_eq!(
+                cv.verdict,
+                CurvatureVerdict::Unbounded,
+                "{scheme:?} {k}: {}",
+                cv.reason
+            );
+            assert!(cv.mu > 0.3, "{}", cv.mu);
+        }
+    }
+    let cv = at(SdcScheme::Loop, 4, RuleSet::Standard);
+    assert_eq!(cv.verdict, CurvatureVerdict::NotApplicable);
+    assert!(cv.reason.contains("real_distinct"), "{}", cv.reason);
 }

@@ -55,7 +55,7 @@ use crate::schemes::loop_subdivision::check_size;
 use crate::schemes::loop_subdivision::fourier::{spectrum, subdominant_eigenvectors};
 use crate::schemes::loop_subdivision::matrix::{extended_matrix, two_ring_matrix};
 use crate::schemes::loop_subdivision::ring::{LoopPatchId, LoopRing, DEGREE};
-use crate::schemes::loop_subdivision::tri_bezier::{self, TriBezier, SPLIT4};
+use crate::schemes::loop_subdivision::tri_bezier::{self, PlanarTri, TriBezier, SPLIT4};
 use num_complex::Complex64;
 
 /// Maximum split depth of the regularity test per patch (pieces with sides
@@ -143,7 +143,27 @@ fn map_corners(c: [(f64, f64); 3], sub: [(f64, f64); 3]) -> [(f64, f64); 3] {
 /// Checks the sign of the Jacobian on every patch of `ring`; `delta` bounds
 /// the error of the patches' Bezier control points (see [`TriErrorModel`]).
 pub fn check_regularity(ring: &LoopRing, delta: f64) -> Regularity<LoopPatchId> {
-    let patches = ring.patches();
+    let patches: Vec<(LoopPatchId, &PlanarTri)> =
+        ring.patches().iter().map(|(id, p)| (*id, p)).collect();
+    // a ring has 3n >= 9 patches
+    check_tri_patches(&patches, delta).unwrap_or_else(|_| unreachable!("ring without patches"))
+}
+
+/// Checks the sign of the Jacobian on a set of quartic triangular patches
+/// (a Loop ring, or the ring of a boundary sector: math doc 18.4); `delta`
+/// bounds the error of their Bezier control points (see
+/// [`TriErrorModel`]). An empty set is an error.
+pub fn check_tri_patches<P: Copy>(
+    patches: &[(P, &PlanarTri)],
+    delta: f64,
+) -> Result<Regularity<P>> {
+    if patches.is_empty() {
+        return Err(crate::error::Error::CountMismatch {
+            what: "patches for the regularity check",
+            expected: 1,
+            got: 0,
+        });
+    }
     let jac: Vec<TriBezier> = patches.iter().map(|(_, p)| p.jacobian()).collect();
     let mut md = 0.0f64;
     for (_, p) in patches {
@@ -187,7 +207,7 @@ pub fn check_regularity(ring: &LoopRing, delta: f64) -> Regularity<LoopPatchId> 
         cmax,
     );
     if out.verdict == RegularityVerdict::Indeterminate {
-        return out;
+        return Ok(out);
     }
     let unit = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)];
     let mut work: Vec<Piece> = jac
@@ -239,7 +259,7 @@ pub fn check_regularity(ring: &LoopRing, delta: f64) -> Regularity<LoopPatchId> 
             if v < -eval_bound {
                 out.verdict = RegularityVerdict::NotRegular;
                 out.witness = Some((DomainPoint { patch: *id, s, t }, v / scale));
-                return out;
+                return Ok(out);
             }
         }
         if hopeless || piece.depth >= MAX_DEPTH || out.pieces + work.len() + 4 > MAX_PIECES {
@@ -260,7 +280,7 @@ pub fn check_regularity(ring: &LoopRing, delta: f64) -> Regularity<LoopPatchId> 
             });
         }
     }
-    out
+    Ok(out)
 }
 
 /// Regularity, winding numbers and verdict of a ring whose Bezier control

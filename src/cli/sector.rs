@@ -3,8 +3,8 @@
 
 use super::spectrum_text::{leading_eigenvalues, subdominant_pair};
 use super::{write_stdout, CliError, CliResult};
+use subdiv_lab::boundary::analysis::sector_json;
 use subdiv_lab::boundary::analysis::{analyze_sector, SectorAnalysis};
-use subdiv_lab::boundary::analysis::{sector_json, CURVATURE_NOT_COMPUTED};
 use subdiv_lab::boundary::SectorConfig;
 use subdiv_lab::budget::{CostModel, Estimate};
 
@@ -113,8 +113,9 @@ fn summary(c: &SectorConfig, a: &SectorAnalysis) -> String {
     );
     if let (Some(m), Some(e)) = (a.charmap.min_jacobian_coeff, a.charmap.point_error) {
         out += &format!(
-            "  ring of {} bicubic patches: min Jacobian coefficient {m:.3e} (relative), control-point error bound {e:.1e}\n",
-            12 * c.face_count()
+            "  ring of {} {} patches: min Jacobian coefficient {m:.3e} (relative), control-point error bound {e:.1e}\n",
+            12 * c.face_count(),
+            if cc { "bicubic" } else { "quartic triangular" }
         );
     }
     out += &format!("limit stencil ({points}):");
@@ -133,6 +134,6 @@ fn summary(c: &SectorConfig, a: &SectorAnalysis) -> String {
         }
         out.push('\n');
     }
-    out += &format!("curvature: not computed ({CURVATURE_NOT_COMPUTED})\n");
+    out += &a.curvature.human_line();
     out
 }

@@ -309,6 +309,38 @@ pub fn summarize<S: Scheme + ?Sized>(
     radii: &[f64],
     sub: &Subdominant,
 ) -> Result<CurvatureSummary> {
+    let (mut out, r_mu) = summarize_spectrum(values, radii, sub, || {
+        scheme
+            .exact_second_order_matrix()
+            .map(|m| m.map(|m| m.matrix().clone()))
+    })?;
+    if out.mu.is_nan() {
+        return Ok(out);
+    }
+    let mu = out.mu;
+    if let Some(blocks) = scheme.fourier_spectrum() {
+        out.mu_mode = Some(modes_of(&blocks?, scheme.valence(), mu, r_mu));
+    }
+    if let Some(extra) = scheme.regular_part_spectrum() {
+        let tol = r_mu + MODE_MATCH_TOLERANCE;
+        out.mu_regular_part = extra?.iter().any(|z| (z.norm() - mu).abs() <= tol);
+    }
+    Ok(out)
+}
+
+/// The scheme-free part of [`summarize`]: the verdict from the eigenvalues
+/// of a second-order matrix (sorted by non-increasing modulus), their error
+/// radii, the subdominant classification and, for the exact certificate, a
+/// source of the exact matrix (`None`: no exact matrix). Leaves `mu_mode`
+/// `None` and `mu_regular_part` false; returns the error radius of `mu`
+/// with the summary (`mu` is NaN with fewer than four eigenvalues). Used
+/// for boundary, crease and corner sectors too (math doc section 18.5).
+pub fn summarize_spectrum(
+    values: &[Complex64],
+    radii: &[f64],
+    sub: &Subdominant,
+    exact_matrix: impl FnOnce() -> Option<crate::error::Result<DMatrix<Rational>>>,
+) -> Result<(CurvatureSummary, f64)> {
     let radius_of = |k: usize| radii.get(k).copied().unwrap_or(f64::INFINITY);
     let mut out = CurvatureSummary {
         lambda: values.get(1).map_or(f64::NAN, |z| z.norm()),
@@ -327,7 +359,7 @@ pub fn summarize<S: Scheme + ?Sized>(
             "only {} eigenvalues: no eigenvalue after the subdominant pair",
             values.len()
         );
-        return Ok(out);
+        return Ok((out, f64::INFINITY));
     }
     let lambda = out.lambda;
     let r_lambda = radius_of(1).max(radius_of(2));
@@ -350,23 +382,16 @@ pub fn summarize<S: Scheme + ?Sized>(
             decide((z.norm() - mu).abs(), radius_of(3 + k) + r_mu) != Decision::NonZero
         })
         .count();
-    if let Some(blocks) = scheme.fourier_spectrum() {
-        out.mu_mode = Some(modes_of(&blocks?, scheme.valence(), mu, r_mu));
-    }
-    if let Some(extra) = scheme.regular_part_spectrum() {
-        let tol = r_mu + MODE_MATCH_TOLERANCE;
-        out.mu_regular_part = extra?.iter().any(|z| (z.norm() - mu).abs() <= tol);
-    }
     match &sub.class {
         SubdominantClass::Standard => {}
         SubdominantClass::Indeterminate { .. } => {
             out.verdict = CurvatureVerdict::Indeterminate;
             out.reason = "the subdominant classification is indeterminate, so the curvature rate cannot be stated".to_owned();
-            return Ok(out);
+            return Ok((out, r_mu));
         }
         other => {
             out.reason = not_standard_reason(other, sub);
-            return Ok(out);
+            return Ok((out, r_mu));
         }
     }
     let d = mu - lambda * lambda;
@@ -383,18 +408,18 @@ pub fn summarize<S: Scheme + ?Sized>(
             "mu - lambda^2 = {d:.3e}, beyond {} times its error radius {radius:.1e}",
             crate::spectral::classify::SEPARATION_FACTOR
         );
-        return Ok(out);
+        return Ok((out, r_mu));
     }
-    let exact = match scheme.exact_second_order_matrix() {
+    let exact = match exact_matrix() {
         None => Err("no exact (rational) local matrix for this configuration".to_owned()),
         Some(m) => {
             let m = m?;
-            if m.matrix().nrows() > EXACT_MAX_DIM {
+            if m.nrows() > EXACT_MAX_DIM {
                 Err(format!(
                     "the exact certificate is limited to dimension {EXACT_MAX_DIM}"
                 ))
             } else {
-                certify_rational(m.matrix(), lambda, mu, r_lambda, r_mu)
+                certify_rational(&m, lambda, mu, r_lambda, r_mu)
             }
         }
     };
@@ -430,7 +455,7 @@ pub fn summarize<S: Scheme + ?Sized>(
             );
         }
     }
-    Ok(out)
+    Ok((out, r_mu))
 }
 
 /// What holds instead of the standard structure (the `not_applicable` reason).

@@ -126,3 +126,49 @@ fn bad_input_is_a_usage_error() {
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("irrational"), "{err}");
 }
+
+/// `analyze --vertex ... --json`: the `curvature` object has the interior
+/// document's keys, and the verdict is the library's (Loop BLZ boundary of 8
+/// triangles: `mu = 0.4458 > lambda^2`, unbounded; the regular Catmull-Clark
+/// boundary: bounded, certified exactly).
+#[test]
+fn sector_json_curvature_has_the_interior_keys() {
+    let keys = |v: &serde_json::Value| {
+        let mut k: Vec<String> = v["curvature"]
+            .as_object()
+            .unwrap()
+            .keys()
+            .cloned()
+            .collect();
+        k.sort();
+        k
+    };
+    let (code, out, err) = run(&["analyze", "--scheme", "loop", "--valence", "5", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let interior: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for (args, verdict) in [
+        (
+            ["--scheme", "loop", "--faces", "8", "--rules", "blz"],
+            "unbounded",
+        ),
+        (
+            [
+                "--scheme",
+                "catmull-clark",
+                "--faces",
+                "2",
+                "--rules",
+                "standard",
+            ],
+            "bounded",
+        ),
+    ] {
+        let mut cmd = vec!["analyze", "--vertex", "boundary", "--json"];
+        cmd.extend(args);
+        let (code, out, err) = run(&cmd);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(keys(&v), keys(&interior));
+        assert_eq!(v["curvature"]["verdict"], verdict, "{args:?}");
+    }
+}
