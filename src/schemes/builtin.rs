@@ -51,9 +51,12 @@ impl Scheme for LocalScheme<f64> {
             LocalScheme::AdjustableCc { c, .. } => Some(boxed(LocalScheme::adjustable_cc(4, *c))),
             LocalScheme::Sqrt3 { .. }
             | LocalScheme::Butterfly { .. }
-            | LocalScheme::ModifiedButterfly { .. } => {
-                Some(boxed(LocalScheme::from_kind_with_c(self.kind(), 6, None, None)))
-            }
+            | LocalScheme::ModifiedButterfly { .. } => Some(boxed(LocalScheme::from_kind_with_c(
+                self.kind(),
+                6,
+                None,
+                None,
+            ))),
             _ => None,
         }
     }
