@@ -304,7 +304,7 @@ points_per_axis = 4
         assert!(e.to_string().starts_with("valences: empty list"), "{e}");
         let e = err(&GOOD.replace("points_per_axis = 4", "points_per_axis = 4\nseed = 1"));
         assert!(e.to_string().starts_with("sampler.seed is not used"), "{e}");
-        let e = err(&GOOD.replace("\"nurds\"", "\"butterfly\""));
+        let e = err(&GOOD.replace("\"nurds\"", "\"midedge\""));
         assert!(e.to_string().starts_with("scheme: unknown scheme"), "{e}");
         let e = err(&GOOD.replace("\"nurds\"", "\"loop\""));
         assert!(
