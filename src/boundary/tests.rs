@@ -570,16 +570,12 @@ fn sector_grid_refinement_is_one_step_of_the_mesh_refiner() {
     }
 }
 
-/// The certified characteristic map on the sector (math doc section 18.4):
-/// BLZ boundaries are C1 onto a half-plane at every tested `K`, BLZ convex
-/// corners onto a convex sector; the standard rules are C1 only on the
-/// regular boundary, tangent-plane continuous (non-standard) at `K = 3` and
-/// collapse the boundary from `K = 5` on.
-#[test]
-fn sector_characteristic_map_verdicts() {
-    let cc = SdcScheme::CatmullClark;
+/// BLZ sectors of `scheme` are certified C1: boundaries with `K = 2..12`
+/// faces onto a half-plane, convex corners with `K = 1..5` faces at 30, 90
+/// and 150 degrees onto a convex sector.
+fn assert_blz_sectors_are_c1(scheme: SdcScheme) {
     for k in 2..=12 {
-        let c = cfg(cc, VertexKind::Boundary, &[k], None, RuleSet::Blz);
+        let c = cfg(scheme, VertexKind::Boundary, &[k], None, RuleSet::Blz);
         let m = analyze_sector(&c).unwrap().charmap;
         assert_eq!(
             m.verdict,
@@ -592,7 +588,7 @@ fn sector_characteristic_map_verdicts() {
     }
     for k in 1..=5 {
         for theta in [30.0, 90.0, 150.0] {
-            let c = cfg(cc, VertexKind::Corner, &[k], Some(theta), RuleSet::Blz);
+            let c = cfg(scheme, VertexKind::Corner, &[k], Some(theta), RuleSet::Blz);
             let m = analyze_sector(&c).unwrap().charmap;
             assert_eq!(
                 m.verdict,
@@ -603,6 +599,17 @@ fn sector_characteristic_map_verdicts() {
             assert!(m.swept_degrees.unwrap() < 180.0, "{c}");
         }
     }
+}
+
+/// The certified characteristic map on the sector (math doc section 18.4):
+/// BLZ boundaries are C1 onto a half-plane at every tested `K`, BLZ convex
+/// corners onto a convex sector; the standard rules are C1 only on the
+/// regular boundary, tangent-plane continuous (non-standard) at `K = 3` and
+/// collapse the boundary from `K = 5` on.
+#[test]
+fn sector_characteristic_map_verdicts() {
+    let cc = SdcScheme::CatmullClark;
+    assert_blz_sectors_are_c1(cc);
     let standard = |k: usize| {
         analyze_sector(&cfg(
             cc,
@@ -632,31 +639,7 @@ fn sector_characteristic_map_verdicts() {
 #[test]
 fn loop_sector_characteristic_map_verdicts() {
     let lp = SdcScheme::Loop;
-    for k in 2..=12 {
-        let c = cfg(lp, VertexKind::Boundary, &[k], None, RuleSet::Blz);
-        let m = analyze_sector(&c).unwrap().charmap;
-        assert_eq!(
-            m.verdict,
-            SectorCharmapVerdict::C1Standard,
-            "{c}: {}",
-            m.reason
-        );
-        let sweep = m.swept_degrees.unwrap();
-        assert!((sweep - 180.0).abs() < 1e-6, "{c}: {sweep}");
-    }
-    for k in 1..=5 {
-        for theta in [30.0, 90.0, 150.0] {
-            let c = cfg(lp, VertexKind::Corner, &[k], Some(theta), RuleSet::Blz);
-            let m = analyze_sector(&c).unwrap().charmap;
-            assert_eq!(
-                m.verdict,
-                SectorCharmapVerdict::C1Standard,
-                "{c}: {}",
-                m.reason
-            );
-            assert!(m.swept_degrees.unwrap() < 180.0, "{c}");
-        }
-    }
+    assert_blz_sectors_are_c1(lp);
     let standard = |k: usize| {
         analyze_sector(&cfg(
             lp,
