@@ -144,7 +144,7 @@ pub(crate) fn matrix<'py>(
 
 /// `analyze`: the JSON text of `subdiv-lab analyze --json`.
 #[pyfunction]
-#[pyo3(signature = (scheme, valence=None, knots=None, ratios=None, uniform=false, c=None, path="full", levels=Int(60), seed=Int(0x5EED), force=false))]
+#[pyo3(signature = (scheme, valence=None, knots=None, ratios=None, uniform=false, c=None, path="full", levels=Int(60), seed=Int(0x5EED), force=false, charmap="ring"))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn analyze_json(
     py: Python<'_>,
@@ -158,11 +158,13 @@ pub(crate) fn analyze_json(
     levels: Int,
     seed: Int,
     force: bool,
+    charmap: &str,
 ) -> PyResult<String> {
     guard("analyze", || {
         let (levels, seed, path) = analyze_options(levels, seed, path)?;
+        let method = charmap_method(charmap)?;
         let r = resolve(scheme, valence, knots, ratios, uniform, c)?;
-        analyze_resolved(py, r, path, levels, seed, force)
+        analyze_resolved(py, r, path, levels, seed, force, method)
     })
 }
 
@@ -170,7 +172,7 @@ pub(crate) fn analyze_json(
 /// file's contents, read by the Python wrapper; errors name the key and the
 /// valence, as the CLI's `--scheme-file`).
 #[pyfunction]
-#[pyo3(signature = (text, valence, path="full", levels=Int(60), seed=Int(0x5EED), force=false))]
+#[pyo3(signature = (text, valence, path="full", levels=Int(60), seed=Int(0x5EED), force=false, charmap="ring"))]
 pub(crate) fn analyze_file_json(
     py: Python<'_>,
     text: &str,
@@ -179,9 +181,11 @@ pub(crate) fn analyze_file_json(
     levels: Int,
     seed: Int,
     force: bool,
+    charmap: &str,
 ) -> PyResult<String> {
     guard("analyze", || {
         let (levels, seed, path) = analyze_options(levels, seed, path)?;
+        let method = charmap_method(charmap)?;
         let n = valence.usize("valence")?;
         let file = subdiv_lab::schemes::user::SchemeFile::parse_shared(text)
             .map_err(|e| value_err(format!("scheme_file: {e}")))?;
@@ -196,7 +200,16 @@ pub(crate) fn analyze_file_json(
             },
             scheme: Box::new(scheme),
         };
-        analyze_resolved(py, r, path, levels, seed, force)
+        analyze_resolved(py, r, path, levels, seed, force, method)
+    })
+}
+
+/// The characteristic-map certificate called `name` (`ring` or `generic`).
+fn charmap_method(name: &str) -> PyResult<subdiv_lab::charmap::Method> {
+    subdiv_lab::charmap::Method::from_name(name).ok_or_else(|| {
+        value_err(format!(
+            "charmap must be \"ring\" or \"generic\", got {name:?}"
+        ))
     })
 }
 
@@ -231,6 +244,7 @@ fn analyze_resolved(
     levels: usize,
     seed: u64,
     force: bool,
+    method: subdiv_lab::charmap::Method,
 ) -> PyResult<String> {
     use subdiv_lab::spectral::{AnalyzeOptions, SpectrumPath};
     let n = r.scheme.valence();
@@ -246,6 +260,15 @@ fn analyze_resolved(
         TIME_LIMIT_SECONDS,
         force,
     )?;
+    if method == subdiv_lab::charmap::Method::Generic {
+        limit(
+            "analyze with charmap=\"generic\"",
+            &format!("valence {n}"),
+            &subdiv_lab::charmap::generic::estimate(&*r.scheme),
+            TIME_LIMIT_SECONDS,
+            force,
+        )?;
+    }
     let options = AnalyzeOptions {
         path,
         measure: subdiv_lab::contraction::MeasureOptions {
@@ -258,22 +281,17 @@ fn analyze_resolved(
     let scheme = std::sync::Arc::<dyn subdiv_lab::Scheme>::from(scheme);
     let (result, charmap) = py.detach(move || -> PyResult<_> {
         let result = subdiv_lab::spectral::analyze(&*scheme, &options).map_err(lib_err)?;
-        let charmap =
-            subdiv_lab::charmap::check_classified(&*scheme, &result.charmap_subdominant());
+        let charmap = subdiv_lab::charmap::certify(method, &*scheme, &result.charmap_subdominant());
         Ok((result, charmap))
     })?;
-    let v = subdiv_lab::spectral::json::analysis_json(
-        &result,
-        subdiv_lab::charmap::charmap_json(&charmap),
-        &input,
-    );
+    let v = subdiv_lab::spectral::json::analysis_json(&result, charmap.json(), &input);
     serde_json::to_string(&v).map_err(runtime_err)
 }
 
 /// `analyze` of a local matrix the user computed (`matrix`: any array-like;
 /// validated by [`crate::user::local_matrix`]), named `name`.
 #[pyfunction]
-#[pyo3(signature = (matrix, labels=None, valence=None, name="matrix", path="full", levels=Int(60), seed=Int(0x5EED), force=false))]
+#[pyo3(signature = (matrix, labels=None, valence=None, name="matrix", path="full", levels=Int(60), seed=Int(0x5EED), force=false, charmap="ring"))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn analyze_matrix_json(
     py: Python<'_>,
@@ -285,9 +303,11 @@ pub(crate) fn analyze_matrix_json(
     levels: Int,
     seed: Int,
     force: bool,
+    charmap: &str,
 ) -> PyResult<String> {
     guard("analyze", || {
         let (levels, seed, path) = analyze_options(levels, seed, path)?;
+        let method = charmap_method(charmap)?;
         let valence = valence.map(|v| v.usize("valence")).transpose()?;
         if name.is_empty() {
             return Err(value_err("name must not be empty"));
@@ -302,7 +322,7 @@ pub(crate) fn analyze_matrix_json(
             },
             scheme: Box::new(crate::user::matrix_scheme(name, lm)),
         };
-        analyze_resolved(py, r, path, levels, seed, force)
+        analyze_resolved(py, r, path, levels, seed, force, method)
     })
 }
 
@@ -310,7 +330,7 @@ pub(crate) fn analyze_matrix_json(
 /// `matrix(valence) -> (S, labels)` ([`crate::user::call_matrix`]; an
 /// exception its code raises propagates as it is).
 #[pyfunction]
-#[pyo3(signature = (scheme, valence, path="full", levels=Int(60), seed=Int(0x5EED), force=false))]
+#[pyo3(signature = (scheme, valence, path="full", levels=Int(60), seed=Int(0x5EED), force=false, charmap="ring"))]
 pub(crate) fn analyze_object_json(
     py: Python<'_>,
     scheme: &Bound<'_, PyAny>,
@@ -319,12 +339,17 @@ pub(crate) fn analyze_object_json(
     levels: Int,
     seed: Int,
     force: bool,
+    charmap: &str,
 ) -> PyResult<String> {
     guard("analyze", || {
         let (levels, seed, path) = analyze_options(levels, seed, path)?;
+        let method = charmap_method(charmap)?;
         let n = valence.usize("valence")?;
         let name = crate::user::scheme_name(scheme)?;
-        let s = crate::user::call_matrix(py, scheme, &name, n)?;
+        let mut s = crate::user::call_matrix(py, scheme, &name, n)?;
+        if method == subdiv_lab::charmap::Method::Generic {
+            s = crate::user::with_regular(py, scheme, s)?;
+        }
         let r = Resolved {
             input: AnalysisInput {
                 scheme: name,
@@ -333,6 +358,6 @@ pub(crate) fn analyze_object_json(
             },
             scheme: Box::new(s),
         };
-        analyze_resolved(py, r, path, levels, seed, force)
+        analyze_resolved(py, r, path, levels, seed, force, method)
     })
 }

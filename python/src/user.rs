@@ -11,11 +11,15 @@ use std::sync::{Arc, Mutex};
 use subdiv_lab::schemes::{Assembler, LocalMatrix, PointLabel, Role};
 use subdiv_lab::sweep::SchemeFactory;
 
-/// A scheme whose one configuration is a given local matrix.
-#[derive(Debug)]
+/// A scheme whose one configuration is a given local matrix, with the same
+/// scheme's configuration at the regular valence when the user's object
+/// gave one ([`with_regular`]: the generic certificate reads the regular
+/// rules from it, math doc section 20).
+#[derive(Clone, Debug)]
 pub(crate) struct MatrixScheme {
     name: String,
     lm: LocalMatrix<f64>,
+    regular: Option<Box<MatrixScheme>>,
 }
 
 impl subdiv_lab::Scheme for MatrixScheme {
@@ -30,6 +34,52 @@ impl subdiv_lab::Scheme for MatrixScheme {
     fn local_matrix(&self) -> subdiv_lab::Result<LocalMatrix<f64>> {
         Ok(self.lm.clone())
     }
+
+    fn regular_configuration(&self) -> Option<subdiv_lab::Result<Box<dyn subdiv_lab::Scheme>>> {
+        self.regular
+            .as_ref()
+            .map(|r| Ok(r.clone() as Box<dyn subdiv_lab::Scheme>))
+    }
+}
+
+/// The regular valence of the Python scheme object `obj` whose configuration
+/// `s` was computed: its `regular_valence` attribute (4 or 6) when it has
+/// one, else read from `s`'s labels: second-ring points (`g`) make it a
+/// triangle scheme (6), face neighbours (`f`) without them a quad scheme (4);
+/// `None` when the labels tell neither.
+fn regular_valence(obj: &Bound<'_, PyAny>, s: &MatrixScheme) -> PyResult<Option<usize>> {
+    if let Ok(v) = obj.getattr("regular_valence") {
+        return match v.extract::<usize>() {
+            Ok(n @ (4 | 6)) => Ok(Some(n)),
+            _ => Err(value_err(format!(
+                "scheme.regular_valence must be 4 (quad schemes) or 6 (triangle schemes), got {}",
+                v.repr().map(|r| r.to_string()).unwrap_or_default()
+            ))),
+        };
+    }
+    let has = |role: Role| s.lm.rows().iter().any(|l| l.role == role);
+    Ok(if has(Role::SecondRing) {
+        Some(6)
+    } else if has(Role::FaceNeighbour) {
+        Some(4)
+    } else {
+        None
+    })
+}
+
+/// `s`, a configuration of the Python scheme object `obj`, with the object's
+/// configuration at its regular valence ([`regular_valence`]) attached, so
+/// that the generic certificate can read the regular rules.
+pub(crate) fn with_regular(
+    py: Python<'_>,
+    obj: &Bound<'_, PyAny>,
+    mut s: MatrixScheme,
+) -> PyResult<MatrixScheme> {
+    if let Some(n) = regular_valence(obj, &s)? {
+        let name = s.name.clone();
+        s.regular = Some(Box::new(call_matrix(py, obj, &name, n)?));
+    }
+    Ok(s)
 }
 
 /// A row label as [`PointLabel`] prints it (`v`, `e3`, `f3`, `g3`, `P3`,
@@ -172,6 +222,7 @@ pub(crate) fn matrix_scheme(name: &str, lm: LocalMatrix<f64>) -> MatrixScheme {
     MatrixScheme {
         name: name.to_owned(),
         lm,
+        regular: None,
     }
 }
 

@@ -83,7 +83,8 @@ def analyze(scheme=None, valence: Optional[int] = None, knots=None, ratios=None,
             uniform: bool = False, c: Optional[float] = None, path: str = "full",
             levels: int = 60, seed: int = 0x5EED, force: bool = False,
             scheme_file: Optional[Union[str, os.PathLike]] = None,
-            matrix=None, labels: Optional[Sequence[str]] = None) -> Dict[str, Any]:
+            matrix=None, labels: Optional[Sequence[str]] = None,
+            charmap: str = "ring") -> Dict[str, Any]:
     """Spectrum, subdominant class, Theorem 1 and the characteristic-map
     verdict of one configuration: the dict of ``subdiv-lab analyze --json``
     (same keys, including ``input`` and ``tool_version``).
@@ -111,6 +112,16 @@ def analyze(scheme=None, valence: Optional[int] = None, knots=None, ratios=None,
     labels, else the number of rows. An exception raised by the object's
     ``matrix`` propagates as it is.
 
+    ``charmap`` picks the characteristic-map certificate, as ``analyze
+    --charmap``: ``"ring"`` (the scheme's ring of polynomial patches) or
+    ``"generic"`` (any vertex-centred scheme, from its local matrix and its
+    regular rules; ``docs/guide/is-it-c1.md``). A scheme object gives its
+    regular rules through its own ``matrix`` at the regular valence: its
+    ``regular_valence`` attribute (4 or 6) when it has one, else 6 when its
+    labels include second-ring points ``g``, 4 when they include face
+    neighbours ``f``. A bare ``matrix`` has no regular rules, so its generic
+    verdict is ``indeterminate`` with that reason.
+
     ``levels`` is 1..10000. Refused above the limits, e.g. ``valence=600``
     (~7 min); ``force=True`` overrides, except above the physical memory."""
     builtin_args = knots is not None or ratios is not None or uniform or c is not None
@@ -118,7 +129,8 @@ def analyze(scheme=None, valence: Optional[int] = None, knots=None, ratios=None,
         if scheme is not None or scheme_file is not None or builtin_args:
             raise ValueError("matrix is mutually exclusive with scheme, scheme_file, knots, ratios, uniform and c")
         text = _native.analyze_matrix_json(matrix, None if labels is None else [str(x) for x in labels],
-                                           valence, "matrix", path, levels, seed, bool(force))
+                                           valence, "matrix", path, levels, seed, bool(force),
+                                           charmap)
         return json.loads(text)
     if labels is not None:
         raise ValueError("labels go with matrix")
@@ -128,17 +140,18 @@ def analyze(scheme=None, valence: Optional[int] = None, knots=None, ratios=None,
         if valence is None:
             raise ValueError("valence is required with scheme_file")
         file_text = _read_scheme_file(scheme_file)
-        text = _native.analyze_file_json(file_text, valence, path, levels, seed, bool(force))
+        text = _native.analyze_file_json(file_text, valence, path, levels, seed, bool(force), charmap)
         return json.loads(text)
     if scheme is not None and not isinstance(scheme, str):
         if builtin_args:
             raise ValueError("a scheme object takes valence only (not knots, ratios, uniform or c)")
         if valence is None:
             raise ValueError("valence is required with a scheme object")
-        return json.loads(_native.analyze_object_json(scheme, valence, path, levels, seed, bool(force)))
+        return json.loads(_native.analyze_object_json(scheme, valence, path, levels, seed, bool(force),
+                                                      charmap))
     text = _native.analyze_json(scheme if scheme is not None else "nurds", valence, _knots(knots),
                                 _floats(ratios), bool(uniform), _float(c), path, levels, seed,
-                                bool(force))
+                                bool(force), charmap)
     return json.loads(text)
 
 

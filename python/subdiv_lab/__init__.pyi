@@ -39,6 +39,7 @@ def analyze(
     scheme_file: Optional[Union[str, os.PathLike[str]]] = ...,
     matrix: Optional[npt.ArrayLike] = ...,
     labels: Optional[Sequence[str]] = ...,
+    charmap: str = ...,
 ) -> Dict[str, Any]: ...
 def classify_batch(
     ratios: npt.ArrayLike,

@@ -127,6 +127,43 @@ def test_analyze_matrix_and_object_equal_the_builtin():
     assert u["subdominant"]["class"] == "indeterminate"
 
 
+def test_analyze_generic_charmap_equals_the_cli_and_reaches_user_schemes():
+    for scheme, n in [("loop", 5), ("catmull-clark", 7), ("butterfly", 3), ("sqrt3", 4)]:
+        a = sl.analyze(scheme=scheme, valence=n, charmap="generic")
+        doc = json.loads(cli("analyze", "--scheme", scheme, "--valence", str(n), "--charmap",
+                             "generic", "--json").stdout)
+        assert a == doc, (scheme, n)
+        assert a["charmap"]["method"] == "generic"
+    # the ring certificate stays the default
+    assert "method" not in sl.analyze(scheme="loop", valence=5)["charmap"]
+    # a scheme object gives its regular rules through its own matrix at the
+    # regular valence (here read from its labels: f without g -> 4)
+    obj = _CC()
+    b = sl.analyze(scheme=obj, valence=5, charmap="generic")
+    assert b["charmap"]["verdict_code"] == "c1"
+    assert obj.calls == [5, 4]
+    # a bare matrix has no regular rules: indeterminate, with that reason
+    s, labels = _CC().matrix(5)
+    m = sl.analyze(matrix=s, labels=labels, charmap="generic")["charmap"]
+    assert m["verdict_code"] == "indeterminate" and "regular configuration" in m["reason"]
+
+
+def test_the_triangle_schemes_equal_the_cli():
+    for scheme, n, rows in [("sqrt3", 5, 16), ("butterfly", 5, 31), ("modified-butterfly", 4, 25)]:
+        m, labels = sl.matrix(scheme=scheme, valence=n)
+        doc = json.loads(cli("matrix", "--scheme", scheme, "--valence", str(n), "--format",
+                             "json").stdout)
+        assert m.shape == (rows, rows) and labels == doc["rows"]
+        assert np.array_equal(m, np.array(doc["matrix"], dtype=float))
+        assert np.allclose(m.sum(axis=1), 1.0, atol=1e-14)
+        a = sl.analyze(scheme=scheme, valence=n)
+        assert a == json.loads(cli("analyze", "--scheme", scheme, "--valence", str(n),
+                                   "--json").stdout)
+    # the modified butterfly's subdominant eigenvalue is 1/2 at every valence
+    mb = sl.analyze(scheme="modified-butterfly", valence=7)
+    assert abs(mb["subdominant"]["lambda1"][0] - 0.5) < 1e-12
+
+
 def test_sweep_with_a_scheme_file_or_object_runs_the_spec_engine():
     spec = {"name": "u", "scheme": "catmull-clark", "valences": [3, 5, 6],
             "space": {"kind": "uniform"}, "sampler": {"kind": "grid", "points_per_axis": 1},

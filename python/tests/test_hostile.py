@@ -89,6 +89,12 @@ CASES = [
      ("ValueError", ["threads must be >= 0, got -1"])),
     ("classify_batch-bad-columns", "sl.classify_batch(np.full((1, 3), 0.5), columns={'eigenvalues': -1})",
      ("ValueError", ["columns.eigenvalues"])),
+    ("analyze-charmap-unknown", "sl.analyze(scheme='loop', valence=5, charmap='rings')",
+     ("ValueError", ['charmap must be "ring" or "generic", got "rings"'])),
+    ("analyze-charmap-bad-regular-valence",
+     "sl.analyze(scheme=type('S', (), {'name': 's', 'regular_valence': 5,"
+     " 'matrix': lambda self, n: sl.matrix('loop', valence=n)})(), valence=5, charmap='generic')",
+     ("ValueError", ["scheme.regular_valence must be 4 (quad schemes) or 6 (triangle schemes), got 5"])),
     ("classify_batch-bad-scheme", "sl.classify_batch(np.full((1, 3), 0.5), scheme='midedge')",
      ("ValueError", ["midedge"])),
     # item 2: estimates and limits

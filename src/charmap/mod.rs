@@ -179,6 +179,96 @@ pub fn check_classified<S: Scheme + ?Sized>(
     }
 }
 
+/// Which characteristic-map certificate to run: the scheme's ring of
+/// polynomial patches (math doc section 7) or the generic certificate from
+/// the local matrix and the regular rules (math doc section 20).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// [`check_classified`]: the ring certificates.
+    #[default]
+    Ring,
+    /// [`generic::check`]: any vertex-centred scheme.
+    Generic,
+}
+
+impl Method {
+    /// The names front ends accept, in order.
+    pub const NAMES: [&'static str; 2] = ["ring", "generic"];
+
+    /// The method called `name` (`ring` or `generic`), `None` otherwise.
+    ///
+    /// ```
+    /// use subdiv_lab::charmap::Method;
+    /// assert_eq!(Method::from_name("generic"), Some(Method::Generic));
+    /// assert_eq!(Method::from_name("rings"), None);
+    /// ```
+    pub fn from_name(name: &str) -> Option<Method> {
+        match name {
+            "ring" => Some(Method::Ring),
+            "generic" => Some(Method::Generic),
+            _ => None,
+        }
+    }
+
+    /// `ring` or `generic`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Method::Ring => "ring",
+            Method::Generic => "generic",
+        }
+    }
+}
+
+/// The report of either certificate ([`certify`]).
+#[derive(Debug)]
+pub enum Certificate {
+    /// The ring certificate's report.
+    Ring(Result<CharmapReport<AnyPatchId>>),
+    /// The generic certificate's report.
+    Generic(Result<generic::GenericReport>),
+}
+
+impl Certificate {
+    /// The JSON object of `analyze --json`'s `charmap` key.
+    pub fn json(&self) -> serde_json::Value {
+        match self {
+            Certificate::Ring(r) => charmap_json(r),
+            Certificate::Generic(r) => generic::report_json(r),
+        }
+    }
+
+    /// The verdict code: the ring's ([`Verdict::code`]) or the generic one's
+    /// (`c1`, `not_c1`, `indeterminate`); `error` when the certificate could
+    /// not be computed.
+    pub fn verdict_code(&self) -> &'static str {
+        match self {
+            Certificate::Ring(Ok(r)) => r.verdict.code(),
+            Certificate::Generic(Ok(r)) => r.verdict.code(),
+            Certificate::Ring(Err(_)) | Certificate::Generic(Err(_)) => "error",
+        }
+    }
+}
+
+/// The certificate `method` for `scheme`, given its subdominant
+/// classification `sub` (use [`crate::spectral::LocalAnalysis::charmap_subdominant`]
+/// after an analysis).
+///
+/// ```
+/// use subdiv_lab::charmap::{certify, Method};
+/// use subdiv_lab::schemes::LocalScheme;
+/// let s = LocalScheme::<f64>::catmull_clark(5).unwrap();
+/// let sub = subdiv_lab::spectral::classify_local(&s).unwrap();
+/// assert_eq!(certify(Method::Ring, &s, &sub).verdict_code(), "c1");
+/// assert_eq!(certify(Method::Generic, &s, &sub).verdict_code(), "c1");
+/// ```
+pub fn certify<S: Scheme + ?Sized>(method: Method, scheme: &S, sub: &Subdominant) -> Certificate {
+    match method {
+        Method::Ring => Certificate::Ring(check_classified(scheme, sub)),
+        Method::Generic => Certificate::Generic(generic::check(scheme, sub)),
+    }
+}
+
 /// The Doo-Sabin family's check (the `9n`-point extended configuration and
 /// its `3n` biquadratic ring patches).
 ///

@@ -141,12 +141,15 @@ pub(crate) fn run(args: AnalyzeArgs) -> CliResult {
     // Characteristic map (math doc sections 7 and 20); a numerical failure
     // there is reported inside the "charmap" object, not as a failure of the
     // analysis.
-    let (charmap_value, charmap_text) = if args.charmap == CharmapMethod::Generic {
-        let g = charmap::generic::check(&*resolved.scheme, &result.charmap_subdominant());
-        (charmap::generic::report_json(&g), generic_summary(&g))
-    } else {
-        let c = charmap::check_classified(&*resolved.scheme, &result.charmap_subdominant());
-        (charmap::charmap_json(&c), charmap_summary(&c))
+    let method = match args.charmap {
+        CharmapMethod::Ring => charmap::Method::Ring,
+        CharmapMethod::Generic => charmap::Method::Generic,
+    };
+    let certificate = charmap::certify(method, &*resolved.scheme, &result.charmap_subdominant());
+    let charmap_value = certificate.json();
+    let charmap_text = match &certificate {
+        charmap::Certificate::Ring(c) => charmap_summary(c),
+        charmap::Certificate::Generic(g) => generic_summary(g),
     };
     if args.json {
         let value =

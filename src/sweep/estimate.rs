@@ -17,6 +17,9 @@ fn sweep_seconds_per_configuration(plan: &Plan, model: &CostModel, n: usize) -> 
     if c.charmap {
         s += 1e-3 + model.sweep_charmap_seconds_per_n3 * nf * nf * nf;
     }
+    if c.generic_charmap {
+        s += crate::charmap::generic::estimate_for_valence(n).seconds;
+    }
     if c.exact_certificate {
         let per_n3 = if plan.spec().space.kind == super::SpaceKind::Uniform {
             SWEEP_EXACT_UNIFORM_SECONDS_PER_N3
@@ -78,11 +81,17 @@ pub fn batch_rows(plan: &Plan, n: usize, rows: u64, threads: usize) -> Estimate 
 fn bytes_per_thread(plan: &Plan, model: &CostModel, n: usize) -> f64 {
     let d = model.dimension(n);
     let nf = n as f64;
-    if plan.spec().columns.charmap {
-        model.analyze_bytes_per_entry * d * d
-    } else if model.sweep_classify_on_face_block {
-        64.0 * nf * nf
+    let generic = if plan.spec().columns.generic_charmap {
+        crate::charmap::generic::estimate_for_valence(n).bytes
     } else {
-        64.0 * d * d
-    }
+        0.0
+    };
+    generic
+        + if plan.spec().columns.charmap {
+            model.analyze_bytes_per_entry * d * d
+        } else if model.sweep_classify_on_face_block {
+            64.0 * nf * nf
+        } else {
+            64.0 * d * d
+        }
 }

@@ -10,6 +10,7 @@
 //! | `contraction` | `contraction_rate` = `|lambda1|`, the asymptotic per-step contraction of the face towards its limit point (math doc section 5; <= 3/4) |
 //! | `eigenvalues = K` | `ev0_re, ev0_im, .., ev{K-1}_re, ev{K-1}_im`: the K leading eigenvalues of `S_n` by non-increasing modulus (empty beyond `4n`; for the Catmull-Clark family those of the `(2n+1)` one-ring matrix from the Fourier blocks, empty beyond `2n + 1`) |
 //! | `charmap` | `charmap_verdict` (`c1`, `tpc_real_distinct`, `tpc_complex_pair`, `not_regular`, `not_injective`, `indeterminate`, `no_charmap`; see [`crate::charmap::Verdict`]), `charmap_min_jacobian` (smallest Bezier coefficient of the ring's Jacobian relative to the largest; > 0 certifies regularity), `charmap_winding` (winding number of the ring boundary around the origin) |
+//! | `generic_charmap` | `generic_charmap_verdict` (`c1`, `not_c1`, `indeterminate`; [`crate::charmap::generic`], math doc section 20), `generic_charmap_orientation` (the certified sign of the map's Jacobian, `1` or `-1`; the eigenvector basis fixes it), `generic_charmap_winding` (the certified winding number, equal to the orientation for `c1`; empty when undecided), `generic_charmap_level` (the deepest refinement level it tested, empty when it stopped before refining) |
 //! | `curvature` | `curvature_mu` (`mu`, the largest modulus after the subdominant pair), `curvature_ratio` (`mu / lambda^2`), `curvature_verdict` (`zero`, `bounded`, `unbounded`, `indeterminate`, `not_applicable`; [`crate::curvature`], math doc section 13; from the dense decomposition of the second-order matrix, math doc section 13.5, with the exact certificate where the float comparison is undecided) |
 //! | `exact_certificate` | `exact_class`: the classification decided exactly over the rationals from the exact value of the `f64` parameters (`undecided` when the exact method cannot decide); `exact_agrees` = `true` / `false` when both verdicts are decided and agree / disagree (empty otherwise) |
 //!
@@ -158,6 +159,29 @@ pub fn result_columns(columns: &Columns) -> Vec<ResultColumn> {
         v.push(num(
             "charmap_winding",
             "winding number of the ring boundary around the origin (an integer)",
+            "1",
+        ));
+    }
+    if columns.generic_charmap {
+        v.push(col(
+            "generic_charmap_verdict",
+            ColumnType::Label,
+            "the generic C1 certificate's verdict (c1, not_c1, indeterminate; math doc section 20)",
+            "-",
+        ));
+        v.push(num(
+            "generic_charmap_orientation",
+            "certified sign of the characteristic map's Jacobian in the generic certificate (1 or -1; empty when undecided)",
+            "1",
+        ));
+        v.push(num(
+            "generic_charmap_winding",
+            "winding number certified by the generic certificate (an integer; empty when undecided)",
+            "1",
+        ));
+        v.push(num(
+            "generic_charmap_level",
+            "deepest refinement level the generic certificate tested (empty when it stopped before refining)",
             "1",
         ));
     }
@@ -394,6 +418,7 @@ impl SpectralEvaluator {
             || cols.contraction
             || cols.exact_certificate
             || cols.charmap
+            || cols.generic_charmap
     }
 
     /// The classification of `scheme` if a column needs it. Face-block
@@ -508,6 +533,24 @@ impl SpectralEvaluator {
                 }
                 match report.winding_number {
                     Some(w) => out.num(w as f64),
+                    None => out.empty(),
+                }
+            }
+        }
+        if cols.generic_charmap {
+            if let Some(sub) = sub {
+                let report = charmap::generic::check(scheme, sub)?;
+                out.text(report.verdict.code());
+                match report.orientation {
+                    Some(o) => out.num(f64::from(o)),
+                    None => out.empty(),
+                }
+                match report.winding_number {
+                    Some(w) => out.num(w as f64),
+                    None => out.empty(),
+                }
+                match report.level {
+                    Some(l) => out.num(f64::from(l)),
                     None => out.empty(),
                 }
             }

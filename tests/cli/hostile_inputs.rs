@@ -2500,6 +2500,15 @@ fn cases() -> Vec<Case> {
             )],
             "columns.curvature",
         ),
+        bad_with(
+            "sweep-columns-generic-charmap-not-bool",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[(
+                "s.toml",
+                "name = \"x\"\nscheme = \"loop\"\nvalences = [5]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\ngeneric_charmap = \"yes\"\n",
+            )],
+            "columns.generic_charmap: invalid type: string \"yes\", expected a boolean",
+        ),
     ]);
 
     // ===================================================================

@@ -30,7 +30,7 @@ charmap = true
 /// subdominant eigenvalue: they agree to a few hundred ulps.
 const PATH_AGREEMENT: f64 = 1e-12;
 
-fn rows(spec: &str) -> (Vec<String>, Vec<Vec<String>>) {
+pub(crate) fn rows(spec: &str) -> (Vec<String>, Vec<Vec<String>>) {
     let plan = Plan::new(SweepSpec::from_toml(spec).unwrap());
     let layout = Layout::new(&plan);
     let eval = SpectralEvaluator::new(plan.spec().columns);

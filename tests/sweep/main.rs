@@ -5,6 +5,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod generic_charmap;
 mod loop_specs;
 mod sweep_cli;
 mod sweep_engine;

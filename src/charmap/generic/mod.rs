@@ -220,7 +220,13 @@ pub const SECONDS_PER_VALENCE: f64 = 0.05;
 /// dimension of `S_1` is at most `1 + n (R + 1)^2` with `R` the ring radius
 /// of the neighbourhood (2 for the built-in vertex-centred schemes).
 pub fn estimate<S: Scheme + ?Sized>(scheme: &S) -> crate::budget::Estimate {
-    let n = scheme.valence() as f64;
+    estimate_for_valence(scheme.valence())
+}
+
+/// [`estimate`] at valence `n` (sweeps estimate whole shards from the
+/// valences of their spec).
+pub fn estimate_for_valence(n: usize) -> crate::budget::Estimate {
+    let n = n as f64;
     let d = 1.0 + 6.0 * n;
     let k = 2.0 * d;
     crate::budget::Estimate {

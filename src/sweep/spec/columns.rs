@@ -33,6 +33,7 @@ pub(super) fn columns(
     columns.contraction = c.contraction.unwrap_or(columns.contraction);
     columns.exact_certificate = c.exact_certificate.unwrap_or(columns.exact_certificate);
     columns.charmap = c.charmap.unwrap_or(columns.charmap);
+    columns.generic_charmap = c.generic_charmap.unwrap_or(columns.generic_charmap);
     columns.curvature = c.curvature.unwrap_or(columns.curvature);
     if columns.exact_certificate && !scheme.has_exact_certificate() {
         return ctx.err(

@@ -30,6 +30,7 @@
 //! contraction = true               # asymptotic contraction rate |lambda1|
 //! exact_certificate = false        # exact classification over the rationals (slow)
 //! charmap = false                  # characteristic-map verdict (regular, injective)
+//! generic_charmap = false          # the generic C1 certificate's verdict (math doc section 20)
 //! curvature = false                # mu, mu / lambda^2 and the curvature verdict (math doc section 13)
 //! ```
 //!

@@ -182,6 +182,11 @@ pub struct Columns {
     pub exact_certificate: bool,
     /// Characteristic-map verdict (regularity, injectivity; math doc section 7).
     pub charmap: bool,
+    /// The generic characteristic-map certificate ([`crate::charmap::generic`],
+    /// math doc section 20). Left out of the serialised spec when false, so
+    /// that existing summaries and fingerprints are unchanged.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub generic_charmap: bool,
     /// Curvature at the extraordinary point: `mu`, `mu / lambda^2` and the
     /// verdict ([`crate::curvature`], math doc section 13). Left out of the
     /// serialised spec when false, so that existing summaries are unchanged.
@@ -198,6 +203,7 @@ impl Default for Columns {
             contraction: true,
             exact_certificate: false,
             charmap: false,
+            generic_charmap: false,
             curvature: false,
         }
     }

@@ -48,6 +48,7 @@ pub(super) struct RawColumns {
     pub(super) contraction: Option<bool>,
     pub(super) exact_certificate: Option<bool>,
     pub(super) charmap: Option<bool>,
+    pub(super) generic_charmap: Option<bool>,
     pub(super) curvature: Option<bool>,
 }
 
