@@ -248,6 +248,18 @@ impl Certificate {
             Certificate::Ring(Err(_)) | Certificate::Generic(Err(_)) => "error",
         }
     }
+
+    /// The verdict for humans (the error when the certificate could not be
+    /// computed).
+    pub fn verdict_text(&self) -> String {
+        match self {
+            Certificate::Ring(Ok(r)) => r.verdict.to_string(),
+            Certificate::Generic(Ok(r)) => r.verdict.to_string(),
+            Certificate::Ring(Err(e)) | Certificate::Generic(Err(e)) => {
+                format!("not computed ({e})")
+            }
+        }
+    }
 }
 
 /// The certificate `method` for `scheme`, given its subdominant

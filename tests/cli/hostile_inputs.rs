@@ -2486,6 +2486,18 @@ fn cases() -> Vec<Case> {
             "figure[0].samples: 254254 classifications of up to 256 x 256 face blocks take",
         ),
         bad_with(
+            "report-table-charmap-unknown-method",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\ncharmap = \"rings\"\nconfigs = [{ scheme = \"loop\", valence = 5 }]\n")],
+            "figure[0].charmap: charmap must be one of ring, generic, got \"rings\"",
+        ),
+        bad_with(
+            "report-table-charmap-generic-heavy",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\ncharmap = \"generic\"\nconfigs = [{ scheme = \"loop\", valence = 200 }]\n")],
+            "figure[0].configs: the generic certificate of these 1 configurations takes ~",
+        ),
+        bad_with(
             "report-table-heavy-configurations",
             &["report", "s.toml", "--out", "r"],
             &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\nconfigs = [{ scheme = \"nurds\", valence = 256, random_knots = 4.0 }, { scheme = \"nurds\", valence = 256, random_knots = 4.0 }]\n")],

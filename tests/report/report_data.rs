@@ -325,6 +325,45 @@ fn table_csv_certificate_and_tensor_spectrum() {
     assert!(html.contains("original Doo-Sabin") || html.contains("doo-sabin n=6"));
 }
 
+/// `charmap = "ring" | "generic"` adds the certificate's verdict to the
+/// table, the same as the library's [`subdiv_lab::charmap::certify`]; without
+/// the key the columns are absent (the test above).
+#[test]
+fn table_charmap_columns_equal_the_certificates() {
+    use subdiv_lab::charmap::{certify, Method};
+    let configs = [
+        LocalScheme::loop_subdivision(5).unwrap(),
+        LocalScheme::catmull_clark(3).unwrap(),
+        LocalScheme::Butterfly { valence: 3 },
+    ];
+    for (method, name) in [(Method::Ring, "ring"), (Method::Generic, "generic")] {
+        let text = format!(
+            "name = \"t\"\n[[figure]]\nkind = \"table\"\nid = \"c\"\ncharmap = \"{name}\"\nconfigs = [{{ scheme = \"loop\", valence = 5 }}, {{ scheme = \"catmull-clark\", valence = 3 }}, {{ scheme = \"butterfly\", valence = 3 }}]\n"
+        );
+        let spec = ReportSpec::parse(&text).unwrap();
+        let out = generate(&spec, &RunInfo::default(), &NoProgress).unwrap();
+        let files = out.files.into_iter().map(|f| (f.path, f.bytes)).collect();
+        let rows = csv(&Report { spec, files }, "c.csv");
+        assert_eq!(rows.len(), configs.len());
+        let mut codes = Vec::new();
+        for (row, s) in rows.iter().zip(&configs) {
+            let a = analyze(s, &AnalyzeOptions::default()).unwrap();
+            let expected = certify(method, s, &a.charmap_subdominant());
+            assert_eq!(row["charmap_method"], name);
+            assert_eq!(
+                row["charmap_verdict"],
+                expected.verdict_code(),
+                "{name} {row:?}"
+            );
+            codes.push(row["charmap_verdict"].clone());
+        }
+        // Loop and Catmull-Clark are C1 by either certificate; butterfly at
+        // valence 3 is not C1 (Zorin 2000), so never certified.
+        assert_eq!(&codes[..2], ["c1", "c1"], "{name}");
+        assert_ne!(codes[2], "c1", "{name}");
+    }
+}
+
 #[test]
 fn ccss_bound_csv_is_the_lp_bound() {
     let r = report();

@@ -1,15 +1,18 @@
 //! `kind = "table"`: an HTML table per configuration (no picture): the
 //! eigenvalues of S_n with multiplicities, the subdominant class, the spectral
 //! gap, the Theorem 1 certificate sum (math doc section 5) and the measured
-//! contraction rate.
+//! contraction rate; with `charmap`, the verdict of that characteristic-map
+//! certificate (`ring`: math doc section 7; `generic`: section 20).
 //!
 //! ```toml
 //! [[figure]]
 //! kind = "table"
 //! configs = [ { scheme = "nurds", ratios = [0.3, 0.6, 0.5] }, ... ]
+//! charmap = "generic"          # optional: "ring" or "generic"
 //! ```
 
 use super::{eigenvalues, num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use crate::charmap::{certify, generic, Method};
 use crate::contraction::MeasureOptions;
 use crate::report::backend::Area;
 use crate::report::config::{check_analysis_budget, resolve_all, ConfigSpec, Configuration};
@@ -44,17 +47,51 @@ pub(crate) const KIND: FigureKind = FigureKind {
 #[serde(deny_unknown_fields)]
 struct Params {
     configs: Spanned<Vec<ConfigSpec>>,
+    charmap: Option<Spanned<String>>,
 }
 
 struct Table {
     configs: Vec<Configuration>,
+    charmap: Option<Method>,
 }
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
     let p: Params = fs.parse()?;
+    let charmap = match &p.charmap {
+        None => None,
+        Some(m) => Some(Method::from_name(m.get_ref()).ok_or_else(|| {
+            fs.error_at(
+                m,
+                "charmap",
+                format!(
+                    "charmap must be one of {}, got {:?}",
+                    Method::NAMES.join(", "),
+                    m.get_ref()
+                ),
+            )
+        })?),
+    };
     let configs = resolve_all(fs, &p.configs, None)?;
     check_analysis_budget(fs, &p.configs, &configs)?;
-    Ok(Box::new(Table { configs }))
+    if charmap == Some(Method::Generic) {
+        let seconds: f64 = configs
+            .iter()
+            .map(|c| generic::estimate(&*c.scheme).seconds)
+            .sum();
+        if seconds > crate::budget::TIME_LIMIT_SECONDS {
+            return Err(fs.error_at(
+                &p.configs,
+                "configs",
+                format!(
+                    "the generic certificate of these {} configurations takes ~{} (limit {} s); use fewer or smaller configurations",
+                    configs.len(),
+                    crate::budget::format_seconds(seconds),
+                    crate::budget::TIME_LIMIT_SECONDS
+                ),
+            ));
+        }
+    }
+    Ok(Box::new(Table { configs, charmap }))
 }
 
 impl Figure for Table {
@@ -75,19 +112,34 @@ impl Figure for Table {
                     },
                     ..AnalyzeOptions::default()
                 };
-                let a = analyze(&*c.scheme, &options).map_err(|e| ctx.err(e));
+                let a = analyze(&*c.scheme, &options).map_err(|e| ctx.err(e))?;
+                let cert = self.charmap.map(|m| {
+                    let cert = certify(m, &*c.scheme, &a.charmap_subdominant());
+                    (cert.verdict_code(), cert.verdict_text())
+                });
                 ctx.tick(1);
-                a
+                Ok((a, cert))
             })
-            .collect::<Result<Vec<_>, _>>()?;
+            .collect::<Result<Vec<_>, ReportError>>()?;
         Ok(Box::new(Output {
-            rows: self.configs.iter().cloned().zip(rows).collect(),
+            charmap: self.charmap,
+            rows: self
+                .configs
+                .iter()
+                .cloned()
+                .zip(rows)
+                .map(|(c, (a, cert))| (c, a, cert))
+                .collect(),
         }))
     }
 }
 
+/// A certificate's verdict code and its text for humans.
+type CertificateVerdict = (&'static str, String);
+
 struct Output {
-    rows: Vec<(Configuration, LocalAnalysis)>,
+    charmap: Option<Method>,
+    rows: Vec<(Configuration, LocalAnalysis, Option<CertificateVerdict>)>,
 }
 
 /// Groups nearly equal eigenvalues: (value, multiplicity).
@@ -129,33 +181,34 @@ fn class_text(c: &SubdominantClass) -> String {
 
 impl FigureOutput for Output {
     fn tables(&self) -> Vec<DataTable> {
-        let mut t = DataTable::new(
-            None,
-            &[
-                "config",
-                "label",
-                "scheme",
-                "valence",
-                "ratios",
-                "class",
-                "lambda1_re",
-                "lambda1_im",
-                "lambda2_re",
-                "lambda2_im",
-                "abs_lambda3",
-                "gap",
-                "certificate_sum",
-                "certificate_nonnegative",
-                "measured_rate",
-            ],
-        );
+        let mut header = vec![
+            "config",
+            "label",
+            "scheme",
+            "valence",
+            "ratios",
+            "class",
+            "lambda1_re",
+            "lambda1_im",
+            "lambda2_re",
+            "lambda2_im",
+            "abs_lambda3",
+            "gap",
+            "certificate_sum",
+            "certificate_nonnegative",
+            "measured_rate",
+        ];
+        if self.charmap.is_some() {
+            header.extend(["charmap_method", "charmap_verdict"]);
+        }
+        let mut t = DataTable::new(None, &header);
         let mut e = DataTable::new(
             Some("eigenvalues"),
             &["config", "index", "re", "im", "modulus"],
         );
-        for (i, (c, a)) in self.rows.iter().enumerate() {
+        for (i, (c, a, cert)) in self.rows.iter().enumerate() {
             let r = &c.ratios;
-            t.push(vec![
+            let mut row = vec![
                 i.to_string(),
                 c.label.clone(),
                 c.scheme.name().into(),
@@ -177,7 +230,11 @@ impl FigureOutput for Output {
                 a.contraction
                     .as_ref()
                     .map_or_else(|| "NaN".into(), |c| num(c.measured_rate)),
-            ]);
+            ];
+            if let (Some(m), Some((code, _))) = (self.charmap, cert) {
+                row.extend([m.as_str().to_owned(), (*code).to_owned()]);
+            }
+            t.push(row);
             for (k, z) in eigenvalues(a).iter().enumerate() {
                 e.push(vec![
                     i.to_string(),
@@ -201,8 +258,16 @@ impl FigureOutput for Output {
 
     fn html(&self) -> Option<String> {
         let mut h = String::new();
-        for (c, a) in &self.rows {
+        for (c, a, cert) in &self.rows {
             let _ = writeln!(h, "<h3>{}</h3>", escape(&c.label));
+            let cert_row = match (self.charmap, cert) {
+                (Some(m), Some((_, text))) => format!(
+                    "<tr><th class=\"l\">characteristic map ({} certificate)</th><td class=\"l\">{}</td></tr>",
+                    m.as_str(),
+                    escape(text)
+                ),
+                _ => String::new(),
+            };
             let r = &c.ratios;
             let _ = writeln!(
                 h,
@@ -213,7 +278,7 @@ impl FigureOutput for Output {
                  <tr><th class=\"l\">|λ<sub>1</sub>|, |λ<sub>2</sub>|, |λ<sub>3</sub>|</th><td class=\"l\">{:.6}, {:.6}, {:.6}</td></tr>\
                  <tr><th class=\"l\">gap |λ<sub>2</sub>| − |λ<sub>3</sub>|</th><td class=\"l\">{:.6}</td></tr>\
                  <tr><th class=\"l\">Theorem 1 certificate sum (weights ≥ 0: {})</th><td class=\"l\">{}</td></tr>\
-                 <tr><th class=\"l\">measured contraction rate</th><td class=\"l\">{}</td></tr></table>",
+                 <tr><th class=\"l\">measured contraction rate</th><td class=\"l\">{}</td></tr>{}</table>",
                 escape(c.scheme.name()),
                 c.scheme.valence(),
                 escape(
@@ -240,6 +305,7 @@ impl FigureOutput for Output {
                 a.contraction
                     .as_ref()
                     .map_or_else(|| "n/a".into(), |c| format!("{:.6}", c.measured_rate)),
+                cert_row,
             );
             h.push_str("<table><tr><th>#</th><th>eigenvalue of S<sub>n</sub></th><th>|λ|</th><th>multiplicity</th></tr>\n");
             for (k, (z, m)) in grouped(&eigenvalues(a)).iter().enumerate() {
