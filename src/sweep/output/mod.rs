@@ -42,8 +42,6 @@ pub mod files;
 pub(crate) mod layout;
 mod merge;
 pub mod parquet;
-#[cfg(test)]
-mod parquet_tests;
 mod run;
 pub mod shards;
 mod verify;

@@ -28,9 +28,10 @@
 //!
 //! [`result_columns`]: crate::sweep::eval::result_columns
 
-use super::csv::{canonical_number, push_number, push_text, split_csv_line};
+use super::csv::{canonical_number, push_number, push_text};
 use super::layout::Layout;
-use crate::sweep::eval::{ColumnType, Evaluate};
+use super::run::RowBlock;
+use crate::sweep::eval::{Cell, ColumnType, Evaluate};
 use crate::sweep::plan::{Plan, Shard};
 use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
@@ -250,14 +251,6 @@ impl Dict {
     /// Entries searched linearly before the hash map takes over.
     const LINEAR: usize = 16;
 
-    fn entries(&self) -> &[Box<str>] {
-        &self.entries
-    }
-
-    fn indices(&self) -> &[u32] {
-        &self.indices
-    }
-
     /// The index of label `t`, a new entry if it is new.
     fn intern(&mut self, t: &str) -> u32 {
         if self.entries.len() <= Self::LINEAR {
@@ -277,11 +270,6 @@ impl Dict {
             self.map.insert(t.into(), i);
         }
         i
-    }
-
-    fn push(&mut self, t: &str) {
-        let i = self.intern(t);
-        self.indices.push(i);
     }
 
     /// The index of label `t` as the CSV holds it ([`csv_text`]), a new
@@ -394,61 +382,6 @@ impl Values {
             Values::Str(v) => v.clear(),
             Values::Bool(v) => v.clear(),
         }
-    }
-
-    /// Appends a null (nothing for the required `id` and `valence`).
-    #[inline(always)]
-    fn push_null(&mut self) {
-        match self {
-            Values::F64(v, nulls) => {
-                v.push(f64::from_bits(NULL_F64));
-                *nulls += 1;
-            }
-            Values::Dict(v) => v.indices.push(NULL_INDEX),
-            Values::Str(v) => v.rows += 1,
-            Values::Bool(v) => v.push(NULL_BOOL),
-            Values::U64(_) | Values::U32(_) => {}
-        }
-    }
-
-    /// Appends the CSV cell `f` (`name` for messages; `scratch` and `digits`
-    /// for [`canonical_number`], which reads most written numbers without a
-    /// full parse).
-    fn push(
-        &mut self,
-        f: &str,
-        name: &str,
-        scratch: &mut String,
-        digits: &mut zmij::Buffer,
-    ) -> Result<(), String> {
-        let bad = |what: &str| format!("{name} = {f:?} is not {what}");
-        match self {
-            Values::U64(v) => {
-                v.push(f.parse::<u64>().map_err(|_| bad("an unsigned integer"))? as i64)
-            }
-            Values::U32(v) => {
-                v.push(f.parse::<u32>().map_err(|_| bad("an unsigned integer"))? as i32)
-            }
-            _ if f.is_empty() => self.push_null(),
-            Values::F64(v, _) => {
-                let x = match canonical_number(f, scratch, digits) {
-                    Some(x) => x,
-                    None => f.parse::<f64>().map_err(|_| bad("a number"))?,
-                };
-                v.push(stored(x));
-            }
-            Values::Dict(v) => v.push(f),
-            Values::Str(v) => {
-                v.texts.push((v.rows, f.to_owned()));
-                v.rows += 1;
-            }
-            Values::Bool(v) => match f {
-                "true" => v.push(1),
-                "false" => v.push(0),
-                _ => return Err(bad("true or false")),
-            },
-        }
-        Ok(())
     }
 
     /// Appends rows `rows` of column `j` of `block` (a column of this
@@ -671,7 +604,7 @@ impl TypedBlock {
     }
 }
 
-impl super::run::RowBlock for TypedBlock {
+impl RowBlock for TypedBlock {
     fn with_rows(layout: &Layout, rows: usize) -> Self {
         let kinds = columns_of(layout);
         let stride = kinds.len() - 3;
@@ -816,10 +749,10 @@ fn write_group<W: std::io::Write + Send>(
             }
             (ColumnWriter::ByteArrayColumnWriter(c), Some(Values::Dict(d))) => {
                 let entries: Vec<ByteArray> =
-                    d.entries().iter().map(|e| ByteArray::from(&**e)).collect();
-                def.extend(d.indices().iter().map(|&i| i16::from(i != NULL_INDEX)));
+                    d.entries.iter().map(|e| ByteArray::from(&**e)).collect();
+                def.extend(d.indices.iter().map(|&i| i16::from(i != NULL_INDEX)));
                 let present: Vec<ByteArray> = d
-                    .indices()
+                    .indices
                     .iter()
                     .filter(|&&i| i != NULL_INDEX)
                     .map(|&i| entries[i as usize].clone())
@@ -888,10 +821,10 @@ pub struct ParquetRows {
     written: u64,
     /// Index of the next part.
     next_part: u64,
+    /// The bytes after the last complete CSV line written.
     pending: Vec<u8>,
     target: Option<Target>,
-    number: String,
-    digits: zmij::Buffer,
+    layout: Layout,
 }
 
 impl std::fmt::Debug for ParquetRows {
@@ -918,8 +851,7 @@ impl ParquetRows {
             next_part: 0,
             pending: Vec::new(),
             target: Some(target),
-            number: String::new(),
-            digits: zmij::Buffer::new(),
+            layout: layout.clone(),
         })
     }
 
@@ -948,42 +880,6 @@ impl ParquetRows {
         let props = properties(layout, fingerprint)?;
         let w = SerializedFileWriter::new(out, schema, props).map_err(pq_err)?;
         ParquetRows::new(layout, fingerprint, Target::File(w))
-    }
-
-    /// Rows written plus rows of the open group.
-    pub fn rows(&self) -> u64 {
-        self.written + self.rows_in_group as u64
-    }
-
-    fn push_line(&mut self, line: &str) -> Result<(), SweepError> {
-        let bad = |m: String| SweepError::Io(format!("parquet: row {line:?}: {m}"));
-        let n = self.values.len();
-        let quoted = line.contains('"');
-        let owned;
-        let found = if quoted {
-            owned = split_csv_line(line).map_err(bad)?;
-            owned.len()
-        } else {
-            owned = Vec::new();
-            memchr::memchr_iter(b',', line.as_bytes()).count() + 1
-        };
-        if found != n {
-            return Err(bad(format!("{found} fields for {n} columns")));
-        }
-        let fields: Box<dyn Iterator<Item = &str>> = if quoted {
-            Box::new(owned.iter().map(String::as_str))
-        } else {
-            Box::new(line.split(','))
-        };
-        for ((v, f), name) in self.values.iter_mut().zip(fields).zip(&self.names) {
-            v.push(f, name, &mut self.number, &mut self.digits)
-                .map_err(bad)?;
-        }
-        self.rows_in_group += 1;
-        if self.rows_in_group == PART_ROWS {
-            self.commit_group()?;
-        }
-        Ok(())
     }
 
     /// Appends the rows of `block` (built by the sweep driver for this
@@ -1075,24 +971,37 @@ impl ParquetRows {
     }
 }
 
+/// CSV lines of the rows' layout (the merge's path, and the reference of
+/// the typed path): each complete line is read back ([`Layout::parse`]) and
+/// its cells appended as the sweep driver appends them.
 impl std::io::Write for ParquetRows {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        let to_io = |e: SweepError| std::io::Error::other(e.to_string());
-        let utf8 = || std::io::Error::other("parquet: a row is not UTF-8");
-        let mut rest = buf;
-        while let Some(p) = memchr::memchr(b'\n', rest) {
-            if self.pending.is_empty() {
-                let line = std::str::from_utf8(&rest[..p]).map_err(|_| utf8())?;
-                self.push_line(line).map_err(to_io)?;
-            } else {
-                let mut l = std::mem::take(&mut self.pending);
-                l.extend_from_slice(&rest[..p]);
-                let line = std::str::from_utf8(&l).map_err(|_| utf8())?;
-                self.push_line(line).map_err(to_io)?;
+        self.pending.extend_from_slice(buf);
+        let Some(end) = memchr::memrchr(b'\n', &self.pending) else {
+            return Ok(buf.len());
+        };
+        let lines = std::mem::take(&mut self.pending);
+        self.pending.extend_from_slice(&lines[end + 1..]);
+        let text = std::str::from_utf8(&lines[..end])
+            .map_err(|_| std::io::Error::other("parquet: a row is not UTF-8"))?;
+        let mut block = TypedBlock::with_rows(&self.layout, 256);
+        for line in text.split('\n') {
+            let row = self
+                .layout
+                .parse(line)
+                .map_err(|m| std::io::Error::other(format!("parquet: row {line:?}: {m}")))?;
+            block.start(row.id, row.valence);
+            for c in &row.cells {
+                match c {
+                    Cell::Empty => block.empty(),
+                    Cell::Num(x) => block.num(*x),
+                    Cell::Text(t) => block.text(t),
+                }
             }
-            rest = &rest[p + 1..];
+            block.end(row.error.as_deref());
         }
-        self.pending.extend_from_slice(rest);
+        self.push_block(&block)
+            .map_err(|e| std::io::Error::other(e.to_string()))?;
         Ok(buf.len())
     }
 
@@ -1276,10 +1185,6 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<Table, SweepError> {
         .map(|t| t.with_metadata(key_value))
         .map_err(|e| SweepError::Read(format!("parquet: {e}")))
 }
-/// Whether `bytes` start as a Parquet file does.
-pub fn is_parquet(bytes: &[u8]) -> bool {
-    bytes.starts_with(MAGIC)
-}
 
 impl super::run::BlockWriter<TypedBlock> for ParquetRows {
     fn write_block(&mut self, block: &TypedBlock) -> Result<(), SweepError> {
@@ -1316,7 +1221,6 @@ where
 
 #[cfg(test)]
 mod tests {
-    use super::super::run::RowBlock;
     use super::*;
 
     /// Rows of every cell kind into `block`: floats, labels, booleans and
