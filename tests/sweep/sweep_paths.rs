@@ -8,6 +8,8 @@ use subdiv_lab::sweep::output::merge;
 use subdiv_lab::sweep::output::parquet::{
     csv_lines, read_table, run_parquet, ParquetRows, PART_ROWS,
 };
+use subdiv_lab::sweep::output::parquet::{parse_part_name, part_name};
+use subdiv_lab::sweep::output::{format_number, output_shape, read_output};
 use subdiv_lab::sweep::output::{run, MergeSource};
 use subdiv_lab::sweep::{Configuration, Layout, Plan, Shard, Summary, SweepError};
 use subdiv_lab::table::{Column, Table};
@@ -510,4 +512,99 @@ fn merge_checks_ids_and_rows() {
         e.contains("configuration 4 has r0 = \"0.5\" where the spec gives"),
         "{e}"
     );
+}
+
+/// The CSV's numbers are Ryu's shortest round trip, byte for byte.
+#[test]
+fn numbers_are_written_as_ryu_writes_them() {
+    // The CSV format is Ryu's shortest round trip; the digits come from
+    // Zmij, so compare the two on random bit patterns, random values of
+    // every magnitude and short decimals.
+    let mut ryu_buf = ryu::Buffer::new();
+    let mut check = |x: f64| {
+        let s = format_number(x);
+        let want = if x.is_finite() {
+            ryu_buf.format_finite(x)
+        } else {
+            ""
+        };
+        if x.is_finite() {
+            assert_eq!(s, want, "{x:e}");
+        }
+        assert_eq!(s.parse::<f64>().unwrap().to_bits(), x.to_bits(), "{s}");
+    };
+    for i in 0..200_000u64 {
+        let h = subdiv_lab::rng::mix64(i);
+        let bits = f64::from_bits(h);
+        if !bits.is_nan() {
+            check(bits);
+        }
+        let u = (h >> 11) as f64 / (1u64 << 53) as f64;
+        let e = (subdiv_lab::rng::mix64(h) % 90) as i32 - 45;
+        check(u * 10f64.powi(e));
+        check(-u);
+        check((h % 100_000) as f64 / 10f64.powi((h % 23) as i32));
+    }
+    for x in [
+        0.0,
+        -0.0,
+        1.0,
+        -1.0,
+        0.1,
+        1e15,
+        1e16,
+        1e17,
+        123_456_789_012_345_680.0,
+        1e-5,
+        1e-6,
+        1e-7,
+        f64::MIN_POSITIVE,
+        5e-324,
+        f64::MAX,
+        f64::MIN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    ] {
+        check(x);
+    }
+    assert_eq!(format_number(f64::NAN), "NaN");
+    assert_eq!(format_number(f64::INFINITY), "inf");
+    assert_eq!(format_number(1e16), "1e16");
+    assert_eq!(format_number(1.0), "1.0");
+}
+
+/// Part names round-trip and nothing else parses as one.
+#[test]
+fn part_names_round_trip() {
+    for (s, k) in [
+        ("0/1", 0),
+        ("0/1", 999_999),
+        ("0/1", 1_234_567),
+        ("3/7", 12),
+    ] {
+        let shard: Shard = s.parse().unwrap();
+        assert_eq!(parse_part_name(&part_name(shard, k)), Some((shard, k)));
+    }
+    for bad in [
+        "part-17.parquet",
+        "part-0000017.parquet",
+        "part-000017.parquet.tmp",
+        "part-7-of-3-000001.parquet",
+        "part-+1-of-3-000001.parquet",
+        "part-1-of-3-000001.csv",
+        "_summary.json",
+    ] {
+        assert_eq!(parse_part_name(bad), None, "{bad}");
+    }
+}
+
+/// The shape is read without parsing: a bound of the rows (the lines)
+/// and the header's fields; a Parquet file's from its footer.
+#[test]
+fn shape_bounds_rows_before_parsing() {
+    let csv = b"# fingerprint\nid,valence,class\n0,3,a\n1,3,b\n";
+    let (rows, cols) = output_shape("s.csv", csv).unwrap();
+    assert_eq!(cols, 3);
+    assert!(rows >= read_output("s.csv", csv).unwrap().len());
+    assert!(output_shape("s.parquet", b"PAR1").is_err());
 }
