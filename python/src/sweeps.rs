@@ -192,8 +192,14 @@ pub(crate) fn sweep<'py>(
             if let Some(e) = reraise() {
                 return Err(e);
             }
-            let json =
-                serde_json::to_string(&report.map_err(lib_err)?.summary).map_err(runtime_err)?;
+            let report = report.map_err(|e| match e {
+                subdiv_lab::sweep::SweepError::Exists(p) => value_err(format!(
+                    "{} exists; pass resume=True to continue it, or remove it",
+                    p.display()
+                )),
+                e => lib_err(e),
+            })?;
+            let json = serde_json::to_string(&report.summary).map_err(runtime_err)?;
             return Ok(pyo3::types::PyString::new(py, &json).into_any());
         }
         if resume {

@@ -297,7 +297,7 @@ def test_sweep_into_files_resumes_and_equals_the_cli(tmp_path):
     assert out.read_bytes() == ref.read_bytes()
     assert summary["rows"] == 600 and summary["spec_digest"]
     assert json.loads((tmp_path / "py.summary.json").read_text())["rows"] == 600
-    with pytest.raises(ValueError, match="exists"):
+    with pytest.raises(ValueError, match="exists; pass resume=True"):
         sl.sweep(SPEC, out=out)
     with pytest.raises(ValueError, match="needs out"):
         sl.sweep(SPEC, resume=True)

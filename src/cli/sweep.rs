@@ -24,7 +24,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use subdiv_lab::sweep::output::files::{self, Opened, Progress, RunOptions, Sink};
 use subdiv_lab::sweep::output::shards::summary_path;
-use subdiv_lab::sweep::{Plan, Shard, SweepSpec};
+use subdiv_lab::sweep::{Plan, Shard, SweepError, SweepSpec};
 
 #[derive(Args, Debug)]
 pub(crate) struct SweepArgs {
@@ -351,6 +351,22 @@ impl Printer {
     }
 }
 
+/// A library error of `sweep` or `merge` in the command line's words: an
+/// existing output names `--resume`, a special file `--out`.
+fn sweep_err(e: SweepError) -> CliError {
+    match e {
+        SweepError::Exists(p) => CliError::usage(anyhow!(
+            "{} exists; pass --resume to continue it, or remove it",
+            p.display()
+        )),
+        SweepError::NotRegular { command, path } => CliError::usage(anyhow!(
+            "--out {} is not a regular file: {command} writes a CSV (or Parquet) file and a summary beside it; to discard the rows, leave out --out and redirect standard output",
+            path.display()
+        )),
+        e => CliError::lib(e),
+    }
+}
+
 /// The spec of `path`, read and parsed (errors name the file).
 fn read_spec(path: &Path) -> CliResult<SweepSpec> {
     let text = fs::read_to_string(path)
@@ -383,7 +399,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     // The output checked before any work (a bad spec or flag creates no
     // file): its kind, its paths distinct from the spec, an existing output
     // only with --resume.
-    sink.check_kind().map_err(CliError::lib)?;
+    sink.check_kind().map_err(sweep_err)?;
     if let (Some(out), Some(spath)) = (sink.path(), sink.summary_path(shard)) {
         let mut outputs = vec![("--out", out), ("its summary", spath.as_path())];
         if format == Format::Parquet {
@@ -391,8 +407,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         }
         super::outfiles::check_distinct(&outputs, &[("the spec", &args.spec)])?;
     }
-    sink.check_existing(shard, args.resume)
-        .map_err(CliError::lib)?;
+    sink.check_existing(shard, args.resume).map_err(sweep_err)?;
     let plan = plan_of(spec, &args.spec, args.scheme_file.as_deref())?;
     let threads = args
         .threads
@@ -433,7 +448,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     };
     let result = files::run_plan(&plan, sink, options);
     printer.finish();
-    let report = result.map_err(CliError::lib)?;
+    let report = result.map_err(sweep_err)?;
     if args.quiet {
         return Ok(());
     }
@@ -476,11 +491,11 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     // Parquet dataset directories (the parts and summaries of their shards).
     // A dataset's shards are listed (and read) first, for their summaries'
     // names; CSV shards are read after the output checks.
-    let parquet = files::merge_format(&args.inputs).map_err(CliError::lib)?;
+    let parquet = files::merge_format(&args.inputs).map_err(sweep_err)?;
     let mut shards = Vec::new();
     let mut summaries = Vec::new();
     if parquet {
-        shards = files::merge_inputs(&args.inputs).map_err(CliError::lib)?;
+        shards = files::merge_inputs(&args.inputs).map_err(sweep_err)?;
         summaries.extend(shards.iter().map(|s| PathBuf::from(&s.summary_name)));
     } else {
         summaries.extend(args.inputs.iter().map(|p| summary_path(p)));
@@ -501,9 +516,9 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
         inputs.push(("the summary of an input", s.as_path()));
     }
     let spath = summary_path(&args.out);
-    files::check_not_special("merge", &args.out).map_err(CliError::lib)?;
+    files::check_not_special("merge", &args.out).map_err(sweep_err)?;
     super::outfiles::check_distinct(&[("--out", &args.out), ("its summary", &spath)], &inputs)?;
-    files::check_summary_path(&args.out, &spath).map_err(CliError::lib)?;
+    files::check_summary_path(&args.out, &spath).map_err(sweep_err)?;
     if let Some(named) = Format::of_name(&args.out).filter(|&n| n != format) {
         return Err(CliError::usage(anyhow!(
             "the shards are {} files but --out {} names a {} file; name it NAME.{} (merge writes the shards' format)",
@@ -514,10 +529,10 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
         )));
     }
     if !parquet {
-        shards = files::merge_inputs(&args.inputs).map_err(CliError::lib)?;
+        shards = files::merge_inputs(&args.inputs).map_err(sweep_err)?;
     }
     let merged = files::merge_files(&plan, shards, &args.spec.display().to_string(), &args.out)
-        .map_err(CliError::lib)?;
+        .map_err(sweep_err)?;
     eprintln!(
         "merge: {} rows from {} shards into {}; every configuration 0..{} present once and verified",
         merged.summary.rows,

@@ -48,6 +48,19 @@ pub enum SweepError {
     /// older format, of another spec or shard; the message names the file).
     #[error("{0}")]
     Refused(String),
+    /// The output exists and the run does not resume it: an output is never
+    /// replaced (the front ends name their way to resume).
+    #[error("{} exists; resume the run to continue it, or remove it", .0.display())]
+    Exists(std::path::PathBuf),
+    /// The output path is a special file (a device, a FIFO): a sweep
+    /// writes a file and its summary beside it (the command is named).
+    #[error("{} is not a regular file: {command} writes a CSV (or Parquet) file and a summary beside it", .path.display())]
+    NotRegular {
+        /// `sweep` or `merge`.
+        command: &'static str,
+        /// The output path.
+        path: std::path::PathBuf,
+    },
     /// A file could not be created, read or put in place (the message names
     /// the file and the step).
     #[error("{0}")]

@@ -10,6 +10,7 @@ mod loop_specs;
 mod sweep_cli;
 mod sweep_engine;
 mod sweep_parquet;
+mod sweep_paths;
 mod sweep_plan;
 mod sweep_props;
 mod sweep_run;

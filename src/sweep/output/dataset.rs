@@ -99,7 +99,7 @@ pub fn check_dataset_path(path: &Path) -> Result<(), SweepError> {
         return Err(refused(format!("{}: {OLD_PARQUET}", path.display())));
     }
     Err(refused(format!(
-        "{} exists and is not a dataset directory (sweep writes NAME.parquet/part-*.parquet); remove it or choose another --out",
+        "{} exists and is not a dataset directory (sweep writes NAME.parquet/part-*.parquet); remove it or choose another output",
         path.display()
     )))
 }
@@ -186,7 +186,7 @@ pub fn open<E: Evaluate + ?Sized>(
         if rows > want || (rows < want && i + 1 < parts.len()) {
             return Err(mismatch(
                 1,
-                format!("has {rows} rows where this run expects {want} (was it written with another --limit?); cannot resume"),
+                format!("has {rows} rows where this run expects {want} (was it written with another limit?); cannot resume"),
             ));
         }
         if rows < want {
@@ -247,7 +247,7 @@ pub fn dataset_shards(dir: &Path) -> Result<Vec<ShardFile<BufReader<File>>>, Swe
         let sp = summary_in(dir, s);
         let summary = fs::read_to_string(&sp).map_err(|e| {
             SweepError::MergeInput(format!(
-                "reading {} (the summary `sweep` writes with {name}; merge needs it): {e}",
+                "reading {} (the summary a sweep writes with {name}; merge needs it): {e}",
                 sp.display()
             ))
         })?;

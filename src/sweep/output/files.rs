@@ -110,10 +110,7 @@ impl Sink<'_> {
             _ => fs::symlink_metadata(path).is_ok(),
         };
         if exists && !resume {
-            return Err(SweepError::Refused(format!(
-                "{} exists; pass --resume to continue it, or remove it",
-                path.display()
-            )));
+            return Err(SweepError::Exists(path.to_path_buf()));
         }
         Ok(exists)
     }
@@ -354,12 +351,12 @@ enum Rows<'a> {
 
 /// Refuses a special file (a device such as `/dev/null`, a FIFO) as the
 /// output of `command` (`sweep`, `merge`).
-pub fn check_not_special(command: &str, out: &Path) -> Result<(), SweepError> {
+pub fn check_not_special(command: &'static str, out: &Path) -> Result<(), SweepError> {
     if is_special(out) {
-        return Err(SweepError::Refused(format!(
-            "--out {} is not a regular file: {command} writes a CSV (or Parquet) file and a summary beside it; to discard the rows, leave out --out and redirect standard output",
-            out.display()
-        )));
+        return Err(SweepError::NotRegular {
+            command,
+            path: out.to_path_buf(),
+        });
     }
     Ok(())
 }
@@ -371,7 +368,7 @@ pub fn check_not_special(command: &str, out: &Path) -> Result<(), SweepError> {
 pub fn check_summary_path(out: &Path, spath: &Path) -> Result<(), SweepError> {
     if fs::symlink_metadata(spath).is_ok() && read_summary(spath).is_none() {
         return Err(SweepError::Refused(format!(
-            "{} exists and is not a sweep summary (the summary --out {} would write); remove it or choose another --out",
+            "{} exists and is not a sweep summary (the summary of {}); remove it or choose another output",
             spath.display(),
             out.display()
         )));
@@ -459,7 +456,7 @@ fn scan_csv(
         // A file of this tool appears whole with its header: an empty one is
         // someone else's.
         return Err(SweepError::Refused(format!(
-            "{name} exists but is empty: not a sweep file of this tool (one is created whole, with its header); remove it or choose another --out"
+            "{name} exists but is empty: not a sweep file of this tool (one is created whole, with its header); remove it or choose another output"
         )));
     }
     if is_old_csv_fingerprint(&line) {
@@ -537,7 +534,7 @@ fn scan_csv(
         let lines = checked.map_err(|(l, fault)| match fault {
             LineFault::NotUtf8 => refused(format!("line {l} is not UTF-8; not a sweep CSV")),
             LineFault::TooManyRows => refused(format!(
-                "has more rows than this run expects ({max_rows}); was it written with another --limit?"
+                "has more rows than this run expects ({max_rows}); was it written with another limit?"
             )),
             LineFault::Mismatch(m) => mismatch(l, m),
         })?;
@@ -608,7 +605,7 @@ pub fn merge_inputs(inputs: &[PathBuf]) -> Result<Vec<ShardFile<BufReader<File>>
         let sp = summary_path(p);
         let summary = fs::read_to_string(&sp).map_err(|e| {
             SweepError::MergeInput(format!(
-                "reading {} (the summary `sweep` writes beside {name}; merge needs it): {e}",
+                "reading {} (the summary a sweep writes beside {name}; merge needs it): {e}",
                 sp.display()
             ))
         })?;

@@ -42,8 +42,6 @@ pub mod files;
 pub(crate) mod layout;
 mod merge;
 pub mod parquet;
-#[cfg(test)]
-mod parquet_tests;
 mod run;
 pub mod shards;
 mod verify;
@@ -118,20 +116,4 @@ fn is_parquet(name: &str, bytes: &[u8]) -> bool {
     let parquet_bytes =
         bytes.len() >= 2 * magic.len() && bytes.starts_with(magic) && bytes.ends_with(magic);
     name.ends_with(".parquet") || parquet_bytes
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The shape is read without parsing: a bound of the rows (the lines)
-    /// and the header's fields; a Parquet file's from its footer.
-    #[test]
-    fn shape_bounds_rows_before_parsing() {
-        let csv = b"# fingerprint\nid,valence,class\n0,3,a\n1,3,b\n";
-        let (rows, cols) = output_shape("s.csv", csv).unwrap();
-        assert_eq!(cols, 3);
-        assert!(rows >= read_output("s.csv", csv).unwrap().len());
-        assert!(output_shape("s.parquet", b"PAR1").is_err());
-    }
 }

@@ -28,9 +28,10 @@
 //!
 //! [`result_columns`]: crate::sweep::eval::result_columns
 
-use super::csv::{canonical_number, push_number, push_text, split_csv_line};
+use super::csv::{canonical_number, push_number, push_text};
 use super::layout::Layout;
-use crate::sweep::eval::{ColumnType, Evaluate};
+use super::run::RowBlock;
+use crate::sweep::eval::{Cell, ColumnType, Evaluate};
 use crate::sweep::plan::{Plan, Shard};
 use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
@@ -230,8 +231,6 @@ struct Dict {
     /// The entry of the last label looked up (most rows repeat it).
     last: u32,
     map: std::collections::HashMap<Box<str>, u32>,
-    /// Per row: its entry, or [`NULL_INDEX`].
-    indices: Vec<u32>,
 }
 
 /// The index of a null label (no dictionary has `u32::MAX` entries: a row
@@ -249,14 +248,6 @@ const NULL_BOOL: u8 = 2;
 impl Dict {
     /// Entries searched linearly before the hash map takes over.
     const LINEAR: usize = 16;
-
-    fn entries(&self) -> &[Box<str>] {
-        &self.entries
-    }
-
-    fn indices(&self) -> &[u32] {
-        &self.indices
-    }
 
     /// The index of label `t`, a new entry if it is new.
     fn intern(&mut self, t: &str) -> u32 {
@@ -277,11 +268,6 @@ impl Dict {
             self.map.insert(t.into(), i);
         }
         i
-    }
-
-    fn push(&mut self, t: &str) {
-        let i = self.intern(t);
-        self.indices.push(i);
     }
 
     /// The index of label `t` as the CSV holds it ([`csv_text`]), a new
@@ -315,44 +301,7 @@ impl Dict {
     fn clear(&mut self) {
         self.entries.clear();
         self.map.clear();
-        self.indices.clear();
         self.last = 0;
-    }
-}
-
-/// The values of one column of a row group being built, one per row; a
-/// null is a sentinel of the column's type ([`NULL_F64`], [`NULL_INDEX`],
-/// [`NULL_BOOL`], `None`), turned into definition levels when the group is
-/// encoded.
-#[derive(Debug)]
-enum Values {
-    U64(Vec<i64>),
-    U32(Vec<i32>),
-    /// The values and how many of them are nulls ([`NULL_F64`]): counted as
-    /// rows are appended, while they are in cache, so that a group without
-    /// nulls is encoded without a pass over its values.
-    F64(Vec<f64>, usize),
-    /// A label column: dictionary indices.
-    Dict(Dict),
-    /// The error column: plain text, sparse (most rows have none).
-    Str(Sparse),
-    Bool(Vec<u8>),
-}
-
-/// A text column whose rows are mostly null: the rows so far and the texts
-/// of the others, with their row, in row order. A row costs nothing unless
-/// it has a text (a dense column of `Option<String>` would write, and the
-/// encoder read, 24 bytes per row).
-#[derive(Debug, Default)]
-struct Sparse {
-    rows: usize,
-    texts: Vec<(usize, String)>,
-}
-
-impl Sparse {
-    fn clear(&mut self) {
-        self.rows = 0;
-        self.texts.clear();
     }
 }
 
@@ -363,142 +312,6 @@ fn stored(x: f64) -> f64 {
         f64::NAN
     } else {
         x
-    }
-}
-
-impl Values {
-    /// Empty values of a `col` column, with room for `rows` rows.
-    fn with_rows(col: Col, rows: usize) -> Values {
-        match col {
-            Col::Id => Values::U64(Vec::with_capacity(rows)),
-            Col::Valence => Values::U32(Vec::with_capacity(rows)),
-            Col::Float => Values::F64(Vec::with_capacity(rows), 0),
-            Col::Label => Values::Dict(Dict {
-                indices: Vec::with_capacity(rows),
-                ..Dict::default()
-            }),
-            Col::Error => Values::Str(Sparse::default()),
-            Col::Bool => Values::Bool(Vec::with_capacity(rows)),
-        }
-    }
-
-    fn clear(&mut self) {
-        match self {
-            Values::U64(v) => v.clear(),
-            Values::U32(v) => v.clear(),
-            Values::F64(v, nulls) => {
-                v.clear();
-                *nulls = 0;
-            }
-            Values::Dict(v) => v.clear(),
-            Values::Str(v) => v.clear(),
-            Values::Bool(v) => v.clear(),
-        }
-    }
-
-    /// Appends a null (nothing for the required `id` and `valence`).
-    #[inline(always)]
-    fn push_null(&mut self) {
-        match self {
-            Values::F64(v, nulls) => {
-                v.push(f64::from_bits(NULL_F64));
-                *nulls += 1;
-            }
-            Values::Dict(v) => v.indices.push(NULL_INDEX),
-            Values::Str(v) => v.rows += 1,
-            Values::Bool(v) => v.push(NULL_BOOL),
-            Values::U64(_) | Values::U32(_) => {}
-        }
-    }
-
-    /// Appends the CSV cell `f` (`name` for messages; `scratch` and `digits`
-    /// for [`canonical_number`], which reads most written numbers without a
-    /// full parse).
-    fn push(
-        &mut self,
-        f: &str,
-        name: &str,
-        scratch: &mut String,
-        digits: &mut zmij::Buffer,
-    ) -> Result<(), String> {
-        let bad = |what: &str| format!("{name} = {f:?} is not {what}");
-        match self {
-            Values::U64(v) => {
-                v.push(f.parse::<u64>().map_err(|_| bad("an unsigned integer"))? as i64)
-            }
-            Values::U32(v) => {
-                v.push(f.parse::<u32>().map_err(|_| bad("an unsigned integer"))? as i32)
-            }
-            _ if f.is_empty() => self.push_null(),
-            Values::F64(v, _) => {
-                let x = match canonical_number(f, scratch, digits) {
-                    Some(x) => x,
-                    None => f.parse::<f64>().map_err(|_| bad("a number"))?,
-                };
-                v.push(stored(x));
-            }
-            Values::Dict(v) => v.push(f),
-            Values::Str(v) => {
-                v.texts.push((v.rows, f.to_owned()));
-                v.rows += 1;
-            }
-            Values::Bool(v) => match f {
-                "true" => v.push(1),
-                "false" => v.push(0),
-                _ => return Err(bad("true or false")),
-            },
-        }
-        Ok(())
-    }
-
-    /// Appends rows `rows` of column `j` of `block` (a column of this
-    /// type). Labels are re-interned in row order, so that a group's
-    /// dictionary is in order of first appearance whatever the blocks were.
-    fn append_block(&mut self, block: &TypedBlock, j: usize, rows: std::ops::Range<usize>) {
-        match self {
-            Values::U64(v) => v.extend_from_slice(&block.ids[rows]),
-            Values::U32(v) => v.extend_from_slice(&block.valences[rows]),
-            Values::Str(v) => {
-                // The block's errors are in row order.
-                let at = block.errors.partition_point(|(r, _)| *r < rows.start);
-                for (r, e) in &block.errors[at..] {
-                    if *r >= rows.end {
-                        break;
-                    }
-                    v.texts.push((v.rows + r - rows.start, e.clone()));
-                }
-                v.rows += rows.len();
-            }
-            Values::F64(v, nulls) => {
-                let whole = rows == (0..block.rows);
-                let cells = block.column(j, rows);
-                v.extend_from_slice(bytemuck::cast_slice(cells));
-                *nulls += if whole {
-                    block.float_nulls[j]
-                } else {
-                    cells.iter().filter(|&&b| b == NULL_F64).count()
-                };
-            }
-            // A boolean cell is 0, 1 or NULL_BOOL.
-            Values::Bool(v) => v.extend(block.column(j, rows).iter().map(|&b| b as u8)),
-            Values::Dict(v) => {
-                let src = &block.dicts[j];
-                // Block entry -> group entry, assigned at first use.
-                let mut map = vec![NULL_INDEX; src.entries.len()];
-                for &b in block.column(j, rows) {
-                    let b = b as u32;
-                    if b == NULL_INDEX {
-                        v.indices.push(NULL_INDEX);
-                        continue;
-                    }
-                    let g = &mut map[b as usize];
-                    if *g == NULL_INDEX {
-                        *g = v.intern(&src.entries[b as usize]);
-                    }
-                    v.indices.push(*g);
-                }
-            }
-        }
     }
 }
 
@@ -583,7 +396,7 @@ impl std::fmt::Debug for TypedBlock {
 
 impl TypedBlock {
     /// Appends the next cell from its CSV text `f`, read as the text path
-    /// reads it ([`Values::push`]): empty is a null, a float column parses a
+    /// reads a CSV cell: empty is a null, a float column parses a
     /// number, a label column interns it, a boolean column takes `true` /
     /// `false`. Text that does not fit is a null and the block's fault.
     fn push_text_cell(&mut self, f: &str) {
@@ -669,9 +482,61 @@ impl TypedBlock {
         let base = (j - 2) * self.cap;
         &self.cells[base + rows.start..base + rows.end]
     }
+
+    /// Appends rows `rows` of `src` (a block of the same layout; a row
+    /// group collects the driver's blocks this way). Labels are re-interned
+    /// in row order, so that the dictionary stays in order of first
+    /// appearance whatever the blocks were.
+    fn append(&mut self, src: &TypedBlock, rows: std::ops::Range<usize>) {
+        let n = rows.len();
+        while self.rows + n > self.cap {
+            self.grow();
+        }
+        let (at, whole) = (self.rows, rows == (0..src.rows));
+        self.ids[at..at + n].copy_from_slice(&src.ids[rows.clone()]);
+        self.valences[at..at + n].copy_from_slice(&src.valences[rows.clone()]);
+        // The block's errors are in row order.
+        let first = src.errors.partition_point(|(r, _)| *r < rows.start);
+        for (r, e) in src.errors[first..]
+            .iter()
+            .take_while(|(r, _)| *r < rows.end)
+        {
+            self.errors.push((at + r - rows.start, e.clone()));
+        }
+        for j in 2..self.kinds.len() - 1 {
+            let cells = src.column(j, rows.clone());
+            let base = (j - 2) * self.cap + at;
+            let dst = &mut self.cells[base..base + n];
+            match self.kinds[j] {
+                Col::Label => {
+                    // Block entry -> group entry, assigned at first use.
+                    let mut map = vec![NULL_INDEX; src.dicts[j].entries.len()];
+                    for (d, &b) in dst.iter_mut().zip(cells) {
+                        let b = b as u32;
+                        if b != NULL_INDEX && map[b as usize] == NULL_INDEX {
+                            map[b as usize] =
+                                self.dicts[j].intern(&src.dicts[j].entries[b as usize]);
+                        }
+                        *d = u64::from(if b == NULL_INDEX { b } else { map[b as usize] });
+                    }
+                }
+                kind => {
+                    dst.copy_from_slice(cells);
+                    if kind == Col::Float {
+                        self.float_nulls[j] += if whole {
+                            src.float_nulls[j]
+                        } else {
+                            cells.iter().filter(|&&b| b == NULL_F64).count()
+                        };
+                    }
+                }
+            }
+        }
+        self.rows += n;
+    }
 }
 
-impl super::run::RowBlock for TypedBlock {
+impl RowBlock for TypedBlock {
     fn with_rows(layout: &Layout, rows: usize) -> Self {
         let kinds = columns_of(layout);
         let stride = kinds.len() - 3;
@@ -780,72 +645,64 @@ impl super::run::RowBlock for TypedBlock {
     }
 }
 
-/// Writes `values` (`rows` rows) as one row group, column by column, with the
-/// `parquet` crate's column writers: a null (the column's sentinel) becomes
-/// definition level 0, every other value level 1.
+/// Writes the rows of `group` as one row group, column by column, with the
+/// `parquet` crate's column writers: a null (the column's sentinel,
+/// [`null_bits`]) becomes definition level 0, every other value level 1.
 fn write_group<W: std::io::Write + Send>(
     w: &mut SerializedFileWriter<W>,
-    values: &[Values],
-    rows: usize,
+    group: &TypedBlock,
 ) -> Result<(), SweepError> {
+    let rows = group.rows;
     let mut rg = w.next_row_group().map_err(pq_err)?;
     let mut def: Vec<i16> = Vec::with_capacity(rows);
     let mut j = 0;
     while let Some(mut col) = rg.next_column().map_err(pq_err)? {
+        let kind = group.kinds.get(j).copied();
+        let cells = match kind {
+            Some(Col::Float | Col::Label | Col::Bool) => group.column(j, 0..rows),
+            _ => &[],
+        };
+        let null = kind.map_or(0, null_bits);
         def.clear();
-        let written = match (col.untyped(), values.get(j)) {
-            (ColumnWriter::Int64ColumnWriter(c), Some(Values::U64(x))) => {
-                c.write_batch(x, None, None)
+        def.extend(cells.iter().map(|&c| i16::from(c != null)));
+        let present = cells.iter().copied().filter(|&c| c != null);
+        let written = match (col.untyped(), kind) {
+            (ColumnWriter::Int64ColumnWriter(c), Some(Col::Id)) => {
+                c.write_batch(&group.ids[..rows], None, None)
             }
-            (ColumnWriter::Int32ColumnWriter(c), Some(Values::U32(x))) => {
-                c.write_batch(x, None, None)
+            (ColumnWriter::Int32ColumnWriter(c), Some(Col::Valence)) => {
+                c.write_batch(&group.valences[..rows], None, None)
             }
-            (ColumnWriter::DoubleColumnWriter(c), Some(Values::F64(x, nulls))) => {
-                if *nulls == 0 {
-                    def.resize(x.len(), 1);
-                    c.write_batch(x, Some(&def), None)
+            (ColumnWriter::DoubleColumnWriter(c), Some(Col::Float)) => {
+                if group.float_nulls[j] == 0 {
+                    c.write_batch(bytemuck::cast_slice(cells), Some(&def), None)
                 } else {
-                    def.extend(x.iter().map(|v| i16::from(v.to_bits() != NULL_F64)));
-                    let present: Vec<f64> = x
-                        .iter()
-                        .copied()
-                        .filter(|v| v.to_bits() != NULL_F64)
-                        .collect();
-                    c.write_batch(&present, Some(&def), None)
+                    let v: Vec<f64> = present.map(f64::from_bits).collect();
+                    c.write_batch(&v, Some(&def), None)
                 }
             }
-            (ColumnWriter::ByteArrayColumnWriter(c), Some(Values::Dict(d))) => {
-                let entries: Vec<ByteArray> =
-                    d.entries().iter().map(|e| ByteArray::from(&**e)).collect();
-                def.extend(d.indices().iter().map(|&i| i16::from(i != NULL_INDEX)));
-                let present: Vec<ByteArray> = d
-                    .indices()
-                    .iter()
-                    .filter(|&&i| i != NULL_INDEX)
-                    .map(|&i| entries[i as usize].clone())
+            (ColumnWriter::ByteArrayColumnWriter(c), Some(Col::Label)) => {
+                let entries = &group.dicts[j].entries;
+                let v: Vec<ByteArray> = present
+                    .map(|i| ByteArray::from(&*entries[i as usize]))
                     .collect();
-                c.write_batch(&present, Some(&def), None)
+                c.write_batch(&v, Some(&def), None)
             }
-            (ColumnWriter::ByteArrayColumnWriter(c), Some(Values::Str(s))) => {
-                def.resize(s.rows, 0);
-                for (r, _) in &s.texts {
+            (ColumnWriter::ByteArrayColumnWriter(c), Some(Col::Error)) => {
+                def.resize(rows, 0);
+                for (r, _) in &group.errors {
                     def[*r] = 1;
                 }
-                let present: Vec<ByteArray> = s
-                    .texts
+                let v: Vec<ByteArray> = group
+                    .errors
                     .iter()
                     .map(|(_, t)| ByteArray::from(t.as_str()))
                     .collect();
-                c.write_batch(&present, Some(&def), None)
+                c.write_batch(&v, Some(&def), None)
             }
-            (ColumnWriter::BoolColumnWriter(c), Some(Values::Bool(b))) => {
-                def.extend(b.iter().map(|&v| i16::from(v != NULL_BOOL)));
-                let present: Vec<bool> = b
-                    .iter()
-                    .filter(|&&v| v != NULL_BOOL)
-                    .map(|&v| v == 1)
-                    .collect();
-                c.write_batch(&present, Some(&def), None)
+            (ColumnWriter::BoolColumnWriter(c), Some(Col::Bool)) => {
+                let v: Vec<bool> = present.map(|b| b == 1).collect();
+                c.write_batch(&v, Some(&def), None)
             }
             _ => {
                 return Err(SweepError::Io(format!(
@@ -882,16 +739,16 @@ pub struct ParquetRows {
     names: Vec<String>,
     schema: TypePtr,
     props: Arc<WriterProperties>,
-    values: Vec<Values>,
-    rows_in_group: usize,
+    /// The open row group.
+    group: TypedBlock,
     /// Rows written (in completed groups).
     written: u64,
     /// Index of the next part.
     next_part: u64,
+    /// The bytes after the last complete CSV line written.
     pending: Vec<u8>,
     target: Option<Target>,
-    number: String,
-    digits: zmij::Buffer,
+    layout: Layout,
 }
 
 impl std::fmt::Debug for ParquetRows {
@@ -906,20 +763,15 @@ impl std::fmt::Debug for ParquetRows {
 impl ParquetRows {
     fn new(layout: &Layout, fingerprint: &str, target: Target) -> Result<Self, SweepError> {
         Ok(ParquetRows {
-            values: columns_of(layout)
-                .iter()
-                .map(|c| Values::with_rows(*c, PART_ROWS))
-                .collect(),
+            group: TypedBlock::with_rows(layout, PART_ROWS),
             names: layout.column_names(),
             schema: schema_of(layout)?,
             props: properties(layout, fingerprint)?,
-            rows_in_group: 0,
             written: 0,
             next_part: 0,
             pending: Vec::new(),
             target: Some(target),
-            number: String::new(),
-            digits: zmij::Buffer::new(),
+            layout: layout.clone(),
         })
     }
 
@@ -950,42 +802,6 @@ impl ParquetRows {
         ParquetRows::new(layout, fingerprint, Target::File(w))
     }
 
-    /// Rows written plus rows of the open group.
-    pub fn rows(&self) -> u64 {
-        self.written + self.rows_in_group as u64
-    }
-
-    fn push_line(&mut self, line: &str) -> Result<(), SweepError> {
-        let bad = |m: String| SweepError::Io(format!("parquet: row {line:?}: {m}"));
-        let n = self.values.len();
-        let quoted = line.contains('"');
-        let owned;
-        let found = if quoted {
-            owned = split_csv_line(line).map_err(bad)?;
-            owned.len()
-        } else {
-            owned = Vec::new();
-            memchr::memchr_iter(b',', line.as_bytes()).count() + 1
-        };
-        if found != n {
-            return Err(bad(format!("{found} fields for {n} columns")));
-        }
-        let fields: Box<dyn Iterator<Item = &str>> = if quoted {
-            Box::new(owned.iter().map(String::as_str))
-        } else {
-            Box::new(line.split(','))
-        };
-        for ((v, f), name) in self.values.iter_mut().zip(fields).zip(&self.names) {
-            v.push(f, name, &mut self.number, &mut self.digits)
-                .map_err(bad)?;
-        }
-        self.rows_in_group += 1;
-        if self.rows_in_group == PART_ROWS {
-            self.commit_group()?;
-        }
-        Ok(())
-    }
-
     /// Appends the rows of `block` (built by the sweep driver for this
     /// layout), writing each group as it fills. A cell that does not fit
     /// its column is refused with a message naming the configuration, the
@@ -993,31 +809,28 @@ impl ParquetRows {
     pub fn push_block(&mut self, block: &TypedBlock) -> Result<(), SweepError> {
         if let Some((id, k, f)) = &block.fault {
             let name = self.names.get(*k).map_or("?", String::as_str);
-            let what = match self.values.get(*k) {
-                Some(Values::F64(..)) => "a number",
-                Some(Values::Bool(..)) => "true or false",
+            let what = match block.kinds.get(*k) {
+                Some(Col::Float) => "a number",
+                Some(Col::Bool) => "true or false",
                 _ => "an unsigned integer",
             };
             return Err(SweepError::Io(format!(
                 "parquet: configuration {id}: {name} = {f:?} is not {what}"
             )));
         }
-        if block.kinds.len() != self.values.len() {
+        if block.kinds != self.group.kinds {
             return Err(SweepError::Io(format!(
                 "parquet: a block of {} columns for {} columns",
                 block.kinds.len(),
-                self.values.len()
+                self.group.kinds.len()
             )));
         }
         let mut start = 0;
         while start < block.rows {
-            let take = (block.rows - start).min(PART_ROWS - self.rows_in_group);
-            for (j, dst) in self.values.iter_mut().enumerate() {
-                dst.append_block(block, j, start..start + take);
-            }
+            let take = (block.rows - start).min(PART_ROWS - self.group.rows);
+            self.group.append(block, start..start + take);
             start += take;
-            self.rows_in_group += take;
-            if self.rows_in_group == PART_ROWS {
+            if self.group.rows == PART_ROWS {
                 self.commit_group()?;
             }
         }
@@ -1027,11 +840,11 @@ impl ParquetRows {
     /// Writes the open group: a part file handed to the caller, or a row
     /// group of the one file.
     fn commit_group(&mut self) -> Result<(), SweepError> {
-        let rows = self.rows_in_group;
+        let rows = self.group.rows;
         match self.target.as_mut() {
             Some(Target::Parts(commit)) => {
                 let mut w = SerializedFileWriter::new(
-                    Vec::with_capacity(rows * 8 * self.values.len()),
+                    Vec::with_capacity(rows * 8 * self.group.kinds.len()),
                     self.schema.clone(),
                     self.props.clone(),
                 )
@@ -1040,20 +853,17 @@ impl ParquetRows {
                     PART_KEY.to_owned(),
                     self.next_part.to_string(),
                 ));
-                write_group(&mut w, &self.values, rows)?;
+                write_group(&mut w, &self.group)?;
                 let bytes = w.into_inner().map_err(pq_err)?;
                 commit(self.next_part, rows as u64, bytes)
                     .map_err(|e| SweepError::Io(e.to_string()))?;
             }
-            Some(Target::File(w)) => write_group(w, &self.values, rows)?,
+            Some(Target::File(w)) => write_group(w, &self.group)?,
             None => return Err(SweepError::Io("parquet: rows after the end".into())),
         }
         self.next_part += 1;
         self.written += rows as u64;
-        for v in &mut self.values {
-            v.clear();
-        }
-        self.rows_in_group = 0;
+        self.group.clear();
         Ok(())
     }
 
@@ -1065,7 +875,7 @@ impl ParquetRows {
                 "parquet: the rows ended inside a line".into(),
             ));
         }
-        if self.rows_in_group > 0 {
+        if self.group.rows > 0 {
             self.commit_group()?;
         }
         if let Some(Target::File(w)) = self.target.take() {
@@ -1075,24 +885,37 @@ impl ParquetRows {
     }
 }
 
+/// CSV lines of the rows' layout (the merge's path, and the reference of
+/// the typed path): each complete line is read back ([`Layout::parse`]) and
+/// its cells appended as the sweep driver appends them.
 impl std::io::Write for ParquetRows {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        let to_io = |e: SweepError| std::io::Error::other(e.to_string());
-        let utf8 = || std::io::Error::other("parquet: a row is not UTF-8");
-        let mut rest = buf;
-        while let Some(p) = memchr::memchr(b'\n', rest) {
-            if self.pending.is_empty() {
-                let line = std::str::from_utf8(&rest[..p]).map_err(|_| utf8())?;
-                self.push_line(line).map_err(to_io)?;
-            } else {
-                let mut l = std::mem::take(&mut self.pending);
-                l.extend_from_slice(&rest[..p]);
-                let line = std::str::from_utf8(&l).map_err(|_| utf8())?;
-                self.push_line(line).map_err(to_io)?;
+        self.pending.extend_from_slice(buf);
+        let Some(end) = memchr::memrchr(b'\n', &self.pending) else {
+            return Ok(buf.len());
+        };
+        let lines = std::mem::take(&mut self.pending);
+        self.pending.extend_from_slice(&lines[end + 1..]);
+        let text = std::str::from_utf8(&lines[..end])
+            .map_err(|_| std::io::Error::other("parquet: a row is not UTF-8"))?;
+        let mut block = TypedBlock::with_rows(&self.layout, 256);
+        for line in text.split('\n') {
+            let row = self
+                .layout
+                .parse(line)
+                .map_err(|m| std::io::Error::other(format!("parquet: row {line:?}: {m}")))?;
+            block.start(row.id, row.valence);
+            for c in &row.cells {
+                match c {
+                    Cell::Empty => block.empty(),
+                    Cell::Num(x) => block.num(*x),
+                    Cell::Text(t) => block.text(t),
+                }
             }
-            rest = &rest[p + 1..];
+            block.end(row.error.as_deref());
         }
-        self.pending.extend_from_slice(rest);
+        self.push_block(&block)
+            .map_err(|e| std::io::Error::other(e.to_string()))?;
         Ok(buf.len())
     }
 
@@ -1276,10 +1099,6 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<Table, SweepError> {
         .map(|t| t.with_metadata(key_value))
         .map_err(|e| SweepError::Read(format!("parquet: {e}")))
 }
-/// Whether `bytes` start as a Parquet file does.
-pub fn is_parquet(bytes: &[u8]) -> bool {
-    bytes.starts_with(MAGIC)
-}
 
 impl super::run::BlockWriter<TypedBlock> for ParquetRows {
     fn write_block(&mut self, block: &TypedBlock) -> Result<(), SweepError> {
@@ -1316,7 +1135,6 @@ where
 
 #[cfg(test)]
 mod tests {
-    use super::super::run::RowBlock;
     use super::*;
 
     /// Rows of every cell kind into `block`: floats, labels, booleans and
@@ -1452,31 +1270,6 @@ mod tests {
             let r = r_of(i);
             let want = ((r + j as u64) % 5 != 0).then_some(r as f64 * 100.0 + j as f64);
             assert_eq!(*x, want, "column {j}, row {i}");
-        }
-    }
-
-    /// Part names round-trip and nothing else parses as one.
-    #[test]
-    fn part_names_round_trip() {
-        for (s, k) in [
-            ("0/1", 0),
-            ("0/1", 999_999),
-            ("0/1", 1_234_567),
-            ("3/7", 12),
-        ] {
-            let shard: Shard = s.parse().unwrap();
-            assert_eq!(parse_part_name(&part_name(shard, k)), Some((shard, k)));
-        }
-        for bad in [
-            "part-17.parquet",
-            "part-0000017.parquet",
-            "part-000017.parquet.tmp",
-            "part-7-of-3-000001.parquet",
-            "part-+1-of-3-000001.parquet",
-            "part-1-of-3-000001.csv",
-            "_summary.json",
-        ] {
-            assert_eq!(parse_part_name(bad), None, "{bad}");
         }
     }
 }

@@ -685,14 +685,14 @@ fn evaluate_chunk<E: Evaluate + ?Sized, B: RowBlock>(
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use super::*;
     use crate::sweep::eval::{Cell, SpectralEvaluator};
     use crate::sweep::plan::Shard;
 
     /// An evaluator that returns the wrong number of cells for odd ids and fails
     /// for ids divisible by 5, to exercise the error rows of the fast path.
-    pub(crate) struct Faulty(pub(crate) SpectralEvaluator);
+    struct Faulty(SpectralEvaluator);
 
     impl Evaluate for Faulty {
         fn evaluate(

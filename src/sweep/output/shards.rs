@@ -203,7 +203,7 @@ impl PreparedMerge<'_> {
         {
             if s.rows != c.get() {
                 return Err(input(format!(
-                    "{name}: the summary counts {} rows but the CSV has {}; finish that shard with `sweep --resume`",
+                    "{name}: the summary counts {} rows but the CSV has {}; resume that shard's sweep to finish it",
                     s.rows,
                     c.get()
                 )));
@@ -267,7 +267,7 @@ fn csv_source<'a, R: BufRead + 'a>(
                     return Some(Err(SweepError::Mismatch {
                         source_name: n2.clone(),
                         line: lineno,
-                        message: "torn last line; finish this shard with `sweep --resume` first"
+                        message: "torn last line; resume this shard's sweep to finish it first"
                             .into(),
                     }));
                 }

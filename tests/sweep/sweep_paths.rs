@@ -1,16 +1,45 @@
-//! Tests of the typed Parquet path against the CSV text path (a module of
-//! its own: it uses the CSV driver, the Parquet writer and the fingerprint,
-//! which do not depend on one another).
+//! The sweep's output paths against each other: the typed Parquet path
+//! against the CSV text fed to the Parquet writer, and the shard merge of
+//! CSV lines.
 
-use super::parquet::{csv_lines, read_table, run_parquet, ParquetRows, PART_ROWS};
-use super::run::run;
-use super::run::tests::Faulty;
-use super::Layout;
-use crate::sweep::eval::{Cell, Evaluate, SpectralEvaluator};
-use crate::sweep::plan::{Configuration, Plan, Shard};
-use crate::sweep::summary::Summary;
-use crate::table::{Column, Table};
 use std::sync::{Arc, Mutex};
+use subdiv_lab::sweep::eval::{Cell, Evaluate, SpectralEvaluator};
+use subdiv_lab::sweep::output::merge;
+use subdiv_lab::sweep::output::parquet::{
+    csv_lines, read_table, run_parquet, ParquetRows, PART_ROWS,
+};
+use subdiv_lab::sweep::output::parquet::{parse_part_name, part_name};
+use subdiv_lab::sweep::output::{format_number, output_shape, read_output};
+use subdiv_lab::sweep::output::{run, MergeSource};
+use subdiv_lab::sweep::{Configuration, Layout, Plan, Shard, Summary, SweepError};
+use subdiv_lab::table::{Column, Table};
+
+/// An evaluator that returns the wrong number of cells for odd ids and fails
+/// for ids divisible by 5, to exercise the error rows of the fast path.
+struct Faulty(SpectralEvaluator);
+
+impl Evaluate for Faulty {
+    fn evaluate(
+        &self,
+        plan: &Plan,
+        c: &Configuration,
+        scheme: &dyn subdiv_lab::Scheme,
+    ) -> subdiv_lab::spectral::Result<Vec<Cell>> {
+        let mut v = self.0.evaluate(plan, c, scheme)?;
+        if c.id % 5 == 0 {
+            return Err(subdiv_lab::Error::InvalidParameter {
+                name: "test",
+                value: format!("id {}", c.id),
+                reason: "a failure with a comma, and \"quotes\"",
+            }
+            .into());
+        }
+        if c.id % 2 == 1 {
+            v.push(Cell::Text("extra".into()));
+        }
+        Ok(v)
+    }
+}
 
 /// Cells of every kind from the id alone (no eigenvalues: cheap enough
 /// for several row groups): labels with commas, quotes, line breaks and
@@ -23,11 +52,11 @@ impl Evaluate for Synthetic {
         &self,
         _plan: &Plan,
         c: &Configuration,
-        _scheme: &dyn crate::schemes::Scheme,
-    ) -> crate::spectral::Result<Vec<Cell>> {
+        _scheme: &dyn subdiv_lab::Scheme,
+    ) -> subdiv_lab::spectral::Result<Vec<Cell>> {
         let id = c.id;
         if id % 997 == 13 {
-            return Err(crate::Error::InvalidParameter {
+            return Err(subdiv_lab::Error::InvalidParameter {
                 name: "test",
                 value: format!("id {id}"),
                 reason: "a failure with a comma, \"quotes\"\nand a line break",
@@ -71,7 +100,7 @@ type Written = (Vec<u8>, Vec<u64>, Summary);
 
 /// A writer into a shared buffer (`ParquetRows::file` takes its writer).
 #[derive(Clone, Default)]
-pub(super) struct Shared(pub(super) Arc<Mutex<Vec<u8>>>);
+struct Shared(Arc<Mutex<Vec<u8>>>);
 
 impl std::io::Write for Shared {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
@@ -129,7 +158,7 @@ fn both_paths<E: Evaluate>(
         .unwrap();
     let file = |typed: bool| {
         let mut summary = Summary::new(plan, layout, Shard::ALL, None);
-        let fp = super::fingerprint_line(plan, Shard::ALL);
+        let fp = subdiv_lab::sweep::output::fingerprint_line(plan, Shard::ALL);
         let (mut rows, buf) = file_rows(layout, &fp);
         pool.install(|| {
             if typed {
@@ -170,7 +199,7 @@ fn both_paths<E: Evaluate>(
 #[test]
 fn typed_parquet_path_equals_the_csv_text_path() {
     let spec = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = 140000\n[columns]\nexact_certificate = true\n";
-    let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+    let plan = Plan::new(subdiv_lab::sweep::SweepSpec::from_toml(spec).unwrap());
     let layout = Layout::new(&plan);
     // Rows of a resumed run start mid-sweep; an out-of-range id is an error row.
     let ids: Vec<u64> = (5..plan.total()).chain([plan.total() + 3]).collect();
@@ -188,7 +217,7 @@ fn typed_parquet_path_equals_the_csv_text_path() {
     }
     // The built-in evaluator, and error rows of a faulty one.
     let small = "scheme = \"nurds\"\nvalences = [3, 5]\n[space]\nkind = \"corner-intervals\"\ninterval_range = [0.001, 1000.0]\n[sampler]\nkind = \"random\"\ncount = 300\nseed = 5\n[columns]\neigenvalues = 4\nexact_certificate = true\n";
-    let plan = Plan::new(crate::sweep::SweepSpec::from_toml(small).unwrap());
+    let plan = Plan::new(subdiv_lab::sweep::SweepSpec::from_toml(small).unwrap());
     let layout = Layout::new(&plan);
     let ids: Vec<u64> = (0..plan.total()).collect();
     let eval = SpectralEvaluator::new(plan.spec().columns);
@@ -207,17 +236,17 @@ fn typed_parquet_path_equals_the_csv_text_path() {
 fn recycled_row_blocks_write_the_rows_of_the_per_row_path() {
     use std::io::Write;
     let spec = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = 18000\n[columns]\neigenvalues = 2\n";
-    let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+    let plan = Plan::new(subdiv_lab::sweep::SweepSpec::from_toml(spec).unwrap());
     let layout = Layout::new(&plan);
     let eval = SpectralEvaluator::new(plan.spec().columns);
     let ids: Vec<u64> = (0..plan.total()).collect();
-    assert!(ids.len() > 4 * super::CHUNK);
+    assert!(ids.len() > 4 * subdiv_lab::sweep::output::CHUNK);
     let mut text = String::new();
     for &id in &ids {
         let r = layout.row(&plan, &eval, id);
         layout.format_into(&r, &mut text);
     }
-    let fp = super::fingerprint_line(&plan, Shard::ALL);
+    let fp = subdiv_lab::sweep::output::fingerprint_line(&plan, Shard::ALL);
     let (mut rows, buf) = file_rows(&layout, &fp);
     rows.write_all(text.as_bytes()).unwrap();
     rows.finish().unwrap();
@@ -239,8 +268,8 @@ fn typed_parquet_path_refuses_a_cell_of_the_wrong_kind() {
             &self,
             _plan: &Plan,
             c: &Configuration,
-            _scheme: &dyn crate::schemes::Scheme,
-        ) -> crate::spectral::Result<Vec<Cell>> {
+            _scheme: &dyn subdiv_lab::Scheme,
+        ) -> subdiv_lab::spectral::Result<Vec<Cell>> {
             let mut v = vec![Cell::Text("standard".into())];
             v.extend((0..5).map(|_| Cell::Num(0.5)));
             v[2] = if c.id == 4 {
@@ -252,7 +281,7 @@ fn typed_parquet_path_refuses_a_cell_of_the_wrong_kind() {
         }
     }
     let spec = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n[columns]\ngap = false\ncontraction = false\n";
-    let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
+    let plan = Plan::new(subdiv_lab::sweep::SweepSpec::from_toml(spec).unwrap());
     let layout = Layout::new(&plan);
     // Ids 0..4: a number as text in a float column reads as the number.
     let ids: Vec<u64> = (0..4).collect();
@@ -308,8 +337,8 @@ impl Evaluate for ManyLabels {
         &self,
         plan: &Plan,
         c: &Configuration,
-        scheme: &dyn crate::schemes::Scheme,
-    ) -> crate::spectral::Result<Vec<Cell>> {
+        scheme: &dyn subdiv_lab::Scheme,
+    ) -> subdiv_lab::spectral::Result<Vec<Cell>> {
         let mut v = Synthetic.evaluate(plan, c, scheme)?;
         if self.all_null {
             for cell in &mut v {
@@ -329,7 +358,7 @@ impl Evaluate for ManyLabels {
 /// asserts that the file reads back as exactly those CSV lines.
 fn reads_back_as_csv(eval: &ManyLabels, count: u64) -> (Table, String) {
     let spec = format!("scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.01, 0.99]\n[sampler]\nkind = \"halton\"\ncount = {count}\n[columns]\nexact_certificate = true\n");
-    let plan = Plan::new(crate::sweep::SweepSpec::from_toml(&spec).unwrap());
+    let plan = Plan::new(subdiv_lab::sweep::SweepSpec::from_toml(&spec).unwrap());
     let layout = Layout::new(&plan);
     let ids: Vec<u64> = (0..plan.total()).collect();
     let (typed, _) = both_paths(&plan, &layout, eval, &ids, 2);
@@ -378,4 +407,204 @@ fn parquet_columns_of_nulls_read_back() {
     assert!(
         matches!(t.column("exact_agrees"), Some(Column::Bool(v)) if v.iter().all(Option::is_none))
     );
+}
+
+const EIGHT: &str = "scheme = \"nurds\"\nvalences = [3]\n[space]\nkind = \"ratios\"\nratio_range = [0.2, 0.8]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 2\n";
+
+type Lines = std::vec::IntoIter<Result<String, SweepError>>;
+
+fn src(name: &str, shard: Shard, lines: &[&str]) -> MergeSource<Lines> {
+    MergeSource {
+        name: name.into(),
+        shard,
+        lines: lines
+            .iter()
+            .map(|l| Ok(l.to_string()))
+            .collect::<Vec<_>>()
+            .into_iter(),
+    }
+}
+
+#[test]
+fn merge_checks_ids_and_rows() {
+    let plan = Plan::new(subdiv_lab::sweep::SweepSpec::from_toml(EIGHT).unwrap());
+    let layout = Layout::new(&plan);
+    let eval = SpectralEvaluator::new(plan.spec().columns);
+    let mut all = Vec::new();
+    run(
+        &plan,
+        &layout,
+        &eval,
+        0..8,
+        &mut all,
+        &mut Summary::new(&plan, &layout, Shard::ALL, None),
+        &mut |_| {},
+    )
+    .unwrap();
+    let all = String::from_utf8(all).unwrap();
+    let l: Vec<&str> = all.lines().collect();
+    let s0: Shard = "0/2".parse().unwrap();
+    let s1: Shard = "1/2".parse().unwrap();
+    let evens = [l[0], l[2], l[4], l[6]];
+    let odds = [l[1], l[3], l[5], l[7]];
+    let mut out = Vec::new();
+    let parts = merge(
+        &plan,
+        &layout,
+        &eval,
+        vec![src("a", s0, &evens), src("b", s1, &odds)],
+        &mut out,
+        1,
+    )
+    .unwrap();
+    assert_eq!(String::from_utf8(out).unwrap(), all);
+    assert_eq!(parts.iter().map(|p| p.rows).collect::<Vec<_>>(), vec![4, 4]);
+    let go = |srcs: Vec<MergeSource<Lines>>| {
+        merge(&plan, &layout, &eval, srcs, &mut Vec::new(), 1)
+            .unwrap_err()
+            .to_string()
+    };
+    let e = go(vec![src("a", s0, &evens), src("b", s1, &odds[..3])]);
+    assert!(e.contains("configuration id 7 is missing"), "{e}");
+    let e = go(vec![
+        src("a", s0, &evens),
+        src("b", s1, &odds),
+        src("c", s0, &evens[..1]),
+    ]);
+    assert!(e.contains("configuration id 0 appears twice"), "{e}");
+    let e = go(vec![src("a", s0, &[l[0], l[1]])]);
+    assert!(
+        e.contains("a: line 3: configuration id 1 where 2 was expected"),
+        "{e}"
+    );
+    // A bogus class, an edited number, an edited parameter.
+    let bogus = l[2]
+        .replacen(",standard,", ",bogus,", 1)
+        .replacen(",real_distinct,", ",bogus,", 1)
+        .replacen(",complex_pair,", ",bogus,", 1);
+    assert_ne!(bogus, l[2]);
+    let e = go(vec![
+        src("a", s0, &[l[0], &bogus, l[4], l[6]]),
+        src("b", s1, &odds),
+    ]);
+    assert!(e.contains("a: line 3: class = \"bogus\""), "{e}");
+    let f: Vec<&str> = l[4].split(',').collect();
+    let mut g = f.clone();
+    let lam = format!("{}", f[6].parse::<f64>().unwrap() + 0.25);
+    g[6] = &lam;
+    let edited = g.join(",");
+    let e = go(vec![
+        src("a", s0, &[l[0], l[2], &edited, l[6]]),
+        src("b", s1, &odds),
+    ]);
+    assert!(
+        e.contains("a: line 4: configuration 4 differs from a fresh evaluation: lambda1_re"),
+        "{e}"
+    );
+    let mut g = f.clone();
+    g[2] = "0.5";
+    let edited = g.join(",");
+    let e = go(vec![
+        src("a", s0, &[l[0], l[2], &edited, l[6]]),
+        src("b", s1, &odds),
+    ]);
+    assert!(
+        e.contains("configuration 4 has r0 = \"0.5\" where the spec gives"),
+        "{e}"
+    );
+}
+
+/// The CSV's numbers are Ryu's shortest round trip, byte for byte.
+#[test]
+fn numbers_are_written_as_ryu_writes_them() {
+    // The CSV format is Ryu's shortest round trip; the digits come from
+    // Zmij, so compare the two on random bit patterns, random values of
+    // every magnitude and short decimals.
+    let mut ryu_buf = ryu::Buffer::new();
+    let mut check = |x: f64| {
+        let s = format_number(x);
+        let want = if x.is_finite() {
+            ryu_buf.format_finite(x)
+        } else {
+            ""
+        };
+        if x.is_finite() {
+            assert_eq!(s, want, "{x:e}");
+        }
+        assert_eq!(s.parse::<f64>().unwrap().to_bits(), x.to_bits(), "{s}");
+    };
+    for i in 0..200_000u64 {
+        let h = subdiv_lab::rng::mix64(i);
+        let bits = f64::from_bits(h);
+        if !bits.is_nan() {
+            check(bits);
+        }
+        let u = (h >> 11) as f64 / (1u64 << 53) as f64;
+        let e = (subdiv_lab::rng::mix64(h) % 90) as i32 - 45;
+        check(u * 10f64.powi(e));
+        check(-u);
+        check((h % 100_000) as f64 / 10f64.powi((h % 23) as i32));
+    }
+    for x in [
+        0.0,
+        -0.0,
+        1.0,
+        -1.0,
+        0.1,
+        1e15,
+        1e16,
+        1e17,
+        123_456_789_012_345_680.0,
+        1e-5,
+        1e-6,
+        1e-7,
+        f64::MIN_POSITIVE,
+        5e-324,
+        f64::MAX,
+        f64::MIN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    ] {
+        check(x);
+    }
+    assert_eq!(format_number(f64::NAN), "NaN");
+    assert_eq!(format_number(f64::INFINITY), "inf");
+    assert_eq!(format_number(1e16), "1e16");
+    assert_eq!(format_number(1.0), "1.0");
+}
+
+/// Part names round-trip and nothing else parses as one.
+#[test]
+fn part_names_round_trip() {
+    for (s, k) in [
+        ("0/1", 0),
+        ("0/1", 999_999),
+        ("0/1", 1_234_567),
+        ("3/7", 12),
+    ] {
+        let shard: Shard = s.parse().unwrap();
+        assert_eq!(parse_part_name(&part_name(shard, k)), Some((shard, k)));
+    }
+    for bad in [
+        "part-17.parquet",
+        "part-0000017.parquet",
+        "part-000017.parquet.tmp",
+        "part-7-of-3-000001.parquet",
+        "part-+1-of-3-000001.parquet",
+        "part-1-of-3-000001.csv",
+        "_summary.json",
+    ] {
+        assert_eq!(parse_part_name(bad), None, "{bad}");
+    }
+}
+
+/// The shape is read without parsing: a bound of the rows (the lines)
+/// and the header's fields; a Parquet file's from its footer.
+#[test]
+fn shape_bounds_rows_before_parsing() {
+    let csv = b"# fingerprint\nid,valence,class\n0,3,a\n1,3,b\n";
+    let (rows, cols) = output_shape("s.csv", csv).unwrap();
+    assert_eq!(cols, 3);
+    assert!(rows >= read_output("s.csv", csv).unwrap().len());
+    assert!(output_shape("s.parquet", b"PAR1").is_err());
 }
