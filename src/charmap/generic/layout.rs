@@ -165,6 +165,9 @@ impl Lattice {
 /// configurations, patch points) have no position: `None`.
 pub fn label_position(label: PointLabel, n: usize) -> Option<SectorPoint> {
     let k = label.index;
+    if label.role == Role::OuterRing {
+        return outer_ring_position(k, n);
+    }
     if label.role != Role::Vertex && k >= n {
         return None;
     }
@@ -175,6 +178,23 @@ pub fn label_position(label: PointLabel, n: usize) -> Option<SectorPoint> {
         Role::SecondRing => Some(SectorPoint::In { s: k, i: 2, j: 0 }),
         _ => None,
     }
+}
+
+/// The sector-grid position of `h_k`, the `k`-th point counted from the
+/// first point of the third ring in the ring order of the triangle lattice
+/// ([`crate::schemes::tri_rings`]: ring `r` holds `r` points per sector,
+/// `(s, r - b, b)` for `b = 0..r`).
+fn outer_ring_position(k: usize, n: usize) -> Option<SectorPoint> {
+    let (mut r, mut off) = (3usize, k);
+    while off >= r * n {
+        off -= r * n;
+        r += 1;
+        if r > 1 << 20 {
+            return None;
+        }
+    }
+    let (s, b) = (off / r, off % r);
+    Some(SectorPoint::In { s, i: r - b, j: b })
 }
 
 #[cfg(test)]
