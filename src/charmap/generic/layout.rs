@@ -161,7 +161,8 @@ impl Lattice {
 /// The sector-grid position of a vertex-centred label: `v` the centre,
 /// `e_k = (k, 1, 0)`, `f_k = (k, 1, 1)` (the point across the edge
 /// `e_k e_{k+1}` from `v`, triangles; the far corner of the quad
-/// `v e_k f_k e_{k+1}`, quads), `g_k = (k, 2, 0)`. Other roles (face-centred
+/// `v e_k f_k e_{k+1}`, quads), `g_k = (k, 2, 0)`, and the outer rings'
+/// `h_k` of a triangle lattice (ring `r >= 3`, `(s, r - b, b)`). Other roles (face-centred
 /// configurations, patch points) have no position: `None`.
 pub fn label_position(label: PointLabel, n: usize) -> Option<SectorPoint> {
     let k = label.index;
@@ -200,6 +201,17 @@ fn outer_ring_position(k: usize, n: usize) -> Option<SectorPoint> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn outer_ring_points_follow_the_ring_order() {
+        let h = |k| label_position(PointLabel::new(Role::OuterRing, k), 5);
+        assert_eq!(h(0), Some(SectorPoint::In { s: 0, i: 3, j: 0 }));
+        assert_eq!(h(2), Some(SectorPoint::In { s: 0, i: 1, j: 2 }));
+        assert_eq!(h(3), Some(SectorPoint::In { s: 1, i: 3, j: 0 }));
+        assert_eq!(h(14), Some(SectorPoint::In { s: 4, i: 1, j: 2 }));
+        // ring 4 starts after the 15 points of ring 3
+        assert_eq!(h(15), Some(SectorPoint::In { s: 0, i: 4, j: 0 }));
+    }
 
     #[test]
     fn chart_inverts_sector_coordinates() {

@@ -96,13 +96,13 @@ fn coefficients(d: LatticePoint, dirs: [LatticePoint; 2]) -> [i64; 2] {
     ]
 }
 
+/// A signed difference `coef D_w q_y` as `((direction index, y), coef)`.
+type PathTerm = ((usize, LatticePoint), i64);
+
 /// The path from `0` to `d` (first along `u`, then `v`) as a signed sum of
-/// differences: `q_d - q_0 = sum coef D_{w} q_{y}`, pushed as
-/// `((direction index, y), coef)`; also returns the points visited.
-fn path(
-    d: LatticePoint,
-    dirs: [LatticePoint; 2],
-) -> (Vec<((usize, LatticePoint), i64)>, Vec<LatticePoint>) {
+/// differences: `q_d - q_0 = sum coef D_{w} q_{y}`; also returns the points
+/// visited.
+fn path(d: LatticePoint, dirs: [LatticePoint; 2]) -> (Vec<PathTerm>, Vec<LatticePoint>) {
     let ab = coefficients(d, dirs);
     let mut z = [0i64, 0i64];
     let mut terms = Vec::new();
