@@ -254,17 +254,83 @@ fn planted_fold_is_not_c1_with_a_sign_change() {
 fn certified_cells_hold_their_sign_under_dense_sampling() {
     let (delta, eps) = find_fold(5);
     let prep = prepared(&planted_loop(5, delta, eps)).unwrap();
+    let seen = assert_certified_cells_hold(&prep, 5, 4..=6, 3);
+    // both signs were certified: the fold runs through the annulus
+    assert!(seen[0] && seen[1], "{seen:?}");
+}
+
+/// The modified butterfly at valence `n` with the rows of the new `g_i`
+/// (the old `e_i`, interpolated) given `delta` more weight on `e_i`, taken
+/// from `v`: the matrix stays block lower triangular with the same
+/// diagonal blocks (same spectrum), the characteristic map's outer points
+/// move.
+fn planted_butterfly(n: usize, delta: f64) -> Planted {
+    Planted {
+        base: LocalScheme::ModifiedButterfly { valence: n },
+        changes: (0..n).map(|i| (1 + n + 2 * i, 1 + i, delta)).collect(),
+    }
+}
+
+#[test]
+fn modified_butterfly_is_c1_through_the_norm_enclosure() {
+    for n in [5, 7] {
+        let s = LocalScheme::ModifiedButterfly { valence: n };
+        let g = generic_of(&s);
+        assert_eq!(g.verdict, GenericVerdict::C1, "n = {n}");
+    }
+    let prep = prepared(&LocalScheme::ModifiedButterfly { valence: 5 }).unwrap();
+    assert!(prep.rules.norm.is_some());
+}
+
+#[test]
+fn planted_butterfly_fold_is_never_c1() {
+    let n = 5;
+    let mut found = false;
+    for delta in [-0.5, -0.8, -1.2, -2.0, 0.8, 1.5, 3.0] {
+        let p = planted_butterfly(n, delta);
+        let Some(prep) = prepared(&p) else { continue };
+        let (pos, neg) = sampled_signs(&prep, 6);
+        if pos > 0 && neg > 0 {
+            found = true;
+            let g = generic_of(&p);
+            assert!(
+                matches!(
+                    g.verdict,
+                    GenericVerdict::NotC1 {
+                        witness: Witness::JacobianSignChange { .. }
+                    }
+                ),
+                "delta = {delta}: {}",
+                g.verdict
+            );
+            // the norm-based enclosure signs cells only at fine levels here
+            let seen = assert_certified_cells_hold(&prep, n, 8..=8, 2);
+            assert!(seen[0] && seen[1], "{seen:?}");
+            break;
+        }
+    }
+    assert!(found, "no fold found");
+}
+
+/// Every cell signed at `levels` keeps its sign at the samples of the
+/// net `finer` levels finer inside it; returns which signs were certified.
+fn assert_certified_cells_hold(
+    prep: &generic::Prepared,
+    n: usize,
+    levels: std::ops::RangeInclusive<u32>,
+    finer: u32,
+) -> [bool; 2] {
     let mut nets = vec![prep.net.clone()];
-    for k in 0..9 {
+    for k in 0..levels.end() + finer {
         let next = prep.refine(&nets[k as usize], k);
         nets.push(next);
     }
     let (mut signed, mut checked) = (0, 0);
     let mut seen = [false; 2];
-    for coarse in 4u32..=6 {
-        let fine = coarse + 3;
+    for coarse in levels {
+        let fine = coarse + finer;
         let scale = 1i64 << (fine - coarse);
-        for s in 0..5 {
+        for s in 0..n {
             for cell in cells::annulus(prep.rules.lattice, s, coarse) {
                 let cs = cells::cell_sign(&nets[coarse as usize], &prep.rules, &cell);
                 if cs.sign == 0 {
@@ -311,8 +377,7 @@ fn certified_cells_hold_their_sign_under_dense_sampling() {
         signed > 0 && checked > 0,
         "{signed} cells signed, {checked} samples"
     );
-    // both signs were certified: the fold runs through the annulus
-    assert!(seen[0] && seen[1], "{seen:?}");
+    seen
 }
 
 #[test]

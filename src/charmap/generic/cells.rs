@@ -2,7 +2,7 @@
 //! refined net with convex-hull enclosures (math doc section 20.5).
 
 use super::layout::{Lattice, LatticePoint};
-use super::mask::RegularRules;
+use super::mask::{NormBound, NormBounds, RegularRules};
 use super::net::{Ball, Net};
 use crate::charmap::regularity::gamma;
 use std::f64::consts::PI;
@@ -138,6 +138,79 @@ fn differences(net: &Net, rules: &RegularRules, c: &Cell, k: usize) -> Option<Ve
     Some(out)
 }
 
+/// `p_x - p_{x - e}` as a ball.
+fn difference(net: &Net, s: usize, x: LatticePoint, e: LatticePoint) -> Option<Ball> {
+    let p = net.at(s, x)?;
+    let q = net.at(s, [x[0] - e[0], x[1] - e[1]])?;
+    let mid = [p.mid[0] - q.mid[0], p.mid[1] - q.mid[1]];
+    let size = mid[0].abs().max(mid[1].abs());
+    Some(Ball {
+        mid,
+        rad: (p.rad + q.rad + gamma(1) * size) * (1.0 + gamma(3)),
+    })
+}
+
+/// The largest `|v_y - v_{y - w}|` (coordinate-wise, radii included,
+/// rounded up) over `y` in the box `[x0, x1] x [y0, y1]` and both directions
+/// `w`, where `v_y` is `value(y)`; `None` when a value is missing.
+fn largest_difference<F>(bx: [i64; 4], dirs: [LatticePoint; 2], value: F) -> Option<f64>
+where
+    F: Fn(LatticePoint) -> Option<Ball>,
+{
+    let mut m = 0.0f64;
+    for x in bx[0]..=bx[1] {
+        for y in bx[2]..=bx[3] {
+            let v = value([x, y])?;
+            for e in dirs {
+                let w = value([x - e[0], y - e[1]])?;
+                for k in 0..2 {
+                    let d = (v.mid[k] - w.mid[k]).abs();
+                    m = m.max((d + v.rad + w.rad) * (1.0 + gamma(2)));
+                }
+            }
+        }
+    }
+    Some(m)
+}
+
+/// The balls of radius `rad + factor * M` around `value` at the corners of
+/// the box `bx` (the cell's bounding box), `M` the largest difference over
+/// the box's window: the limit over the cell lies in their union (math doc
+/// section 20.3, [`NormBound`]: `|g(x) - q_{floor(x)}| <= K T M`).
+fn norm_balls<F>(nb: &NormBound, bx: [i64; 4], value: F) -> Option<Vec<Ball>>
+where
+    F: Fn(LatticePoint) -> Option<Ball>,
+{
+    let w = nb.window;
+    let window = [
+        bx[0] + w[0][0],
+        bx[1] + w[0][1],
+        bx[2] + w[1][0],
+        bx[3] + w[1][1],
+    ];
+    let m = largest_difference(window, nb.directions, &value)?;
+    let mut out = Vec::with_capacity(4);
+    for x in [bx[0], bx[1]] {
+        for y in [bx[2], bx[3]] {
+            let q = value([x, y])?;
+            out.push(Ball {
+                mid: q.mid,
+                rad: (q.rad + nb.factor * m) * (1.0 + gamma(2)),
+            });
+        }
+    }
+    Some(out)
+}
+
+/// The norm-based enclosure of the derivative `d_{e_k} f` over a cell
+/// **\[derived\]**: [`norm_balls`] of the differences
+/// `q_y = p_y - p_{y - e_k}`.
+fn derivative_balls(net: &Net, nb: &NormBounds, c: &Cell, k: usize) -> Option<Vec<Ball>> {
+    let e: LatticePoint = if k == 0 { [1, 0] } else { [0, 1] };
+    let bx = [c.i, c.i + 1, c.j, c.j + 1];
+    norm_balls(&nb.derivative[k], bx, |y| difference(net, c.sector, y, e))
+}
+
 /// The Jacobian's sign on a cell **\[derived\]**: `d_1 f` and `d_2 f` lie in
 /// the convex hulls of the two windows of differences (non-negative
 /// refinable functions with partition of unity), and `det(a, b)` is bilinear,
@@ -150,8 +223,14 @@ pub fn cell_sign(net: &Net, rules: &RegularRules, c: &Cell) -> CellSign {
         sign: 0,
         bounds: [f64::NAN; 2],
     };
-    let (Some(da), Some(db)) = (differences(net, rules, c, 0), differences(net, rules, c, 1))
-    else {
+    let windows = match rules.norm {
+        None => (differences(net, rules, c, 0), differences(net, rules, c, 1)),
+        Some(nb) => (
+            derivative_balls(net, &nb, c, 0),
+            derivative_balls(net, &nb, c, 1),
+        ),
+    };
+    let (Some(da), Some(db)) = windows else {
         return undecided;
     };
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -232,9 +311,19 @@ pub fn winding(net: &Net, rules: &RegularRules, level: u32) -> Option<i64> {
             let (xl, xh) = (x[0].min(y[0]), x[0].max(y[0]));
             let (yl, yh) = (x[1].min(y[1]), x[1].max(y[1]));
             let mut window = vec![px, py];
-            for ax in xl - b[1]..=xh - b[0] {
-                for ay in yl - b[3]..=yh - b[2] {
-                    window.push(net.at(s, [ax, ay])?);
+            match rules.norm {
+                None => {
+                    for ax in xl - b[1]..=xh - b[0] {
+                        for ay in yl - b[3]..=yh - b[2] {
+                            window.push(net.at(s, [ax, ay])?);
+                        }
+                    }
+                }
+                Some(nb) => {
+                    // the limit over the edge lies within (2 + K_a T_a) M of p_x
+                    // (the edge's bounding square is the cell of the bound)
+                    let bx = [xl, xh, yl, yh];
+                    window.extend(norm_balls(&nb.mask, bx, |z| net.at(s, z))?);
                 }
             }
             for q in &window {

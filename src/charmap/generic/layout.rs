@@ -161,10 +161,14 @@ impl Lattice {
 /// The sector-grid position of a vertex-centred label: `v` the centre,
 /// `e_k = (k, 1, 0)`, `f_k = (k, 1, 1)` (the point across the edge
 /// `e_k e_{k+1}` from `v`, triangles; the far corner of the quad
-/// `v e_k f_k e_{k+1}`, quads), `g_k = (k, 2, 0)`. Other roles (face-centred
+/// `v e_k f_k e_{k+1}`, quads), `g_k = (k, 2, 0)`, and the outer rings'
+/// `h_k` of a triangle lattice (ring `r >= 3`, `(s, r - b, b)`). Other roles (face-centred
 /// configurations, patch points) have no position: `None`.
 pub fn label_position(label: PointLabel, n: usize) -> Option<SectorPoint> {
     let k = label.index;
+    if label.role == Role::OuterRing {
+        return outer_ring_position(k, n);
+    }
     if label.role != Role::Vertex && k >= n {
         return None;
     }
@@ -177,9 +181,37 @@ pub fn label_position(label: PointLabel, n: usize) -> Option<SectorPoint> {
     }
 }
 
+/// The sector-grid position of `h_k`, the `k`-th point counted from the
+/// first point of the third ring in the ring order of the triangle lattice
+/// ([`crate::schemes::tri_rings`]: ring `r` holds `r` points per sector,
+/// `(s, r - b, b)` for `b = 0..r`).
+fn outer_ring_position(k: usize, n: usize) -> Option<SectorPoint> {
+    let (mut r, mut off) = (3usize, k);
+    while off >= r * n {
+        off -= r * n;
+        r += 1;
+        if r > 1 << 20 {
+            return None;
+        }
+    }
+    let (s, b) = (off / r, off % r);
+    Some(SectorPoint::In { s, i: r - b, j: b })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn outer_ring_points_follow_the_ring_order() {
+        let h = |k| label_position(PointLabel::new(Role::OuterRing, k), 5);
+        assert_eq!(h(0), Some(SectorPoint::In { s: 0, i: 3, j: 0 }));
+        assert_eq!(h(2), Some(SectorPoint::In { s: 0, i: 1, j: 2 }));
+        assert_eq!(h(3), Some(SectorPoint::In { s: 1, i: 3, j: 0 }));
+        assert_eq!(h(14), Some(SectorPoint::In { s: 4, i: 1, j: 2 }));
+        // ring 4 starts after the 15 points of ring 3
+        assert_eq!(h(15), Some(SectorPoint::In { s: 0, i: 4, j: 0 }));
+    }
 
     #[test]
     fn chart_inverts_sector_coordinates() {

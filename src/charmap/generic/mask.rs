@@ -48,6 +48,255 @@ pub struct RegularRules {
     pub contraction: [[f64; 2]; 2],
     /// The power `L` at which every difference scheme contracted.
     pub contraction_power: u32,
+    /// The norm-based enclosure constants, for a mask with negative weights
+    /// (`None`: the mask and its derivative schemes are non-negative and the
+    /// convex-hull enclosures apply).
+    pub norm: Option<NormBounds>,
+}
+
+/// The constants of the norm-based enclosure **\[derived\]** (math doc
+/// section 20.3) for one scheme `c` (rows `q'_beta = sum_gamma c_{beta - 2 gamma} q_gamma`
+/// summing to 1 per parity class) whose differences `D_w q_y = q_y - q_{y - w}`
+/// in two directions `u, v` (`det(u, v) = +-1`) evolve by difference
+/// schemes of norms `N_t = max ||S_d^t||_inf`: for `x` in a level-`m` cell
+/// with bounding box `C` and `alpha = floor(x)` (a corner of `C`), the limit
+/// satisfies `|g(x) - q_alpha| <= K T M`, where `T >= sum_{t >= 0} N_t`, `M` is
+/// the largest difference over the window `[C + lo, C + hi]`, and `K` is the
+/// largest `l1` norm of the one-step jumps `q'_{2 alpha + delta} - q_alpha`
+/// written exactly as a signed combination of the differences along the
+/// paths from `alpha` to the stencil points (first along `u`, then `v`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormBound {
+    /// `K T`, rounded up.
+    pub factor: f64,
+    /// The two difference directions.
+    pub directions: [LatticePoint; 2],
+    /// Per-axis offsets of the window: `[[lo_x, hi_x], [lo_y, hi_y]]`
+    /// added to the cell's bounding box.
+    pub window: [[i64; 2]; 2],
+}
+
+/// The norm-based enclosures, for a mask with negative weights.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormBounds {
+    /// For the derivative schemes `c_k` (values: the differences
+    /// `p_alpha - p_{alpha - e_k}`).
+    pub derivative: [NormBound; 2],
+    /// For the mask itself (values: the control points).
+    pub mask: NormBound,
+}
+
+/// `(a, b)` with `d = a u + b v` (`det(u, v) = +-1`).
+fn coefficients(d: LatticePoint, dirs: [LatticePoint; 2]) -> [i64; 2] {
+    let [u, v] = dirs;
+    let det = u[0] * v[1] - u[1] * v[0];
+    [
+        (d[0] * v[1] - d[1] * v[0]) * det,
+        (u[0] * d[1] - u[1] * d[0]) * det,
+    ]
+}
+
+/// A signed difference `coef D_w q_y` as `((direction index, y), coef)`.
+type PathTerm = ((usize, LatticePoint), i64);
+
+/// The path from `0` to `d` (first along `u`, then `v`) as a signed sum of
+/// differences: `q_d - q_0 = sum coef D_{w} q_{y}`; also returns the points
+/// visited.
+fn path(d: LatticePoint, dirs: [LatticePoint; 2]) -> (Vec<PathTerm>, Vec<LatticePoint>) {
+    let ab = coefficients(d, dirs);
+    let mut z = [0i64, 0i64];
+    let mut terms = Vec::new();
+    let mut points = vec![z];
+    for (w, &n) in ab.iter().enumerate() {
+        let step = dirs[w];
+        for _ in 0..n.abs() {
+            if n > 0 {
+                z = [z[0] + step[0], z[1] + step[1]];
+                terms.push(((w, z), 1));
+            } else {
+                terms.push(((w, z), -1));
+                z = [z[0] - step[0], z[1] - step[1]];
+            }
+            points.push(z);
+        }
+    }
+    (terms, points)
+}
+
+/// Depth `J` of the exact composite jump norms of [`NormBound`]: the jumps
+/// of levels `0..J` are composed with the difference schemes exactly (cost
+/// `4^J` digit patterns), the later ones bounded through the norm series.
+pub const COMPOSITE_DEPTH: u32 = 3;
+
+/// The symbol of `S_d^t` (`d(z) d(z^2) .. d(z^{2^{t-1}})`) in `f64`, with the
+/// same product of the absolute weights (for the rounding bound).
+fn power_symbol(d: &[(LatticePoint, f64)], t: u32) -> Vec<(LatticePoint, f64)> {
+    let mut power: BTreeMap<LatticePoint, f64> = BTreeMap::new();
+    power.insert([0, 0], 1.0);
+    for l in 0..t {
+        let step = 1i64 << l;
+        let mut next: BTreeMap<LatticePoint, f64> = BTreeMap::new();
+        for (p, x) in &power {
+            for (g, y) in d {
+                *next
+                    .entry([p[0] + step * g[0], p[1] + step * g[1]])
+                    .or_insert(0.0) += x * y;
+            }
+        }
+        power = next;
+    }
+    power.into_iter().collect()
+}
+
+/// The constants of [`NormBound`] for the scheme `c`, the directions, their
+/// difference schemes `diffs` and the norm bound `t` of the difference
+/// series **\[derived\]**. Window: the paths from `alpha_s = floor(2^s x)`
+/// (in `2^s C`) to the stencil points `gamma` of its child stay in
+/// `alpha_s + E`, `E` the box of the path offsets; the differences there come
+/// from level-`m` differences in `C + 2^-s E + (1 - 2^-s)(-B_e)`, inside
+/// `C + hull(E, -B_e)` (`B_e` the box of the difference schemes). Factor: the
+/// jump of level `s` is the functional `w_delta` on the level-`(m + s)`
+/// differences around `alpha_s`; composed with `S_e^s` it is a functional on
+/// the level-`m` differences whose `l1` norm `J_s` (the largest over the
+/// digits of `alpha_s` and over `delta`) is computed for `s <= COMPOSITE_DEPTH`,
+/// and `J_s <= J_{COMPOSITE_DEPTH} N_{s - COMPOSITE_DEPTH}` beyond, so
+/// `K T = sum_{s < J} J_s + J_J T`.
+fn norm_bound(c: &Symbol, dirs: [LatticePoint; 2], diffs: [&Symbol; 2], t: f64) -> NormBound {
+    let e_box = bbox(diffs[0].keys().chain(diffs[1].keys()));
+    let mut e = [0i64, 0, 0, 0];
+    let mut jumps: Vec<[Vec<(LatticePoint, f64)>; 2]> = Vec::new();
+    let mut jump_l1 = 0.0f64;
+    for delta in [[0i64, 0i64], [1, 0], [0, 1], [1, 1]] {
+        let mut jump: BTreeMap<(usize, LatticePoint), Rational> = BTreeMap::new();
+        for (g, w) in c.iter().filter(|(g, _)| coset(**g) == coset(delta)) {
+            let d = [(delta[0] - g[0]) / 2, (delta[1] - g[1]) / 2];
+            let (terms, points) = path(d, dirs);
+            for p in points {
+                e = [
+                    e[0].min(p[0]),
+                    e[1].max(p[0]),
+                    e[2].min(p[1]),
+                    e[3].max(p[1]),
+                ];
+            }
+            for (key, sign) in terms {
+                *jump.entry(key).or_insert_with(Rational::zero) +=
+                    w * Rational::from_integer(sign.into());
+            }
+        }
+        let mut split: [Vec<(LatticePoint, f64)>; 2] = Default::default();
+        for ((w, y), q) in jump {
+            if !q.is_zero() {
+                let x = crate::scalar::rational_to_f64(&q);
+                jump_l1 = jump_l1.max(x.abs());
+                split[w].push((y, x));
+            }
+        }
+        jumps.push(split);
+    }
+    let base: [Vec<(LatticePoint, f64)>; 2] = [to_f64(diffs[0]), to_f64(diffs[1])];
+    let abs_sum = base
+        .iter()
+        .map(|b| b.iter().map(|(_, x)| x.abs()).sum::<f64>())
+        .fold(1.0f64, f64::max);
+    let mut composite = Vec::new();
+    for s in 0..=COMPOSITE_DEPTH {
+        let powers = [power_symbol(&base[0], s), power_symbol(&base[1], s)];
+        let scale = 1i64 << s;
+        let mut worst = 0.0f64;
+        let mut worst_w = 0.0f64;
+        for rx in 0..scale {
+            for ry in 0..scale {
+                for split in &jumps {
+                    let mut l1 = 0.0f64;
+                    let mut w1 = 0.0f64;
+                    for (w, terms) in split.iter().enumerate() {
+                        let mut coef: BTreeMap<LatticePoint, f64> = BTreeMap::new();
+                        for (z, x) in terms {
+                            w1 += x.abs();
+                            for (g, y) in &powers[w] {
+                                let px = rx + z[0] - g[0];
+                                let py = ry + z[1] - g[1];
+                                if px.rem_euclid(scale) == 0 && py.rem_euclid(scale) == 0 {
+                                    *coef
+                                        .entry([px.div_euclid(scale), py.div_euclid(scale)])
+                                        .or_insert(0.0) += x * y;
+                                }
+                            }
+                        }
+                        l1 += coef.values().map(|v| v.abs()).sum::<f64>();
+                    }
+                    worst = worst.max(l1);
+                    worst_w = worst_w.max(w1);
+                }
+            }
+        }
+        // rounding of the f64 weights, products and sums: at most
+        // gamma(2^20) of the absolute sums
+        let err = gamma(1 << 20) * worst_w * abs_sum.powi(s as i32) * (1.0 + jump_l1);
+        composite.push((worst + err) * (1.0 + gamma(4)));
+    }
+    let depth = COMPOSITE_DEPTH as usize;
+    let head: f64 = composite[..depth].iter().sum();
+    // both `sum_{s < J} J_s + J_J T` and `J_0 T` bound the series; the smaller is used
+    let factor = (head + composite[depth] * t).min(composite[0] * t);
+    NormBound {
+        factor: factor * (1.0 + gamma(depth + 4)),
+        directions: dirs,
+        window: [
+            [e[0].min(-e_box[1]), e[1].max(-e_box[0])],
+            [e[2].min(-e_box[3]), e[3].max(-e_box[2])],
+        ],
+    }
+}
+
+/// `||S_d^t||_inf` for `t = 0..=MAX_CONTRACTION_POWER` (`t = 0`: 1), each
+/// rounded up as in [`contraction`].
+pub fn power_norms(d: &Symbol) -> Vec<f64> {
+    let base = to_f64(d);
+    let mut power: BTreeMap<LatticePoint, f64> = base.iter().copied().collect();
+    let mut terms = 1usize;
+    let mut out = vec![1.0];
+    for l in 1..=MAX_CONTRACTION_POWER {
+        if l > 1 {
+            let step = 1i64 << (l - 1);
+            let mut next: BTreeMap<LatticePoint, f64> = BTreeMap::new();
+            for (p, x) in &power {
+                for (g, y) in &base {
+                    *next
+                        .entry([p[0] + step * g[0], p[1] + step * g[1]])
+                        .or_insert(0.0) += x * y;
+                }
+            }
+            terms *= base.len();
+            power = next;
+        }
+        let modulus = 1i64 << l;
+        let mut sums: BTreeMap<LatticePoint, f64> = BTreeMap::new();
+        for (p, x) in &power {
+            *sums
+                .entry([p[0].rem_euclid(modulus), p[1].rem_euclid(modulus)])
+                .or_insert(0.0) += x.abs();
+        }
+        out.push(
+            sums.values().fold(0.0f64, |a, &b| a.max(b)) * (1.0 + gamma(terms + power.len() + 2)),
+        );
+    }
+    out
+}
+
+/// `T >= sum_{t >= 0} N_t` from the norms `N_0 = 1, N_1, ..` of
+/// [`power_norms`] (sub-multiplicativity: `N_{qL + i} <= N_L^q N_i`): the
+/// smallest `sum_{i < L} N_i / (1 - N_L)` over the `L` with
+/// `N_L < 1 - CONTRACTION_MARGIN`, rounded up; `None` if none contracts.
+pub fn series_bound(norms: &[f64]) -> Option<f64> {
+    (1..norms.len())
+        .filter(|&l| norms[l] < 1.0 - CONTRACTION_MARGIN)
+        .map(|l| {
+            let head: f64 = norms[..l].iter().sum();
+            head / (1.0 - norms[l]) * (1.0 + gamma(l + 4))
+        })
+        .min_by(f64::total_cmp)
 }
 
 fn coset(g: LatticePoint) -> usize {
@@ -162,9 +411,27 @@ pub fn read_mask(
 /// remainder is not zero.
 pub fn divide(sym: &Symbol, e: LatticePoint) -> Option<Symbol> {
     // group by line: key = coordinate across e, t = coordinate along e
-    let across = |p: &LatticePoint| if e[0] != 0 { p[1] } else { p[0] };
-    let along = |p: &LatticePoint| if e[0] != 0 { p[0] } else { p[1] };
-    let make = |line: i64, t: i64| if e[0] != 0 { [t, line] } else { [line, t] };
+    // (`e` is (1, 0), (0, 1) or (-1, 1); on the last, `x + y` is constant)
+    let diagonal = e[0] != 0 && e[1] != 0;
+    let across = |p: &LatticePoint| {
+        if diagonal {
+            p[0] + p[1]
+        } else if e[0] != 0 {
+            p[1]
+        } else {
+            p[0]
+        }
+    };
+    let along = |p: &LatticePoint| if e[0] != 0 && !diagonal { p[0] } else { p[1] };
+    let make = |line: i64, t: i64| {
+        if diagonal {
+            [line - t, t]
+        } else if e[0] != 0 {
+            [t, line]
+        } else {
+            [line, t]
+        }
+    };
     let mut lines: BTreeMap<i64, BTreeMap<i64, Rational>> = BTreeMap::new();
     for (p, q) in sym {
         lines
@@ -246,6 +513,49 @@ pub fn contraction(d: &Symbol) -> (f64, Option<u32>) {
     (last, None)
 }
 
+/// The difference directions tried for a derivative scheme with negative
+/// weights: the axes, then the third edge direction of the triangle lattice.
+fn difference_directions(lattice: Lattice) -> Vec<LatticePoint> {
+    match lattice {
+        Lattice::Quad => vec![[1, 0], [0, 1]],
+        Lattice::Triangle => vec![[1, 0], [0, 1], [-1, 1]],
+    }
+}
+
+/// For a derivative scheme `c` (direction `e`) of a mask with negative
+/// weights: the first pair of independent lattice directions along which
+/// `c` has difference schemes whose norm series converges, its
+/// [`NormBound`], the two first contracting norms and the power.
+fn signed_differences(
+    lattice: Lattice,
+    c: &Symbol,
+    e: LatticePoint,
+) -> Result<(NormBound, [f64; 2], u32), String> {
+    let dirs = difference_directions(lattice);
+    let quotients: Vec<Option<Symbol>> = dirs.iter().map(|f| divide(c, *f)).collect();
+    for a in 0..dirs.len() {
+        for b in a + 1..dirs.len() {
+            let (Some(da), Some(db)) = (&quotients[a], &quotients[b]) else {
+                continue;
+            };
+            let (na, nb) = (power_norms(da), power_norms(db));
+            let joint: Vec<f64> = na.iter().zip(&nb).map(|(x, y)| x.max(*y)).collect();
+            let Some(t) = series_bound(&joint) else {
+                continue;
+            };
+            let (ca, pa) = contraction(da);
+            let (cb, pb) = contraction(db);
+            let at = pa
+                .unwrap_or(MAX_CONTRACTION_POWER)
+                .max(pb.unwrap_or(MAX_CONTRACTION_POWER));
+            return Ok((norm_bound(c, [dirs[a], dirs[b]], [da, db], t), [ca, cb], at));
+        }
+    }
+    Err(format!(
+        "the derivative scheme in direction {e:?} has no pair of difference schemes whose norms contract by power {MAX_CONTRACTION_POWER}: the regular part is not certified C1"
+    ))
+}
+
 /// The regular rules with their derivative schemes checked: the mask and
 /// every derivative scheme `c_k = 2 a / (1 + z^{e_k})` non-negative (the
 /// convex-hull enclosures need it), every `c_k`'s parity classes summing to
@@ -256,13 +566,24 @@ pub fn contraction(d: &Symbol) -> (f64, Option<u32>) {
 /// the convex hull of `c_k`'s support (math doc section 20.3). `Err` carries
 /// the reason the certificate cannot use the rules.
 pub fn regular_rules(lattice: Lattice, symbol: &Symbol) -> Result<RegularRules, String> {
-    if symbol.values().any(|q| q.is_negative()) {
-        return Err("the regular mask has negative weights (the convex-hull enclosures of the certificate need non-negative ones; a norm-based enclosure is not implemented)".into());
-    }
     let units = [[1i64, 0i64], [0, 1]];
+    // the convex-hull enclosures need the mask and both derivative schemes
+    // non-negative; otherwise the norm-based ones are used
+    let derivatives: Vec<Option<Symbol>> = units
+        .iter()
+        .map(|e| divide(symbol, *e).map(|b| scale(&b, 2)))
+        .collect();
+    let signed = symbol.values().any(|q| q.is_negative())
+        || derivatives
+            .iter()
+            .flatten()
+            .any(|c| c.values().any(|q| q.is_negative()));
     let mut derivative_box = [[0i64; 4]; 2];
     let mut norms = [[0.0f64; 2]; 2];
     let mut power = 0u32;
+    let mut derivative_bounds = Vec::new();
+    let mut halves: Vec<Symbol> = Vec::new();
+    let mut mask_norms = vec![0.0f64; MAX_CONTRACTION_POWER as usize + 1];
     for (k, e) in units.iter().enumerate() {
         let b = divide(symbol, *e).ok_or_else(|| {
             format!(
@@ -270,9 +591,6 @@ pub fn regular_rules(lattice: Lattice, symbol: &Symbol) -> Result<RegularRules, 
             )
         })?;
         let c = scale(&b, 2);
-        if c.values().any(|q| q.is_negative()) {
-            return Err(format!("the derivative scheme in direction {e:?} has negative weights (the convex-hull enclosure needs non-negative ones)"));
-        }
         for class in 0..4 {
             let sum: Rational = c
                 .iter()
@@ -286,6 +604,18 @@ pub fn regular_rules(lattice: Lattice, symbol: &Symbol) -> Result<RegularRules, 
             }
         }
         derivative_box[k] = bbox(c.keys());
+        if signed {
+            halves.push(b.clone());
+            // the differences of `p` in direction `e` evolve by `c / 2`
+            for (t, x) in power_norms(&c).iter().enumerate() {
+                mask_norms[t] = mask_norms[t].max(x / f64::from(1u32 << t));
+            }
+            let (bound, pair_norms, at) = signed_differences(lattice, &c, *e)?;
+            norms[k] = pair_norms;
+            power = power.max(at);
+            derivative_bounds.push(bound);
+            continue;
+        }
         for (l, f) in units.iter().enumerate() {
             let d = divide(&c, *f).ok_or_else(|| {
                 format!("the derivative scheme in direction {e:?} has no difference scheme in direction {f:?}")
@@ -302,6 +632,19 @@ pub fn regular_rules(lattice: Lattice, symbol: &Symbol) -> Result<RegularRules, 
             }
         }
     }
+    let norm = if signed {
+        let t = series_bound(&mask_norms).ok_or_else(|| {
+            format!(
+                "the mask's difference schemes do not contract by power {MAX_CONTRACTION_POWER}"
+            )
+        })?;
+        Some(NormBounds {
+            derivative: [derivative_bounds[0], derivative_bounds[1]],
+            mask: norm_bound(symbol, units, [&halves[0], &halves[1]], t),
+        })
+    } else {
+        None
+    };
     let mask = to_f64(symbol);
     let mut by_coset: [Vec<(LatticePoint, f64)>; 4] = Default::default();
     for &(g, w) in &mask {
@@ -320,6 +663,7 @@ pub fn regular_rules(lattice: Lattice, symbol: &Symbol) -> Result<RegularRules, 
         derivative_box,
         contraction: norms,
         contraction_power: power,
+        norm,
     })
 }
 
