@@ -3592,6 +3592,272 @@ fn cases() -> Vec<Case> {
         ),
     ]);
 
+    // ===================================================================
+    // SECTION sector-sweeps: sweep specs with a [sector] table (boundary,
+    // crease and corner configurations over K and the corner angle).
+    // ===================================================================
+    v.extend([
+        bad_with(
+            "sector-sweep-scheme-nurds",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"nurds\"\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [1, 2, 3]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "scheme: a [sector] sweep takes scheme catmull-clark or loop, got \"nurds\"",
+        ),
+        bad_with(
+            "sector-sweep-unknown-scheme",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"midedge\"\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [1, 2, 3]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "scheme: a [sector] sweep takes scheme catmull-clark or loop, got \"midedge\"",
+        ),
+        bad_with(
+            "sector-sweep-with-valences",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\nvalences = [3]\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [1, 2, 3]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "valences is not used by a [sector] sweep",
+        ),
+        bad_with(
+            "sector-sweep-unknown-vertex",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"edge\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.vertex: unknown vertex kind \"edge\"",
+        ),
+        bad_with(
+            "sector-sweep-unknown-rules",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"zorin\"\nfaces = [2]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.rules: unknown rule set \"zorin\"",
+        ),
+        bad_with(
+            "sector-sweep-missing-faces",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\n\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.faces: missing (required key)",
+        ),
+        bad_with(
+            "sector-sweep-missing-vertex",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.vertex: missing (required key)",
+        ),
+        bad_with(
+            "sector-sweep-missing-rules",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nfaces = [2]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.rules: missing (required key)",
+        ),
+        bad_with(
+            "sector-sweep-unknown-key",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\nfaces = [2]\nangle = 90.0\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.angle: unknown field",
+        ),
+        bad_with(
+            "sector-sweep-not-a-table",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\nsector = \"boundary\"\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector: invalid type",
+        ),
+        bad_with(
+            "sector-sweep-faces-zero",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\nfaces = [0, 2]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.faces[0] must be a face count in 1..=4096, got 0",
+        ),
+        bad_with(
+            "sector-sweep-faces-negative",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\nfaces = { from = -2, to = 3 }\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.faces.from must be a face count in 1..=4096, got -2",
+        ),
+        bad_with(
+            "sector-sweep-faces-huge",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\nfaces = [5000]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.faces[0] must be a face count in 1..=4096, got 5000",
+        ),
+        bad_with(
+            "sector-sweep-faces-float",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\nfaces = [2.5]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.faces[0] must be an integer, got 2.5",
+        ),
+        bad_with(
+            "sector-sweep-faces-empty",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\nfaces = []\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.faces: empty list",
+        ),
+        bad_with(
+            "sector-sweep-faces-twice",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\nfaces = [2, 2]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.faces: face count 2 is listed twice",
+        ),
+        bad_with(
+            "sector-sweep-faces-empty-range",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\nfaces = { from = 5, to = 2 }\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.faces: empty range, from = 5 > to = 2",
+        ),
+        bad_with(
+            "sector-sweep-faces-range-unknown-key",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\nfaces = { from = 1, upto = 2 }\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.faces.upto: unknown key (a face count range has `from` and `to`)",
+        ),
+        bad_with(
+            "sector-sweep-faces-range-no-to",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\nfaces = { from = 1 }\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.faces.to is missing",
+        ),
+        bad_with(
+            "sector-sweep-faces-string",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"blz\"\nfaces = \"1..4\"\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector.faces must be a list [1, 2, 5] or a range { from = 1, to = 8 }, got \"1..4\"",
+        ),
+        bad_with(
+            "sector-sweep-corner-uniform",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.kind: kind \"uniform\" with sector.vertex = \"corner\"",
+        ),
+        bad_with(
+            "sector-sweep-boundary-corner-angle",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [1, 2, 3]\n[space]\nkind = \"corner-angle\"\nangle_range = [30.0, 90.0]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.kind: kind \"corner-angle\" with sector.vertex = \"boundary\"",
+        ),
+        bad_with(
+            "sector-sweep-boundary-ratios",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [1, 2, 3]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.kind: kind \"ratios\" with sector.vertex = \"boundary\"",
+        ),
+        bad_with(
+            "sector-sweep-unknown-space",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [1, 2, 3]\n[space]\nkind = \"angles\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.kind: unknown space \"angles\"",
+        ),
+        bad_with(
+            "sector-sweep-angle-range-missing",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"corner-angle\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.angle_range is required by space kind \"corner-angle\"",
+        ),
+        bad_with(
+            "sector-sweep-angle-zero",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"corner-angle\"\nangle_range = [0.0, 90.0]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.angle_range: bound 0.0 is outside the open interval (0, 360)",
+        ),
+        bad_with(
+            "sector-sweep-angle-360",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"corner-angle\"\nangle_range = [30.0, 360.0]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.angle_range: bound 360.0 is outside the open interval (0, 360)",
+        ),
+        bad_with(
+            "sector-sweep-angle-nan",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"corner-angle\"\nangle_range = [30.0, nan]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.angle_range: bounds must be finite",
+        ),
+        bad_with(
+            "sector-sweep-angle-reversed",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"corner-angle\"\nangle_range = [90.0, 30.0]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.angle_range: lower bound 90.0 > upper bound 30.0",
+        ),
+        bad_with(
+            "sector-sweep-angle-empty",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"corner-angle\"\nangle_range = [90.0, 90.0]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.angle_range: empty range",
+        ),
+        bad_with(
+            "sector-sweep-angle-three-values",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"corner-angle\"\nangle_range = [30.0, 60.0, 90.0]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.angle_range must be [lower, upper], got 3 values",
+        ),
+        bad_with(
+            "sector-sweep-angle-not-numbers",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"corner-angle\"\nangle_range = [\"a\", \"b\"]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.angle_range[0]: invalid type",
+        ),
+        bad_with(
+            "sector-sweep-angle-with-ratio-range",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"corner-angle\"\nangle_range = [30.0, 90.0]\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.ratio_range is not used by space kind \"corner-angle\"",
+        ),
+        bad_with(
+            "sector-sweep-boundary-angle-range",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [1, 2, 3]\n[space]\nkind = \"uniform\"\nangle_range = [30.0, 90.0]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.angle_range is not used except by space kind \"corner-angle\"",
+        ),
+        bad_with(
+            "sector-sweep-boundary-fixed",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [1, 2, 3]\n[space]\nkind = \"uniform\"\nfixed = { angle = 90.0 }\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.fixed is not used by space kind \"uniform\"",
+        ),
+        bad_with(
+            "sector-sweep-fixed-angle-out-of-range",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"corner-angle\"\nangle_range = [30.0, 90.0]\nfixed = { angle = 400.0 }\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.fixed.angle must be a corner angle in degrees strictly between 0 and 360, got 400.0",
+        ),
+        bad_with(
+            "sector-sweep-fixed-unknown-coordinate",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"corner\"\nrules = \"blz\"\nfaces = [2]\n[space]\nkind = \"corner-angle\"\nangle_range = [30.0, 90.0]\nfixed = { theta = 90.0 }\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.fixed.theta: unknown coordinate \"theta\" (coordinates of valence 2: angle)",
+        ),
+        bad_with(
+            "sector-sweep-exact-certificate",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [1, 2, 3]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\nexact_certificate = true\n")],
+            "columns.exact_certificate",
+        ),
+        bad_with(
+            "sector-sweep-heavy",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"crease\"\nrules = \"blz\"\nfaces = [4096]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "for 1 configurations",
+        ),
+        bad_with(
+            "sweep-corner-angle-without-sector",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\nvalences = [3]\n[space]\nkind = \"corner-angle\"\nangle_range = [30.0, 90.0]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.kind: kind \"corner-angle\" sweeps corners: it needs a [sector] table",
+        ),
+        bad_with(
+            "sweep-angle-range-without-sector",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\nvalences = [3]\n[space]\nkind = \"uniform\"\nangle_range = [30.0, 90.0]\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "space.angle_range is not used except by space kind \"corner-angle\"",
+        ),
+        bad_with(
+            "sweep-no-valences-no-sector",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "valences: missing (required key)",
+        ),
+        bad_with(
+            "sector-sweep-with-scheme-file",
+            &["sweep", "s.toml", "--scheme-file", "{A}/schemes/catmull-clark.toml", "--out", "o.csv"],
+            &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [1, 2, 3]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
+            "sector: a [sector] sweep runs the boundary rules",
+        ),
+    ]);
+    // (end of section sector-sweeps)
+
     v
 }
 
