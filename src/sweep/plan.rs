@@ -508,7 +508,9 @@ impl Plan {
     pub fn cost_model(&self) -> CostModel {
         match (&self.own, &self.spec.sector) {
             (Some(f), _) => f.cost_model,
-            (None, Some(s)) => crate::boundary::sector_cost_model(sdc_scheme(self.spec.scheme), s.vertex),
+            (None, Some(s)) => {
+                crate::boundary::sector_cost_model(sdc_scheme(self.spec.scheme), s.vertex)
+            }
             (None, None) => LocalScheme::<f64>::cost_model_of(self.spec.scheme),
         }
     }

@@ -27,7 +27,11 @@ fn mu_comes_from_the_radius_3_sector_matrix() {
                     let c = SectorConfig::new(scheme, kind, &faces, angle, rules).unwrap();
                     let m = refinement_matrix(&c, 3, 3).unwrap();
                     let (e, f) = (c.edge_count(), c.face_count());
-                    let inner = if scheme == SdcScheme::CatmullClark { 9 } else { 3 };
+                    let inner = if scheme == SdcScheme::CatmullClark {
+                        9
+                    } else {
+                        3
+                    };
                     assert_eq!(m.nrows(), 1 + 3 * e + inner * f, "{c}");
                     let values = Eigen::new(&m, EigenOptions::VALUES).unwrap();
                     let mu = values.values()[3].norm();

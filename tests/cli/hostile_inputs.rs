@@ -3855,6 +3855,78 @@ fn cases() -> Vec<Case> {
             &[("s.toml", "name = \"s\"\nscheme = \"catmull-clark\"\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [1, 2, 3]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n")],
             "sector: a [sector] sweep runs the boundary rules",
         ),
+        bad_with(
+            "report-sector-spectra-unknown-scheme",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"sector-spectra\"\nscheme = \"nurds\"\n")],
+            "scheme must be \"catmull-clark\" or \"loop\", got \"nurds\"",
+        ),
+        bad_with(
+            "report-sector-spectra-missing-scheme",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"sector-spectra\"\n")],
+            "figure[0].scheme: missing",
+        ),
+        bad_with(
+            "report-sector-spectra-max-faces-1",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"sector-spectra\"\nscheme = \"loop\"\nmax_faces = 1\n")],
+            "figure[0].max_faces: max_faces must be between 2 and 32, got 1",
+        ),
+        bad_with(
+            "report-sector-spectra-max-faces-33",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"sector-spectra\"\nscheme = \"loop\"\nmax_faces = 33\n")],
+            "figure[0].max_faces: max_faces must be between 2 and 32, got 33",
+        ),
+        bad_with(
+            "report-sector-spectra-max-faces-negative",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"sector-spectra\"\nscheme = \"loop\"\nmax_faces = -3\n")],
+            "figure[0].max_faces: invalid value: integer `-3`",
+        ),
+        bad_with(
+            "report-sector-spectra-unknown-key",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"sector-spectra\"\nscheme = \"loop\"\nrules = \"blz\"\n")],
+            "unknown field `rules`",
+        ),
+        bad_with(
+            "report-crease-picture-unknown-mesh",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"crease-picture\"\nmesh = \"cube\"\n")],
+            "unknown tagged mesh \"cube\" (shipped: grid_quads, grid_tris)",
+        ),
+        bad_with(
+            "report-crease-picture-levels-0",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"crease-picture\"\nlevels = 0\n")],
+            "figure[0].levels: levels must be between 1 and 4, got 0",
+        ),
+        bad_with(
+            "report-crease-picture-levels-5",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"crease-picture\"\nlevels = 5\n")],
+            "figure[0].levels: levels must be between 1 and 4, got 5",
+        ),
+        bad_with(
+            "report-crease-picture-levels-float",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"crease-picture\"\nlevels = 2.5\n")],
+            "figure[0].levels: invalid type: floating point `2.5`",
+        ),
+        bad_with(
+            "report-crease-picture-mesh-not-a-string",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"crease-picture\"\nmesh = 3\n")],
+            "figure[0].mesh: invalid type: integer `3`",
+        ),
+        bad_with(
+            "report-crease-picture-unknown-key",
+            &["report", "s.toml", "--out", "r"],
+            &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"crease-picture\"\nscheme = \"loop\"\n")],
+            "unknown field `scheme`",
+        ),
     ]);
     // (end of section sector-sweeps)
 

@@ -314,11 +314,7 @@ pub(super) fn counts(
     let mut seen = std::collections::BTreeSet::new();
     for n in &list {
         if !seen.insert(*n) {
-            return ctx.err(
-                top,
-                span,
-                format!("{top}: {noun} {n} is listed twice"),
-            );
+            return ctx.err(top, span, format!("{top}: {noun} {n} is listed twice"));
         }
     }
     Ok(list)

@@ -45,7 +45,9 @@ pub(super) fn fixed(
                 let domain = match kind {
                     SpaceKind::Ratios => "an edge ratio strictly between 0 and 1",
                     SpaceKind::Shape => "a shape parameter c in [0, 1]",
-                    SpaceKind::CornerAngle => "a corner angle in degrees strictly between 0 and 360",
+                    SpaceKind::CornerAngle => {
+                        "a corner angle in degrees strictly between 0 and 360"
+                    }
                     _ => "a finite knot interval > 0",
                 };
                 return ctx.err(&key, span, format!("{key} must be {domain}, got {x:?}"));
