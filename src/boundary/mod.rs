@@ -54,7 +54,8 @@ use std::fmt;
 pub const MAX_SECTOR_FACES: usize = 1 << 20;
 
 /// The kind of vertex at the centre of the configuration.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum VertexKind {
     /// A boundary vertex: one sector of `K` faces between two boundary edges.
     Boundary,
@@ -77,10 +78,16 @@ impl VertexKind {
             VertexKind::Corner => "corner",
         }
     }
+
+    /// The kind of a command-line or spec spelling ([`VertexKind::name`]).
+    pub fn parse(s: &str) -> Option<Self> {
+        VertexKind::ALL.into_iter().find(|k| k.name() == s)
+    }
 }
 
 /// The rule set at the vertex (module docs).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum RuleSet {
     /// OpenSubdiv's crease and corner masks with the smooth edge rules.
     Standard,
@@ -96,6 +103,29 @@ impl RuleSet {
             RuleSet::Blz => "blz",
         }
     }
+
+    /// The rule set of a command-line or spec spelling ([`RuleSet::name`]).
+    pub fn parse(s: &str) -> Option<Self> {
+        [RuleSet::Standard, RuleSet::Blz]
+            .into_iter()
+            .find(|r| r.name() == s)
+    }
+}
+
+/// The work model of the sector configurations of `scheme` and `kind` by
+/// face count `K` per sector (the sweep's valence; a crease has two sectors
+/// of `K` faces): the analysis is dominated by the sector's second-order
+/// matrix ([`charmap::refinement_matrix`] at radius [`charmap::EIGEN_RADIUS`],
+/// math doc section 18.5), `1 + 3 E + 9 F` points for Catmull-Clark and
+/// `1 + 3 E + 3 F` for Loop with `E` edges and `F` faces at the vertex
+/// (`12 K + 4` and `6 K + 4` on a boundary sector), decomposed densely.
+pub fn sector_cost_model(scheme: SdcScheme, kind: VertexKind) -> crate::budget::CostModel {
+    let sectors = if kind == VertexKind::Crease { 2.0 } else { 1.0 };
+    let per_face = match scheme {
+        SdcScheme::CatmullClark => 12.0,
+        SdcScheme::Loop => 6.0,
+    };
+    crate::budget::CostModel::dense(per_face * sectors, 4.0)
 }
 
 /// The command-line name of a scheme with sector rules.
@@ -381,6 +411,25 @@ impl SectorConfig {
             }
         }
         a.finish()
+    }
+}
+
+/// A configuration is a scheme configuration of its own (name, the edge
+/// count at the vertex as valence, the local matrix), so that the sweep
+/// engine enumerates it like any other ([`crate::sweep`]); its analysis is
+/// [`analysis::analyze_sector`], not the interior one.
+impl crate::schemes::Scheme for SectorConfig {
+    fn name(&self) -> &str {
+        scheme_name(self.scheme)
+    }
+    fn valence(&self) -> usize {
+        self.edge_count()
+    }
+    fn label(&self) -> String {
+        self.describe()
+    }
+    fn local_matrix(&self) -> Result<LocalMatrix<f64>> {
+        SectorConfig::local_matrix(self)
     }
 }
 

@@ -75,9 +75,40 @@ fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 
 /// Projects `mesh` orthographically (see the module docs).
 pub fn project(mesh: &Mesh, view: &View) -> Projected {
+    project_faces(
+        mesh.positions(),
+        mesh.face_count(),
+        |f| mesh.face_vertices(f).collect(),
+        view,
+        false,
+    )
+}
+
+/// Projects an open (or closed) mesh with sharp edges: as [`project`], but
+/// two-sided, since the back of an open surface can face the viewer: no
+/// face is culled and the shading is `0.25 + 0.75 |n . v|`.
+pub fn project_sharp(mesh: &super::sharp::SharpMesh, view: &View) -> Projected {
+    project_faces(
+        mesh.positions(),
+        mesh.face_count(),
+        |f| mesh.face_vertices(f).iter().map(|&v| v as usize).collect(),
+        view,
+        true,
+    )
+}
+
+/// The projection of the faces `0..face_count` (`face(f)` the vertices of
+/// face `f`) over `positions`; `two_sided`: keep the faces turned away from
+/// the viewer and shade them by `|n . v|`.
+fn project_faces(
+    positions: &[[f64; 3]],
+    face_count: usize,
+    face: impl Fn(usize) -> Vec<usize>,
+    view: &View,
+    two_sided: bool,
+) -> Projected {
     let (right, up, v) = view.axes();
-    let screen: Vec<[f64; 2]> = mesh
-        .positions()
+    let screen: Vec<[f64; 2]> = positions
         .iter()
         .map(|p| [dot(p, &right), dot(p, &up)])
         .collect();
@@ -94,13 +125,13 @@ pub fn project(mesh: &Mesh, view: &View) -> Projected {
         bounds[3] = bounds[3].max(s[1]);
     }
     let mut faces = Vec::new();
-    for f in 0..mesh.face_count() {
-        let verts: Vec<usize> = mesh.face_vertices(f).collect();
+    for f in 0..face_count {
+        let verts: Vec<usize> = face(f);
         // Newell normal
         let mut n = [0.0; 3];
         for (k, &a) in verts.iter().enumerate() {
-            let p = mesh.positions()[a];
-            let q = mesh.positions()[verts[(k + 1) % verts.len()]];
+            let p = positions[a];
+            let q = positions[verts[(k + 1) % verts.len()]];
             n[0] += (p[1] - q[1]) * (p[2] + q[2]);
             n[1] += (p[2] - q[2]) * (p[0] + q[0]);
             n[2] += (p[0] - q[0]) * (p[1] + q[1]);
@@ -109,15 +140,14 @@ pub fn project(mesh: &Mesh, view: &View) -> Projected {
         if len == 0.0 {
             continue;
         }
-        let facing = dot(&n, &v) / len;
-        if facing <= 0.0 {
+        let mut facing = dot(&n, &v) / len;
+        if two_sided {
+            facing = facing.abs();
+        }
+        if facing <= 0.0 && !two_sided {
             continue;
         }
-        let depth = verts
-            .iter()
-            .map(|&a| dot(&mesh.positions()[a], &v))
-            .sum::<f64>()
-            / verts.len() as f64;
+        let depth = verts.iter().map(|&a| dot(&positions[a], &v)).sum::<f64>() / verts.len() as f64;
         faces.push(ProjectedFace {
             face: f,
             points: verts.iter().map(|&a| screen[a]).collect(),

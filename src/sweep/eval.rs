@@ -153,7 +153,15 @@ pub fn result_columns(columns: &Columns) -> Vec<ResultColumn> {
             "1",
         ));
     }
-    if columns.charmap {
+    if columns.charmap && columns.sector {
+        v.push(col("charmap_verdict", ColumnType::Label, "sector characteristic-map verdict (math doc section 18.4): c1, tpc_real_distinct, tpc_complex_pair, boundary_collapses, not_regular, not_injective, wrong_sector, indeterminate, no_charmap", "-"));
+        v.push(num("charmap_min_jacobian", "smallest Bezier coefficient of the sector ring's Jacobian relative to the largest (> 0 certifies regularity; empty when the ring was not built)", "1"));
+        v.push(num(
+            "charmap_swept_degrees",
+            "angle the outer arc of a boundary or corner ring sweeps (180: a half-plane; empty when not certified)",
+            "deg",
+        ));
+    } else if columns.charmap {
         v.push(col("charmap_verdict", ColumnType::Label, "characteristic-map verdict code (c1, tpc_real_distinct, tpc_complex_pair, not_regular, not_injective, indeterminate, no_charmap)", "-"));
         v.push(num("charmap_min_jacobian", "smallest Bezier coefficient of the ring's Jacobian relative to the largest (> 0 certifies regularity)", "1"));
         v.push(num(
@@ -362,6 +370,10 @@ impl Evaluate for SpectralEvaluator {
         scheme: &dyn Scheme,
         out: &mut dyn CellSink,
     ) -> crate::spectral::Result<()> {
+        if let Some(sector) = plan.sector_config(c) {
+            let sector = sector.map_err(crate::spectral::SpectralError::from)?;
+            return self.write_sector(&sector, out);
+        }
         SCRATCH.with(|cell| {
             let mut guard = cell.borrow_mut();
             let scratch = &mut guard.0[0];
@@ -375,6 +387,9 @@ impl Evaluate for SpectralEvaluator {
         plan: &Plan,
         items: [(&Configuration, &dyn Scheme, &mut dyn CellSink); BATCH],
     ) -> [crate::spectral::Result<()>; BATCH] {
+        if plan.spec().sector.is_some() {
+            return items.map(|(c, s, out)| self.write_results(plan, c, s, out));
+        }
         SCRATCH.with(|cell| {
             let mut guard = cell.borrow_mut();
             let (scratch, subs) = &mut *guard;
@@ -574,6 +589,71 @@ impl SpectralEvaluator {
                 Some(a) => out.text(if a { "true" } else { "false" }),
                 None => out.empty(),
             }
+        }
+        Ok(())
+    }
+}
+
+impl SpectralEvaluator {
+    /// The cells of a boundary, crease or corner configuration from its
+    /// sector analysis ([`crate::boundary::analysis::analyze_sector`], math
+    /// doc section 18): the interior columns with the sector's class (its
+    /// structural certificate of `1/2` included), its characteristic-map
+    /// certificate and its curvature verdict.
+    fn write_sector(
+        &self,
+        sector: &crate::boundary::SectorConfig,
+        out: &mut dyn CellSink,
+    ) -> crate::spectral::Result<()> {
+        let cols = &self.columns;
+        let a = crate::boundary::analysis::analyze_sector(sector)?;
+        let sub = &a.subdominant;
+        let opt = |out: &mut dyn CellSink, x: Option<f64>| match x {
+            Some(x) => out.num(x),
+            None => out.empty(),
+        };
+        if cols.classification {
+            out.text(&class_text(&sub.class));
+            for x in [
+                sub.lambda1.re,
+                sub.lambda1.im,
+                sub.lambda2.re,
+                sub.lambda2.im,
+                sub.abs_lambda3,
+            ] {
+                out.num(x);
+            }
+        }
+        if cols.gap {
+            out.num(sub.gap);
+            for x in [sub.ratio, sub.rho, sub.theta] {
+                opt(out, x);
+            }
+        }
+        if cols.contraction {
+            out.num(spectral::classify::modulus(sub.lambda1));
+        }
+        for k in 0..cols.eigenvalues {
+            match a.eigenvalues.get(k) {
+                Some([re, im]) => {
+                    out.num(*re);
+                    out.num(*im);
+                }
+                None => {
+                    out.empty();
+                    out.empty();
+                }
+            }
+        }
+        if cols.charmap {
+            out.text(a.charmap.verdict.as_str());
+            opt(out, a.charmap.min_jacobian_coeff);
+            opt(out, a.charmap.swept_degrees);
+        }
+        if cols.curvature {
+            out.num(a.curvature.mu);
+            out.num(a.curvature.mu_over_lambda_squared);
+            out.text(a.curvature.verdict.as_str());
         }
         Ok(())
     }

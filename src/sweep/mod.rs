@@ -63,7 +63,7 @@ pub use eval::{Cell, Evaluate, SpectralEvaluator};
 pub use output::files::{run, run_plan, Opened, Progress, RunOptions, RunReport, Sink};
 pub use output::Layout;
 pub use plan::{Configuration, Configured, Plan, SchemeFactory, Shard};
-pub use spec::{Columns, Sampler, Space, SpaceKind, SweepSpec, MAX_CONFIGURATIONS};
+pub use spec::{Columns, Sampler, SectorSweep, Space, SpaceKind, SweepSpec, MAX_CONFIGURATIONS};
 pub use summary::Summary;
 
 /// Runs every configuration of `plan` and returns the CSV text (the header

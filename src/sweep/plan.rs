@@ -456,6 +456,15 @@ impl Plan {
             line: None,
             message,
         };
+        if spec.sector.is_some() {
+            return Err(refuse(
+                "sector",
+                format!(
+                    "sector: a [sector] sweep runs the boundary rules of catmull-clark and loop; scheme {} sweeps valences only",
+                    factory.name
+                ),
+            ));
+        }
         if spec.space.kind != SpaceKind::Uniform {
             return Err(refuse(
                 "space.kind",
@@ -497,10 +506,40 @@ impl Plan {
     /// The work model of the plan's scheme (the spec's built-in scheme or
     /// the [`SchemeFactory`]'s).
     pub fn cost_model(&self) -> CostModel {
-        match &self.own {
-            Some(f) => f.cost_model,
-            None => LocalScheme::<f64>::cost_model_of(self.spec.scheme),
+        match (&self.own, &self.spec.sector) {
+            (Some(f), _) => f.cost_model,
+            (None, Some(s)) => {
+                crate::boundary::sector_cost_model(sdc_scheme(self.spec.scheme), s.vertex)
+            }
+            (None, None) => LocalScheme::<f64>::cost_model_of(self.spec.scheme),
         }
+    }
+
+    /// The boundary, crease or corner configuration of `c` in a `[sector]`
+    /// sweep (`None` otherwise): the spec's scheme, vertex kind and rules,
+    /// `K = c.valence` faces per sector (a crease: `K, K`) and, for a
+    /// corner, the angle coordinate in degrees.
+    pub fn sector_config(
+        &self,
+        c: &Configuration,
+    ) -> Option<crate::Result<crate::boundary::SectorConfig>> {
+        let s = self.spec.sector?;
+        let k = c.valence;
+        let faces: &[usize] = if s.vertex == crate::boundary::VertexKind::Crease {
+            &[k, k]
+        } else {
+            &[k]
+        };
+        let angle = (self.spec.space.kind == SpaceKind::CornerAngle)
+            .then(|| c.coordinates.first().copied())
+            .flatten();
+        Some(crate::boundary::SectorConfig::new(
+            sdc_scheme(self.spec.scheme),
+            s.vertex,
+            faces,
+            angle,
+            s.rules,
+        ))
     }
 
     /// The scheme of a configuration, in `f64` (a built-in scheme through
@@ -508,6 +547,9 @@ impl Plan {
     pub fn scheme(&self, c: &Configuration) -> crate::Result<Configured> {
         if let Some(f) = &self.own {
             return (f.make)(c.valence).map(Configured::Own);
+        }
+        if let Some(sector) = self.sector_config(c) {
+            return Ok(Configured::Own(Box::new(sector?)));
         }
         let (ratios, shape) = self.parameters_in(c)?;
         LocalScheme::from_kind_with_c(self.spec.scheme, c.valence, ratios, shape)
@@ -546,6 +588,12 @@ impl Plan {
                 operation: "a built-in exact configuration",
             });
         }
+        if self.spec.sector.is_some() {
+            return Err(crate::Error::NotApplicable {
+                scheme: self.spec.scheme.to_string(),
+                operation: "an exact configuration of a [sector] sweep",
+            });
+        }
         let (ratios, shape) = self.parameters_in(c)?;
         LocalScheme::from_kind_with_c(self.spec.scheme, c.valence, ratios, shape)
     }
@@ -573,7 +621,24 @@ impl Plan {
             ),
             SpaceKind::FaceEp => (Some(EdgeRatios::face_ep(&x[..n], &x[n..])?), None),
             SpaceKind::VertexEp => (Some(EdgeRatios::vertex_ep(&x)?), None),
+            // the corner angle is a parameter of the sector configuration
+            // (`sector_config`), not of a built-in interior scheme
+            SpaceKind::CornerAngle => {
+                return Err(crate::Error::NotApplicable {
+                    scheme: self.spec.scheme.to_string(),
+                    operation: "a corner angle outside a [sector] sweep",
+                })
+            }
         })
+    }
+}
+
+/// The boundary rules' scheme of a `[sector]` sweep's scheme (validated to
+/// be catmull-clark or loop; anything else is Loop's triangle topology).
+fn sdc_scheme(kind: SchemeKind) -> crate::mesh::sharp::rules::SdcScheme {
+    match kind {
+        SchemeKind::CatmullClark => crate::mesh::sharp::rules::SdcScheme::CatmullClark,
+        _ => crate::mesh::sharp::rules::SdcScheme::Loop,
     }
 }
 

@@ -20,6 +20,7 @@ mod own_scheme;
 mod scheme_files;
 mod schemes;
 mod second_order;
+mod sector_curvature;
 mod spectral;
 mod sqrt3;
 #[cfg(feature = "testing")]

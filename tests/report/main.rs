@@ -7,3 +7,4 @@ mod report_cli;
 mod report_data;
 mod report_mesh;
 mod report_scheme_file;
+mod report_sector;

@@ -7,6 +7,7 @@ mod common;
 
 mod generic_charmap;
 mod loop_specs;
+mod sector_sweeps;
 mod sweep_cli;
 mod sweep_engine;
 mod sweep_parquet;

@@ -40,6 +40,7 @@ pub mod certified_map;
 pub mod charmap_ring;
 pub mod config_table;
 pub mod convergence;
+pub mod crease_picture;
 pub mod curvature;
 pub mod curvature_tuning;
 pub mod g2_cap_curvature;
@@ -47,6 +48,7 @@ pub mod g2_cap_rays;
 pub mod knot_map;
 pub mod mesh_convergence;
 pub mod mesh_picture;
+pub mod sector_spectra;
 pub mod spectrum;
 pub mod sweep;
 pub mod valence;
@@ -77,6 +79,8 @@ pub const REGISTRY: &[FigureKind] = &[
     g2_cap_rays::KIND,
     sweep::KIND,
     certified_map::KIND,
+    sector_spectra::KIND,
+    crease_picture::KIND,
 ];
 
 /// The kind named `name`.

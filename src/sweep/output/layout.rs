@@ -76,7 +76,10 @@ impl Layout {
         };
         let mut docs = vec![
             doc("id", "u64", "configuration id: its position in the enumeration of the spec (the parameters are re-derived from it)", "-"),
-            doc("valence", "u32", "valence n of the extraordinary face or vertex", "-"),
+            match plan.spec().sector {
+                Some(_) => doc("valence", "u32", "face count K of the sector (a [sector] sweep; a crease has two sectors of K faces)", "-"),
+                None => doc("valence", "u32", "valence n of the extraordinary face or vertex", "-"),
+            },
         ];
         let kind = plan.spec().space.kind;
         for c in plan.coordinate_columns() {
@@ -87,9 +90,16 @@ impl Layout {
                 "forward" | "backward" => "directed edge knot interval around the face (log-uniform); empty beyond the row's valence",
                 "a" => "knot interval a_k around the extraordinary vertex (log-uniform); empty beyond the row's valence",
                 "c" => "shape parameter c of the adjustable Catmull-Clark scheme",
+                "angle" => "angle of the corner sector in degrees",
                 _ => "coordinate of the parameter space",
             };
-            let unit = if kind.is_log() { "knot interval" } else { "1" };
+            let unit = if kind.is_log() {
+                "knot interval"
+            } else if kind == crate::sweep::SpaceKind::CornerAngle {
+                "deg"
+            } else {
+                "1"
+            };
             docs.push(doc(&c, "f64", meaning, unit));
             names.push(c);
             kinds.push(Kind::Numeric);

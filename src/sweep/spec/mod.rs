@@ -69,13 +69,14 @@ mod model;
 pub(crate) mod raw;
 mod sampler;
 mod scheme;
+mod sector;
 mod space;
 
 use super::SweepError;
 use crate::schemes::SchemeKind;
 pub use model::{
-    Columns, Sampler, Space, SpaceKind, MAX_CONFIGURATIONS, MAX_KEPT_EIGENVALUES, MAX_SOBOL_POINTS,
-    MAX_VALENCE,
+    Columns, Sampler, SectorSweep, Space, SpaceKind, MAX_CONFIGURATIONS, MAX_KEPT_EIGENVALUES,
+    MAX_SOBOL_POINTS, MAX_VALENCE,
 };
 use raw::{deserialize_error, Ctx, RawSampler, RawSpec};
 use scheme::SchemeConfig;
@@ -96,6 +97,11 @@ pub struct SweepSpec {
     pub sampler: Sampler,
     /// The result columns.
     pub columns: Columns,
+    /// A boundary, crease or corner sweep (the `[sector]` table): then
+    /// `valences` are the face counts `K`. Left out of the serialised spec
+    /// when absent, so that the digests of other specs are unchanged.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sector: Option<SectorSweep>,
 }
 
 impl SweepSpec {
@@ -118,17 +124,27 @@ impl SweepSpec {
     pub fn from_toml(text: &str) -> Result<SweepSpec, SweepError> {
         let raw: RawSpec = toml::from_str(text).map_err(|e| deserialize_error(text, &e))?;
         let ctx = Ctx { text };
-        let SchemeConfig {
-            scheme,
-            valences,
-            kind,
-            range,
-        } = scheme::scheme_config(&ctx, &raw)?;
+        let (
+            SchemeConfig {
+                scheme,
+                valences,
+                kind,
+                range,
+            },
+            sector,
+        ) = match &raw.sector {
+            Some(s) => {
+                let (config, sector) = sector::sector_config(&ctx, &raw, s)?;
+                (config, Some(sector))
+            }
+            None => (scheme::scheme_config(&ctx, &raw)?, None),
+        };
         let min_valence = *valences.iter().min().unwrap_or(&3);
         let fixed = space::fixed(&ctx, &raw.space, kind, min_valence)?;
         let space = Space { kind, range, fixed };
         let sampler = sampler::sampler(&ctx, &raw.sampler)?;
-        let columns = columns::columns(&ctx, &raw.columns, scheme, &valences)?;
+        let mut columns = columns::columns(&ctx, &raw.columns, scheme, &valences)?;
+        columns.sector = sector.is_some();
         let spec = SweepSpec {
             name: raw.name.unwrap_or_else(|| "sweep".to_owned()),
             scheme,
@@ -136,6 +152,7 @@ impl SweepSpec {
             space,
             sampler,
             columns,
+            sector,
         };
         spec.check_size(&ctx, &raw.sampler)?;
         Ok(spec)

@@ -36,6 +36,9 @@ pub enum SpaceKind {
     Uniform,
     /// The shape parameter `c` of the adjustable Catmull-Clark scheme.
     Shape,
+    /// The angle of a corner sector in degrees (a `[sector]` sweep of
+    /// corners; math doc section 18.2), uniform in a sub-interval of (0, 360).
+    CornerAngle,
 }
 
 impl SpaceKind {
@@ -48,6 +51,7 @@ impl SpaceKind {
             SpaceKind::VertexEp => "vertex-ep",
             SpaceKind::Uniform => "uniform",
             SpaceKind::Shape => "shape",
+            SpaceKind::CornerAngle => "corner-angle",
         }
     }
 
@@ -59,6 +63,7 @@ impl SpaceKind {
             SpaceKind::VertexEp,
             SpaceKind::Uniform,
             SpaceKind::Shape,
+            SpaceKind::CornerAngle,
         ]
         .into_iter()
         .find(|k| k.name() == s)
@@ -73,13 +78,14 @@ impl SpaceKind {
             SpaceKind::VertexEp => &["a"],
             SpaceKind::Uniform => &[],
             SpaceKind::Shape => &["c"],
+            SpaceKind::CornerAngle => &["angle"],
         }
     }
 
     /// Number of coordinates of a valence-`n` configuration.
     pub fn dimension(self, n: usize) -> usize {
         match self {
-            SpaceKind::Shape => 1,
+            SpaceKind::Shape | SpaceKind::CornerAngle => 1,
             _ => self.families().len() * n,
         }
     }
@@ -95,8 +101,8 @@ impl SpaceKind {
 
     /// The name of coordinate `k` of a valence-`n` configuration (`r2`, `q0`, ...).
     pub fn coordinate_name(self, n: usize, k: usize) -> String {
-        if self == SpaceKind::Shape {
-            return "c".to_owned();
+        if matches!(self, SpaceKind::Shape | SpaceKind::CornerAngle) {
+            return self.families()[0].to_owned();
         }
         let fam = self.families()[k / n];
         format!("{fam}{}", k % n)
@@ -104,8 +110,8 @@ impl SpaceKind {
 
     /// Position of a named coordinate in a valence-`n` configuration, if it exists.
     pub fn coordinate_index(self, n: usize, name: &str) -> Option<usize> {
-        if self == SpaceKind::Shape {
-            return (name == "c").then_some(0);
+        if matches!(self, SpaceKind::Shape | SpaceKind::CornerAngle) {
+            return (name == self.families()[0]).then_some(0);
         }
         // Longest family prefix first ("backward" before "b..." would not clash, but be safe).
         self.families().iter().enumerate().find_map(|(f, fam)| {
@@ -192,6 +198,24 @@ pub struct Columns {
     /// serialised spec when false, so that existing summaries are unchanged.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub curvature: bool,
+    /// The columns are those of a `[sector]` sweep ([`SectorSweep`]): the
+    /// characteristic-map columns are the sector certificate's (math doc
+    /// section 18.4). Set by the spec's `[sector]` table, not a key of
+    /// `[columns]`; left out of the serialised spec when false.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub sector: bool,
+}
+
+/// The `[sector]` table of a spec: a sweep of boundary, crease or corner
+/// configurations ([`crate::boundary::SectorConfig`], math doc section 18)
+/// over the face count `K` (the spec's valences) and, for corners, the angle
+/// (space kind `corner-angle`). A crease sweep has two sectors of `K` faces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct SectorSweep {
+    /// The kind of vertex.
+    pub vertex: crate::boundary::VertexKind,
+    /// The rule set.
+    pub rules: crate::boundary::RuleSet,
 }
 
 impl Default for Columns {
@@ -205,6 +229,7 @@ impl Default for Columns {
             charmap: false,
             generic_charmap: false,
             curvature: false,
+            sector: false,
         }
     }
 }

@@ -12,7 +12,9 @@ use toml::Spanned;
 pub(super) struct RawSpec {
     pub(super) name: Option<String>,
     pub(super) scheme: Spanned<String>,
-    pub(super) valences: Spanned<toml::Value>,
+    /// Required unless the spec has a `[sector]` table (whose `faces` replace it).
+    pub(super) valences: Option<Spanned<toml::Value>>,
+    pub(super) sector: Option<Spanned<RawSector>>,
     pub(super) space: RawSpace,
     pub(super) sampler: RawSampler,
     #[serde(default)]
@@ -26,7 +28,17 @@ pub(super) struct RawSpace {
     pub(super) ratio_range: Option<Spanned<Vec<f64>>>,
     pub(super) interval_range: Option<Spanned<Vec<f64>>>,
     pub(super) c_range: Option<Spanned<Vec<f64>>>,
+    pub(super) angle_range: Option<Spanned<Vec<f64>>>,
     pub(super) fixed: Option<Spanned<BTreeMap<String, Spanned<f64>>>>,
+}
+
+/// The `[sector]` table: a boundary, crease or corner sweep.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSector {
+    pub(super) vertex: Spanned<String>,
+    pub(super) rules: Spanned<String>,
+    pub(super) faces: Spanned<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -136,6 +148,8 @@ pub(crate) enum Domain {
     Interval,
     /// The shape parameter: the closed interval [0, 1].
     Shape,
+    /// A corner angle in degrees: the open interval (0, 360).
+    Angle,
 }
 
 /// A sweep's `[lower, upper]` range of `domain` (an empty range names
@@ -190,6 +204,18 @@ pub(crate) fn bounds(
                     span,
                     format!(
                         "{key}: bound {x:?} is outside [0, 1], the range of the shape parameter c"
+                    ),
+                );
+            }
+        }
+    } else if domain == Domain::Angle {
+        for x in [a, b] {
+            if !(x > 0.0 && x < 360.0) {
+                return ctx.err(
+                    key,
+                    span,
+                    format!(
+                        "{key}: bound {x:?} is outside the open interval (0, 360) of corner angles in degrees"
                     ),
                 );
             }

@@ -33,23 +33,21 @@ pub(super) fn scheme_config(ctx: &Ctx, raw: &RawSpec) -> Result<SchemeConfig, Sw
     if let Err(e) = raw.scheme.get_ref().parse::<SchemeKind>() {
         return ctx.err("scheme", Some(raw.scheme.span()), format!("scheme: {e}"));
     }
-    let valences = valences(ctx, &raw.valences)?;
+    let Some(raw_valences) = &raw.valences else {
+        return ctx.err("valences", None, "valences: missing (required key)".into());
+    };
+    let valences = valences(ctx, raw_valences)?;
 
     // Space.
     let rs = &raw.space;
-    let kind = match SpaceKind::parse(rs.kind.get_ref()) {
-        Some(k) => k,
-        None => {
-            return ctx.err(
-                "space.kind",
-                Some(rs.kind.span()),
-                format!(
-                    "space.kind: unknown space {:?} (known: ratios, corner-intervals, face-ep, vertex-ep, uniform, shape)",
-                    rs.kind.get_ref()
-                ),
-            )
-        }
-    };
+    let kind = space_kind(ctx, raw)?;
+    if kind == SpaceKind::CornerAngle {
+        return ctx.err(
+            "space.kind",
+            Some(rs.kind.span()),
+            "space.kind: kind \"corner-angle\" sweeps corners: it needs a [sector] table with vertex = \"corner\"".into(),
+        );
+    }
     let choice = Choice {
         name: raw.scheme.get_ref(),
         knots: !matches!(kind, SpaceKind::Uniform | SpaceKind::Shape),
@@ -71,6 +69,48 @@ pub(super) fn scheme_config(ctx: &Ctx, raw: &RawSpec) -> Result<SchemeConfig, Sw
             return ctx.err("space.kind", Some(rs.kind.span()), msg);
         }
     };
+    let range = space_range(ctx, raw, kind)?;
+    Ok(SchemeConfig {
+        scheme,
+        valences,
+        kind,
+        range,
+    })
+}
+
+/// The space kind (`space.kind`), by name.
+pub(super) fn space_kind(ctx: &Ctx, raw: &RawSpec) -> Result<SpaceKind, SweepError> {
+    let rs = &raw.space;
+    match SpaceKind::parse(rs.kind.get_ref()) {
+        Some(k) => Ok(k),
+        None => ctx.err(
+            "space.kind",
+            Some(rs.kind.span()),
+            format!(
+                "space.kind: unknown space {:?} (known: ratios, corner-intervals, face-ep, vertex-ep, uniform, shape, corner-angle)",
+                rs.kind.get_ref()
+            ),
+        ),
+    }
+}
+
+/// The range key of space kind `kind` (`space.ratio_range`,
+/// `space.interval_range`, `space.c_range`, `space.angle_range`; none for
+/// `uniform`), the other range keys forbidden.
+pub(super) fn space_range(
+    ctx: &Ctx,
+    raw: &RawSpec,
+    kind: SpaceKind,
+) -> Result<Option<(f64, f64)>, SweepError> {
+    let rs = &raw.space;
+    if kind != SpaceKind::CornerAngle {
+        forbid(
+            ctx,
+            "space.angle_range",
+            &rs.angle_range,
+            "except by space kind \"corner-angle\" of a [sector] sweep",
+        )?;
+    }
     if kind != SpaceKind::Shape {
         forbid(
             ctx,
@@ -94,6 +134,21 @@ pub(super) fn scheme_config(ctx: &Ctx, raw: &RawSpec) -> Result<SchemeConfig, Sw
                         "space.ratio_range",
                         Some(rs.kind.span()),
                         "space.ratio_range is required by space kind \"ratios\"".into(),
+                    )
+                }
+            }
+        }
+        SpaceKind::CornerAngle => {
+            let why = "by space kind \"corner-angle\" (use space.angle_range)";
+            forbid(ctx, "space.ratio_range", &rs.ratio_range, why)?;
+            forbid(ctx, "space.interval_range", &rs.interval_range, why)?;
+            match &rs.angle_range {
+                Some(r) => Some(range(ctx, "space.angle_range", r, Domain::Angle)?),
+                None => {
+                    return ctx.err(
+                        "space.angle_range",
+                        Some(rs.kind.span()),
+                        "space.angle_range is required by space kind \"corner-angle\"".into(),
                     )
                 }
             }
@@ -151,23 +206,54 @@ pub(super) fn scheme_config(ctx: &Ctx, raw: &RawSpec) -> Result<SchemeConfig, Sw
             }
         }
     };
-    Ok(SchemeConfig {
-        scheme,
-        valences,
-        kind,
-        range,
-    })
+    Ok(range)
 }
 
 fn valences(ctx: &Ctx, v: &Spanned<toml::Value>) -> Result<Vec<usize>, SweepError> {
+    counts(ctx, v, &COUNTS_VALENCES)
+}
+
+/// What a list of counts holds: its key, the smallest count, the noun of
+/// one count and the examples of the two forms in messages.
+pub(super) struct CountKey {
+    pub(super) key: &'static str,
+    pub(super) min: usize,
+    pub(super) noun: &'static str,
+    pub(super) list: &'static str,
+    pub(super) range: &'static str,
+}
+
+const COUNTS_VALENCES: CountKey = CountKey {
+    key: "valences",
+    min: 3,
+    noun: "valence",
+    list: "[3, 5]",
+    range: "{ from = 3, to = 8 }",
+};
+
+/// A list `[a, b, ..]` or an inclusive range `{ from = a, to = b }` of
+/// distinct counts in `what.min..=MAX_VALENCE` (the valences of a spec, the
+/// face counts of a `[sector]` sweep).
+pub(super) fn counts(
+    ctx: &Ctx,
+    v: &Spanned<toml::Value>,
+    what: &CountKey,
+) -> Result<Vec<usize>, SweepError> {
+    let CountKey {
+        key: top,
+        min,
+        noun,
+        list: list_form,
+        range: range_form,
+    } = *what;
     let span = Some(v.span());
     let check = |key: &str, x: &toml::Value| -> Result<usize, SweepError> {
         match x.as_integer() {
-            Some(n) if (3..=MAX_VALENCE as i64).contains(&n) => Ok(n as usize),
+            Some(n) if (min as i64..=MAX_VALENCE as i64).contains(&n) => Ok(n as usize),
             Some(n) => ctx.err(
                 key,
                 span.clone(),
-                format!("{key} must be a valence in 3..={MAX_VALENCE}, got {n}"),
+                format!("{key} must be a {noun} in {min}..={MAX_VALENCE}, got {n}"),
             ),
             None => ctx.err(
                 key,
@@ -179,62 +265,56 @@ fn valences(ctx: &Ctx, v: &Spanned<toml::Value>) -> Result<Vec<usize>, SweepErro
     let list = match v.get_ref() {
         toml::Value::Array(items) => {
             if items.is_empty() {
-                return ctx.err("valences", span, "valences: empty list".into());
+                return ctx.err(top, span, format!("{top}: empty list"));
             }
             items
                 .iter()
                 .enumerate()
-                .map(|(i, x)| check(&format!("valences[{i}]"), x))
+                .map(|(i, x)| check(&format!("{top}[{i}]"), x))
                 .collect::<Result<Vec<_>, _>>()?
         }
         toml::Value::Table(t) => {
             for k in t.keys() {
                 if k != "from" && k != "to" {
                     return ctx.err(
-                        &format!("valences.{k}"),
+                        &format!("{top}.{k}"),
                         span,
-                        format!("valences.{k}: unknown key (a valence range has `from` and `to`)"),
+                        format!("{top}.{k}: unknown key (a {noun} range has `from` and `to`)"),
                     );
                 }
             }
             let get = |k: &str| -> Result<usize, SweepError> {
                 match t.get(k) {
-                    Some(x) => check(&format!("valences.{k}"), x),
+                    Some(x) => check(&format!("{top}.{k}"), x),
                     None => ctx.err(
-                        &format!("valences.{k}"),
+                        &format!("{top}.{k}"),
                         span.clone(),
-                        format!("valences.{k} is missing (a valence range has `from` and `to`)"),
+                        format!("{top}.{k} is missing (a {noun} range has `from` and `to`)"),
                     ),
                 }
             };
             let (from, to) = (get("from")?, get("to")?);
             if from > to {
                 return ctx.err(
-                    "valences",
+                    top,
                     span,
-                    format!("valences: empty range, from = {from} > to = {to}"),
+                    format!("{top}: empty range, from = {from} > to = {to}"),
                 );
             }
             (from..=to).collect()
         }
         other => {
             return ctx.err(
-                "valences",
+                top,
                 span,
-                format!(
-                    "valences must be a list [3, 5] or a range {{ from = 3, to = 8 }}, got {other}"
-                ),
+                format!("{top} must be a list {list_form} or a range {range_form}, got {other}"),
             )
         }
     };
     let mut seen = std::collections::BTreeSet::new();
     for n in &list {
         if !seen.insert(*n) {
-            return ctx.err(
-                "valences",
-                span,
-                format!("valences: valence {n} is listed twice"),
-            );
+            return ctx.err(top, span, format!("{top}: {noun} {n} is listed twice"));
         }
     }
     Ok(list)

@@ -19,12 +19,15 @@ pub(super) fn fixed(
             let key = format!("space.fixed.{name}");
             let span = Some(value.span());
             if kind.coordinate_index(min_valence, name).is_none() {
-                let fams = kind
-                    .families()
-                    .iter()
-                    .map(|f| format!("{f}0..{f}{}", min_valence - 1))
-                    .collect::<Vec<_>>()
-                    .join(", ");
+                let fams = if kind.dimension(min_valence) == 1 {
+                    kind.families().join(", ")
+                } else {
+                    kind.families()
+                        .iter()
+                        .map(|f| format!("{f}0..{f}{}", min_valence - 1))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                };
                 return ctx.err(
                     &key,
                     span,
@@ -35,12 +38,16 @@ pub(super) fn fixed(
             let ok = match kind {
                 SpaceKind::Ratios => x > 0.0 && x < 1.0,
                 SpaceKind::Shape => (0.0..=1.0).contains(&x),
+                SpaceKind::CornerAngle => x > 0.0 && x < 360.0,
                 _ => x.is_finite() && x > 0.0,
             };
             if !ok {
                 let domain = match kind {
                     SpaceKind::Ratios => "an edge ratio strictly between 0 and 1",
                     SpaceKind::Shape => "a shape parameter c in [0, 1]",
+                    SpaceKind::CornerAngle => {
+                        "a corner angle in degrees strictly between 0 and 360"
+                    }
                     _ => "a finite knot interval > 0",
                 };
                 return ctx.err(&key, span, format!("{key} must be {domain}, got {x:?}"));
