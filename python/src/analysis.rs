@@ -173,6 +173,7 @@ pub(crate) fn analyze_json(
 /// valence, as the CLI's `--scheme-file`).
 #[pyfunction]
 #[pyo3(signature = (text, valence, path="full", levels=Int(60), seed=Int(0x5EED), force=false, charmap="ring"))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn analyze_file_json(
     py: Python<'_>,
     text: &str,
@@ -331,6 +332,7 @@ pub(crate) fn analyze_matrix_json(
 /// exception its code raises propagates as it is).
 #[pyfunction]
 #[pyo3(signature = (scheme, valence, path="full", levels=Int(60), seed=Int(0x5EED), force=false, charmap="ring"))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn analyze_object_json(
     py: Python<'_>,
     scheme: &Bound<'_, PyAny>,
