@@ -14,7 +14,7 @@ fn analysis() -> PathBuf {
 
 /// The test-time `--limit` of each shipped sweep spec (`None`: full size).
 /// Full sizes (2-core reference machine, idle): n3-grid 0.2 s,
-/// vertex-ep-sobol 0.1 s, random 1.9 s, cc-shape 3.3 s, n3-slice 2.8 s,
+/// vertex-ep-sobol 0.1 s, boundary-k 0.02 s, random 1.9 s, cc-shape 3.3 s, n3-slice 2.8 s,
 /// uniform-valences 4.2 s (the exact certificate up to n = 64); n3-slice is
 /// limited here only to keep the suite cheap. The benchmark-sized sweep
 /// (5 000 000 rows, 267 s on 2 threads) lives in `benches/specs/`, not in
@@ -23,6 +23,7 @@ const SWEEP_LIMITS: &[(&str, Option<u64>)] = &[
     ("sweep-cc-shape.toml", Some(600)),
     ("sweep-n3-grid.toml", None),
     ("sweep-n3-slice.toml", Some(200)),
+    ("sweep-boundary-k.toml", None),
     ("sweep-random.toml", Some(20_000)),
     ("sweep-uniform-valences.toml", None),
     ("sweep-vertex-ep-sobol.toml", None),
