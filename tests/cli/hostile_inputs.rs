@@ -2513,6 +2513,15 @@ fn cases() -> Vec<Case> {
             "columns.curvature",
         ),
         bad_with(
+            "sweep-columns-generic-charmap-in-a-sector-sweep",
+            &["sweep", "s.toml", "--out", "o.csv"],
+            &[(
+                "s.toml",
+                "name = \"x\"\nscheme = \"loop\"\n[sector]\nvertex = \"boundary\"\nrules = \"standard\"\nfaces = [3]\n[space]\nkind = \"uniform\"\n[sampler]\nkind = \"grid\"\npoints_per_axis = 1\n[columns]\ngeneric_charmap = true\n",
+            )],
+            "columns.generic_charmap: the generic certificate analyses interior configurations",
+        ),
+        bad_with(
             "sweep-columns-generic-charmap-not-bool",
             &["sweep", "s.toml", "--out", "o.csv"],
             &[(

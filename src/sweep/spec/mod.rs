@@ -145,6 +145,13 @@ impl SweepSpec {
         let sampler = sampler::sampler(&ctx, &raw.sampler)?;
         let mut columns = columns::columns(&ctx, &raw.columns, scheme, &valences)?;
         columns.sector = sector.is_some();
+        if columns.sector && columns.generic_charmap {
+            return ctx.err(
+                "columns.generic_charmap",
+                None,
+                "columns.generic_charmap: the generic certificate analyses interior configurations; a [sector] sweep's `charmap = true` gives the sector certificate (math doc section 18.4)".to_owned(),
+            );
+        }
         let spec = SweepSpec {
             name: raw.name.unwrap_or_else(|| "sweep".to_owned()),
             scheme,
