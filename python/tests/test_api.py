@@ -246,6 +246,30 @@ def test_sweep_equals_the_cli_csv(tmp_path):
                 assert got == float(text), (i, name, got, text)  # shortest round trip: exact
 
 
+def test_sector_sweep_equals_the_cli_csv(tmp_path):
+    """A ``[sector]`` spec (boundary vertices over K) runs through Python's
+    sweep with the CLI's rows."""
+    spec = ROOT / "analysis" / "sweep-boundary-k.toml"
+    out = tmp_path / "k.csv"
+    cli("sweep", str(spec), "--out", str(out), "--threads", "1")
+    t = sl.sweep(spec.read_text(), threads=2)
+    lines = out.read_text().splitlines()
+    header = lines[0].split(",")
+    assert t.column_names == header and t.num_rows == len(lines) - 1 == 5
+    assert t.column("valence").to_pylist() == [2, 3, 4, 5, 6]
+    for i, line in enumerate(lines[1:]):
+        for name, text in zip(header, line.split(",")):
+            got = t.column(name)[i].as_py()
+            if text == "":
+                assert got is None, (i, name, got)
+            elif isinstance(got, str):
+                assert got == text
+            else:
+                assert got == float(text), (i, name, got, text)
+    # the regular boundary (K = 2) keeps the subdominant 1/2; the sector map is C1 there
+    assert t.column("charmap_verdict")[0].as_py() == "c1"
+
+
 def test_sweep_files_open_in_every_reader_without_options(tmp_path):
     """The sweep CSV's first line is its header: pandas reads it with no
     options. The Parquet dataset directory (parts of two shards written into

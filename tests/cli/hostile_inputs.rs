@@ -2495,7 +2495,7 @@ fn cases() -> Vec<Case> {
             "report-table-charmap-generic-heavy",
             &["report", "s.toml", "--out", "r"],
             &[("s.toml", "name = \"t\"\n[[figure]]\nkind = \"table\"\ncharmap = \"generic\"\nconfigs = [{ scheme = \"loop\", valence = 200 }]\n")],
-            "figure[0].configs: the generic certificate of these 1 configurations takes ~",
+            "figure[0].configs: the generic certificate of 1 configuration takes ~",
         ),
         bad_with(
             "report-table-heavy-configurations",

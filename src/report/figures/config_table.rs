@@ -83,8 +83,9 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
                 &p.configs,
                 "configs",
                 format!(
-                    "the generic certificate of these {} configurations takes ~{} (limit {} s); use fewer or smaller configurations",
+                    "the generic certificate of {} configuration{} takes ~{} (limit {} s); use fewer or smaller configurations",
                     configs.len(),
+                    if configs.len() == 1 { "" } else { "s" },
                     crate::budget::format_seconds(seconds),
                     crate::budget::TIME_LIMIT_SECONDS
                 ),
