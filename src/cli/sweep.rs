@@ -1,19 +1,9 @@
-//! `subdiv-lab sweep` and `subdiv-lab merge`: the file side of parameter sweeps
-//! (the enumeration, evaluation, CSV layout and summaries live in
-//! `subdiv_lab::sweep`).
-//!
-//! Files: `--out NAME.csv` gets the rows (the header first), `NAME.summary.json`
-//! the summary (written when the run starts, before the CSV, and again when it
-//! ends); the summary's spec digest and shard are the CSV's fingerprint.
-//! `--resume` re-reads `NAME.csv`, drops a torn last line, verifies every row
-//! against the spec, and continues.
-//!
-//! `sweep --out` is a resumable output (the rule of `super::outfiles`): a new
-//! file appears whole with its header; an existing one is never replaced, and
-//! `--resume` continues it only if its summary is of this spec and shard (an
-//! empty or foreign file is refused). `merge --out` is a
-//! single-file output: an existing regular file is replaced atomically. The
-//! extension `.csv` or `.parquet` of an output must match its format.
+//! `subdiv-lab sweep` and `subdiv-lab merge`: flags, the work estimate and
+//! progress on stderr. The files (rows, summaries, resume, merge) are the
+//! library's (`subdiv_lab::sweep::output::files`). `sweep --out` is a
+//! resumable output, `merge --out` a single-file output replaced atomically
+//! (the rules of `super::outfiles`); the extension `.csv` or `.parquet` of an
+//! output must match its format.
 
 use super::{CliError, CliResult};
 use anyhow::{anyhow, Context};

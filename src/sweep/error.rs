@@ -74,6 +74,17 @@ pub enum SweepError {
     Read(String),
 }
 
+impl SweepError {
+    /// A [`SweepError::Mismatch`] of line `line` of `source_name`.
+    pub(crate) fn mismatch(source_name: &str, line: u64, message: impl Into<String>) -> Self {
+        SweepError::Mismatch {
+            source_name: source_name.to_owned(),
+            line,
+            message: message.into(),
+        }
+    }
+}
+
 impl From<std::io::Error> for SweepError {
     fn from(e: std::io::Error) -> Self {
         SweepError::Io(e.to_string())

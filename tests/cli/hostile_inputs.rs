@@ -4124,3 +4124,66 @@ fn hostile_input_table() {
         failures.join("\n")
     );
 }
+
+/// A build without the cargo feature `parquet` refuses every Parquet output
+/// and input with one line naming the path and the feature (exit 2, nothing
+/// created or changed). `.ci/run` runs it in that build:
+/// `cargo test --release --no-default-features --features cli --test cli without_parquet`.
+#[cfg(not(feature = "parquet"))]
+#[test]
+fn without_parquet_feature() {
+    const SPEC: &[(&str, &str)] = &[("h.toml", MERGE_SPEC)];
+    let cases = [
+        bad_with(
+            "sweep-parquet-without-feature",
+            &["sweep", "h.toml", "--out", "o.parquet"],
+            SPEC,
+            "o.parquet: this subdiv-lab is built without Parquet (the cargo feature `parquet`)",
+        ),
+        bad_with(
+            "sweep-format-parquet-resume-without-feature",
+            &[
+                "sweep",
+                "h.toml",
+                "--format",
+                "parquet",
+                "--out",
+                "o.parquet",
+                "--resume",
+            ],
+            &[
+                ("h.toml", MERGE_SPEC),
+                ("o.parquet/part-000000.parquet", "PAR1 a part"),
+            ],
+            "o.parquet: this subdiv-lab is built without Parquet",
+        ),
+        bad_with(
+            "merge-parquet-without-feature",
+            &[
+                "merge",
+                "--spec",
+                "h.toml",
+                "--out",
+                "m.parquet",
+                "a.parquet",
+            ],
+            &[
+                ("h.toml", MERGE_SPEC),
+                ("a.parquet/part-000000.parquet", "PAR1 a part"),
+                ("a.summary.json", MERGE_A_SUMMARY),
+            ],
+            "a.parquet: this subdiv-lab is built without Parquet",
+        ),
+        bad_with(
+            "plot-parquet-without-feature",
+            &["plot", "s.parquet", "-o", "f.svg"],
+            &[("s.parquet", "PAR1 rows PAR1")],
+            "this subdiv-lab is built without Parquet",
+        ),
+    ];
+    let failures: Vec<String> = cases
+        .iter()
+        .filter_map(|c| check(c).map(|p| format!("{}: {p}", c.name)))
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -14,17 +14,16 @@
 //! shards of one run write into one directory; [`dataset_shards`] reads them
 //! back for the merge.
 
-use super::parquet::{
-    csv_lines, parse_part_name, part_name, ParquetRows, PartFn, MAGIC, PART_ROWS,
-};
-use super::shards::{check_part, ShardData, ShardFile, OLD_PARQUET};
+use super::files::is_parquet_file;
+use super::parquet::{csv_lines, parse_part_name, part_name, ParquetRows, PartFn, PART_ROWS};
+use super::shards::{check_part, summary_in, ShardData, ShardFile, OLD_PARQUET};
 use super::{check_fingerprint, fingerprint_line, Layout, LineFault, Verifier};
 use crate::sweep::eval::Evaluate;
 use crate::sweep::plan::{Plan, Shard};
 use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
 use std::fs::{self, File};
-use std::io::{BufReader, Read, Write};
+use std::io::{BufReader, Write};
 use std::path::{Path, PathBuf};
 
 fn refused(m: String) -> SweepError {
@@ -33,43 +32,6 @@ fn refused(m: String) -> SweepError {
 
 fn io(what: &str, path: &Path, e: std::io::Error) -> SweepError {
     SweepError::Io(format!("{what} {}: {e}", path.display()))
-}
-
-/// The summary of `shard` of the dataset directory `dir`, beside it:
-/// `NAME.summary.json`, or `NAME.shard-I-of-N.summary.json` for a shard.
-///
-/// ```
-/// use std::path::Path;
-/// use subdiv_lab::sweep::output::dataset::summary_in;
-/// let d = Path::new("out/d.parquet");
-/// assert_eq!(summary_in(d, "0/1".parse().unwrap()), Path::new("out/d.summary.json"));
-/// assert_eq!(summary_in(d, "1/4".parse().unwrap()), Path::new("out/d.shard-1-of-4.summary.json"));
-/// ```
-pub fn summary_in(dir: &Path, shard: Shard) -> PathBuf {
-    let all = super::shards::summary_path(dir);
-    if shard == Shard::ALL {
-        return all;
-    }
-    let name = all
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let stem = name.strip_suffix(".summary.json").unwrap_or(&name);
-    dir.with_file_name(format!(
-        "{stem}.shard-{}-of-{}.summary.json",
-        shard.index, shard.count
-    ))
-}
-
-/// Whether `path` is a regular file that starts as a Parquet file does (a
-/// sweep output of the older single-file format, or a compacted dataset).
-pub fn is_parquet_file(path: &Path) -> bool {
-    let mut head = [0u8; 4];
-    fs::metadata(path).is_ok_and(|m| m.is_file())
-        && File::open(path)
-            .and_then(|mut f| f.read_exact(&mut head))
-            .is_ok()
-        && &head == MAGIC
 }
 
 /// The part files of a dataset directory: `(shard, index, path)` sorted by
@@ -168,11 +130,7 @@ pub fn open<E: Evaluate + ?Sized>(
         let bytes = fs::read(path).map_err(|e| io("reading", path, e))?;
         let table = check_part(&name, bytes, layout, Some(*k))
             .map_err(|e| refused(format!("{e}; cannot resume")))?;
-        let mismatch = |line: u64, message: String| SweepError::Mismatch {
-            source_name: name.clone(),
-            line,
-            message,
-        };
+        let mismatch = |line, message: String| SweepError::mismatch(&name, line, message);
         check_fingerprint(
             plan,
             shard,

@@ -16,10 +16,10 @@
 //! The front ends parse their flags, check the work estimate and print;
 //! progress comes back through [`Progress`].
 
-use super::dataset;
-use super::parquet::ParquetRows;
 use super::shards::{self, summary_path, ShardData, ShardFile};
 use super::{check_summary, is_old_csv_fingerprint, LineFault, Verifier, OLD_CSV};
+#[cfg(feature = "parquet")]
+use super::{dataset, parquet::ParquetRows};
 use crate::outfiles::{create_temp_file, install_new, is_special, parent_dir, write_atomic};
 use crate::sweep::eval::SpectralEvaluator;
 use crate::sweep::plan::{Plan, SchemeFactory, Shard};
@@ -81,18 +81,22 @@ impl Sink<'_> {
         match self {
             Sink::Stream(_) => None,
             Sink::Csv(p) => Some(summary_path(p)),
-            Sink::Parquet(p) => Some(dataset::summary_in(p, shard)),
+            Sink::Parquet(p) => Some(shards::summary_in(p, shard)),
         }
     }
 
     /// The first check of an output path, before anything is read: a CSV
     /// must not be a special file (a device, a FIFO: it is resumable and
-    /// its summary goes beside it), a dataset must be a directory or absent.
+    /// its summary goes beside it), a dataset must be a directory or absent
+    /// (and is refused in a build without the `parquet` feature).
     pub fn check_kind(&self) -> Result<(), SweepError> {
         match self {
             Sink::Stream(_) => Ok(()),
             Sink::Csv(p) => check_not_special("sweep", p),
+            #[cfg(feature = "parquet")]
             Sink::Parquet(p) => dataset::check_dataset_path(p),
+            #[cfg(not(feature = "parquet"))]
+            Sink::Parquet(p) => Err(no_parquet(p)),
         }
     }
 
@@ -106,6 +110,7 @@ impl Sink<'_> {
         };
         check_summary_path(path, &spath)?;
         let exists = match self {
+            #[cfg(feature = "parquet")]
             Sink::Parquet(p) => p.is_dir() && dataset::has_shard(p, shard),
             _ => fs::symlink_metadata(path).is_ok(),
         };
@@ -239,6 +244,9 @@ pub fn run_plan(
             layout.write_header(&mut w)?;
             (Rows::Csv(Box::new(w)), 0, None)
         }
+        #[cfg(not(feature = "parquet"))]
+        Sink::Parquet(path) => return Err(no_parquet(&path)),
+        #[cfg(feature = "parquet")]
         Sink::Parquet(path) => {
             let (rows, done, redo) = pool.install(|| {
                 dataset::open(&path, plan, &layout, &eval, shard, &mut summary, salt)
@@ -299,6 +307,7 @@ pub fn run_plan(
         }
     };
     let evaluated = pool.install(|| match &mut out {
+        #[cfg(feature = "parquet")]
         Rows::Parquet(p) => super::run_parquet(
             plan,
             &layout,
@@ -322,6 +331,7 @@ pub fn run_plan(
     })?;
     match out {
         Rows::Csv(mut w) => w.flush().map_err(|e| SweepError::File(e.to_string()))?,
+        #[cfg(feature = "parquet")]
         Rows::Parquet(p) => {
             p.finish()?;
         }
@@ -346,7 +356,26 @@ pub fn run_plan(
 /// Where a run writes its rows.
 enum Rows<'a> {
     Csv(Box<dyn Write + Send + 'a>),
+    #[cfg(feature = "parquet")]
     Parquet(Box<ParquetRows>),
+}
+
+/// The refusal of the Parquet output or input `path` in a build without
+/// the `parquet` feature.
+#[cfg(not(feature = "parquet"))]
+fn no_parquet(path: &Path) -> SweepError {
+    SweepError::Refused(format!("{}: {}", path.display(), super::NO_PARQUET))
+}
+
+/// Whether `path` is a regular file that starts as a Parquet file does (a
+/// sweep output of the older single-file format, or a compacted dataset).
+pub fn is_parquet_file(path: &Path) -> bool {
+    let mut head = [0u8; 4];
+    fs::metadata(path).is_ok_and(|m| m.is_file())
+        && File::open(path)
+            .and_then(|mut f| f.read_exact(&mut head))
+            .is_ok()
+        && &head == super::MAGIC
 }
 
 /// Refuses a special file (a device such as `/dev/null`, a FIFO) as the
@@ -444,11 +473,7 @@ fn scan_csv(
     let mut line = Vec::new();
     let header = layout.header();
     let mut verifier = Verifier::new(plan, layout, salt);
-    let mismatch = |line: u64, message: String| SweepError::Mismatch {
-        source_name: name.clone(),
-        line,
-        message,
-    };
+    let mismatch = |line, message: String| SweepError::mismatch(&name, line, message);
     let refused = |m: String| SweepError::Refused(format!("{name}: {m}"));
     let read_error = |e: std::io::Error| SweepError::File(format!("reading {name}: {e}"));
     let n = reader.read_until(b'\n', &mut line).map_err(read_error)?;
@@ -574,7 +599,11 @@ pub fn merge_format(inputs: &[PathBuf]) -> Result<bool, SweepError> {
         ));
     };
     for p in inputs {
-        if !p.is_dir() && dataset::is_parquet_file(p) {
+        #[cfg(not(feature = "parquet"))]
+        if p.is_dir() || is_parquet_file(p) {
+            return Err(no_parquet(p));
+        }
+        if !p.is_dir() && is_parquet_file(p) {
             return Err(SweepError::MergeInput(format!(
                 "{}: a single Parquet file: merge takes the dataset directories NAME.parquet that sweep writes (a file of an older subdiv-lab, or a compacted dataset, is not one)",
                 p.display()
@@ -598,6 +627,7 @@ pub fn merge_inputs(inputs: &[PathBuf]) -> Result<Vec<ShardFile<BufReader<File>>
     let mut shards = Vec::new();
     for p in inputs {
         if parquet {
+            #[cfg(feature = "parquet")]
             shards.extend(dataset::dataset_shards(p)?);
             continue;
         }
@@ -654,6 +684,7 @@ pub fn merge_files(
     };
     let w = BufWriter::with_capacity(1 << 20, file);
     let merged = (|| {
+        #[cfg(feature = "parquet")]
         if prepared.is_parquet() {
             let fingerprint = super::fingerprint_line(plan, Shard::ALL);
             let mut w = ParquetRows::file(&layout, &fingerprint, Box::new(w))?;

@@ -2,7 +2,8 @@
 //! formatting and parsing of a whole row, the evaluation of one configuration
 //! into a row. A leaf of the sweep modules' graph: the summary builds on it.
 
-use super::csv::{itoa_buf, push_number, push_text, small_uint, split_csv_line};
+use super::csv::split_csv_line;
+use super::run::{CsvBlock, RowBlock};
 use crate::sweep::eval::{result_columns, Cell, ColumnType, Evaluate};
 use crate::sweep::plan::Plan;
 use crate::sweep::SweepError;
@@ -257,26 +258,13 @@ impl Layout {
         s
     }
 
-    /// Appends the CSV line of `row` (with `\n`) to `s`.
+    /// Appends the CSV line of `row` (with `\n`) to `s`: the sweep driver's
+    /// CSV block ([`CsvBlock`]) given the row's cells.
     pub fn format_into(&self, row: &Row, s: &mut String) {
-        let mut digits = zmij::Buffer::new();
-        let mut ibuf = itoa_buf();
-        s.push_str(small_uint(row.id, &mut ibuf));
-        s.push(',');
-        s.push_str(small_uint(row.valence as u64, &mut ibuf));
-        for c in &row.cells {
-            s.push(',');
-            match c {
-                Cell::Empty => {}
-                Cell::Num(x) => push_number(s, &mut digits, *x),
-                Cell::Text(t) => push_text(s, t),
-            }
-        }
-        s.push(',');
-        if let Some(e) = &row.error {
-            push_text(s, e);
-        }
-        s.push('\n');
+        let mut block = CsvBlock::new();
+        block.text = std::mem::take(s);
+        block.push_row(row);
+        *s = block.text;
     }
 
     /// Parses one line (without `\n`) back into a row.

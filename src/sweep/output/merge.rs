@@ -66,13 +66,9 @@ where
             Some(line) => {
                 let line = line?;
                 let expected = src.shard.id(ver.rows());
-                let id =
-                    ver.check(lineno, &line, expected)
-                        .map_err(|message| SweepError::Mismatch {
-                            source_name: src.name.clone(),
-                            line: lineno,
-                            message,
-                        })?;
+                let id = ver
+                    .check(lineno, &line, expected)
+                    .map_err(|m| SweepError::mismatch(&src.name, lineno, m))?;
                 Ok(Some((id, Head { line, lineno })))
             }
         }
@@ -135,11 +131,7 @@ where
     let mut parts = Vec::with_capacity(sources.len());
     for (src, ver) in sources.iter().zip(&verifiers) {
         ver.recheck(eval)
-            .map_err(|(line, message)| SweepError::Mismatch {
-                source_name: src.name.clone(),
-                line,
-                message,
-            })?;
+            .map_err(|(line, m)| SweepError::mismatch(&src.name, line, m))?;
         let mut s = Summary::new(plan, layout, src.shard, None);
         ver.add_to(&mut s);
         parts.push(s);

@@ -37,10 +37,12 @@
 //! * here: a sweep's output read back as a [`Table`] ([`read_output`]).
 
 pub(crate) mod csv;
+#[cfg(feature = "parquet")]
 pub mod dataset;
 pub mod files;
 pub(crate) mod layout;
 mod merge;
+#[cfg(feature = "parquet")]
 pub mod parquet;
 mod run;
 pub mod shards;
@@ -49,6 +51,7 @@ mod verify;
 pub use csv::{format_number, split_csv_line};
 pub use layout::{ColumnDoc, Layout, Row};
 pub use merge::{merge, MergeSource};
+#[cfg(feature = "parquet")]
 pub use parquet::run_parquet;
 pub use run::{run, run_counting, run_discard, CHUNK, SUB_CHUNK};
 pub use shards::fresh_salt;
@@ -77,12 +80,7 @@ pub fn read_output(name: &str, bytes: &[u8]) -> Result<Table, TableError> {
     if !is_parquet(name, bytes) {
         return Table::from_csv(bytes);
     }
-    let t = parquet::read_table(bytes.to_vec()).map_err(|e| match e {
-        crate::sweep::SweepError::Io(m) | crate::sweep::SweepError::Read(m) => {
-            TableError::Parquet(m)
-        }
-        other => TableError::Parquet(other.to_string()),
-    })?;
+    let t = parquet_table(bytes)?;
     if t.is_empty() {
         return Err(TableError::NoRows);
     }
@@ -95,10 +93,7 @@ pub fn read_output(name: &str, bytes: &[u8]) -> Result<Table, TableError> {
 /// is not a `#` comment; for Parquet the footer's counts.
 pub fn output_shape(name: &str, bytes: &[u8]) -> Result<(usize, usize), TableError> {
     if is_parquet(name, bytes) {
-        let (rows, columns) = parquet::shape(bytes).map_err(|e| match e {
-            crate::sweep::SweepError::Read(m) => TableError::Parquet(m),
-            other => TableError::Parquet(other.to_string()),
-        })?;
+        let (rows, columns) = parquet_shape(bytes)?;
         return Ok((usize::try_from(rows).unwrap_or(usize::MAX), columns));
     }
     let lines = memchr::memchr_iter(b'\n', bytes).count() + 1;
@@ -110,9 +105,50 @@ pub fn output_shape(name: &str, bytes: &[u8]) -> Result<(usize, usize), TableErr
     Ok((lines, columns))
 }
 
+/// [`parquet::read_table`], its error as a [`TableError::Parquet`].
+#[cfg(feature = "parquet")]
+fn parquet_table(bytes: &[u8]) -> Result<Table, TableError> {
+    parquet::read_table(bytes.to_vec()).map_err(table_error)
+}
+
+/// [`parquet::shape`], its error as a [`TableError::Parquet`].
+#[cfg(feature = "parquet")]
+fn parquet_shape(bytes: &[u8]) -> Result<(u64, usize), TableError> {
+    parquet::shape(bytes).map_err(table_error)
+}
+
+#[cfg(feature = "parquet")]
+fn table_error(e: crate::sweep::SweepError) -> TableError {
+    match e {
+        crate::sweep::SweepError::Io(m) | crate::sweep::SweepError::Read(m) => {
+            TableError::Parquet(m)
+        }
+        other => TableError::Parquet(other.to_string()),
+    }
+}
+
+/// Without the `parquet` feature a Parquet input is refused ([`NO_PARQUET`]).
+#[cfg(not(feature = "parquet"))]
+fn parquet_table(_: &[u8]) -> Result<Table, TableError> {
+    Err(TableError::Unsupported(NO_PARQUET.into()))
+}
+
+/// Without the `parquet` feature a Parquet input is refused ([`NO_PARQUET`]).
+#[cfg(not(feature = "parquet"))]
+fn parquet_shape(_: &[u8]) -> Result<(u64, usize), TableError> {
+    Err(TableError::Unsupported(NO_PARQUET.into()))
+}
+
+/// The four bytes that start (and end) every Parquet file.
+pub const MAGIC: &[u8; 4] = b"PAR1";
+
+/// The refusal of a Parquet output or input in a build without the
+/// `parquet` feature.
+pub const NO_PARQUET: &str = "this subdiv-lab is built without Parquet (the cargo feature `parquet`): write NAME.csv, or rebuild with `--features parquet`";
+
 /// Whether [`read_output`] reads `bytes` as Parquet.
 fn is_parquet(name: &str, bytes: &[u8]) -> bool {
-    let magic = parquet::MAGIC;
+    let magic = MAGIC;
     let parquet_bytes =
         bytes.len() >= 2 * magic.len() && bytes.starts_with(magic) && bytes.ends_with(magic);
     name.ends_with(".parquet") || parquet_bytes

@@ -31,7 +31,7 @@
 use super::csv::{canonical_number, push_number, push_text};
 use super::layout::Layout;
 use super::run::RowBlock;
-use crate::sweep::eval::{Cell, ColumnType, Evaluate};
+use crate::sweep::eval::{ColumnType, Evaluate};
 use crate::sweep::plan::{Plan, Shard};
 use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
@@ -77,8 +77,7 @@ pub const NULLS_KEY: &str = "subdiv-lab.nulls";
 /// When a cell is null (the CSV's empty cell).
 pub const NULL_RULES: &str = "id and valence are never null; a coordinate is null beyond the row's valence; a result column is null where the result is not defined for the row (see its meaning in subdiv-lab.schema) and in every result column of a failed row; error is null when the row succeeded";
 
-/// The four bytes that start (and end) every Parquet file.
-pub const MAGIC: &[u8; 4] = b"PAR1";
+pub use super::MAGIC;
 
 /// The file name of part `k` of `shard` in a dataset directory:
 /// `part-000017.parquet` for an unsharded run, `part-2-of-8-000017.parquet`
@@ -156,33 +155,27 @@ fn schema_of(layout: &Layout) -> Result<TypePtr, SweepError> {
     let names = layout.column_names();
     let mut fields = Vec::with_capacity(names.len());
     for (name, col) in names.iter().zip(columns_of(layout)) {
-        let (phys, logical, rep) = match col {
-            Col::Id => (
-                PhysicalType::INT64,
-                Some(LogicalType::Integer(IntType {
-                    bit_width: 64,
-                    is_signed: false,
-                })),
-                Repetition::REQUIRED,
-            ),
-            Col::Valence => (
-                PhysicalType::INT32,
-                Some(LogicalType::Integer(IntType {
-                    bit_width: 32,
-                    is_signed: false,
-                })),
-                Repetition::REQUIRED,
-            ),
-            Col::Float => (PhysicalType::DOUBLE, None, Repetition::OPTIONAL),
-            Col::Label | Col::Error => (
-                PhysicalType::BYTE_ARRAY,
-                Some(LogicalType::String),
-                Repetition::OPTIONAL,
-            ),
-            Col::Bool => (PhysicalType::BOOLEAN, None, Repetition::OPTIONAL),
+        let unsigned = |bit_width| {
+            let t = IntType {
+                bit_width,
+                is_signed: false,
+            };
+            Some(LogicalType::Integer(t))
         };
+        let (phys, logical) = match col {
+            Col::Id => (PhysicalType::INT64, unsigned(64)),
+            Col::Valence => (PhysicalType::INT32, unsigned(32)),
+            Col::Float => (PhysicalType::DOUBLE, None),
+            Col::Label | Col::Error => (PhysicalType::BYTE_ARRAY, Some(LogicalType::String)),
+            Col::Bool => (PhysicalType::BOOLEAN, None),
+        };
+        let required = matches!(col, Col::Id | Col::Valence);
         let t = Type::primitive_type_builder(name, phys)
-            .with_repetition(rep)
+            .with_repetition(if required {
+                Repetition::REQUIRED
+            } else {
+                Repetition::OPTIONAL
+            })
             .with_logical_type(logical)
             .build()
             .map_err(pq_err)?;
@@ -682,10 +675,13 @@ fn write_group<W: std::io::Write + Send>(
                 }
             }
             (ColumnWriter::ByteArrayColumnWriter(c), Some(Col::Label)) => {
-                let entries = &group.dicts[j].entries;
-                let v: Vec<ByteArray> = present
-                    .map(|i| ByteArray::from(&*entries[i as usize]))
+                // One buffer per label, shared by its cells (no copy per cell).
+                let entries: Vec<ByteArray> = group.dicts[j]
+                    .entries
+                    .iter()
+                    .map(|e| ByteArray::from(Bytes::copy_from_slice(e.as_bytes())))
                     .collect();
+                let v: Vec<ByteArray> = present.map(|i| entries[i as usize].clone()).collect();
                 c.write_batch(&v, Some(&def), None)
             }
             (ColumnWriter::ByteArrayColumnWriter(c), Some(Col::Error)) => {
@@ -904,15 +900,7 @@ impl std::io::Write for ParquetRows {
                 .layout
                 .parse(line)
                 .map_err(|m| std::io::Error::other(format!("parquet: row {line:?}: {m}")))?;
-            block.start(row.id, row.valence);
-            for c in &row.cells {
-                match c {
-                    Cell::Empty => block.empty(),
-                    Cell::Num(x) => block.num(*x),
-                    Cell::Text(t) => block.text(t),
-                }
-            }
-            block.end(row.error.as_deref());
+            block.push_row(&row);
         }
         self.push_block(&block)
             .map_err(|e| std::io::Error::other(e.to_string()))?;
@@ -965,11 +953,7 @@ pub fn csv_lines(table: &Table, from: usize, to: usize) -> String {
 /// or is torn is refused as by [`read_table`].
 pub fn shape(bytes: &[u8]) -> Result<(u64, usize), SweepError> {
     let n = bytes.len();
-    if n < 12 || &bytes[..4] != MAGIC || &bytes[n - 4..] != MAGIC {
-        return Err(SweepError::Read(
-            "not a Parquet file, or torn (no PAR1 footer at its end)".into(),
-        ));
-    }
+    check_magic(bytes)?;
     let len = u32::from_le_bytes([bytes[n - 8], bytes[n - 7], bytes[n - 6], bytes[n - 5]]) as usize;
     if len > n - 12 {
         return Err(SweepError::Read(format!(
@@ -986,6 +970,18 @@ pub fn shape(bytes: &[u8]) -> Result<(u64, usize), SweepError> {
     ))
 }
 
+/// Refuses bytes that do not begin and end with [`MAGIC`] (not Parquet, or
+/// a file torn before its footer was written).
+fn check_magic(bytes: &[u8]) -> Result<(), SweepError> {
+    let n = bytes.len();
+    if n < 12 || &bytes[..4] != MAGIC || &bytes[n - 4..] != MAGIC {
+        return Err(SweepError::Read(
+            "not a Parquet file, or torn (no PAR1 footer at its end)".into(),
+        ));
+    }
+    Ok(())
+}
+
 /// Reads a sweep's Parquet file from its bytes (the library does no I/O: the
 /// caller reads the file, e.g. `std::fs::read`), returning the columns by
 /// name. Every column must be of a type a sweep writes (`u64`, `u32`, `f64`,
@@ -998,11 +994,7 @@ pub fn shape(bytes: &[u8]) -> Result<(u64, usize), SweepError> {
 /// ```
 pub fn read_table(bytes: impl Into<Bytes>) -> Result<Table, SweepError> {
     let bytes: Bytes = bytes.into();
-    if bytes.len() < 12 || &bytes[..4] != MAGIC || &bytes[bytes.len() - 4..] != MAGIC {
-        return Err(SweepError::Read(
-            "not a Parquet file, or torn (no PAR1 footer at its end)".into(),
-        ));
-    }
+    check_magic(&bytes)?;
     let reader = SerializedFileReader::new(bytes).map_err(pq_read_err)?;
     let md = reader.metadata();
     let key_value = md
@@ -1023,13 +1015,13 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<Table, SweepError> {
     let mut columns: Vec<Column> = schema
         .columns()
         .iter()
-        .map(|c| match (c.physical_type(), c.logical_type_ref()) {
-            (PhysicalType::INT64, _) => Ok(Column::U64(Vec::new())),
-            (PhysicalType::INT32, _) => Ok(Column::U32(Vec::new())),
-            (PhysicalType::DOUBLE, _) => Ok(Column::F64(Vec::new())),
-            (PhysicalType::BYTE_ARRAY, _) => Ok(Column::Str(Vec::new())),
-            (PhysicalType::BOOLEAN, _) => Ok(Column::Bool(Vec::new())),
-            (t, _) => Err(SweepError::Read(format!(
+        .map(|c| match c.physical_type() {
+            PhysicalType::INT64 => Ok(Column::U64(Vec::new())),
+            PhysicalType::INT32 => Ok(Column::U32(Vec::new())),
+            PhysicalType::DOUBLE => Ok(Column::F64(Vec::new())),
+            PhysicalType::BYTE_ARRAY => Ok(Column::Str(Vec::new())),
+            PhysicalType::BOOLEAN => Ok(Column::Bool(Vec::new())),
+            t => Err(SweepError::Read(format!(
                 "parquet: column {} has type {t}, which a sweep does not write",
                 c.name()
             ))),
@@ -1044,54 +1036,23 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<Table, SweepError> {
                     "parquet: a row has too many fields".into(),
                 ));
             };
-            let ok = match (col, f) {
-                (Column::U64(v), Field::ULong(x)) => {
-                    v.push(*x);
-                    true
+            match (col, f) {
+                (Column::U64(v), Field::ULong(x)) => v.push(*x),
+                (Column::U64(v), Field::Long(x)) if *x >= 0 => v.push(*x as u64),
+                (Column::U32(v), Field::UInt(x)) => v.push(*x),
+                (Column::U32(v), Field::Int(x)) if *x >= 0 => v.push(*x as u32),
+                (Column::F64(v), Field::Double(x)) => v.push(Some(*x)),
+                (Column::Str(v), Field::Str(x)) => v.push(Some(x.clone())),
+                (Column::Bool(v), Field::Bool(x)) => v.push(Some(*x)),
+                (Column::F64(v), Field::Null) => v.push(None),
+                (Column::Str(v), Field::Null) => v.push(None),
+                (Column::Bool(v), Field::Null) => v.push(None),
+                _ => {
+                    return Err(SweepError::Read(format!(
+                        "parquet: column {} holds {f}, not a value a sweep writes there",
+                        names[k]
+                    )));
                 }
-                (Column::U64(v), Field::Long(x)) if *x >= 0 => {
-                    v.push(*x as u64);
-                    true
-                }
-                (Column::U32(v), Field::UInt(x)) => {
-                    v.push(*x);
-                    true
-                }
-                (Column::U32(v), Field::Int(x)) if *x >= 0 => {
-                    v.push(*x as u32);
-                    true
-                }
-                (Column::F64(v), Field::Double(x)) => {
-                    v.push(Some(*x));
-                    true
-                }
-                (Column::F64(v), Field::Null) => {
-                    v.push(None);
-                    true
-                }
-                (Column::Str(v), Field::Str(x)) => {
-                    v.push(Some(x.clone()));
-                    true
-                }
-                (Column::Str(v), Field::Null) => {
-                    v.push(None);
-                    true
-                }
-                (Column::Bool(v), Field::Bool(x)) => {
-                    v.push(Some(*x));
-                    true
-                }
-                (Column::Bool(v), Field::Null) => {
-                    v.push(None);
-                    true
-                }
-                _ => false,
-            };
-            if !ok {
-                return Err(SweepError::Read(format!(
-                    "parquet: column {} holds {f}, not a value a sweep writes there",
-                    names[k]
-                )));
             }
         }
     }

@@ -5,7 +5,7 @@ use super::csv::{itoa_buf, push_number, push_text, small_uint};
 use super::layout::Kind;
 use super::layout::Layout;
 use crate::spectral::kernel::BATCH;
-use crate::sweep::eval::{CellSink, Evaluate};
+use crate::sweep::eval::{Cell, CellSink, Evaluate};
 use crate::sweep::plan::{Configuration, Plan};
 use crate::sweep::summary::{PartialSummary, Summary};
 use crate::sweep::SweepError;
@@ -143,6 +143,18 @@ pub(crate) trait RowBlock: Send {
     /// Empties the block for reuse (its storage is kept): the driver recycles
     /// the blocks of written chunks, so that a task does not allocate.
     fn clear(&mut self);
+    /// Appends a whole row, cell by cell.
+    fn push_row(&mut self, row: &super::Row) {
+        self.start(row.id, row.valence);
+        for c in &row.cells {
+            match c {
+                Cell::Empty => self.empty(),
+                Cell::Num(x) => self.num(*x),
+                Cell::Text(t) => self.text(t),
+            }
+        }
+        self.end(row.error.as_deref());
+    }
 }
 
 /// The CSV lines of a task (the sweep's CSV text, byte for byte that of

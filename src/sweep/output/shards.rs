@@ -7,13 +7,17 @@
 //! readers or bytes, and writes the merged rows to any [`Write`].
 
 use super::merge::{merge, MergeSource};
+#[cfg(feature = "parquet")]
 use super::parquet::{csv_lines, read_table, FORMAT, FORMAT_KEY, PART_KEY};
-use super::verify::{check_fingerprint, fingerprint_shard, is_old_csv_fingerprint, OLD_CSV};
+#[cfg(feature = "parquet")]
+use super::verify::{check_fingerprint, fingerprint_shard};
+use super::verify::{is_old_csv_fingerprint, OLD_CSV};
 use super::Layout;
 use crate::sweep::eval::Evaluate;
 use crate::sweep::plan::{Plan, Shard};
 use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
+#[cfg(feature = "parquet")]
 use crate::table::Table;
 use std::cell::Cell;
 use std::io::{BufRead, Write};
@@ -42,6 +46,32 @@ pub fn summary_path(rows: &Path) -> PathBuf {
     rows.with_file_name(format!("{stem}.summary.json"))
 }
 
+/// The summary of `shard` of the dataset directory `dir`, beside it:
+/// `NAME.summary.json`, or `NAME.shard-I-of-N.summary.json` for a shard.
+///
+/// ```
+/// use std::path::Path;
+/// use subdiv_lab::sweep::output::shards::summary_in;
+/// let d = Path::new("out/d.parquet");
+/// assert_eq!(summary_in(d, "0/1".parse().unwrap()), Path::new("out/d.summary.json"));
+/// assert_eq!(summary_in(d, "1/4".parse().unwrap()), Path::new("out/d.shard-1-of-4.summary.json"));
+/// ```
+pub fn summary_in(dir: &Path, shard: Shard) -> PathBuf {
+    let all = summary_path(dir);
+    if shard == Shard::ALL {
+        return all;
+    }
+    let name = all
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let stem = name.strip_suffix(".summary.json").unwrap_or(&name);
+    dir.with_file_name(format!(
+        "{stem}.shard-{}-of-{}.summary.json",
+        shard.index, shard.count
+    ))
+}
+
 /// A salt for the re-evaluated sample of a resume or merge ([`Verifier`](super::Verifier),
 /// [`merge`]): which lines are re-evaluated must not be predictable, so it
 /// mixes the clock and the process id.
@@ -58,6 +88,7 @@ pub enum ShardData<R> {
     Csv(R),
     /// The part files of one shard of a Parquet dataset, in part order:
     /// (file name, bytes).
+    #[cfg(feature = "parquet")]
     Parquet(Vec<(String, Vec<u8>)>),
 }
 
@@ -131,11 +162,18 @@ pub fn prepare<'a, R: BufRead + 'a>(
     let mut formats = Vec::with_capacity(shards.len());
     for (file, summary) in shards.into_iter().zip(&summaries) {
         let counter = Rc::new(Cell::new(0u64));
-        formats.push(matches!(file.data, ShardData::Parquet(_)));
-        let src = match file.data {
-            ShardData::Csv(r) => csv_source(&file.name, r, summary.shard, layout, counter.clone())?,
-            ShardData::Parquet(b) => parquet_source(&file.name, b, plan, layout, counter.clone())?,
+        let (src, parquet) = match file.data {
+            ShardData::Csv(r) => (
+                csv_source(&file.name, r, summary.shard, layout, counter.clone())?,
+                false,
+            ),
+            #[cfg(feature = "parquet")]
+            ShardData::Parquet(b) => (
+                parquet_source(&file.name, b, plan, layout, counter.clone())?,
+                true,
+            ),
         };
+        formats.push(parquet);
         if src.shard != summary.shard {
             return Err(input(format!(
                 "{}: holds shard {} but its summary {} says shard {}",
@@ -240,19 +278,12 @@ fn csv_source<'a, R: BufRead + 'a>(
     reader
         .read_line(&mut header)
         .map_err(|e| input(format!("reading {name}: {e}")))?;
-    let mismatch = |line: u64, message: String| SweepError::Mismatch {
-        source_name: name.to_owned(),
-        line,
-        message,
-    };
     if is_old_csv_fingerprint(header.as_bytes()) {
-        return Err(mismatch(1, OLD_CSV.into()));
+        return Err(SweepError::mismatch(name, 1, OLD_CSV));
     }
     if header != layout.header() {
-        return Err(mismatch(
-            1,
-            "the header does not match the spec's columns".into(),
-        ));
+        let m = "the header does not match the spec's columns";
+        return Err(SweepError::mismatch(name, 1, m));
     }
     let n2 = name.to_owned();
     let mut lineno = 1u64;
@@ -264,22 +295,18 @@ fn csv_source<'a, R: BufRead + 'a>(
             Ok(_) => {
                 lineno += 1;
                 if buf.last() != Some(&b'\n') {
-                    return Some(Err(SweepError::Mismatch {
-                        source_name: n2.clone(),
-                        line: lineno,
-                        message: "torn last line; resume this shard's sweep to finish it first"
-                            .into(),
-                    }));
+                    return Some(Err(SweepError::mismatch(
+                        &n2,
+                        lineno,
+                        "torn last line; resume this shard's sweep to finish it first",
+                    )));
                 }
                 buf.pop();
                 rows.set(rows.get() + 1);
-                Some(String::from_utf8(std::mem::take(&mut buf)).map_err(|_| {
-                    SweepError::Mismatch {
-                        source_name: n2.clone(),
-                        line: lineno,
-                        message: "not UTF-8".into(),
-                    }
-                }))
+                Some(
+                    String::from_utf8(std::mem::take(&mut buf))
+                        .map_err(|_| SweepError::mismatch(&n2, lineno, "not UTF-8")),
+                )
             }
             Err(e) => Some(Err(SweepError::Io(format!("{n2}: {e}")))),
         }
@@ -291,6 +318,7 @@ fn csv_source<'a, R: BufRead + 'a>(
     })
 }
 
+#[cfg(feature = "parquet")]
 /// A Parquet shard (its part files, in part order) as a merge source: each
 /// part's format, fingerprint (which gives the shard) and index checked
 /// against `plan`, its columns against `layout`, its rows as the CSV lines
@@ -311,7 +339,7 @@ fn parquet_source<'a>(
             .metadata(super::parquet::FINGERPRINT_KEY)
             .unwrap_or_default();
         let s = fingerprint_shard(fp).unwrap_or(Shard::ALL);
-        check_fingerprint(plan, s, fp).map_err(|m| mismatch_in(&part, m))?;
+        check_fingerprint(plan, s, fp).map_err(|m| SweepError::mismatch(&part, 1, m))?;
         shard.get_or_insert(s);
         let text = csv_lines(&table, 0, table.len());
         lines.extend(text.lines().map(str::to_owned));
@@ -327,14 +355,7 @@ fn parquet_source<'a>(
     })
 }
 
-fn mismatch_in(name: &str, message: String) -> SweepError {
-    SweepError::Mismatch {
-        source_name: name.to_owned(),
-        line: 1,
-        message,
-    }
-}
-
+#[cfg(feature = "parquet")]
 /// Reads one part file of a sweep's Parquet dataset and checks its format,
 /// its columns (against `layout`) and, when given, its index `k` (the
 /// fingerprint is the caller's to check: it depends on the shard). A file of
@@ -345,38 +366,30 @@ pub fn check_part(
     layout: &Layout,
     k: Option<u64>,
 ) -> Result<Table, SweepError> {
-    let table = read_table(bytes).map_err(|e| mismatch_in(name, e.to_string()))?;
+    let fault = |m: String| Err(SweepError::mismatch(name, 1, m));
+    let table = read_table(bytes).map_err(|e| SweepError::mismatch(name, 1, e.to_string()))?;
     match table.metadata(FORMAT_KEY) {
         Some(f) if f == FORMAT => {}
         Some(f) => {
-            return Err(mismatch_in(
-                name,
-                format!(
+            return fault(format!(
                 "a part of format {f:?}, not {FORMAT:?}: written by another version of subdiv-lab"
-            ),
-            ))
-        }
-        None => return Err(mismatch_in(name, OLD_PARQUET.into())),
-    }
-    if table.names() != layout.column_names() {
-        return Err(mismatch_in(
-            name,
-            "the columns do not match the spec's".into(),
-        ));
-    }
-    if let Some(k) = k {
-        if table.metadata(PART_KEY) != Some(k.to_string().as_str()) {
-            return Err(mismatch_in(
-                name,
-                format!(
-                    "holds part {} where part {k} was expected (renamed?)",
-                    table.metadata(PART_KEY).unwrap_or("?")
-                ),
             ));
         }
+        None => return fault(OLD_PARQUET.into()),
+    }
+    if table.names() != layout.column_names() {
+        return fault("the columns do not match the spec's".into());
+    }
+    let part = table.metadata(PART_KEY);
+    if let Some(k) = k.filter(|k| part != Some(k.to_string().as_str())) {
+        let found = part.unwrap_or("?");
+        return fault(format!(
+            "holds part {found} where part {k} was expected (renamed?)"
+        ));
     }
     Ok(table)
 }
 
+#[cfg(feature = "parquet")]
 /// The refusal of a Parquet file written by an older version.
 pub const OLD_PARQUET: &str = "written by an older subdiv-lab (a single Parquet file with a commit journal; sweeps now write a dataset directory NAME.parquet/part-*.parquet): run the sweep into a new directory";
