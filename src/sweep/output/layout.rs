@@ -259,7 +259,7 @@ impl Layout {
     }
 
     /// Appends the CSV line of `row` (with `\n`) to `s`: the sweep driver's
-    /// CSV block ([`CsvBlock`]) given the row's cells.
+    /// CSV block (`CsvBlock`) given the row's cells.
     pub fn format_into(&self, row: &Row, s: &mut String) {
         let mut block = CsvBlock::new();
         block.text = std::mem::take(s);
