@@ -204,7 +204,7 @@ fn topology(nv: usize, face_start: &[u32], face_verts: &[u32]) -> Result<Topolog
         edge_verts.push([a, b]);
         edge_faces.push(faces);
     }
-    let inc = incidence(nv, &edge_verts, face_verts, &corner_face);
+    let inc = incidence(nv, &edge_verts, face_verts, |c| corner_face[c]);
     Ok(Topology {
         face_edges,
         edge_verts,
@@ -227,7 +227,7 @@ fn incidence(
     nv: usize,
     edge_verts: &[[u32; 2]],
     face_verts: &[u32],
-    corner_face: &[u32],
+    corner_face: impl Fn(usize) -> u32,
 ) -> Incidence {
     let nc = face_verts.len();
     let ne = edge_verts.len();
@@ -258,7 +258,7 @@ fn incidence(
     let mut vert_faces = vec![0u32; nc];
     for c in 0..nc {
         let v = face_verts[c] as usize;
-        vert_faces[fill[v] as usize] = corner_face[c];
+        vert_faces[fill[v] as usize] = corner_face(c);
         fill[v] += 1;
     }
     Incidence {
@@ -327,30 +327,29 @@ impl SharpMesh {
     /// corner and the second corner of a key gives the edge's second face,
     /// exactly as [`topology`] numbers them after pairing the corners by
     /// their end vertices, so the mesh equals [`SharpMesh::assemble`]'s
-    /// without the search. Every child face has `per_face` corners. Returns
+    /// without the search. Every child face has `PER_FACE` corners. Returns
     /// the mesh and the edge of every key.
-    pub(super) fn assemble_keyed(
+    pub(super) fn assemble_keyed<const PER_FACE: usize>(
         positions: Vec<[f64; 3]>,
-        per_face: usize,
         face_verts: Vec<u32>,
         corner_key: &[u32],
         keys: usize,
         hole: Vec<bool>,
     ) -> (SharpMesh, Vec<u32>) {
         let nc = face_verts.len();
-        let nf = nc / per_face;
-        let face_start: Vec<u32> = (0..=nf).map(|f| (per_face * f) as u32).collect();
-        let corner_face: Vec<u32> = (0..nc).map(|c| (c / per_face) as u32).collect();
+        let nf = nc / PER_FACE;
+        let face_start: Vec<u32> = (0..=nf).map(|f| (PER_FACE * f) as u32).collect();
+        let corner_face = |c: usize| (c / PER_FACE) as u32;
         let mut edge_of = vec![NONE; keys];
         let mut face_edges = vec![NONE; nc];
         let mut edge_verts: Vec<[u32; 2]> = Vec::with_capacity(nc / 2 + 1);
         let mut edge_faces: Vec<[u32; 2]> = Vec::with_capacity(nc / 2 + 1);
         for c in 0..nc {
             let k = corner_key[c] as usize;
-            let f = corner_face[c];
+            let f = corner_face(c);
             if edge_of[k] == NONE {
-                let next = if (c + 1) % per_face == 0 {
-                    c + 1 - per_face
+                let next = if (c + 1) % PER_FACE == 0 {
+                    c + 1 - PER_FACE
                 } else {
                     c + 1
                 };
@@ -362,7 +361,7 @@ impl SharpMesh {
             }
             face_edges[c] = edge_of[k];
         }
-        let inc = incidence(positions.len(), &edge_verts, &face_verts, &corner_face);
+        let inc = incidence(positions.len(), &edge_verts, &face_verts, corner_face);
         let t = Topology {
             face_edges,
             edge_verts,

@@ -175,7 +175,7 @@ impl SharpMesh {
         let inner = |c: usize| (2 * ne + c) as u32;
         let mut face_verts = Vec::with_capacity(4 * nc as usize);
         let mut corner_key = Vec::with_capacity(4 * nc as usize);
-        let (per_face, hole) = if face_points {
+        let hole = if face_points {
             let mut hole = Vec::with_capacity(nc as usize);
             for f in 0..nf {
                 let (s, t) = (self.face_start[f] as usize, self.face_start[f + 1] as usize);
@@ -196,7 +196,7 @@ impl SharpMesh {
                     hole.push(self.hole[f]);
                 }
             }
-            (4, hole)
+            hole
         } else {
             let mut hole = Vec::with_capacity(4 * nf);
             for f in 0..nf {
@@ -212,16 +212,14 @@ impl SharpMesh {
                 corner_key.extend_from_slice(&[inner(s + 1), inner(s + 2), inner(s)]);
                 hole.extend_from_slice(&[self.hole[f]; 4]);
             }
-            (3, hole)
+            hole
         };
-        let (mut child, edge_of) = SharpMesh::assemble_keyed(
-            positions,
-            per_face,
-            face_verts,
-            &corner_key,
-            2 * ne + nc as usize,
-            hole,
-        );
+        let keys = 2 * ne + nc as usize;
+        let (mut child, edge_of) = if face_points {
+            SharpMesh::assemble_keyed::<4>(positions, face_verts, &corner_key, keys, hole)
+        } else {
+            SharpMesh::assemble_keyed::<3>(positions, face_verts, &corner_key, keys, hole)
+        };
         // Vertex points keep their parent's rotational edge order.
         for v in 0..nv {
             let start = child.vert_edge_start[v] as usize;
