@@ -111,10 +111,7 @@ struct Topology {
     face_edges: Vec<u32>,
     edge_verts: Vec<[u32; 2]>,
     edge_faces: Vec<[u32; 2]>,
-    vert_edge_start: Vec<u32>,
-    vert_edges: Vec<u32>,
-    vert_face_start: Vec<u32>,
-    vert_faces: Vec<u32>,
+    inc: Incidence,
 }
 
 /// Pairs the corners of `faces` into edges (bucketed by the smaller end
@@ -207,10 +204,35 @@ fn topology(nv: usize, face_start: &[u32], face_verts: &[u32]) -> Result<Topolog
         edge_verts.push([a, b]);
         edge_faces.push(faces);
     }
-    // Vertex incidence.
+    let inc = incidence(nv, &edge_verts, face_verts, |c| corner_face[c]);
+    Ok(Topology {
+        face_edges,
+        edge_verts,
+        edge_faces,
+        inc,
+    })
+}
+
+/// Vertex incidence: the edges and faces around every vertex.
+struct Incidence {
+    vert_edge_start: Vec<u32>,
+    vert_edges: Vec<u32>,
+    vert_face_start: Vec<u32>,
+    vert_faces: Vec<u32>,
+}
+
+/// The edges around each vertex in edge order and the faces around each
+/// vertex in corner order (counting sorts over the edge ends and corners).
+fn incidence(
+    nv: usize,
+    edge_verts: &[[u32; 2]],
+    face_verts: &[u32],
+    corner_face: impl Fn(usize) -> u32,
+) -> Incidence {
+    let nc = face_verts.len();
     let ne = edge_verts.len();
     let mut vert_edge_start = vec![0u32; nv + 1];
-    for ev in &edge_verts {
+    for ev in edge_verts {
         vert_edge_start[ev[0] as usize + 1] += 1;
         vert_edge_start[ev[1] as usize + 1] += 1;
     }
@@ -236,18 +258,15 @@ fn topology(nv: usize, face_start: &[u32], face_verts: &[u32]) -> Result<Topolog
     let mut vert_faces = vec![0u32; nc];
     for c in 0..nc {
         let v = face_verts[c] as usize;
-        vert_faces[fill[v] as usize] = corner_face[c];
+        vert_faces[fill[v] as usize] = corner_face(c);
         fill[v] += 1;
     }
-    Ok(Topology {
-        face_edges,
-        edge_verts,
-        edge_faces,
+    Incidence {
         vert_edge_start,
         vert_edges,
         vert_face_start,
         vert_faces,
-    })
+    }
 }
 
 impl SharpMesh {
@@ -296,22 +315,89 @@ impl SharpMesh {
     ) -> Result<SharpMesh, MeshError> {
         let nv = positions.len();
         let t = topology(nv, &face_start, &face_verts)?;
-        let ne = t.edge_verts.len();
-        Ok(SharpMesh {
+        Ok(SharpMesh::from_parts(
+            positions, face_start, face_verts, hole, t,
+        ))
+    }
+
+    /// The child mesh of a refinement step whose edges are known by
+    /// construction: `corner_key[c]` names the edge leaving child corner `c`
+    /// among `keys` edge keys (halves of parent edges and edges inside
+    /// parent faces, [`refine`]). Edges are numbered in order of their first
+    /// corner and the second corner of a key gives the edge's second face,
+    /// exactly as [`topology`] numbers them after pairing the corners by
+    /// their end vertices, so the mesh equals [`SharpMesh::assemble`]'s
+    /// without the search. Every child face has `PER_FACE` corners. Returns
+    /// the mesh and the edge of every key.
+    pub(super) fn assemble_keyed<const PER_FACE: usize>(
+        positions: Vec<[f64; 3]>,
+        face_verts: Vec<u32>,
+        corner_key: &[u32],
+        keys: usize,
+        hole: Vec<bool>,
+    ) -> (SharpMesh, Vec<u32>) {
+        let nc = face_verts.len();
+        let nf = nc / PER_FACE;
+        let face_start: Vec<u32> = (0..=nf).map(|f| (PER_FACE * f) as u32).collect();
+        let corner_face = |c: usize| (c / PER_FACE) as u32;
+        let mut edge_of = vec![NONE; keys];
+        let mut face_edges = vec![NONE; nc];
+        let mut edge_verts: Vec<[u32; 2]> = Vec::with_capacity(nc / 2 + 1);
+        let mut edge_faces: Vec<[u32; 2]> = Vec::with_capacity(nc / 2 + 1);
+        for c in 0..nc {
+            let k = corner_key[c] as usize;
+            let f = corner_face(c);
+            if edge_of[k] == NONE {
+                let next = if (c + 1) % PER_FACE == 0 {
+                    c + 1 - PER_FACE
+                } else {
+                    c + 1
+                };
+                edge_of[k] = edge_verts.len() as u32;
+                edge_verts.push([face_verts[c], face_verts[next]]);
+                edge_faces.push([f, NONE]);
+            } else {
+                edge_faces[edge_of[k] as usize][1] = f;
+            }
+            face_edges[c] = edge_of[k];
+        }
+        let inc = incidence(positions.len(), &edge_verts, &face_verts, corner_face);
+        let t = Topology {
+            face_edges,
+            edge_verts,
+            edge_faces,
+            inc,
+        };
+        (
+            SharpMesh::from_parts(positions, face_start, face_verts, hole, t),
+            edge_of,
+        )
+    }
+
+    /// A mesh from its faces and their topology, without sharpness.
+    fn from_parts(
+        positions: Vec<[f64; 3]>,
+        face_start: Vec<u32>,
+        face_verts: Vec<u32>,
+        hole: Vec<bool>,
+        t: Topology,
+    ) -> SharpMesh {
+        let (nv, ne) = (positions.len(), t.edge_verts.len());
+        SharpMesh {
             positions,
             face_start,
             face_verts,
             face_edges: t.face_edges,
             edge_verts: t.edge_verts,
             edge_faces: t.edge_faces,
-            vert_edge_start: t.vert_edge_start,
-            vert_edges: t.vert_edges,
-            vert_face_start: t.vert_face_start,
-            vert_faces: t.vert_faces,
+            vert_edge_start: t.inc.vert_edge_start,
+            vert_edges: t.inc.vert_edges,
+            vert_face_start: t.inc.vert_face_start,
+            vert_faces: t.inc.vert_faces,
             edge_sharpness: vec![0.0; ne],
             vertex_sharpness: vec![0.0; nv],
             hole,
-        })
+        }
     }
 
     /// Refuses isolated vertices and vertices whose faces form more than

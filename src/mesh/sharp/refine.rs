@@ -165,63 +165,72 @@ impl SharpMesh {
             positions[v] = out;
         }
 
-        // Child faces.
-        let (face_start, face_verts, hole) = if face_points {
-            let mut face_verts = Vec::with_capacity(4 * nc as usize);
+        // Child faces, and the key of the edge leaving each child corner:
+        // `2 e + end` for the half of parent edge `e` at its end `end`
+        // (0: `edge_verts[e][0]`), `2 ne + c` for the edge inside the parent
+        // face at parent corner `c` (Catmull-Clark: from the edge point of
+        // `c`'s edge to the face point; Loop: between the edge points of
+        // `c`'s edge and of the corner before it).
+        let half = |e: u32, v: u32| 2 * e + u32::from(self.edge_verts[e as usize][0] != v);
+        let inner = |c: usize| (2 * ne + c) as u32;
+        let mut face_verts = Vec::with_capacity(4 * nc as usize);
+        let mut corner_key = Vec::with_capacity(4 * nc as usize);
+        let hole = if face_points {
             let mut hole = Vec::with_capacity(nc as usize);
             for f in 0..nf {
                 let (s, t) = (self.face_start[f] as usize, self.face_start[f + 1] as usize);
                 for c in s..t {
                     let prev = if c == s { t - 1 } else { c - 1 };
-                    face_verts.extend_from_slice(&[
+                    let (v, e, ep) = (
                         self.face_verts[c],
-                        (nv + self.face_edges[c] as usize) as u32,
+                        self.face_edges[c],
+                        self.face_edges[prev],
+                    );
+                    face_verts.extend_from_slice(&[
+                        v,
+                        (nv + e as usize) as u32,
                         (nv + ne + f) as u32,
-                        (nv + self.face_edges[prev] as usize) as u32,
+                        (nv + ep as usize) as u32,
                     ]);
+                    corner_key.extend_from_slice(&[half(e, v), inner(c), inner(prev), half(ep, v)]);
                     hole.push(self.hole[f]);
                 }
             }
-            let face_start: Vec<u32> = (0..=nc as usize).map(|f| (4 * f) as u32).collect();
-            (face_start, face_verts, hole)
+            hole
         } else {
-            let mut face_verts = Vec::with_capacity(4 * nc as usize);
             let mut hole = Vec::with_capacity(4 * nf);
             for f in 0..nf {
                 let s = self.face_start[f] as usize;
-                let ep = |k: usize| (nv + self.face_edges[s + k] as usize) as u32;
+                let e = |k: usize| self.face_edges[s + k % 3];
+                let ep = |k: usize| (nv + e(k) as usize) as u32;
                 for k in 0..3 {
-                    face_verts.extend_from_slice(&[self.face_verts[s + k], ep(k), ep((k + 2) % 3)]);
+                    let v = self.face_verts[s + k];
+                    face_verts.extend_from_slice(&[v, ep(k), ep(k + 2)]);
+                    corner_key.extend_from_slice(&[half(e(k), v), inner(s + k), half(e(k + 2), v)]);
                 }
                 face_verts.extend_from_slice(&[ep(0), ep(1), ep(2)]);
+                corner_key.extend_from_slice(&[inner(s + 1), inner(s + 2), inner(s)]);
                 hole.extend_from_slice(&[self.hole[f]; 4]);
             }
-            let face_start: Vec<u32> = (0..=4 * nf).map(|f| (3 * f) as u32).collect();
-            (face_start, face_verts, hole)
+            hole
         };
-        let mut child = SharpMesh::assemble(positions, face_start, face_verts, hole)?;
+        let keys = 2 * ne + nc as usize;
+        let (mut child, edge_of) = if face_points {
+            SharpMesh::assemble_keyed::<4>(positions, face_verts, &corner_key, keys, hole)
+        } else {
+            SharpMesh::assemble_keyed::<3>(positions, face_verts, &corner_key, keys, hole)
+        };
         // Vertex points keep their parent's rotational edge order.
         for v in 0..nv {
             let start = child.vert_edge_start[v] as usize;
             for (i, &e) in self.vertex_edges(v).iter().enumerate() {
-                let k = child.vert_edges[start + i..child.vert_edge_start[v + 1] as usize]
-                    .iter()
-                    .position(|&ce| {
-                        let [a, b] = child.edge_verts[ce as usize];
-                        a as usize == nv + e as usize || b as usize == nv + e as usize
-                    })
-                    .unwrap_or(0);
-                child.vert_edges.swap(start + i, start + i + k);
+                child.vert_edges[start + i] = edge_of[half(e, v as u32) as usize];
             }
         }
         for e in 0..ne {
-            if !is_sharp(self.edge_sharpness[e]) {
-                continue;
-            }
-            let [a, b] = self.edge_verts[e];
-            for (end, x) in [a, b].into_iter().enumerate() {
-                if let Some(ce) = child.find_edge(x as usize, nv + e) {
-                    child.edge_sharpness[ce] = edge_child[e][end];
+            if is_sharp(self.edge_sharpness[e]) {
+                for end in 0..2 {
+                    child.edge_sharpness[edge_of[2 * e + end] as usize] = edge_child[e][end];
                 }
             }
         }
@@ -335,6 +344,7 @@ impl SharpMesh {
 #[cfg(test)]
 mod tests {
     use super::super::rules::Boundary;
+    use super::super::tags::{Tag, TagTarget};
     use super::*;
     use crate::mesh::generators;
 
@@ -371,6 +381,79 @@ mod tests {
             .unwrap();
         let theirs = crate::mesh::loop_subdivision::refine_levels(&ico, 2).unwrap();
         assert!(max_diff(ours.positions(), theirs.positions()) < 1e-14);
+    }
+
+    /// The child's topology, built from its parts by construction, equals
+    /// the one the general corner pairing finds from its faces alone (the
+    /// edges around a parent vertex are in the parent's rotational order
+    /// instead of edge order, so those are compared as sets).
+    fn assert_topology_matches_pairing(parent: &SharpMesh, child: &SharpMesh) {
+        let paired = SharpMesh::assemble(
+            child.positions.clone(),
+            child.face_start.clone(),
+            child.face_verts.clone(),
+            child.hole.clone(),
+        )
+        .unwrap();
+        assert_eq!(child.face_edges, paired.face_edges);
+        assert_eq!(child.edge_verts, paired.edge_verts);
+        assert_eq!(child.edge_faces, paired.edge_faces);
+        assert_eq!(child.vert_edge_start, paired.vert_edge_start);
+        assert_eq!(child.vert_face_start, paired.vert_face_start);
+        assert_eq!(child.vert_faces, paired.vert_faces);
+        for v in 0..child.vertex_count() {
+            let (mut a, mut b) = (
+                child.vertex_edges(v).to_vec(),
+                paired.vertex_edges(v).to_vec(),
+            );
+            if v >= parent.vertex_count() {
+                assert_eq!(a, b, "edges of child vertex {v}");
+            }
+            a.sort_unstable();
+            b.sort_unstable();
+            assert_eq!(a, b, "edges of vertex {v}");
+        }
+    }
+
+    #[test]
+    fn child_topology_equals_the_general_pairing() {
+        // an open strip of quads, a semi-sharp crease and a corner, and the
+        // same strip cut into triangles; boundary `none` leaves holes
+        let p: Vec<[f64; 3]> = (0..12)
+            .map(|i| [(i % 4) as f64, (i / 4) as f64, ((i % 4) * (i / 4)) as f64])
+            .collect();
+        let quads = vec![
+            vec![0, 1, 5, 4],
+            vec![1, 2, 6, 5],
+            vec![2, 3, 7, 6],
+            vec![4, 5, 9, 8],
+            vec![5, 6, 10, 9],
+            vec![6, 7, 11, 10],
+        ];
+        let tris: Vec<Vec<usize>> = quads
+            .iter()
+            .flat_map(|q| [vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]])
+            .collect();
+        let tag = |target, sharpness| Tag {
+            line: 1,
+            target,
+            sharpness,
+        };
+        let tags = [
+            tag(TagTarget::Edge(5, 6), 1.5),
+            tag(TagTarget::Edge(1, 5), 10.0),
+            tag(TagTarget::Vertex(6), 2.0),
+        ];
+        for (faces, scheme) in [(&quads, SdcScheme::CatmullClark), (&tris, SdcScheme::Loop)] {
+            for boundary in [Boundary::EdgeOnly, Boundary::None] {
+                let mut m = SharpMesh::new(p.clone(), faces, &tags, boundary).unwrap();
+                for _ in 0..3 {
+                    let r = m.refine(scheme, Creasing::Chaikin).unwrap();
+                    assert_topology_matches_pairing(&m, &r);
+                    m = r;
+                }
+            }
+        }
     }
 
     #[test]

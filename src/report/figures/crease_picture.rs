@@ -19,6 +19,7 @@
 //! levels = 3            # 1..=4: the right panel (default 3)
 //! ```
 
+use super::panels::{draw_panels, faces_table, FaceStyle};
 use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::mesh::obj::parse_obj_data;
 use crate::mesh::projection::{project_sharp, Projected, View};
@@ -27,7 +28,7 @@ use crate::mesh::sharp::SharpMesh;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
-use crate::report::plot::{draw_err, titled, Theme};
+use crate::report::plot::{draw_err, Theme};
 use plotters::prelude::*;
 use serde::Deserialize;
 use toml::Spanned;
@@ -181,24 +182,11 @@ struct Output {
 
 impl FigureOutput for Output {
     fn tables(&self) -> Vec<DataTable> {
-        let mut t = DataTable::new(None, &["panel", "face", "corner", "x", "y", "shade"]);
         let mut e = DataTable::new(
             Some("edges"),
             &["panel", "x0", "y0", "x1", "y1", "sharpness"],
         );
         for (i, p) in self.panels.iter().enumerate() {
-            for f in &p.faces.faces {
-                for (k, q) in f.points.iter().enumerate() {
-                    t.push(vec![
-                        i.to_string(),
-                        f.face.to_string(),
-                        k.to_string(),
-                        num(q[0]),
-                        num(q[1]),
-                        num(f.shade),
-                    ]);
-                }
-            }
             for (s, sharpness) in &p.sharp {
                 e.push(vec![
                     i.to_string(),
@@ -210,63 +198,26 @@ impl FigureOutput for Output {
                 ]);
             }
         }
-        vec![t, e]
+        vec![faces_table(self.panels.iter().map(|p| &p.faces)), e]
     }
 
     fn draw(&self, area: &Area<'_>, common: &Common) -> Result<(), ReportError> {
         let th = Theme::for_size(common.size);
-        let body = titled(area, &common.title, &th)?;
-        // one scale for both panels: the union of the bounds, squared up
-        let mut b = [
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ];
-        for p in &self.panels {
-            b[0] = b[0].min(p.faces.bounds[0]);
-            b[1] = b[1].max(p.faces.bounds[1]);
-            b[2] = b[2].min(p.faces.bounds[2]);
-            b[3] = b[3].max(p.faces.bounds[3]);
-        }
-        let half = 0.55 * (b[1] - b[0]).max(b[3] - b[2]).max(1e-12);
-        let (cx, cy) = ((b[0] + b[1]) / 2.0, (b[2] + b[3]) / 2.0);
-        let areas = body.split_evenly((1, self.panels.len()));
+        let panels: Vec<(&str, &Projected)> = self
+            .panels
+            .iter()
+            .map(|p| (p.label.as_str(), &p.faces))
+            .collect();
+        let style = FaceStyle {
+            wireframe: false,
+            edge_alpha: 0.35,
+        };
         let infinite = RGBColor(200, 30, 30);
         let semi = RGBColor(240, 140, 20);
-        for (p, a) in self.panels.iter().zip(areas.iter()) {
-            let (w, h) = a.dim_in_pixel();
-            let aspect = w as f64 / h.max(1) as f64;
-            let (hx, hy) = if aspect >= 1.0 {
-                (half * aspect, half)
-            } else {
-                (half, half / aspect)
-            };
-            let mut chart = ChartBuilder::on(a)
-                .margin(th.tick as i32)
-                .caption(&p.label, th.font(th.label))
-                .build_cartesian_2d(cx - hx..cx + hx, cy - hy..cy + hy)
-                .map_err(draw_err)?;
-            let edge = BLACK.mix(0.35);
-            for f in &p.faces.faces {
-                let pts: Vec<(f64, f64)> = f.points.iter().map(|q| (q[0], q[1])).collect();
-                let g = |base: f64| (base * f.shade).round().clamp(0.0, 255.0) as u8;
-                let fill = RGBColor(g(150.0), g(185.0), g(235.0));
-                chart
-                    .draw_series(std::iter::once(Polygon::new(pts.clone(), fill.filled())))
-                    .map_err(draw_err)?;
-                let mut closed = pts;
-                closed.push(closed[0]);
-                chart
-                    .draw_series(std::iter::once(PathElement::new(
-                        closed,
-                        edge.stroke_width(1),
-                    )))
-                    .map_err(draw_err)?;
-            }
-            // sharp edges on top (an orthographic picture of a gently
-            // curved grid: drawing them last keeps every crease visible)
-            for (s, sharpness) in &p.sharp {
+        // sharp edges on top (an orthographic picture of a gently curved
+        // grid: drawing them last keeps every crease visible)
+        draw_panels(area, &common.title, &th, &panels, style, |i, chart| {
+            for (s, sharpness) in &self.panels[i].sharp {
                 let col = if is_infinite(*sharpness) {
                     infinite
                 } else {
@@ -279,7 +230,7 @@ impl FigureOutput for Output {
                     )))
                     .map_err(draw_err)?;
             }
-        }
-        Ok(())
+            Ok(())
+        })
     }
 }

@@ -17,15 +17,15 @@
 //! ```
 
 use super::mesh_convergence::{built_in_mesh, mesh_scheme};
-use super::{bounded, num, Context, DataTable, Figure, FigureKind, FigureOutput};
+use super::panels::{draw_panels, faces_table, FaceStyle};
+use super::{bounded, Context, DataTable, Figure, FigureKind, FigureOutput};
 use crate::mesh::projection::{project, Projected, View};
 use crate::mesh::rules::MeshRules;
 use crate::mesh::Mesh;
 use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
-use crate::report::plot::{draw_err, titled, Theme};
-use plotters::prelude::*;
+use crate::report::plot::Theme;
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -150,78 +150,17 @@ struct Output {
 
 impl FigureOutput for Output {
     fn tables(&self) -> Vec<DataTable> {
-        let mut t = DataTable::new(None, &["panel", "face", "corner", "x", "y", "shade"]);
-        for (i, (_, p)) in self.panels.iter().enumerate() {
-            for f in &p.faces {
-                for (k, q) in f.points.iter().enumerate() {
-                    t.push(vec![
-                        i.to_string(),
-                        f.face.to_string(),
-                        k.to_string(),
-                        num(q[0]),
-                        num(q[1]),
-                        num(f.shade),
-                    ]);
-                }
-            }
-        }
-        vec![t]
+        vec![faces_table(self.panels.iter().map(|(_, p)| p))]
     }
 
     fn draw(&self, area: &Area<'_>, common: &Common) -> Result<(), ReportError> {
         let th = Theme::for_size(common.size);
-        let body = titled(area, &common.title, &th)?;
-        // one scale for both panels: the union of the bounds, squared up
-        let mut b = [
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ];
-        for (_, p) in &self.panels {
-            b[0] = b[0].min(p.bounds[0]);
-            b[1] = b[1].max(p.bounds[1]);
-            b[2] = b[2].min(p.bounds[2]);
-            b[3] = b[3].max(p.bounds[3]);
-        }
-        let half = 0.55 * (b[1] - b[0]).max(b[3] - b[2]).max(1e-12);
-        let (cx, cy) = ((b[0] + b[1]) / 2.0, (b[2] + b[3]) / 2.0);
-        let panels = body.split_evenly((1, self.panels.len()));
-        for ((label, p), panel) in self.panels.iter().zip(panels.iter()) {
-            let (w, h) = panel.dim_in_pixel();
-            let aspect = w as f64 / h.max(1) as f64;
-            let (hx, hy) = if aspect >= 1.0 {
-                (half * aspect, half)
-            } else {
-                (half, half / aspect)
-            };
-            let mut chart = ChartBuilder::on(panel)
-                .margin(th.tick as i32)
-                .caption(label, th.font(th.label))
-                .build_cartesian_2d(cx - hx..cx + hx, cy - hy..cy + hy)
-                .map_err(draw_err)?;
-            let edge = BLACK.mix(if self.wireframe { 0.8 } else { 0.55 });
-            for f in &p.faces {
-                let pts: Vec<(f64, f64)> = f.points.iter().map(|q| (q[0], q[1])).collect();
-                let fill = if self.wireframe {
-                    WHITE
-                } else {
-                    let g = |base: f64| (base * f.shade).round().clamp(0.0, 255.0) as u8;
-                    RGBColor(g(150.0), g(185.0), g(235.0))
-                };
-                chart
-                    .draw_series(std::iter::once(Polygon::new(pts.clone(), fill.filled())))
-                    .map_err(draw_err)?;
-                let mut closed = pts;
-                closed.push(closed[0]);
-                chart
-                    .draw_series(std::iter::once(PathElement::new(
-                        closed,
-                        edge.stroke_width(1),
-                    )))
-                    .map_err(draw_err)?;
-            }
-        }
-        Ok(())
+        let panels: Vec<(&str, &Projected)> =
+            self.panels.iter().map(|(l, p)| (l.as_str(), p)).collect();
+        let style = FaceStyle {
+            wireframe: self.wireframe,
+            edge_alpha: if self.wireframe { 0.8 } else { 0.55 },
+        };
+        draw_panels(area, &common.title, &th, &panels, style, |_, _| Ok(()))
     }
 }

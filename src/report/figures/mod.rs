@@ -54,6 +54,7 @@ pub mod sweep;
 pub mod valence;
 
 mod common;
+mod panels;
 
 pub(crate) use common::{bounded, valence_range};
 pub use common::{
