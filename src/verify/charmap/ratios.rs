@@ -18,8 +18,9 @@
 //! `T11, T12, T21, T22`. With `delta` a lower bound of
 //! `sep_F(T11, T22) = sigma_min(T11^T ⊗ I - I ⊗ T22)` over the cell (a
 //! verified inverse of the Kronecker matrix at the interval midpoints, minus
-//! the Frobenius norms of the radii), `gamma >= ||T21||_F`,
-//! `eta >= ||T12||_F` and `4 gamma eta < delta^2`, the map
+//! the 2-norms of the radii, all 2-norms bounded by
+//! [`super::ivla::norm2_op_upper`]), `gamma >= ||T21||_F`,
+//! `eta >= ||T12||_2` and `4 gamma eta < delta^2`, the map
 //! `P -> L^{-1}(T21 - P T12 P)`, `L(P) = P T11 - T22 P`, is a contraction of
 //! the ball `||P||_F <= rho = 2 gamma / delta` into itself; its fixed point
 //! `P(r)` makes `range(Q [I; P])` invariant with restriction
@@ -47,6 +48,12 @@
 //! boundary's winding number must be 1 after orientation
 //! ([`super::winding`]). Regularity and injectivity do not depend on the
 //! basis of the plane, so `B` serves for every eigenstructure.
+//!
+//! **Named remainders.** The remainder of every form of `N`, of the lifted
+//! basis and of the ring points becomes a fresh symbol
+//! ([`Af::name_remainder`], [`named_remainders`] of them), so that the
+//! Bezier differences and the Jacobian coefficients cancel it instead of
+//! adding it (math doc section 15, "Named remainders").
 
 use super::af::{self, Af};
 use super::ivla::{mid, norm2_op_upper, norm2_upper, verified_inverse, P2};
