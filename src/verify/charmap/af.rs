@@ -184,6 +184,32 @@ impl Af {
         out
     }
 
+    /// The form with its remainder turned into the symbol `k`, which no
+    /// form has used so far: `x = c + sum_i x_i eps_i + e eps_k` with
+    /// `eps_k = (x - c - sum_i x_i eps_i) / e in [-1, 1]`, a function of the
+    /// cell's parameters like every symbol after the ratios (math doc
+    /// section 15, "Named remainders"). The range is unchanged; what changes
+    /// is that every later form computed from `x` carries the same `eps_k`,
+    /// so differences of such forms cancel it to first order instead of
+    /// adding two remainders. Exact (no rounding): the float `e` moves.
+    ///
+    /// ```
+    /// use subdiv_lab::verify::charmap::af::Af;
+    /// let x = Af::symbol(0.5, 0.1, 0, 3).mul(&Af::symbol(0.2, 0.1, 1, 3));
+    /// let named = x.name_remainder(2);
+    /// assert_eq!(named.range(), x.range());
+    /// // a difference of two forms sharing the named remainder cancels it
+    /// let d = named.scale(1.001).sub(&named);
+    /// assert!(d.radius() < 1e-4 && x.scale(1.001).sub(&x).radius() > 1e-2);
+    /// ```
+    pub fn name_remainder(&self, k: usize) -> Af {
+        let mut out = self.clone();
+        debug_assert!(out.l[k] == 0.0, "symbol {k} is taken");
+        out.l[k] = self.e;
+        out.e = 0.0;
+        out
+    }
+
     /// `f(x)` for a differentiable `f` by the mean-value form: `fx0`
     /// encloses `f(c)` and `dfx` encloses `f'` on the range of `x`, so
     /// `f(x) = f(c) + f'(xi) (x - c)` lies in

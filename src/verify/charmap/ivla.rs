@@ -79,6 +79,40 @@ pub fn norm2_upper(xs: impl IntoIterator<Item = f64>) -> f64 {
     up(s.sqrt())
 }
 
+/// Upper bound of the spectral norm `||E||_2` of every matrix `E` with
+/// `|E| <= A` entrywise, for the non-negative `rows x cols` matrix `A`
+/// (row-major): `||E||_2 <= || |E| ||_2 <= ||A||_2 <= min(||A||_F,
+/// sqrt(||A||_1 ||A||_inf))` (math doc section 15, "G1 over a cell"),
+/// rounded up. The second bound is the sharper one for a diagonally
+/// dominant `A` (it is exact for a diagonal one, where the Frobenius norm
+/// overestimates by up to `sqrt(rows)`).
+///
+/// ```
+/// use subdiv_lab::verify::charmap::ivla::norm2_op_upper;
+/// let a = [0.25, 0.0, 0.0, 0.25];
+/// let b = norm2_op_upper(&a, 2, 2);
+/// assert!(b >= 0.25 && b < 0.25 * (1.0 + 1e-15));
+/// ```
+pub fn norm2_op_upper(a: &[f64], rows: usize, cols: usize) -> f64 {
+    if a.len() != rows * cols {
+        return f64::INFINITY;
+    }
+    let mut row_max = 0.0f64;
+    let mut col = vec![0.0f64; cols];
+    for i in 0..rows {
+        let mut r = 0.0f64;
+        for (j, c) in col.iter_mut().enumerate() {
+            let x = a[i * cols + j].abs();
+            r = up(r + x);
+            *c = up(*c + x);
+        }
+        row_max = row_max.max(r);
+    }
+    let col_max = col.iter().copied().fold(0.0f64, f64::max);
+    let mixed = up(up(row_max * col_max).sqrt());
+    norm2_upper(a.iter().copied()).min(mixed)
+}
+
 /// A planar point known to lie in the square `|p - m|_inf <= r`
 /// (midpoint-radius form). Convex combinations (non-negative weights adding
 /// up to 1) of such points have a radius at most the largest input radius,
@@ -300,6 +334,46 @@ mod tests {
                 assert!(sol[0][i].lo <= xv[i] && xv[i] <= sol[0][i].hi, "{k} {i}");
             }
         }
+    }
+
+    /// `norm2_op_upper` bounds the 2-norm (the largest singular value) of
+    /// every matrix below the given magnitudes, and is exact for a diagonal
+    /// one.
+    #[test]
+    fn the_spectral_norm_bound_holds_for_random_matrices() {
+        let mut rng = crate::rng::SplitMix64::new(7);
+        for t in 0..400 {
+            let (rows, cols) = (1 + t % 5, 1 + (t / 5) % 5);
+            let a: Vec<f64> = (0..rows * cols)
+                .map(|_| {
+                    let x = rng.uniform(0.0, 1.0);
+                    // mostly small off the diagonal, some full rows
+                    if t % 3 == 0 {
+                        x
+                    } else {
+                        x * x * x * 0.1
+                    }
+                })
+                .collect();
+            let bound = norm2_op_upper(&a, rows, cols);
+            // the signs do not matter: |E| <= A
+            for sign_seed in 0..4u64 {
+                let e = DMatrix::from_fn(rows, cols, |i, j| {
+                    let flip = (sign_seed >> ((i + j) % 2)) & 1 == 1;
+                    let v = a[i * cols + j];
+                    if flip {
+                        -v
+                    } else {
+                        v
+                    }
+                });
+                let norm = e.svd(false, false).singular_values.max();
+                assert!(norm <= bound * (1.0 + 1e-12), "{t}: {norm} > {bound}");
+            }
+        }
+        let d = norm2_op_upper(&[0.25, 0.0, 0.0, 0.5], 2, 2);
+        assert!((0.5..0.5 * (1.0 + 1e-15)).contains(&d), "{d}");
+        assert!(norm2_op_upper(&[1.0; 3], 2, 2).is_infinite());
     }
 
     #[test]

@@ -18,8 +18,9 @@
 //! `T11, T12, T21, T22`. With `delta` a lower bound of
 //! `sep_F(T11, T22) = sigma_min(T11^T ⊗ I - I ⊗ T22)` over the cell (a
 //! verified inverse of the Kronecker matrix at the interval midpoints, minus
-//! the Frobenius norms of the radii), `gamma >= ||T21||_F`,
-//! `eta >= ||T12||_F` and `4 gamma eta < delta^2`, the map
+//! the 2-norms of the radii, all 2-norms bounded by
+//! [`super::ivla::norm2_op_upper`]), `gamma >= ||T21||_F`,
+//! `eta >= ||T12||_2` and `4 gamma eta < delta^2`, the map
 //! `P -> L^{-1}(T21 - P T12 P)`, `L(P) = P T11 - T22 P`, is a contraction of
 //! the ball `||P||_F <= rho = 2 gamma / delta` into itself; its fixed point
 //! `P(r)` makes `range(Q [I; P])` invariant with restriction
@@ -47,9 +48,15 @@
 //! boundary's winding number must be 1 after orientation
 //! ([`super::winding`]). Regularity and injectivity do not depend on the
 //! basis of the plane, so `B` serves for every eigenstructure.
+//!
+//! **Named remainders.** The remainder of every form of `N`, of the lifted
+//! basis and of the ring points becomes a fresh symbol
+//! ([`Af::name_remainder`], [`named_remainders`] of them), so that the
+//! Bezier differences and the Jacobian coefficients cancel it instead of
+//! adding it (math doc section 15, "Named remainders").
 
 use super::af::{self, Af};
-use super::ivla::{mid, norm2_upper, verified_inverse, P2};
+use super::ivla::{mid, norm2_op_upper, norm2_upper, verified_inverse, P2};
 use super::winding::{winding_number, BoxCurve};
 use super::CellTamper;
 use crate::schemes::doo_sabin::ring::{patch_grid, PatchKind, RingPatchId};
@@ -103,6 +110,33 @@ pub struct RatioRing {
     pub centre: Vec<f64>,
     /// The half-widths `h` (rounded up).
     pub half_width: Vec<f64>,
+}
+
+/// How many remainders of a ring over a cell of valence `n` are named
+/// (math doc section 15, "Named remainders"): the 4 entries of `N`, the
+/// `4n` edge and `2n` corner coordinates of the lifted basis, the `18n`
+/// coordinates of the ring points.
+pub const fn named_remainders(n: usize) -> usize {
+    4 + 24 * n
+}
+
+/// The next free symbol for a named remainder.
+struct Named {
+    next: usize,
+}
+
+impl Named {
+    fn new(first: usize) -> Named {
+        Named { next: first }
+    }
+
+    /// `f` with its remainder turned into the next fresh symbol
+    /// ([`Af::name_remainder`]).
+    fn name(&mut self, f: Af) -> Af {
+        let out = f.name_remainder(self.next);
+        self.next += 1;
+        out
+    }
 }
 
 /// Sparse matrix entries `(row, col, value)`.
@@ -452,21 +486,40 @@ pub fn ratio_ring_with(
         v
     });
     let kinv = verified_inverse(&kk)?;
-    let kinv_f = norm2_upper(kinv.iter().map(|x| x.mag()));
+    // ||K^{-1}||_2 (the operator norm of L0^{-1} on the Frobenius norm)
+    // and the spectral norms of the variations of T11 and T22
+    let kinv_mag: Vec<f64> = kinv.iter().map(|x| x.mag()).collect();
+    let kinv_f = norm2_op_upper(&kinv_mag, 2 * m, 2 * m);
     let sigma_lo = down(1.0 / kinv_f);
-    let r11 = norm2_upper((0..4).map(|t| tr(t / 2, t % 2)));
-    let r22 = norm2_upper((0..m * m).map(|t| tr(2 + t / m, 2 + t % m)));
+    let r11 = norm2_op_upper(&(0..4).map(|t| tr(t / 2, t % 2)).collect::<Vec<_>>(), 2, 2);
+    let r22 = norm2_op_upper(
+        &(0..m * m)
+            .map(|t| tr(2 + t / m, 2 + t % m))
+            .collect::<Vec<_>>(),
+        m,
+        m,
+    );
     let delta = down(sigma_lo - up(r11 + r22));
     if !(delta > 0.0) {
         return None;
     }
     let gamma = norm2_upper((0..2 * m).map(|t| tb(2 + t / 2, t % 2).mag()));
-    let eta = norm2_upper((0..2 * m).map(|t| tb(t / m, 2 + t % m).mag()));
+    // eta >= ||T12||_2 suffices: ||P T12 P||_F <= ||P||_F^2 ||T12||_2
+    let eta = norm2_op_upper(
+        &(0..2 * m)
+            .map(|t| tb(t / m, 2 + t % m).mag())
+            .collect::<Vec<_>>(),
+        2,
+        m,
+    );
     if !(up(4.0 * up(gamma * eta)) < down(delta * delta)) {
         return None;
     }
-    // affine forms: symbols 0..n the ratios, n + 2k + j the entries P_kj
-    let ns = n + 2 * m;
+    // affine forms: symbols 0..n the ratios, n + 2k + j the entries P_kj,
+    // then one named remainder per form of N, of the lifted basis and of
+    // the ring (math doc section 15, "Named remainders")
+    let mut named = Named::new(n + 2 * m);
+    let ns = n + 2 * m + named_remainders(n);
     let t_af = |a: usize, b: usize| -> Af {
         let (c, r) = m0[a * n + b].mid_rad();
         let mut f = Af::constant(c, ns);
@@ -555,7 +608,7 @@ pub fn ratio_ring_with(
             for k in 0..m {
                 acc = acc.add(&t_af(a, 2 + k).mul(&pk(k, b)));
             }
-            acc
+            named.name(acc)
         })
         .collect();
     let lay = Layout::new(n);
@@ -601,7 +654,11 @@ pub fn ratio_ring_with(
                 }
             }
         }
-        let x = af::solve(&sys, &[rhs], 4)?.pop()?;
+        let x: Vec<Af> = af::solve(&sys, &[rhs], 4)?
+            .pop()?
+            .into_iter()
+            .map(|f| named.name(f))
+            .collect();
         w[lay.e1(i)] = [x[0].clone(), x[2].clone()];
         w[lay.e2(i)] = [x[1].clone(), x[3].clone()];
     }
@@ -627,7 +684,7 @@ pub fn ratio_ring_with(
         .collect();
     let xc = af::solve(&ntm, &rhs_c, 2)?;
     for (i, x) in xc.into_iter().enumerate() {
-        w[lay.c(i)] = [x[0].clone(), x[1].clone()];
+        w[lay.c(i)] = [named.name(x[0].clone()), named.name(x[1].clone())];
     }
     // the 9n ring points
     let mut pts: Vec<[Af; 2]> = Vec::with_capacity(9 * n);
@@ -694,6 +751,11 @@ pub fn ratio_ring_with(
             (c1.clone(), e1),
         ]));
     }
+    let pts: Vec<[Af; 2]> = pts
+        .into_iter()
+        .map(|[a, b]| [named.name(a), named.name(b)])
+        .collect();
+    debug_assert_eq!(named.next, ns);
     let boxes =
         |v: &[[Af; 2]]| -> Vec<P2> { v.iter().map(|p| [p[0].range(), p[1].range()]).collect() };
     // N lies in both enclosures (the interval one and the affine forms'
