@@ -183,6 +183,12 @@ fn generic_summary(g: &subdiv_lab::Result<charmap::generic::GenericReport>) -> S
             r.point_error.unwrap_or(f64::NAN)
         );
     }
+    if let Some(e) = &r.class_proof {
+        out += &format!(
+            "  class proven exactly: lambda in [{:.10}, {:.10}], every other eigenvalue but 1 of modulus at most {}\n",
+            e.lambda[0], e.lambda[1], e.threshold
+        );
+    }
     out
 }
 

@@ -442,3 +442,185 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn modified_butterfly_is_c1_at_every_valence_3_to_16() {
+    // wherever the precondition holds (the class standard in floating
+    // point, or proven exactly), the map is certified
+    let mut certified = Vec::new();
+    for n in 3..=16 {
+        let g = generic_of(&LocalScheme::ModifiedButterfly { valence: n });
+        eprintln!("modified butterfly n = {n}: {}", g.verdict);
+        if g.level.is_none() {
+            continue;
+        }
+        assert_eq!(g.verdict, GenericVerdict::C1, "n = {n}");
+        // n = 6 is the regular butterfly: its class is proven exactly
+        assert_eq!(g.class_proof.is_some(), n == 6, "n = {n}");
+        certified.push(n);
+    }
+    assert!(
+        certified.len() >= 10 && certified.contains(&6) && certified.contains(&16),
+        "{certified:?}"
+    );
+}
+
+#[test]
+fn butterfly_verdicts_3_to_16() {
+    // n >= 8: where the library's floating-point class is standard (or
+    // proven), regular with a ring winding 2 or 3 times; never c1
+    let mut winds = 0;
+    for n in 3..=16 {
+        let g = generic_of(&LocalScheme::Butterfly { valence: n });
+        eprintln!("butterfly n = {n}: {}", g.verdict);
+        match n {
+            // n = 5: lambda is irrational of degree 8, beyond the exact rank
+            3 | 5 => assert_eq!(g.verdict.code(), "indeterminate", "n = {n}"),
+            4 | 6 | 7 => assert_eq!(g.verdict, GenericVerdict::C1, "n = {n}"),
+            _ if g.level.is_none() => {}
+            _ => {
+                assert!(
+                    matches!(g.verdict, GenericVerdict::NotC1 { witness: Witness::Winding { winding, .. } } if winding.abs() >= 2),
+                    "n = {n}: {}",
+                    g.verdict
+                );
+                winds += 1;
+            }
+        }
+    }
+    assert!(winds >= 5, "{winds} valences certified not C1");
+}
+
+/// The net refined `levels` times from level 0.
+fn net_at(prep: &generic::Prepared, levels: u32) -> Net {
+    let mut net = prep.net.clone();
+    for k in 0..levels {
+        net = prep.refine(&net, k);
+    }
+    net
+}
+
+#[test]
+fn local_patches_hold_the_nets_values() {
+    let prep = prepared(&LocalScheme::ModifiedButterfly { valence: 5 }).unwrap();
+    let coarse = net_at(&prep, 6);
+    let fine = prep.refine(&coarse, 6);
+    let (mut compared, mut far) = (0, 0);
+    for s in [0, 3] {
+        let values = |p| coarse.at(s, p);
+        let patch = cells::Patch::refine(&values, &prep.rules, [40, 80, -10, 30], 2);
+        for x in 40..=80 {
+            for y in -10..=30 {
+                let (Some(a), Some(b)) = (patch.at([x, y]), fine.at(s, [x, y])) else {
+                    continue;
+                };
+                compared += 1;
+                for k in 0..2 {
+                    let d = (a.mid[k] - b.mid[k]).abs();
+                    assert!(d <= a.rad + b.rad, "sector {s} ({x}, {y}): {d:e}");
+                    if d > 0.0 {
+                        far += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(compared > 1000, "{compared} values compared");
+    // the points are the same combinations: equal to the last bit or nearly
+    assert!(far < compared, "{far} of {compared} differ");
+}
+
+/// The box `[xmin, xmax, ymin, ymax]` of a set of balls.
+fn ball_box(balls: &[Ball]) -> [f64; 4] {
+    let mut b = [
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for x in balls {
+        b[0] = b[0].min(x.mid[0] - x.rad);
+        b[1] = b[1].max(x.mid[0] + x.rad);
+        b[2] = b[2].min(x.mid[1] - x.rad);
+        b[3] = b[3].max(x.mid[1] + x.rad);
+    }
+    b
+}
+
+#[test]
+fn derivative_enclosures_contain_the_enclosures_of_their_subcells() {
+    // cells of level 9 (patches from the net of level 8) against their
+    // descendants three levels finer: the derivative over a subcell
+    // (enclosed tightly, in its level's units: 1/8 of the coarse ones)
+    // lies in the cell's enclosure, so the boxes must meet
+    let n = 7;
+    let prep = prepared(&LocalScheme::ModifiedButterfly { valence: n }).unwrap();
+    let net = net_at(&prep, 8);
+    let lattice = prep.rules.lattice;
+    let m = prep.margin as i64;
+    let patch_of = |values: &cells::Values, c: &cells::Cell| {
+        let bx = [2 * c.i - m, 2 * c.i + 2 + m, 2 * c.j - m, 2 * c.j + 2 + m];
+        cells::Patch::refine(values, &prep.rules, bx, 2)
+    };
+    let (mut checked, mut first_order) = (0, 0);
+    for (idx, coarse) in cells::annulus(lattice, 2, 8).into_iter().enumerate() {
+        if idx % 1999 != 0 {
+            continue;
+        }
+        let p9 = patch_of(&|p| net.at(2, p), &coarse);
+        for cell in cells::children(lattice, &coarse) {
+            let v9 = |p| p9.at(p);
+            let p10 = patch_of(&v9, &cell);
+            let outer: Vec<_> = (0..2)
+                .map(|k| cells::derivative_enclosure(&v9, &prep.rules, &cell, k).unwrap())
+                .collect();
+            // the first-order enclosure is centred off the lattice values
+            let (a, b) = (
+                p9.at([cell.i, cell.j]).unwrap(),
+                p9.at([cell.i - 1, cell.j]).unwrap(),
+            );
+            if outer[0][0].mid != [a.mid[0] - b.mid[0], a.mid[1] - b.mid[1]] {
+                first_order += 1;
+            }
+            for c10 in cells::children(lattice, &cell) {
+                let v10 = |p| p10.at(p);
+                let p11 = patch_of(&v10, &c10);
+                for c11 in cells::children(lattice, &c10) {
+                    let v11 = |p| p11.at(p);
+                    let p12 = patch_of(&v11, &c11);
+                    for c12 in cells::children(lattice, &c11) {
+                        for (k, o) in outer.iter().enumerate() {
+                            let inner =
+                                cells::derivative_enclosure(&|p| p12.at(p), &prep.rules, &c12, k)
+                                    .unwrap();
+                            let scaled: Vec<Ball> = inner
+                                .iter()
+                                .map(|b| Ball {
+                                    mid: [8.0 * b.mid[0], 8.0 * b.mid[1]],
+                                    rad: 8.0 * b.rad,
+                                })
+                                .collect();
+                            // the subcell's balls are tight: their centres
+                            // lie in the cell's enclosure box
+                            let a = ball_box(o);
+                            for b in &scaled {
+                                assert!(
+                                    a[0] <= b.mid[0]
+                                        && b.mid[0] <= a[1]
+                                        && a[2] <= b.mid[1]
+                                        && b.mid[1] <= a[3],
+                                    "{cell} d{k}: enclosure {a:?}, subcell {c12} {b:?}"
+                                );
+                            }
+                            checked += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        checked > 500 && first_order > 0,
+        "{checked} checks, {first_order} first-order"
+    );
+}

@@ -3,7 +3,7 @@
 
 use super::layout::{Lattice, LatticePoint};
 use super::mask::{NormBound, NormBounds, RegularRules};
-use super::net::{Ball, Net};
+use super::net::{regular_value, Ball, Net};
 use crate::charmap::regularity::gamma;
 use std::f64::consts::PI;
 
@@ -119,35 +119,34 @@ pub struct CellSign {
 /// The divided differences `p_alpha - p_{alpha - e_k}` over the window of
 /// `alpha` whose refinable function `psi_k` can be non-zero on the cell
 /// (the cell's bounding box minus the derivative scheme's support box).
-fn differences(net: &Net, rules: &RegularRules, c: &Cell, k: usize) -> Option<Vec<Ball>> {
+fn differences(values: &Values, rules: &RegularRules, c: &Cell, k: usize) -> Option<Vec<Ball>> {
     let b = rules.derivative_box[k];
     let e: LatticePoint = if k == 0 { [1, 0] } else { [0, 1] };
     let mut out = Vec::new();
     for ax in c.i - b[1]..=c.i + 1 - b[0] {
         for ay in c.j - b[3]..=c.j + 1 - b[2] {
-            let p = net.at(c.sector, [ax, ay])?;
-            let q = net.at(c.sector, [ax - e[0], ay - e[1]])?;
-            let mid = [p.mid[0] - q.mid[0], p.mid[1] - q.mid[1]];
-            let size = mid[0].abs().max(mid[1].abs());
-            out.push(Ball {
-                mid,
-                rad: (p.rad + q.rad + gamma(1) * size) * (1.0 + gamma(3)),
-            });
+            out.push(difference(values, [ax, ay], e)?);
         }
     }
     Some(out)
 }
 
 /// `p_x - p_{x - e}` as a ball.
-fn difference(net: &Net, s: usize, x: LatticePoint, e: LatticePoint) -> Option<Ball> {
-    let p = net.at(s, x)?;
-    let q = net.at(s, [x[0] - e[0], x[1] - e[1]])?;
+fn difference(values: &Values, x: LatticePoint, e: LatticePoint) -> Option<Ball> {
+    Some(ball_difference(
+        values(x)?,
+        values([x[0] - e[0], x[1] - e[1]])?,
+    ))
+}
+
+/// `p - q` as a ball (one rounding per coordinate).
+fn ball_difference(p: Ball, q: Ball) -> Ball {
     let mid = [p.mid[0] - q.mid[0], p.mid[1] - q.mid[1]];
     let size = mid[0].abs().max(mid[1].abs());
-    Some(Ball {
+    Ball {
         mid,
         rad: (p.rad + q.rad + gamma(1) * size) * (1.0 + gamma(3)),
-    })
+    }
 }
 
 /// The largest `|v_y - v_{y - w}|` (coordinate-wise, radii included,
@@ -173,10 +172,12 @@ where
     Some(m)
 }
 
-/// The balls of radius `rad + factor * M` around `value` at the corners of
-/// the box `bx` (the cell's bounding box), `M` the largest difference over
-/// the box's window: the limit over the cell lies in their union (math doc
-/// section 20.3, [`NormBound`]: `|g(x) - q_{floor(x)}| <= K T M`).
+/// The norm-based enclosure of the limit `g` over the box `bx` (a cell's
+/// bounding box; the corners are lattice points) from the values `value`
+/// of the scheme of `nb`: four balls whose convex hull contains `g` over the
+/// box. Both enclosures of math doc section 20.3 are formed (the
+/// first-order one only when the scheme reproduces affine data) and the one
+/// with the smaller largest radius is returned; each is sound on its own.
 fn norm_balls<F>(nb: &NormBound, bx: [i64; 4], value: F) -> Option<Vec<Ball>>
 where
     F: Fn(LatticePoint) -> Option<Ball>,
@@ -188,7 +189,32 @@ where
         bx[2] + w[1][0],
         bx[3] + w[1][1],
     ];
-    let m = largest_difference(window, nb.directions, &value)?;
+    let zero = zero_order_balls(nb, bx, window, &value)?;
+    let Some(sigma) = nb.shift else {
+        return Some(zero);
+    };
+    let first = first_order_balls(nb, bx, window, sigma, &value)?;
+    let widest = |b: &[Ball]| b.iter().fold(0.0f64, |a, x| a.max(x.rad));
+    Some(if widest(&first) < widest(&zero) {
+        first
+    } else {
+        zero
+    })
+}
+
+/// The zero-order enclosure: the balls of radius `rad + factor * M` around
+/// the values at the corners of `bx`, `M` the largest difference over the
+/// window (`|g(x) - q_{floor(x)}| <= K T M`, [`NormBound`]).
+fn zero_order_balls<F>(
+    nb: &NormBound,
+    bx: [i64; 4],
+    window: [i64; 4],
+    value: &F,
+) -> Option<Vec<Ball>>
+where
+    F: Fn(LatticePoint) -> Option<Ball>,
+{
+    let m = largest_difference(window, nb.directions, value)?;
     let mut out = Vec::with_capacity(4);
     for x in [bx[0], bx[1]] {
         for y in [bx[2], bx[3]] {
@@ -202,13 +228,119 @@ where
     Some(out)
 }
 
+/// `(a, b)` with `d = a u + b v` for the lattice directions `dirs`
+/// (`det(u, v) = +-1`; exact for dyadic `d`).
+fn in_directions(d: [f64; 2], dirs: [LatticePoint; 2]) -> [f64; 2] {
+    let [u, v] = dirs.map(|x| x.map(|c| c as f64));
+    let det = u[0] * v[1] - u[1] * v[0];
+    [
+        (d[0] * v[1] - d[1] * v[0]) * det,
+        (u[0] * d[1] - u[1] * d[0]) * det,
+    ]
+}
+
+/// The first-order enclosure **\[derived\]** (math doc section 20.3). With
+/// `alpha` the lower corner of `bx`, `G_w` the midrange of the differences
+/// `D_w q_y` over the window (per coordinate) and the affine
+/// `l(alpha + a u + b v) = q_alpha + a G_u + b G_v`, the data `r = q - l`
+/// has the limit `g(x) - l(x - sigma)` (the scheme reproduces affine data
+/// with shift `sigma`), its differences are `D_w q_y - G_w`, so
+///
+///     |g(x) - l(x - sigma)| <= |r_{floor(x)}| + K T max_{y, w} |D_w q_y - G_w|,
+///
+/// and `l(x - sigma)` over the box lies in the hull of `l(c - sigma)` over
+/// its corners `c`: the balls around those four points with that radius
+/// (plus the rounding of `l`) enclose `g` over the box.
+fn first_order_balls<F>(
+    nb: &NormBound,
+    bx: [i64; 4],
+    window: [i64; 4],
+    sigma: [f64; 2],
+    value: &F,
+) -> Option<Vec<Ball>>
+where
+    F: Fn(LatticePoint) -> Option<Ball>,
+{
+    let alpha = [bx[0], bx[2]];
+    let q0 = value(alpha)?;
+    // the differences over the window, per direction
+    let mut diffs: [Vec<Ball>; 2] = Default::default();
+    let mut grad = [[0.0f64; 2]; 2];
+    for (k, e) in nb.directions.iter().enumerate() {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for x in window[0]..=window[1] {
+            for y in window[2]..=window[3] {
+                let d = ball_difference(value([x, y])?, value([x - e[0], y - e[1]])?);
+                for c in 0..2 {
+                    lo[c] = lo[c].min(d.mid[c]);
+                    hi[c] = hi[c].max(d.mid[c]);
+                }
+                diffs[k].push(d);
+            }
+        }
+        // any values serve as G_w; the midrange makes the deviations small
+        grad[k] = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+    }
+    // M(r): the largest |D_w q_y - G_w|, radii included, rounded up
+    let mut m = 0.0f64;
+    for (d, g) in diffs.iter().zip(&grad) {
+        for b in d {
+            for (x, gx) in b.mid.iter().zip(g) {
+                m = m.max(((x - gx).abs() + b.rad) * (1.0 + gamma(2)));
+            }
+        }
+    }
+    // l at a point alpha + a u + b v, with the rounding bound of its computation
+    let affine = |ab: [f64; 2]| -> ([f64; 2], f64) {
+        let mut mid = [0.0f64; 2];
+        let mut err = 0.0f64;
+        for c in 0..2 {
+            let (x, y) = (ab[0] * grad[0][c], ab[1] * grad[1][c]);
+            mid[c] = q0.mid[c] + x + y;
+            err = err.max(gamma(3) * (q0.mid[c].abs() + x.abs() + y.abs()));
+        }
+        (mid, err)
+    };
+    // rho: the largest |r_c| over the corners (r_alpha is within q0's radius)
+    let mut rho = 0.0f64;
+    for x in [bx[0], bx[1]] {
+        for y in [bx[2], bx[3]] {
+            let q = value([x, y])?;
+            let ab = in_directions(
+                [(x - alpha[0]) as f64, (y - alpha[1]) as f64],
+                nb.directions,
+            );
+            let (l, err) = affine(ab);
+            for (x, lx) in q.mid.iter().zip(&l) {
+                rho = rho.max(((x - lx).abs() + q.rad + err) * (1.0 + gamma(2)));
+            }
+        }
+    }
+    let reach = (rho + nb.factor * m) * (1.0 + gamma(2));
+    let mut out = Vec::with_capacity(4);
+    for x in [bx[0], bx[1]] {
+        for y in [bx[2], bx[3]] {
+            let d = [
+                x as f64 - sigma[0] - alpha[0] as f64,
+                y as f64 - sigma[1] - alpha[1] as f64,
+            ];
+            let (mid, err) = affine(in_directions(d, nb.directions));
+            out.push(Ball {
+                mid,
+                rad: (reach + err) * (1.0 + gamma(2)),
+            });
+        }
+    }
+    Some(out)
+}
+
 /// The norm-based enclosure of the derivative `d_{e_k} f` over a cell
 /// **\[derived\]**: [`norm_balls`] of the differences
 /// `q_y = p_y - p_{y - e_k}`.
-fn derivative_balls(net: &Net, nb: &NormBounds, c: &Cell, k: usize) -> Option<Vec<Ball>> {
+fn derivative_balls(values: &Values, nb: &NormBounds, c: &Cell, k: usize) -> Option<Vec<Ball>> {
     let e: LatticePoint = if k == 0 { [1, 0] } else { [0, 1] };
     let bx = [c.i, c.i + 1, c.j, c.j + 1];
-    norm_balls(&nb.derivative[k], bx, |y| difference(net, c.sector, y, e))
+    norm_balls(&nb.derivative[k], bx, |y| difference(values, y, e))
 }
 
 /// The Jacobian's sign on a cell **\[derived\]**: `d_1 f` and `d_2 f` lie in
@@ -219,17 +351,39 @@ fn derivative_balls(net: &Net, nb: &NormBounds, c: &Cell, k: usize) -> Option<Ve
 /// (`|det(a, b) - det(a~, b~)| <= r_a (|b~_x| + |b~_y|) + r_b (|a~_x| + |a~_y|) + 2 r_a r_b`
 /// plus `gamma_3 (|a~_x b~_y| + |a~_y b~_x|)` of rounding).
 pub fn cell_sign(net: &Net, rules: &RegularRules, c: &Cell) -> CellSign {
+    cell_sign_of(&|p| net.at(c.sector, p), rules, c)
+}
+
+/// Balls whose convex hull contains the derivative `d_{e_k} f` (in the
+/// level's units) over the cell: the window of differences (non-negative
+/// masks) or the norm-based enclosure (math doc section 20.3); `None` when a
+/// value is missing.
+pub fn derivative_enclosure(
+    values: &Values,
+    rules: &RegularRules,
+    c: &Cell,
+    k: usize,
+) -> Option<Vec<Ball>> {
+    match rules.norm {
+        None => differences(values, rules, c, k),
+        Some(nb) => derivative_balls(values, &nb, c, k),
+    }
+}
+
+/// The values of one level in a sector's chart (`None` where not held).
+pub type Values<'a> = dyn Fn(LatticePoint) -> Option<Ball> + 'a;
+
+/// [`cell_sign`] with the level's values in the cell's sector chart given
+/// by `values` (a net, or a [`Patch`]).
+pub fn cell_sign_of(values: &Values, rules: &RegularRules, c: &Cell) -> CellSign {
     let undecided = CellSign {
         sign: 0,
         bounds: [f64::NAN; 2],
     };
-    let windows = match rules.norm {
-        None => (differences(net, rules, c, 0), differences(net, rules, c, 1)),
-        Some(nb) => (
-            derivative_balls(net, &nb, c, 0),
-            derivative_balls(net, &nb, c, 1),
-        ),
-    };
+    let windows = (
+        derivative_enclosure(values, rules, c, 0),
+        derivative_enclosure(values, rules, c, 1),
+    );
     let (Some(da), Some(db)) = windows else {
         return undecided;
     };
@@ -342,4 +496,54 @@ pub fn winding(net: &Net, rules: &RegularRules, level: u32) -> Option<i64> {
     let turns = total / (2.0 * PI);
     let w = turns.round();
     ((turns - w).abs() <= INTEGRALITY_TOL).then_some(w as i64)
+}
+
+/// The values of one level on a box of a sector's chart, refined locally
+/// from the previous level by the regular mask **\[derived\]**: away from
+/// the centre every point of the net follows the regular rule in any chart
+/// that holds its stencil, so a patch holds the net's values (as balls
+/// enclosing the exact ones) without refining the whole net. Points whose
+/// ring index is at most `min_ring`, or whose stencil is not held, are left
+/// out (cells that need them stay undecided).
+#[derive(Clone, Debug)]
+pub struct Patch {
+    /// Lower corner of the box.
+    lo: LatticePoint,
+    /// Extent of the box along both axes.
+    size: [usize; 2],
+    values: Vec<Option<Ball>>,
+}
+
+impl Patch {
+    /// The value at a lattice point of the chart.
+    pub fn at(&self, p: LatticePoint) -> Option<Ball> {
+        let (x, y) = (p[0] - self.lo[0], p[1] - self.lo[1]);
+        if x < 0 || y < 0 || x >= self.size[0] as i64 || y >= self.size[1] as i64 {
+            return None;
+        }
+        self.values[x as usize * self.size[1] + y as usize]
+    }
+
+    /// The next level's values on the box `[x0, x1] x [y0, y1]` from this
+    /// level's `values`: `p'_beta = sum_gamma a_gamma p_{(beta - gamma) / 2}`
+    /// (math doc section 20.4), only at ring index above `min_ring`.
+    pub fn refine(values: &Values, rules: &RegularRules, bx: [i64; 4], min_ring: i64) -> Patch {
+        let size = [(bx[1] - bx[0] + 1) as usize, (bx[3] - bx[2] + 1) as usize];
+        let mut out = Vec::with_capacity(size[0] * size[1]);
+        for x in bx[0]..=bx[1] {
+            for y in bx[2]..=bx[3] {
+                let beta = [x, y];
+                out.push(if rules.lattice.ring(beta) <= min_ring {
+                    None
+                } else {
+                    regular_value(rules, beta, values)
+                });
+            }
+        }
+        Patch {
+            lo: [bx[0], bx[2]],
+            size,
+            values: out,
+        }
+    }
 }

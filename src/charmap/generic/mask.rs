@@ -74,6 +74,40 @@ pub struct NormBound {
     /// Per-axis offsets of the window: `[[lo_x, hi_x], [lo_y, hi_y]]`
     /// added to the cell's bounding box.
     pub window: [[i64; 2]; 2],
+    /// The shift `sigma` of the scheme's linear reproduction ([`linear_shift`]):
+    /// affine data `l` has the limit `x -> l(x - sigma)`; `None` when the
+    /// scheme does not reproduce affine data (then only the zero-order
+    /// enclosure applies).
+    pub shift: Option<[f64; 2]>,
+}
+
+/// The shift of the linear reproduction of a scheme `c` whose parity
+/// classes sum to 1 **\[derived\]** (math doc section 20.3): for
+/// `l(alpha) = alpha`, the new point `beta` is
+/// `sum_{g in class(beta)} c_g (beta - g) / 2 = (beta - sigma) / 2` with
+/// `sigma = sum_{g in class(beta)} g c_g`; when `sigma` is the same for the
+/// four classes, `t` steps give `beta / 2^t - sigma (1 - 2^-t)`, so affine
+/// data `l` has the limit `x -> l(x - sigma)`. `None` when the classes' first
+/// moments differ. `sigma` is exact (dyadic rationals, exact in `f64` for
+/// the masks the certificate reads; `None` otherwise).
+pub fn linear_shift(c: &Symbol) -> Option<[f64; 2]> {
+    let mut moments: Vec<[Rational; 2]> = Vec::with_capacity(4);
+    for class in 0..4 {
+        let mut m = [Rational::zero(), Rational::zero()];
+        for (g, q) in c.iter().filter(|(g, _)| coset(**g) == class) {
+            m[0] += q * Rational::from_integer(g[0].into());
+            m[1] += q * Rational::from_integer(g[1].into());
+        }
+        moments.push(m);
+    }
+    if moments.iter().any(|m| *m != moments[0]) {
+        return None;
+    }
+    let exact = |q: &Rational| {
+        let x = crate::scalar::rational_to_f64(q);
+        (f64_to_rational(x).as_ref() == Some(q)).then_some(x)
+    };
+    Some([exact(&moments[0][0])?, exact(&moments[0][1])?])
 }
 
 /// The norm-based enclosures, for a mask with negative weights.
@@ -247,6 +281,7 @@ fn norm_bound(c: &Symbol, dirs: [LatticePoint; 2], diffs: [&Symbol; 2], t: f64) 
             [e[0].min(-e_box[1]), e[1].max(-e_box[0])],
             [e[2].min(-e_box[3]), e[3].max(-e_box[2])],
         ],
+        shift: linear_shift(c),
     }
 }
 

@@ -35,12 +35,13 @@ pub mod cells;
 pub mod layout;
 pub mod mask;
 pub mod net;
+pub mod precondition;
 
 use crate::charmap::{Eigenstructure, PlanarBasis};
 use crate::error::Result;
 use crate::schemes::Scheme;
 use crate::spectral::{Subdominant, SubdominantClass};
-use cells::{annulus, cell_sign, children, winding, Cell};
+use cells::{annulus, cell_sign, cell_sign_of, children, winding, Cell, CellSign, Patch, Values};
 use layout::Lattice;
 use net::{initial_net, neighbourhood_matrix, refine, Eigenvalue, LocalRows};
 use num_complex::Complex64;
@@ -54,6 +55,11 @@ pub const FIRST_LEVEL: u32 = 3;
 /// The deepest level of the adaptive Jacobian test and of the winding test
 /// (the work limit: the net of level `m` has about `n 4^m` points).
 pub const MAX_LEVEL: u32 = 8;
+
+/// The deepest level of the local refinement of the cells still undecided
+/// at [`MAX_LEVEL`] (each refined on a patch of its own,
+/// [`cells::Patch`], at a cost independent of the level).
+pub const MAX_LOCAL_LEVEL: u32 = 12;
 
 /// Largest number of cells tested over all levels (work limit; a Jacobian
 /// with a zero on the annulus keeps cells undecided at every level).
@@ -154,6 +160,9 @@ pub struct GenericReport {
     pub point_error: Option<f64>,
     /// Contraction norms of the difference schemes and the power they hold at.
     pub contraction: Option<([[f64; 2]; 2], u32)>,
+    /// The exact proof of the standard eigenstructure, where the
+    /// floating-point class was not standard.
+    pub class_proof: Option<precondition::ExactStandard>,
 }
 
 impl GenericReport {
@@ -171,6 +180,7 @@ impl GenericReport {
             vector_error: None,
             point_error: None,
             contraction: None,
+            class_proof: None,
         }
     }
 
@@ -184,7 +194,7 @@ impl GenericReport {
             GenericVerdict::Indeterminate { reason } => Some(reason.clone()),
             _ => None,
         };
-        serde_json::json!({
+        let mut json = serde_json::json!({
             "method": "generic",
             "verdict": self.verdict.to_string(),
             "verdict_code": self.verdict.code(),
@@ -200,7 +210,16 @@ impl GenericReport {
             "point_error": self.point_error,
             "contraction_norms": self.contraction.map(|c| c.0),
             "contraction_power": self.contraction.map(|c| c.1),
-        })
+        });
+        if let Some(e) = &self.class_proof {
+            json["class_proof"] = serde_json::json!({
+                "method": "exact",
+                "threshold": e.threshold,
+                "lambda_interval": e.lambda,
+                "gap": e.gap,
+            });
+        }
+        json
     }
 }
 
@@ -258,14 +277,18 @@ pub fn report_json(r: &Result<GenericReport>) -> serde_json::Value {
 /// classification. Failures to build a scheme's matrices are errors; every
 /// reason the certificate cannot decide is an `indeterminate` verdict.
 pub fn check<S: Scheme + ?Sized>(scheme: &S, sub: &Subdominant) -> Result<GenericReport> {
-    let lambda = match &sub.class {
-        SubdominantClass::Standard => sub.lambda1.re,
-        other => {
-            return Ok(GenericReport::indeterminate(format!(
-                "subdominant class {}: the certificate decides C1 for a double real subdominant eigenvalue with a 2-D eigenspace (for a complex pair, analyse a power of the step whose pair is real)",
-                other.name()
-            )))
-        }
+    let lambda = sub.lambda1.re;
+    let (gap, class_proof) = match &sub.class {
+        SubdominantClass::Standard => (sub.gap.min(1.0 - sub.lambda1.norm()), None),
+        other => match exact_class(scheme, sub)? {
+            Ok(e) => (e.gap, Some(e)),
+            Err(why) => {
+                return Ok(GenericReport::indeterminate(format!(
+                    "subdominant class {}: the certificate decides C1 for a double real subdominant eigenvalue with a 2-D eigenspace (for a complex pair, analyse a power of the step whose pair is real){why}",
+                    other.name()
+                )))
+            }
+        },
     };
     let Some(regular) = scheme.regular_configuration() else {
         return Ok(GenericReport::indeterminate(format!(
@@ -293,8 +316,27 @@ pub fn check<S: Scheme + ?Sized>(scheme: &S, sub: &Subdominant) -> Result<Generi
         Ok(l) => l,
         Err(reason) => return Ok(GenericReport::indeterminate(reason)),
     };
-    let out = certify(&rules, &local, scheme.valence(), lambda, sub);
+    let mut out = certify(&rules, &local, scheme.valence(), lambda, gap);
+    out.class_proof = class_proof;
     Ok(out)
+}
+
+/// The exact precondition ([`precondition::exact_standard`]) for a
+/// configuration whose floating-point class is not standard: `Ok(Err(why))`
+/// (`why` a clause for the verdict's reason, empty when the scheme has no
+/// rational matrix) when it is not proven. The threshold is the midpoint of
+/// the estimates of `lambda` and `|lambda_3|`.
+fn exact_class<S: Scheme + ?Sized>(
+    scheme: &S,
+    sub: &Subdominant,
+) -> Result<std::result::Result<precondition::ExactStandard, String>> {
+    let Some(exact) = scheme.exact_local_matrix() else {
+        return Ok(Err(String::new()));
+    };
+    let exact = exact?;
+    let t = 0.5 * (sub.lambda1.norm() + sub.abs_lambda3);
+    Ok(precondition::exact_standard(exact.matrix(), t)
+        .map_err(|e| format!("; exact test of the local matrix: {e}")))
 }
 
 /// The characteristic map's level-0 control net with what refines it
@@ -416,13 +458,95 @@ pub fn prepare_scheme<S: Scheme + ?Sized>(
         .and_then(|rules| prepare(&rules, &local?, scheme.valence(), sub.lambda1.re, gap)))
 }
 
+/// The cells certified so far.
+struct Tally {
+    /// The first cell certified positive, and negative.
+    signs: [Option<Cell>; 2],
+    /// The smallest relative Jacobian bound per sign.
+    min_rel: [f64; 2],
+    /// Cells tested.
+    cells: usize,
+    /// The deepest level of the local refinement.
+    deepest: u32,
+}
+
+impl Default for Tally {
+    fn default() -> Self {
+        Self {
+            signs: [None; 2],
+            min_rel: [f64::INFINITY; 2],
+            cells: 0,
+            deepest: 0,
+        }
+    }
+}
+
+impl Tally {
+    /// Counts the cell and records its sign; `false` when undecided.
+    fn record(&mut self, cell: Cell, cs: CellSign) -> bool {
+        self.cells += 1;
+        match cs.sign {
+            1 => {
+                self.signs[0].get_or_insert(cell);
+                self.min_rel[0] = self.min_rel[0].min(cs.bounds[0]);
+            }
+            -1 => {
+                self.signs[1].get_or_insert(cell);
+                self.min_rel[1] = self.min_rel[1].min(-cs.bounds[1]);
+            }
+            _ => return false,
+        }
+        true
+    }
+
+    /// Both signs certified (the `not_c1` witness).
+    fn both(&self) -> bool {
+        self.signs[0].is_some() && self.signs[1].is_some()
+    }
+}
+
+/// The children of an undecided `cell` tested on a patch of the next level
+/// refined from `values` (the cell's level, in its sector chart), and their
+/// undecided children likewise, down to [`MAX_LOCAL_LEVEL`]; cells left
+/// undecided go to `still`. The patch covers the children's bounding box
+/// plus the net's margin (which holds every window of a cell).
+fn refine_locally(
+    values: &Values,
+    cell: Cell,
+    rules: &RegularRules,
+    prep: &Prepared,
+    min_ring: i64,
+    tally: &mut Tally,
+    still: &mut Vec<Cell>,
+) {
+    if cell.level >= MAX_LOCAL_LEVEL || tally.both() || tally.cells + 4 > MAX_CELLS {
+        still.push(cell);
+        return;
+    }
+    let m = prep.margin as i64;
+    let bx = [
+        2 * cell.i - m,
+        2 * cell.i + 2 + m,
+        2 * cell.j - m,
+        2 * cell.j + 2 + m,
+    ];
+    let patch = Patch::refine(values, rules, bx, min_ring);
+    let next = |p| patch.at(p);
+    tally.deepest = tally.deepest.max(cell.level + 1);
+    for child in children(rules.lattice, &cell) {
+        if !tally.record(child, cell_sign_of(&next, rules, &child)) {
+            refine_locally(&next, child, rules, prep, min_ring, tally, still);
+        }
+    }
+}
+
 /// The stages after the rules are read (see the module docs).
 pub fn certify(
     rules: &RegularRules,
     local: &LocalRows,
     n: usize,
     lambda: f64,
-    sub: &Subdominant,
+    gap: f64,
 ) -> GenericReport {
     let mut report = GenericReport::indeterminate("");
     report.lattice = Some(rules.lattice);
@@ -432,7 +556,6 @@ pub fn certify(
         r
     };
     let lattice = rules.lattice;
-    let gap = sub.gap.min(1.0 - sub.lambda1.norm());
     let prep = match prepare(rules, local, n, lambda, gap) {
         Ok(p) => p,
         Err(reason) => return fail(report, reason),
@@ -441,9 +564,7 @@ pub fn certify(
     let mut net = prep.net.clone();
     let mut level = 0u32;
     let mut pending: Vec<Cell> = Vec::new();
-    let mut signs = [None::<Cell>, None::<Cell>]; // [positive, negative]
-    let mut min_rel = [f64::INFINITY, f64::INFINITY];
-    let mut cells = 0usize;
+    let mut tally = Tally::default();
     let mut wind = None;
     while level < MAX_LEVEL {
         net = prep.refine(&net, level);
@@ -458,33 +579,39 @@ pub fn certify(
         };
         pending.clear();
         for cell in todo {
-            cells += 1;
-            let cs = cell_sign(&net, rules, &cell);
-            match cs.sign {
-                1 => {
-                    signs[0].get_or_insert(cell);
-                    min_rel[0] = min_rel[0].min(cs.bounds[0]);
-                }
-                -1 => {
-                    signs[1].get_or_insert(cell);
-                    min_rel[1] = min_rel[1].min(-cs.bounds[1]);
-                }
-                _ => pending.push(cell),
+            if !tally.record(cell, cell_sign(&net, rules, &cell)) {
+                pending.push(cell);
             }
         }
         if wind.is_none() {
             wind = winding(&net, rules, level);
         }
-        if signs[0].is_some() && signs[1].is_some() {
+        if tally.both() {
             break;
         }
         if pending.is_empty() && wind.is_some() {
             break;
         }
-        if cells + 4 * pending.len() > MAX_CELLS {
+        if tally.cells + 4 * pending.len() > MAX_CELLS {
             break;
         }
     }
+    // the cells still undecided at MAX_LEVEL: refined locally, depth first
+    if level == MAX_LEVEL && !tally.both() && tally.cells + 4 * pending.len() <= MAX_CELLS {
+        let min_ring = local.radius(lattice) as i64;
+        let mut still = Vec::new();
+        for cell in std::mem::take(&mut pending) {
+            let values = |p| net.at(cell.sector, p);
+            refine_locally(
+                &values, cell, rules, &prep, min_ring, &mut tally, &mut still,
+            );
+        }
+        pending = still;
+    }
+    let cells = tally.cells;
+    let signs = tally.signs;
+    let min_rel = tally.min_rel;
+    let level = level.max(tally.deepest);
     report.level = Some(level);
     report.cells = cells;
     report.point_error = Some(net.max_rad());
@@ -500,7 +627,7 @@ pub fn certify(
     }
     if !pending.is_empty() {
         let reason = format!(
-            "the Jacobian's sign is undecided on {} cells at level {level} (work limit: level {MAX_LEVEL}, {MAX_CELLS} cells)",
+            "the Jacobian's sign is undecided on {} cells at level {level} (work limit: level {MAX_LEVEL}, locally {MAX_LOCAL_LEVEL}, {MAX_CELLS} cells)",
             pending.len()
         );
         return fail(report, reason);

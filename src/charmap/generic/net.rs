@@ -116,14 +116,24 @@ impl Net {
     /// `beta`): `sum_gamma a_gamma p_{(beta - gamma) / 2}` over the old net,
     /// `None` when a stencil point is missing.
     fn regular_point(&self, rules: &RegularRules, s: usize, beta: LatticePoint) -> Option<Ball> {
-        let c = (beta[0].rem_euclid(2) + 2 * beta[1].rem_euclid(2)) as usize;
-        let mut terms = Vec::with_capacity(rules.by_coset[c].len());
-        for &(g, w) in &rules.by_coset[c] {
-            let alpha = [(beta[0] - g[0]) / 2, (beta[1] - g[1]) / 2];
-            terms.push((w, self.at(s, alpha)?));
-        }
-        Some(combine(&terms))
+        regular_value(rules, beta, |alpha| self.at(s, alpha))
     }
+}
+
+/// The regular rule at the new lattice point `beta`:
+/// `sum_gamma a_gamma p_{(beta - gamma) / 2}` over the old `values`, `None`
+/// when a stencil point is missing.
+pub fn regular_value<F>(rules: &RegularRules, beta: LatticePoint, values: F) -> Option<Ball>
+where
+    F: Fn(LatticePoint) -> Option<Ball>,
+{
+    let c = (beta[0].rem_euclid(2) + 2 * beta[1].rem_euclid(2)) as usize;
+    let mut terms = Vec::with_capacity(rules.by_coset[c].len());
+    for &(g, w) in &rules.by_coset[c] {
+        let alpha = [(beta[0] - g[0]) / 2, (beta[1] - g[1]) / 2];
+        terms.push((w, values(alpha)?));
+    }
+    Some(combine(&terms))
 }
 
 /// The local matrix with its points placed on the sector grid.
