@@ -246,7 +246,9 @@ fn in_directions(d: [f64; 2], dirs: [LatticePoint; 2]) -> [f64; 2] {
 /// has the limit `g(x) - l(x - sigma)` (the scheme reproduces affine data
 /// with shift `sigma`), its differences are `D_w q_y - G_w`, so
 ///
-///     |g(x) - l(x - sigma)| <= |r_{floor(x)}| + K T max_{y, w} |D_w q_y - G_w|,
+/// ```text
+/// |g(x) - l(x - sigma)| <= |r_{floor(x)}| + K T max_{y, w} |D_w q_y - G_w|,
+/// ```
 ///
 /// and `l(x - sigma)` over the box lies in the hull of `l(c - sigma)` over
 /// its corners `c`: the balls around those four points with that radius

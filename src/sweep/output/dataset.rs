@@ -14,7 +14,7 @@
 //! shards of one run write into one directory; [`dataset_shards`] reads them
 //! back for the merge.
 
-use super::files::is_parquet_file;
+use super::detect::is_parquet_file;
 use super::parquet::{csv_lines, parse_part_name, part_name, ParquetRows, PartFn, PART_ROWS};
 use super::shards::{check_part, summary_in, ShardData, ShardFile, OLD_PARQUET};
 use super::{check_fingerprint, fingerprint_line, Layout, LineFault, Verifier};

@@ -364,19 +364,10 @@ enum Rows<'a> {
 /// the `parquet` feature.
 #[cfg(not(feature = "parquet"))]
 fn no_parquet(path: &Path) -> SweepError {
-    SweepError::Refused(format!("{}: {}", path.display(), super::NO_PARQUET))
+    SweepError::Refused(format!("{}: {}", path.display(), super::detect::NO_PARQUET))
 }
 
-/// Whether `path` is a regular file that starts as a Parquet file does (a
-/// sweep output of the older single-file format, or a compacted dataset).
-pub fn is_parquet_file(path: &Path) -> bool {
-    let mut head = [0u8; 4];
-    fs::metadata(path).is_ok_and(|m| m.is_file())
-        && File::open(path)
-            .and_then(|mut f| f.read_exact(&mut head))
-            .is_ok()
-        && &head == super::MAGIC
-}
+pub use super::detect::is_parquet_file;
 
 /// Refuses a special file (a device such as `/dev/null`, a FIFO) as the
 /// output of `command` (`sweep`, `merge`).

@@ -3,7 +3,6 @@
 //! into a row. A leaf of the sweep modules' graph: the summary builds on it.
 
 use super::csv::split_csv_line;
-use super::run::{CsvBlock, RowBlock};
 use crate::sweep::eval::{result_columns, Cell, ColumnType, Evaluate};
 use crate::sweep::plan::Plan;
 use crate::sweep::SweepError;
@@ -249,22 +248,6 @@ impl Layout {
             Some(Cell::Text(t)) => Some(t),
             _ => None,
         }
-    }
-
-    /// The CSV line of `row` (with `\n`).
-    pub fn format(&self, row: &Row) -> String {
-        let mut s = String::with_capacity(32 + 24 * row.cells.len());
-        self.format_into(row, &mut s);
-        s
-    }
-
-    /// Appends the CSV line of `row` (with `\n`) to `s`: the sweep driver's
-    /// CSV block (`CsvBlock`) given the row's cells.
-    pub fn format_into(&self, row: &Row, s: &mut String) {
-        let mut block = CsvBlock::new();
-        block.text = std::mem::take(s);
-        block.push_row(row);
-        *s = block.text;
     }
 
     /// Parses one line (without `\n`) back into a row.

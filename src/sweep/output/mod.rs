@@ -39,6 +39,7 @@
 pub(crate) mod csv;
 #[cfg(feature = "parquet")]
 pub mod dataset;
+mod detect;
 pub mod files;
 pub(crate) mod layout;
 mod merge;
@@ -49,6 +50,7 @@ pub mod shards;
 mod verify;
 
 pub use csv::{format_number, split_csv_line};
+pub use detect::{MAGIC, NO_PARQUET};
 pub use layout::{ColumnDoc, Layout, Row};
 pub use merge::{merge, MergeSource};
 #[cfg(feature = "parquet")]
@@ -138,13 +140,6 @@ fn parquet_table(_: &[u8]) -> Result<Table, TableError> {
 fn parquet_shape(_: &[u8]) -> Result<(u64, usize), TableError> {
     Err(TableError::Unsupported(NO_PARQUET.into()))
 }
-
-/// The four bytes that start (and end) every Parquet file.
-pub const MAGIC: &[u8; 4] = b"PAR1";
-
-/// The refusal of a Parquet output or input in a build without the
-/// `parquet` feature.
-pub const NO_PARQUET: &str = "this subdiv-lab is built without Parquet (the cargo feature `parquet`): write NAME.csv, or rebuild with `--features parquet`";
 
 /// Whether [`read_output`] reads `bytes` as Parquet.
 fn is_parquet(name: &str, bytes: &[u8]) -> bool {

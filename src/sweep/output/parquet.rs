@@ -77,7 +77,7 @@ pub const NULLS_KEY: &str = "subdiv-lab.nulls";
 /// When a cell is null (the CSV's empty cell).
 pub const NULL_RULES: &str = "id and valence are never null; a coordinate is null beyond the row's valence; a result column is null where the result is not defined for the row (see its meaning in subdiv-lab.schema) and in every result column of a failed row; error is null when the row succeeded";
 
-pub use super::MAGIC;
+pub use super::detect::MAGIC;
 
 /// The file name of part `k` of `shard` in a dataset directory:
 /// `part-000017.parquet` for an unsharded run, `part-2-of-8-000017.parquet`

@@ -175,6 +175,26 @@ impl CsvBlock {
     }
 }
 
+/// A row's CSV line is the sweep driver's CSV block given the row's cells,
+/// so the line a resume check compares and the line a sweep writes come
+/// from one formatter.
+impl Layout {
+    /// The CSV line of `row` (with `\n`).
+    pub fn format(&self, row: &super::Row) -> String {
+        let mut s = String::with_capacity(32 + 24 * row.cells.len());
+        self.format_into(row, &mut s);
+        s
+    }
+
+    /// Appends the CSV line of `row` (with `\n`) to `s`.
+    pub fn format_into(&self, row: &super::Row, s: &mut String) {
+        let mut block = CsvBlock::new();
+        block.text = std::mem::take(s);
+        block.push_row(row);
+        *s = block.text;
+    }
+}
+
 impl RowBlock for CsvBlock {
     fn with_rows(layout: &Layout, rows: usize) -> Self {
         CsvBlock {
