@@ -443,12 +443,12 @@ proptest! {
     }
 }
 
-#[test]
-fn modified_butterfly_is_c1_at_every_valence_3_to_16() {
-    // wherever the precondition holds (the class standard in floating
-    // point, or proven exactly), the map is certified
+/// The modified butterfly's generic verdicts at `valences`: `c1` wherever the
+/// precondition holds (the class standard in floating point, or proven
+/// exactly). Returns the valences certified.
+fn modified_butterfly_certified(valences: std::ops::RangeInclusive<usize>) -> Vec<usize> {
     let mut certified = Vec::new();
-    for n in 3..=16 {
+    for n in valences {
         let g = generic_of(&LocalScheme::ModifiedButterfly { valence: n });
         eprintln!("modified butterfly n = {n}: {}", g.verdict);
         if g.level.is_none() {
@@ -459,8 +459,25 @@ fn modified_butterfly_is_c1_at_every_valence_3_to_16() {
         assert_eq!(g.class_proof.is_some(), n == 6, "n = {n}");
         certified.push(n);
     }
+    certified
+}
+
+#[test]
+fn modified_butterfly_is_c1_at_valences_3_to_11() {
+    let certified = modified_butterfly_certified(3..=11);
     assert!(
-        certified.len() >= 10 && certified.contains(&6) && certified.contains(&16),
+        certified.len() >= 7 && certified.contains(&6),
+        "{certified:?}"
+    );
+}
+
+/// Valences 12 to 16 need a level of local refinement (3.5 to 7.8 s each).
+#[test]
+#[ignore = "heavy full-size run (about 20 s); .ci/run runs it with --ignored"]
+fn modified_butterfly_is_c1_at_valences_12_to_16() {
+    let certified = modified_butterfly_certified(12..=16);
+    assert!(
+        certified.len() >= 3 && certified.contains(&16),
         "{certified:?}"
     );
 }
