@@ -166,8 +166,9 @@ fn parse_shard(s: &str) -> Result<Shard, String> {
 /// minute and every [`PROGRESS_EVERY_LATER`] after it (a long job's log stays
 /// short).
 struct Reporter {
-    stop: std::sync::Arc<(std::sync::Mutex<bool>, std::sync::Condvar)>,
-    handle: Option<std::thread::JoinHandle<()>>,
+    /// Dropped to stop the thread.
+    stop: std::sync::mpsc::Sender<()>,
+    handle: std::thread::JoinHandle<()>,
 }
 
 /// Interval of the progress lines during the first minute.
@@ -184,27 +185,14 @@ impl Reporter {
         expected: u64,
         first: std::time::Duration,
     ) -> Reporter {
-        let stop = std::sync::Arc::new((std::sync::Mutex::new(false), std::sync::Condvar::new()));
-        let stop2 = stop.clone();
+        let (stop, stopped) = std::sync::mpsc::channel::<()>();
         let handle = std::thread::spawn(move || {
             let start = Instant::now();
-            let (lock, cv) = &*stop2;
-            let Ok(mut stopped) = lock.lock() else { return };
-            let mut deadline = Instant::now();
-            loop {
-                while !*stopped {
-                    let left = deadline.saturating_duration_since(Instant::now());
-                    if left.is_zero() {
-                        break;
-                    }
-                    match cv.wait_timeout(stopped, left) {
-                        Ok((g, _)) => stopped = g,
-                        Err(_) => return,
-                    }
-                }
-                if *stopped {
-                    return;
-                }
+            let mut deadline = start;
+            // A timeout is the next line; a message or the sender dropped, the end.
+            while let Err(std::sync::mpsc::RecvTimeoutError::Timeout) =
+                stopped.recv_timeout(deadline.saturating_duration_since(Instant::now()))
+            {
                 deadline += if start.elapsed() < std::time::Duration::from_secs(60) {
                     first
                 } else {
@@ -231,20 +219,12 @@ impl Reporter {
                 );
             }
         });
-        Reporter {
-            stop,
-            handle: Some(handle),
-        }
+        Reporter { stop, handle }
     }
 
-    fn finish(mut self) {
-        if let Ok(mut g) = self.stop.0.lock() {
-            *g = true;
-            self.stop.1.notify_all();
-        }
-        if let Some(h) = self.handle.take() {
-            let _ = h.join();
-        }
+    fn finish(self) {
+        drop(self.stop);
+        let _ = self.handle.join();
     }
 }
 
@@ -479,17 +459,9 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     let plan = plan_of(spec, &args.spec, args.scheme_file.as_deref())?;
     // The inputs: CSV shard files (each with its summary beside it) or
     // Parquet dataset directories (the parts and summaries of their shards).
-    // A dataset's shards are listed (and read) first, for their summaries'
-    // names; CSV shards are read after the output checks.
     let parquet = files::merge_format(&args.inputs).map_err(sweep_err)?;
-    let mut shards = Vec::new();
-    let mut summaries = Vec::new();
-    if parquet {
-        shards = files::merge_inputs(&args.inputs).map_err(sweep_err)?;
-        summaries.extend(shards.iter().map(|s| PathBuf::from(&s.summary_name)));
-    } else {
-        summaries.extend(args.inputs.iter().map(|p| summary_path(p)));
-    }
+    let shards = files::merge_inputs(&args.inputs).map_err(sweep_err)?;
+    let summaries: Vec<PathBuf> = shards.iter().map(|s| (&s.summary_name).into()).collect();
     let format = if parquet {
         Format::Parquet
     } else {
@@ -517,9 +489,6 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
             named.name(),
             format.extension()
         )));
-    }
-    if !parquet {
-        shards = files::merge_inputs(&args.inputs).map_err(sweep_err)?;
     }
     let merged = files::merge_files(&plan, shards, &args.spec.display().to_string(), &args.out)
         .map_err(sweep_err)?;

@@ -17,7 +17,7 @@
 use super::detect::is_parquet_file;
 use super::parquet::{csv_lines, parse_part_name, part_name, ParquetRows, PartFn, PART_ROWS};
 use super::shards::{check_part, summary_in, ShardData, ShardFile, OLD_PARQUET};
-use super::{check_fingerprint, fingerprint_line, Layout, LineFault, Verifier};
+use super::{fingerprint_line, Layout, LineFault, Verifier};
 use crate::sweep::eval::Evaluate;
 use crate::sweep::plan::{Plan, Shard};
 use crate::sweep::summary::Summary;
@@ -128,17 +128,9 @@ pub fn open<E: Evaluate + ?Sized>(
             )));
         }
         let bytes = fs::read(path).map_err(|e| io("reading", path, e))?;
-        let table = check_part(&name, bytes, layout, Some(*k))
+        let (table, _) = check_part(&name, bytes, plan, layout, Some(shard), *k)
             .map_err(|e| refused(format!("{e}; cannot resume")))?;
         let mismatch = |line, message: String| SweepError::mismatch(&name, line, message);
-        check_fingerprint(
-            plan,
-            shard,
-            table
-                .metadata(super::parquet::FINGERPRINT_KEY)
-                .unwrap_or_default(),
-        )
-        .map_err(|m| mismatch(1, format!("{m}; cannot resume")))?;
         let rows = table.len() as u64;
         let want = (expected - done.min(expected)).min(PART_ROWS as u64);
         if rows > want || (rows < want && i + 1 < parts.len()) {
@@ -202,24 +194,15 @@ pub fn dataset_shards(dir: &Path) -> Result<Vec<ShardFile<BufReader<File>>>, Swe
         } else {
             format!("{} (shard {s})", dir.display())
         };
-        let sp = summary_in(dir, s);
-        let summary = fs::read_to_string(&sp).map_err(|e| {
-            SweepError::MergeInput(format!(
-                "reading {} (the summary a sweep writes with {name}; merge needs it): {e}",
-                sp.display()
-            ))
-        })?;
-        let mut data = Vec::with_capacity(parts.len());
-        for p in parts {
-            let bytes = fs::read(&p).map_err(|e| io("reading", &p, e))?;
-            data.push((p.display().to_string(), bytes));
-        }
-        shards.push(ShardFile {
-            name,
-            summary_name: sp.display().to_string(),
-            summary,
-            data: ShardData::Parquet(data),
-        });
+        let data = || {
+            let mut data = Vec::with_capacity(parts.len());
+            for p in parts {
+                let bytes = fs::read(&p).map_err(|e| io("reading", &p, e))?;
+                data.push((p.display().to_string(), bytes));
+            }
+            Ok(ShardData::Parquet(data))
+        };
+        shards.push(ShardFile::read(name, &summary_in(dir, s), "with", data)?);
     }
     Ok(shards)
 }

@@ -16,6 +16,7 @@
 //! The front ends parse their flags, check the work estimate and print;
 //! progress comes back through [`Progress`].
 
+use super::run::{CsvBlock, CsvWriter};
 use super::shards::{self, summary_path, ShardData, ShardFile};
 use super::{check_summary, is_old_csv_fingerprint, LineFault, Verifier, OLD_CSV};
 #[cfg(feature = "parquet")]
@@ -318,12 +319,12 @@ pub fn run_plan(
             &mut moved,
             &evaluated_counter,
         ),
-        Rows::Csv(w) => super::run_counting(
+        Rows::Csv(w) => super::run::drive::<_, CsvBlock, _, _>(
             plan,
             &layout,
             &eval,
             ids,
-            w,
+            &mut CsvWriter(w),
             &mut summary,
             &mut moved,
             &evaluated_counter,
@@ -623,21 +624,12 @@ pub fn merge_inputs(inputs: &[PathBuf]) -> Result<Vec<ShardFile<BufReader<File>>
             continue;
         }
         let name = p.display().to_string();
-        let sp = summary_path(p);
-        let summary = fs::read_to_string(&sp).map_err(|e| {
-            SweepError::MergeInput(format!(
-                "reading {} (the summary a sweep writes beside {name}; merge needs it): {e}",
-                sp.display()
-            ))
-        })?;
-        let file =
-            File::open(p).map_err(|e| SweepError::MergeInput(format!("opening {name}: {e}")))?;
-        shards.push(ShardFile {
-            name,
-            summary_name: sp.display().to_string(),
-            summary,
-            data: ShardData::Csv(BufReader::with_capacity(1 << 20, file)),
-        });
+        let data = || {
+            let file = File::open(p)
+                .map_err(|e| SweepError::MergeInput(format!("opening {}: {e}", p.display())))?;
+            Ok(ShardData::Csv(BufReader::with_capacity(1 << 20, file)))
+        };
+        shards.push(ShardFile::read(name, &summary_path(p), "beside", data)?);
     }
     Ok(shards)
 }
@@ -690,43 +682,24 @@ pub fn merge_files(
         Ok(merged)
     })()
     .map_err(cleanup)?;
-    // The merged file and its summary are put in place together (the file
-    // first); a failure leaves neither new.
+    // The merged file, then its summary; a failure leaves neither new.
     let spath = summary_path(out);
     let json = summary_json(&merged).map_err(cleanup)?;
-    let sname = spath
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let cannot = |target: &Path, e: &dyn std::fmt::Display| {
-        SweepError::File(format!("cannot write {}: {e}", target.display()))
-    };
-    let (mut sfile, stmp) =
-        create_temp_file(&parent_dir(&spath), &sname).map_err(|e| cleanup(cannot(&spath, &e)))?;
-    let staged = sfile
-        .write_all(json.as_bytes())
-        .and_then(|()| sfile.sync_all());
-    if let Err(e) = staged {
-        let _ = fs::remove_file(&stmp);
-        return Err(cleanup(cannot(&spath, &e)));
-    }
     let out_existed = fs::symlink_metadata(out).is_ok();
-    if let Err(e) = fs::rename(&tmp, out) {
-        let _ = fs::remove_file(&stmp);
-        return Err(cleanup(cannot(out, &e)));
-    }
-    if let Err(e) = fs::rename(&stmp, &spath) {
-        let _ = fs::remove_file(&stmp);
+    fs::rename(&tmp, out).map_err(|e| {
+        cleanup(SweepError::File(format!(
+            "cannot write {}: {e}",
+            out.display()
+        )))
+    })?;
+    if let Err(e) = write_atomic(&spath, json.as_bytes()) {
         let also = if out_existed {
             format!(" (already replaced: {})", out.display())
         } else {
             let _ = fs::remove_file(out);
             String::new()
         };
-        return Err(SweepError::File(format!(
-            "cannot write {}{also}: {e}",
-            spath.display()
-        )));
+        return Err(SweepError::File(format!("{e}{also}")));
     }
     Ok(MergeReport {
         summary: merged,

@@ -20,7 +20,7 @@
 //! * `layout.rs`: the columns of a sweep ([`Layout`]) and one [`Row`]; a leaf
 //!   (the summary builds on it, it knows no summary);
 //! * `csv.rs`: number and text cells, line splitting (no sweep types);
-//! * `run.rs`: the streaming driver ([`run()`], [`run_counting`]);
+//! * `run.rs`: the streaming driver ([`run()`]);
 //! * `merge.rs`: the shard merge ([`merge()`]);
 //! * `shards.rs`: the shard files of a merge and their summaries, checked
 //!   before and after it ([`shards::prepare`]);
@@ -55,7 +55,7 @@ pub use layout::{ColumnDoc, Layout, Row};
 pub use merge::{merge, MergeSource};
 #[cfg(feature = "parquet")]
 pub use parquet::run_parquet;
-pub use run::{run, run_counting, run_discard, CHUNK, SUB_CHUNK};
+pub use run::{run, run_discard, CHUNK, SUB_CHUNK};
 pub use shards::fresh_salt;
 pub use verify::{
     check_fingerprint, check_summary, fingerprint_digest, fingerprint_line, fingerprint_shard,

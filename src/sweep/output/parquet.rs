@@ -38,13 +38,13 @@ use crate::sweep::SweepError;
 use crate::table::{Column, Table};
 use bytes::Bytes;
 use parquet::basic::{IntType, LogicalType, Repetition, Type as PhysicalType};
+use parquet::column::reader::ColumnReader;
 use parquet::column::writer::ColumnWriter;
 use parquet::data_type::ByteArray;
 use parquet::file::metadata::KeyValue;
 use parquet::file::properties::{EnabledStatistics, WriterProperties, WriterVersion};
 use parquet::file::reader::{FileReader, SerializedFileReader};
 use parquet::file::writer::SerializedFileWriter;
-use parquet::record::Field;
 use parquet::schema::types::{ColumnPath, Type, TypePtr};
 use std::sync::Arc;
 
@@ -242,13 +242,21 @@ impl Dict {
     /// Entries searched linearly before the hash map takes over.
     const LINEAR: usize = 16;
 
+    /// The index of label `t`, if it is an entry.
+    fn find(&self, t: &str) -> Option<u32> {
+        if self.entries.len() <= Self::LINEAR {
+            self.entries
+                .iter()
+                .position(|e| **e == *t)
+                .map(|i| i as u32)
+        } else {
+            self.map.get(t).copied()
+        }
+    }
+
     /// The index of label `t`, a new entry if it is new.
     fn intern(&mut self, t: &str) -> u32 {
-        if self.entries.len() <= Self::LINEAR {
-            if let Some(i) = self.entries.iter().position(|e| &**e == t) {
-                return i as u32;
-            }
-        } else if let Some(&i) = self.map.get(t) {
+        if let Some(i) = self.find(t) {
             return i;
         }
         let i = self.entries.len() as u32;
@@ -275,15 +283,7 @@ impl Dict {
         {
             return self.last;
         }
-        let found = if self.entries.len() <= Self::LINEAR {
-            self.entries
-                .iter()
-                .position(|e| **e == *t)
-                .map(|i| i as u32)
-        } else {
-            self.map.get(t).copied()
-        };
-        let i = match found {
+        let i = match self.find(t) {
             Some(i) => i,
             None => self.intern(&csv_text(t)),
         };
@@ -952,17 +952,10 @@ pub fn csv_lines(table: &Table, from: usize, to: usize) -> String {
 /// alone (a work estimate before [`read_table`]). A file that is not Parquet
 /// or is torn is refused as by [`read_table`].
 pub fn shape(bytes: &[u8]) -> Result<(u64, usize), SweepError> {
-    let n = bytes.len();
     check_magic(bytes)?;
-    let len = u32::from_le_bytes([bytes[n - 8], bytes[n - 7], bytes[n - 6], bytes[n - 5]]) as usize;
-    if len > n - 12 {
-        return Err(SweepError::Read(format!(
-            "a footer of {len} bytes in a file of {n} bytes"
-        )));
-    }
-    let md =
-        parquet::file::metadata::ParquetMetaDataReader::decode_metadata(&bytes[n - 8 - len..n - 8])
-            .map_err(pq_read_err)?;
+    let md = parquet::file::metadata::ParquetMetaDataReader::new()
+        .parse_and_finish(&Bytes::copy_from_slice(bytes))
+        .map_err(pq_read_err)?;
     let f = md.file_metadata();
     Ok((
         u64::try_from(f.num_rows()).unwrap_or(0),
@@ -986,7 +979,9 @@ fn check_magic(bytes: &[u8]) -> Result<(), SweepError> {
 /// caller reads the file, e.g. `std::fs::read`), returning the columns by
 /// name. Every column must be of a type a sweep writes (`u64`, `u32`, `f64`,
 /// string, `bool`); a file that is not Parquet, or is torn (no valid footer),
-/// is refused with a message naming the problem.
+/// is refused with a message naming the problem. Each column of each row
+/// group is decoded whole by the crate's typed column reader (its values and
+/// definition levels: level 0 is a null).
 ///
 /// ```
 /// use subdiv_lab::sweep::output::parquet::read_table;
@@ -1027,38 +1022,94 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<Table, SweepError> {
             ))),
         })
         .collect::<Result<_, _>>()?;
-    let rows = reader.get_row_iter(None).map_err(pq_read_err)?;
-    for row in rows {
-        let row = row.map_err(pq_read_err)?;
-        for (k, (_, f)) in row.get_column_iter().enumerate() {
-            let Some(col) = columns.get_mut(k) else {
-                return Err(SweepError::Read(
-                    "parquet: a row has too many fields".into(),
-                ));
+    for g in 0..reader.num_row_groups() {
+        let group = reader.get_row_group(g).map_err(pq_read_err)?;
+        let rows = usize::try_from(group.metadata().num_rows()).unwrap_or(0);
+        for (k, col) in columns.iter_mut().enumerate() {
+            let c = schema.column(k);
+            let unsigned = matches!(
+                c.logical_type_ref(),
+                Some(LogicalType::Integer(IntType {
+                    is_signed: false,
+                    ..
+                }))
+            );
+            let bad = |what: &str| {
+                SweepError::Read(format!(
+                    "parquet: column {} holds {what}, not a value a sweep writes there",
+                    names[k]
+                ))
             };
-            match (col, f) {
-                (Column::U64(v), Field::ULong(x)) => v.push(*x),
-                (Column::U64(v), Field::Long(x)) if *x >= 0 => v.push(*x as u64),
-                (Column::U32(v), Field::UInt(x)) => v.push(*x),
-                (Column::U32(v), Field::Int(x)) if *x >= 0 => v.push(*x as u32),
-                (Column::F64(v), Field::Double(x)) => v.push(Some(*x)),
-                (Column::Str(v), Field::Str(x)) => v.push(Some(x.clone())),
-                (Column::Bool(v), Field::Bool(x)) => v.push(Some(*x)),
-                (Column::F64(v), Field::Null) => v.push(None),
-                (Column::Str(v), Field::Null) => v.push(None),
-                (Column::Bool(v), Field::Null) => v.push(None),
-                _ => {
-                    return Err(SweepError::Read(format!(
-                        "parquet: column {} holds {f}, not a value a sweep writes there",
-                        names[k]
-                    )));
+            let reader = group.get_column_reader(k).map_err(pq_read_err)?;
+            match (reader, col) {
+                (ColumnReader::Int64ColumnReader(mut r), Column::U64(v)) => {
+                    for x in required(read_column(&mut r, rows)?).ok_or_else(|| bad("a null"))? {
+                        if !unsigned && x < 0 {
+                            return Err(bad(&x.to_string()));
+                        }
+                        v.push(x as u64);
+                    }
                 }
+                (ColumnReader::Int32ColumnReader(mut r), Column::U32(v)) => {
+                    for x in required(read_column(&mut r, rows)?).ok_or_else(|| bad("a null"))? {
+                        if !unsigned && x < 0 {
+                            return Err(bad(&x.to_string()));
+                        }
+                        v.push(x as u32);
+                    }
+                }
+                (ColumnReader::DoubleColumnReader(mut r), Column::F64(v)) => {
+                    v.extend(read_column(&mut r, rows)?);
+                }
+                (ColumnReader::BoolColumnReader(mut r), Column::Bool(v)) => {
+                    v.extend(read_column(&mut r, rows)?);
+                }
+                (ColumnReader::ByteArrayColumnReader(mut r), Column::Str(v)) => {
+                    for x in read_column(&mut r, rows)? {
+                        let text = x.map(|b| String::from_utf8(b.data().to_vec()));
+                        v.push(
+                            text.transpose()
+                                .map_err(|_| bad("text that is not UTF-8"))?,
+                        );
+                    }
+                }
+                _ => return Err(bad("values of another type")),
             }
         }
     }
     Table::new(names, columns)
         .map(|t| t.with_metadata(key_value))
         .map_err(|e| SweepError::Read(format!("parquet: {e}")))
+}
+
+/// The values of one flat column chunk of `rows` rows, `None` where its
+/// definition level is 0 (a null; a required column has no levels).
+fn read_column<T: parquet::data_type::DataType>(
+    r: &mut parquet::column::reader::ColumnReaderImpl<T>,
+    rows: usize,
+) -> Result<Vec<Option<T::T>>, SweepError> {
+    let (mut def, mut values) = (Vec::with_capacity(rows), Vec::with_capacity(rows));
+    let (records, _, _) = r
+        .read_records(rows, Some(&mut def), None, &mut values)
+        .map_err(pq_read_err)?;
+    if records != rows {
+        return Err(SweepError::Read(format!(
+            "parquet: a column chunk holds {records} rows where its row group has {rows}"
+        )));
+    }
+    if def.is_empty() {
+        return Ok(values.into_iter().map(Some).collect());
+    }
+    let mut values = values.into_iter();
+    Ok(def
+        .iter()
+        .map(|&d| if d > 0 { values.next() } else { None })
+        .collect())
+}
+
+/// The values of a column that holds no null, else `None`.
+fn required<T>(values: Vec<Option<T>>) -> Option<Vec<T>> {
+    values.into_iter().collect()
 }
 
 impl super::run::BlockWriter<TypedBlock> for ParquetRows {
@@ -1070,7 +1121,8 @@ impl super::run::BlockWriter<TypedBlock> for ParquetRows {
     }
 }
 
-/// [`run_counting`](super::run_counting) for Parquet: the rows go straight
+/// [`run`](super::run()) for Parquet, counting the evaluated configurations
+/// in `evaluated` as the workers finish them: the rows go straight
 /// from the evaluator's cells into typed column buffers (no CSV text in
 /// between; math doc section 16.2), which `rows` cuts into parts. The values
 /// and the summary are those of the CSV path (a test compares them).

@@ -420,7 +420,7 @@ pub(super) trait BlockWriter<B> {
 }
 
 /// CSV text to a [`Write`].
-struct CsvWriter<'a, W>(&'a mut W);
+pub(super) struct CsvWriter<'a, W>(pub(super) &'a mut W);
 
 impl<W: Write> BlockWriter<CsvBlock> for CsvWriter<'_, W> {
     fn write_block(&mut self, block: &CsvBlock) -> Result<(), SweepError> {
@@ -453,47 +453,10 @@ where
     W: Write,
     I: IntoIterator<Item = u64>,
 {
-    run_counting(
-        plan,
-        layout,
-        eval,
-        ids,
-        out,
-        summary,
-        progress,
-        &std::sync::atomic::AtomicU64::new(0),
-    )
-}
-
-/// [`run`], also adding to `evaluated` the configurations evaluated so far (by
-/// groups of at most [`SUB_CHUNK`], as the workers finish them, before they
-/// are written): another thread can read it for a progress report that moves
-/// even when a chunk takes minutes (slow columns such as `charmap`).
-#[allow(clippy::too_many_arguments)]
-pub fn run_counting<E, W, I>(
-    plan: &Plan,
-    layout: &Layout,
-    eval: &E,
-    ids: I,
-    out: &mut W,
-    summary: &mut Summary,
-    progress: &mut dyn FnMut(u64),
-    evaluated: &std::sync::atomic::AtomicU64,
-) -> Result<u64, SweepError>
-where
-    E: Evaluate + ?Sized,
-    W: Write,
-    I: IntoIterator<Item = u64>,
-{
+    let evaluated = std::sync::atomic::AtomicU64::new(0);
+    let mut out = CsvWriter(out);
     drive::<E, CsvBlock, _, I>(
-        plan,
-        layout,
-        eval,
-        ids,
-        &mut CsvWriter(out),
-        summary,
-        progress,
-        evaluated,
+        plan, layout, eval, ids, &mut out, summary, progress, &evaluated,
     )
 }
 
@@ -565,9 +528,12 @@ where
     )
 }
 
-/// The driver behind [`run_counting`] and [`run_parquet`](super::parquet::run_parquet): chunks evaluated
+/// The driver behind [`run`] and [`run_parquet`](super::parquet::run_parquet): chunks evaluated
 /// on the pool into blocks `B`, written in order by `out` while the next
-/// chunk is evaluated.
+/// chunk is evaluated. `evaluated` counts the configurations evaluated so
+/// far (by groups of at most [`SUB_CHUNK`], as the workers finish them,
+/// before they are written): another thread can read it for a progress
+/// report that moves even when a chunk takes minutes.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn drive<E, B, O, I>(
     plan: &Plan,

@@ -1,14 +1,15 @@
 //! The inputs of a shard merge: shard files (CSV or Parquet, as `sweep
 //! --shard I/N` writes them) with the summaries written beside them, checked
 //! against the spec and against each other ([`prepare`]), then merged and
-//! compared with their summaries ([`PreparedMerge::run`]). The file side
-//! (opening the shards, the output's temporary file and its renaming) is
-//! the front end's: this module takes the summaries' text and the shards'
-//! readers or bytes, and writes the merged rows to any [`Write`].
+//! compared with their summaries ([`PreparedMerge::run`]). Of the file side
+//! only the summary of a shard is read here ([`ShardFile::read`]); opening
+//! the shards, the output's temporary file and its renaming are the
+//! caller's: this module takes the shards' readers or bytes, and writes the
+//! merged rows to any [`Write`].
 
 use super::merge::{merge, MergeSource};
 #[cfg(feature = "parquet")]
-use super::parquet::{csv_lines, read_table, FORMAT, FORMAT_KEY, PART_KEY};
+use super::parquet::{csv_lines, read_table, FINGERPRINT_KEY, FORMAT, FORMAT_KEY, PART_KEY};
 #[cfg(feature = "parquet")]
 use super::verify::{check_fingerprint, fingerprint_shard};
 use super::verify::{is_old_csv_fingerprint, OLD_CSV};
@@ -102,6 +103,30 @@ pub struct ShardFile<R> {
     pub summary: String,
     /// The rows.
     pub data: ShardData<R>,
+}
+
+impl<R> ShardFile<R> {
+    /// The shard `name`: the summary at `spath` (read first; `relation`:
+    /// where a sweep writes it, `beside` or `with` the shard), then `data`.
+    pub fn read(
+        name: String,
+        spath: &Path,
+        relation: &str,
+        data: impl FnOnce() -> Result<ShardData<R>, SweepError>,
+    ) -> Result<Self, SweepError> {
+        let summary = std::fs::read_to_string(spath).map_err(|e| {
+            input(format!(
+                "reading {} (the summary a sweep writes {relation} {name}; merge needs it): {e}",
+                spath.display()
+            ))
+        })?;
+        Ok(ShardFile {
+            name,
+            summary_name: spath.display().to_string(),
+            summary,
+            data: data()?,
+        })
+    }
 }
 
 /// Data lines of one shard (CSV lines without `\n`; a Parquet shard's rows
@@ -334,12 +359,7 @@ fn parquet_source<'a>(
     let mut shard = None;
     let mut lines: Vec<String> = Vec::new();
     for (k, (part, bytes)) in parts.into_iter().enumerate() {
-        let table = check_part(&part, bytes, layout, Some(k as u64))?;
-        let fp = table
-            .metadata(super::parquet::FINGERPRINT_KEY)
-            .unwrap_or_default();
-        let s = fingerprint_shard(fp).unwrap_or(Shard::ALL);
-        check_fingerprint(plan, s, fp).map_err(|m| SweepError::mismatch(&part, 1, m))?;
+        let (table, s) = check_part(&part, bytes, plan, layout, None, k as u64)?;
         shard.get_or_insert(s);
         let text = csv_lines(&table, 0, table.len());
         lines.extend(text.lines().map(str::to_owned));
@@ -356,38 +376,44 @@ fn parquet_source<'a>(
 }
 
 #[cfg(feature = "parquet")]
-/// Reads one part file of a sweep's Parquet dataset and checks its format,
-/// its columns (against `layout`) and, when given, its index `k` (the
-/// fingerprint is the caller's to check: it depends on the shard). A file of
-/// the older single-file format is refused by name.
+/// Reads part `k` of a shard of a sweep's Parquet dataset and checks its
+/// format, its columns (against `layout`), its index and its fingerprint
+/// against `plan` and `shard` (this run's, for resume; `None`: the shard the
+/// fingerprint names, for the merge). Returns the rows and the shard. A file
+/// of the older single-file format is refused by name.
 pub fn check_part(
     name: &str,
     bytes: Vec<u8>,
+    plan: &Plan,
     layout: &Layout,
-    k: Option<u64>,
-) -> Result<Table, SweepError> {
-    let fault = |m: String| Err(SweepError::mismatch(name, 1, m));
-    let table = read_table(bytes).map_err(|e| SweepError::mismatch(name, 1, e.to_string()))?;
+    shard: Option<Shard>,
+    k: u64,
+) -> Result<(Table, Shard), SweepError> {
+    let fault = |m: String| SweepError::mismatch(name, 1, m);
+    let table = read_table(bytes).map_err(|e| fault(e.to_string()))?;
     match table.metadata(FORMAT_KEY) {
         Some(f) if f == FORMAT => {}
         Some(f) => {
-            return fault(format!(
+            return Err(fault(format!(
                 "a part of format {f:?}, not {FORMAT:?}: written by another version of subdiv-lab"
-            ));
+            )));
         }
-        None => return fault(OLD_PARQUET.into()),
+        None => return Err(fault(OLD_PARQUET.into())),
     }
     if table.names() != layout.column_names() {
-        return fault("the columns do not match the spec's".into());
+        return Err(fault("the columns do not match the spec's".into()));
     }
     let part = table.metadata(PART_KEY);
-    if let Some(k) = k.filter(|k| part != Some(k.to_string().as_str())) {
+    if part != Some(k.to_string().as_str()) {
         let found = part.unwrap_or("?");
-        return fault(format!(
+        return Err(fault(format!(
             "holds part {found} where part {k} was expected (renamed?)"
-        ));
+        )));
     }
-    Ok(table)
+    let fp = table.metadata(FINGERPRINT_KEY).unwrap_or_default();
+    let shard = shard.unwrap_or_else(|| fingerprint_shard(fp).unwrap_or(Shard::ALL));
+    check_fingerprint(plan, shard, fp).map_err(fault)?;
+    Ok((table, shard))
 }
 
 #[cfg(feature = "parquet")]
