@@ -537,6 +537,9 @@ pub fn class_color(class: &str) -> RGBColor {
         "complex_pair" => viridis(0.9),
         "defective" => RGBColor(110, 110, 110),
         "not_separated" => RGBColor(160, 160, 160),
+        // the class-free verdict of `verify --property g1`: a hue apart
+        // from the viridis classes, since its cells hold either class
+        "g1" => RGBColor(230, 145, 56),
         _ => RGBColor(215, 215, 215),
     }
 }

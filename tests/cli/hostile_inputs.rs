@@ -2087,6 +2087,24 @@ fn cases() -> Vec<Case> {
             "bogus",
         ),
         bad_with(
+            "report-certified-map-unknown-property",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"certified-map\"\nslices = [0.5]\nproperty = \"charmap\"\n",
+            )],
+            "figure[0].property: property must be \"class\" or \"g1\", got \"charmap\"",
+        ),
+        bad_with(
+            "report-certified-map-property-not-a-string",
+            &["report", "s.toml", "--out", "r"],
+            &[(
+                "s.toml",
+                "name = \"t\"\n[[figure]]\nkind = \"certified-map\"\nslices = [0.5]\nproperty = 1\n",
+            )],
+            "property",
+        ),
+        bad_with(
             "verify-p-box-without-q-box",
             &["verify", "v.toml", "--out", "o"],
             &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nproperties = [\"class\"]\np_box = [[1, 2], [1, 2], [1, 2]]\n")],

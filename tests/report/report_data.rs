@@ -495,3 +495,83 @@ color_by = "angle"
         2
     );
 }
+
+/// The `g1` certified map (`property = "g1"`, math doc section 15, "G1 over
+/// a cell"): the cells tile the square, are `g1` or `undecided`, every `g1`
+/// cell agrees at its centre and corners with the exact pointwise tools (no
+/// witness against G1), some `g1` cell holds sampled points of both classes
+/// (the property crosses the class boundary), and the SVG fills the `g1`
+/// cells.
+#[test]
+fn certified_map_g1_cells_cross_the_class_boundary() {
+    use subdiv_lab::verify::witness::failure_at;
+    let spec = r#"
+name = "g1"
+
+[[figure]]
+kind = "certified-map"
+id = "g1"
+width = 800
+height = 400
+slices = [0.3]
+range = [0.2, 0.8]
+min_width = 0.0625
+grid = 40
+property = "g1"
+"#;
+    let spec = ReportSpec::parse(spec).unwrap();
+    let r = generate(&spec, &RunInfo::default(), &NoProgress).unwrap();
+    let files: HashMap<String, Vec<u8>> = r.files.into_iter().map(|f| (f.path, f.bytes)).collect();
+    let rep = Report { spec, files };
+    let cells = csv(&rep, "g1-cells.csv");
+    let samples = csv(&rep, "g1-samples.csv");
+    let (a, b) = (0.2, 0.8);
+    let mut area = 0.0;
+    let mut g1_area = 0.0;
+    let mut crossing = 0;
+    for c in &cells {
+        let (x0, x1, y0, y1) = (f(c, "r0_lo"), f(c, "r0_hi"), f(c, "r1_lo"), f(c, "r1_hi"));
+        assert!(
+            a <= x0 && x0 < x1 && x1 <= b && a <= y0 && y0 < y1 && y1 <= b,
+            "{c:?}"
+        );
+        assert_eq!(f(c, "r2"), 0.3);
+        area += (x1 - x0) * (y1 - y0);
+        match c["verdict"].as_str() {
+            "g1" => {
+                g1_area += (x1 - x0) * (y1 - y0);
+                for (x, y) in [(0.5 * (x0 + x1), 0.5 * (y0 + y1)), (x0, y0), (x1, y1)] {
+                    assert_eq!(failure_at(&[x, y, 0.3]), None, "{c:?} at ({x}, {y})");
+                }
+                let classes: std::collections::BTreeSet<&str> = samples
+                    .iter()
+                    .filter(|s| {
+                        let (x, y) = (f(s, "r0"), f(s, "r1"));
+                        x0 <= x && x <= x1 && y0 <= y && y <= y1
+                    })
+                    .map(|s| s["class"].as_str())
+                    .collect();
+                crossing += usize::from(classes.len() > 1);
+            }
+            "undecided" => {}
+            v => panic!("verdict {v} in a g1 map"),
+        }
+    }
+    assert!(
+        (area - (b - a) * (b - a)).abs() < 1e-12,
+        "cells cover {area}"
+    );
+    assert!(g1_area > 0.5 * area, "g1 on {g1_area} of {area}");
+    assert!(crossing > 0, "no g1 cell crosses the class boundary");
+    // one rectangle per g1 cell in the g1 colour of `class_color`,
+    // rgb(230, 145, 56) (the SVG backend draws a colour's rectangles as one
+    // path of closed `M..z` pieces; the legend's box is a separate `rect`)
+    let svg = String::from_utf8(rep.files["g1.svg"].clone()).unwrap();
+    let drawn: usize = svg
+        .split("<path fill=\"#E69138\" d=\"")
+        .skip(1)
+        .map(|p| p[..p.find('"').unwrap()].matches('z').count())
+        .sum();
+    let g1_cells = cells.iter().filter(|c| c["verdict"] == "g1").count();
+    assert_eq!(drawn, g1_cells, "g1 cells drawn");
+}

@@ -3,11 +3,16 @@
 //!
 //! For `n = 3` and each fixed `r_2` of `slices`, the branch and bound of
 //! [`crate::verify`] runs over the square `(r_0, r_1)` in `[lo, hi]^2` with
-//! `r_2` held at the slice's float (class + separation): every coloured cell
-//! on the left is *proven* to have that subdominant class for every
-//! `(r_0, r_1)` in it; grey cells are `undecided` at `min_width` (the class
-//! boundaries). On the right, the same square is sampled at `grid x grid`
-//! cell centres with the pointwise classifier, as in `knot-map`.
+//! `r_2` held at the slice's float. With `property = "class"` (the default:
+//! class + separation) every coloured cell on the left is *proven* to have
+//! that subdominant class for every `(r_0, r_1)` in it; grey cells are
+//! `undecided` at `min_width` (the class boundaries). With
+//! `property = "g1"` the left panels show the cells proven `g1` (math doc
+//! section 15, "G1 over a cell": the pair after `1` separated and its
+//! characteristic map regular and injective, whatever the class), which
+//! cross the class boundaries of the right panels. On the right, the same
+//! square is sampled at `grid x grid` cell centres with the pointwise
+//! classifier, as in `knot-map`.
 //!
 //! Tables: `<id>-cells.csv` (`slice, r2, r0_lo, r0_hi, r1_lo, r1_hi,
 //! verdict`, end points in shortest round-trip form) and `<id>-samples.csv`
@@ -20,6 +25,7 @@
 //! range = [0.01, 0.99]      # the square [lo, hi]^2 of (r_0, r_1) (default)
 //! min_width = 0.015625      # cells this narrow are not split (default 1/64)
 //! grid = 41                 # sampled cells per axis (default 41)
+//! property = "class"        # or "g1" (default "class")
 //! ```
 
 use super::{num, Context, DataTable, Figure, FigureKind, FigureOutput};
@@ -49,6 +55,48 @@ pub const MIN_WIDTH_FLOOR: f64 = 1.0 / 1024.0;
 /// Cap on the cells evaluated per slice (refinement stops before a level
 /// that would exceed it; the open cells stay undecided).
 pub const MAX_CELLS_PER_SLICE: u64 = 200_000;
+/// The same cap for `property = "g1"`: a `g1` cell costs about 0.5 ms CPU
+/// at `n = 3` against microseconds for the class, so 20 000 cells (about
+/// 10 s CPU per slice) keep a figure within a report's time.
+pub const MAX_G1_CELLS_PER_SLICE: u64 = 20_000;
+
+/// What the left panels certify.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Proven {
+    /// The subdominant class and its separation.
+    Class,
+    /// The class-free `g1` property.
+    G1,
+}
+
+impl Proven {
+    fn parse(s: &str) -> Option<Proven> {
+        match s {
+            "class" => Some(Proven::Class),
+            "g1" => Some(Proven::G1),
+            _ => None,
+        }
+    }
+
+    /// The `verify` properties and the cell cap per slice.
+    fn properties(self) -> (Vec<Property>, u64) {
+        match self {
+            Proven::Class => (
+                vec![Property::Class, Property::Separation],
+                MAX_CELLS_PER_SLICE,
+            ),
+            Proven::G1 => (vec![Property::G1], MAX_G1_CELLS_PER_SLICE),
+        }
+    }
+
+    /// The caption word of the left panels.
+    fn caption(self) -> &'static str {
+        match self {
+            Proven::Class => "certified",
+            Proven::G1 => "g1 certified",
+        }
+    }
+}
 
 /// The kind.
 pub(crate) const KIND: FigureKind = FigureKind {
@@ -65,6 +113,7 @@ struct Params {
     range: Option<Spanned<[f64; 2]>>,
     min_width: Option<Spanned<f64>>,
     grid: Option<Spanned<usize>>,
+    property: Option<Spanned<String>>,
 }
 
 struct CertifiedMap {
@@ -72,6 +121,7 @@ struct CertifiedMap {
     range: [f64; 2],
     min_width: f64,
     grid: usize,
+    proven: Proven,
 }
 
 fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
@@ -139,11 +189,25 @@ fn parse(fs: &FigureSpec<'_>) -> Result<Box<dyn Figure>, ReportError> {
             ))
         }
     };
+    let proven = match &p.property {
+        None => Proven::Class,
+        Some(v) => Proven::parse(v.get_ref()).ok_or_else(|| {
+            fs.error_at(
+                v,
+                "property",
+                format!(
+                    "property must be \"class\" or \"g1\", got {:?}",
+                    v.get_ref()
+                ),
+            )
+        })?,
+    };
     Ok(Box::new(CertifiedMap {
         slices,
         range,
         min_width,
         grid,
+        proven,
     }))
 }
 
@@ -166,18 +230,19 @@ impl Figure for CertifiedMap {
         let mut out = Vec::new();
         for &r2 in &self.slices {
             // r_2 is held at the float r2 (a zero-width side is never split)
+            let (properties, max_cells) = self.proven.properties();
             let spec = VerifySpec {
                 name: "certified-map".into(),
                 region: Region::Ratios {
                     lo: vec![a, a, r2],
                     hi: vec![b, b, r2],
                 },
-                properties: vec![Property::Class, Property::Separation],
+                properties,
                 min_width: self.min_width,
                 time_budget: None,
             };
             let limits = Limits {
-                max_cells: MAX_CELLS_PER_SLICE,
+                max_cells,
                 ..Limits::default()
             };
             let outcome = run(&spec, &limits);
@@ -213,6 +278,7 @@ impl Figure for CertifiedMap {
             slices: out,
             range: self.range,
             grid: g,
+            proven: self.proven,
         }))
     }
 }
@@ -221,11 +287,13 @@ struct Output {
     slices: Vec<Slice>,
     range: [f64; 2],
     grid: usize,
+    proven: Proven,
 }
 
-/// Legend order (the classes a NURDS cell can be certified with, then
+/// Legend order (the verdicts a NURDS cell can be certified with, then
 /// undecided).
 const LEGEND: &[&str] = &[
+    "g1",
     "real_distinct",
     "complex_pair",
     "not_separated",
@@ -251,6 +319,26 @@ impl Output {
                 (v, 0.0 + area / total)
             })
             .filter(|(_, f)| *f > 0.0)
+            .collect()
+    }
+
+    /// Share of the sampled points per class: the classes of [`LEGEND`] in
+    /// its order, then any other class by name.
+    fn sample_shares(&self) -> Vec<(String, f64)> {
+        let mut counts: std::collections::BTreeMap<&str, usize> = Default::default();
+        for c in self.slices.iter().flat_map(|s| s.samples.iter()) {
+            *counts.entry(c.as_str()).or_default() += 1;
+        }
+        let total = counts.values().sum::<usize>().max(1) as f64;
+        let mut names: Vec<&str> = LEGEND
+            .iter()
+            .copied()
+            .filter(|v| counts.contains_key(v))
+            .collect();
+        names.extend(counts.keys().copied().filter(|k| !LEGEND.contains(k)));
+        names
+            .into_iter()
+            .map(|v| (v.to_owned(), counts[v] as f64 / total))
             .collect()
     }
 }
@@ -294,23 +382,41 @@ impl FigureOutput for Output {
         let th = Theme::for_size(common.size);
         let body = titled(area, &common.title, &th)?;
         let (w, _) = body.dim_in_pixel();
-        let legend: Vec<(String, &'static str)> = self
-            .shares()
-            .into_iter()
-            .map(|(v, f)| (format!("{} ({:.1}%)", v.replace('_', " "), 100.0 * f), v))
-            .collect();
-        let widest = legend
+        let entry = |v: &str, f: f64| {
+            (
+                format!("{} ({:.1}%)", v.replace('_', " "), 100.0 * f),
+                v.to_owned(),
+            )
+        };
+        let mut groups: Vec<(&str, Vec<(String, String)>)> = vec![(
+            "certified area",
+            self.shares()
+                .into_iter()
+                .map(|(v, f)| entry(v, f))
+                .collect(),
+        )];
+        // the g1 cells' colour is not a class: the sampled classes get their own key
+        if self.proven == Proven::G1 {
+            groups.push((
+                "sampled class",
+                self.sample_shares()
+                    .into_iter()
+                    .map(|(v, f)| entry(&v, f))
+                    .collect(),
+            ));
+        }
+        let text_w = |t: &str, size: u32| {
+            body.estimate_text_size(t, &th.font(size))
+                .map_or(0, |s| s.0)
+        };
+        let widest = groups
             .iter()
-            .map(|(t, _)| {
-                body.estimate_text_size(t, &th.font(th.legend))
-                    .map_or(0, |s| s.0)
+            .flat_map(|(head, items)| {
+                std::iter::once(text_w(head, th.label))
+                    .chain(items.iter().map(|(t, _)| text_w(t, th.legend)))
             })
             .max()
-            .unwrap_or(0)
-            .max(
-                body.estimate_text_size("certified area", &th.font(th.label))
-                    .map_or(0, |s| s.0),
-            );
+            .unwrap_or(0);
         let side_w = (widest + th.legend * 4 + th.tick * 2).clamp(w / 8, w / 3);
         let (maps, side) = body.split_horizontally(w - side_w);
         let rows = maps.split_evenly((self.slices.len(), 2));
@@ -321,7 +427,11 @@ impl FigureOutput for Output {
                 let pa = &rows[2 * s + half];
                 let caption = format!(
                     "{}: {} = {}",
-                    if half == 0 { "certified" } else { "sampled" },
+                    if half == 0 {
+                        self.proven.caption()
+                    } else {
+                        "sampled"
+                    },
                     subscript("r", 2),
                     sl.r2
                 );
@@ -350,25 +460,28 @@ impl FigureOutput for Output {
         let x = th.tick as i32;
         let sz = th.legend as i32;
         let mut y = th.label as i32 * 3;
-        side.draw(&Text::new(
-            "certified area",
-            (x, y - th.label as i32 * 2),
-            th.font(th.label),
-        ))
-        .map_err(draw_err)?;
-        for (text, name) in legend {
-            let bx = [(x, y), (x + sz * 2, y + sz * 2)];
-            side.draw(&Rectangle::new(bx, class_color(name).filled()))
-                .map_err(draw_err)?;
-            side.draw(&Rectangle::new(bx, BLACK.stroke_width(1)))
-                .map_err(draw_err)?;
+        for (head, items) in groups {
             side.draw(&Text::new(
-                text,
-                (x + sz * 3, y + sz / 3),
-                th.font(th.legend),
+                head,
+                (x, y - th.label as i32 * 2),
+                th.font(th.label),
             ))
             .map_err(draw_err)?;
-            y += sz * 3;
+            for (text, name) in items {
+                let bx = [(x, y), (x + sz * 2, y + sz * 2)];
+                side.draw(&Rectangle::new(bx, class_color(&name).filled()))
+                    .map_err(draw_err)?;
+                side.draw(&Rectangle::new(bx, BLACK.stroke_width(1)))
+                    .map_err(draw_err)?;
+                side.draw(&Text::new(
+                    text,
+                    (x + sz * 3, y + sz / 3),
+                    th.font(th.legend),
+                ))
+                .map_err(draw_err)?;
+                y += sz * 3;
+            }
+            y += th.label as i32 * 3;
         }
         Ok(())
     }

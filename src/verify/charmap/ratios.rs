@@ -55,7 +55,7 @@
 //! Bezier differences and the Jacobian coefficients cancel it instead of
 //! adding it (math doc section 15, "Named remainders").
 
-use super::af::{self, Af};
+use super::af::{self, det, Af};
 use super::ivla::{mid, norm2_op_upper, norm2_upper, verified_inverse, P2};
 use super::winding::{winding_number, BoxCurve};
 use super::CellTamper;
@@ -540,7 +540,7 @@ pub fn ratio_ring_with(
         .map(|v| {
             let mut acc = Af::constant(0.0, ns);
             for (u, tu) in t21.iter().enumerate() {
-                acc = acc.add(&tu.mul_iv(kinv[v * 2 * m + u]));
+                acc.add_scaled(1.0, &tu.mul_iv(kinv[v * 2 * m + u]));
             }
             acc
         })
@@ -600,13 +600,13 @@ pub fn ratio_ring_with(
             phat[v].add(&Af::symbol(0.0, eps2, n + 2 * k + j, ns))
         })
         .collect();
-    let pk = |k: usize, j: usize| pmat[k + m * j].clone();
+    let pk = |k: usize, j: usize| &pmat[k + m * j];
     let nf: Vec<Af> = (0..4)
         .map(|ab| {
             let (a, b) = (ab / 2, ab % 2);
             let mut acc = t_af(a, b);
             for k in 0..m {
-                acc = acc.add(&t_af(a, 2 + k).mul(&pk(k, b)));
+                acc.add_scaled(1.0, &t_af(a, 2 + k).mul(pk(k, b)));
             }
             named.name(acc)
         })
@@ -618,7 +618,7 @@ pub fn ratio_ring_with(
         w[lay.p(a)] = std::array::from_fn(|b| {
             let mut acc = Af::constant(q[(a, b)], ns);
             for k in 0..m {
-                acc = acc.add(&pk(k, b).scale(q[(a, 2 + k)]));
+                acc.add_scaled(q[(a, 2 + k)], pk(k, b));
             }
             acc
         });
@@ -698,7 +698,7 @@ pub fn ratio_ring_with(
         std::array::from_fn(|k| {
             let mut acc = zero.clone();
             for (c, v) in terms {
-                acc = acc.add(&c.mul(&v[k]));
+                acc.add_scaled(1.0, &c.mul(&v[k]));
             }
             acc
         })
@@ -816,10 +816,6 @@ fn bezier_net(ring: &RatioRing, n: usize, id: RingPatchId) -> [[[Af; 2]; 3]; 3] 
     std::array::from_fn(|a| conv_t(&std::array::from_fn(|c| cols[c][a].clone())))
 }
 
-fn det(a: &[Af; 2], b: &[Af; 2]) -> Af {
-    a[0].mul(&b[1]).sub(&a[1].mul(&b[0]))
-}
-
 /// The Jacobian's Bezier coefficients (bidegree (3, 3)) of a biquadratic
 /// net, each multiplied by the positive factor `C(3, k) C(3, l) / 4`:
 /// `sum C(1,i) C(2,i') C(2,j) C(1,j') det(b_{i+1,j} - b_{ij}, b_{i',j'+1} - b_{i'j'})`.
@@ -840,8 +836,7 @@ fn jacobian_scaled(b: &[[[Af; 2]; 3]; 3]) -> Vec<Vec<Af>> {
             for i2 in 0..3 {
                 for j2 in 0..2 {
                     let wgt = c1[i] * c2[i2] * c2[j] * c1[j2];
-                    let v = det(&ds[i][j], &dt[i2][j2]).scale(wgt);
-                    out[i + i2][j + j2] = out[i + i2][j + j2].add(&v);
+                    out[i + i2][j + j2].add_scaled(wgt, &det(&ds[i][j], &dt[i2][j2]));
                 }
             }
         }
@@ -875,11 +870,16 @@ fn transpose(c: &[Vec<Af>]) -> Vec<Vec<Af>> {
 }
 
 /// `sigma J > 0` on every patch for every parameter: the Jacobian
-/// coefficients are checked, and split by de Casteljau (unscaled) up to
-/// [`JACOBIAN_DEPTH`] levels.
+/// coefficients are checked patch by patch, and split by de Casteljau
+/// (unscaled) up to [`JACOBIAN_DEPTH`] levels. A corner coefficient is the
+/// Jacobian's value at a corner of its piece, and de Casteljau passes it
+/// unchanged to the sub-piece at that corner: a piece with a corner
+/// coefficient not of the sign `sigma` can never be certified, so the test
+/// stops there (and at the first such patch, before the later patches'
+/// coefficients are computed).
 fn jacobian_sign(nets: &[[[[Af; 2]; 3]; 3]]) -> Option<f64> {
-    let scaled: Vec<Vec<Vec<Af>>> = nets.iter().map(jacobian_scaled).collect();
-    let c0 = scaled.first()?[0][0].c;
+    let first = jacobian_scaled(nets.first()?);
+    let c0 = first[0][0].c;
     let sigma = if c0 > 0.0 {
         1.0
     } else if c0 < 0.0 {
@@ -887,21 +887,29 @@ fn jacobian_sign(nets: &[[[[Af; 2]; 3]; 3]]) -> Option<f64> {
     } else {
         return None;
     };
-    let positive = |c: &[Vec<Af>]| {
-        c.iter().flatten().all(|v| {
-            let r = v.range();
-            if sigma > 0.0 {
-                r.lo > 0.0
-            } else {
-                r.hi < 0.0
-            }
-        })
+    let signed = |v: &Af| {
+        let r = v.range();
+        if sigma > 0.0 {
+            r.lo > 0.0
+        } else {
+            r.hi < 0.0
+        }
+    };
+    let positive = |c: &[Vec<Af>]| c.iter().flatten().all(signed);
+    let corners_signed = |c: &[Vec<Af>]| {
+        [(0, 0), (0, 3), (3, 0), (3, 3)]
+            .iter()
+            .all(|&(k, l)| signed(&c[k][l]))
     };
     let binom = [1.0, 3.0, 3.0, 1.0];
-    let mut work = Vec::new();
-    for c in &scaled {
-        if positive(c) {
+    let mut pieces = 0usize;
+    let rest = nets[1..].iter().map(jacobian_scaled);
+    for c in std::iter::once(first).chain(rest) {
+        if positive(&c) {
             continue;
+        }
+        if !corners_signed(&c) {
+            return None;
         }
         // unscale: divide by C(3,k) C(3,l) in {1, 3, 9} (rounding into the remainder)
         let u: Vec<Vec<Af>> = (0..4)
@@ -916,22 +924,24 @@ fn jacobian_sign(nets: &[[[[Af; 2]; 3]; 3]]) -> Option<f64> {
                     .collect()
             })
             .collect();
-        work.push((u, 0u32));
-    }
-    let mut pieces = 0usize;
-    while let Some((c, depth)) = work.pop() {
-        pieces += 1;
-        if positive(&c) {
-            continue;
-        }
-        if depth >= JACOBIAN_DEPTH || pieces + work.len() + 4 > JACOBIAN_PIECES {
-            return None;
-        }
-        let (l, r) = split_first(&c);
-        for half in [l, r] {
-            let (a, b) = split_first(&transpose(&half));
-            work.push((transpose(&a), depth + 1));
-            work.push((transpose(&b), depth + 1));
+        let mut work = vec![(u, 0u32)];
+        while let Some((c, depth)) = work.pop() {
+            pieces += 1;
+            if positive(&c) {
+                continue;
+            }
+            if !corners_signed(&c)
+                || depth >= JACOBIAN_DEPTH
+                || pieces + work.len() + 4 > JACOBIAN_PIECES
+            {
+                return None;
+            }
+            let (l, r) = split_first(&c);
+            for half in [l, r] {
+                let (a, b) = split_first(&transpose(&half));
+                work.push((transpose(&a), depth + 1));
+                work.push((transpose(&b), depth + 1));
+            }
         }
     }
     Some(sigma)
