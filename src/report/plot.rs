@@ -544,6 +544,21 @@ pub fn class_color(class: &str) -> RGBColor {
     }
 }
 
+/// A class's legend swatch: the `2s x 2s` box with top-left corner `(x, y)`,
+/// filled with [`class_color`] and outlined in black.
+pub fn class_swatch(
+    side: &Area<'_>,
+    (x, y): (i32, i32),
+    s: i32,
+    class: &str,
+) -> Result<(), ReportError> {
+    let bx = [(x, y), (x + s * 2, y + s * 2)];
+    side.draw(&Rectangle::new(bx, class_color(class).filled()))
+        .map_err(draw_err)?;
+    side.draw(&Rectangle::new(bx, BLACK.stroke_width(1)))
+        .map_err(draw_err)
+}
+
 /// A tick label: at most 6 decimals with trailing zeros removed, scientific
 /// notation below 1e-4 and from 1e6 on, and never a negative zero: a value
 /// below [`TICK_ZERO`] in modulus (a rounding residue of the tick arithmetic

@@ -34,7 +34,8 @@ use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
-    class_color, draw_err, row_runs, square_ratio_panel, subscript, tick, titled, Theme,
+    class_color, class_swatch, draw_err, row_runs, square_ratio_panel, subscript, tick, titled,
+    Theme,
 };
 use crate::schemes::LocalScheme;
 use crate::spectral::classify_scheme;
@@ -468,11 +469,7 @@ impl FigureOutput for Output {
             ))
             .map_err(draw_err)?;
             for (text, name) in items {
-                let bx = [(x, y), (x + sz * 2, y + sz * 2)];
-                side.draw(&Rectangle::new(bx, class_color(&name).filled()))
-                    .map_err(draw_err)?;
-                side.draw(&Rectangle::new(bx, BLACK.stroke_width(1)))
-                    .map_err(draw_err)?;
+                class_swatch(&side, (x, y), sz, &name)?;
                 side.draw(&Text::new(
                     text,
                     (x + sz * 3, y + sz / 3),

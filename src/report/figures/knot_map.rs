@@ -27,8 +27,8 @@ use crate::report::backend::Area;
 use crate::report::error::ReportError;
 use crate::report::figure_spec::{Common, FigureSpec};
 use crate::report::plot::{
-    class_color, colorbar, draw_err, row_runs, square_ratio_panel, subscript, tick, titled,
-    viridis, Marker, Theme,
+    class_color, class_swatch, colorbar, draw_err, row_runs, square_ratio_panel, subscript, tick,
+    titled, viridis, Marker, Theme,
 };
 use crate::schemes::LocalScheme;
 use crate::spectral::classify_scheme;
@@ -444,11 +444,7 @@ impl FigureOutput for Output {
                 ))
                 .map_err(draw_err)?;
                 for (text, name) in legend {
-                    let bx = [(x, y), (x + s * 2, y + s * 2)];
-                    side.draw(&Rectangle::new(bx, class_color(&name).filled()))
-                        .map_err(draw_err)?;
-                    side.draw(&Rectangle::new(bx, BLACK.stroke_width(1)))
-                        .map_err(draw_err)?;
+                    class_swatch(&side, (x, y), s, &name)?;
                     if rare.contains(&name) {
                         side.draw(&rare_marker(&name).at((x + s, y + s), s * 2 / 3 + 2, WHITE))
                             .map_err(draw_err)?;
