@@ -359,8 +359,11 @@ fn exact_class<S: Scheme + ?Sized>(
     };
     let exact = exact?;
     let t = 0.5 * (sub.lambda1.norm() + sub.abs_lambda3);
-    Ok(precondition::exact_standard(exact.matrix(), t)
-        .map_err(|e| format!("; exact test of the local matrix: {e}")))
+    let turn = precondition::rotation(exact.rows(), scheme.valence());
+    Ok(
+        precondition::exact_standard_turned(exact.matrix(), t, turn.as_deref())
+            .map_err(|e| format!("; exact test of the local matrix: {e}")),
+    )
 }
 
 /// The characteristic map's level-0 control net with what refines it
