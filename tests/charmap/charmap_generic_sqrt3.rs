@@ -133,15 +133,25 @@ fn two_step_rules_are_the_composed_one_to_nine_split() {
     assert_eq!(symbol, composed);
     assert_eq!(symbol.len(), 73);
     assert!(symbol.values().all(|w| *w >= frac(1, 324)));
-    // nine cosets, each summing to 1
+    // nine cosets, each summing to 1, with equal moments of order 1 and 2
+    // (sigma = 0; sum rules of order 3)
+    let moments = |cx: i64, cy: i64| -> Vec<Rational> {
+        [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)]
+            .iter()
+            .map(|&(a, b)| {
+                symbol
+                    .iter()
+                    .filter(|(g, _)| g[0].rem_euclid(3) == cx && g[1].rem_euclid(3) == cy)
+                    .map(|(g, w)| w * Rational::from_integer((g[0].pow(a) * g[1].pow(b)).into()))
+                    .sum()
+            })
+            .collect()
+    };
+    let first = moments(0, 0);
+    assert!(first[0].is_one() && first[1].is_zero() && first[2].is_zero());
     for cx in 0..3 {
         for cy in 0..3 {
-            let sum: Rational = symbol
-                .iter()
-                .filter(|(g, _)| g[0].rem_euclid(3) == cx && g[1].rem_euclid(3) == cy)
-                .map(|(_, w)| w.clone())
-                .sum();
-            assert!(sum.is_one(), "coset ({cx}, {cy}) sums to {sum}");
+            assert_eq!(moments(cx, cy), first, "coset ({cx}, {cy})");
         }
     }
     // read as a halving the rules are not translation invariant
