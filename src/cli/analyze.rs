@@ -173,6 +173,9 @@ fn generic_summary(g: &subdiv_lab::Result<charmap::generic::GenericReport>) -> S
         Err(e) => return format!("characteristic map (generic): not computed ({e})\n"),
     };
     let mut out = format!("characteristic map (generic): {}\n", r.verdict);
+    if let Some(k) = r.matrix_steps {
+        out += &format!("  of the {k}-step local matrix (one step turns the ring)\n");
+    }
     if let Some(level) = r.level {
         let opt = |x: Option<i64>| x.map_or("undecided".to_owned(), |w| w.to_string());
         out += &format!(

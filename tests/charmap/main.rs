@@ -8,5 +8,6 @@ mod common;
 mod charmap;
 mod charmap_cc;
 mod charmap_generic;
+mod charmap_generic_sqrt3;
 mod charmap_mesh;
 mod charmap_report;

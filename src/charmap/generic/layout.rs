@@ -181,6 +181,21 @@ pub fn label_position(label: PointLabel, n: usize) -> Option<SectorPoint> {
     }
 }
 
+/// The first label of a face-centred configuration (the Doo-Sabin family:
+/// corners `P_i` of the extraordinary face and the points around it), or
+/// `None` when every label is vertex-centred. The sector grid is centred on
+/// a lattice point, the extraordinary vertex; a face-centred neighbourhood
+/// is centred on the middle of an `n`-sided face, which is no point of the
+/// net (math doc section 20.6).
+pub fn face_centred_label(labels: &[PointLabel]) -> Option<PointLabel> {
+    labels.iter().copied().find(|l| {
+        matches!(
+            l.role,
+            Role::FaceCorner | Role::EdgeFirst | Role::EdgeSecond | Role::Corner
+        )
+    })
+}
+
 /// The sector-grid position of `h_k`, the `k`-th point counted from the
 /// first point of the third ring in the ring order of the triangle lattice
 /// ([`crate::schemes::tri_rings`]: ring `r` holds `r` points per sector,

@@ -335,7 +335,12 @@ pub fn series_bound(norms: &[f64]) -> Option<f64> {
 }
 
 fn coset(g: LatticePoint) -> usize {
-    (g[0].rem_euclid(2) + 2 * g[1].rem_euclid(2)) as usize
+    coset_mod(g, 2)
+}
+
+/// The coset of `g` modulo `d`: `(g_x mod d) + d (g_y mod d)`.
+fn coset_mod(g: LatticePoint, d: i64) -> usize {
+    (g[0].rem_euclid(d) + d * g[1].rem_euclid(d)) as usize
 }
 
 fn bbox<'a, I: Iterator<Item = &'a LatticePoint>>(it: I) -> [i64; 4] {
@@ -357,7 +362,9 @@ fn bbox<'a, I: Iterator<Item = &'a LatticePoint>>(it: I) -> [i64; 4] {
 /// entry must agree to [`MASK_CONSISTENCY_TOL`]; every row must see every
 /// non-zero entry of its coset (the configuration is closed under one step);
 /// every coset sums to 1. `exact`, when given, supplies the exact weights.
-/// `Err` carries the reason the rules cannot be used.
+/// `Err` carries the reason the rules cannot be used; rules that read as a
+/// one-to-nine split instead (dilation 3, math doc section 20.9) get the
+/// reason of [`dilation_three_reason`].
 pub fn read_mask(
     regular: &LocalMatrix<f64>,
     exact: Option<&LocalMatrix<Rational>>,
@@ -366,6 +373,24 @@ pub fn read_mask(
     let lattice = Lattice::of_regular_valence(nn).ok_or_else(|| {
         format!("the regular configuration has valence {nn}, not 4 (quads) or 6 (triangles)")
     })?;
+    match read_with_dilation(regular, exact, lattice, 2) {
+        Ok(symbol) => Ok((lattice, symbol)),
+        Err(why) => match read_with_dilation(regular, exact, lattice, 3) {
+            Ok(symbol) => Err(dilation_three_reason(lattice, &symbol)),
+            Err(_) => Err(why),
+        },
+    }
+}
+
+/// The mask of dilation `d` (`a_{beta - d alpha}`, `d = 2` or `3`) under the
+/// checks of [`read_mask`], with cosets modulo `d`.
+pub fn read_with_dilation(
+    regular: &LocalMatrix<f64>,
+    exact: Option<&LocalMatrix<Rational>>,
+    lattice: Lattice,
+    d: i64,
+) -> Result<Symbol, String> {
+    let nn = regular.valence();
     let pos = |labels: &[crate::schemes::PointLabel]| -> Result<Vec<LatticePoint>, String> {
         labels
             .iter()
@@ -381,14 +406,15 @@ pub fn read_mask(
     let rows = pos(regular.rows())?;
     let cols = pos(regular.cols())?;
     let m = regular.matrix();
+    let classes = (d * d) as usize;
     // per row: the entries it sees
     let mut seen: BTreeMap<LatticePoint, (f64, usize)> = BTreeMap::new();
     let mut exact_of: BTreeMap<LatticePoint, Rational> = BTreeMap::new();
-    let mut covered = [false; 4];
+    let mut covered = vec![false; classes];
     for (r, beta) in rows.iter().enumerate() {
-        covered[coset(*beta)] = true;
+        covered[coset_mod(*beta, d)] = true;
         for (c, alpha) in cols.iter().enumerate() {
-            let g = [beta[0] - 2 * alpha[0], beta[1] - 2 * alpha[1]];
+            let g = [beta[0] - d * alpha[0], beta[1] - d * alpha[1]];
             let w = m[(r, c)];
             match seen.get(&g) {
                 Some(&(w0, r0)) if (w0 - w).abs() > MASK_CONSISTENCY_TOL => {
@@ -418,8 +444,11 @@ pub fn read_mask(
     let symbol: Symbol = exact_of.into_iter().filter(|(_, q)| !q.is_zero()).collect();
     // closure: every row sees every non-zero entry of its coset
     for (r, beta) in rows.iter().enumerate() {
-        for g in symbol.keys().filter(|g| coset(**g) == coset(*beta)) {
-            let alpha = [(beta[0] - g[0]) / 2, (beta[1] - g[1]) / 2];
+        for g in symbol
+            .keys()
+            .filter(|g| coset_mod(**g, d) == coset_mod(*beta, d))
+        {
+            let alpha = [(beta[0] - g[0]) / d, (beta[1] - g[1]) / d];
             if !cols.contains(&alpha) {
                 return Err(format!(
                     "the regular configuration is not closed: new point {} needs a point outside it",
@@ -428,23 +457,58 @@ pub fn read_mask(
             }
         }
     }
-    for k in 0..4 {
+    for k in 0..classes {
         let sum: f64 = symbol
             .iter()
-            .filter(|(g, _)| coset(**g) == k)
+            .filter(|(g, _)| coset_mod(**g, d) == k)
             .map(|(_, q)| crate::scalar::rational_to_f64(q))
             .sum();
         if (sum - 1.0).abs() > MASK_CONSISTENCY_TOL {
             return Err(format!("the mask's parity class {k} sums to {sum}, not 1"));
         }
     }
-    Ok((lattice, symbol))
+    Ok(symbol)
+}
+
+/// The reason a mask of dilation 3 (a one-to-nine split: sqrt(3)'s two-step
+/// rules) is `indeterminate` **\[derived\]** (math doc section 20.9): the
+/// derivative scheme in direction `e` would be
+/// `c = 3 a / (1 + z^e + z^{2e})`, which exists iff the exact symbol is
+/// divisible by `1 + z^e + z^{2e}`; the reason says for which lattice
+/// directions it is (sqrt(3): none, so its derivative schemes are matrix
+/// schemes). The certificate's cells, nets and enclosures are dyadic.
+pub fn dilation_three_reason(lattice: Lattice, symbol: &Symbol) -> String {
+    let divides: Vec<String> = difference_directions(lattice)
+        .into_iter()
+        .filter(|e| divide_by(symbol, *e, 3).is_some())
+        .map(|e| format!("{e:?}"))
+        .collect();
+    let factors = if divides.is_empty() {
+        "its symbol has no factor 1 + z^e + z^2e along any lattice direction, so its derivative schemes are matrix schemes".to_owned()
+    } else {
+        format!(
+            "its symbol has the factor 1 + z^e + z^2e for e = {}",
+            divides.join(", ")
+        )
+    };
+    format!(
+        "the regular rules are a one-to-nine split (dilation 3, {} weights); {factors}; the certificate reads dilation-2 rules with scalar derivative schemes (math doc 20.9)",
+        symbol.len()
+    )
 }
 
 /// Exact division of a symbol by `1 + z^e` (`e` a unit lattice vector):
 /// along every line in direction `e`, `c_t = b_t + b_{t-1}`. `None` when the
 /// remainder is not zero.
 pub fn divide(sym: &Symbol, e: LatticePoint) -> Option<Symbol> {
+    divide_by(sym, e, 2)
+}
+
+/// Exact division of a symbol by `1 + z^e + .. + z^{(d - 1) e}` (`e` a unit
+/// lattice vector, `d >= 2`): along every line in direction `e`,
+/// `c_t = b_t + b_{t-1} + .. + b_{t-d+1}`, solved for `b` from the lowest
+/// `t`. `None` when the remainder is not zero.
+pub fn divide_by(sym: &Symbol, e: LatticePoint, d: i64) -> Option<Symbol> {
     // group by line: key = coordinate across e, t = coordinate along e
     // (`e` is (1, 0), (0, 1) or (-1, 1); on the last, `x + y` is constant)
     let diagonal = e[0] != 0 && e[1] != 0;
@@ -477,18 +541,27 @@ pub fn divide(sym: &Symbol, e: LatticePoint) -> Option<Symbol> {
     let mut out = Symbol::new();
     for (line, coeffs) in lines {
         let (lo, hi) = (*coeffs.keys().next()?, *coeffs.keys().next_back()?);
-        let mut prev = Rational::zero();
-        for t in lo..hi {
-            let c = coeffs.get(&t).cloned().unwrap_or_else(Rational::zero);
-            let b = c - &prev;
-            if !b.is_zero() {
-                out.insert(make(line, t), b.clone());
+        // b_t for t in lo..=hi - d + 1; then the last d - 1 coefficients of
+        // the product must match (zero remainder)
+        let mut b: Vec<Rational> = Vec::new();
+        let coef = |t: i64| coeffs.get(&t).cloned().unwrap_or_else(Rational::zero);
+        // the sum b_{t-1} + .. + b_{t-d+1} of the quotient found so far
+        let tail = |b: &[Rational], t: i64| -> Rational {
+            (1..d)
+                .filter_map(|k| usize::try_from(t - k - lo).ok().and_then(|i| b.get(i)))
+                .sum()
+        };
+        for t in lo..=hi - d + 1 {
+            let q = coef(t) - tail(&b, t);
+            if !q.is_zero() {
+                out.insert(make(line, t), q.clone());
             }
-            prev = b;
+            b.push(q);
         }
-        let last = coeffs.get(&hi).cloned().unwrap_or_else(Rational::zero);
-        if last != prev {
-            return None;
+        for t in (hi - d + 2).max(lo)..=hi {
+            if coef(t) != tail(&b, t) {
+                return None;
+            }
         }
     }
     Some(out)
@@ -726,5 +799,57 @@ mod tests {
         assert_eq!(divide(&t, [1, 0]), None);
         // nor by 1 + y
         assert_eq!(divide(&s, [0, 1]), None);
+    }
+
+    /// The product of the symbols `p` and `q`.
+    fn times(p: &Symbol, q: &Symbol) -> Symbol {
+        let mut out = Symbol::new();
+        for (a, x) in p {
+            for (b, y) in q {
+                *out.entry([a[0] + b[0], a[1] + b[1]])
+                    .or_insert_with(Rational::zero) += x * y;
+            }
+        }
+        out.into_iter().filter(|(_, q)| !q.is_zero()).collect()
+    }
+
+    #[test]
+    fn division_by_the_triadic_factor_is_exact_or_refused() {
+        // (1 + x + x^2)(1 + x) = 1 + 2x + 2x^2 + x^3 divides by 1 + x + x^2
+        let s = sym(&[
+            ([0, 0], 1, 1),
+            ([1, 0], 2, 1),
+            ([2, 0], 2, 1),
+            ([3, 0], 1, 1),
+        ]);
+        assert_eq!(
+            divide_by(&s, [1, 0], 3),
+            Some(sym(&[([0, 0], 1, 1), ([1, 0], 1, 1)]))
+        );
+        // 1 + x^3 = (1 + x)(1 - x + x^2) does not; nor along y
+        let t = sym(&[([0, 0], 1, 1), ([3, 0], 1, 1)]);
+        assert_eq!(divide_by(&t, [1, 0], 3), None);
+        assert_eq!(divide_by(&s, [0, 1], 3), None);
+        // a line shorter than the factor
+        assert_eq!(
+            divide_by(&sym(&[([0, 0], 1, 1), ([1, 0], 1, 1)]), [1, 0], 3),
+            None
+        );
+    }
+
+    #[test]
+    fn the_dilation_three_reason_names_the_dividing_directions() {
+        // the ternary three-direction box symbol (up to a factor)
+        let f = |e: [i64; 2]| sym(&[([0, 0], 1, 1), (e, 1, 1), ([2 * e[0], 2 * e[1]], 1, 1)]);
+        let boxed = times(&times(&f([1, 0]), &f([0, 1])), &f([-1, 1]));
+        let reason = dilation_three_reason(Lattice::Triangle, &boxed);
+        assert!(
+            reason.contains("factor 1 + z^e + z^2e for e = [1, 0], [0, 1], [-1, 1]"),
+            "{reason}"
+        );
+        // one factor fewer: two directions
+        let two = times(&f([1, 0]), &f([0, 1]));
+        let reason = dilation_three_reason(Lattice::Triangle, &two);
+        assert!(reason.contains("for e = [1, 0], [0, 1];"), "{reason}");
     }
 }

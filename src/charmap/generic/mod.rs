@@ -163,6 +163,11 @@ pub struct GenericReport {
     /// The exact proof of the standard eigenstructure, where the
     /// floating-point class was not standard.
     pub class_proof: Option<precondition::ExactStandard>,
+    /// The subdivision steps of the local matrix the verdict refers to, for a
+    /// scheme whose local matrix covers several steps because one step turns
+    /// the ring ([`Scheme::one_step_matrix`]; sqrt(3): 2, math doc section
+    /// 21); `None` for one step.
+    pub matrix_steps: Option<usize>,
 }
 
 impl GenericReport {
@@ -181,6 +186,7 @@ impl GenericReport {
             point_error: None,
             contraction: None,
             class_proof: None,
+            matrix_steps: None,
         }
     }
 
@@ -211,6 +217,9 @@ impl GenericReport {
             "contraction_norms": self.contraction.map(|c| c.0),
             "contraction_power": self.contraction.map(|c| c.1),
         });
+        if let Some(k) = self.matrix_steps {
+            json["matrix_steps"] = serde_json::json!(k);
+        }
         if let Some(e) = &self.class_proof {
             json["class_proof"] = serde_json::json!({
                 "method": "exact",
@@ -274,9 +283,25 @@ pub fn report_json(r: &Result<GenericReport>) -> serde_json::Value {
 }
 
 /// The generic certificate of one configuration, given its subdominant
-/// classification. Failures to build a scheme's matrices are errors; every
-/// reason the certificate cannot decide is an `indeterminate` verdict.
+/// classification (of the local matrix, which for sqrt(3) covers two steps:
+/// the report's `matrix_steps` says so). Failures to build a scheme's
+/// matrices are errors; every reason the certificate cannot decide is an
+/// `indeterminate` verdict.
 pub fn check<S: Scheme + ?Sized>(scheme: &S, sub: &Subdominant) -> Result<GenericReport> {
+    let mut out = check_local(scheme, sub)?;
+    out.matrix_steps = scheme.one_step_matrix().map(|(steps, _)| steps);
+    Ok(out)
+}
+
+/// [`check`] without the steps of the local matrix.
+fn check_local<S: Scheme + ?Sized>(scheme: &S, sub: &Subdominant) -> Result<GenericReport> {
+    let lm = scheme.local_matrix()?;
+    if let Some(label) = layout::face_centred_label(lm.rows()) {
+        return Ok(GenericReport::indeterminate(format!(
+            "face-centred neighbourhood (point {label}): the certificate's sector grid is centred on a vertex (math doc 20.6); the ring certificate (--charmap ring) decides {}",
+            scheme.name()
+        )));
+    }
     let lambda = sub.lambda1.re;
     let (gap, class_proof) = match &sub.class {
         SubdominantClass::Standard => (sub.gap.min(1.0 - sub.lambda1.norm()), None),
@@ -311,7 +336,6 @@ pub fn check<S: Scheme + ?Sized>(scheme: &S, sub: &Subdominant) -> Result<Generi
             return Ok(r);
         }
     };
-    let lm = scheme.local_matrix()?;
     let local = match LocalRows::new(&lm) {
         Ok(l) => l,
         Err(reason) => return Ok(GenericReport::indeterminate(reason)),
@@ -335,8 +359,11 @@ fn exact_class<S: Scheme + ?Sized>(
     };
     let exact = exact?;
     let t = 0.5 * (sub.lambda1.norm() + sub.abs_lambda3);
-    Ok(precondition::exact_standard(exact.matrix(), t)
-        .map_err(|e| format!("; exact test of the local matrix: {e}")))
+    let turn = precondition::rotation(exact.rows(), scheme.valence());
+    Ok(
+        precondition::exact_standard_turned(exact.matrix(), t, turn.as_deref())
+            .map_err(|e| format!("; exact test of the local matrix: {e}")),
+    )
 }
 
 /// The characteristic map's level-0 control net with what refines it

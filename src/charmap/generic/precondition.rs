@@ -13,7 +13,9 @@
 //!    root `lambda` in `(t, 1)` (Sturm count): being at least double, it is
 //!    both roots of step 2, of multiplicity exactly 2;
 //! 4. `rank(S - lambda I) = dim - 2` (exact, in `Q(lambda)`): the eigenspace
-//!    is 2-dimensional.
+//!    is 2-dimensional; where `lambda`'s polynomial is beyond
+//!    [`MAX_FIELD_DEGREE`], by the rotation of the sectors instead
+//!    ([`eigenspace_by_symmetry`]).
 //!
 //! Any `t` is valid: a poor choice makes the test fail, never pass wrongly.
 
@@ -51,6 +53,18 @@ pub struct ExactStandard {
 /// [`THRESHOLD_GRID`], which keeps the Schur-Cohn recursion's rationals
 /// short). `Err` carries the reason it is not proven.
 pub fn exact_standard(s: &DMatrix<Rational>, t: f64) -> Result<ExactStandard, String> {
+    exact_standard_turned(s, t, None)
+}
+
+/// [`exact_standard`] with the rotation of the configuration by one sector
+/// (`turn[k]`: the index point `k` moves to, [`rotation`]), which decides
+/// step 4 by symmetry ([`eigenspace_by_symmetry`]) where `lambda`'s
+/// polynomial is beyond [`MAX_FIELD_DEGREE`].
+pub fn exact_standard_turned(
+    s: &DMatrix<Rational>,
+    t: f64,
+    turn: Option<&[usize]>,
+) -> Result<ExactStandard, String> {
     let dim = s.nrows();
     let t = (t / THRESHOLD_GRID).round() * THRESHOLD_GRID;
     let t_q = f64_to_rational(t)
@@ -102,16 +116,23 @@ pub fn exact_standard(s: &DMatrix<Rational>, t: f64) -> Result<ExactStandard, St
     // fraction in the interval that is an exact root) over Q, otherwise
     // modulo the polynomial of the multiple roots if its degree is small
     let field = match simple_root(&multiple, &lo, &hi) {
-        Some(r) => Poly::new(vec![-r, one.clone()]),
-        None if multiple.degree().unwrap_or(0) <= MAX_FIELD_DEGREE => multiple.clone(),
-        None => {
+        Some(r) => Some(Poly::new(vec![-r, one.clone()])),
+        None if multiple.degree().unwrap_or(0) <= MAX_FIELD_DEGREE => Some(multiple.clone()),
+        None => None,
+    };
+    let rank = match (field, turn) {
+        (Some(field), _) => rank_at_root(s, &field, &lo, &hi),
+        (None, Some(turn)) => {
+            eigenspace_by_symmetry(s, turn, &multiple, &lo, &hi)?;
+            dim - 2
+        }
+        (None, None) => {
             return Err(format!(
                 "the double eigenvalue is irrational and its polynomial has degree {} (the exact rank stops at {MAX_FIELD_DEGREE})",
                 multiple.degree().unwrap_or(0)
             ))
         }
     };
-    let rank = rank_at_root(s, &field, &lo, &hi);
     if rank + 2 != dim {
         return Err(format!(
             "the double eigenvalue in ({}, {}] has a {}-dimensional eigenspace (exact rank), not 2: defective",
@@ -126,6 +147,106 @@ pub fn exact_standard(s: &DMatrix<Rational>, t: f64) -> Result<ExactStandard, St
         lambda: [down(&lo), up(&hi)],
         gap,
     })
+}
+
+/// The rotation of a vertex-centred configuration of valence `n` by one
+/// sector: `turn[k]` is the index of the point that point `k` moves to
+/// (`(s, i, j)` to `(s + 1, i, j)`, the centre fixed); `None` when a label
+/// has no place on the sector grid or its image is not a point of the
+/// configuration.
+pub fn rotation(labels: &[crate::schemes::PointLabel], n: usize) -> Option<Vec<usize>> {
+    use super::layout::{label_position, SectorPoint};
+    let pos: Vec<SectorPoint> = labels
+        .iter()
+        .map(|l| label_position(*l, n))
+        .collect::<Option<_>>()?;
+    pos.iter()
+        .map(|p| {
+            let image = match *p {
+                SectorPoint::Centre => SectorPoint::Centre,
+                SectorPoint::In { s, i, j } => SectorPoint::In {
+                    s: (s + 1) % n,
+                    i,
+                    j,
+                },
+            };
+            pos.iter().position(|q| *q == image)
+        })
+        .collect()
+}
+
+/// Step 4 by symmetry **\[derived\]** (math doc section 20.8): `S`
+/// commutes with the permutation `P` of `turn` (checked exactly), so the
+/// 2-dimensional generalised eigenspace `G` of `lambda` (steps 2 and 3)
+/// splits into the modes `G_k = G ∩ ker(P - omega^k)`. The blocks of the
+/// rational modes, `k = 0` and (for an even order) `k = n/2`, are rational
+/// matrices on the orbits (`B_ab = sum_m c^m S[r_a, P^m r_b]`, `c = 1` or
+/// `-1`); when `lambda` is a root of neither block's characteristic
+/// polynomial (no root of `gcd(multiple, det(x I - B))` in `lambda`'s
+/// interval `(lo, hi]`), `G` lies in the other modes. `S` and `P` are real,
+/// so `G_k` and `G_{n-k}` are conjugate, of equal dimension: `G` is one pair
+/// `G_k + G_{n-k}` of dimension 1 each, each an invariant line, i.e. an
+/// eigenvector, and the two are independent (`omega^k != omega^-k`). So the
+/// eigenspace has dimension 2. `Err` carries the reason it is not proven.
+pub fn eigenspace_by_symmetry(
+    s: &DMatrix<Rational>,
+    turn: &[usize],
+    multiple: &Poly,
+    lo: &Rational,
+    hi: &Rational,
+) -> Result<(), String> {
+    let d = s.nrows();
+    if turn.len() != d || (0..d).any(|i| (0..d).any(|j| s[(turn[i], turn[j])] != s[(i, j)])) {
+        return Err("the local matrix does not commute with the rotation of its sectors".into());
+    }
+    // the orbits of the rotation: a representative and the length
+    let mut seen = vec![false; d];
+    let mut orbits: Vec<(usize, usize)> = Vec::new();
+    for k in 0..d {
+        if seen[k] {
+            continue;
+        }
+        let (mut x, mut len) = (k, 0);
+        while !seen[x] {
+            seen[x] = true;
+            x = turn[x];
+            len += 1;
+        }
+        if x != k {
+            return Err("the rotation of the sectors is not a permutation".into());
+        }
+        orbits.push((k, len));
+    }
+    let order = orbits.iter().map(|o| o.1).max().unwrap_or(1);
+    let characters: &[i64] = if order % 2 == 0 { &[1, -1] } else { &[1] };
+    for &c in characters {
+        // the orbits that carry a vector of the mode (c^len = 1)
+        let valid: Vec<(usize, usize)> = orbits
+            .iter()
+            .copied()
+            .filter(|o| c == 1 || o.1 % 2 == 0)
+            .collect();
+        let m = valid.len();
+        let mut b = DMatrix::<Rational>::from_element(m, m, Rational::zero());
+        for (a, &(ra, _)) in valid.iter().enumerate() {
+            for (bb, &(rb, len)) in valid.iter().enumerate() {
+                let (mut x, mut sign) = (rb, Rational::one());
+                for _ in 0..len {
+                    b[(a, bb)] += &sign * &s[(ra, x)];
+                    x = turn[x];
+                    sign *= Rational::from_integer(c.into());
+                }
+            }
+        }
+        let g = multiple.gcd(&charpoly(&b));
+        if g.degree().unwrap_or(0) > 0 && Sturm::new(&g).count(lo, hi) > 0 {
+            return Err(format!(
+                "the double eigenvalue is an eigenvalue of the rotation's mode {} (its eigenspace is not proven 2-dimensional)",
+                if c == 1 { "0".to_owned() } else { format!("{}", order / 2) }
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Largest degree of a square-free factor the Schur-Cohn count is run on
@@ -265,5 +386,57 @@ mod tests {
         assert!(e.contains("3 eigenvalues"), "{e}");
         // below the pair and above |-2/5| the pair is separated
         assert!(exact_standard(&s, 0.45).is_ok());
+    }
+
+    /// Valence 3: the centre (eigenvalue 1) and two orbits `e_k`, `g_k`
+    /// (indices `1 + k`, `4 + k`), each row of an orbit the circulant
+    /// `a p_k + b (p_{k-1} + p_{k+1})` (mode 0: `a + 2b`, modes 1 and 2:
+    /// `a - b`), the `e` rows also `w` on every `g`. Returns the matrix and
+    /// the rotation.
+    fn circulant(e: (i64, i64), g: (i64, i64), w: Rational) -> (DMatrix<Rational>, Vec<usize>) {
+        let q = |a: i64| Rational::new(a.into(), 8.into());
+        let mut s = DMatrix::from_element(7, 7, Rational::zero());
+        s[(0, 0)] = Rational::one();
+        for k in 0..3 {
+            for (base, (a, b)) in [(1, e), (4, g)] {
+                s[(base + k, base + k)] = q(a);
+                s[(base + k, base + (k + 1) % 3)] = q(b);
+                s[(base + k, base + (k + 2) % 3)] = q(b);
+            }
+            for m in 0..3 {
+                s[(1 + k, 4 + m)] = w.clone();
+            }
+        }
+        let turn = vec![0, 2, 3, 1, 5, 6, 4];
+        (s, turn)
+    }
+
+    #[test]
+    fn symmetry_proves_the_eigenspace_of_a_pair_of_modes() {
+        // e: a = 1/2, b = 1/8: modes 1, 2 at 3/8 (one eigenvector each)
+        let (s, turn) = circulant((4, 1), (0, 0), Rational::zero());
+        let lambda = Rational::new(3.into(), 8.into());
+        let multiple = Poly::new(vec![-lambda.clone(), Rational::one()]);
+        let lo = &lambda - Rational::new(1.into(), 64.into());
+        assert!(eigenspace_by_symmetry(&s, &turn, &multiple, &lo, &lambda).is_ok());
+        // a matrix that does not commute with the rotation is refused
+        let mut t = s.clone();
+        t[(1, 2)] += Rational::one();
+        assert!(eigenspace_by_symmetry(&t, &turn, &multiple, &lo, &lambda).is_err());
+    }
+
+    #[test]
+    fn symmetry_refuses_a_double_eigenvalue_of_mode_zero() {
+        // e and g: a = 1/4, b = 1/8: mode 0 at 1/2 on both orbits, coupled
+        // by 1/3 on every g: the mode-0 block [[1/2, 1], [0, 1/2]] is a
+        // Jordan block (modes 1, 2: 1/8, uncoupled)
+        let (s, turn) = circulant((2, 1), (2, 1), Rational::new(1.into(), 3.into()));
+        let lambda = Rational::new(1.into(), 2.into());
+        let multiple = Poly::new(vec![-lambda.clone(), Rational::one()]);
+        let lo = &lambda - Rational::new(1.into(), 64.into());
+        let e = eigenspace_by_symmetry(&s, &turn, &multiple, &lo, &lambda).unwrap_err();
+        assert!(e.contains("mode 0"), "{e}");
+        // and the rank agrees: a 1-dimensional eigenspace
+        assert_eq!(rank_at_root(&s, &multiple, &lo, &lambda), 6);
     }
 }
