@@ -460,8 +460,16 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
     // The inputs: CSV shard files (each with its summary beside it) or
     // Parquet dataset directories (the parts and summaries of their shards).
     let parquet = files::merge_format(&args.inputs).map_err(sweep_err)?;
-    let shards = files::merge_inputs(&args.inputs).map_err(sweep_err)?;
-    let summaries: Vec<PathBuf> = shards.iter().map(|s| (&s.summary_name).into()).collect();
+    // A dataset's shards are listed (and read) first, for their summaries'
+    // names; CSV shards are read after the output checks, so that a refused
+    // output is named before a missing input.
+    let mut shards = Vec::new();
+    let summaries: Vec<PathBuf> = if parquet {
+        shards = files::merge_inputs(&args.inputs).map_err(sweep_err)?;
+        shards.iter().map(|s| (&s.summary_name).into()).collect()
+    } else {
+        args.inputs.iter().map(|p| summary_path(p)).collect()
+    };
     let format = if parquet {
         Format::Parquet
     } else {
@@ -489,6 +497,9 @@ pub(crate) fn run_merge(args: MergeArgs) -> CliResult {
             named.name(),
             format.extension()
         )));
+    }
+    if !parquet {
+        shards = files::merge_inputs(&args.inputs).map_err(sweep_err)?;
     }
     let merged = files::merge_files(&plan, shards, &args.spec.display().to_string(), &args.out)
         .map_err(sweep_err)?;
