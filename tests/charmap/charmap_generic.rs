@@ -485,43 +485,37 @@ proptest! {
     }
 }
 
-/// The modified butterfly's generic verdicts at `valences`: `c1` wherever the
-/// precondition holds (the class standard in floating point, or proven
-/// exactly). Returns the valences certified.
-fn modified_butterfly_certified(valences: std::ops::RangeInclusive<usize>) -> Vec<usize> {
-    let mut certified = Vec::new();
+/// The modified butterfly's generic verdict is `c1` at every valence of
+/// `valences`, n = 6 (the regular butterfly) with its class proven exactly.
+/// At n = 10 the library's floating-point classification of the local matrix
+/// (the route `generic_of` takes) leaves the class undecided, although the
+/// spectrum is 1, 1/2 (twice), 1/4 (three times); `analyze`'s full
+/// eigen-analysis decides `standard` there and certifies `c1`. The verdict
+/// here is `indeterminate` for that reason, never a wrong one.
+fn assert_modified_butterfly_c1(valences: std::ops::RangeInclusive<usize>) {
     for n in valences {
         let g = generic_of(&LocalScheme::ModifiedButterfly { valence: n });
         eprintln!("modified butterfly n = {n}: {}", g.verdict);
-        if g.level.is_none() {
+        if n == 10 {
+            assert_eq!(g.verdict.code(), "indeterminate", "n = {n}");
+            assert!(g.level.is_none(), "n = {n}: the precondition refused it");
             continue;
         }
         assert_eq!(g.verdict, GenericVerdict::C1, "n = {n}");
-        // n = 6 is the regular butterfly: its class is proven exactly
         assert_eq!(g.class_proof.is_some(), n == 6, "n = {n}");
-        certified.push(n);
     }
-    certified
 }
 
 #[test]
 fn modified_butterfly_is_c1_at_valences_3_to_11() {
-    let certified = modified_butterfly_certified(3..=11);
-    assert!(
-        certified.len() >= 7 && certified.contains(&6),
-        "{certified:?}"
-    );
+    assert_modified_butterfly_c1(3..=11);
 }
 
 /// Valences 12 to 16 need a level of local refinement (3.5 to 7.8 s each).
 #[test]
 #[ignore = "heavy full-size run (about 20 s); .ci/run runs it with --ignored"]
 fn modified_butterfly_is_c1_at_valences_12_to_16() {
-    let certified = modified_butterfly_certified(12..=16);
-    assert!(
-        certified.len() >= 3 && certified.contains(&16),
-        "{certified:?}"
-    );
+    assert_modified_butterfly_c1(12..=16);
 }
 
 #[test]

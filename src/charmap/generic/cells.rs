@@ -202,6 +202,18 @@ where
     })
 }
 
+/// The four corners of the lattice box `bx = [x0, x1, y0, y1]`, in the
+/// order `(x0, y0), (x0, y1), (x1, y0), (x1, y1)` every enclosure lists its
+/// balls in.
+fn corners(bx: [i64; 4]) -> [LatticePoint; 4] {
+    [
+        [bx[0], bx[2]],
+        [bx[0], bx[3]],
+        [bx[1], bx[2]],
+        [bx[1], bx[3]],
+    ]
+}
+
 /// The zero-order enclosure: the balls of radius `rad + factor * M` around
 /// the values at the corners of `bx`, `M` the largest difference over the
 /// window (`|g(x) - q_{floor(x)}| <= K T M`, [`NormBound`]).
@@ -216,14 +228,12 @@ where
 {
     let m = largest_difference(window, nb.directions, value)?;
     let mut out = Vec::with_capacity(4);
-    for x in [bx[0], bx[1]] {
-        for y in [bx[2], bx[3]] {
-            let q = value([x, y])?;
-            out.push(Ball {
-                mid: q.mid,
-                rad: (q.rad + nb.factor * m) * (1.0 + gamma(2)),
-            });
-        }
+    for p in corners(bx) {
+        let q = value(p)?;
+        out.push(Ball {
+            mid: q.mid,
+            rad: (q.rad + nb.factor * m) * (1.0 + gamma(2)),
+        });
     }
     Some(out)
 }
@@ -305,33 +315,29 @@ where
     };
     // rho: the largest |r_c| over the corners (r_alpha is within q0's radius)
     let mut rho = 0.0f64;
-    for x in [bx[0], bx[1]] {
-        for y in [bx[2], bx[3]] {
-            let q = value([x, y])?;
-            let ab = in_directions(
-                [(x - alpha[0]) as f64, (y - alpha[1]) as f64],
-                nb.directions,
-            );
-            let (l, err) = affine(ab);
-            for (x, lx) in q.mid.iter().zip(&l) {
-                rho = rho.max(((x - lx).abs() + q.rad + err) * (1.0 + gamma(2)));
-            }
+    for [x, y] in corners(bx) {
+        let q = value([x, y])?;
+        let ab = in_directions(
+            [(x - alpha[0]) as f64, (y - alpha[1]) as f64],
+            nb.directions,
+        );
+        let (l, err) = affine(ab);
+        for (x, lx) in q.mid.iter().zip(&l) {
+            rho = rho.max(((x - lx).abs() + q.rad + err) * (1.0 + gamma(2)));
         }
     }
     let reach = (rho + nb.factor * m) * (1.0 + gamma(2));
     let mut out = Vec::with_capacity(4);
-    for x in [bx[0], bx[1]] {
-        for y in [bx[2], bx[3]] {
-            let d = [
-                x as f64 - sigma[0] - alpha[0] as f64,
-                y as f64 - sigma[1] - alpha[1] as f64,
-            ];
-            let (mid, err) = affine(in_directions(d, nb.directions));
-            out.push(Ball {
-                mid,
-                rad: (reach + err) * (1.0 + gamma(2)),
-            });
-        }
+    for [x, y] in corners(bx) {
+        let d = [
+            x as f64 - sigma[0] - alpha[0] as f64,
+            y as f64 - sigma[1] - alpha[1] as f64,
+        ];
+        let (mid, err) = affine(in_directions(d, nb.directions));
+        out.push(Ball {
+            mid,
+            rad: (reach + err) * (1.0 + gamma(2)),
+        });
     }
     Some(out)
 }

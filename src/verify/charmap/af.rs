@@ -449,15 +449,24 @@ mod tests {
         let d = det(&a, &b);
         let mut acc = a[0].clone();
         acc.add_scaled(-2.5, &b[1]);
+        // every value in rationals, so that the comparisons carry no rounding
+        // of their own: the forms' remainders alone must cover the gap
+        use num_rational::BigRational;
+        use num_traits::Signed as _;
+        let q = |x: f64| BigRational::from_float(x).expect("finite");
         for k in 0..=10 {
             for j in 0..=10 {
                 for t in [-1.0, 1.0] {
                     let eps = [-1.0 + 0.2 * k as f64, -1.0 + 0.2 * j as f64, t];
-                    let v = |f: &Af| eval(f, &eps);
+                    let v = |f: &Af| {
+                        f.l.iter()
+                            .zip(&eps)
+                            .fold(q(f.c), |acc, (x, e)| acc + q(*x) * q(*e))
+                    };
                     let exact = v(&a[0]) * v(&b[1]) - v(&a[1]) * v(&b[0]);
-                    assert!((exact - eval(&d, &eps)).abs() <= d.e, "{eps:?}");
-                    let lin = v(&a[0]) - 2.5 * v(&b[1]);
-                    assert!((lin - eval(&acc, &eps)).abs() <= acc.e + 1e-15, "{eps:?}");
+                    assert!((exact - v(&d)).abs() <= q(d.e), "{eps:?}");
+                    let lin = v(&a[0]) - q(2.5) * v(&b[1]);
+                    assert!((lin - v(&acc)).abs() <= q(acc.e), "{eps:?}");
                 }
             }
         }
