@@ -137,7 +137,7 @@ impl ReportSpec {
     ///
     /// ```
     /// use subdiv_lab::report::ReportSpec;
-    /// let cc = include_str!("../../analysis/schemes/catmull-clark.toml").to_owned();
+    /// let cc = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/analysis/schemes/catmull-clark.toml")).to_owned();
     /// let files = move |path: &str| match path {
     ///     "cc.toml" => Ok(cc.clone()),
     ///     _ => Err("no such file".to_owned()),

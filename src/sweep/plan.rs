@@ -46,7 +46,7 @@ use std::sync::Arc;
 /// ```
 /// use subdiv_lab::schemes::user::SchemeFile;
 /// use subdiv_lab::sweep::{output, Layout, Plan, SchemeFactory, Shard, SpectralEvaluator, Summary, SweepSpec};
-/// let file = SchemeFile::parse_shared(include_str!("../../analysis/schemes/catmull-clark.toml")).unwrap();
+/// let file = SchemeFile::parse_shared(include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/analysis/schemes/catmull-clark.toml"))).unwrap();
 /// let factory = SchemeFactory::from_file(file);
 /// let spec = SweepSpec::from_toml(r#"
 /// scheme = "catmull-clark"

@@ -469,8 +469,11 @@ proptest! {
     /// Random perturbations of the modified butterfly's rows of `g_i` (its
     /// spectrum kept; the norm-based enclosure of a mask with negative
     /// weights) are never certified C1 where dense sampling of the net
-    /// finds a fold.
+    /// finds a fold. Each folded case runs the certificate to its work
+    /// limit (4 to 11 s), so the default suite keeps the deterministic
+    /// `planted_butterfly_fold_is_never_c1` and this draw runs in CI.
     #[test]
+    #[ignore = "heavy randomised run (about 30 s); .ci/run runs it with --ignored"]
     fn butterfly_perturbations_that_fold_are_never_certified(
         n in prop::sample::select(vec![4usize, 5, 7]),
         delta in -3.0f64..3.0,
