@@ -215,88 +215,10 @@ fn properties(layout: &Layout, fingerprint: &str) -> Result<Arc<WriterProperties
     Ok(Arc::new(b.build()))
 }
 
-/// Labels interned in order of first appearance: a label column's
-/// dictionary (math doc section 16.2). A short linear search while there are
-/// few labels (class names, verdicts), a hash map beyond.
-#[derive(Debug, Default)]
-struct Dict {
-    entries: Vec<Box<str>>,
-    /// The entry of the last label looked up (most rows repeat it).
-    last: u32,
-    map: std::collections::HashMap<Box<str>, u32>,
-}
-
-/// The index of a null label (no dictionary has `u32::MAX` entries: a row
-/// group has [`PART_ROWS`] rows).
-const NULL_INDEX: u32 = u32::MAX;
-
-/// The bits of a null in a float column: a NaN whose payload no value
-/// stored there has (every NaN value is stored as the canonical `f64::NAN`,
-/// as its CSV text `NaN` reads back), so nulls need no separate levels.
-const NULL_F64: u64 = 0x7ff8_5d1b_0000_0001;
-
-/// A null in a boolean column (`0` false, `1` true).
-const NULL_BOOL: u8 = 2;
-
-impl Dict {
-    /// Entries searched linearly before the hash map takes over.
-    const LINEAR: usize = 16;
-
-    /// The index of label `t`, if it is an entry.
-    fn find(&self, t: &str) -> Option<u32> {
-        if self.entries.len() <= Self::LINEAR {
-            self.entries
-                .iter()
-                .position(|e| **e == *t)
-                .map(|i| i as u32)
-        } else {
-            self.map.get(t).copied()
-        }
-    }
-
-    /// The index of label `t`, a new entry if it is new.
-    fn intern(&mut self, t: &str) -> u32 {
-        if let Some(i) = self.find(t) {
-            return i;
-        }
-        let i = self.entries.len() as u32;
-        self.entries.push(t.into());
-        if self.entries.len() == Self::LINEAR + 1 {
-            for (k, e) in self.entries.iter().enumerate() {
-                self.map.insert(e.clone(), k as u32);
-            }
-        } else if self.entries.len() > Self::LINEAR + 1 {
-            self.map.insert(t.into(), i);
-        }
-        i
-    }
-
-    /// The index of label `t` as the CSV holds it ([`csv_text`]), a new
-    /// entry if it is new. The entries hold no line breaks, so a `t` found
-    /// among them is its own CSV text: only a new label is scanned.
-    #[inline(always)]
-    fn label_index(&mut self, t: &str) -> u32 {
-        if self
-            .entries
-            .get(self.last as usize)
-            .is_some_and(|e| **e == *t)
-        {
-            return self.last;
-        }
-        let i = match self.find(t) {
-            Some(i) => i,
-            None => self.intern(&csv_text(t)),
-        };
-        self.last = i;
-        i
-    }
-
-    fn clear(&mut self) {
-        self.entries.clear();
-        self.map.clear();
-        self.last = 0;
-    }
-}
+/// Label buffers kept per block for reuse: a label cell shares its label's
+/// buffer (no copy per cell). Labels are few (class names, verdicts); a
+/// label beyond this many gets a buffer of its own.
+const SHARED_LABELS: usize = 64;
 
 /// `x` as a float column stores it: NaN as the canonical NaN.
 #[inline(always)]
@@ -319,46 +241,77 @@ fn csv_text(t: &str) -> std::borrow::Cow<'_, str> {
     }
 }
 
-/// The rows of one task of the sweep driver as typed cells, row after row
-/// (the typed path of `sweep --format parquet`, math doc section 16.2): the
-/// evaluator's cells go straight into the block, with the values the CSV
-/// of the same rows holds once read back. A number in a float column is the
-/// `f64` itself (its CSV text is its shortest round trip, which reads back to
-/// the same bits; a NaN is the canonical NaN, as the text `NaN` reads back);
-/// a label is its text with line breaks as spaces (as the CSV writes it);
-/// `true` / `false` in a boolean column are booleans. A cell of another kind
-/// than its column's (not written by the built-in evaluator) goes through its
-/// CSV text, as in [`ParquetRows`]' [`Write`](std::io::Write) path, and a cell
-/// that text does not fit is reported by [`ParquetRows::push_block`].
+/// One optional column of a [`TypedBlock`], as the `parquet` crate's column
+/// writer takes it: a definition level per row (0 a null, 1 a value) and the
+/// values of the rows that have one, in the vector of the column's type.
+#[derive(Debug, Default)]
+struct Cells {
+    def: Vec<i16>,
+    floats: Vec<f64>,
+    texts: Vec<ByteArray>,
+    bools: Vec<bool>,
+    /// The label of the last label cell (most rows repeat it).
+    last: Option<ByteArray>,
+}
+
+impl Cells {
+    /// The values of rows `rows` of this column, appended to `dst` (text
+    /// buffers are moved, not shared: no reference count is touched).
+    fn append_to(&mut self, dst: &mut Cells, rows: std::ops::Range<usize>) {
+        let whole = rows.start == 0 && rows.end == self.def.len();
+        let values = |r: std::ops::Range<usize>| {
+            if whole {
+                return 0..self.floats.len() + self.texts.len() + self.bools.len();
+            }
+            let before = |k: usize| self.def[..k].iter().filter(|&&d| d > 0).count();
+            before(r.start)..before(r.end)
+        };
+        let v = values(rows.clone());
+        dst.def.extend_from_slice(&self.def[rows]);
+        if !self.floats.is_empty() {
+            dst.floats.extend_from_slice(&self.floats[v]);
+        } else if !self.texts.is_empty() {
+            dst.texts
+                .extend(self.texts[v].iter_mut().map(std::mem::take));
+        } else if !self.bools.is_empty() {
+            dst.bools.extend_from_slice(&self.bools[v]);
+        }
+    }
+
+    fn clear(&mut self) {
+        self.def.clear();
+        self.floats.clear();
+        self.texts.clear();
+        self.bools.clear();
+    }
+}
+
+/// The rows of one task of the sweep driver as typed columns (the typed path
+/// of `sweep --format parquet`, math doc section 16.2): the evaluator's cells
+/// go straight into the column vectors the `parquet` crate's writers take,
+/// with the values the CSV of the same rows holds once read back. A number
+/// in a float column is the `f64` itself (its CSV text is its shortest round
+/// trip, which reads back to the same bits; a NaN is the canonical NaN, as
+/// the text `NaN` reads back); a label is its text with line breaks as
+/// spaces (as the CSV writes it); `true` / `false` in a boolean column are
+/// booleans. A cell of another kind than its column's (not written by the
+/// built-in evaluator) goes through its CSV text, as in [`ParquetRows`]'
+/// [`Write`](std::io::Write) path, and a cell that text does not fit is
+/// reported by [`ParquetRows::push_block`].
 pub struct TypedBlock {
     /// The column types, `id` to `error`.
     kinds: Vec<Col>,
-    /// Cells per row: the columns between `valence` and `error`.
-    stride: usize,
-    /// Per row, `cap` of them (the rows so far are the first `rows`).
+    /// Per row.
     ids: Vec<i64>,
-    /// Per row, `cap` of them.
+    /// Per row.
     valences: Vec<i32>,
-    /// The cells, column after column, `cap` rows per column: a float's
-    /// bits, a label's index into its column's block dictionary, a boolean as
-    /// 0 / 1, or the column's null sentinel ([`null_bits`]). One store per
-    /// cell, and a column of the block is one slice when it is appended to a
-    /// row group.
-    cells: Vec<u64>,
-    /// Rows per column of `cells` (grown, doubling, when a row does not fit).
-    cap: usize,
-    /// Index in `cells` of the next cell of the current row.
-    at: usize,
-    /// Per column: the labels of this block (empty for other columns).
-    dicts: Vec<Dict>,
-    /// The rows with an error (row in the block, CSV text), in row order.
-    errors: Vec<(usize, String)>,
-    /// Per column: the nulls of a float column in the block (a block that
-    /// joins a group whole adds them without a pass over its cells).
-    float_nulls: Vec<usize>,
+    /// The columns after `valence`, `error` last.
+    cells: Vec<Cells>,
+    /// The buffers of the labels met, each with no line break (so a cell
+    /// found among them is its own CSV text).
+    labels: Vec<ByteArray>,
     /// Column of the next cell.
     col: usize,
-    rows: usize,
     /// Id of the current row.
     id: u64,
     /// The first cell that does not fit its column: (id, column, CSV text).
@@ -367,58 +320,118 @@ pub struct TypedBlock {
     digits: zmij::Buffer,
 }
 
-/// The null of a cell column of type `kind` in [`TypedBlock`]'s cells.
-fn null_bits(kind: Col) -> u64 {
-    match kind {
-        Col::Float => NULL_F64,
-        Col::Label => u64::from(NULL_INDEX),
-        Col::Bool => u64::from(NULL_BOOL),
-        // Not cell columns.
-        Col::Id | Col::Valence | Col::Error => 0,
-    }
-}
-
 impl std::fmt::Debug for TypedBlock {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("TypedBlock")
-            .field("rows", &self.rows)
+            .field("rows", &self.ids.len())
             .field("fault", &self.fault)
             .finish()
     }
 }
 
 impl TypedBlock {
+    /// Rows in the block.
+    fn rows(&self) -> usize {
+        self.ids.len()
+    }
+
+    /// The column of the next cell.
+    #[inline(always)]
+    fn next(&mut self) -> &mut Cells {
+        let k = self.col;
+        self.col += 1;
+        &mut self.cells[k - 2]
+    }
+
+    #[inline(always)]
+    fn put_float(&mut self, x: f64) {
+        let c = self.next();
+        c.def.push(1);
+        c.floats.push(x);
+    }
+
+    #[inline(always)]
+    fn put_null(&mut self) {
+        self.next().def.push(0);
+    }
+
+    /// Stores label `t` (its CSV text) in the next cell, sharing the buffer
+    /// of an equal label met before.
+    #[inline(always)]
+    fn put_label(&mut self, t: &str) {
+        let k = self.col - 2;
+        match &self.cells[k].last {
+            Some(b) if b.data() == t.as_bytes() => {
+                let b = b.clone();
+                let c = self.next();
+                c.def.push(1);
+                c.texts.push(b);
+            }
+            _ => self.new_label(t),
+        }
+    }
+
+    /// [`put_label`](Self::put_label) of a label that is not the column's
+    /// last one.
+    #[cold]
+    fn new_label(&mut self, t: &str) {
+        let b = self.label(t);
+        let c = self.next();
+        c.def.push(1);
+        c.texts.push(b.clone());
+        c.last = Some(b);
+    }
+
+    /// The buffer of label `t` (its CSV text): one met before, or a new one.
+    fn label(&mut self, t: &str) -> ByteArray {
+        if let Some(b) = self.labels.iter().find(|b| b.data() == t.as_bytes()) {
+            return b.clone();
+        }
+        let text = csv_text(t);
+        let b = ByteArray::from(Bytes::copy_from_slice(text.as_bytes()));
+        let own_text = matches!(text, std::borrow::Cow::Borrowed(_));
+        if self.labels.len() < SHARED_LABELS && own_text {
+            self.labels.push(b.clone());
+        }
+        b
+    }
+
     /// Appends the next cell from its CSV text `f`, read as the text path
     /// reads a CSV cell: empty is a null, a float column parses a
-    /// number, a label column interns it, a boolean column takes `true` /
-    /// `false`. Text that does not fit is a null and the block's fault.
+    /// number, a label column takes the text, a boolean column takes `true`
+    /// / `false`. Text that does not fit is a null and the block's fault.
     fn push_text_cell(&mut self, f: &str) {
         let k = self.col;
-        let kind = self.kinds[k];
         if f.is_empty() {
-            self.put_null(kind);
-            return;
+            return self.put_null();
         }
-        let cell = match kind {
-            Col::Float => canonical_number(f, &mut self.number, &mut self.digits)
+        let fits = match self.kinds[k] {
+            Col::Float => match canonical_number(f, &mut self.number, &mut self.digits)
                 .or_else(|| f.parse::<f64>().ok())
-                .map(|x| stored(x).to_bits()),
-            Col::Label => Some(u64::from(self.dicts[k].label_index(f))),
-            Col::Bool => match f {
-                "true" => Some(1),
-                "false" => Some(0),
-                _ => None,
-            },
-            Col::Id | Col::Valence | Col::Error => None,
-        };
-        match cell {
-            Some(c) => self.put(c),
-            None => {
-                // Keep the rows aligned; the block is refused when written.
-                self.put_null(kind);
-                if self.fault.is_none() {
-                    self.fault = Some((self.id, k, f.to_owned()));
+            {
+                Some(x) => {
+                    self.put_float(stored(x));
+                    true
                 }
+                None => false,
+            },
+            Col::Label => {
+                self.put_label(f);
+                true
+            }
+            Col::Bool if f == "true" || f == "false" => {
+                let c = self.next();
+                c.def.push(1);
+                c.bools.push(f == "true");
+                true
+            }
+            _ => false,
+        };
+        if !fits {
+            // Keep the rows aligned; the block is refused when written.
+            self.put_null();
+            if self.fault.is_none() {
+                self.fault = Some((self.id, k, f.to_owned()));
             }
         }
     }
@@ -429,7 +442,7 @@ impl TypedBlock {
     #[inline(never)]
     fn num_cold(&mut self, x: f64) {
         if self.kinds[self.col] == Col::Float {
-            self.put(stored(x).to_bits());
+            self.put_float(stored(x));
         } else {
             let mut t = String::new();
             push_number(&mut t, &mut self.digits, x);
@@ -437,115 +450,33 @@ impl TypedBlock {
         }
     }
 
-    /// Stores a null in the next cell (of a `kind` column), counting the
-    /// nulls of a float column.
-    #[inline(always)]
-    fn put_null(&mut self, kind: Col) {
-        if kind == Col::Float {
-            self.float_nulls[self.col] += 1;
-        }
-        self.put(null_bits(kind));
-    }
-
-    /// Stores the next cell of the current row.
-    #[inline(always)]
-    fn put(&mut self, cell: u64) {
-        self.cells[self.at] = cell;
-        self.at += self.cap;
-        self.col += 1;
-    }
-
-    /// Room for one more row: doubles `cap`, moving each column to its new
-    /// place.
-    #[cold]
-    fn grow(&mut self) {
-        let cap = (2 * self.cap).max(16);
-        let mut cells = vec![0u64; self.stride * cap];
-        for (k, col) in self.cells.chunks_exact(self.cap.max(1)).enumerate() {
-            cells[k * cap..k * cap + self.rows].copy_from_slice(&col[..self.rows]);
-        }
-        self.cells = cells;
-        self.cap = cap;
-        self.ids.resize(cap, 0);
-        self.valences.resize(cap, 0);
-    }
-
-    /// The cells of column `j` (a cell column) in rows `rows`.
-    fn column(&self, j: usize, rows: std::ops::Range<usize>) -> &[u64] {
-        let base = (j - 2) * self.cap;
-        &self.cells[base + rows.start..base + rows.end]
-    }
-
     /// Appends rows `rows` of `src` (a block of the same layout; a row
-    /// group collects the driver's blocks this way). Labels are re-interned
-    /// in row order, so that the dictionary stays in order of first
-    /// appearance whatever the blocks were.
-    fn append(&mut self, src: &TypedBlock, rows: std::ops::Range<usize>) {
-        let n = rows.len();
-        while self.rows + n > self.cap {
-            self.grow();
+    /// group collects the driver's blocks this way).
+    fn append(&mut self, src: &mut TypedBlock, rows: std::ops::Range<usize>) {
+        self.ids.extend_from_slice(&src.ids[rows.clone()]);
+        self.valences.extend_from_slice(&src.valences[rows.clone()]);
+        for (dst, c) in self.cells.iter_mut().zip(&mut src.cells) {
+            c.append_to(dst, rows.clone());
         }
-        let (at, whole) = (self.rows, rows == (0..src.rows));
-        self.ids[at..at + n].copy_from_slice(&src.ids[rows.clone()]);
-        self.valences[at..at + n].copy_from_slice(&src.valences[rows.clone()]);
-        // The block's errors are in row order.
-        let first = src.errors.partition_point(|(r, _)| *r < rows.start);
-        for (r, e) in src.errors[first..]
-            .iter()
-            .take_while(|(r, _)| *r < rows.end)
-        {
-            self.errors.push((at + r - rows.start, e.clone()));
-        }
-        for j in 2..self.kinds.len() - 1 {
-            let cells = src.column(j, rows.clone());
-            let base = (j - 2) * self.cap + at;
-            let dst = &mut self.cells[base..base + n];
-            match self.kinds[j] {
-                Col::Label => {
-                    // Block entry -> group entry, assigned at first use.
-                    let mut map = vec![NULL_INDEX; src.dicts[j].entries.len()];
-                    for (d, &b) in dst.iter_mut().zip(cells) {
-                        let b = b as u32;
-                        if b != NULL_INDEX && map[b as usize] == NULL_INDEX {
-                            map[b as usize] =
-                                self.dicts[j].intern(&src.dicts[j].entries[b as usize]);
-                        }
-                        *d = u64::from(if b == NULL_INDEX { b } else { map[b as usize] });
-                    }
-                }
-                kind => {
-                    dst.copy_from_slice(cells);
-                    if kind == Col::Float {
-                        self.float_nulls[j] += if whole {
-                            src.float_nulls[j]
-                        } else {
-                            cells.iter().filter(|&&b| b == NULL_F64).count()
-                        };
-                    }
-                }
-            }
-        }
-        self.rows += n;
     }
 }
 
 impl RowBlock for TypedBlock {
     fn with_rows(layout: &Layout, rows: usize) -> Self {
         let kinds = columns_of(layout);
-        let stride = kinds.len() - 3;
+        let cells = (2..kinds.len())
+            .map(|_| Cells {
+                def: Vec::with_capacity(rows),
+                ..Cells::default()
+            })
+            .collect();
         TypedBlock {
-            stride,
-            ids: vec![0; rows],
-            valences: vec![0; rows],
-            cells: vec![0; rows * stride],
-            cap: rows,
-            at: 0,
-            dicts: kinds.iter().map(|_| Dict::default()).collect(),
-            errors: Vec::new(),
-            float_nulls: vec![0; kinds.len()],
+            ids: Vec::with_capacity(rows),
+            valences: Vec::with_capacity(rows),
+            cells,
             kinds,
+            labels: Vec::new(),
             col: 0,
-            rows: 0,
             id: 0,
             fault: None,
             number: String::new(),
@@ -555,28 +486,21 @@ impl RowBlock for TypedBlock {
 
     #[inline(always)]
     fn start(&mut self, id: u64, valence: usize) {
-        if self.rows == self.cap {
-            self.grow();
-        }
         self.id = id;
-        let r = self.rows;
-        self.ids[r] = id as i64;
-        self.valences[r] = match u32::try_from(valence) {
-            Ok(n) => n as i32,
-            Err(_) => {
-                if self.fault.is_none() {
-                    self.fault = Some((id, 1, valence.to_string()));
-                }
-                0
+        self.ids.push(id as i64);
+        let v = u32::try_from(valence).unwrap_or_else(|_| {
+            if self.fault.is_none() {
+                self.fault = Some((id, 1, valence.to_string()));
             }
-        };
+            0
+        });
+        self.valences.push(v as i32);
         self.col = 2;
-        self.at = r;
     }
 
     #[inline(always)]
     fn empty(&mut self) {
-        self.put_null(self.kinds[self.col]);
+        self.put_null();
     }
 
     #[inline(always)]
@@ -584,7 +508,7 @@ impl RowBlock for TypedBlock {
         // The common cell (a number, not NaN, in a float column) is one
         // branch; NaN and a number in another column take the cold path.
         if self.kinds[self.col] == Col::Float && !x.is_nan() {
-            self.put(x.to_bits());
+            self.put_float(x);
         } else {
             self.num_cold(x);
         }
@@ -596,109 +520,69 @@ impl RowBlock for TypedBlock {
         if x.is_nan() {
             self.num_cold(x);
         } else {
-            self.put(x.to_bits());
+            self.put_float(x);
         }
     }
 
     #[inline(always)]
     fn text(&mut self, t: &str) {
-        let k = self.col;
-        if self.kinds[k] == Col::Label && !t.is_empty() {
-            let i = self.dicts[k].label_index(t);
-            self.put(u64::from(i));
+        if self.kinds[self.col] == Col::Label && !t.is_empty() {
+            self.put_label(t);
         } else {
             self.push_text_cell(&csv_text(t));
         }
     }
 
     fn clear(&mut self) {
-        self.errors.clear();
-        self.float_nulls.fill(0);
-        self.at = 0;
-        // Only label columns have entries.
-        for (d, kind) in self.dicts.iter_mut().zip(&self.kinds) {
-            if *kind == Col::Label {
-                d.clear();
-            }
-        }
+        self.ids.clear();
+        self.valences.clear();
+        self.cells.iter_mut().for_each(Cells::clear);
         self.col = 0;
-        self.rows = 0;
         self.id = 0;
         self.fault = None;
     }
 
     #[inline(always)]
     fn end(&mut self, error: Option<&str>) {
+        let c = self.next();
         match error {
-            Some(e) if !e.is_empty() => self.errors.push((self.rows, csv_text(e).into_owned())),
-            _ => {}
+            Some(e) if !e.is_empty() => {
+                c.def.push(1);
+                c.texts.push(ByteArray::from(csv_text(e).as_ref()));
+            }
+            _ => c.def.push(0),
         }
         self.col = 0;
-        self.rows += 1;
     }
 }
 
-/// Writes the rows of `group` as one row group, column by column, with the
-/// `parquet` crate's column writers: a null (the column's sentinel,
-/// [`null_bits`]) becomes definition level 0, every other value level 1.
+/// Writes the rows of `group` as one row group, column by column, each
+/// handed whole to the `parquet` crate's column writer (its values and
+/// definition levels; `id` and `valence` are required and have none).
 fn write_group<W: std::io::Write + Send>(
     w: &mut SerializedFileWriter<W>,
     group: &TypedBlock,
 ) -> Result<(), SweepError> {
-    let rows = group.rows;
     let mut rg = w.next_row_group().map_err(pq_err)?;
-    let mut def: Vec<i16> = Vec::with_capacity(rows);
     let mut j = 0;
     while let Some(mut col) = rg.next_column().map_err(pq_err)? {
         let kind = group.kinds.get(j).copied();
-        let cells = match kind {
-            Some(Col::Float | Col::Label | Col::Bool) => group.column(j, 0..rows),
-            _ => &[],
-        };
-        let null = kind.map_or(0, null_bits);
-        def.clear();
-        def.extend(cells.iter().map(|&c| i16::from(c != null)));
-        let present = cells.iter().copied().filter(|&c| c != null);
-        let written = match (col.untyped(), kind) {
-            (ColumnWriter::Int64ColumnWriter(c), Some(Col::Id)) => {
-                c.write_batch(&group.ids[..rows], None, None)
+        let c = j.checked_sub(2).and_then(|k| group.cells.get(k));
+        let written = match (col.untyped(), kind, c) {
+            (ColumnWriter::Int64ColumnWriter(w), Some(Col::Id), _) => {
+                w.write_batch(&group.ids, None, None)
             }
-            (ColumnWriter::Int32ColumnWriter(c), Some(Col::Valence)) => {
-                c.write_batch(&group.valences[..rows], None, None)
+            (ColumnWriter::Int32ColumnWriter(w), Some(Col::Valence), _) => {
+                w.write_batch(&group.valences, None, None)
             }
-            (ColumnWriter::DoubleColumnWriter(c), Some(Col::Float)) => {
-                if group.float_nulls[j] == 0 {
-                    c.write_batch(bytemuck::cast_slice(cells), Some(&def), None)
-                } else {
-                    let v: Vec<f64> = present.map(f64::from_bits).collect();
-                    c.write_batch(&v, Some(&def), None)
-                }
+            (ColumnWriter::DoubleColumnWriter(w), Some(Col::Float), Some(c)) => {
+                w.write_batch(&c.floats, Some(&c.def), None)
             }
-            (ColumnWriter::ByteArrayColumnWriter(c), Some(Col::Label)) => {
-                // One buffer per label, shared by its cells (no copy per cell).
-                let entries: Vec<ByteArray> = group.dicts[j]
-                    .entries
-                    .iter()
-                    .map(|e| ByteArray::from(Bytes::copy_from_slice(e.as_bytes())))
-                    .collect();
-                let v: Vec<ByteArray> = present.map(|i| entries[i as usize].clone()).collect();
-                c.write_batch(&v, Some(&def), None)
+            (ColumnWriter::ByteArrayColumnWriter(w), Some(Col::Label | Col::Error), Some(c)) => {
+                w.write_batch(&c.texts, Some(&c.def), None)
             }
-            (ColumnWriter::ByteArrayColumnWriter(c), Some(Col::Error)) => {
-                def.resize(rows, 0);
-                for (r, _) in &group.errors {
-                    def[*r] = 1;
-                }
-                let v: Vec<ByteArray> = group
-                    .errors
-                    .iter()
-                    .map(|(_, t)| ByteArray::from(t.as_str()))
-                    .collect();
-                c.write_batch(&v, Some(&def), None)
-            }
-            (ColumnWriter::BoolColumnWriter(c), Some(Col::Bool)) => {
-                let v: Vec<bool> = present.map(|b| b == 1).collect();
-                c.write_batch(&v, Some(&def), None)
+            (ColumnWriter::BoolColumnWriter(w), Some(Col::Bool), Some(c)) => {
+                w.write_batch(&c.bools, Some(&c.def), None)
             }
             _ => {
                 return Err(SweepError::Io(format!(
@@ -802,7 +686,7 @@ impl ParquetRows {
     /// layout), writing each group as it fills. A cell that does not fit
     /// its column is refused with a message naming the configuration, the
     /// column and the value.
-    pub fn push_block(&mut self, block: &TypedBlock) -> Result<(), SweepError> {
+    pub fn push_block(&mut self, block: &mut TypedBlock) -> Result<(), SweepError> {
         if let Some((id, k, f)) = &block.fault {
             let name = self.names.get(*k).map_or("?", String::as_str);
             let what = match block.kinds.get(*k) {
@@ -822,11 +706,11 @@ impl ParquetRows {
             )));
         }
         let mut start = 0;
-        while start < block.rows {
-            let take = (block.rows - start).min(PART_ROWS - self.group.rows);
+        while start < block.rows() {
+            let take = (block.rows() - start).min(PART_ROWS - self.group.rows());
             self.group.append(block, start..start + take);
             start += take;
-            if self.group.rows == PART_ROWS {
+            if self.group.rows() == PART_ROWS {
                 self.commit_group()?;
             }
         }
@@ -836,7 +720,7 @@ impl ParquetRows {
     /// Writes the open group: a part file handed to the caller, or a row
     /// group of the one file.
     fn commit_group(&mut self) -> Result<(), SweepError> {
-        let rows = self.group.rows;
+        let rows = self.group.rows();
         match self.target.as_mut() {
             Some(Target::Parts(commit)) => {
                 let mut w = SerializedFileWriter::new(
@@ -871,7 +755,7 @@ impl ParquetRows {
                 "parquet: the rows ended inside a line".into(),
             ));
         }
-        if self.group.rows > 0 {
+        if self.group.rows() > 0 {
             self.commit_group()?;
         }
         if let Some(Target::File(w)) = self.target.take() {
@@ -902,7 +786,7 @@ impl std::io::Write for ParquetRows {
                 .map_err(|m| std::io::Error::other(format!("parquet: row {line:?}: {m}")))?;
             block.push_row(&row);
         }
-        self.push_block(&block)
+        self.push_block(&mut block)
             .map_err(|e| std::io::Error::other(e.to_string()))?;
         Ok(buf.len())
     }
@@ -1113,7 +997,7 @@ fn required<T>(values: Vec<Option<T>>) -> Option<Vec<T>> {
 }
 
 impl super::run::BlockWriter<TypedBlock> for ParquetRows {
-    fn write_block(&mut self, block: &TypedBlock) -> Result<(), SweepError> {
+    fn write_block(&mut self, block: &mut TypedBlock) -> Result<(), SweepError> {
         self.push_block(block)
     }
     fn flush(&mut self) -> Result<(), SweepError> {
@@ -1168,50 +1052,48 @@ mod tests {
         }
     }
 
-    /// A block that starts with room for 2 rows and grows (doubling, the
-    /// columns moved) holds exactly the rows of one that never grows, and
-    /// so does a cleared, reused block.
+    /// A cleared, reused block holds exactly the rows of a fresh one, and
+    /// pieces of a block appended in turn give the block again (the values
+    /// of a piece found from its definition levels).
     #[test]
-    fn a_block_that_grows_keeps_its_rows() {
+    fn pieces_of_a_block_and_a_reused_block_keep_their_rows() {
         let spec = "name = \"g\"\nscheme = \"nurds\"\nvalences = [4]\n[space]\nkind = \"ratios\"\nratio_range = [0.1, 0.9]\n[sampler]\nkind = \"random\"\ncount = 10\nseed = 1\n[columns]\nexact_certificate = true\n";
         let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
         let layout = Layout::new(&plan);
-        let rows = 70u64;
-        let mut roomy = TypedBlock::with_rows(&layout, rows as usize);
-        fill(&mut roomy, rows);
-        let mut small = TypedBlock::with_rows(&layout, 2);
-        fill(&mut small, 5);
-        small.clear();
-        fill(&mut small, rows);
-        assert!(small.cap >= rows as usize && small.cap < roomy.cap + 64);
-        assert!(roomy.kinds.contains(&Col::Label) && roomy.kinds.contains(&Col::Bool));
-        assert_eq!(small.rows, roomy.rows);
-        assert_eq!(small.ids[..70], roomy.ids[..70]);
-        assert_eq!(small.valences[..70], roomy.valences[..70]);
-        assert_eq!(small.ids[..70], (0..70).collect::<Vec<i64>>());
+        let mut whole = TypedBlock::with_rows(&layout, 70);
+        fill(&mut whole, 70);
+        let mut reused = TypedBlock::with_rows(&layout, 2);
+        fill(&mut reused, 5);
+        reused.clear();
+        fill(&mut reused, 70);
+        let mut source = TypedBlock::with_rows(&layout, 70);
+        fill(&mut source, 70);
+        let mut pieces = TypedBlock::with_rows(&layout, 0);
+        for r in [0..20, 20..33, 33..70] {
+            pieces.append(&mut source, r);
+        }
+        assert!(whole.kinds.contains(&Col::Label) && whole.kinds.contains(&Col::Bool));
         let valences: Vec<i32> = (0..70).map(|r| 3 + r % 4).collect();
-        assert_eq!(small.valences[..70], valences);
-        assert_eq!(small.errors, roomy.errors);
-        for j in 2..roomy.kinds.len() - 1 {
-            assert_eq!(small.column(j, 0..70), roomy.column(j, 0..70), "column {j}");
-            assert_eq!(
-                small.column(j, 20..33),
-                roomy.column(j, 20..33),
-                "column {j}"
-            );
+        for b in [&reused, &pieces] {
+            assert_eq!(b.ids, (0..70).collect::<Vec<i64>>());
+            assert_eq!(b.valences, valences);
+            for (j, (x, y)) in b.cells.iter().zip(&whole.cells).enumerate() {
+                assert_eq!(x.def, y.def, "column {j}");
+                assert_eq!(x.floats, y.floats, "column {j}");
+                assert_eq!(x.texts, y.texts, "column {j}");
+                assert_eq!(x.bools, y.bools, "column {j}");
+            }
         }
         // The float cells hold what was written.
-        let j = (2..roomy.kinds.len() - 1)
-            .find(|&j| roomy.kinds[j] == Col::Float)
+        let j = (2..whole.kinds.len() - 1)
+            .find(|&j| whole.kinds[j] == Col::Float)
             .unwrap();
-        for (r, &bits) in small.column(j, 0..70).iter().enumerate() {
-            let want = if (r + j) % 5 == 0 {
-                NULL_F64
-            } else {
-                (r as f64 * 100.0 + j as f64).to_bits()
-            };
-            assert_eq!(bits, want, "row {r}");
-        }
+        let rows = (0..70u64).filter(|r| (r + j as u64) % 5 != 0);
+        let want: Vec<f64> = rows.map(|r| r as f64 * 100.0 + j as f64).collect();
+        assert_eq!(pieces.cells[j - 2].floats, want);
+        let errors = &pieces.cells[pieces.cells.len() - 1];
+        let failed = (0..70).filter(|r| r % 7 == 3).count();
+        assert_eq!(errors.texts.len(), failed);
     }
 
     /// A block split between two parts (its first 36 rows close the first
@@ -1235,8 +1117,8 @@ mod tests {
             Ok(())
         });
         let mut rows = ParquetRows::parts(&layout, "fp", 5, commit).unwrap();
-        rows.push_block(&a).unwrap();
-        rows.push_block(&b).unwrap();
+        rows.push_block(&mut a).unwrap();
+        rows.push_block(&mut b).unwrap();
         assert_eq!(rows.finish().unwrap(), first + 100);
         let parts = parts.lock().unwrap();
         assert_eq!(

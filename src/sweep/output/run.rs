@@ -413,8 +413,9 @@ impl Layout {
 
 /// Where the driver writes the blocks of rows, in id order.
 pub(super) trait BlockWriter<B> {
-    /// Writes one block.
-    fn write_block(&mut self, block: &B) -> Result<(), SweepError>;
+    /// Writes one block (which may take its buffers: the driver clears it
+    /// before reusing it).
+    fn write_block(&mut self, block: &mut B) -> Result<(), SweepError>;
     /// Called after the blocks of a chunk are written.
     fn flush(&mut self) -> Result<(), SweepError>;
 }
@@ -423,7 +424,7 @@ pub(super) trait BlockWriter<B> {
 pub(super) struct CsvWriter<'a, W>(pub(super) &'a mut W);
 
 impl<W: Write> BlockWriter<CsvBlock> for CsvWriter<'_, W> {
-    fn write_block(&mut self, block: &CsvBlock) -> Result<(), SweepError> {
+    fn write_block(&mut self, block: &mut CsvBlock) -> Result<(), SweepError> {
         self.0.write_all(block.text.as_bytes())?;
         Ok(())
     }
@@ -477,7 +478,7 @@ impl RowBlock for NullBlock {
 }
 
 impl BlockWriter<NullBlock> for () {
-    fn write_block(&mut self, _: &NullBlock) -> Result<(), SweepError> {
+    fn write_block(&mut self, _: &mut NullBlock) -> Result<(), SweepError> {
         Ok(())
     }
     fn flush(&mut self) -> Result<(), SweepError> {
@@ -590,7 +591,7 @@ where
             // Meanwhile, on this thread: write the previous chunk in order.
             wrote = (|| {
                 let mut rows = 0u64;
-                for (block, part) in &pending {
+                for (block, part) in &mut pending {
                     out.write_block(block)?;
                     summary.absorb_partial(part);
                     rows += part.rows();
