@@ -486,16 +486,7 @@ fn lower_distance(a: &Disc, b: &Disc) -> f64 {
     use super::interval::down;
     let dx = Iv::point(a.re).sub(Iv::point(b.re));
     let dy = Iv::point(a.im).sub(Iv::point(b.im));
-    let low = |x: Iv| {
-        if x.lo > 0.0 {
-            x.lo
-        } else if x.hi < 0.0 {
-            -x.hi
-        } else {
-            0.0
-        }
-    };
-    let (x, y) = (low(dx), low(dy));
+    let (x, y) = (dx.mig(), dy.mig());
     down(down(down(x * x) + down(y * y)).max(0.0).sqrt())
 }
 

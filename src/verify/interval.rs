@@ -124,6 +124,23 @@ impl Iv {
         self.lo.abs().max(self.hi.abs())
     }
 
+    /// `min |x|` over the interval (exact; `0` when it holds `0`).
+    ///
+    /// ```
+    /// use subdiv_lab::verify::interval::Iv;
+    /// assert_eq!(Iv::new(-3.0, -2.0).mig(), 2.0);
+    /// assert_eq!(Iv::new(-1.0, 2.0).mig(), 0.0);
+    /// ```
+    pub fn mig(self) -> f64 {
+        if self.lo > 0.0 {
+            self.lo
+        } else if self.hi < 0.0 {
+            -self.hi
+        } else {
+            0.0
+        }
+    }
+
     /// The interval widened by `r >= 0` on both sides (rounded outward).
     pub fn widen(self, r: f64) -> Iv {
         Iv {
@@ -273,20 +290,8 @@ impl Disc {
     pub fn disjoint(&self, o: &Disc) -> bool {
         let dx = Iv::point(self.re).sub(Iv::point(o.re));
         let dy = Iv::point(self.im).sub(Iv::point(o.im));
-        let dx_lo = if dx.lo > 0.0 {
-            dx.lo
-        } else if dx.hi < 0.0 {
-            -dx.hi
-        } else {
-            0.0
-        };
-        let dy_lo = if dy.lo > 0.0 {
-            dy.lo
-        } else if dy.hi < 0.0 {
-            -dy.hi
-        } else {
-            0.0
-        };
+        let dx_lo = dx.mig();
+        let dy_lo = dy.mig();
         let d2 = down(down(dx_lo * dx_lo) + down(dy_lo * dy_lo));
         let dist = down(d2.max(0.0).sqrt());
         dist > up(self.radius + o.radius)

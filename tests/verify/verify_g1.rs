@@ -200,31 +200,44 @@ fn the_large_cells_are_certified() {
     }
 }
 
-/// The a-posteriori bound of the subspace correction `D = P - P^` (math doc
-/// section 15) holds at random points of cells near the largest that
-/// certify, where it is not small against the first-order part, and the
-/// pointwise ring lies in the enclosure there (the named remainders).
-#[test]
-fn the_bound_of_the_subspace_correction_holds_at_sampled_points() {
-    let cells = LARGE_CELLS.iter().chain(&ENCLOSED_CELLS);
+/// A corner or a random point of the box `[lo, hi]` (corners are where the
+/// quadratic part of an enclosure is largest).
+fn corner_or_random(rng: &mut SplitMix64, lo: &[f64], hi: &[f64]) -> Vec<f64> {
+    lo.iter()
+        .zip(hi)
+        .map(|(a, b)| match rng.uniform(0.0, 3.0) as u32 {
+            0 => *a,
+            1 => *b,
+            _ => rng.uniform(*a, *b).clamp(*a, *b),
+        })
+        .collect()
+}
+
+/// The cells of [`LARGE_CELLS`] and [`ENCLOSED_CELLS`] as boxes.
+fn test_boxes() -> Vec<(Vec<f64>, Vec<f64>)> {
+    LARGE_CELLS
+        .iter()
+        .chain(&ENCLOSED_CELLS)
+        .map(|(centre, w)| {
+            (
+                centre.iter().map(|c| c - w / 2.0).collect(),
+                centre.iter().map(|c| c + w / 2.0).collect(),
+            )
+        })
+        .collect()
+}
+
+/// At 40 corners and random points of each test box, with the enclosure
+/// `tamper`: the points checked, the misses of the bound of
+/// `D = P - P^` and the misses of the pointwise ring.
+fn correction_check(tamper: CellTamper) -> (usize, usize, usize) {
     let mut rng = SplitMix64::new(11);
     let (mut checked, mut misses, mut ring_misses) = (0, 0, 0);
-    for (centre, w) in cells {
-        let lo: Vec<f64> = centre.iter().map(|c| c - w / 2.0).collect();
-        let hi: Vec<f64> = centre.iter().map(|c| c + w / 2.0).collect();
-        let ring = ratio_ring_with(&lo, &hi, CellTamper::None, PairBasis::Schur)
+    for (lo, hi) in test_boxes() {
+        let ring = ratio_ring_with(&lo, &hi, tamper, PairBasis::Schur)
             .expect("the subspace enclosure exists on this cell");
         for _ in 0..40 {
-            // corners and random points: the quadratic part is largest at corners
-            let x: Vec<f64> = lo
-                .iter()
-                .zip(&hi)
-                .map(|(a, b)| match rng.uniform(0.0, 3.0) as u32 {
-                    0 => *a,
-                    1 => *b,
-                    _ => rng.uniform(*a, *b).clamp(*a, *b),
-                })
-                .collect();
+            let x = corner_or_random(&mut rng, &lo, &hi);
             // the pointwise eigenvector basis fails only on the defective
             // lines (measure zero): such a point is skipped
             if let Ok(k) = ring.correction_misses(&x, POINT_TOL) {
@@ -235,10 +248,70 @@ fn the_bound_of_the_subspace_correction_holds_at_sampled_points() {
             }
         }
     }
+    (checked, misses, ring_misses)
+}
+
+/// The a-posteriori bound of the subspace correction `D = P - P^` (math doc
+/// section 15) holds at random points of cells near the largest that
+/// certify, where it is not small against the first-order part, and the
+/// pointwise ring lies in the enclosure there (the named remainders).
+#[test]
+fn the_bound_of_the_subspace_correction_holds_at_sampled_points() {
+    let (checked, misses, ring_misses) = correction_check(CellTamper::None);
     assert!(
         checked >= 250 && misses == 0 && ring_misses == 0,
         "{misses} misses of D, {ring_misses} of the ring at {checked} points"
     );
+}
+
+/// The bound `b` of the subspace operator's variation divided by 8 is
+/// caught by the same check.
+#[test]
+fn a_shrunk_subspace_variation_is_caught() {
+    let (checked, misses, ring_misses) = correction_check(CellTamper::ShrinkSubspaceVariation);
+    assert!(
+        checked > 0 && misses + ring_misses > 0,
+        "no miss at {checked} points"
+    );
+}
+
+/// At corners and random points of the test boxes, with the enclosure
+/// `tamper`: the points checked and those where a pointwise eigenvalue
+/// modulus of the pair lies outside `[pair.min, pair.max]` or one of the
+/// rest above `rest_radius`.
+fn moduli_check(tamper: CellTamper) -> (usize, usize) {
+    let mut rng = SplitMix64::new(17);
+    let (mut checked, mut misses) = (0, 0);
+    for (lo, hi) in test_boxes() {
+        let Some(ring) = ratio_ring_with(&lo, &hi, tamper, PairBasis::Schur) else {
+            continue;
+        };
+        for _ in 0..40 {
+            let x = corner_or_random(&mut rng, &lo, &hi);
+            if let Ok((pair, rest)) = ring.pointwise_moduli(&x) {
+                checked += 1;
+                let out = |v: f64| v < ring.pair.min - POINT_TOL || v > ring.pair.max + POINT_TOL;
+                misses += usize::from(
+                    out(pair[0]) || out(pair[1]) || rest > ring.rest_radius + POINT_TOL,
+                );
+            }
+        }
+    }
+    (checked, misses)
+}
+
+/// The bounds of the pair's eigenvalue moduli and of the rest's spectral
+/// radius over a cell (math doc section 15, "G1 over a cell") hold at
+/// sampled points; without the cross term of the discriminant they do not.
+#[test]
+fn the_pair_and_the_rest_lie_in_their_bounds_at_sampled_points() {
+    let (checked, misses) = moduli_check(CellTamper::None);
+    assert!(
+        checked >= 250 && misses == 0,
+        "{misses} misses at {checked} points"
+    );
+    let (checked, misses) = moduli_check(CellTamper::DropPairCrossTerm);
+    assert!(checked > 0 && misses > 0, "no miss at {checked} points");
 }
 
 #[test]

@@ -70,6 +70,26 @@ pub fn sqrt(a: Iv) -> Option<Iv> {
     Some(Iv::new(down(a.lo.sqrt()).max(0.0), up(a.hi.sqrt())))
 }
 
+/// `{x^2 : x in a}`, rounded outward (non-negative; `[0, max x^2]` when
+/// `a` holds 0, unlike `a.mul(a)`).
+///
+/// ```
+/// use subdiv_lab::verify::charmap::ivla::sqr;
+/// use subdiv_lab::verify::interval::Iv;
+/// let s = sqr(Iv::new(-0.1, 0.2));
+/// assert!(s.lo == 0.0 && s.hi >= 0.04 && s.hi < 0.0401);
+/// ```
+pub fn sqr(a: Iv) -> Iv {
+    if a.lo > 0.0 || a.hi < 0.0 {
+        let (p, q) = (a.lo * a.lo, a.hi * a.hi);
+        Iv::new(down(p.min(q)).max(0.0), up(p.max(q)))
+    } else if a.lo <= 0.0 && a.hi >= 0.0 {
+        Iv::new(0.0, up(a.mag() * a.mag()))
+    } else {
+        Iv::new(f64::NAN, f64::NAN)
+    }
+}
+
 /// Upper bound of `sqrt(sum x_i^2)` (rounded up).
 pub fn norm2_upper(xs: impl IntoIterator<Item = f64>) -> f64 {
     let mut s = 0.0f64;

@@ -15,14 +15,17 @@
 //! `Y` containing `Q^{-1}` ([`super::ivla::verified_inverse`]). For every `r`
 //! in the cell `T(r) = Q^{-1} W(r) Q` lies in `Y W(r0) Q + sum_k [-h_k, h_k]
 //! |Y W_k Q|`. Split `T` after the first two indices into
-//! `T11, T12, T21, T22`. With `delta` a lower bound of
-//! `sep_F(T11, T22) = sigma_min(T11^T ⊗ I - I ⊗ T22)` over the cell (a
-//! verified inverse of the Kronecker matrix at the interval midpoints, minus
-//! the 2-norms of the radii, all 2-norms bounded by
-//! [`super::ivla::norm2_op_upper`]), `gamma >= ||T21||_F`,
-//! `eta >= ||T12||_2` and `4 gamma eta < delta^2`, the map
-//! `P -> L^{-1}(T21 - P T12 P)`, `L(P) = P T11 - T22 P`, is a contraction of
-//! the ball `||P||_F <= rho = 2 gamma / delta` into itself; its fixed point
+//! `T11, T12, T21, T22` and let `L_r(P) = P T11 - T22 P`, `L_0` at the
+//! interval midpoints (its Kronecker matrix `K_0` has a verified inverse;
+//! all 2-norms are bounded by [`super::ivla::norm2_op_upper`]). With
+//! `a >= sup ||L_0^{-1} T21||_F`, `b >= ||L_0^{-1} (L_r - L_0)||` (the
+//! preconditioned variation, entrywise through `K_0^{-1} K(Y W_k Q)`) and
+//! `c >= ||L_0^{-1}|| ||T12||_2`, the map
+//! `P -> L_0^{-1}(T21 - (L_r - L_0)(P) - P T12 P)` sends the ball
+//! `||P||_F <= rho` into itself and contracts it when `a + b rho + c rho^2
+//! <= rho` and `b + 2 c rho < 1` ([`contraction_radius`]; Stewart's
+//! `4 gamma eta < delta^2` is the case `a = gamma / sigma_0`,
+//! `b = (||rad T11|| + ||rad T22||) / sigma_0`); its fixed point
 //! `P(r)` makes `range(Q [I; P])` invariant with restriction
 //! `N = T11 + T12 P`, and it depends continuously on `r`.
 //!
@@ -56,7 +59,7 @@
 //! adding it (math doc section 15, "Named remainders").
 
 use super::af::{self, det, Af};
-use super::ivla::{mid, norm2_op_upper, norm2_upper, verified_inverse, P2};
+use super::ivla::{mid, norm2_op_upper, norm2_upper, sqr, verified_inverse, P2};
 use super::winding::{winding_number, BoxCurve};
 use super::CellTamper;
 use crate::schemes::doo_sabin::ring::{patch_grid, PatchKind, RingPatchId};
@@ -93,6 +96,11 @@ pub struct RatioRing {
     pub rho: f64,
     /// The restriction `N = T11 + T12 P` (row-major 2 x 2).
     pub restriction: [Iv; 4],
+    /// The eigenvalue moduli of `N` over the cell ([`pair_moduli`]).
+    pub pair: PairModuli,
+    /// An upper bound of the spectral radius of the rest `K'` of the face
+    /// block over the cell (`0` for `n = 3`, where `K'` is empty).
+    pub rest_radius: f64,
     /// The first-order part `P^ = L_0^{-1}(T21(r))` of `P` as affine forms
     /// (entry `(k, j)` at `k + (n - 2) j`).
     pub correction: Vec<Af>,
@@ -329,13 +337,7 @@ fn spectral_radius_upper(k: &[Iv], m: usize, blocks: &[usize]) -> f64 {
             let f = norm2_upper([e(0, 0).mag(), e(0, 1).mag(), e(1, 0).mag(), e(1, 1).mag()]);
             let f2 = up(f * f);
             let det = e(0, 0).mul(e(1, 1)).sub(e(0, 1).mul(e(1, 0)));
-            let dl = if det.lo > 0.0 {
-                det.lo
-            } else if det.hi < 0.0 {
-                -det.hi
-            } else {
-                0.0
-            };
+            let dl = det.mig();
             let inner = up(f2 * f2 - down(4.0 * down(dl * dl))).max(0.0);
             up(up(up(f2 + up(inner.sqrt())) * 0.5).sqrt())
         };
@@ -352,27 +354,181 @@ fn spectral_radius_upper(k: &[Iv], m: usize, blocks: &[usize]) -> f64 {
     up(worst + norm2_upper(off))
 }
 
-/// Lower bound of the smallest eigenvalue modulus of every matrix in the
-/// interval 2 x 2 matrix `a` (row-major).
-fn min_modulus_2x2(a: &[Iv; 4]) -> f64 {
-    let t = a[0].add(a[3]);
-    let d = a[0].mul(a[3]).sub(a[1].mul(a[2]));
-    let h = t.mul(Iv::point(0.5));
-    let disc = h.mul(h).sub(d);
-    if disc.hi < 0.0 && d.lo > 0.0 {
-        // a complex pair of modulus sqrt(d)
-        return down(d.lo.sqrt());
-    }
-    let dl = if d.lo > 0.0 {
-        d.lo
-    } else if d.hi < 0.0 {
-        -d.hi
+/// Bounds of the eigenvalue moduli of every matrix of a 2 x 2 family
+/// (math doc section 15, "G1 over a cell").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairModuli {
+    /// An enclosure of the determinant.
+    pub det: Iv,
+    /// A lower bound of the smallest eigenvalue modulus.
+    pub min: f64,
+    /// An upper bound of the largest eigenvalue modulus.
+    pub max: f64,
+}
+
+/// `[lo, hi]` of two enclosures of one quantity intersected (a `NaN`
+/// interval when they are disjoint, which fails every later test).
+fn meet(a: Iv, b: Iv) -> Iv {
+    let (lo, hi) = (a.lo.max(b.lo), a.hi.min(b.hi));
+    if lo <= hi {
+        Iv::new(lo, hi)
     } else {
-        return 0.0;
-    };
-    // |l1 l2| = |d| and max |l| <= |t|/2 + sqrt(|disc|)
-    let big = up(h.mag() + up(disc.mag().sqrt()));
-    down(dl / big)
+        Iv::new(f64::NAN, f64::NAN)
+    }
+}
+
+/// The eigenvalue moduli of every matrix of the interval 2 x 2 matrix `a`
+/// (row-major), optionally also enclosed by the affine forms `forms` of
+/// the same entries. With `h = t/2` (`t` the trace), `det` and the
+/// discriminant written as
+///
+/// ```text
+/// disc = h^2 - det = ((a_00 - a_11)/2)^2 + a_01 a_10
+/// ```
+///
+/// (the second form has no first-order cancellation: at a double
+/// eigenvalue both sides are second order in the entries' variation, while
+/// `h^2` and `det` each vary to first order), each enclosed by both forms
+/// and by the affine forms when given, and intersected:
+///
+/// * real roots (`disc >= 0`): `h +- sqrt(disc)`, modulus at most
+///   `|h| + sqrt(disc)` and at least `max(|det| / (|h| + sqrt(disc)),
+///   min|h| - sqrt(disc))`;
+/// * a complex pair (`disc < 0`): modulus `sqrt(det)`, and `det = h^2 - disc
+///   > h^2`.
+///
+/// Every bound is rounded against the claim.
+///
+/// ```
+/// use subdiv_lab::verify::charmap::ratios::pair_moduli;
+/// use subdiv_lab::verify::interval::Iv;
+/// // 0.6 I + [-0.01, 0.01] in every entry: eigenvalues within 0.03 of 0.6
+/// let a = [Iv::new(0.59, 0.61), Iv::new(-0.01, 0.01), Iv::new(-0.01, 0.01), Iv::new(0.59, 0.61)];
+/// let p = pair_moduli(&a, None);
+/// assert!(p.min > 0.56 && p.max < 0.64);
+/// ```
+pub fn pair_moduli(a: &[Iv; 4], forms: Option<&[Af]>) -> PairModuli {
+    pair_moduli_with(a, forms, false)
+}
+
+/// [`pair_moduli`], with `drop_cross` the cross term `a_01 a_10` of the
+/// discriminant left out ([`CellTamper::DropPairCrossTerm`], unsound).
+fn pair_moduli_with(a: &[Iv; 4], forms: Option<&[Af]>, drop_cross: bool) -> PairModuli {
+    let half = Iv::point(0.5);
+    let cross = |x: Iv| if drop_cross { Iv::point(0.0) } else { x };
+    let mut h = a[0].add(a[3]).mul(half);
+    let mut det = a[0].mul(a[3]).sub(a[1].mul(a[2]));
+    let hd = a[0].sub(a[3]).mul(half);
+    let mut disc = sqr(hd).add(cross(a[1].mul(a[2])));
+    if !drop_cross {
+        disc = meet(disc, sqr(h).sub(det));
+    }
+    if let Some([f0, f1, f2, f3]) = forms {
+        h = meet(h, f0.add(f3).scale(0.5).range());
+        det = meet(
+            det,
+            af::det(&[f0.clone(), f1.clone()], &[f2.clone(), f3.clone()]).range(),
+        );
+        let hd = f0.sub(f3).scale(0.5).range();
+        disc = meet(disc, sqr(hd).add(cross(f1.mul(f2).range())));
+    }
+    let h_mag = h.mag();
+    let h_mig = h.mig();
+    let det_mig = det.mig();
+    let (mut min, mut max) = (f64::INFINITY, 0.0f64);
+    if !(disc.lo <= disc.hi && h.lo <= h.hi && det.lo <= det.hi) {
+        return PairModuli {
+            det,
+            min: 0.0,
+            max: f64::INFINITY,
+        };
+    }
+    if disc.hi >= 0.0 {
+        let s = up(disc.hi.sqrt());
+        let big = up(h_mag + s);
+        max = max.max(big);
+        min = min.min(down(det_mig / big).max(down(h_mig - s)));
+    }
+    if disc.lo < 0.0 {
+        max = max.max(up(det.hi.max(0.0).sqrt()));
+        min = min.min(down(det.lo.max(down(h_mig * h_mig)).max(0.0).sqrt()));
+    }
+    PairModuli {
+        det,
+        min: min.max(0.0),
+        max,
+    }
+}
+
+/// The Kronecker matrix (`2m x 2m`, row-major, row `i + m j` for `P_ij`)
+/// of `P -> P X11 - X22 P` for the `n x n` interval matrix `x` split after
+/// its first two indices (`m = n - 2`).
+fn kron_op(m: usize, x: impl Fn(usize, usize) -> Iv) -> Vec<Iv> {
+    let k = 2 * m;
+    let mut out = vec![Iv::point(0.0); k * k];
+    for row in 0..k {
+        let (i, j) = (row % m, row / m);
+        for col in 0..k {
+            let (i2, j2) = (col % m, col / m);
+            let mut v = Iv::point(0.0);
+            if i == i2 {
+                v = v.add(x(j2, j));
+            }
+            if j == j2 {
+                v = v.sub(x(2 + i, 2 + i2));
+            }
+            out[row * k + col] = v;
+        }
+    }
+    out
+}
+
+/// `acc += w |a b|` entrywise (rounded up) for square interval matrices
+/// `a`, `b` (row-major, `acc.len()` entries) and a float `w >= 0`.
+fn add_product_mag(acc: &mut [f64], a: &[Iv], b: &[Iv], w: f64) {
+    let k = (acc.len() as f64).sqrt().round() as usize;
+    for i in 0..k {
+        for j in 0..k {
+            let mut s = Iv::point(0.0);
+            for l in 0..k {
+                s = s.add(a[i * k + l].mul(b[l * k + j]));
+            }
+            acc[i * k + j] = up(acc[i * k + j] + up(w * s.mag()));
+        }
+    }
+}
+
+/// Relative margin of the contraction radius above the computed root, so
+/// that its verification with upward rounding (relative errors of a few
+/// `2^-52`) passes unless the root is nearly double (then the cell is
+/// left undecided, never certified by a guess).
+pub const ROOT_MARGIN: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// A radius `rho` with `a + b rho + c rho^2 <= rho` and `b + 2 c rho < 1`,
+/// both verified with upward rounding, or `None` (math doc section 15, "G1
+/// over a cell"): for `a >= sup ||L0^{-1} T21||_F`, `b >= ||L0^{-1} dL_r||`
+/// and `c >= ||L0^{-1}|| ||T12||_2` the map `P -> L0^{-1}(T21 - dL_r(P) -
+/// P T12 P)` sends the ball `||P||_F <= rho` into itself and contracts it.
+/// The smallest root of `c rho^2 - (1 - b) rho + a` is `2a / ((1 - b) +
+/// sqrt((1 - b)^2 - 4 a c))`, widened by [`ROOT_MARGIN`].
+///
+/// ```
+/// use subdiv_lab::verify::charmap::ratios::contraction_radius;
+/// let rho = contraction_radius(0.1, 0.2, 0.5).unwrap();
+/// assert!(0.1 + 0.2 * rho + 0.5 * rho * rho <= rho && rho < 0.14);
+/// assert!(contraction_radius(0.5, 0.2, 0.5).is_none());
+/// ```
+pub fn contraction_radius(a: f64, b: f64, c: f64) -> Option<f64> {
+    let one_b = down(1.0 - b);
+    let q = down(down(one_b * one_b) - up(4.0 * up(a * c)));
+    if !(one_b > 0.0 && q > 0.0 && a >= 0.0 && c >= 0.0) {
+        return None;
+    }
+    let root = up(up(2.0 * a) / down(one_b + down(q.sqrt())));
+    let rho = up(root * up(1.0 + ROOT_MARGIN));
+    let image = up(up(a + up(b * rho)) + up(c * up(rho * rho)));
+    let lipschitz = up(b + up(2.0 * up(c * rho)));
+    (image <= rho && lipschitz < 1.0).then_some(rho)
 }
 
 /// The enclosure of the ring over the ratio box `[lo, hi]` (module docs),
@@ -490,7 +646,6 @@ pub fn ratio_ring_with(
     // and the spectral norms of the variations of T11 and T22
     let kinv_mag: Vec<f64> = kinv.iter().map(|x| x.mag()).collect();
     let kinv_f = norm2_op_upper(&kinv_mag, 2 * m, 2 * m);
-    let sigma_lo = down(1.0 / kinv_f);
     let r11 = norm2_op_upper(&(0..4).map(|t| tr(t / 2, t % 2)).collect::<Vec<_>>(), 2, 2);
     let r22 = norm2_op_upper(
         &(0..m * m)
@@ -499,9 +654,21 @@ pub fn ratio_ring_with(
         m,
         m,
     );
-    let delta = down(sigma_lo - up(r11 + r22));
-    if !(delta > 0.0) {
-        return None;
+    // b >= ||L0^{-1} dL_r|| over the cell (math doc section 15, "G1 over a
+    // cell"): dL_r has the Kronecker matrix K(T(r) - mid T) with
+    // T(r) - mid T in (M0 - mid T) + sum_k d_k Y W_k Q, so
+    // |K0^{-1} dK| <= |kinv K(M0 - mid T)| + sum_k h_k |kinv K(Y W_k Q)|
+    // entrywise; the plain bound (||rad T11||_2 + ||rad T22||_2) ||K0^{-1}||_2
+    // is kept when smaller
+    let mut pre = vec![0.0f64; 4 * m * m];
+    let centre_dev = kron_op(m, |i, j| m0[i * n + j].sub(Iv::point(tm(i, j))));
+    add_product_mag(&mut pre, &kinv, &centre_dev, 1.0);
+    for (k, yk) in yterms.iter().enumerate() {
+        add_product_mag(&mut pre, &kinv, &kron_op(m, |i, j| yk[i * n + j]), h[k]);
+    }
+    let mut b = norm2_op_upper(&pre, 2 * m, 2 * m).min(up(up(r11 + r22) * kinv_f));
+    if tamper == CellTamper::ShrinkSubspaceVariation {
+        b /= 8.0;
     }
     let gamma = norm2_upper((0..2 * m).map(|t| tb(2 + t / 2, t % 2).mag()));
     // eta >= ||T12||_2 suffices: ||P T12 P||_F <= ||P||_F^2 ||T12||_2
@@ -512,9 +679,6 @@ pub fn ratio_ring_with(
         2,
         m,
     );
-    if !(up(4.0 * up(gamma * eta)) < down(delta * delta)) {
-        return None;
-    }
     // affine forms: symbols 0..n the ratios, n + 2k + j the entries P_kj,
     // then one named remainder per form of N, of the lifted basis and of
     // the ring (math doc section 15, "Named remainders")
@@ -546,13 +710,17 @@ pub fn ratio_ring_with(
         })
         .collect();
     let p_hat = norm2_upper(phat.iter().map(|f| f.range().mag())).min(up(gamma * kinv_f));
-    // D = P - P^ (math doc section 15, "G1 over a cell"): from
-    // P = P^ - L0^{-1}(dL(P) + P T12 P), dL = L_r - L0,
-    // ||D||_F <= ((r11 + r22) p_hat + eta rho^2) / delta for every bound
-    // rho >= ||P||_F; then ||P||_F <= p_hat + ||D||_F is a new bound, and the
-    // two are iterated from Stewart's rho = 2 gamma / delta
-    let d_bound = |rho: f64| up(up(up(up(r11 + r22) * p_hat) + up(eta * up(rho * rho))) / delta);
-    let mut rho = up(2.0 * gamma / delta);
+    // the fixed point of Phi(P) = L0^{-1}(T21 - dL_r(P) - P T12 P) in the
+    // ball ||P||_F <= rho (math doc section 15, "G1 over a cell")
+    let c = up(eta * kinv_f);
+    let mut rho = contraction_radius(p_hat, b, c)?;
+    // D = P - P^ = -L0^{-1}(dL_r(P) + P T12 P), so
+    // ||D||_F <= b (p_hat + ||D||_F) + c rho^2, i.e.
+    // ||D||_F <= (b p_hat + c rho^2) / (1 - b) for every bound rho >= ||P||_F;
+    // then ||P||_F <= p_hat + ||D||_F is a new bound, and the two are iterated
+    let one_minus_b = down(1.0 - b);
+    let d_bound = |rho: f64| up(up(up(b * p_hat) + up(c * up(rho * rho))) / one_minus_b);
+    let stewart = rho;
     let mut eps2 = d_bound(rho);
     for _ in 0..RHO_ITERATIONS {
         let next = up(p_hat + eps2);
@@ -565,10 +733,10 @@ pub fn ratio_ring_with(
     match tamper {
         CellTamper::DropSubspaceVariation => rho = 0.0,
         CellTamper::ShrinkStewartRadius => {
-            rho = up(2.0 * gamma / delta) / 64.0;
+            rho = stewart / 64.0;
             eps2 = 0.0;
         }
-        CellTamper::None => {}
+        CellTamper::None | CellTamper::DropPairCrossTerm | CellTamper::ShrinkSubspaceVariation => {}
     }
     // N = T11 + T12 P
     let t12_row = |a: usize| norm2_upper((0..m).map(|k| tb(a, 2 + k).mag()));
@@ -576,21 +744,6 @@ pub fn ratio_ring_with(
         let (a, b) = (ab / 2, ab % 2);
         tb(a, b).widen(up(rho * t12_row(a)))
     });
-    // the pair is the subdominant one: min |spec N| > spectral radius of K'
-    if m > 1 {
-        let mk = m - 1;
-        let t12_col = |j: usize| norm2_upper((0..2).map(|a| tb(a, 2 + j).mag()));
-        let kp: Vec<Iv> = (0..mk * mk)
-            .map(|ij| {
-                let (i, j) = (1 + ij / mk, 1 + ij % mk);
-                tb(2 + i, 2 + j).widen(up(rho * t12_col(j)))
-            })
-            .collect();
-        let rad = spectral_radius_upper(&kp, mk, &blocks);
-        if !(min_modulus_2x2(&nb) > rad) {
-            return None;
-        }
-    }
     let pmat: Vec<Af> = (0..2 * m)
         .map(|v| {
             let (k, j) = (v % m, v / m);
@@ -611,6 +764,48 @@ pub fn ratio_ring_with(
             named.name(acc)
         })
         .collect();
+    // N lies in both enclosures (the interval one and the affine forms'
+    // range), so in their intersection
+    let mut restriction = [Iv::point(0.0); 4];
+    for k in 0..4 {
+        let f = nf[k].range();
+        let (a, b) = (f.lo.max(nb[k].lo), f.hi.min(nb[k].hi));
+        if !(a <= b) {
+            return None;
+        }
+        restriction[k] = Iv::new(a, b);
+    }
+    let drop_cross = tamper == CellTamper::DropPairCrossTerm;
+    let pair = pair_moduli_with(&restriction, Some(&nf), drop_cross);
+    let mut rest_radius = 0.0;
+    // the pair is the subdominant one: min |spec N| > spectral radius of K'
+    if m > 1 {
+        let mk = m - 1;
+        let t12_col = |j: usize| norm2_upper((0..2).map(|a| tb(a, 2 + j).mag()));
+        let widen = |j: usize| up(rho * t12_col(j));
+        let kp: Vec<Iv> = (0..mk * mk)
+            .map(|ij| {
+                let (i, j) = (1 + ij / mk, 1 + ij % mk);
+                tb(2 + i, 2 + j).widen(widen(j))
+            })
+            .collect();
+        let mut rad = spectral_radius_upper(&kp, mk, &blocks);
+        if mk == 2 {
+            // a 2 x 2 K': the root bound of its characteristic polynomial
+            let kf: Vec<Af> = (0..4)
+                .map(|ij| {
+                    let (i, j) = (1 + ij / 2, 1 + ij % 2);
+                    t_af(2 + i, 2 + j).widen(widen(j))
+                })
+                .collect();
+            rad =
+                rad.min(pair_moduli_with(&[kp[0], kp[1], kp[2], kp[3]], Some(&kf), drop_cross).max);
+        }
+        rest_radius = rad;
+        if !(pair.min > rad) {
+            return None;
+        }
+    }
     let lay = Layout::new(n);
     let zero = Af::constant(0.0, ns);
     let mut w: Vec<[Af; 2]> = vec![[zero.clone(), zero.clone()]; 4 * n];
@@ -758,21 +953,12 @@ pub fn ratio_ring_with(
     debug_assert_eq!(named.next, ns);
     let boxes =
         |v: &[[Af; 2]]| -> Vec<P2> { v.iter().map(|p| [p[0].range(), p[1].range()]).collect() };
-    // N lies in both enclosures (the interval one and the affine forms'
-    // range), so in their intersection
-    let mut restriction = [Iv::point(0.0); 4];
-    for k in 0..4 {
-        let f = nf[k].range();
-        let (a, b) = (f.lo.max(nb[k].lo), f.hi.min(nb[k].hi));
-        if !(a <= b) {
-            return None;
-        }
-        restriction[k] = Iv::new(a, b);
-    }
     Some(RatioRing {
         q,
         rho,
         restriction,
+        pair,
+        rest_radius,
         correction: phat,
         correction_radius: eps2,
         basis: boxes(&w),
@@ -784,13 +970,49 @@ pub fn ratio_ring_with(
     })
 }
 
+/// The symbols with a non-zero coefficient in some form of `forms`, and
+/// `always`, in increasing order.
+fn used_symbols<'a>(forms: impl Iterator<Item = &'a Af>, always: usize) -> Vec<usize> {
+    let mut mask: Vec<bool> = Vec::new();
+    for f in forms {
+        if mask.len() < f.l.len() {
+            mask.resize(f.l.len(), false);
+        }
+        for (m, x) in mask.iter_mut().zip(&f.l) {
+            *m |= *x != 0.0;
+        }
+    }
+    if always < mask.len() {
+        mask[always] = true;
+    }
+    (0..mask.len()).filter(|&k| mask[k]).collect()
+}
+
+/// The form `f` over the symbols `used` only (renumbered `0..used.len()`):
+/// exact when `f`'s other coefficients are zero.
+fn compact(f: &Af, used: &[usize]) -> Af {
+    Af {
+        c: f.c,
+        l: used.iter().map(|&k| f.l[k]).collect(),
+        e: f.e,
+    }
+}
+
 /// The Bezier net (3 x 3, `b[a][c]`, `a` along `s`) of ring patch `id` as
-/// affine forms.
-fn bezier_net(ring: &RatioRing, n: usize, id: RingPatchId) -> [[[Af; 2]; 3]; 3] {
+/// affine forms over the patch's own symbols: the ratio of its span and
+/// every symbol with a non-zero coefficient in one of its nine ring
+/// points, renumbered in order ([`compact`]); the others are zero in every
+/// form of the patch, its Jacobian included.
+fn bezier_net(ring: &RatioRing, n: usize, id: RingPatchId) -> Option<[[[Af; 2]; 3]; 3]> {
     let g = patch_grid(n, id);
-    let ns = ring.forms[0][0].symbols();
     let i = id.index % n;
-    let r = Af::symbol(ring.centre[i], ring.half_width[i], i, ns);
+    let ids: Vec<usize> = g.iter().flatten().copied().collect();
+    let used = used_symbols(ids.iter().flat_map(|&k| &ring.forms[k]), i);
+    let ns = used.len();
+    let local =
+        |k: usize| -> [Af; 2] { std::array::from_fn(|c| compact(&ring.forms[k][c], &used)) };
+    let ri = used.binary_search(&i).ok()?;
+    let r = Af::symbol(ring.centre[i], ring.half_width[i], ri, ns);
     let half = |a: &[Af; 2], b: &[Af; 2]| -> [Af; 2] {
         std::array::from_fn(|k| a[k].add(&b[k]).scale(0.5))
     };
@@ -811,9 +1033,11 @@ fn bezier_net(ring: &RatioRing, n: usize, id: RingPatchId) -> [[[Af; 2]; 3]; 3] 
         [half(&p[0], &p[1]), p[1].clone(), half(&p[1], &p[2])]
     };
     let cols: Vec<[[Af; 2]; 3]> = (0..3)
-        .map(|c| conv_s(&std::array::from_fn(|a| ring.forms[g[a][c]].clone())))
+        .map(|c| conv_s(&std::array::from_fn(|a| local(g[a][c]))))
         .collect();
-    std::array::from_fn(|a| conv_t(&std::array::from_fn(|c| cols[c][a].clone())))
+    Some(std::array::from_fn(|a| {
+        conv_t(&std::array::from_fn(|c| cols[c][a].clone()))
+    }))
 }
 
 /// The Jacobian's Bezier coefficients (bidegree (3, 3)) of a biquadratic
@@ -988,24 +1212,20 @@ pub fn certified(lo: &[f64], hi: &[f64], tamper: CellTamper) -> (bool, Option<Ve
 
 /// The spectral part of the `g1` property from the restriction `N` of the
 /// pair's invariant subspace (math doc section 15, "G1 over a cell"): for
-/// every matrix of the interval 2 x 2 matrix `n`,
+/// every matrix of the enclosure of `N` ([`RatioRing::pair`], from the
+/// interval matrix and the affine forms, [`pair_moduli`]),
 ///
 /// * `det N > 0`: the next ring is the image of this one under the
 ///   orientation-preserving linear map `x -> x N`;
-/// * every eigenvalue modulus `<= |t|/2 + sqrt|t^2/4 - det| < 1`: `1` stays
-///   the simple dominant eigenvalue;
+/// * every eigenvalue modulus `< 1`: `1` stays the simple dominant
+///   eigenvalue;
 /// * every eigenvalue modulus `> 1/4`: the pair lies above the fixed
 ///   eigenvalues `1/4, 1/8, 1/16` of the `E` and `V` blocks (section 4).
 ///
 /// Separation from the rest of the face block's spectrum is part of the
 /// enclosure itself ([`ratio_ring_with`]).
-pub fn g1_spectrum(n: &[Iv; 4]) -> bool {
-    let t = n[0].add(n[3]);
-    let d = n[0].mul(n[3]).sub(n[1].mul(n[2]));
-    let h = t.mul(Iv::point(0.5));
-    let disc = h.mul(h).sub(d);
-    let max_modulus = up(h.mag() + up(disc.mag().sqrt()));
-    d.lo > 0.0 && max_modulus < 1.0 && min_modulus_2x2(n) > G1_FIXED_MODULUS
+pub fn g1_spectrum(pair: &PairModuli) -> bool {
+    pair.det.lo > 0.0 && pair.max < 1.0 && pair.min > G1_FIXED_MODULUS
 }
 
 /// The largest modulus of the fixed eigenvalues of `S_n` outside the face
@@ -1025,7 +1245,7 @@ pub fn g1_certified(lo: &[f64], hi: &[f64], tamper: CellTamper) -> (bool, Option
         return (false, None);
     };
     let scores = Some(ring.scores.clone());
-    if !g1_spectrum(&ring.restriction) {
+    if !g1_spectrum(&ring.pair) {
         return (false, scores);
     }
     (map_certified(&ring), scores)
@@ -1038,7 +1258,10 @@ fn map_certified(ring: &RatioRing) -> bool {
     let mut nets = Vec::with_capacity(3 * n);
     for i in 0..n {
         for kind in [PatchKind::A, PatchKind::B, PatchKind::C] {
-            nets.push(bezier_net(ring, n, RingPatchId { kind, index: i }));
+            let Some(net) = bezier_net(ring, n, RingPatchId { kind, index: i }) else {
+                return false;
+            };
+            nets.push(net);
         }
     }
     let Some(sigma) = jacobian_sign(&nets) else {
@@ -1111,6 +1334,43 @@ impl RatioRing {
             p.norm(),
             crate::schemes::doo_sabin::ring::ring_points(&ext, &w1, &w2)?,
         ))
+    }
+
+    /// The eigenvalue moduli of `W(r)` at one ratio vector `r` of the cell,
+    /// in floating point, for the soundness tests: the pair (the two
+    /// largest other than the eigenvalue nearest `3/4`, largest first) and
+    /// the largest of the rest (`0` when there is none).
+    pub fn pointwise_moduli(&self, r: &[f64]) -> crate::error::Result<([f64; 2], f64)> {
+        let (w, _, _) = self.pointwise_graph(r)?;
+        let vals = Eigen::new(
+            &w,
+            EigenOptions {
+                right: false,
+                left: false,
+            },
+        )
+        .map_err(|e| crate::error::Error::Numerical {
+            routine: "pointwise spectrum in the cell",
+            reason: e.to_string(),
+        })?
+        .values()
+        .to_vec();
+        let k34 = (0..vals.len())
+            .min_by(|&a, &b| (vals[a] - 0.75).norm().total_cmp(&(vals[b] - 0.75).norm()))
+            .unwrap_or(0);
+        let mut mods: Vec<f64> = (0..vals.len())
+            .filter(|&k| k != k34)
+            .map(|k| vals[k].norm())
+            .collect();
+        mods.sort_by(|a, b| b.total_cmp(a));
+        let rest = mods.get(2).copied().unwrap_or(0.0);
+        match mods[..] {
+            [a, b, ..] => Ok(([a, b], rest)),
+            _ => Err(crate::error::Error::Numerical {
+                routine: "pointwise spectrum in the cell",
+                reason: "fewer than two eigenvalues besides 3/4".to_owned(),
+            }),
+        }
     }
 
     /// How many entries of the pointwise `P(r)` (in this enclosure's

@@ -15,4 +15,10 @@ pub enum CellTamper {
     /// Shrink Stewart's radius: NURDS takes `rho / 64` for the ball of `P`
     /// and drops the bound of its second-order part.
     ShrinkStewartRadius,
+    /// Drop the cross term `a_01 a_10` from the discriminant of the 2 x 2
+    /// eigenvalue bounds of the pair and of the rest (NURDS, `g1`).
+    DropPairCrossTerm,
+    /// Divide the bound `b` of the subspace operator's variation
+    /// `||L0^{-1} dL_r||` by 8 (NURDS).
+    ShrinkSubspaceVariation,
 }
