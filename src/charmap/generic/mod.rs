@@ -34,6 +34,7 @@
 pub mod cells;
 pub mod layout;
 pub mod mask;
+pub mod matrix_mask;
 pub mod net;
 pub mod precondition;
 
