@@ -341,19 +341,18 @@ fn matrix_difference_schemes_commute_with_the_two_step_rules_on_random_integer_d
 }
 
 /// `||(3 E)^2||_inf` in `f64`, composed here independently: the two-step
-/// scheme applied to a unit impulse at each component and offset gives the
-/// columns of the operator; the norm is the largest absolute row sum.
+/// symbol `9 E(z) E(z^3)`, and the largest sum of absolute values over a
+/// row and a coset modulo 9.
 fn two_step_norm_f64(e: &[Vec<Stencil>]) -> f64 {
-    let size = e.len();
     // P(z) = E(z) E(z^3): entry (k, l) at g = g1 + 3 g2
-    let mut rows: Vec<BTreeMap<(usize, [i64; 2]), f64>> = vec![BTreeMap::new(); size];
-    for k in 0..size {
-        for m in 0..size {
-            for (g1, x) in &e[k][m] {
-                for l in 0..size {
-                    for (g2, y) in &e[m][l] {
+    let mut rows: Vec<BTreeMap<(usize, [i64; 2]), f64>> = vec![BTreeMap::new(); e.len()];
+    for (row, ek) in rows.iter_mut().zip(e) {
+        for (ekm, em) in ek.iter().zip(e) {
+            for (g1, x) in ekm {
+                for (l, eml) in em.iter().enumerate() {
+                    for (g2, y) in eml {
                         let g = [g1[0] + 3 * g2[0], g1[1] + 3 * g2[1]];
-                        *rows[k].entry((l, g)).or_insert(0.0) +=
+                        *row.entry((l, g)).or_insert(0.0) +=
                             9.0 * subdiv_lab::scalar::rational_to_f64(&(x * y));
                     }
                 }
