@@ -401,3 +401,68 @@ fn the_regular_part_of_the_two_step_rules_is_c1_by_its_matrix_difference_schemes
         subdiv_lab::charmap::generic::matrix_mask::matrix_differences(&broken, 3).unwrap_err();
     assert!(err.contains("sum rules of order 2 fail"), "{err}");
 }
+
+/// `p^k`.
+fn power(p: &Stencil, k: u32) -> Stencil {
+    let one: Stencil = [([0, 0], Rational::one())].into_iter().collect();
+    (0..k).fold(one, |acc, _| {
+        subdiv_lab::charmap::generic::matrix_mask::product(&acc, p)
+    })
+}
+
+/// `p` times the rational `c`.
+fn scaled(p: &Stencil, c: Rational) -> Stencil {
+    p.iter().map(|(g, v)| (*g, v * &c)).collect()
+}
+
+#[test]
+fn matrix_difference_schemes_decide_box_splines_of_dilation_2_and_3() {
+    use subdiv_lab::charmap::generic::matrix_mask::{matrix_differences, product};
+    let line = |e: [i64; 2], d: i64| -> Stencil {
+        (0..d)
+            .map(|t| ([t * e[0], t * e[1]], Rational::one()))
+            .collect()
+    };
+    // ternary tensor B-splines: (1 + z + z^2)^k per axis over 3^(k-1); C0
+    // (k = 2, the hat) never contracts, C1 (k = 3) does
+    for (k, c1) in [(2u32, false), (3, true)] {
+        let a = product(&power(&line([1, 0], 3), k), &power(&line([0, 1], 3), k));
+        let a = scaled(&a, frac(1, 9i64.pow(k - 1)));
+        let md = matrix_differences(&a, 3).unwrap();
+        assert_eq!(md.power.is_some(), c1, "ternary k = {k}: {:?}", md.norms);
+        if !c1 {
+            assert!(md.norms.iter().all(|n| *n >= Rational::one()), "k = {k}");
+        }
+    }
+    // dilation 2 on the triangle lattice: the piecewise linear hat (C0)
+    // never contracts; Loop's regular mask (the quartic box spline, C2),
+    // read from its regular configuration, does
+    let hat = product(
+        &product(&line([1, 0], 2), &line([0, 1], 2)),
+        &line([-1, 1], 2),
+    );
+    let hat = scaled(&hat, frac(1, 2));
+    let md = matrix_differences(&hat, 2).unwrap();
+    assert_eq!(md.power, None, "{:?}", md.norms);
+    assert!(md.norms.iter().all(|n| *n >= Rational::one()));
+    let regular = LocalScheme::loop_subdivision(5)
+        .unwrap()
+        .regular_configuration()
+        .unwrap()
+        .unwrap();
+    let (lattice, loop_mask) = mask::read_mask(
+        &regular.local_matrix().unwrap(),
+        regular.exact_local_matrix().transpose().unwrap().as_ref(),
+    )
+    .unwrap();
+    assert_eq!(lattice, Lattice::Triangle);
+    // the quartic box spline (hat * hat / 4), centred: z^(0, -2) times it
+    let quartic = scaled(&product(&hat, &hat), frac(1, 4));
+    let centred: Stencil = quartic
+        .iter()
+        .map(|(g, v)| ([g[0], g[1] - 2], v.clone()))
+        .collect();
+    assert_eq!(loop_mask, centred);
+    let md = matrix_differences(&loop_mask, 2).unwrap();
+    assert_eq!(md.power, Some(2), "{:?}", md.norms);
+}
