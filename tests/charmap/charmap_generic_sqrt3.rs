@@ -196,6 +196,9 @@ fn sqrt3_verdict_refers_to_the_two_step_matrix_and_matches_its_eigen_analysis() 
         };
         assert!(
             reason.contains("one-to-nine split (dilation 3, 73 weights)")
+                && reason.contains(
+                    "the regular part is C1 by its matrix difference schemes (||(3 E)^2||_inf = 0.4776 < 1, exact)"
+                )
                 && reason.contains("no factor 1 + z^e + z^2e along any lattice direction"),
             "n = {n}: {reason}"
         );
@@ -205,4 +208,261 @@ fn sqrt3_verdict_refers_to_the_two_step_matrix_and_matches_its_eigen_analysis() 
     let g = generic::check(&LocalScheme::loop_subdivision(5).unwrap(), &sub).unwrap();
     assert_eq!(g.matrix_steps, None);
     assert!(g.to_json().get("matrix_steps").is_none());
+}
+
+/// Data on a box of the lattice.
+type Grid = BTreeMap<[i64; 2], Rational>;
+
+/// Pseudo-random integers in `[-50, 50]` on `[-r, r]^2` (xorshift, seeded).
+fn random_grid(r: i64, seed: u64) -> Grid {
+    let mut x = seed;
+    let mut out = Grid::new();
+    for i in -r..=r {
+        for j in -r..=r {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            out.insert(
+                [i, j],
+                Rational::from_integer(((x % 101) as i64 - 50).into()),
+            );
+        }
+    }
+    out
+}
+
+/// One step of a scalar scheme of dilation 3: `p'_beta` wherever its whole
+/// stencil is held.
+fn refine3(mask: &Stencil, p: &Grid) -> Grid {
+    let (lo, hi) = (-3 * 14, 3 * 14);
+    let mut out = Grid::new();
+    for x in lo..=hi {
+        for y in lo..=hi {
+            let mut acc = Some(Rational::zero());
+            for (g, w) in mask {
+                let (u, v) = (x - g[0], y - g[1]);
+                if u.rem_euclid(3) != 0 || v.rem_euclid(3) != 0 {
+                    continue;
+                }
+                acc = acc.and_then(|a| p.get(&[u / 3, v / 3]).map(|q| a + q * w));
+            }
+            if let Some(a) = acc {
+                out.insert([x, y], a);
+            }
+        }
+    }
+    out
+}
+
+/// The differences of order 1 (`p_y - p_{y - e_k}`) or 2 (`(1 - z_1)^2`,
+/// `(1 - z_1)(1 - z_2)`, `(1 - z_2)^2` applied), where held.
+fn differences_of(p: &Grid, order: u32) -> Vec<Grid> {
+    let diff = |q: &Grid, e: [i64; 2]| -> Grid {
+        q.iter()
+            .filter_map(|(y, v)| q.get(&[y[0] - e[0], y[1] - e[1]]).map(|w| (*y, v - w)))
+            .collect()
+    };
+    let first = [diff(p, [1, 0]), diff(p, [0, 1])];
+    if order == 1 {
+        return first.to_vec();
+    }
+    vec![
+        diff(&first[0], [1, 0]),
+        diff(&first[0], [0, 1]),
+        diff(&first[1], [0, 1]),
+    ]
+}
+
+/// One step of a matrix scheme of dilation 3 on vector data, where the
+/// whole stencil is held.
+fn refine3_matrix(m: &[Vec<Stencil>], q: &[Grid]) -> Vec<Grid> {
+    let size = m.len();
+    (0..size)
+        .map(|k| {
+            let mut out = Grid::new();
+            for x in -42..=42 {
+                for y in -42..=42 {
+                    let mut acc = Some(Rational::zero());
+                    for (l, entry) in m[k].iter().enumerate() {
+                        for (g, w) in entry {
+                            let (u, v) = (x - g[0], y - g[1]);
+                            if u.rem_euclid(3) != 0 || v.rem_euclid(3) != 0 {
+                                continue;
+                            }
+                            acc = acc.and_then(|a| q[l].get(&[u / 3, v / 3]).map(|z| a + z * w));
+                        }
+                    }
+                    if let Some(a) = acc {
+                        out.insert([x, y], a);
+                    }
+                }
+            }
+            out
+        })
+        .collect()
+}
+
+/// Points where both sides are held, and how many disagree.
+fn compare(lhs: &[Grid], rhs: &[Grid]) -> (usize, usize) {
+    let (mut seen, mut bad) = (0, 0);
+    for (a, b) in lhs.iter().zip(rhs) {
+        for (y, v) in a {
+            if let Some(w) = b.get(y) {
+                seen += 1;
+                bad += usize::from(v != w);
+            }
+        }
+    }
+    (seen, bad)
+}
+
+#[test]
+fn matrix_difference_schemes_commute_with_the_two_step_rules_on_random_integer_data() {
+    let a = composed_mask();
+    let md = subdiv_lab::charmap::generic::matrix_mask::matrix_differences(&a, 3).unwrap();
+    for (seed, order, mm) in [(7u64, 1u32, &md.first), (99, 2, &md.second)] {
+        assert_eq!(mm.entries.len(), order as usize + 1);
+        let p = random_grid(14, seed);
+        let lhs = differences_of(&refine3(&a, &p), order);
+        let rhs = refine3_matrix(&mm.entries, &differences_of(&p, order));
+        let (seen, bad) = compare(&lhs, &rhs);
+        assert!(seen > 1000, "order {order}: only {seen} points compared");
+        assert_eq!(
+            bad, 0,
+            "order {order}: D S_a p != S_A D p at {bad} of {seen}"
+        );
+        // a planted wrong weight breaks the relation
+        let mut wrong = mm.entries.clone();
+        let v = wrong[1][0].values_mut().next().unwrap();
+        *v += frac(1, 1000);
+        let (seen, bad) = compare(&lhs, &refine3_matrix(&wrong, &differences_of(&p, order)));
+        assert!(bad > 0 && seen > 1000, "order {order}: wrong weight unseen");
+    }
+}
+
+/// `||(3 E)^2||_inf` in `f64`, composed here independently: the two-step
+/// symbol `9 E(z) E(z^3)`, and the largest sum of absolute values over a
+/// row and a coset modulo 9.
+fn two_step_norm_f64(e: &[Vec<Stencil>]) -> f64 {
+    // P(z) = E(z) E(z^3): entry (k, l) at g = g1 + 3 g2
+    let mut rows: Vec<BTreeMap<(usize, [i64; 2]), f64>> = vec![BTreeMap::new(); e.len()];
+    for (row, ek) in rows.iter_mut().zip(e) {
+        for (ekm, em) in ek.iter().zip(e) {
+            for (g1, x) in ekm {
+                for (l, eml) in em.iter().enumerate() {
+                    for (g2, y) in eml {
+                        let g = [g1[0] + 3 * g2[0], g1[1] + 3 * g2[1]];
+                        *row.entry((l, g)).or_insert(0.0) +=
+                            9.0 * subdiv_lab::scalar::rational_to_f64(&(x * y));
+                    }
+                }
+            }
+        }
+    }
+    let mut best = 0.0f64;
+    for row in &rows {
+        let mut sums: BTreeMap<[i64; 2], f64> = BTreeMap::new();
+        for ((_, g), v) in row {
+            *sums
+                .entry([g[0].rem_euclid(9), g[1].rem_euclid(9)])
+                .or_insert(0.0) += v.abs();
+        }
+        best = best.max(sums.values().fold(0.0f64, |a, b| a.max(*b)));
+    }
+    best
+}
+
+#[test]
+fn the_regular_part_of_the_two_step_rules_is_c1_by_its_matrix_difference_schemes() {
+    let a = composed_mask();
+    let md = subdiv_lab::charmap::generic::matrix_mask::matrix_differences(&a, 3).unwrap();
+    // 3 M reproduces constant vectors: every coset sums to the identity / 3
+    for sums in md.first.coset_sums().values() {
+        assert_eq!(
+            sums,
+            &vec![vec![frac(1, 3), frac(0, 1)], vec![frac(0, 1), frac(1, 3)]]
+        );
+    }
+    // ||3 E||_inf >= 1, ||(3 E)^2||_inf < 1 (exact), the value checked against
+    // the two-step operator composed here in f64
+    assert_eq!(md.power, Some(2));
+    assert_eq!(md.norms.len(), 2);
+    assert!(md.norms[0] >= Rational::one());
+    assert!(md.norms[1] < Rational::one());
+    let exact = subdiv_lab::scalar::rational_to_f64(&md.norms[1]);
+    let float = two_step_norm_f64(&md.second.entries);
+    assert!((exact - float).abs() < 1e-12, "{exact} vs {float}");
+    assert!((0.47..0.48).contains(&exact), "{exact}");
+    // a mask without the sum rules of order 2 has no E
+    let mut broken = a.clone();
+    *broken.get_mut(&[0, 0]).unwrap() += frac(1, 10);
+    *broken.entry([3, 0]).or_insert_with(Rational::zero) -= frac(1, 10);
+    let err =
+        subdiv_lab::charmap::generic::matrix_mask::matrix_differences(&broken, 3).unwrap_err();
+    assert!(err.contains("sum rules of order 2 fail"), "{err}");
+}
+
+/// `p^k`.
+fn power(p: &Stencil, k: u32) -> Stencil {
+    let one: Stencil = [([0, 0], Rational::one())].into_iter().collect();
+    (0..k).fold(one, |acc, _| {
+        subdiv_lab::charmap::generic::matrix_mask::product(&acc, p)
+    })
+}
+
+/// `p` times the rational `c`.
+fn scaled(p: &Stencil, c: Rational) -> Stencil {
+    p.iter().map(|(g, v)| (*g, v * &c)).collect()
+}
+
+#[test]
+fn matrix_difference_schemes_decide_box_splines_of_dilation_2_and_3() {
+    use subdiv_lab::charmap::generic::matrix_mask::{matrix_differences, product};
+    let line = |e: [i64; 2], d: i64| -> Stencil {
+        (0..d)
+            .map(|t| ([t * e[0], t * e[1]], Rational::one()))
+            .collect()
+    };
+    // ternary tensor B-splines: (1 + z + z^2)^k per axis over 3^(k-1); C0
+    // (k = 2, the hat) never contracts, C1 (k = 3) does
+    for (k, c1) in [(2u32, false), (3, true)] {
+        let a = product(&power(&line([1, 0], 3), k), &power(&line([0, 1], 3), k));
+        let a = scaled(&a, frac(1, 9i64.pow(k - 1)));
+        let md = matrix_differences(&a, 3).unwrap();
+        assert_eq!(md.power.is_some(), c1, "ternary k = {k}: {:?}", md.norms);
+        if !c1 {
+            assert!(md.norms.iter().all(|n| *n >= Rational::one()), "k = {k}");
+        }
+    }
+    // dilation 2 on the triangle lattice: the piecewise linear hat (C0)
+    // never contracts; Loop's regular mask (the quartic box spline, C2),
+    // read from its regular configuration, does
+    let hat = product(
+        &product(&line([1, 0], 2), &line([0, 1], 2)),
+        &line([-1, 1], 2),
+    );
+    let hat = scaled(&hat, frac(1, 2));
+    let md = matrix_differences(&hat, 2).unwrap();
+    assert_eq!(md.power, None, "{:?}", md.norms);
+    assert!(md.norms.iter().all(|n| *n >= Rational::one()));
+    let regular = LocalScheme::loop_subdivision(5)
+        .unwrap()
+        .regular_configuration()
+        .unwrap()
+        .unwrap();
+    let (lattice, loop_mask) = mask::read_mask(
+        &regular.local_matrix().unwrap(),
+        regular.exact_local_matrix().transpose().unwrap().as_ref(),
+    )
+    .unwrap();
+    assert_eq!(lattice, Lattice::Triangle);
+    // the quartic box spline (hat * hat / 4), centred: z^(0, -2) times it
+    let quartic = scaled(&product(&hat, &hat), frac(1, 4));
+    let centred: Stencil = quartic
+        .iter()
+        .map(|(g, v)| ([g[0], g[1] - 2], v.clone()))
+        .collect();
+    assert_eq!(loop_mask, centred);
+    let md = matrix_differences(&loop_mask, 2).unwrap();
+    assert_eq!(md.power, Some(2), "{:?}", md.norms);
 }

@@ -476,7 +476,10 @@ pub fn read_with_dilation(
 /// `c = 3 a / (1 + z^e + z^{2e})`, which exists iff the exact symbol is
 /// divisible by `1 + z^e + z^{2e}`; the reason says for which lattice
 /// directions it is (sqrt(3): none, so its derivative schemes are matrix
-/// schemes). The certificate's cells, nets and enclosures are dyadic.
+/// schemes). The regular part's smoothness is then decided by the matrix
+/// difference schemes ([`super::matrix_mask::matrix_differences`]): C1 when
+/// `||(3 E)^L||_inf < 1` (exact). The certificate's cells, nets and
+/// enclosures are dyadic, which the reason also says.
 pub fn dilation_three_reason(lattice: Lattice, symbol: &Symbol) -> String {
     let divides: Vec<String> = difference_directions(lattice)
         .into_iter()
@@ -491,10 +494,30 @@ pub fn dilation_three_reason(lattice: Lattice, symbol: &Symbol) -> String {
             divides.join(", ")
         )
     };
+    let regular = match super::matrix_mask::matrix_differences(symbol, 3) {
+        Ok(md) => match (md.power, md.norms.last()) {
+            (Some(l), Some(norm)) => format!(
+                "the regular part is C1 by its matrix difference schemes (||(3 E)^{l}||_inf = {} < 1, exact)",
+                ceil4(norm)
+            ),
+            (_, norm) => format!(
+                "its second-difference scheme 3 E does not contract by power {} (norm {}): the regular part is not certified C1",
+                super::matrix_mask::MAX_MATRIX_CONTRACTION_POWER,
+                norm.map_or(f64::NAN, ceil4)
+            ),
+        },
+        Err(why) => format!("it has no matrix difference schemes ({why})"),
+    };
     format!(
-        "the regular rules are a one-to-nine split (dilation 3, {} weights); {factors}; the certificate reads dilation-2 rules with scalar derivative schemes (math doc 20.9)",
+        "the regular rules are a one-to-nine split (dilation 3, {} weights); {factors}; {regular}; the certificate's cells, nets and enclosures are dyadic, the ternary ones are not implemented (math doc 20.9)",
         symbol.len()
     )
+}
+
+/// `x` rounded up to four decimals (for a reason's text; every comparison
+/// is exact).
+fn ceil4(x: &Rational) -> f64 {
+    (crate::scalar::rational_to_f64(x) * 1e4).ceil() / 1e4
 }
 
 /// Exact division of a symbol by `1 + z^e` (`e` a unit lattice vector):
@@ -801,17 +824,7 @@ mod tests {
         assert_eq!(divide(&s, [0, 1]), None);
     }
 
-    /// The product of the symbols `p` and `q`.
-    fn times(p: &Symbol, q: &Symbol) -> Symbol {
-        let mut out = Symbol::new();
-        for (a, x) in p {
-            for (b, y) in q {
-                *out.entry([a[0] + b[0], a[1] + b[1]])
-                    .or_insert_with(Rational::zero) += x * y;
-            }
-        }
-        out.into_iter().filter(|(_, q)| !q.is_zero()).collect()
-    }
+    use super::super::matrix_mask::product as times;
 
     #[test]
     fn division_by_the_triadic_factor_is_exact_or_refused() {

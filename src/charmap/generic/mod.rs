@@ -15,7 +15,10 @@
 //! 1. [`layout`]: the labelled neighbourhood as a sector grid and the charts
 //!    on which the regular lattice applies;
 //! 2. [`mask`]: the regular mask, its derivative and difference schemes by
-//!    exact division of the symbol, their contraction;
+//!    exact division of the symbol, their contraction; for rules of
+//!    dilation 3 (sqrt(3)'s two steps) [`matrix_mask`]: the matrix difference
+//!    schemes that prove the regular part C1 (math doc 20.9; the ternary
+//!    cells the later stages would need are not built);
 //! 3. [`net`]: the subdominant eigenbasis on the neighbourhood (with
 //!    Stewart's bound, [`crate::charmap::subspace_bound`]), its extension by the
 //!    eigen-relation, and refinement in midpoint-radius arithmetic;
@@ -34,6 +37,7 @@
 pub mod cells;
 pub mod layout;
 pub mod mask;
+pub mod matrix_mask;
 pub mod net;
 pub mod precondition;
 
