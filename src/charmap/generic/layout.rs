@@ -27,6 +27,10 @@ pub enum Lattice {
 /// A lattice point (integer coordinates in the basis `d_0, d_1`).
 pub type LatticePoint = [i64; 2];
 
+/// A Laurent polynomial in two variables (a mask) with exact coefficients:
+/// the weight of `z^alpha` for each lattice point `alpha`.
+pub type Symbol = std::collections::BTreeMap<LatticePoint, crate::scalar::Rational>;
+
 /// A point of the sector grid: the centre, or `(s, i, j)` with `i >= 1`,
 /// `j >= 0`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

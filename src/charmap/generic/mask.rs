@@ -25,8 +25,7 @@ pub const MAX_CONTRACTION_POWER: u32 = 5;
 /// exact dyadic weights) must be below `1 - CONTRACTION_MARGIN`.
 pub const CONTRACTION_MARGIN: f64 = 1e-9;
 
-/// A Laurent polynomial in two variables (a mask) with exact coefficients.
-pub type Symbol = BTreeMap<LatticePoint, Rational>;
+pub use super::layout::Symbol;
 
 /// The regular rules as the certificate uses them.
 #[derive(Clone, Debug)]

@@ -17,8 +17,7 @@
 //! so that `(D p')(z) = A(z) (D p)(z^d)`: the differences of the refined data
 //! are the matrix scheme `A` applied to the differences of the data.
 
-use super::layout::LatticePoint;
-use super::mask::Symbol;
+use super::layout::{LatticePoint, Symbol};
 use crate::scalar::Rational;
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
