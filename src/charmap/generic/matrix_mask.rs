@@ -234,6 +234,38 @@ impl MatrixMask {
     /// over the rows `k` and the cosets modulo `d^L`, of
     /// `sum_{g in coset} sum_l |P_kl[g]|`, times `|c|^L`.
     pub fn power_norm(&self, c: &Rational, power: u32) -> Rational {
+        let norm = match power {
+            // the identity
+            0 => Rational::one(),
+            _ => self
+                .powers()
+                .nth(power as usize - 1)
+                .unwrap_or_else(Rational::zero),
+        };
+        norm * c.abs().pow(power as i32)
+    }
+
+    /// The norms `||(c A)^L||_inf`, `L = 1, 2, ..`, up to the first below 1
+    /// or [`MAX_MATRIX_CONTRACTION_POWER`]; with the contracting `L`. Each
+    /// power is one product more than the one before.
+    pub fn contraction(&self, c: &Rational) -> (Vec<Rational>, Option<u32>) {
+        let mut norms = Vec::new();
+        for (l, norm) in (1..=MAX_MATRIX_CONTRACTION_POWER).zip(self.powers()) {
+            let n = norm * c.abs().pow(l as i32);
+            let done = n < Rational::one();
+            norms.push(n);
+            if done {
+                return (norms, Some(l));
+            }
+        }
+        (norms, None)
+    }
+
+    /// For `L = 1, 2, ..`: the norm (without the factor `c`) of the
+    /// `L`-step symbol `P_L(z) = P_{L-1}(z) A(z^{d^{L-1}})` of dilation
+    /// `d^L`, the largest, over the rows `k` and the cosets modulo `d^L`, of
+    /// `sum_{g in coset} sum_l |P_kl[g]|`.
+    fn powers(&self) -> impl Iterator<Item = Rational> + '_ {
         let size = self.entries.len();
         let mut cur: Vec<Vec<Symbol>> = (0..size)
             .map(|k| {
@@ -249,7 +281,7 @@ impl MatrixMask {
             })
             .collect();
         let mut step = 1i64;
-        for _ in 0..power {
+        std::iter::from_fn(move || {
             let factor: Vec<Vec<Symbol>> = self
                 .entries
                 .iter()
@@ -272,39 +304,24 @@ impl MatrixMask {
                 })
                 .collect();
             step *= self.dilation;
-        }
-        let mut best = Rational::zero();
-        for row in &cur {
-            let mut sums: BTreeMap<[i64; 2], Rational> = BTreeMap::new();
-            for sym in row {
-                for (g, v) in sym {
-                    *sums
-                        .entry([g[0].rem_euclid(step), g[1].rem_euclid(step)])
-                        .or_insert_with(Rational::zero) += v.abs();
+            let mut best = Rational::zero();
+            for row in &cur {
+                let mut sums: BTreeMap<[i64; 2], Rational> = BTreeMap::new();
+                for sym in row {
+                    for (g, v) in sym {
+                        *sums
+                            .entry([g[0].rem_euclid(step), g[1].rem_euclid(step)])
+                            .or_insert_with(Rational::zero) += v.abs();
+                    }
+                }
+                for s in sums.into_values() {
+                    if s > best {
+                        best = s;
+                    }
                 }
             }
-            for s in sums.into_values() {
-                if s > best {
-                    best = s;
-                }
-            }
-        }
-        best * c.abs().pow(power as i32)
-    }
-
-    /// The norms `||(c A)^L||_inf`, `L = 1, 2, ..`, up to the first below 1
-    /// or [`MAX_MATRIX_CONTRACTION_POWER`]; with the contracting `L`.
-    pub fn contraction(&self, c: &Rational) -> (Vec<Rational>, Option<u32>) {
-        let mut norms = Vec::new();
-        for l in 1..=MAX_MATRIX_CONTRACTION_POWER {
-            let n = self.power_norm(c, l);
-            let done = n < Rational::one();
-            norms.push(n);
-            if done {
-                return (norms, Some(l));
-            }
-        }
-        (norms, None)
+            Some(best)
+        })
     }
 }
 

@@ -483,10 +483,10 @@ fn kron_op(m: usize, x: impl Fn(usize, usize) -> Iv) -> Vec<Iv> {
     out
 }
 
-/// `acc += w |a b|` entrywise (rounded up) for square interval matrices
-/// `a`, `b` (row-major, `acc.len()` entries) and a float `w >= 0`.
-fn add_product_mag(acc: &mut [f64], a: &[Iv], b: &[Iv], w: f64) {
-    let k = (acc.len() as f64).sqrt().round() as usize;
+/// `acc += w |a b|` entrywise (rounded up) for `k x k` interval matrices
+/// `a`, `b` (row-major) and a float `w >= 0`.
+fn add_product_mag(acc: &mut [f64], a: &[Iv], b: &[Iv], k: usize, w: f64) {
+    debug_assert!(acc.len() == k * k && a.len() == k * k && b.len() == k * k);
     for i in 0..k {
         for j in 0..k {
             let mut s = Iv::point(0.0);
@@ -662,9 +662,15 @@ pub fn ratio_ring_with(
     // is kept when smaller
     let mut pre = vec![0.0f64; 4 * m * m];
     let centre_dev = kron_op(m, |i, j| m0[i * n + j].sub(Iv::point(tm(i, j))));
-    add_product_mag(&mut pre, &kinv, &centre_dev, 1.0);
+    add_product_mag(&mut pre, &kinv, &centre_dev, 2 * m, 1.0);
     for (k, yk) in yterms.iter().enumerate() {
-        add_product_mag(&mut pre, &kinv, &kron_op(m, |i, j| yk[i * n + j]), h[k]);
+        add_product_mag(
+            &mut pre,
+            &kinv,
+            &kron_op(m, |i, j| yk[i * n + j]),
+            2 * m,
+            h[k],
+        );
     }
     let mut b = norm2_op_upper(&pre, 2 * m, 2 * m).min(up(up(r11 + r22) * kinv_f));
     if tamper == CellTamper::ShrinkSubspaceVariation {
