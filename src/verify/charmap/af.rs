@@ -68,6 +68,11 @@ pub fn sum_upper(s: f64, k: usize) -> f64 {
 /// ```
 pub fn det(a: &[Af; 2], b: &[Af; 2]) -> Af {
     let (x, y, z, w) = (&a[0], &b[1], &a[1], &b[0]);
+    let k = x.l.len();
+    assert!(
+        y.l.len() == k && z.l.len() == k && w.l.len() == k,
+        "forms over different symbols"
+    );
     let p0 = x.c * y.c;
     let q0 = z.c * w.c;
     let c = p0 - q0;
@@ -167,7 +172,7 @@ impl Af {
 
     /// Sum.
     pub fn add(&self, o: &Af) -> Af {
-        debug_assert_eq!(self.l.len(), o.l.len(), "forms over different symbols");
+        assert_eq!(self.l.len(), o.l.len(), "forms over different symbols");
         let c = self.c + o.c;
         let mut l = self.l.clone();
         let mut mag = 0.0;
@@ -181,7 +186,7 @@ impl Af {
 
     /// Difference.
     pub fn sub(&self, o: &Af) -> Af {
-        debug_assert_eq!(self.l.len(), o.l.len(), "forms over different symbols");
+        assert_eq!(self.l.len(), o.l.len(), "forms over different symbols");
         let c = self.c - o.c;
         let mut l = self.l.clone();
         let mut mag = 0.0;
@@ -224,7 +229,7 @@ impl Af {
     /// second-order part) and the rounding of every float operation, in
     /// one pass over the coefficients (the radii summed on the way).
     pub fn mul(&self, o: &Af) -> Af {
-        debug_assert_eq!(self.l.len(), o.l.len(), "forms over different symbols");
+        assert_eq!(self.l.len(), o.l.len(), "forms over different symbols");
         let c = self.c * o.c;
         let mut l = Coeffs::with_capacity(self.l.len());
         let (mut rx, mut ry, mut mag) = (0.0f64, 0.0f64, 0.0f64);
@@ -251,7 +256,7 @@ impl Af {
     /// `x_i + w y_i`, the remainder `e_x + |w| e_y` and the rounding of the
     /// `2 (k + 1)` float operations (one pass, no new form).
     pub fn add_scaled(&mut self, w: f64, y: &Af) {
-        debug_assert_eq!(self.l.len(), y.l.len(), "forms over different symbols");
+        assert_eq!(self.l.len(), y.l.len(), "forms over different symbols");
         let t0 = w * y.c;
         let c = self.c + t0;
         let mut mag = 0.0f64;
@@ -305,7 +310,7 @@ impl Af {
     /// ```
     pub fn name_remainder(&self, k: usize) -> Af {
         let mut out = self.clone();
-        debug_assert!(out.l[k] == 0.0, "symbol {k} is taken");
+        assert!(out.l[k] == 0.0, "symbol {k} is taken");
         out.l[k] = self.e;
         out.e = 0.0;
         out
