@@ -18,10 +18,11 @@
 use super::super::interval::{down, up, Iv};
 use smallvec::SmallVec;
 
-/// The symbol coefficients of a form, stored inline up to 24 symbols (the
-/// `n + 2 (n - 2)` symbols of a ratio cell up to valence 10; larger
-/// valences spill to the heap).
-pub type Coeffs = SmallVec<[f64; 24]>;
+/// The symbol coefficients of a form, stored inline up to 64 symbols: the
+/// `n + 2 (n - 2) + 4 + 6n` symbols over which a ratio cell's ring is
+/// computed up to valence 7, and a ring patch's own symbols (math doc
+/// section 15, "Named remainders"); longer forms spill to the heap.
+pub type Coeffs = SmallVec<[f64; 64]>;
 
 /// `2^-52`: twice the unit roundoff, a bound on the relative rounding error.
 const EPS: f64 = f64::EPSILON;
@@ -67,6 +68,11 @@ pub fn sum_upper(s: f64, k: usize) -> f64 {
 /// ```
 pub fn det(a: &[Af; 2], b: &[Af; 2]) -> Af {
     let (x, y, z, w) = (&a[0], &b[1], &a[1], &b[0]);
+    let k = x.l.len();
+    assert!(
+        y.l.len() == k && z.l.len() == k && w.l.len() == k,
+        "forms over different symbols"
+    );
     let p0 = x.c * y.c;
     let q0 = z.c * w.c;
     let c = p0 - q0;
@@ -137,6 +143,15 @@ impl Af {
         Af { c: x0, l, e: 0.0 }
     }
 
+    /// The same form over `s >= self.symbols()` symbols, the new ones with
+    /// coefficient zero (exact).
+    pub fn extended(mut self, s: usize) -> Af {
+        if s > self.l.len() {
+            self.l.resize(s, 0.0);
+        }
+        self
+    }
+
     /// Number of symbols.
     pub fn symbols(&self) -> usize {
         self.l.len()
@@ -157,6 +172,7 @@ impl Af {
 
     /// Sum.
     pub fn add(&self, o: &Af) -> Af {
+        assert_eq!(self.l.len(), o.l.len(), "forms over different symbols");
         let c = self.c + o.c;
         let mut l = self.l.clone();
         let mut mag = 0.0;
@@ -170,6 +186,7 @@ impl Af {
 
     /// Difference.
     pub fn sub(&self, o: &Af) -> Af {
+        assert_eq!(self.l.len(), o.l.len(), "forms over different symbols");
         let c = self.c - o.c;
         let mut l = self.l.clone();
         let mut mag = 0.0;
@@ -212,6 +229,7 @@ impl Af {
     /// second-order part) and the rounding of every float operation, in
     /// one pass over the coefficients (the radii summed on the way).
     pub fn mul(&self, o: &Af) -> Af {
+        assert_eq!(self.l.len(), o.l.len(), "forms over different symbols");
         let c = self.c * o.c;
         let mut l = Coeffs::with_capacity(self.l.len());
         let (mut rx, mut ry, mut mag) = (0.0f64, 0.0f64, 0.0f64);
@@ -238,6 +256,7 @@ impl Af {
     /// `x_i + w y_i`, the remainder `e_x + |w| e_y` and the rounding of the
     /// `2 (k + 1)` float operations (one pass, no new form).
     pub fn add_scaled(&mut self, w: f64, y: &Af) {
+        assert_eq!(self.l.len(), y.l.len(), "forms over different symbols");
         let t0 = w * y.c;
         let c = self.c + t0;
         let mut mag = 0.0f64;
@@ -291,7 +310,7 @@ impl Af {
     /// ```
     pub fn name_remainder(&self, k: usize) -> Af {
         let mut out = self.clone();
-        debug_assert!(out.l[k] == 0.0, "symbol {k} is taken");
+        assert!(out.l[k] == 0.0, "symbol {k} is taken");
         out.l[k] = self.e;
         out.e = 0.0;
         out

@@ -125,8 +125,12 @@ pub struct RatioRing {
 /// `4n` edge and `2n` corner coordinates of the lifted basis, the `18n`
 /// coordinates of the ring points.
 pub const fn named_remainders(n: usize) -> usize {
-    4 + 24 * n
+    4 + 6 * n + RING_POINT_NAMES * n
 }
+
+/// Named remainders of the ring points per unit of valence: two
+/// coordinates of each of the `9n` points.
+const RING_POINT_NAMES: usize = 18;
 
 /// The next free symbol for a named remainder.
 struct Named {
@@ -689,7 +693,12 @@ pub fn ratio_ring_with(
     // then one named remainder per form of N, of the lifted basis and of
     // the ring (math doc section 15, "Named remainders")
     let mut named = Named::new(n + 2 * m);
-    let ns = n + 2 * m + named_remainders(n);
+    // the forms are computed over the symbols that exist before the ring
+    // points are named (`ns`, the ratios, `D`, `N` and the lifted basis);
+    // the `18n` symbols of the ring points are appended when they are
+    // named, the only place they occur
+    let full = n + 2 * m + named_remainders(n);
+    let ns = full - RING_POINT_NAMES * n;
     let t_af = |a: usize, b: usize| -> Af {
         let (c, r) = m0[a * n + b].mid_rad();
         let mut f = Af::constant(c, ns);
@@ -954,9 +963,9 @@ pub fn ratio_ring_with(
     }
     let pts: Vec<[Af; 2]> = pts
         .into_iter()
-        .map(|[a, b]| [named.name(a), named.name(b)])
+        .map(|[a, b]| [named.name(a.extended(full)), named.name(b.extended(full))])
         .collect();
-    debug_assert_eq!(named.next, ns);
+    debug_assert_eq!(named.next, full);
     let boxes =
         |v: &[[Af; 2]]| -> Vec<P2> { v.iter().map(|p| [p[0].range(), p[1].range()]).collect() };
     Some(RatioRing {
