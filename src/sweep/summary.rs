@@ -6,7 +6,6 @@
 //! depend on the order (ties in an extreme go to the smaller configuration id).
 //! It serialises to the JSON written beside the CSV.
 
-use super::output::csv::small_uint;
 use super::output::layout::{Layout, Row};
 use super::plan::{Plan, Shard};
 use super::SweepError;
@@ -278,8 +277,8 @@ impl Summary {
                 .class_of(row)
                 .unwrap_or(if row.error.is_some() { "error" } else { "all" });
         // Look up before inserting: no allocation once a (valence, class) pair is known.
-        let mut vbuf = [0u8; 20];
-        let vkey = small_uint(row.valence as u64, &mut vbuf);
+        let mut vbuf = itoa::Buffer::new();
+        let vkey = vbuf.format(row.valence);
         if !self.classes.contains_key(vkey) {
             self.classes.insert(vkey.to_owned(), BTreeMap::new());
         }
@@ -368,9 +367,9 @@ impl Summary {
         self.rows += part.rows;
         self.errors += part.errors;
         self.complete = self.rows == self.expected_rows;
-        let mut vbuf = [0u8; 20];
+        let mut vbuf = itoa::Buffer::new();
         for (valence, class, k) in &part.classes {
-            let vkey = small_uint(*valence as u64, &mut vbuf);
+            let vkey = vbuf.format(*valence);
             if !self.classes.contains_key(vkey) {
                 self.classes.insert(vkey.to_owned(), BTreeMap::new());
             }

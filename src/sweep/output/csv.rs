@@ -2,24 +2,6 @@
 //! round-trip number format (Ryu's), its cheap exact checks for the verifier,
 //! RFC 4180 quoting. No sweep types.
 
-pub(super) fn itoa_buf() -> [u8; 20] {
-    [0; 20]
-}
-
-/// Decimal digits of `v` (no allocation).
-pub(crate) fn small_uint(mut v: u64, buf: &mut [u8; 20]) -> &str {
-    let mut i = buf.len();
-    loop {
-        i -= 1;
-        buf[i] = b'0' + (v % 10) as u8;
-        v /= 10;
-        if v == 0 {
-            break;
-        }
-    }
-    std::str::from_utf8(&buf[i..]).unwrap_or("?")
-}
-
 /// Shortest round-trip text of an `f64` (`0.375`, `1e-20`, `1e16`, `1.0`, `NaN`,
 /// `inf`, `-inf`): the shortest digits that read back to the same bits (Ryu's
 /// output format: positive exponents without a sign); `str::parse::<f64>` reads

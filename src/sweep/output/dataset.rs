@@ -186,7 +186,6 @@ pub fn dataset_shards(dir: &Path) -> Result<Vec<ShardFile<BufReader<File>>>, Swe
             dir.display()
         )));
     }
-    found.sort_by_key(|(s, _)| (s.count, s.index));
     let mut shards = Vec::with_capacity(found.len());
     for (s, parts) in found {
         let name = if s == Shard::ALL {

@@ -16,7 +16,7 @@
 //! The front ends parse their flags, check the work estimate and print;
 //! progress comes back through [`Progress`].
 
-use super::run::{CsvBlock, CsvWriter};
+use super::run::CsvBlock;
 use super::shards::{self, summary_path, ShardData, ShardFile};
 use super::{check_summary, is_old_csv_fingerprint, LineFault, Verifier, OLD_CSV};
 #[cfg(feature = "parquet")]
@@ -324,7 +324,7 @@ pub fn run_plan(
             &layout,
             &eval,
             ids,
-            &mut CsvWriter(w),
+            w,
             &mut summary,
             &mut moved,
             &evaluated_counter,

@@ -3,17 +3,11 @@
 //! into a row. A leaf of the sweep modules' graph: the summary builds on it.
 
 use super::csv::split_csv_line;
-use crate::sweep::eval::{result_columns, Cell, ColumnType, Evaluate};
+use crate::sweep::eval::{result_columns, Cell, ColumnType};
 use crate::sweep::plan::Plan;
 use crate::sweep::SweepError;
 use crate::table::{Column, Table, TableError};
 use std::io::Write;
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Kind {
-    Numeric,
-    Text,
-}
 
 /// One CSV row.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,16 +26,14 @@ pub struct Row {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Layout {
     pub(super) names: Vec<String>,
-    /// Per cell: numeric or text. A cell is [`Kind::Numeric`] exactly when
-    /// its column's type (`types`) is [`ColumnType::Float`] (the sweep
-    /// driver relies on it: [`RowBlock::float`](super::run::RowBlock::float)).
-    pub(super) kinds: Vec<Kind>,
     pub(super) coordinates: usize,
     /// Derived cells among the coordinate cells (the last ones).
     pub(super) derived: usize,
     pub(super) class: Option<usize>,
     pub(super) numeric: Vec<(usize, String)>,
-    /// The type of each cell's column (coordinates: `Float`).
+    /// The type of each cell's column (coordinates: `Float`). A cell is
+    /// numeric exactly when its column is [`ColumnType::Float`] (the sweep
+    /// driver relies on it: [`RowBlock::float`](super::run::RowBlock::float)).
     pub(super) types: Vec<ColumnType>,
     /// The schema documentation of every column, `id` to `error`.
     pub(super) docs: Vec<ColumnDoc>,
@@ -66,7 +58,6 @@ impl Layout {
     /// The layout of `plan`'s CSV.
     pub fn new(plan: &Plan) -> Layout {
         let mut names = Vec::new();
-        let mut kinds = Vec::new();
         let mut types = Vec::new();
         let doc = |name: &str, ty: &str, meaning: &str, unit: &str| ColumnDoc {
             name: name.to_owned(),
@@ -102,7 +93,6 @@ impl Layout {
             };
             docs.push(doc(&c, "f64", meaning, unit));
             names.push(c);
-            kinds.push(Kind::Numeric);
             types.push(ColumnType::Float);
         }
         let derived = plan.derived_columns().len();
@@ -114,14 +104,12 @@ impl Layout {
                 "1",
             ));
             names.push(c);
-            kinds.push(Kind::Numeric);
             types.push(ColumnType::Float);
         }
         let coordinates = names.len();
         for c in result_columns(&plan.spec().columns) {
             docs.push(doc(&c.name, c.ty.name(), &c.meaning, c.unit));
             names.push(c.name.to_owned());
-            kinds.push(if c.numeric { Kind::Numeric } else { Kind::Text });
             types.push(c.ty);
         }
         docs.push(doc(
@@ -133,14 +121,13 @@ impl Layout {
         let class = names.iter().position(|n| n == "class");
         let numeric = names
             .iter()
-            .zip(&kinds)
+            .zip(&types)
             .enumerate()
-            .filter(|(_, (_, k))| **k == Kind::Numeric)
+            .filter(|(_, (_, t))| **t == ColumnType::Float)
             .map(|(i, (n, _))| (i, n.clone()))
             .collect();
         Layout {
             names,
-            kinds,
             coordinates,
             derived,
             class,
@@ -200,11 +187,11 @@ impl Layout {
         let mut valences = Vec::with_capacity(n);
         let mut errors = Vec::with_capacity(n);
         let mut cells: Vec<Column> = self
-            .kinds
+            .types
             .iter()
-            .map(|k| match k {
-                Kind::Numeric => Column::F64(Vec::with_capacity(n)),
-                Kind::Text => Column::Str(Vec::with_capacity(n)),
+            .map(|&t| match t {
+                ColumnType::Float => Column::F64(Vec::with_capacity(n)),
+                _ => Column::Str(Vec::with_capacity(n)),
             })
             .collect();
         for r in rows {
@@ -269,18 +256,18 @@ impl Layout {
         let mut cells = Vec::with_capacity(self.names.len());
         for ((f, k), name) in fields[2..2 + self.names.len()]
             .iter()
-            .zip(&self.kinds)
+            .zip(&self.types)
             .zip(&self.names)
         {
             cells.push(if f.is_empty() {
                 Cell::Empty
             } else {
                 match k {
-                    Kind::Numeric => Cell::Num(
+                    ColumnType::Float => Cell::Num(
                         f.parse()
                             .map_err(|_| format!("{name} = {f:?} is not a number"))?,
                     ),
-                    Kind::Text => Cell::Text(f.clone()),
+                    _ => Cell::Text(f.clone()),
                 }
             });
         }
@@ -296,7 +283,7 @@ impl Layout {
     /// The coordinate cells of configuration `c` (by column, `None`: empty)
     /// into `out`: the coordinates of the space, then the derived columns
     /// ([`Plan::derived_columns`]). The one placement of coordinates, for the
-    /// driver, the verifier and [`row`](Self::row).
+    /// driver and the verifier.
     pub(super) fn coordinates_into(
         &self,
         plan: &Plan,
@@ -310,57 +297,5 @@ impl Layout {
         }
         let sampled = self.coordinates - self.derived;
         plan.derived_into(c, &mut out[sampled..]);
-    }
-
-    fn coordinate_row(&self, plan: &Plan, c: &crate::sweep::Configuration) -> Vec<Cell> {
-        let mut v = Vec::new();
-        self.coordinates_into(plan, c, &mut v);
-        v.into_iter()
-            .map(|x| x.map_or(Cell::Empty, Cell::Num))
-            .collect()
-    }
-
-    /// Evaluates configuration `id` into a row.
-    pub fn row<E: Evaluate + ?Sized>(&self, plan: &Plan, eval: &E, id: u64) -> Row {
-        let c = match plan.configuration(id) {
-            Ok(c) => c,
-            Err(e) => {
-                return Row {
-                    id,
-                    valence: 0,
-                    cells: vec![Cell::Empty; self.names.len()],
-                    error: Some(e.to_string()),
-                }
-            }
-        };
-        let mut cells = self.coordinate_row(plan, &c);
-        let n_results = self.names.len() - self.coordinates;
-        let error = match plan
-            .scheme(&c)
-            .map_err(Into::into)
-            .and_then(|s| eval.evaluate(plan, &c, &*s))
-        {
-            Ok(r) if r.len() == n_results => {
-                cells.extend(r);
-                None
-            }
-            Ok(r) => {
-                cells.resize(self.names.len(), Cell::Empty);
-                Some(format!(
-                    "internal: evaluator returned {} cells for {n_results} result columns",
-                    r.len()
-                ))
-            }
-            Err(e) => {
-                cells.resize(self.names.len(), Cell::Empty);
-                Some(e.to_string())
-            }
-        };
-        Row {
-            id: c.id,
-            valence: c.valence,
-            cells,
-            error,
-        }
     }
 }

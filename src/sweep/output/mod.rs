@@ -82,11 +82,16 @@ pub fn read_output(name: &str, bytes: &[u8]) -> Result<Table, TableError> {
     if !is_parquet(name, bytes) {
         return Table::from_csv(bytes);
     }
-    let t = parquet_table(bytes)?;
-    if t.is_empty() {
-        return Err(TableError::NoRows);
+    #[cfg(feature = "parquet")]
+    {
+        let t = parquet::read_table(bytes.to_vec()).map_err(table_error)?;
+        if t.is_empty() {
+            return Err(TableError::NoRows);
+        }
+        Ok(t)
     }
-    Ok(t)
+    #[cfg(not(feature = "parquet"))]
+    Err(TableError::Unsupported(NO_PARQUET.into()))
 }
 
 /// An upper bound of the rows and the number of columns of the table
@@ -95,8 +100,13 @@ pub fn read_output(name: &str, bytes: &[u8]) -> Result<Table, TableError> {
 /// is not a `#` comment; for Parquet the footer's counts.
 pub fn output_shape(name: &str, bytes: &[u8]) -> Result<(usize, usize), TableError> {
     if is_parquet(name, bytes) {
-        let (rows, columns) = parquet_shape(bytes)?;
-        return Ok((usize::try_from(rows).unwrap_or(usize::MAX), columns));
+        #[cfg(feature = "parquet")]
+        {
+            let (rows, columns) = parquet::shape(bytes).map_err(table_error)?;
+            return Ok((usize::try_from(rows).unwrap_or(usize::MAX), columns));
+        }
+        #[cfg(not(feature = "parquet"))]
+        return Err(TableError::Unsupported(NO_PARQUET.into()));
     }
     let lines = memchr::memchr_iter(b'\n', bytes).count() + 1;
     let header = bytes
@@ -107,18 +117,7 @@ pub fn output_shape(name: &str, bytes: &[u8]) -> Result<(usize, usize), TableErr
     Ok((lines, columns))
 }
 
-/// [`parquet::read_table`], its error as a [`TableError::Parquet`].
-#[cfg(feature = "parquet")]
-fn parquet_table(bytes: &[u8]) -> Result<Table, TableError> {
-    parquet::read_table(bytes.to_vec()).map_err(table_error)
-}
-
-/// [`parquet::shape`], its error as a [`TableError::Parquet`].
-#[cfg(feature = "parquet")]
-fn parquet_shape(bytes: &[u8]) -> Result<(u64, usize), TableError> {
-    parquet::shape(bytes).map_err(table_error)
-}
-
+/// A reader error of [`parquet`] as a [`TableError::Parquet`].
 #[cfg(feature = "parquet")]
 fn table_error(e: crate::sweep::SweepError) -> TableError {
     match e {
@@ -127,18 +126,6 @@ fn table_error(e: crate::sweep::SweepError) -> TableError {
         }
         other => TableError::Parquet(other.to_string()),
     }
-}
-
-/// Without the `parquet` feature a Parquet input is refused ([`NO_PARQUET`]).
-#[cfg(not(feature = "parquet"))]
-fn parquet_table(_: &[u8]) -> Result<Table, TableError> {
-    Err(TableError::Unsupported(NO_PARQUET.into()))
-}
-
-/// Without the `parquet` feature a Parquet input is refused ([`NO_PARQUET`]).
-#[cfg(not(feature = "parquet"))]
-fn parquet_shape(_: &[u8]) -> Result<(u64, usize), TableError> {
-    Err(TableError::Unsupported(NO_PARQUET.into()))
 }
 
 /// Whether [`read_output`] reads `bytes` as Parquet.

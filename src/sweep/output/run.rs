@@ -1,11 +1,10 @@
 //! The streaming sweep driver: evaluation in parallel chunks, rows formatted
 //! without allocation, written in id order while the next chunk is evaluated.
 
-use super::csv::{itoa_buf, push_number, push_text, small_uint};
-use super::layout::Kind;
+use super::csv::{push_number, push_text};
 use super::layout::Layout;
 use crate::spectral::kernel::BATCH;
-use crate::sweep::eval::{Cell, CellSink, Evaluate};
+use crate::sweep::eval::{Cell, CellSink, ColumnType, Evaluate};
 use crate::sweep::plan::{Configuration, Plan};
 use crate::sweep::summary::{PartialSummary, Summary};
 use crate::sweep::SweepError;
@@ -128,10 +127,9 @@ pub(crate) trait RowBlock: Send {
     fn empty(&mut self);
     /// The next cell is the number `x`.
     fn num(&mut self, x: f64);
-    /// The next cell is the number `x`, in a float column (a
-    /// [`Kind::Numeric`] column of the layout, whose type is always
-    /// [`ColumnType::Float`](crate::sweep::ColumnType::Float)): a block may
-    /// skip the check of the column's type.
+    /// The next cell is the number `x`, in a float column (a column of type
+    /// [`ColumnType::Float`]): a block may skip the check of the column's
+    /// type.
     #[inline(always)]
     fn float(&mut self, x: f64) {
         self.num(x);
@@ -195,6 +193,46 @@ impl Layout {
     }
 }
 
+/// Whole rows: each row of the driver as a [`Row`](super::Row) of its cells.
+impl RowBlock for Vec<super::Row> {
+    fn with_rows(_: &Layout, rows: usize) -> Self {
+        Vec::with_capacity(rows)
+    }
+    fn start(&mut self, id: u64, valence: usize) {
+        let cells = Vec::new();
+        self.push(super::Row {
+            id,
+            valence,
+            cells,
+            error: None,
+        });
+    }
+    fn empty(&mut self) {
+        push_cell(self, Cell::Empty);
+    }
+    fn num(&mut self, x: f64) {
+        push_cell(self, Cell::Num(x));
+    }
+    fn text(&mut self, t: &str) {
+        push_cell(self, Cell::Text(t.to_owned()));
+    }
+    fn end(&mut self, error: Option<&str>) {
+        if let Some(r) = self.last_mut() {
+            r.error = error.map(str::to_owned);
+        }
+    }
+    fn clear(&mut self) {
+        Vec::clear(self);
+    }
+}
+
+/// Appends `cell` to the last of `rows`.
+fn push_cell(rows: &mut [super::Row], cell: Cell) {
+    if let Some(r) = rows.last_mut() {
+        r.cells.push(cell);
+    }
+}
+
 impl RowBlock for CsvBlock {
     fn with_rows(layout: &Layout, rows: usize) -> Self {
         CsvBlock {
@@ -203,10 +241,10 @@ impl RowBlock for CsvBlock {
         }
     }
     fn start(&mut self, id: u64, valence: usize) {
-        let mut ibuf = itoa_buf();
-        self.text.push_str(small_uint(id, &mut ibuf));
+        let mut ibuf = itoa::Buffer::new();
+        self.text.push_str(ibuf.format(id));
         self.text.push(',');
-        self.text.push_str(small_uint(valence as u64, &mut ibuf));
+        self.text.push_str(ibuf.format(valence));
     }
     fn empty(&mut self) {
         self.text.push(',');
@@ -232,44 +270,37 @@ impl RowBlock for CsvBlock {
 }
 
 impl Layout {
-    /// The sweep driver's path for one configuration: evaluates `id`, appends
-    /// its CSV line to `text` and adds it to `part`. Equal, byte for byte and
-    /// for the summary, to [`row`](Self::row) + [`format_into`](Self::format_into)
-    /// + [`Summary::add`] (a test checks it), but allocation-free after warm-up.
-    pub(super) fn append_row<E: Evaluate + ?Sized, B: RowBlock>(
-        &self,
-        plan: &Plan,
-        eval: &E,
-        id: u64,
-        sc: &mut Scratch,
-        out: &mut B,
-        part: &mut PartialSummary,
-    ) {
-        let row = &mut sc.rows[0];
-        if let Some(scheme) = self.load(plan, id, row) {
-            let r = eval.write_results(plan, &row.config, &*scheme, &mut row.stage);
-            self.check_results(row, r);
-            row.scheme = Some(scheme);
-        }
-        self.emit(id, row, out, part);
+    /// Evaluates configuration `id` into a row: the cells the sweep driver
+    /// writes for it.
+    pub fn row<E: Evaluate + ?Sized>(&self, plan: &Plan, eval: &E, id: u64) -> super::Row {
+        let mut rows = Vec::with_capacity(1);
+        let mut part = PartialSummary::new(self.numeric.len());
+        self.append_rows(plan, eval, &[id], &mut Scratch::new(), &mut rows, &mut part);
+        rows.pop().expect("append_rows emits one row per id")
     }
 
-    /// [`append_row`](Self::append_row) for [`BATCH`] configurations, evaluated
-    /// together by [`Evaluate::write_results_batch`]; the lines are those of
-    /// `append_row` calls (evaluators must give equal cells either way).
-    fn append_batch<E: Evaluate + ?Sized, B: RowBlock>(
+    /// The sweep driver's path for at most [`BATCH`] configurations `ids`:
+    /// evaluates them (a full batch together, by
+    /// [`Evaluate::write_results_batch`]; fewer, or a batch with a
+    /// configuration that fails to load, one by one: evaluators must give
+    /// equal cells either way), appends their rows to `out` and adds them to
+    /// `part`. Equal, byte for byte and for the summary, to
+    /// [`row`](Self::row) + [`format_into`](Self::format_into) +
+    /// [`Summary::add`] per configuration (a test checks it), but
+    /// allocation-free after warm-up.
+    pub(super) fn append_rows<E: Evaluate + ?Sized, B: RowBlock>(
         &self,
         plan: &Plan,
         eval: &E,
-        ids: [u64; BATCH],
+        ids: &[u64],
         sc: &mut Scratch,
         out: &mut B,
         part: &mut PartialSummary,
     ) {
         let rows = &mut sc.rows;
         let schemes: [Option<_>; BATCH] =
-            std::array::from_fn(|l| self.load(plan, ids[l], &mut rows[l]));
-        if schemes.iter().all(Option::is_some) {
+            std::array::from_fn(|l| self.load(plan, *ids.get(l)?, &mut rows[l]));
+        if ids.len() == BATCH && schemes.iter().all(Option::is_some) {
             let schemes = schemes.map(|s| s.expect("all loaded"));
             let mut it = rows.iter_mut();
             let items = std::array::from_fn(|l| {
@@ -294,7 +325,7 @@ impl Layout {
                 }
             }
         }
-        for (row, &id) in rows.iter_mut().zip(&ids) {
+        for (row, &id) in rows.iter_mut().zip(ids) {
             self.emit(id, row, out, part);
         }
     }
@@ -363,7 +394,7 @@ impl Layout {
         out.start(id, valence);
         let mut numeric = 0usize;
         for (pos, x) in row.coordinates.iter().enumerate() {
-            let is_num = self.kinds[pos] == Kind::Numeric;
+            let is_num = self.types[pos] == ColumnType::Float;
             match x {
                 Some(x) if is_num => {
                     out.float(*x);
@@ -384,7 +415,7 @@ impl Layout {
         } else {
             for (k, slot) in row.stage.slots.iter().enumerate() {
                 let pos = self.coordinates + k;
-                let is_num = self.kinds[pos] == Kind::Numeric;
+                let is_num = self.types[pos] == ColumnType::Float;
                 match *slot {
                     Slot::Empty => out.empty(),
                     Slot::Num(x) if is_num => {
@@ -421,15 +452,13 @@ pub(super) trait BlockWriter<B> {
 }
 
 /// CSV text to a [`Write`].
-pub(super) struct CsvWriter<'a, W>(pub(super) &'a mut W);
-
-impl<W: Write> BlockWriter<CsvBlock> for CsvWriter<'_, W> {
+impl<W: Write + ?Sized> BlockWriter<CsvBlock> for W {
     fn write_block(&mut self, block: &mut CsvBlock) -> Result<(), SweepError> {
-        self.0.write_all(block.text.as_bytes())?;
+        self.write_all(block.text.as_bytes())?;
         Ok(())
     }
     fn flush(&mut self) -> Result<(), SweepError> {
-        self.0.flush()?;
+        Write::flush(self)?;
         Ok(())
     }
 }
@@ -455,10 +484,7 @@ where
     I: IntoIterator<Item = u64>,
 {
     let evaluated = std::sync::atomic::AtomicU64::new(0);
-    let mut out = CsvWriter(out);
-    drive::<E, CsvBlock, _, I>(
-        plan, layout, eval, ids, &mut out, summary, progress, &evaluated,
-    )
+    drive::<E, CsvBlock, _, I>(plan, layout, eval, ids, out, summary, progress, &evaluated)
 }
 
 /// No rows: the cells are dropped as they come (the driver of
@@ -668,13 +694,8 @@ fn evaluate_chunk<E: Evaluate + ?Sized, B: RowBlock>(
             let mut scratch = SCRATCH
                 .with(|s| s.borrow_mut().take())
                 .unwrap_or_else(Scratch::new);
-            let mut batches = ids.chunks_exact(BATCH);
-            for b in &mut batches {
-                let b: [u64; BATCH] = b.try_into().expect("chunks of BATCH");
-                layout.append_batch(plan, eval, b, &mut scratch, &mut block, &mut part);
-            }
-            for &id in batches.remainder() {
-                layout.append_row(plan, eval, id, &mut scratch, &mut block, &mut part);
+            for b in ids.chunks(BATCH) {
+                layout.append_rows(plan, eval, b, &mut scratch, &mut block, &mut part);
             }
             evaluated.fetch_add(ids.len() as u64, std::sync::atomic::Ordering::Relaxed);
             SCRATCH.with(|s| *s.borrow_mut() = Some(scratch));
@@ -736,7 +757,7 @@ mod tests {
         let mut part = PartialSummary::new(layout.numeric.len());
         let mut scratch = Scratch::new();
         for &id in &ids {
-            layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
+            layout.append_rows(&plan, &eval, &[id], &mut scratch, &mut got, &mut part);
         }
         let got = got.text;
         let mut got_summary = Summary::new(&plan, &layout, Shard::ALL, None);
@@ -750,15 +771,10 @@ mod tests {
             let mut got = CsvBlock::new();
             let mut part = PartialSummary::new(layout.numeric.len());
             for &id in &ids[..skip] {
-                layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
+                layout.append_rows(&plan, &eval, &[id], &mut scratch, &mut got, &mut part);
             }
-            let mut batches = ids[skip..].chunks_exact(BATCH);
-            for b in &mut batches {
-                let b: [u64; BATCH] = b.try_into().unwrap();
-                layout.append_batch(&plan, &eval, b, &mut scratch, &mut got, &mut part);
-            }
-            for &id in batches.remainder() {
-                layout.append_row(&plan, &eval, id, &mut scratch, &mut got, &mut part);
+            for b in ids[skip..].chunks(BATCH) {
+                layout.append_rows(&plan, &eval, b, &mut scratch, &mut got, &mut part);
             }
             let mut got_summary = Summary::new(&plan, &layout, Shard::ALL, None);
             got_summary.absorb_partial(&part);
@@ -812,15 +828,12 @@ mod tests {
         ] {
             let plan = Plan::new(crate::sweep::SweepSpec::from_toml(spec).unwrap());
             let layout = Layout::new(&plan);
-            assert_eq!(layout.kinds.len(), layout.types.len());
             assert!(layout.types.contains(&crate::sweep::eval::ColumnType::Label));
-            for (k, t) in layout.kinds.iter().zip(&layout.types) {
-                assert_eq!(
-                    *k == Kind::Numeric,
-                    *t == crate::sweep::eval::ColumnType::Float,
-                    "{spec}"
-                );
-            }
+            let floats: Vec<usize> = (0..layout.types.len())
+                .filter(|&k| layout.types[k] == crate::sweep::eval::ColumnType::Float)
+                .collect();
+            let numeric: Vec<usize> = layout.numeric.iter().map(|(k, _)| *k).collect();
+            assert_eq!(numeric, floats, "{spec}");
         }
     }
 

@@ -20,10 +20,8 @@ use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
 #[cfg(feature = "parquet")]
 use crate::table::Table;
-use std::cell::Cell;
 use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
-use std::rc::Rc;
 
 /// Where `sweep --out NAME.csv` (or `NAME.parquet`) writes its summary:
 /// `NAME.summary.json` beside it (any other name gets `.summary.json`
@@ -139,8 +137,6 @@ pub struct PreparedMerge<'a> {
     /// `(shard name, summary name)` per shard.
     names: Vec<(String, String)>,
     summaries: Vec<Summary>,
-    /// Data lines read per shard.
-    counters: Vec<Rc<Cell<u64>>>,
     /// The shards' summaries merged (for the throughput).
     merged: Summary,
     parquet: bool,
@@ -182,21 +178,13 @@ pub fn prepare<'a, R: BufRead + 'a>(
         merged.merge(s)?;
     }
     let mut sources: Vec<MergeSource<Lines<'a>>> = Vec::with_capacity(shards.len());
-    let mut counters = Vec::with_capacity(shards.len());
     let mut names = Vec::with_capacity(shards.len());
     let mut formats = Vec::with_capacity(shards.len());
     for (file, summary) in shards.into_iter().zip(&summaries) {
-        let counter = Rc::new(Cell::new(0u64));
         let (src, parquet) = match file.data {
-            ShardData::Csv(r) => (
-                csv_source(&file.name, r, summary.shard, layout, counter.clone())?,
-                false,
-            ),
+            ShardData::Csv(r) => (csv_source(&file.name, r, summary.shard, layout)?, false),
             #[cfg(feature = "parquet")]
-            ShardData::Parquet(b) => (
-                parquet_source(&file.name, b, plan, layout, counter.clone())?,
-                true,
-            ),
+            ShardData::Parquet(b) => (parquet_source(&file.name, b, plan, layout)?, true),
         };
         formats.push(parquet);
         if src.shard != summary.shard {
@@ -214,7 +202,6 @@ pub fn prepare<'a, R: BufRead + 'a>(
             }
         }
         sources.push(src);
-        counters.push(counter);
         names.push((file.name, file.summary_name));
     }
     if formats.iter().any(|&q| q != formats[0]) {
@@ -226,7 +213,6 @@ pub fn prepare<'a, R: BufRead + 'a>(
         sources,
         names,
         summaries,
-        counters,
         merged,
         parquet: formats[0],
     })
@@ -256,19 +242,15 @@ impl PreparedMerge<'_> {
             sources,
             names,
             summaries,
-            counters,
             merged: shard_summaries,
             ..
         } = self;
         let parts = merge(plan, layout, eval, sources, out, salt)?;
-        for ((((name, summary_name), s), c), part) in
-            names.iter().zip(&summaries).zip(&counters).zip(&parts)
-        {
-            if s.rows != c.get() {
+        for (((name, summary_name), s), part) in names.iter().zip(&summaries).zip(&parts) {
+            if s.rows != part.rows {
                 return Err(input(format!(
                     "{name}: the summary counts {} rows but the CSV has {}; resume that shard's sweep to finish it",
-                    s.rows,
-                    c.get()
+                    s.rows, part.rows
                 )));
             }
             if s.errors != part.errors || s.classes != part.classes || s.columns != part.columns {
@@ -290,14 +272,12 @@ impl PreparedMerge<'_> {
 }
 
 /// The data lines of one shard CSV (of `shard`, the shard its summary
-/// names), after its header (checked against `layout`); `rows` counts the
-/// lines read.
+/// names), after its header (checked against `layout`).
 fn csv_source<'a, R: BufRead + 'a>(
     name: &str,
     mut reader: R,
     shard: Shard,
     layout: &Layout,
-    rows: Rc<Cell<u64>>,
 ) -> Result<MergeSource<Lines<'a>>, SweepError> {
     let mut header = String::new();
     reader
@@ -327,7 +307,6 @@ fn csv_source<'a, R: BufRead + 'a>(
                     )));
                 }
                 buf.pop();
-                rows.set(rows.get() + 1);
                 Some(
                     String::from_utf8(std::mem::take(&mut buf))
                         .map_err(|_| SweepError::mismatch(&n2, lineno, "not UTF-8")),
@@ -347,14 +326,12 @@ fn csv_source<'a, R: BufRead + 'a>(
 /// A Parquet shard (its part files, in part order) as a merge source: each
 /// part's format, fingerprint (which gives the shard) and index checked
 /// against `plan`, its columns against `layout`, its rows as the CSV lines
-/// the sweep writes for them (verified by the merge like a CSV's); `rows`
-/// counts the lines read.
+/// the sweep writes for them (verified by the merge like a CSV's).
 fn parquet_source<'a>(
     name: &str,
     parts: Vec<(String, Vec<u8>)>,
     plan: &Plan,
     layout: &Layout,
-    rows: Rc<Cell<u64>>,
 ) -> Result<MergeSource<Lines<'a>>, SweepError> {
     let mut shard = None;
     let mut lines: Vec<String> = Vec::new();
@@ -364,10 +341,7 @@ fn parquet_source<'a>(
         let text = csv_lines(&table, 0, table.len());
         lines.extend(text.lines().map(str::to_owned));
     }
-    let iter = lines.into_iter().map(move |l| {
-        rows.set(rows.get() + 1);
-        Ok(l)
-    });
+    let iter = lines.into_iter().map(Ok);
     Ok(MergeSource {
         name: name.to_owned(),
         shard: shard.unwrap_or(Shard::ALL),

@@ -48,9 +48,10 @@
 //! check. The re-check time of a 1M-row file is in `BENCHMARKS.md`
 //! (`benches/resume_check.sh`).
 
-use super::csv::{canonical_number, push_number, small_uint, split_csv_line};
-use super::layout::{Kind, Layout};
+use super::csv::{canonical_number, push_number, split_csv_line};
+use super::layout::Layout;
 use super::run::{CsvBlock, Scratch};
+use crate::sweep::eval::ColumnType;
 use crate::sweep::eval::Evaluate;
 use crate::sweep::plan::{Configuration, Plan, Shard};
 use crate::sweep::sampler::mix64;
@@ -143,13 +144,9 @@ pub fn check_fingerprint(plan: &Plan, shard: Shard, line: &str) -> Result<(), St
             "written by another spec (digest {digest}; this spec's is {want})"
         ));
     }
-    match fingerprint_shard(line) {
-        Some(s) => {
-            if let Some(m) = shard_differs(s, shard) {
-                return Err(m);
-            }
-        }
-        None => return Err("the fingerprint names no shard".into()),
+    let found = fingerprint_shard(line).ok_or("the fingerprint names no shard")?;
+    if let Some(m) = shard_differs(found, shard) {
+        return Err(m);
     }
     if line.trim_end_matches('\n') != fingerprint_line(plan, shard).trim_end_matches('\n') {
         return Err("the fingerprint is not the one this spec writes".into());
@@ -299,7 +296,8 @@ pub struct Verifier<'a> {
     coordinates: Vec<Option<f64>>,
     part: PartialSummary,
     kept: Vec<Kept>,
-    /// Cache of the largest hash in `kept` (checked for every line).
+    /// The largest hash in `kept` (`u64::MAX` while none is kept; checked
+    /// for every line).
     kept_max: u64,
     salt: u64,
     rows: u64,
@@ -333,11 +331,6 @@ impl<'a> Verifier<'a> {
             salt: mix64(salt ^ 0x005e_ed0f_5ee9),
             rows: 0,
         }
-    }
-
-    /// The largest hash of the kept lines (`u64::MAX` while none is kept).
-    fn kept_max(&self) -> u64 {
-        self.kept_max
     }
 
     fn keep(&mut self, k: Kept) {
@@ -449,7 +442,7 @@ impl<'a> Verifier<'a> {
             self.rows += v.rows;
             self.part.absorb(&v.part);
             for k in v.kept {
-                if self.kept.len() < RECHECK_SAMPLE || k.hash < self.kept_max() {
+                if self.kept.len() < RECHECK_SAMPLE || k.hash < self.kept_max {
                     self.keep(k);
                 }
             }
@@ -502,7 +495,7 @@ impl<'a> Verifier<'a> {
         // hash of their id (a uniform sample, independent of the order and of
         // how the lines were split between verifiers).
         let h = mix64(self.salt ^ id);
-        if self.kept.len() < RECHECK_SAMPLE || h < self.kept_max() {
+        if self.kept.len() < RECHECK_SAMPLE || h < self.kept_max {
             let kept = Kept {
                 hash: h,
                 id,
@@ -540,9 +533,8 @@ impl<'a> Verifier<'a> {
         }
         plan.configuration_into(id, &mut self.config, &mut self.sampler)
             .map_err(|e| e.to_string())?;
-        let mut ibuf = [0u8; 20];
         let valence = self.config.valence;
-        if field(1) != small_uint(valence as u64, &mut ibuf) {
+        if field(1) != itoa::Buffer::new().format(valence) {
             return Err(format!(
                 "configuration {id} has valence {:?} where the spec gives {valence} (was the spec changed?)",
                 field(1)
@@ -586,7 +578,7 @@ impl<'a> Verifier<'a> {
         for pos in layout.coordinates..cells {
             let f = field(2 + pos);
             let name = &layout.names[pos];
-            let is_num = layout.kinds[pos] == Kind::Numeric;
+            let is_num = layout.types[pos] == ColumnType::Float;
             if errored {
                 if !f.is_empty() {
                     return Err(format!(
@@ -661,8 +653,14 @@ impl<'a> Verifier<'a> {
         kept.sort_by_key(|k| k.lineno);
         for k in kept {
             block.text.clear();
-            self.layout
-                .append_row(self.plan, eval, k.id, &mut scratch, &mut block, &mut part);
+            self.layout.append_rows(
+                self.plan,
+                eval,
+                &[k.id],
+                &mut scratch,
+                &mut block,
+                &mut part,
+            );
             let fresh = block.text.trim_end_matches('\n');
             if fresh != k.line {
                 let what = match (split_csv_line(fresh), split_csv_line(&k.line)) {
@@ -808,7 +806,7 @@ mod tests {
             let mut got: Vec<(u64, u64)> = v.kept.iter().map(|k| (k.hash, k.id)).collect();
             got.sort_unstable();
             assert_eq!(got, want, "salt {salt}, reversed {reversed}");
-            assert_eq!(v.kept_max(), want[RECHECK_SAMPLE - 1].0);
+            assert_eq!(v.kept_max, want[RECHECK_SAMPLE - 1].0);
             for k in &v.kept {
                 assert_eq!(k.line, lines[k.id as usize]);
                 assert_eq!(k.lineno, k.id + 2);
