@@ -9,7 +9,7 @@ use subdiv_lab::charmap::{self as cm};
 use subdiv_lab::schemes::{LocalMatrix, LocalScheme, Scheme};
 use subdiv_lab::spectral::classify_scheme;
 
-fn generic_of<S: Scheme + ?Sized>(s: &S) -> generic::GenericReport {
+pub(crate) fn generic_of<S: Scheme + ?Sized>(s: &S) -> generic::GenericReport {
     let sub = classify_scheme(s).unwrap();
     generic::check(s, &sub).unwrap()
 }
@@ -122,11 +122,11 @@ fn face_centred_schemes_are_indeterminate_with_the_reason() {
 
 /// A scheme given by a modified local matrix on an unchanged regular part.
 #[derive(Debug)]
-struct Planted {
-    base: LocalScheme,
+pub(crate) struct Planted {
+    pub(crate) base: LocalScheme,
     /// `(row, column, delta)`: `delta` added at `(row, column)` and taken
     /// from `(row, 0)` (the centre), so rows still sum to 1.
-    changes: Vec<(usize, usize, f64)>,
+    pub(crate) changes: Vec<(usize, usize, f64)>,
 }
 
 impl Scheme for Planted {
@@ -166,19 +166,20 @@ impl Scheme for Planted {
 /// Dense sampling of the discrete Jacobian of the net at `level`: the
 /// signs of `det(p_{x+e1} - p_x, p_{x+e2} - p_x)` over the annulus, counted
 /// where they are clearly away from zero (relative `1e-6`).
-fn sampled_signs(prep: &generic::Prepared, level: u32) -> (usize, usize) {
+pub(crate) fn sampled_signs(prep: &generic::Prepared, level: u32) -> (usize, usize) {
     let mut net: Net = prep.net.clone();
     for k in 0..level {
         net = prep.refine(&net, k);
     }
-    let l = 1i64 << level;
+    let d = prep.rules.dilation;
+    let l = cells::steps(d, level);
     let (mut pos, mut neg) = (0, 0);
     for s in 0..net.n {
         for i in 0..l {
             for j in 0..l {
                 let outside = match prep.rules.lattice {
-                    generic::layout::Lattice::Triangle => i + j < l / 2 || i + j >= l,
-                    _ => i.max(j) < l / 2,
+                    generic::layout::Lattice::Triangle => i + j < l / d || i + j >= l,
+                    _ => i.max(j) < l / d,
                 };
                 if outside {
                     continue;
@@ -205,7 +206,7 @@ fn sampled_signs(prep: &generic::Prepared, level: u32) -> (usize, usize) {
     (pos, neg)
 }
 
-fn prepared<S: Scheme + ?Sized>(s: &S) -> Option<generic::Prepared> {
+pub(crate) fn prepared<S: Scheme + ?Sized>(s: &S) -> Option<generic::Prepared> {
     let sub = classify_scheme(s).ok()?;
     generic::prepare_scheme(s, &sub).ok()?.ok()
 }
@@ -335,7 +336,7 @@ fn planted_butterfly_fold_is_never_c1() {
 
 /// Every cell signed at `levels` keeps its sign at the samples of the
 /// net `finer` levels finer inside it; returns which signs were certified.
-fn assert_certified_cells_hold(
+pub(crate) fn assert_certified_cells_hold(
     prep: &generic::Prepared,
     n: usize,
     levels: std::ops::RangeInclusive<u32>,
@@ -348,11 +349,12 @@ fn assert_certified_cells_hold(
     }
     let (mut signed, mut checked) = (0, 0);
     let mut seen = [false; 2];
+    let d = prep.rules.dilation;
     for coarse in levels {
         let fine = coarse + finer;
-        let scale = 1i64 << (fine - coarse);
+        let scale = cells::steps(d, fine - coarse);
         for s in 0..n {
-            for cell in cells::annulus(prep.rules.lattice, s, coarse) {
+            for cell in cells::annulus(prep.rules.lattice, d, s, coarse) {
                 let cs = cells::cell_sign(&nets[coarse as usize], &prep.rules, &cell);
                 if cs.sign == 0 {
                     continue;
@@ -593,7 +595,7 @@ fn local_patches_hold_the_nets_values() {
 }
 
 /// The box `[xmin, xmax, ymin, ymax]` of a set of balls.
-fn ball_box(balls: &[Ball]) -> [f64; 4] {
+pub(crate) fn ball_box(balls: &[Ball]) -> [f64; 4] {
     let mut b = [
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -625,12 +627,12 @@ fn derivative_enclosures_contain_the_enclosures_of_their_subcells() {
         cells::Patch::refine(values, &prep.rules, bx, 2)
     };
     let (mut checked, mut first_order) = (0, 0);
-    for (idx, coarse) in cells::annulus(lattice, 2, 8).into_iter().enumerate() {
+    for (idx, coarse) in cells::annulus(lattice, 2, 2, 8).into_iter().enumerate() {
         if idx % 1999 != 0 {
             continue;
         }
         let p9 = patch_of(&|p| net.at(2, p), &coarse);
-        for cell in cells::children(lattice, &coarse) {
+        for cell in cells::children(lattice, 2, &coarse) {
             let v9 = |p| p9.at(p);
             let p10 = patch_of(&v9, &cell);
             let outer: Vec<_> = (0..2)
@@ -644,13 +646,13 @@ fn derivative_enclosures_contain_the_enclosures_of_their_subcells() {
             if outer[0][0].mid != [a.mid[0] - b.mid[0], a.mid[1] - b.mid[1]] {
                 first_order += 1;
             }
-            for c10 in cells::children(lattice, &cell) {
+            for c10 in cells::children(lattice, 2, &cell) {
                 let v10 = |p| p10.at(p);
                 let p11 = patch_of(&v10, &c10);
-                for c11 in cells::children(lattice, &c10) {
+                for c11 in cells::children(lattice, 2, &c10) {
                     let v11 = |p| p11.at(p);
                     let p12 = patch_of(&v11, &c11);
-                    for c12 in cells::children(lattice, &c11) {
+                    for c12 in cells::children(lattice, 2, &c11) {
                         for (k, o) in outer.iter().enumerate() {
                             let inner =
                                 cells::derivative_enclosure(&|p| p12.at(p), &prep.rules, &c12, k)

@@ -3,6 +3,7 @@
 
 use super::layout::{Lattice, LatticePoint};
 use super::mask::{NormBound, NormBounds, RegularRules};
+use super::matrix_mask::MatrixBound;
 use super::net::{regular_value, Ball, Net};
 use crate::charmap::regularity::gamma;
 use std::f64::consts::PI;
@@ -44,11 +45,17 @@ impl std::fmt::Display for Cell {
     }
 }
 
-/// The annulus cells of sector `s` at `level` (the sector's part of the
-/// one-ring region minus its half-size copy, in level units `L = 2^level`).
-pub fn annulus(lattice: Lattice, s: usize, level: u32) -> Vec<Cell> {
-    let l = 1i64 << level;
-    let h = l / 2;
+/// `d^level`, the number of lattice steps of a level-0 edge at `level`.
+pub fn steps(dilation: i64, level: u32) -> i64 {
+    dilation.pow(level)
+}
+
+/// The annulus cells of sector `s` at `level` for rules of dilation `d`
+/// (the sector's part of the one-ring region minus its `1/d`-size copy, in
+/// level units `L = d^level`).
+pub fn annulus(lattice: Lattice, dilation: i64, s: usize, level: u32) -> Vec<Cell> {
+    let l = steps(dilation, level);
+    let h = l / dilation;
     let mut out = Vec::new();
     for i in 0..l {
         for j in 0..l {
@@ -79,30 +86,47 @@ pub fn annulus(lattice: Lattice, s: usize, level: u32) -> Vec<Cell> {
     out
 }
 
-/// The cells of the next level inside `c`.
-pub fn children(lattice: Lattice, c: &Cell) -> Vec<Cell> {
-    let mk = |kind, i, j| Cell {
+/// The `d^2` cells of the next level inside `c` (rules of dilation `d`).
+/// A square splits into the squares at offsets `(a, b) in {0..d-1}^2`; the
+/// triangle of kind 0, `(i, j) + T`, `T` the unit triangle, into the
+/// triangles of kind 0 at offsets `a + b <= d - 1` and of kind 1 at
+/// `a + b <= d - 2`; the triangle of kind 1, `(i + 1, j + 1) - T`, into
+/// their reflections through the centre of `d c`'s square (kind 0 at offset
+/// `(a, b)` becomes kind 1 at `(d - 1 - a, d - 1 - b)` and vice versa).
+pub fn children(lattice: Lattice, dilation: i64, c: &Cell) -> Vec<Cell> {
+    let d = dilation;
+    let mk = |kind, a: i64, b: i64| Cell {
         level: c.level + 1,
         sector: c.sector,
         kind,
-        i,
-        j,
+        i: d * c.i + a,
+        j: d * c.j + b,
     };
-    let (i, j) = (2 * c.i, 2 * c.j);
+    // offsets (a, b) with a + b <= top, b outer, a inner
+    let under = |top: i64| -> Vec<(i64, i64)> {
+        (0..d)
+            .flat_map(|b| (0..d).map(move |a| (a, b)))
+            .filter(|(a, b)| a + b <= top)
+            .collect()
+    };
     match (lattice, c.kind) {
-        (Lattice::Quad, _) => vec![
-            mk(0, i, j),
-            mk(0, i + 1, j),
-            mk(0, i, j + 1),
-            mk(0, i + 1, j + 1),
-        ],
-        (Lattice::Triangle, 0) => vec![mk(0, i, j), mk(0, i + 1, j), mk(0, i, j + 1), mk(1, i, j)],
-        (Lattice::Triangle, _) => vec![
-            mk(1, i + 1, j),
-            mk(1, i, j + 1),
-            mk(1, i + 1, j + 1),
-            mk(0, i + 1, j + 1),
-        ],
+        (Lattice::Quad, _) => under(2 * d).into_iter().map(|(a, b)| mk(0, a, b)).collect(),
+        (Lattice::Triangle, 0) => under(d - 1)
+            .into_iter()
+            .map(|(a, b)| mk(0, a, b))
+            .chain(under(d - 2).into_iter().map(|(a, b)| mk(1, a, b)))
+            .collect(),
+        (Lattice::Triangle, _) => under(d - 1)
+            .into_iter()
+            .rev()
+            .map(|(a, b)| mk(1, d - 1 - a, d - 1 - b))
+            .chain(
+                under(d - 2)
+                    .into_iter()
+                    .rev()
+                    .map(|(a, b)| mk(0, d - 1 - a, d - 1 - b)),
+            )
+            .collect(),
     }
 }
 
@@ -372,10 +396,186 @@ pub fn derivative_enclosure(
     c: &Cell,
     k: usize,
 ) -> Option<Vec<Ball>> {
+    if let Some(mb) = &rules.matrix {
+        return matrix_balls(values, mb, c, k);
+    }
     match rules.norm {
         None => differences(values, rules, c, k),
         Some(nb) => derivative_balls(values, &nb, c, k),
     }
+}
+
+/// The second difference `v_s` at `y` (`s = 0, 1, 2`: `(1 - z_1)^2`,
+/// `(1 - z_1)(1 - z_2)`, `(1 - z_2)^2` applied to the values) as a rounded
+/// combination of balls ([`super::net::combine`]).
+pub fn second_difference(values: &Values, y: LatticePoint, s: usize) -> Option<Ball> {
+    let at = |dx: i64, dy: i64| values([y[0] - dx, y[1] - dy]);
+    let terms = match s {
+        0 => vec![(1.0, at(0, 0)?), (-2.0, at(1, 0)?), (1.0, at(2, 0)?)],
+        1 => vec![
+            (1.0, at(0, 0)?),
+            (-1.0, at(1, 0)?),
+            (-1.0, at(0, 1)?),
+            (1.0, at(1, 1)?),
+        ],
+        _ => vec![(1.0, at(0, 0)?), (-2.0, at(0, 1)?), (1.0, at(0, 2)?)],
+    };
+    Some(super::net::combine(&terms))
+}
+
+/// The enclosure of the derivative `d_{e_k} f` over a cell through the
+/// matrix difference schemes **\[derived\]** (math doc section 20.9,
+/// [`MatrixBound`]). Zero order: the balls of radius `rad + K_k T M_2` around
+/// the first differences `p_c - p_{c - e_k}` at the four corners `c` of the
+/// cell's bounding square (`floor(x)` is one of them), `M_2` the largest
+/// second difference over the window. Second order, when the mask
+/// reproduces quadratics ([`MatrixBound::quadratic`]): the same bound for
+/// the residual `p - Q` of a quadratic `Q` whose second differences are the
+/// midranges `G` of the window's ([`quadratic_balls`]). The narrower of the
+/// two is returned; each is sound on its own.
+pub fn matrix_balls(values: &Values, mb: &MatrixBound, c: &Cell, k: usize) -> Option<Vec<Ball>> {
+    let stats = second_differences(values, mb, c)?;
+    matrix_balls_with(values, mb, c, k, &stats)
+}
+
+/// The second differences over a cell's window: `M_2 = max |v|` and, per
+/// component and coordinate, the midrange `G` and `max |v - G|` (radii
+/// included, rounded up).
+struct WindowStats {
+    m2: f64,
+    mid: [[f64; 2]; 3],
+    spread: f64,
+}
+
+/// [`WindowStats`] of the cell's window; `None` when a value is missing.
+fn second_differences(values: &Values, mb: &MatrixBound, c: &Cell) -> Option<WindowStats> {
+    let bx = [c.i, c.i + 1, c.j, c.j + 1];
+    let w = mb.window;
+    let mut all = Vec::new();
+    let (mut lo, mut hi) = ([[f64::INFINITY; 2]; 3], [[f64::NEG_INFINITY; 2]; 3]);
+    let mut m2 = 0.0f64;
+    for x in bx[0] + w[0][0]..=bx[1] + w[0][1] {
+        for y in bx[2] + w[1][0]..=bx[3] + w[1][1] {
+            for s in 0..3 {
+                let v = second_difference(values, [x, y], s)?;
+                for (z, (l, h)) in v.mid.iter().zip(lo[s].iter_mut().zip(hi[s].iter_mut())) {
+                    m2 = m2.max((z.abs() + v.rad) * (1.0 + gamma(2)));
+                    *l = l.min(*z);
+                    *h = h.max(*z);
+                }
+                all.push((s, v));
+            }
+        }
+    }
+    // any values serve as G; the midrange makes the deviations small
+    let mut mid = [[0.0f64; 2]; 3];
+    for s in 0..3 {
+        for k in 0..2 {
+            mid[s][k] = 0.5 * (lo[s][k] + hi[s][k]);
+        }
+    }
+    let mut spread = 0.0f64;
+    for (s, v) in all {
+        for (z, g) in v.mid.iter().zip(&mid[s]) {
+            spread = spread.max(((z - g).abs() + v.rad) * (1.0 + gamma(2)));
+        }
+    }
+    Some(WindowStats { m2, mid, spread })
+}
+
+/// [`matrix_balls`] with the window's statistics given.
+fn matrix_balls_with(
+    values: &Values,
+    mb: &MatrixBound,
+    c: &Cell,
+    k: usize,
+    stats: &WindowStats,
+) -> Option<Vec<Ball>> {
+    let bx = [c.i, c.i + 1, c.j, c.j + 1];
+    let e: LatticePoint = if k == 0 { [1, 0] } else { [0, 1] };
+    let mut zero = Vec::with_capacity(4);
+    for p in corners(bx) {
+        let q = difference(values, p, e)?;
+        zero.push(Ball {
+            mid: q.mid,
+            rad: (q.rad + mb.factor[k] * stats.m2) * (1.0 + gamma(2)),
+        });
+    }
+    if !mb.quadratic {
+        return Some(zero);
+    }
+    let second = quadratic_balls(values, mb, c, k, stats)?;
+    let widest = |b: &[Ball]| b.iter().fold(0.0f64, |a, x| a.max(x.rad));
+    Some(if widest(&second) < widest(&zero) {
+        second
+    } else {
+        zero
+    })
+}
+
+/// The second-order enclosure **\[derived\]** (math doc section 20.9). With
+/// `alpha` the lower corner of the cell, `G` the midranges of the second
+/// differences over the window and the quadratic `Q` with Hessian
+/// `[[G_11, G_12], [G_12, G_22]]` and `d_k Q(alpha - e_k / 2) = q_{alpha, k}`
+/// (`d_k Q` is affine), the data `r = p - Q` has second differences `v - G`
+/// and, the mask reproducing quadratics up to a constant, the limit
+/// derivative `g - grad Q`; the bound of [`MatrixBound`] for `r` gives
+///
+/// ```text
+/// |g_k(x) - d_k Q(x)| <= |q_{floor(x), k} - d_k Q(floor(x) - e_k / 2)| + K_k T max |v - G|
+/// ```
+///
+/// (`Q(y) - Q(y - e_k) = d_k Q(y - e_k / 2)` exactly for a quadratic), and
+/// `d_k Q` over the cell lies in the hull of its values at the four corners:
+/// the balls of that radius (plus the rounding of `d_k Q`) around them
+/// enclose `g_k` over the cell.
+fn quadratic_balls(
+    values: &Values,
+    mb: &MatrixBound,
+    c: &Cell,
+    k: usize,
+    stats: &WindowStats,
+) -> Option<Vec<Ball>> {
+    let bx = [c.i, c.i + 1, c.j, c.j + 1];
+    let alpha = [c.i, c.j];
+    let e: LatticePoint = if k == 0 { [1, 0] } else { [0, 1] };
+    let g = &stats.mid;
+    // the gradient of d_k Q per coordinate: (G_{k1}, G_{k2})
+    let slope = if k == 0 { [g[0], g[1]] } else { [g[1], g[2]] };
+    let q0 = difference(values, alpha, e)?;
+    let diag = g[2 * k];
+    let base = [q0.mid[0] + 0.5 * diag[0], q0.mid[1] + 0.5 * diag[1]];
+    // d_k Q at alpha + (dx, dy), with the rounding bound of its computation
+    let dq = |dx: f64, dy: f64| -> ([f64; 2], f64) {
+        let mut mid = [0.0f64; 2];
+        let mut err = 0.0f64;
+        for z in 0..2 {
+            let (a, b) = (slope[0][z] * dx, slope[1][z] * dy);
+            mid[z] = base[z] + a + b;
+            err = err.max(gamma(3) * (base[z].abs() + a.abs() + b.abs()));
+        }
+        (mid, err)
+    };
+    // rho: the largest |q_c - d_k Q(c - e_k / 2)| over the corners
+    let mut rho = 0.0f64;
+    for p in corners(bx) {
+        let q = difference(values, p, e)?;
+        let (dx, dy) = ((p[0] - alpha[0]) as f64, (p[1] - alpha[1]) as f64);
+        let (m, err) = dq(dx - 0.5 * e[0] as f64, dy - 0.5 * e[1] as f64);
+        for (x, y) in q.mid.iter().zip(&m) {
+            rho = rho.max(((x - y).abs() + q.rad + err) * (1.0 + gamma(2)));
+        }
+    }
+    let reach = (rho + mb.factor[k] * stats.spread) * (1.0 + gamma(2));
+    let mut out = Vec::with_capacity(4);
+    for p in corners(bx) {
+        let (mid, err) = dq((p[0] - alpha[0]) as f64, (p[1] - alpha[1]) as f64);
+        out.push(Ball {
+            mid,
+            rad: (reach + err) * (1.0 + gamma(2)),
+        });
+    }
+    Some(out)
 }
 
 /// The values of one level in a sector's chart (`None` where not held).
@@ -388,10 +588,20 @@ pub fn cell_sign_of(values: &Values, rules: &RegularRules, c: &Cell) -> CellSign
         sign: 0,
         bounds: [f64::NAN; 2],
     };
-    let windows = (
-        derivative_enclosure(values, rules, c, 0),
-        derivative_enclosure(values, rules, c, 1),
-    );
+    let windows = match &rules.matrix {
+        // one M_2 serves both derivatives
+        Some(mb) => match second_differences(values, mb, c) {
+            Some(stats) => (
+                matrix_balls_with(values, mb, c, 0, &stats),
+                matrix_balls_with(values, mb, c, 1, &stats),
+            ),
+            None => (None, None),
+        },
+        None => (
+            derivative_enclosure(values, rules, c, 0),
+            derivative_enclosure(values, rules, c, 1),
+        ),
+    };
     let (Some(da), Some(db)) = windows else {
         return undecided;
     };
@@ -425,11 +635,11 @@ pub fn cell_sign_of(values: &Values, rules: &RegularRules, c: &Cell) -> CellSign
     }
 }
 
-/// The closed path at ring index `3 L / 4` through all sectors (lattice
-/// points of each sector's chart, sector by sector counter-clockwise; the
-/// last point of a sector is the first of the next).
-fn ring_path(lattice: Lattice, level: u32) -> Vec<LatticePoint> {
-    let r = 3i64 << level >> 2;
+/// The closed path at ring index `floor(3 L / 4)` (`L = d^level`) through
+/// all sectors (lattice points of each sector's chart, sector by sector
+/// counter-clockwise; the last point of a sector is the first of the next).
+fn ring_path(lattice: Lattice, dilation: i64, level: u32) -> Vec<LatticePoint> {
+    let r = 3 * steps(dilation, level) / 4;
     match lattice {
         Lattice::Triangle => (0..r).map(|t| [r - t, t]).collect(),
         Lattice::Quad => (0..r)
@@ -443,14 +653,24 @@ fn ring_path(lattice: Lattice, level: u32) -> Vec<LatticePoint> {
 /// around the origin, or `None` when a piece's enclosure is not certified
 /// to avoid the origin **\[derived\]**: the limit curve over the lattice edge
 /// from `x` to `y` lies in the convex hull of the mask-window's control points
-/// (non-negative refinable function of the mask); with `p_x` and `p_y` that
+/// (non-negative refinable function of the mask, supported in
+/// `hull(supp a) / (d - 1)` for dilation `d`); with `p_x` and `p_y` that
 /// set lies in an open half-plane through the origin (checked with the
 /// direction `u = p_x + p_y`, every ball at positive distance), so the angle
 /// swept from `f(x)` to `f(y)` equals the principal angle, and summing the
 /// principal angles of the control polygon telescopes to the same total.
 pub fn winding(net: &Net, rules: &RegularRules, level: u32) -> Option<i64> {
-    let path = ring_path(rules.lattice, level);
-    let b = rules.mask_box;
+    let path = ring_path(rules.lattice, rules.dilation, level);
+    // supp phi lies in hull(supp a) / (d - 1) (phi = sum_g a_g phi(d . - g)),
+    // rounded outwards to lattice points
+    let d1 = rules.dilation - 1;
+    let mb = rules.mask_box;
+    let b = [
+        mb[0].div_euclid(d1),
+        mb[1].div_euclid(d1) + i64::from(mb[1].rem_euclid(d1) != 0),
+        mb[2].div_euclid(d1),
+        mb[3].div_euclid(d1) + i64::from(mb[3].rem_euclid(d1) != 0),
+    ];
     let mut total = 0.0f64;
     for s in 0..net.n {
         for (k, x) in path.iter().enumerate() {

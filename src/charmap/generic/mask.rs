@@ -32,10 +32,13 @@ pub use super::layout::Symbol;
 pub struct RegularRules {
     /// The lattice.
     pub lattice: Lattice,
-    /// The mask `a` (new point `beta` = `sum_alpha a_{beta - 2 alpha} p_alpha`), non-zero entries.
+    /// The dilation `d` of the rules: 2 (a halving), or 3 (a one-to-nine
+    /// split: sqrt(3)'s two steps, math doc section 20.9).
+    pub dilation: i64,
+    /// The mask `a` (new point `beta` = `sum_alpha a_{beta - d alpha} p_alpha`), non-zero entries.
     pub mask: Vec<(LatticePoint, f64)>,
-    /// The mask's entries by coset `(g_x mod 2) + 2 (g_y mod 2)`.
-    pub by_coset: [Vec<(LatticePoint, f64)>; 4],
+    /// The mask's entries by coset `(g_x mod d) + d (g_y mod d)` (`d^2` cosets).
+    pub by_coset: Vec<Vec<(LatticePoint, f64)>>,
     /// Largest ring index of the mask's support.
     pub radius: i64,
     /// Bounding box `[xmin, xmax, ymin, ymax]` of the mask's support.
@@ -51,6 +54,10 @@ pub struct RegularRules {
     /// (`None`: the mask and its derivative schemes are non-negative and the
     /// convex-hull enclosures apply).
     pub norm: Option<NormBounds>,
+    /// The enclosure of the derivatives through the matrix difference
+    /// schemes, for rules of dilation 3 (math doc section 20.9; `None` for
+    /// dilation 2).
+    pub matrix: Option<super::matrix_mask::MatrixBound>,
 }
 
 /// The constants of the norm-based enclosure **\[derived\]** (math doc
@@ -361,23 +368,33 @@ fn bbox<'a, I: Iterator<Item = &'a LatticePoint>>(it: I) -> [i64; 4] {
 /// entry must agree to [`MASK_CONSISTENCY_TOL`]; every row must see every
 /// non-zero entry of its coset (the configuration is closed under one step);
 /// every coset sums to 1. `exact`, when given, supplies the exact weights.
-/// `Err` carries the reason the rules cannot be used; rules that read as a
-/// one-to-nine split instead (dilation 3, math doc section 20.9) get the
-/// reason of [`dilation_three_reason`].
+/// Rules that are not translation invariant as a halving are read as a
+/// one-to-nine split (dilation 3, math doc section 20.9). Returns the
+/// lattice, the mask and its dilation; `Err` carries the reason the rules
+/// cannot be used.
 pub fn read_mask(
     regular: &LocalMatrix<f64>,
     exact: Option<&LocalMatrix<Rational>>,
-) -> Result<(Lattice, Symbol), String> {
+) -> Result<(Lattice, Symbol, i64), String> {
     let nn = regular.valence();
     let lattice = Lattice::of_regular_valence(nn).ok_or_else(|| {
         format!("the regular configuration has valence {nn}, not 4 (quads) or 6 (triangles)")
     })?;
     match read_with_dilation(regular, exact, lattice, 2) {
-        Ok(symbol) => Ok((lattice, symbol)),
+        Ok(symbol) => Ok((lattice, symbol, 2)),
         Err(why) => match read_with_dilation(regular, exact, lattice, 3) {
-            Ok(symbol) => Err(dilation_three_reason(lattice, &symbol)),
+            Ok(symbol) => Ok((lattice, symbol, 3)),
             Err(_) => Err(why),
         },
+    }
+}
+
+/// The rules of [`read_mask`]'s dilation: [`regular_rules`] for 2,
+/// [`ternary_rules`] for 3.
+pub fn rules_of(lattice: Lattice, symbol: &Symbol, dilation: i64) -> Result<RegularRules, String> {
+    match dilation {
+        2 => regular_rules(lattice, symbol),
+        _ => ternary_rules(lattice, symbol),
     }
 }
 
@@ -469,16 +486,16 @@ pub fn read_with_dilation(
     Ok(symbol)
 }
 
-/// The reason a mask of dilation 3 (a one-to-nine split: sqrt(3)'s two-step
-/// rules) is `indeterminate` **\[derived\]** (math doc section 20.9): the
+/// The reason a mask of dilation 3 (a one-to-nine split) is not usable
+/// **\[derived\]** (math doc section 20.9): the
 /// derivative scheme in direction `e` would be
 /// `c = 3 a / (1 + z^e + z^{2e})`, which exists iff the exact symbol is
 /// divisible by `1 + z^e + z^{2e}`; the reason says for which lattice
 /// directions it is (sqrt(3): none, so its derivative schemes are matrix
 /// schemes). The regular part's smoothness is then decided by the matrix
 /// difference schemes ([`super::matrix_mask::matrix_differences`]): C1 when
-/// `||(3 E)^L||_inf < 1` (exact). The certificate's cells, nets and
-/// enclosures are dyadic, which the reason also says.
+/// `||(3 E)^L||_inf < 1` (exact); without it the certificate has no
+/// enclosure of the derivatives, which the reason also says.
 pub fn dilation_three_reason(lattice: Lattice, symbol: &Symbol) -> String {
     let divides: Vec<String> = difference_directions(lattice)
         .into_iter()
@@ -508,7 +525,7 @@ pub fn dilation_three_reason(lattice: Lattice, symbol: &Symbol) -> String {
         Err(why) => format!("it has no matrix difference schemes ({why})"),
     };
     format!(
-        "the regular rules are a one-to-nine split (dilation 3, {} weights); {factors}; {regular}; the certificate's cells, nets and enclosures are dyadic, the ternary ones are not implemented (math doc 20.9)",
+        "the regular rules are a one-to-nine split (dilation 3, {} weights); {factors}; {regular}; the ternary certificate needs contracting matrix difference schemes (math doc 20.9)",
         symbol.len()
     )
 }
@@ -775,13 +792,39 @@ pub fn regular_rules(lattice: Lattice, symbol: &Symbol) -> Result<RegularRules, 
     } else {
         None
     };
-    let mask = to_f64(symbol);
-    let mut by_coset: [Vec<(LatticePoint, f64)>; 4] = Default::default();
-    for &(g, w) in &mask {
-        by_coset[coset(g)].push((g, w));
-    }
-    Ok(RegularRules {
+    Ok(assemble_rules(
         lattice,
+        symbol,
+        2,
+        derivative_box,
+        norms,
+        power,
+        norm,
+        None,
+    ))
+}
+
+/// The rules with the mask's `f64` entries by coset modulo `d`, its radius
+/// and bounding box.
+#[allow(clippy::too_many_arguments)]
+fn assemble_rules(
+    lattice: Lattice,
+    symbol: &Symbol,
+    d: i64,
+    derivative_box: [[i64; 4]; 2],
+    contraction: [[f64; 2]; 2],
+    contraction_power: u32,
+    norm: Option<NormBounds>,
+    matrix: Option<super::matrix_mask::MatrixBound>,
+) -> RegularRules {
+    let mask = to_f64(symbol);
+    let mut by_coset: Vec<Vec<(LatticePoint, f64)>> = vec![Vec::new(); (d * d) as usize];
+    for &(g, w) in &mask {
+        by_coset[coset_mod(g, d)].push((g, w));
+    }
+    RegularRules {
+        lattice,
+        dilation: d,
         radius: mask
             .iter()
             .map(|(g, _)| lattice.ring(*g))
@@ -791,10 +834,46 @@ pub fn regular_rules(lattice: Lattice, symbol: &Symbol) -> Result<RegularRules, 
         mask,
         by_coset,
         derivative_box,
-        contraction: norms,
-        contraction_power: power,
+        contraction,
+        contraction_power,
         norm,
-    })
+        matrix,
+    }
+}
+
+/// The regular rules of dilation 3 **\[derived\]** (math doc section
+/// 20.9): the matrix difference schemes `M`, `E` of the mask
+/// ([`super::matrix_mask::matrix_differences`]) with `||(3 E)^L||_inf < 1`
+/// prove the regular part C1, and their enclosure of the derivatives
+/// ([`super::matrix_mask::MatrixBound`]) replaces the scalar derivative
+/// schemes. The winding test encloses the map over an edge by the convex
+/// hull of control points, so the mask must be non-negative. `Err` carries
+/// the reason the certificate cannot use the rules.
+pub fn ternary_rules(lattice: Lattice, symbol: &Symbol) -> Result<RegularRules, String> {
+    let d = 3;
+    let md = super::matrix_mask::matrix_differences(symbol, d)
+        .map_err(|_| dilation_three_reason(lattice, symbol))?;
+    let Some(power) = md.power else {
+        return Err(dilation_three_reason(lattice, symbol));
+    };
+    if symbol.values().any(|q| q.is_negative()) {
+        return Err("the regular rules are a one-to-nine split (dilation 3) with negative weights: the winding test of dilation 3 encloses the map by convex hulls of control points and needs a non-negative mask (math doc 20.9)".into());
+    }
+    let bound = super::matrix_mask::MatrixBound::new(&md, symbol)?;
+    let norm = md.norms.last().map_or(f64::NAN, |x| {
+        crate::scalar::rational_to_f64(x) * (1.0 + gamma(4))
+    });
+    let b = bound.box_of_window();
+    Ok(assemble_rules(
+        lattice,
+        symbol,
+        d,
+        [b, b],
+        [[norm; 2]; 2],
+        power,
+        None,
+        Some(bound),
+    ))
 }
 
 #[cfg(test)]

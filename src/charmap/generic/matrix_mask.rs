@@ -374,3 +374,204 @@ pub fn matrix_differences(a: &Symbol, d: i64) -> Result<MatrixDifferences, Strin
         power,
     })
 }
+
+/// The enclosure of the derivatives through the matrix difference schemes
+/// **\[derived\]** (math doc section 20.9), the analogue for dilation `d` of
+/// the norm-based enclosure of section 20.3.
+///
+/// With `q^t = d^t D p^t` (the first differences in level-`m` units,
+/// `q^{t+1} = (d M) q^t`) and `v^t = d^t D^2 p^t = (d E)^t v^0`, the limit of
+/// `q^t` is the derivative `g = (d_{e_1} f, d_{e_2} f)`. For `x` in a
+/// level-`m` cell with bounding box `C`, let `alpha_t = floor(d^t x)`, so
+/// `alpha_{t+1} = d alpha_t + delta` with a digit `delta in {0..d-1}^2`, and,
+/// because the coset sums of `d M` are the identity,
+///
+/// ```text
+/// q^{t+1}_{alpha_{t+1}} - q^t_{alpha_t} = sum_gamma (d M)[delta + d (alpha_t - gamma)] (q^t_gamma - q^t_{alpha_t}),
+/// ```
+///
+/// where `q^t_gamma - q^t_alpha` is the sum of the differences `D_w q^t_l`
+/// along the lattice path from `alpha` to `gamma` (first along `e_1`, then
+/// `e_2`), and `D_w q^t_l` is the component `w + l` of `v^t` (`D_1 q_1 = D_11 p`,
+/// `D_2 q_1 = D_1 q_2 = D_12 p`, `D_2 q_2 = D_22 p`, scaled by `d^t`). The
+/// jump of component `k` is a fixed functional of `v^t`; `K_k` is the
+/// largest `l1` norm of its coefficients over the digits (exact). With
+/// `N_t = ||(d E)^t||_inf` and `T = sum_{i < L} N_i / (1 - N_L) >= sum_t N_t`
+/// (sub-multiplicativity, `N_L < 1`),
+///
+/// ```text
+/// |g_k(x) - q^0_{floor(x), k}| <= K_k T max |v^0|,
+/// ```
+///
+/// the maximum over the second differences `v^0_eta` of the window: the
+/// jump of level `t` reads `v^t` on `alpha_t + Y` (`Y` the box of the path
+/// terms), which draws on `v^0` at `eta` in `C + d^-t Y + (1 - d^-t)(-B / (d - 1))`
+/// (`B` the box of `E`'s support, that of `(d E)^t` lying in
+/// `B (d^t - 1) / (d - 1)`), inside `C + hull(Y, -B / (d - 1))`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MatrixBound {
+    /// The dilation `d`.
+    pub dilation: i64,
+    /// `K_k T` for the derivative along `e_k` (`k = 1, 2`), rounded up.
+    pub factor: [f64; 2],
+    /// `K_k`, rounded up.
+    pub jump: [f64; 2],
+    /// `T`, rounded up.
+    pub series: f64,
+    /// Per-axis offsets `[[lo_x, hi_x], [lo_y, hi_y]]` of the window of the
+    /// second differences `v^0_eta`, added to the cell's bounding box.
+    pub window: [[i64; 2]; 2],
+    /// The mask reproduces quadratics up to a constant ([`reproduces_quadratics`]):
+    /// the second-order enclosure applies.
+    pub quadratic: bool,
+}
+
+/// Whether the mask `a` of dilation `d` maps every quadratic `Q` to
+/// `Q(. / d) + c` **\[derived\]** (math doc section 20.9): every coset's
+/// first moments `sum a_g g` are zero and its second moments
+/// `sum a_g g g^T` are the same (exact). Then, by Taylor's formula around
+/// `beta / d`, `sum_g a_g Q((beta - g) / d) = Q(beta / d) + tr(H S) / (2 d^2)`
+/// (`H` the Hessian, `S` the common second moment), the constants of the
+/// levels sum to a constant, and the limit of the data `Q` is `Q + const`:
+/// its derivatives are exactly `grad Q`.
+pub fn reproduces_quadratics(a: &Symbol, d: i64) -> bool {
+    let mut moments: BTreeMap<[i64; 2], [Rational; 5]> = BTreeMap::new();
+    for (g, w) in a {
+        let m = moments
+            .entry([g[0].rem_euclid(d), g[1].rem_euclid(d)])
+            .or_insert_with(|| std::array::from_fn(|_| Rational::zero()));
+        let (x, y) = (
+            Rational::from_integer(g[0].into()),
+            Rational::from_integer(g[1].into()),
+        );
+        m[0] += w * &x;
+        m[1] += w * &y;
+        m[2] += w * &x * &x;
+        m[3] += w * &x * &y;
+        m[4] += w * &y * &y;
+    }
+    let Some(first) = moments.values().next() else {
+        return false;
+    };
+    moments.len() == (d * d) as usize
+        && first[0].is_zero()
+        && first[1].is_zero()
+        && moments.values().all(|m| m == first)
+}
+
+/// `x` as `f64`, rounded up (the conversion is within a few units of the
+/// last place; `gamma(2)` covers it).
+fn upper(x: &Rational) -> f64 {
+    crate::scalar::rational_to_f64(x) * (1.0 + crate::charmap::regularity::gamma(2))
+}
+
+impl MatrixBound {
+    /// The constants of the enclosure for the matrix differences `md` of
+    /// the mask `a` (whose `d E` contracts). `Err` when it does not.
+    pub fn new(md: &MatrixDifferences, a: &Symbol) -> Result<Self, String> {
+        let d = md.first.dilation;
+        let dd = Rational::from_integer(d.into());
+        let l = md
+            .power
+            .ok_or("the second-difference scheme d E does not contract")? as usize;
+        // T = sum_{i < L} N_i / (1 - N_L), N_0 = 1
+        let mut head = Rational::one();
+        for n in &md.norms[..l - 1] {
+            head += n;
+        }
+        let series = head / (Rational::one() - &md.norms[l - 1]);
+        // the jump functionals, per digit and component
+        let mut jump = [Rational::zero(), Rational::zero()];
+        let mut ybox = [0i64, 0, 0, 0];
+        for dx in 0..d {
+            for dy in 0..d {
+                for (k, row) in md.first.entries.iter().enumerate() {
+                    let mut coef: BTreeMap<(usize, [i64; 2]), Rational> = BTreeMap::new();
+                    for (l, entry) in row.iter().enumerate() {
+                        for (g, w) in entry {
+                            let (ox, oy) = (dx - g[0], dy - g[1]);
+                            if ox.rem_euclid(d) != 0 || oy.rem_euclid(d) != 0 {
+                                continue;
+                            }
+                            let o = [ox / d, oy / d];
+                            let w = w * &dd;
+                            for (dir, y, sign) in axis_path(o) {
+                                ybox = [
+                                    ybox[0].min(y[0]),
+                                    ybox[1].max(y[0]),
+                                    ybox[2].min(y[1]),
+                                    ybox[3].max(y[1]),
+                                ];
+                                *coef.entry((dir + l, y)).or_insert_with(Rational::zero) +=
+                                    &w * Rational::from_integer(sign.into());
+                            }
+                        }
+                    }
+                    let l1: Rational = coef.values().map(|c| c.abs()).sum();
+                    if l1 > jump[k] {
+                        jump[k] = l1;
+                    }
+                }
+            }
+        }
+        // the box B of E's support
+        let mut b = [i64::MAX, i64::MIN, i64::MAX, i64::MIN];
+        for g in md.second.entries.iter().flatten().flat_map(|e| e.keys()) {
+            b = [
+                b[0].min(g[0]),
+                b[1].max(g[0]),
+                b[2].min(g[1]),
+                b[3].max(g[1]),
+            ];
+        }
+        // C + hull(Y, -B / (d - 1)), rounded outwards to lattice points
+        let lo = |y: i64, bhi: i64| {
+            y.min(-(bhi.div_euclid(d - 1)) - i64::from(bhi.rem_euclid(d - 1) != 0))
+        };
+        let hi = |y: i64, blo: i64| {
+            y.max((-blo).div_euclid(d - 1) + i64::from((-blo).rem_euclid(d - 1) != 0))
+        };
+        let window = [
+            [lo(ybox[0], b[1]), hi(ybox[1], b[0])],
+            [lo(ybox[2], b[3]), hi(ybox[3], b[2])],
+        ];
+        let t = upper(&series);
+        let k = [upper(&jump[0]), upper(&jump[1])];
+        let g4 = 1.0 + crate::charmap::regularity::gamma(4);
+        Ok(Self {
+            dilation: d,
+            factor: [k[0] * t * g4, k[1] * t * g4],
+            jump: k,
+            series: t,
+            window,
+            quadratic: reproduces_quadratics(a, d),
+        })
+    }
+
+    /// The bounding box `[lo_x, hi_x, lo_y, hi_y]` of the lattice offsets the
+    /// enclosure of a cell reads, relative to its lower corner: the window
+    /// of the second differences, each reaching two points back.
+    pub fn box_of_window(&self) -> [i64; 4] {
+        let w = self.window;
+        [w[0][0] - 2, w[0][1] + 1, w[1][0] - 2, w[1][1] + 1]
+    }
+}
+
+/// The lattice path from `0` to `o`, first along `e_1`, then along `e_2`,
+/// as signed differences `(direction, y, sign)`: `q_o - q_0 = sum sign (q_y - q_{y - e_dir})`.
+fn axis_path(o: [i64; 2]) -> Vec<(usize, [i64; 2], i64)> {
+    let mut z = [0i64, 0i64];
+    let mut out = Vec::new();
+    for (dir, &n) in o.iter().enumerate() {
+        for _ in 0..n.abs() {
+            if n > 0 {
+                z[dir] += 1;
+                out.push((dir, z, 1));
+            } else {
+                out.push((dir, z, -1));
+                z[dir] -= 1;
+            }
+        }
+    }
+    out
+}

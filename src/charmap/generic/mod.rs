@@ -17,14 +17,16 @@
 //! 2. [`mask`]: the regular mask, its derivative and difference schemes by
 //!    exact division of the symbol, their contraction; for rules of
 //!    dilation 3 (sqrt(3)'s two steps) [`matrix_mask`]: the matrix difference
-//!    schemes that prove the regular part C1 (math doc 20.9; the ternary
-//!    cells the later stages would need are not built);
+//!    schemes that prove the regular part C1 and enclose the derivatives
+//!    (math doc 20.9; the later stages take the dilation as a parameter:
+//!    ternary nets and cells);
 //! 3. [`net`]: the subdominant eigenbasis on the neighbourhood (with
 //!    Stewart's bound, [`crate::charmap::subspace_bound`]), its extension by the
 //!    eigen-relation, and refinement in midpoint-radius arithmetic;
 //! 4. [`cells`]: the Jacobian's sign on the cells of the annulus (convex-hull
-//!    cones of the derivative schemes, adaptive down to [`MAX_LEVEL`]) and
-//!    the winding number.
+//!    cones of the derivative schemes, or the norm and matrix enclosures,
+//!    adaptive down to [`MAX_LEVEL`], [`levels`] for dilation 3) and the
+//!    winding number.
 //!
 //! Verdicts ([`GenericVerdict`]): `c1` (standard eigenstructure, the
 //! Jacobian certified of one sign on the whole annulus, winding number equal
@@ -64,6 +66,30 @@ pub const MAX_LEVEL: u32 = 8;
 /// at [`MAX_LEVEL`] (each refined on a patch of its own,
 /// [`cells::Patch`], at a cost independent of the level).
 pub const MAX_LOCAL_LEVEL: u32 = 12;
+
+/// The levels of rules of dilation `d` with the resolution of the dyadic
+/// ones, `[first, max, local]`: the first level is the smallest `m` whose
+/// annulus starts at ring index `d^(m - 1) >= 2^(FIRST_LEVEL - 1)` (so the
+/// windows keep the dyadic distance from the centre), the deepest and the
+/// local ones the largest `m` with `d^m <= 2^M` for `M` = [`MAX_LEVEL`],
+/// [`MAX_LOCAL_LEVEL`] (so the cells are no smaller, and the nets no larger,
+/// than the dyadic ones). Dilation 2: 3, 8, 12; dilation 3: 3, 5, 7.
+pub fn levels(dilation: i64) -> [u32; 3] {
+    let inner = 1i64 << (FIRST_LEVEL - 1);
+    let mut first = 1u32;
+    while dilation.pow(first - 1) < inner {
+        first += 1;
+    }
+    let [max, local] = [MAX_LEVEL, MAX_LOCAL_LEVEL].map(|m| {
+        let cap = 1i64 << m;
+        let mut k = 0u32;
+        while dilation.pow(k + 1) <= cap {
+            k += 1;
+        }
+        k
+    });
+    [first, max, local]
+}
 
 /// Largest number of cells tested over all levels (work limit; a Jacobian
 /// with a zero on the annulus keeps cells undecided at every level).
@@ -328,11 +354,11 @@ fn check_local<S: Scheme + ?Sized>(scheme: &S, sub: &Subdominant) -> Result<Gene
     let regular = regular?;
     let rm = regular.local_matrix()?;
     let exact = regular.exact_local_matrix().transpose()?;
-    let (lattice, symbol) = match mask::read_mask(&rm, exact.as_ref()) {
+    let (lattice, symbol, dilation) = match mask::read_mask(&rm, exact.as_ref()) {
         Ok(x) => x,
         Err(reason) => return Ok(GenericReport::indeterminate(reason)),
     };
-    let rules = match mask::regular_rules(lattice, &symbol) {
+    let rules = match mask::rules_of(lattice, &symbol, dilation) {
         Ok(r) => r,
         Err(reason) => {
             let mut r = GenericReport::indeterminate(reason);
@@ -380,7 +406,8 @@ pub struct Prepared {
     pub local: LocalRows,
     /// The level-0 net (extent `1 + margin`).
     pub net: net::Net,
-    /// Level `j` holds the points of ring index at most `2^j + margin`.
+    /// Level `j` holds the points of ring index at most `d^j + margin`
+    /// (`d` the rules' dilation).
     pub margin: usize,
     /// Stewart's bound on the basis.
     pub vector_error: f64,
@@ -393,7 +420,7 @@ impl Prepared {
             net,
             &self.rules,
             &self.local,
-            (1usize << (from + 1)) + self.margin,
+            cells::steps(self.rules.dilation, from + 1) as usize + self.margin,
         )
     }
 }
@@ -437,7 +464,12 @@ pub fn prepare(
         err: (st_w1.norm() * basis.vector_error + crate::charmap::regularity::gamma(2 * d) * frob)
             * (1.0 + crate::charmap::regularity::gamma(4)),
     };
-    let b = rules.derivative_box;
+    // the reach of a cell's enclosure past the cell: the derivative schemes'
+    // windows (dilation 2), or the matrix enclosure's box (dilation 3)
+    let b = match &rules.matrix {
+        Some(mb) => [mb.box_of_window(); 2],
+        None => rules.derivative_box,
+    };
     let window = b
         .iter()
         .flat_map(|x| x.iter())
@@ -485,7 +517,7 @@ pub fn prepare_scheme<S: Scheme + ?Sized>(
     let local = LocalRows::new(&scheme.local_matrix()?);
     let gap = sub.gap.min(1.0 - sub.lambda1.norm());
     Ok(mask::read_mask(&rm, exact.as_ref())
-        .and_then(|(lattice, symbol)| mask::regular_rules(lattice, &symbol))
+        .and_then(|(lattice, symbol, dilation)| mask::rules_of(lattice, &symbol, dilation))
         .and_then(|rules| prepare(&rules, &local?, scheme.valence(), sub.lambda1.re, gap)))
 }
 
@@ -550,21 +582,23 @@ fn refine_locally(
     tally: &mut Tally,
     still: &mut Vec<Cell>,
 ) {
-    if cell.level >= MAX_LOCAL_LEVEL || tally.both() || tally.cells + 4 > MAX_CELLS {
+    let d = rules.dilation;
+    let children_count = (d * d) as usize;
+    if cell.level >= levels(d)[2] || tally.both() || tally.cells + children_count > MAX_CELLS {
         still.push(cell);
         return;
     }
     let m = prep.margin as i64;
     let bx = [
-        2 * cell.i - m,
-        2 * cell.i + 2 + m,
-        2 * cell.j - m,
-        2 * cell.j + 2 + m,
+        d * cell.i - m,
+        d * cell.i + d + m,
+        d * cell.j - m,
+        d * cell.j + d + m,
     ];
     let patch = Patch::refine(values, rules, bx, min_ring);
     let next = |p| patch.at(p);
     tally.deepest = tally.deepest.max(cell.level + 1);
-    for child in children(rules.lattice, &cell) {
+    for child in children(rules.lattice, d, &cell) {
         if !tally.record(child, cell_sign_of(&next, rules, &child)) {
             refine_locally(&next, child, rules, prep, min_ring, tally, still);
         }
@@ -587,6 +621,9 @@ pub fn certify(
         r
     };
     let lattice = rules.lattice;
+    let d = rules.dilation;
+    let [first_level, max_level, max_local] = levels(d);
+    let children_count = (d * d) as usize;
     let prep = match prepare(rules, local, n, lambda, gap) {
         Ok(p) => p,
         Err(reason) => return fail(report, reason),
@@ -597,16 +634,19 @@ pub fn certify(
     let mut pending: Vec<Cell> = Vec::new();
     let mut tally = Tally::default();
     let mut wind = None;
-    while level < MAX_LEVEL {
+    while level < max_level {
         net = prep.refine(&net, level);
         level += 1;
-        if level < FIRST_LEVEL {
+        if level < first_level {
             continue;
         }
-        let todo: Vec<Cell> = if level == FIRST_LEVEL {
-            (0..n).flat_map(|s| annulus(lattice, s, level)).collect()
+        let todo: Vec<Cell> = if level == first_level {
+            (0..n).flat_map(|s| annulus(lattice, d, s, level)).collect()
         } else {
-            pending.iter().flat_map(|p| children(lattice, p)).collect()
+            pending
+                .iter()
+                .flat_map(|p| children(lattice, d, p))
+                .collect()
         };
         pending.clear();
         for cell in todo {
@@ -623,12 +663,15 @@ pub fn certify(
         if pending.is_empty() && wind.is_some() {
             break;
         }
-        if tally.cells + 4 * pending.len() > MAX_CELLS {
+        if tally.cells + children_count * pending.len() > MAX_CELLS {
             break;
         }
     }
-    // the cells still undecided at MAX_LEVEL: refined locally, depth first
-    if level == MAX_LEVEL && !tally.both() && tally.cells + 4 * pending.len() <= MAX_CELLS {
+    // the cells still undecided at the deepest level: refined locally, depth first
+    if level == max_level
+        && !tally.both()
+        && tally.cells + children_count * pending.len() <= MAX_CELLS
+    {
         let min_ring = local.radius(lattice) as i64;
         let mut still = Vec::new();
         for cell in std::mem::take(&mut pending) {
@@ -658,7 +701,7 @@ pub fn certify(
     }
     if !pending.is_empty() {
         let reason = format!(
-            "the Jacobian's sign is undecided on {} cells at level {level} (work limit: level {MAX_LEVEL}, locally {MAX_LOCAL_LEVEL}, {MAX_CELLS} cells)",
+            "the Jacobian's sign is undecided on {} cells at level {level} (work limit: level {max_level}, locally {max_local}, {MAX_CELLS} cells)",
             pending.len()
         );
         return fail(report, reason);

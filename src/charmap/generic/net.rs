@@ -113,7 +113,7 @@ impl Net {
     }
 
     /// The regular rule at new point `(i, j)` of sector `s` (lattice point
-    /// `beta`): `sum_gamma a_gamma p_{(beta - gamma) / 2}` over the old net,
+    /// `beta`): `sum_gamma a_gamma p_{(beta - gamma) / d}` over the old net,
     /// `None` when a stencil point is missing.
     fn regular_point(&self, rules: &RegularRules, s: usize, beta: LatticePoint) -> Option<Ball> {
         regular_value(rules, beta, |alpha| self.at(s, alpha))
@@ -121,19 +121,35 @@ impl Net {
 }
 
 /// The regular rule at the new lattice point `beta`:
-/// `sum_gamma a_gamma p_{(beta - gamma) / 2}` over the old `values`, `None`
-/// when a stencil point is missing.
+/// `sum_gamma a_gamma p_{(beta - gamma) / d}` over the old `values` (`d` the
+/// rules' dilation), `None` when a stencil point is missing.
 pub fn regular_value<F>(rules: &RegularRules, beta: LatticePoint, values: F) -> Option<Ball>
 where
     F: Fn(LatticePoint) -> Option<Ball>,
 {
-    let c = (beta[0].rem_euclid(2) + 2 * beta[1].rem_euclid(2)) as usize;
-    let mut terms = Vec::with_capacity(rules.by_coset[c].len());
-    for &(g, w) in &rules.by_coset[c] {
-        let alpha = [(beta[0] - g[0]) / 2, (beta[1] - g[1]) / 2];
+    let mut terms = Vec::with_capacity(rules.by_coset[coset_of(rules, beta)].len());
+    for (w, alpha) in stencil(rules, beta) {
         terms.push((w, values(alpha)?));
     }
     Some(combine(&terms))
+}
+
+/// The coset `(beta_x mod d) + d (beta_y mod d)` of a new point.
+fn coset_of(rules: &RegularRules, beta: LatticePoint) -> usize {
+    let d = rules.dilation;
+    (beta[0].rem_euclid(d) + d * beta[1].rem_euclid(d)) as usize
+}
+
+/// The regular stencil of the new point `beta`: the weights `a_gamma` and
+/// the old points `(beta - gamma) / d`.
+fn stencil(
+    rules: &RegularRules,
+    beta: LatticePoint,
+) -> impl Iterator<Item = (f64, LatticePoint)> + '_ {
+    let d = rules.dilation;
+    rules.by_coset[coset_of(rules, beta)]
+        .iter()
+        .map(move |&(g, w)| (w, [(beta[0] - g[0]) / d, (beta[1] - g[1]) / d]))
 }
 
 /// The local matrix with its points placed on the sector grid.
@@ -208,9 +224,7 @@ pub fn neighbourhood_matrix(
             return Err("the centre is not a point of the local matrix".into());
         };
         let beta = [i as i64, j as i64];
-        let cl = (beta[0].rem_euclid(2) + 2 * beta[1].rem_euclid(2)) as usize;
-        for &(g, w) in &rules.by_coset[cl] {
-            let alpha = [(beta[0] - g[0]) / 2, (beta[1] - g[1]) / 2];
+        for (w, alpha) in stencil(rules, beta) {
             let q = rules
                 .lattice
                 .chart(n, s, alpha)
