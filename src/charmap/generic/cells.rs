@@ -431,7 +431,7 @@ pub fn second_difference(values: &Values, y: LatticePoint, s: usize) -> Option<B
 /// second difference over the window. Second order, when the mask
 /// reproduces quadratics ([`MatrixBound::quadratic`]): the same bound for
 /// the residual `p - Q` of a quadratic `Q` whose second differences are the
-/// midranges `G` of the window's ([`quadratic_balls`]). The narrower of the
+/// midranges `G` of the window's (`quadratic_balls`). The narrower of the
 /// two is returned; each is sound on its own.
 pub fn matrix_balls(values: &Values, mb: &MatrixBound, c: &Cell, k: usize) -> Option<Vec<Ball>> {
     let stats = second_differences(values, mb, c)?;
