@@ -27,7 +27,8 @@ pub(crate) struct VerifyArgs {
     /// box = one [lo, hi] per edge ratio, or p_box and q_box = one [lo, hi]
     /// per corner knot interval; adjustable-cc: c_range), properties (class,
     /// separation, theorem1, charmap, g1), min_width (at least 2^-40),
-    /// time_budget (seconds).
+    /// time_budget (seconds), symmetry ("none", "rotations" or "dihedral";
+    /// a nurds box of equal sides, dihedral with lo + hi = 1 exactly).
     spec: PathBuf,
     /// Output directory: new, empty, or a previous verify output (only its
     /// cells.csv and summary.json are replaced); any other directory or a
@@ -169,10 +170,21 @@ pub(crate) fn run(args: VerifyArgs) -> CliResult {
             return Ok(());
         }
         let line = format!(
-            "verify {}: {} cells, {:.2}% of the volume undecided, deepest level {}, {:.1} s{}; wrote {}\n",
+            "verify {}: {} cells, {}{:.2}% of the volume undecided{}, deepest level {}, {:.1} s{}; wrote {}\n",
             spec.name,
             summary.cells,
+            if summary.group_order > 1 { "at most " } else { "" },
             100.0 * summary.undecided_fraction,
+            if summary.group_order > 1 {
+                format!(
+                    " (by {} symmetry, group of order {}; {} cells left to it)",
+                    summary.symmetry.as_str(),
+                    summary.group_order,
+                    outcome.by_symmetry
+                )
+            } else {
+                String::new()
+            },
             summary.deepest_level,
             summary.seconds,
             match summary.stopped {

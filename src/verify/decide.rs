@@ -23,6 +23,10 @@ pub enum Status {
     Refuted,
     /// Neither proven (or not attempted for this scheme).
     Undecided,
+    /// Not evaluated: the cell does not meet the fundamental domain of the
+    /// spec's symmetry group ([`super::symmetry`]); what holds on it follows
+    /// from the cells that meet the domain, through the group.
+    BySymmetry,
 }
 
 impl Status {
@@ -32,6 +36,7 @@ impl Status {
             Status::Certified => "certified",
             Status::Refuted => "refuted",
             Status::Undecided => "undecided",
+            Status::BySymmetry => "by_symmetry",
         }
     }
 }

@@ -12,7 +12,11 @@
 //! still open there is `undecided`, and so is a cell left unevaluated when
 //! the spec's `time_budget` runs out (checked before every cell, so a run
 //! stops within one cell's evaluation of its budget). Bisection points are floats strictly
-//! inside their cells, so the cells tile the box exactly.
+//! inside their cells, so the cells tile the box exactly. With a spec
+//! `symmetry` ([`symmetry`]), a cell that does not meet the group's
+//! fundamental domain is neither evaluated nor refined: it is a final cell
+//! with the status `by_symmetry`, and the summary's fractions are bounds
+//! over the whole box through the group ([`summary`]).
 //!
 //! ```
 //! use subdiv_lab::verify::{run, spec::VerifySpec, Limits};
@@ -35,6 +39,7 @@ pub mod factor;
 pub mod interval;
 pub mod invariants;
 pub mod spec;
+pub mod symmetry;
 pub mod taylor;
 pub mod taylor2;
 pub mod witness;
@@ -121,12 +126,16 @@ pub struct Cell {
 }
 
 impl Cell {
-    /// The `verdict` column: `g1` when the `g1` property is requested and
-    /// certified (whatever class or classes the cell holds); else the class
+    /// The `verdict` column: `by_symmetry` for a cell outside the
+    /// fundamental domain of the spec's symmetry (never evaluated); `g1`
+    /// when the `g1` property is requested and certified (whatever class or classes the cell holds); else the class
     /// name when `class` is requested (or `undecided`); otherwise `certified`
     /// when every property holds, `refuted` when one fails and none is open,
     /// else `undecided`.
     pub fn verdict(&self) -> &'static str {
+        if self.by_symmetry() {
+            return "by_symmetry";
+        }
         if self
             .status
             .iter()
@@ -144,6 +153,12 @@ impl Cell {
         } else {
             "refuted"
         }
+    }
+
+    /// Whether the cell was left to the symmetry (outside the fundamental
+    /// domain, never evaluated).
+    pub fn by_symmetry(&self) -> bool {
+        self.status.iter().any(|(_, s)| *s == Status::BySymmetry)
     }
 
     /// The cell's volume (product of the side lengths, in `f64`).
@@ -172,8 +187,12 @@ pub struct Outcome {
     /// Cells evaluated (leaves and inner nodes).
     pub evaluated: u64,
     /// Final cells that were never evaluated: the time budget ran out
-    /// within their level (they are `undecided`).
+    /// within their level (they are `undecided`). Cells left to the
+    /// symmetry are not counted here.
     pub unevaluated: u64,
+    /// Final cells left to the symmetry (`by_symmetry`: outside the
+    /// fundamental domain, never evaluated).
+    pub by_symmetry: u64,
     /// Why refinement stopped early, if it did.
     pub stopped: Option<Stop>,
     /// Wall time, seconds.
@@ -415,6 +434,7 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
     let mut stopped = None;
     let mut level: u32 = 0;
     let mut unevaluated: u64 = 0;
+    let mut by_symmetry: u64 = 0;
     // the time budget, checked before every cell (one clock read, tens of
     // nanoseconds against microseconds to milliseconds per cell): once it
     // has run out, the remaining cells of the level are not evaluated
@@ -433,6 +453,30 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
         late
     };
     while !frontier.is_empty() {
+        // a cell outside the fundamental domain is final, never evaluated
+        if spec.symmetry != symmetry::Symmetry::None {
+            let (keep, skip): (Vec<_>, Vec<_>) = frontier
+                .into_iter()
+                .partition(|(a, b)| spec.symmetry.meets_domain(a, b));
+            by_symmetry += skip.len() as u64;
+            cells.extend(skip.into_iter().map(|(a, b)| {
+                Cell {
+                    lo: a,
+                    hi: b,
+                    level,
+                    class: None,
+                    status: spec
+                        .properties
+                        .iter()
+                        .map(|&p| (p, Status::BySymmetry))
+                        .collect(),
+                }
+            }));
+            frontier = keep;
+            if frontier.is_empty() {
+                break;
+            }
+        }
         let results: Vec<Option<Evaluation>> = frontier
             .par_iter()
             .map(|(a, b)| {
@@ -510,6 +554,7 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
         cells,
         evaluated,
         unevaluated,
+        by_symmetry,
         stopped,
         seconds: start.elapsed().as_secs_f64(),
     }
@@ -574,15 +619,32 @@ pub struct Summary {
     /// Cells evaluated, including the ones that were split.
     pub evaluated: u64,
     /// Final cells never evaluated because the time budget ran out within
-    /// their level (counted as `undecided`).
+    /// their level (counted as `undecided`; cells left to the symmetry are
+    /// not counted).
     pub unevaluated: u64,
-    /// Final cells per verdict.
+    /// The symmetry group the fractions go through: `"none"`,
+    /// `"rotations"` or `"dihedral"`.
+    pub symmetry: symmetry::Symmetry,
+    /// Its order `k`: `1`, `n` or `2n`.
+    pub group_order: usize,
+    /// Final cells per verdict (`by_symmetry`: left to the symmetry).
     pub counts: BTreeMap<String, usize>,
-    /// Volume fraction per verdict.
+    /// Volume fraction of the box per verdict. Without symmetry: the share
+    /// of the cells of that verdict. With symmetry (`k` the group order,
+    /// `V` the box's volume, sums over the evaluated cells, which are the
+    /// ones meeting the fundamental domain; math doc section 15, "Symmetry
+    /// of the ratio box"): for a proven verdict (a class, `certified`, `g1`)
+    /// the lower bound `max(0, 1 - k vol(evaluated cells of another
+    /// verdict) / V)` on the share of the box where it holds; for
+    /// `undecided` and `refuted` the upper bound `min(1, k vol(its cells) /
+    /// V)`; `by_symmetry` cells have no entry.
     pub volume_fraction: BTreeMap<String, f64>,
-    /// Volume fraction of `undecided` cells.
+    /// Volume fraction of `undecided` cells (with symmetry: the upper bound
+    /// above).
     pub undecided_fraction: f64,
-    /// Per property: volume fraction per status.
+    /// Per property: volume fraction per status (with symmetry: a lower
+    /// bound for `certified`, upper bounds for `refuted` and `undecided`, as
+    /// in `volume_fraction`).
     pub property_volume_fraction: BTreeMap<String, BTreeMap<String, f64>>,
     /// Deepest bisection level among the final cells.
     pub deepest_level: u32,
@@ -591,6 +653,24 @@ pub struct Summary {
     pub stopped: Option<Stop>,
     /// Wall time of the refinement, seconds.
     pub seconds: f64,
+}
+
+/// Whether a verdict or status word is an open one (the other words,
+/// except `by_symmetry`, are proven statements about every point of a cell).
+fn open_word(w: &str) -> bool {
+    w == "undecided" || w == "refuted"
+}
+
+/// The fraction of the box for one verdict or status word with a symmetry
+/// group of order `k` ([`Summary::volume_fraction`]): `own` the volume of
+/// the evaluated cells with that word, `evaluated` the volume of all the
+/// evaluated cells, both divided by the box's volume.
+fn through_group(word: &str, own: f64, evaluated: f64, k: f64) -> f64 {
+    if open_word(word) {
+        (k * own).min(1.0)
+    } else {
+        (1.0 - k * (evaluated - own)).max(0.0)
+    }
 }
 
 /// Builds the summary of a run.
@@ -607,9 +687,15 @@ pub fn summary(spec: &VerifySpec, outcome: &Outcome) -> Summary {
         }
     }
     let mut deepest = 0;
+    let mut evaluated_volume = 0.0;
     for c in &outcome.cells {
-        let v = c.volume() / total;
         *counts.entry(c.verdict().to_owned()).or_insert(0) += 1;
+        deepest = deepest.max(c.level);
+        if c.by_symmetry() {
+            continue;
+        }
+        let v = c.volume() / total;
+        evaluated_volume += v;
         *vol.entry(c.verdict().to_owned()).or_insert(0.0) += v;
         for (p, s) in &c.status {
             *pvol
@@ -618,7 +704,18 @@ pub fn summary(spec: &VerifySpec, outcome: &Outcome) -> Summary {
                 .entry(s.as_str().to_owned())
                 .or_insert(0.0) += v;
         }
-        deepest = deepest.max(c.level);
+    }
+    let group_order = spec.symmetry.order(spec.valence());
+    if spec.symmetry != symmetry::Symmetry::None {
+        let k = group_order as f64;
+        for (w, f) in vol.iter_mut() {
+            *f = through_group(w, *f, evaluated_volume, k);
+        }
+        for m in pvol.values_mut() {
+            for (w, f) in m.iter_mut() {
+                *f = through_group(w, *f, evaluated_volume, k);
+            }
+        }
     }
     Summary {
         tool: "subdiv-lab",
@@ -632,6 +729,8 @@ pub fn summary(spec: &VerifySpec, outcome: &Outcome) -> Summary {
         cells: outcome.cells.len(),
         evaluated: outcome.evaluated,
         unevaluated: outcome.unevaluated,
+        symmetry: spec.symmetry,
+        group_order,
         undecided_fraction: vol.get("undecided").copied().unwrap_or(0.0),
         counts,
         volume_fraction: vol,

@@ -8,10 +8,20 @@
 //! properties = ["class", "separation"]                # also "theorem1", "charmap", "g1"
 //! min_width = 0.002          # optional: cells this narrow are not split further
 //! time_budget = 60           # optional, seconds: refinement stops after this (cells left open are undecided)
+//! symmetry = "dihedral"      # optional: "none" (default), "rotations", "dihedral" (a nurds box only)
 //! ```
+//!
+//! `symmetry` proves the properties over the fundamental domain of the
+//! group and carries them to the whole box through it
+//! ([`super::symmetry`]; math doc section 15, "Symmetry of the ratio
+//! box"): `"rotations"` needs a box with equal sides `[lo, hi]^n`,
+//! `"dihedral"` also `lo + hi = 1` exactly in binary (for example
+//! `[0.04999999999999993, 0.9500000000000001]`, the smallest such box
+//! containing the floats `0.05` and `0.95`).
 //!
 //! Errors name the key and the line (the rules of the sweep specs).
 
+pub use super::symmetry::Symmetry;
 use crate::sweep::spec::raw::{bounds, Ctx, Domain};
 use crate::sweep::SweepError;
 use crate::toml_location::{key_path_at, key_path_in_tree, Location};
@@ -129,6 +139,8 @@ pub struct VerifySpec {
     /// Wall-time budget of the run, seconds (from its start, set-up
     /// included; checked before every cell, see [`super::Stop::TimeBudget`]).
     pub time_budget: Option<f64>,
+    /// The symmetry group the run uses ([`Symmetry::None`]: none).
+    pub symmetry: Symmetry,
 }
 
 impl VerifySpec {
@@ -326,6 +338,37 @@ impl VerifySpec {
                 Some(x)
             }
         };
+        let symmetry = match &raw.symmetry {
+            None => Symmetry::None,
+            Some(sy) => {
+                let span = Some(sy.span());
+                let Some(g) = Symmetry::parse(sy.get_ref()) else {
+                    return ctx.err(
+                        "symmetry",
+                        span,
+                        format!(
+                            "symmetry: unknown symmetry {:?}; one of \"none\", \"rotations\", \"dihedral\"",
+                            sy.get_ref()
+                        ),
+                    );
+                };
+                match &region {
+                    _ if g == Symmetry::None => {}
+                    Region::Ratios { lo, hi } => {
+                        if let Some(problem) = g.box_problem(lo, hi) {
+                            return ctx.err("symmetry", span, format!("symmetry: {problem}"));
+                        }
+                    }
+                    Region::Corners { .. } => {
+                        return ctx.err("symmetry", span, format!("symmetry: {:?} applies to a box of edge ratios (box); a corner-interval box (p_box, q_box) is bisected in log scale, which the group does not preserve; give symmetry = \"none\"", g.as_str()));
+                    }
+                    Region::Shape { .. } => {
+                        return ctx.err("symmetry", span, format!("symmetry: {:?} applies to scheme \"nurds\" over a box of edge ratios; the c interval of adjustable-cc has no such symmetry", g.as_str()));
+                    }
+                }
+                g
+            }
+        };
         let name = raw.name.unwrap_or_else(|| "verify".to_owned());
         Ok(VerifySpec {
             name,
@@ -333,6 +376,7 @@ impl VerifySpec {
             properties,
             min_width,
             time_budget,
+            symmetry,
         })
     }
 }
@@ -350,6 +394,7 @@ struct RawSpec {
     properties: Spanned<Vec<Spanned<String>>>,
     min_width: Option<Spanned<f64>>,
     time_budget: Option<Spanned<f64>>,
+    symmetry: Option<Spanned<String>>,
 }
 
 type Boxes = Spanned<Vec<Spanned<Vec<f64>>>>;

@@ -23,6 +23,7 @@ fn spec3(lo: [f64; 3], hi: [f64; 3], min_width: f64) -> VerifySpec {
         properties: vec![Property::Class, Property::Separation],
         min_width,
         time_budget: None,
+        symmetry: Default::default(),
     }
 }
 
@@ -135,7 +136,7 @@ pub(super) fn disagreements(
                 let want = match st {
                     Status::Certified => Some(true),
                     Status::Refuted => Some(false),
-                    Status::Undecided => None,
+                    Status::Undecided | Status::BySymmetry => None,
                 };
                 if want.is_some() && v.separated.is_some() && want != v.separated {
                     bad += 1;
@@ -185,6 +186,7 @@ fn spec5(min_width: f64) -> VerifySpec {
         properties: vec![Property::Class, Property::Separation],
         min_width,
         time_budget: None,
+        symmetry: Default::default(),
     }
 }
 
@@ -230,6 +232,7 @@ fn spec_n(n: usize, lo: Vec<f64>, hi: Vec<f64>, min_width: f64) -> VerifySpec {
         properties: vec![Property::Class, Property::Separation],
         min_width,
         time_budget: None,
+        symmetry: Default::default(),
     }
 }
 
@@ -366,6 +369,7 @@ fn cc_path_agrees_with_cc_study() {
             properties: vec![Property::Class, Property::Separation],
             min_width: 1e-4,
             time_budget: None,
+            symmetry: Default::default(),
         };
         let out = run(&spec, &Limits::default());
         let iv = crate::cc_study::standard_intervals(n, 200, 1e-9).unwrap();
@@ -545,6 +549,7 @@ fn a_time_budget_stops_within_a_level() {
         let budget = SHORT_BUDGET * (1.0 + 0.3 * f64::from(attempt));
         let spec = VerifySpec {
             time_budget: Some(budget),
+            symmetry: Default::default(),
             ..spec_n(7, vec![0.05; 7], vec![0.95; 7], 0.02)
         };
         let t0 = Instant::now();

@@ -1967,6 +1967,36 @@ fn cases() -> Vec<Case> {
             "time_budget",
         ),
         bad_with(
+            "verify-symmetry-unknown",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.25, 0.75], [0.25, 0.75], [0.25, 0.75]]\nproperties = [\"g1\"]\nsymmetry = \"mirror\"\n")],
+            "symmetry",
+        ),
+        bad_with(
+            "verify-symmetry-unequal-sides",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.25, 0.75], [0.25, 0.75], [0.2, 0.75]]\nproperties = [\"g1\"]\nsymmetry = \"rotations\"\n")],
+            "equal sides",
+        ),
+        bad_with(
+            "verify-symmetry-dihedral-not-exact",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.05, 0.95], [0.05, 0.95], [0.05, 0.95]]\nproperties = [\"g1\"]\nsymmetry = \"dihedral\"\n")],
+            "lo + hi = 1 exactly",
+        ),
+        bad_with(
+            "verify-symmetry-corner-box",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"nurds\"\nvalence = 3\np_box = [[1, 2], [1, 2], [1, 2]]\nq_box = [[1, 2], [1, 2], [1, 2]]\nproperties = [\"g1\"]\nsymmetry = \"rotations\"\n")],
+            "corner-interval",
+        ),
+        bad_with(
+            "verify-symmetry-c-interval",
+            &["verify", "v.toml", "--out", "o"],
+            &[("v.toml", "scheme = \"adjustable-cc\"\nvalence = 3\nc_range = [0.1, 0.9]\nproperties = [\"charmap\"]\nsymmetry = \"dihedral\"\n")],
+            "c interval",
+        ),
+        bad_with(
             "verify-threads-zero",
             &["verify", "v.toml", "--out", "o", "--threads", "0"],
             &[("v.toml", "scheme = \"nurds\"\nvalence = 3\nbox = [[0.1, 0.9], [0.1, 0.9], [0.1, 0.9]]\nproperties = [\"class\"]\n")],

@@ -8,3 +8,4 @@ mod common;
 mod verify;
 mod verify_charmap;
 mod verify_g1;
+mod verify_symmetry;

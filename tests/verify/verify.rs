@@ -24,6 +24,7 @@ fn nurds_spec(lo: Vec<f64>, hi: Vec<f64>, min_width: f64) -> VerifySpec {
         properties: vec![Property::Class, Property::Separation],
         min_width,
         time_budget: None,
+        symmetry: Default::default(),
     }
 }
 

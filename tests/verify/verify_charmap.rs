@@ -31,6 +31,7 @@ fn spec(region: Region, min_width: f64) -> VerifySpec {
         properties: vec![Property::Class, Property::Separation, Property::Charmap],
         min_width,
         time_budget: None,
+        symmetry: Default::default(),
     }
 }
 

@@ -32,6 +32,7 @@ fn g1_spec(lo: Vec<f64>, hi: Vec<f64>, min_width: f64) -> VerifySpec {
         properties: vec![Property::G1],
         min_width,
         time_budget: None,
+        symmetry: Default::default(),
     }
 }
 

@@ -241,6 +241,7 @@ impl Figure for CertifiedMap {
                 properties,
                 min_width: self.min_width,
                 time_budget: None,
+                symmetry: Default::default(),
             };
             let limits = Limits {
                 max_cells,

@@ -1,0 +1,312 @@
+//! `verify` with the symmetry of the ratio box (math doc section 15,
+//! "Symmetry of the ratio box"): every ratio vector of the box has a group
+//! image in the fundamental domain and in an evaluated cell; the cells
+//! still tile the box exactly; the summary's fractions are the bounds
+//! through the group; the spec refuses boxes the group does not preserve.
+
+use num_traits::{One, Zero};
+use proptest::prelude::*;
+use subdiv_lab::scalar::{f64_to_rational, Rational};
+use subdiv_lab::verify::decide::Status;
+use subdiv_lab::verify::spec::{Property, Region, Symmetry, VerifySpec};
+use subdiv_lab::verify::symmetry::symmetric_enclosure;
+use subdiv_lab::verify::{run, summary, Cell, Limits, Outcome};
+
+fn spec(n: usize, lo: f64, hi: f64, properties: Vec<Property>, min_width: f64) -> VerifySpec {
+    VerifySpec {
+        name: "s".into(),
+        region: Region::Ratios {
+            lo: vec![lo; n],
+            hi: vec![hi; n],
+        },
+        properties,
+        min_width,
+        time_budget: None,
+        symmetry: Symmetry::None,
+    }
+}
+
+/// A small run of valence 4 over `[0.05, 0.95]^4` (widened to be exactly
+/// reflection-invariant) whose class boundary forces refinement.
+fn small_run(symmetry: Symmetry) -> (VerifySpec, Outcome) {
+    let (lo, hi) = symmetric_enclosure(0.05, 0.95);
+    let s = VerifySpec {
+        symmetry,
+        ..spec(4, lo, hi, vec![Property::Class], 0.12)
+    };
+    let out = run(&s, &Limits::default());
+    (s, out)
+}
+
+fn q(x: f64) -> Rational {
+    f64_to_rational(x).unwrap()
+}
+
+/// Whether the rational point `r` lies in the fundamental domain, exactly.
+fn in_domain(symmetry: Symmetry, r: &[Rational]) -> bool {
+    let half = Rational::new(1.into(), 2.into());
+    match symmetry {
+        Symmetry::None => true,
+        Symmetry::Rotations => r.iter().all(|x| *x <= r[0]),
+        Symmetry::Dihedral => {
+            let u0 = &r[0] - &half;
+            r.iter().all(|x| {
+                let u = x - &half;
+                let a = if u < Rational::zero() { -u } else { u };
+                a <= u0
+            })
+        }
+    }
+}
+
+/// The group images of `r` (rotations, and with the reflection
+/// `r_i -> 1 - r_{n-1-i}` their mirrors), exactly.
+fn images(symmetry: Symmetry, r: &[Rational]) -> Vec<Vec<Rational>> {
+    let n = r.len();
+    let mut out = Vec::new();
+    let mut bases = vec![r.to_vec()];
+    if symmetry == Symmetry::Dihedral {
+        bases.push(
+            (0..n)
+                .map(|i| Rational::one() - r[n - 1 - i].clone())
+                .collect(),
+        );
+    }
+    for b in bases {
+        for k in 0..n {
+            out.push((0..n).map(|i| b[(i + k) % n].clone()).collect());
+        }
+    }
+    out
+}
+
+/// Ratio vectors of the box whose every group image in the fundamental
+/// domain lies in no evaluated cell (lies only in `by_symmetry` cells, or in
+/// none): must be none.
+fn uncovered(symmetry: Symmetry, out: &Outcome, points: &[Vec<f64>]) -> usize {
+    let evaluated: Vec<(Vec<Rational>, Vec<Rational>)> = out
+        .cells
+        .iter()
+        .filter(|c| !c.by_symmetry())
+        .map(|c| {
+            (
+                c.lo.iter().map(|&x| q(x)).collect(),
+                c.hi.iter().map(|&x| q(x)).collect(),
+            )
+        })
+        .collect();
+    let mut bad = 0;
+    for p in points {
+        let r: Vec<Rational> = p.iter().map(|&x| q(x)).collect();
+        let ok = images(symmetry, &r).iter().any(|g| {
+            in_domain(symmetry, g)
+                && evaluated
+                    .iter()
+                    .any(|(a, b)| g.iter().enumerate().all(|(k, x)| a[k] <= *x && *x <= b[k]))
+        });
+        if !ok {
+            bad += 1;
+        }
+    }
+    bad
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 8, ..ProptestConfig::default() })]
+
+    /// Every orbit meets the evaluated cells: random points of the box, and
+    /// points on the walls of the fundamental domain (ties `r_j = r_0`,
+    /// `r_j = 1 - r_0`, `r_0 = 1/2`), have a group image in the domain that
+    /// lies in a cell that was evaluated.
+    #[test]
+    fn every_orbit_meets_an_evaluated_cell(seed in any::<u64>()) {
+        for symmetry in [Symmetry::Rotations, Symmetry::Dihedral] {
+            let (s, out) = small_run(symmetry);
+            let (lo, hi) = s.bounds();
+            let mut rng = subdiv_lab::rng::SplitMix64::new(seed);
+            let mut points = Vec::new();
+            for _ in 0..40 {
+                let mut p: Vec<f64> = (0..4).map(|k| rng.uniform(lo[k], hi[k])).collect();
+                points.push(p.clone());
+                // walls: r_j = r_0 and r_j = 1 - r_0 (exact for r_0 >= 1/2)
+                let j = 1 + (rng.next_f64() * 3.0) as usize % 3;
+                p[j] = p[0];
+                points.push(p.clone());
+                if p[0] >= 0.5 {
+                    p[j] = 1.0 - p[0];
+                    points.push(p.clone());
+                }
+                p[0] = 0.5;
+                points.push(p);
+            }
+            prop_assert_eq!(uncovered(symmetry, &out, &points), 0, "{:?}", symmetry);
+        }
+    }
+}
+
+#[test]
+fn the_run_leaves_cells_to_the_symmetry_and_still_tiles_the_box() {
+    for symmetry in [Symmetry::Rotations, Symmetry::Dihedral] {
+        let (s, out) = small_run(symmetry);
+        let skipped = out.cells.iter().filter(|c| c.by_symmetry()).count();
+        assert!(
+            skipped > 10 && out.cells.len() > skipped + 10,
+            "{symmetry:?}"
+        );
+        assert_eq!(out.by_symmetry, skipped as u64);
+        for c in &out.cells {
+            if c.by_symmetry() {
+                assert_eq!(c.verdict(), "by_symmetry");
+                assert!(c.class.is_none());
+                assert!(c.status.iter().all(|(_, st)| *st == Status::BySymmetry));
+                assert!(!symmetry.meets_domain(&c.lo, &c.hi));
+            } else {
+                assert!(symmetry.meets_domain(&c.lo, &c.hi));
+            }
+        }
+        // an exact tiling, in rationals
+        let (lo, hi) = s.bounds();
+        let total: Rational = lo.iter().zip(&hi).map(|(a, b)| q(*b) - q(*a)).product();
+        let mut sum = Rational::zero();
+        for (i, c) in out.cells.iter().enumerate() {
+            for k in 0..4 {
+                assert!(lo[k] <= c.lo[k] && c.lo[k] < c.hi[k] && c.hi[k] <= hi[k]);
+            }
+            sum +=
+                c.lo.iter()
+                    .zip(&c.hi)
+                    .map(|(a, b)| q(*b) - q(*a))
+                    .product::<Rational>();
+            for d in &out.cells[..i] {
+                assert!((0..4).any(|k| c.hi[k] <= d.lo[k] || d.hi[k] <= c.lo[k]));
+            }
+        }
+        assert_eq!(sum, total, "{symmetry:?}");
+        // the summary counts the undecided cells only among the evaluated
+        let sm = summary(&s, &out);
+        assert_eq!(sm.counts.get("by_symmetry").copied(), Some(skipped));
+        assert!(!sm.volume_fraction.contains_key("by_symmetry"));
+        assert_eq!(sm.group_order, symmetry.order(4));
+        // the same bound recomputed from the cells, in rationals
+        let k = Rational::from_integer(symmetry.order(4).into());
+        let open: Rational = out
+            .cells
+            .iter()
+            .filter(|c| !c.by_symmetry() && c.class.is_none())
+            .map(|c| {
+                c.lo.iter()
+                    .zip(&c.hi)
+                    .map(|(a, b)| q(*b) - q(*a))
+                    .product::<Rational>()
+            })
+            .sum();
+        let bound = Rational::one() - k * open / &total;
+        let cert = sm.property_volume_fraction["class"]["certified"];
+        let want = if bound < Rational::zero() {
+            0.0
+        } else {
+            num_traits::ToPrimitive::to_f64(&bound).unwrap()
+        };
+        assert!((cert - want).abs() <= 1e-12, "{cert} vs {want}");
+    }
+}
+
+/// The bounds of the summary on a hand-made outcome over `[1/4, 3/4]^3`
+/// (volume `1/8`) with the dihedral group (order 6): a `g1` cell of volume
+/// `1/64`, an undecided cell of volume `1/512`, a cell left to the symmetry
+/// of volume `1/16`. Certified at least `1 - 6 (1/512) / (1/8) = 29/32`,
+/// undecided at most `6 (1/512) / (1/8) = 3/32`; without the symmetry the
+/// plain shares `1/8` and `1/64`.
+#[test]
+fn the_summary_bounds_on_a_hand_made_outcome() {
+    let cell = |lo: [f64; 3], hi: [f64; 3], st: Status| Cell {
+        lo: lo.to_vec(),
+        hi: hi.to_vec(),
+        level: 3,
+        class: None,
+        status: vec![(Property::G1, st)],
+    };
+    let out = Outcome {
+        cells: vec![
+            cell([0.5, 0.25, 0.25], [0.75, 0.5, 0.5], Status::Certified),
+            cell([0.5, 0.5, 0.5], [0.625, 0.625, 0.625], Status::Undecided),
+            cell([0.25, 0.25, 0.25], [0.5, 0.5, 0.75], Status::BySymmetry),
+        ],
+        evaluated: 7,
+        unevaluated: 0,
+        by_symmetry: 1,
+        stopped: None,
+        seconds: 0.0,
+    };
+    let s = VerifySpec {
+        symmetry: Symmetry::Dihedral,
+        ..spec(3, 0.25, 0.75, vec![Property::G1], 0.1)
+    };
+    let sm = summary(&s, &out);
+    assert_eq!(sm.group_order, 6);
+    assert_eq!(sm.volume_fraction["g1"], 29.0 / 32.0);
+    assert_eq!(sm.volume_fraction["undecided"], 3.0 / 32.0);
+    assert_eq!(sm.undecided_fraction, 3.0 / 32.0);
+    assert_eq!(sm.property_volume_fraction["g1"]["certified"], 29.0 / 32.0);
+    assert_eq!(sm.property_volume_fraction["g1"]["undecided"], 3.0 / 32.0);
+    assert_eq!(sm.property_volume_fraction["g1"]["refuted"], 0.0);
+    assert_eq!(sm.counts["by_symmetry"], 1);
+    assert!(!sm.volume_fraction.contains_key("by_symmetry"));
+    let json = serde_json::to_value(&sm).unwrap();
+    assert_eq!(json["symmetry"], "dihedral");
+    let plain = VerifySpec {
+        symmetry: Symmetry::None,
+        ..s
+    };
+    let sm = summary(&plain, &out);
+    assert_eq!(sm.group_order, 1);
+    assert_eq!(sm.volume_fraction["g1"], 1.0 / 8.0);
+    assert_eq!(sm.undecided_fraction, 1.0 / 64.0);
+}
+
+#[test]
+fn the_spec_refuses_boxes_the_group_does_not_preserve() {
+    let text = |b: &str, sy: &str| {
+        format!("scheme = \"nurds\"\nvalence = 3\nbox = {b}\nproperties = [\"g1\"]\nsymmetry = \"{sy}\"\n")
+    };
+    let ok = VerifySpec::parse(&text(
+        "[[0.25, 0.75], [0.25, 0.75], [0.25, 0.75]]",
+        "dihedral",
+    ))
+    .unwrap();
+    assert_eq!(ok.symmetry, Symmetry::Dihedral);
+    let ok = VerifySpec::parse(&text(
+        "[[0.05, 0.95], [0.05, 0.95], [0.05, 0.95]]",
+        "rotations",
+    ))
+    .unwrap();
+    assert_eq!(ok.symmetry, Symmetry::Rotations);
+    let ok = VerifySpec::parse(&text("[[0.05, 0.95], [0.1, 0.95], [0.05, 0.95]]", "none")).unwrap();
+    assert_eq!(ok.symmetry, Symmetry::None);
+    for (b, sy, needle) in [
+        (
+            "[[0.05, 0.95], [0.05, 0.95], [0.05, 0.95]]",
+            "dihedral",
+            "0.9500000000000001",
+        ),
+        (
+            "[[0.05, 0.95], [0.1, 0.95], [0.05, 0.95]]",
+            "rotations",
+            "equal sides",
+        ),
+        (
+            "[[0.25, 0.75], [0.25, 0.75], [0.25, 0.7]]",
+            "dihedral",
+            "equal sides",
+        ),
+        (
+            "[[0.25, 0.75], [0.25, 0.75], [0.25, 0.75]]",
+            "reflection",
+            "unknown symmetry",
+        ),
+    ] {
+        let e = VerifySpec::parse(&text(b, sy)).unwrap_err().to_string();
+        assert!(e.contains(needle) && e.contains("line 5"), "{e}");
+        assert!(!e.contains('\n'), "{e}");
+    }
+}
