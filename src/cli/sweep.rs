@@ -30,7 +30,7 @@ pub(crate) struct SweepArgs {
     #[arg(long)]
     threads: Option<usize>,
     /// Run shard I of N: the configurations with id % N == I.
-    #[arg(long, value_parser = parse_shard)]
+    #[arg(long)]
     shard: Option<Shard>,
     /// Continue an interrupted run of the same command (needs --out; starts afresh
     /// if the file does not exist; an existing file's summary must be of this
@@ -154,10 +154,6 @@ fn sweep_format(flag: Option<Format>, out: Option<&Path>) -> CliResult<(Format, 
         (None, Some(n), _) => Ok((n, n == Format::Parquet)),
         (None, None, _) => Ok((Format::Csv, false)),
     }
-}
-
-fn parse_shard(s: &str) -> Result<Shard, String> {
-    s.parse::<Shard>().map_err(|e| e.to_string())
 }
 
 /// Progress lines for batch jobs (stderr not a terminal, e.g. a Slurm log): a
