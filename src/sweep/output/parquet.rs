@@ -233,8 +233,6 @@ struct Cells {
     floats: Vec<f64>,
     texts: Vec<ByteArray>,
     bools: Vec<bool>,
-    /// The label of the last label cell (most rows repeat it).
-    last: Option<ByteArray>,
 }
 
 impl Cells {
@@ -339,37 +337,24 @@ impl TypedBlock {
     }
 
     /// Stores label `t` (its CSV text) in the next cell, sharing the buffer
-    /// of an equal label met before.
+    /// of an equal label met before (a label column holds a few distinct
+    /// values, so a scan of those met is short).
     #[inline(always)]
     fn put_label(&mut self, t: &str) {
-        let k = self.col - 2;
-        match &self.cells[k].last {
-            Some(b) if b.data() == t.as_bytes() => {
-                let b = b.clone();
-                let c = self.next();
-                c.def.push(1);
-                c.texts.push(b);
-            }
-            _ => self.new_label(t),
-        }
-    }
-
-    /// [`put_label`](Self::put_label) of a label that is not the column's
-    /// last one.
-    #[cold]
-    fn new_label(&mut self, t: &str) {
-        let b = self.label(t);
+        let b = match self.labels.iter().find(|b| b.data() == t.as_bytes()) {
+            Some(b) => b.clone(),
+            None => self.new_label(t),
+        };
         let c = self.next();
         c.def.push(1);
-        c.texts.push(b.clone());
-        c.last = Some(b);
+        c.texts.push(b);
     }
 
-    /// The buffer of label `t` (its CSV text): one met before, or a new one.
-    fn label(&mut self, t: &str) -> ByteArray {
-        if let Some(b) = self.labels.iter().find(|b| b.data() == t.as_bytes()) {
-            return b.clone();
-        }
+    /// The buffer of label `t` (its CSV text), not met before: kept for the
+    /// next cells unless its text has a line break or the block keeps
+    /// [`SHARED_LABELS`] already.
+    #[cold]
+    fn new_label(&mut self, t: &str) -> ByteArray {
         let text = csv_text(t);
         let b = ByteArray::from(Bytes::copy_from_slice(text.as_bytes()));
         let own_text = matches!(text, std::borrow::Cow::Borrowed(_));
@@ -447,12 +432,18 @@ impl TypedBlock {
 impl RowBlock for TypedBlock {
     fn with_rows(layout: &Layout, rows: usize) -> Self {
         let kinds = layout.types.clone();
-        let cells = (0..=kinds.len())
-            .map(|_| Cells {
+        // Each column's values sized for `rows` rows up front (no growth
+        // while the block fills); `error` (the last) is usually null.
+        let cells = kinds.iter().map(Some).chain([None]).map(|t| {
+            let rows_of = |want: ColumnType| if t == Some(&want) { rows } else { 0 };
+            Cells {
                 def: Vec::with_capacity(rows),
-                ..Cells::default()
-            })
-            .collect();
+                floats: Vec::with_capacity(rows_of(ColumnType::Float)),
+                texts: Vec::with_capacity(rows_of(ColumnType::Label)),
+                bools: Vec::with_capacity(rows_of(ColumnType::Bool)),
+            }
+        });
+        let cells = cells.collect();
         TypedBlock {
             ids: Vec::with_capacity(rows),
             valences: Vec::with_capacity(rows),
