@@ -375,9 +375,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     }
     sink.check_existing(shard, args.resume).map_err(sweep_err)?;
     let plan = plan_of(spec, &args.spec, args.scheme_file.as_deref())?;
-    let threads = args
-        .threads
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let threads = args.threads.unwrap_or(RunOptions::default().threads);
     // Work estimate of this shard's rows (before --resume skips any: a
     // conservative bound), checked before any file is opened.
     let expected = shard.len(plan.total()).min(args.limit.unwrap_or(u64::MAX));
