@@ -52,6 +52,12 @@ pub fn create_temp_file(dir: &Path, name: &str) -> std::io::Result<(File, PathBu
     })
 }
 
+/// [`create_temp_file`] beside `path`, named after its file name.
+pub fn create_temp_beside(path: &Path) -> std::io::Result<(File, PathBuf)> {
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    create_temp_file(&parent_dir(path), &name)
+}
+
 /// Creates a new directory `dir/.{name}.tmp-{pid}[-k]` that did not exist before.
 pub fn create_temp_dir(dir: &Path, name: &str) -> std::io::Result<PathBuf> {
     create_at_free_temp_name(dir, name, |p| fs::create_dir(p)).map(|((), p)| p)

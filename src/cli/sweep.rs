@@ -30,7 +30,7 @@ pub(crate) struct SweepArgs {
     #[arg(long)]
     threads: Option<usize>,
     /// Run shard I of N: the configurations with id % N == I.
-    #[arg(long, value_parser = parse_shard)]
+    #[arg(long)]
     shard: Option<Shard>,
     /// Continue an interrupted run of the same command (needs --out; starts afresh
     /// if the file does not exist; an existing file's summary must be of this
@@ -154,10 +154,6 @@ fn sweep_format(flag: Option<Format>, out: Option<&Path>) -> CliResult<(Format, 
         (None, Some(n), _) => Ok((n, n == Format::Parquet)),
         (None, None, _) => Ok((Format::Csv, false)),
     }
-}
-
-fn parse_shard(s: &str) -> Result<Shard, String> {
-    s.parse::<Shard>().map_err(|e| e.to_string())
 }
 
 /// Progress lines for batch jobs (stderr not a terminal, e.g. a Slurm log): a
@@ -379,9 +375,7 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
     }
     sink.check_existing(shard, args.resume).map_err(sweep_err)?;
     let plan = plan_of(spec, &args.spec, args.scheme_file.as_deref())?;
-    let threads = args
-        .threads
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let threads = args.threads.unwrap_or(RunOptions::default().threads);
     // Work estimate of this shard's rows (before --resume skips any: a
     // conservative bound), checked before any file is opened.
     let expected = shard.len(plan.total()).min(args.limit.unwrap_or(u64::MAX));

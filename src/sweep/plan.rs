@@ -158,7 +158,7 @@ impl Deref for Configured {
 }
 
 /// One configuration of a sweep.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Configuration {
     /// Stable configuration id.
     pub id: u64,

@@ -173,30 +173,25 @@ pub fn open<E: Evaluate + ?Sized>(
 /// summary (read) and its part files (read, in part order). A directory
 /// without a part is refused.
 pub fn dataset_shards(dir: &Path) -> Result<Vec<ShardFile<BufReader<File>>>, SweepError> {
-    let mut found: Vec<(Shard, Vec<PathBuf>)> = Vec::new();
-    for (s, _, p) in list_parts(dir)? {
-        match found.last_mut() {
-            Some((t, parts)) if *t == s => parts.push(p),
-            _ => found.push((s, vec![p])),
-        }
-    }
-    if found.is_empty() {
+    let parts = list_parts(dir)?;
+    if parts.is_empty() {
         return Err(refused(format!(
             "{}: no part files (part-*.parquet): not a sweep dataset",
             dir.display()
         )));
     }
-    let mut shards = Vec::with_capacity(found.len());
-    for (s, parts) in found {
+    let mut shards = Vec::new();
+    for group in parts.chunk_by(|a, b| a.0 == b.0) {
+        let s = group[0].0;
         let name = if s == Shard::ALL {
             dir.display().to_string()
         } else {
             format!("{} (shard {s})", dir.display())
         };
         let data = || {
-            let mut data = Vec::with_capacity(parts.len());
-            for p in parts {
-                let bytes = fs::read(&p).map_err(|e| io("reading", &p, e))?;
+            let mut data = Vec::with_capacity(group.len());
+            for (_, _, p) in group {
+                let bytes = fs::read(p).map_err(|e| io("reading", p, e))?;
                 data.push((p.display().to_string(), bytes));
             }
             Ok(ShardData::Parquet(data))

@@ -21,7 +21,7 @@ use super::shards::{self, summary_path, ShardData, ShardFile};
 use super::{check_summary, is_old_csv_fingerprint, LineFault, Verifier, OLD_CSV};
 #[cfg(feature = "parquet")]
 use super::{dataset, parquet::ParquetRows};
-use crate::outfiles::{create_temp_file, install_new, is_special, parent_dir, write_atomic};
+use crate::outfiles::{create_temp_beside, install_new, is_special, write_atomic};
 use crate::sweep::eval::SpectralEvaluator;
 use crate::sweep::plan::{Plan, SchemeFactory, Shard};
 use crate::sweep::spec::SweepSpec;
@@ -419,11 +419,7 @@ fn write_summary(path: &Path, summary: &Summary) -> Result<(), SweepError> {
 fn create_csv(path: &Path, layout: &Layout) -> Result<BufWriter<File>, SweepError> {
     let failed =
         |e: &dyn std::fmt::Display| SweepError::File(format!("creating {}: {e}", path.display()));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let (mut file, tmp) = create_temp_file(&parent_dir(path), &name).map_err(|e| failed(&e))?;
+    let (mut file, tmp) = create_temp_beside(path).map_err(|e| failed(&e))?;
     let installed = layout
         .write_header(&mut file)
         .and_then(|()| install_new(&tmp, path).map_err(SweepError::from));
@@ -651,11 +647,7 @@ pub fn merge_files(
     let n_shards = shards.len();
     let prepared = shards::prepare(plan, &layout, spec_name, shards)?;
     let salt = shards::fresh_salt();
-    let out_name = out
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let (file, tmp) = create_temp_file(&parent_dir(out), &out_name).map_err(|e| {
+    let (file, tmp) = create_temp_beside(out).map_err(|e| {
         SweepError::File(format!(
             "creating a temporary file for {}: {e}",
             out.display()

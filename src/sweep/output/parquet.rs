@@ -128,54 +128,37 @@ fn pq_read_err(e: parquet::errors::ParquetError) -> SweepError {
     SweepError::Read(format!("parquet: {e}"))
 }
 
-/// The column types of a layout, `id` to `error`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Col {
-    Id,
-    Valence,
-    Float,
-    Label,
-    Bool,
-    Error,
-}
-
-fn columns_of(layout: &Layout) -> Vec<Col> {
-    let mut v = vec![Col::Id, Col::Valence];
-    v.extend(layout.types.iter().map(|t| match t {
-        ColumnType::Float => Col::Float,
-        ColumnType::Label => Col::Label,
-        ColumnType::Bool => Col::Bool,
-    }));
-    v.push(Col::Error);
-    v
-}
-
-/// The Parquet schema of `layout`'s rows.
+/// The Parquet schema of `layout`'s rows: `id` and `valence` required
+/// unsigned integers, a column per cell by its [`ColumnType`], `error` text;
+/// all but `id` and `valence` optional.
 fn schema_of(layout: &Layout) -> Result<TypePtr, SweepError> {
-    let names = layout.column_names();
-    let mut fields = Vec::with_capacity(names.len());
-    for (name, col) in names.iter().zip(columns_of(layout)) {
-        let unsigned = |bit_width| {
-            let t = IntType {
-                bit_width,
-                is_signed: false,
-            };
-            Some(LogicalType::Integer(t))
+    let unsigned = |bit_width| {
+        let t = IntType {
+            bit_width,
+            is_signed: false,
         };
-        let (phys, logical) = match col {
-            Col::Id => (PhysicalType::INT64, unsigned(64)),
-            Col::Valence => (PhysicalType::INT32, unsigned(32)),
-            Col::Float => (PhysicalType::DOUBLE, None),
-            Col::Label | Col::Error => (PhysicalType::BYTE_ARRAY, Some(LogicalType::String)),
-            Col::Bool => (PhysicalType::BOOLEAN, None),
+        Some(LogicalType::Integer(t))
+    };
+    let text = (PhysicalType::BYTE_ARRAY, Some(LogicalType::String));
+    let mut types = vec![
+        (PhysicalType::INT64, unsigned(64)),
+        (PhysicalType::INT32, unsigned(32)),
+    ];
+    types.extend(layout.types.iter().map(|t| match t {
+        ColumnType::Float => (PhysicalType::DOUBLE, None),
+        ColumnType::Label => text.clone(),
+        ColumnType::Bool => (PhysicalType::BOOLEAN, None),
+    }));
+    types.push(text);
+    let mut fields = Vec::with_capacity(types.len());
+    for (j, (name, (phys, logical))) in layout.column_names().iter().zip(types).enumerate() {
+        let repetition = if j < 2 {
+            Repetition::REQUIRED
+        } else {
+            Repetition::OPTIONAL
         };
-        let required = matches!(col, Col::Id | Col::Valence);
         let t = Type::primitive_type_builder(name, phys)
-            .with_repetition(if required {
-                Repetition::REQUIRED
-            } else {
-                Repetition::OPTIONAL
-            })
+            .with_repetition(repetition)
             .with_logical_type(logical)
             .build()
             .map_err(pq_err)?;
@@ -207,9 +190,9 @@ fn properties(layout: &Layout, fingerprint: &str) -> Result<Arc<WriterProperties
             kv(SCHEMA_KEY, &schema_json),
             kv(NULLS_KEY, NULL_RULES),
         ]));
-    for (name, col) in layout.column_names().into_iter().zip(columns_of(layout)) {
-        if col == Col::Label {
-            b = b.set_column_dictionary_enabled(ColumnPath::from(name), true);
+    for (name, t) in layout.names.iter().zip(&layout.types) {
+        if *t == ColumnType::Label {
+            b = b.set_column_dictionary_enabled(ColumnPath::from(name.as_str()), true);
         }
     }
     Ok(Arc::new(b.build()))
@@ -250,8 +233,6 @@ struct Cells {
     floats: Vec<f64>,
     texts: Vec<ByteArray>,
     bools: Vec<bool>,
-    /// The label of the last label cell (most rows repeat it).
-    last: Option<ByteArray>,
 }
 
 impl Cells {
@@ -299,8 +280,8 @@ impl Cells {
 /// [`Write`](std::io::Write) path, and a cell that text does not fit is
 /// reported by [`ParquetRows::push_block`].
 pub struct TypedBlock {
-    /// The column types, `id` to `error`.
-    kinds: Vec<Col>,
+    /// The column types of the cells (after `valence`, before `error`).
+    kinds: Vec<ColumnType>,
     /// Per row.
     ids: Vec<i64>,
     /// Per row.
@@ -356,37 +337,24 @@ impl TypedBlock {
     }
 
     /// Stores label `t` (its CSV text) in the next cell, sharing the buffer
-    /// of an equal label met before.
+    /// of an equal label met before (a label column holds a few distinct
+    /// values, so a scan of those met is short).
     #[inline(always)]
     fn put_label(&mut self, t: &str) {
-        let k = self.col - 2;
-        match &self.cells[k].last {
-            Some(b) if b.data() == t.as_bytes() => {
-                let b = b.clone();
-                let c = self.next();
-                c.def.push(1);
-                c.texts.push(b);
-            }
-            _ => self.new_label(t),
-        }
-    }
-
-    /// [`put_label`](Self::put_label) of a label that is not the column's
-    /// last one.
-    #[cold]
-    fn new_label(&mut self, t: &str) {
-        let b = self.label(t);
+        let b = match self.labels.iter().find(|b| b.data() == t.as_bytes()) {
+            Some(b) => b.clone(),
+            None => self.new_label(t),
+        };
         let c = self.next();
         c.def.push(1);
-        c.texts.push(b.clone());
-        c.last = Some(b);
+        c.texts.push(b);
     }
 
-    /// The buffer of label `t` (its CSV text): one met before, or a new one.
-    fn label(&mut self, t: &str) -> ByteArray {
-        if let Some(b) = self.labels.iter().find(|b| b.data() == t.as_bytes()) {
-            return b.clone();
-        }
+    /// The buffer of label `t` (its CSV text), not met before: kept for the
+    /// next cells unless its text has a line break or the block keeps
+    /// [`SHARED_LABELS`] already.
+    #[cold]
+    fn new_label(&mut self, t: &str) -> ByteArray {
         let text = csv_text(t);
         let b = ByteArray::from(Bytes::copy_from_slice(text.as_bytes()));
         let own_text = matches!(text, std::borrow::Cow::Borrowed(_));
@@ -405,8 +373,8 @@ impl TypedBlock {
         if f.is_empty() {
             return self.put_null();
         }
-        let fits = match self.kinds[k] {
-            Col::Float => match canonical_number(f, &mut self.number, &mut self.digits)
+        let fits = match self.kinds[k - 2] {
+            ColumnType::Float => match canonical_number(f, &mut self.number, &mut self.digits)
                 .or_else(|| f.parse::<f64>().ok())
             {
                 Some(x) => {
@@ -415,11 +383,11 @@ impl TypedBlock {
                 }
                 None => false,
             },
-            Col::Label => {
+            ColumnType::Label => {
                 self.put_label(f);
                 true
             }
-            Col::Bool if f == "true" || f == "false" => {
+            ColumnType::Bool if f == "true" || f == "false" => {
                 let c = self.next();
                 c.def.push(1);
                 c.bools.push(f == "true");
@@ -441,7 +409,7 @@ impl TypedBlock {
     #[cold]
     #[inline(never)]
     fn num_cold(&mut self, x: f64) {
-        if self.kinds[self.col] == Col::Float {
+        if self.kinds[self.col - 2] == ColumnType::Float {
             self.put_float(stored(x));
         } else {
             let mut t = String::new();
@@ -463,13 +431,19 @@ impl TypedBlock {
 
 impl RowBlock for TypedBlock {
     fn with_rows(layout: &Layout, rows: usize) -> Self {
-        let kinds = columns_of(layout);
-        let cells = (2..kinds.len())
-            .map(|_| Cells {
+        let kinds = layout.types.clone();
+        // Each column's values sized for `rows` rows up front (no growth
+        // while the block fills); `error` (the last) is usually null.
+        let cells = kinds.iter().map(Some).chain([None]).map(|t| {
+            let rows_of = |want: ColumnType| if t == Some(&want) { rows } else { 0 };
+            Cells {
                 def: Vec::with_capacity(rows),
-                ..Cells::default()
-            })
-            .collect();
+                floats: Vec::with_capacity(rows_of(ColumnType::Float)),
+                texts: Vec::with_capacity(rows_of(ColumnType::Label)),
+                bools: Vec::with_capacity(rows_of(ColumnType::Bool)),
+            }
+        });
+        let cells = cells.collect();
         TypedBlock {
             ids: Vec::with_capacity(rows),
             valences: Vec::with_capacity(rows),
@@ -507,7 +481,7 @@ impl RowBlock for TypedBlock {
     fn num(&mut self, x: f64) {
         // The common cell (a number, not NaN, in a float column) is one
         // branch; NaN and a number in another column take the cold path.
-        if self.kinds[self.col] == Col::Float && !x.is_nan() {
+        if self.kinds[self.col - 2] == ColumnType::Float && !x.is_nan() {
             self.put_float(x);
         } else {
             self.num_cold(x);
@@ -516,7 +490,7 @@ impl RowBlock for TypedBlock {
 
     #[inline(always)]
     fn float(&mut self, x: f64) {
-        debug_assert_eq!(self.kinds[self.col], Col::Float);
+        debug_assert_eq!(self.kinds[self.col - 2], ColumnType::Float);
         if x.is_nan() {
             self.num_cold(x);
         } else {
@@ -526,7 +500,7 @@ impl RowBlock for TypedBlock {
 
     #[inline(always)]
     fn text(&mut self, t: &str) {
-        if self.kinds[self.col] == Col::Label && !t.is_empty() {
+        if self.kinds[self.col - 2] == ColumnType::Label && !t.is_empty() {
             self.put_label(t);
         } else {
             self.push_text_cell(&csv_text(t));
@@ -564,24 +538,21 @@ fn write_group<W: std::io::Write + Send>(
     group: &TypedBlock,
 ) -> Result<(), SweepError> {
     let mut rg = w.next_row_group().map_err(pq_err)?;
-    let mut j = 0;
+    let mut j = 0usize;
     while let Some(mut col) = rg.next_column().map_err(pq_err)? {
-        let kind = group.kinds.get(j).copied();
         let c = j.checked_sub(2).and_then(|k| group.cells.get(k));
-        let written = match (col.untyped(), kind, c) {
-            (ColumnWriter::Int64ColumnWriter(w), Some(Col::Id), _) => {
-                w.write_batch(&group.ids, None, None)
-            }
-            (ColumnWriter::Int32ColumnWriter(w), Some(Col::Valence), _) => {
+        let written = match (col.untyped(), j, c) {
+            (ColumnWriter::Int64ColumnWriter(w), 0, _) => w.write_batch(&group.ids, None, None),
+            (ColumnWriter::Int32ColumnWriter(w), 1, _) => {
                 w.write_batch(&group.valences, None, None)
             }
-            (ColumnWriter::DoubleColumnWriter(w), Some(Col::Float), Some(c)) => {
+            (ColumnWriter::DoubleColumnWriter(w), _, Some(c)) => {
                 w.write_batch(&c.floats, Some(&c.def), None)
             }
-            (ColumnWriter::ByteArrayColumnWriter(w), Some(Col::Label | Col::Error), Some(c)) => {
+            (ColumnWriter::ByteArrayColumnWriter(w), _, Some(c)) => {
                 w.write_batch(&c.texts, Some(&c.def), None)
             }
-            (ColumnWriter::BoolColumnWriter(w), Some(Col::Bool), Some(c)) => {
+            (ColumnWriter::BoolColumnWriter(w), _, Some(c)) => {
                 w.write_batch(&c.bools, Some(&c.def), None)
             }
             _ => {
@@ -616,7 +587,6 @@ enum Target {
 /// into one file ([`ParquetRows::file`]). [`finish`](Self::finish) writes
 /// the last, shorter group.
 pub struct ParquetRows {
-    names: Vec<String>,
     schema: TypePtr,
     props: Arc<WriterProperties>,
     /// The open row group.
@@ -641,16 +611,15 @@ impl std::fmt::Debug for ParquetRows {
 }
 
 impl ParquetRows {
-    fn new(layout: &Layout, fingerprint: &str, target: Target) -> Result<Self, SweepError> {
+    fn new(layout: &Layout, fingerprint: &str, target: Option<Target>) -> Result<Self, SweepError> {
         Ok(ParquetRows {
             group: TypedBlock::with_rows(layout, PART_ROWS),
-            names: layout.column_names(),
             schema: schema_of(layout)?,
             props: properties(layout, fingerprint)?,
             written: 0,
             next_part: 0,
             pending: Vec::new(),
-            target: Some(target),
+            target,
             layout: layout.clone(),
         })
     }
@@ -664,7 +633,7 @@ impl ParquetRows {
         first_part: u64,
         commit: PartFn,
     ) -> Result<Self, SweepError> {
-        let mut r = ParquetRows::new(layout, fingerprint, Target::Parts(commit))?;
+        let mut r = ParquetRows::new(layout, fingerprint, Some(Target::Parts(commit)))?;
         r.next_part = first_part;
         Ok(r)
     }
@@ -676,10 +645,10 @@ impl ParquetRows {
         fingerprint: &str,
         out: Box<dyn std::io::Write + Send>,
     ) -> Result<Self, SweepError> {
-        let schema = schema_of(layout)?;
-        let props = properties(layout, fingerprint)?;
-        let w = SerializedFileWriter::new(out, schema, props).map_err(pq_err)?;
-        ParquetRows::new(layout, fingerprint, Target::File(w))
+        let mut r = ParquetRows::new(layout, fingerprint, None)?;
+        let w = SerializedFileWriter::new(out, r.schema.clone(), r.props.clone());
+        r.target = Some(Target::File(w.map_err(pq_err)?));
+        Ok(r)
     }
 
     /// Appends the rows of `block` (built by the sweep driver for this
@@ -688,10 +657,11 @@ impl ParquetRows {
     /// column and the value.
     pub fn push_block(&mut self, block: &mut TypedBlock) -> Result<(), SweepError> {
         if let Some((id, k, f)) = &block.fault {
-            let name = self.names.get(*k).map_or("?", String::as_str);
-            let what = match block.kinds.get(*k) {
-                Some(Col::Float) => "a number",
-                Some(Col::Bool) => "true or false",
+            let names = self.layout.column_names();
+            let name = names.get(*k).map_or("?", String::as_str);
+            let what = match k.checked_sub(2).and_then(|c| block.kinds.get(c)) {
+                Some(ColumnType::Float) => "a number",
+                Some(ColumnType::Bool) => "true or false",
                 _ => "an unsigned integer",
             };
             return Err(SweepError::Io(format!(
@@ -701,8 +671,8 @@ impl ParquetRows {
         if block.kinds != self.group.kinds {
             return Err(SweepError::Io(format!(
                 "parquet: a block of {} columns for {} columns",
-                block.kinds.len(),
-                self.group.kinds.len()
+                block.kinds.len() + 3,
+                self.group.kinds.len() + 3
             )));
         }
         let mut start = 0;
@@ -724,7 +694,7 @@ impl ParquetRows {
         match self.target.as_mut() {
             Some(Target::Parts(commit)) => {
                 let mut w = SerializedFileWriter::new(
-                    Vec::with_capacity(rows * 8 * self.group.kinds.len()),
+                    Vec::with_capacity(rows * 8 * (self.group.kinds.len() + 3)),
                     self.schema.clone(),
                     self.props.clone(),
                 )
@@ -925,22 +895,23 @@ pub fn read_table(bytes: impl Into<Bytes>) -> Result<Table, SweepError> {
                 ))
             };
             let reader = group.get_column_reader(k).map_err(pq_read_err)?;
+            // The integers of a required column (signed ones non-negative).
+            let ints = |values: Vec<Option<i64>>| {
+                let v: Option<Vec<i64>> = values.into_iter().collect();
+                let v = v.ok_or_else(|| bad("a null"))?;
+                match v.iter().find(|&&x| !unsigned && x < 0) {
+                    Some(x) => Err(bad(&x.to_string())),
+                    None => Ok(v),
+                }
+            };
             match (reader, col) {
                 (ColumnReader::Int64ColumnReader(mut r), Column::U64(v)) => {
-                    for x in required(read_column(&mut r, rows)?).ok_or_else(|| bad("a null"))? {
-                        if !unsigned && x < 0 {
-                            return Err(bad(&x.to_string()));
-                        }
-                        v.push(x as u64);
-                    }
+                    v.extend(ints(read_column(&mut r, rows)?)?.iter().map(|&x| x as u64));
                 }
                 (ColumnReader::Int32ColumnReader(mut r), Column::U32(v)) => {
-                    for x in required(read_column(&mut r, rows)?).ok_or_else(|| bad("a null"))? {
-                        if !unsigned && x < 0 {
-                            return Err(bad(&x.to_string()));
-                        }
-                        v.push(x as u32);
-                    }
+                    let values = read_column(&mut r, rows)?;
+                    let wide = values.into_iter().map(|x| x.map(i64::from)).collect();
+                    v.extend(ints(wide)?.iter().map(|&x| x as u32));
                 }
                 (ColumnReader::DoubleColumnReader(mut r), Column::F64(v)) => {
                     v.extend(read_column(&mut r, rows)?);
@@ -991,11 +962,6 @@ fn read_column<T: parquet::data_type::DataType>(
         .collect())
 }
 
-/// The values of a column that holds no null, else `None`.
-fn required<T>(values: Vec<Option<T>>) -> Option<Vec<T>> {
-    values.into_iter().collect()
-}
-
 impl super::run::BlockWriter<TypedBlock> for ParquetRows {
     fn write_block(&mut self, block: &mut TypedBlock) -> Result<(), SweepError> {
         self.push_block(block)
@@ -1039,13 +1005,12 @@ mod tests {
     fn fill(block: &mut TypedBlock, rows: u64) {
         for r in 0..rows {
             block.start(r, 3 + (r % 4) as usize);
-            for c in 2..block.kinds.len() - 1 {
-                match (block.kinds[c], (r + c as u64) % 5) {
+            for c in 2..block.kinds.len() + 2 {
+                match (block.kinds[c - 2], (r + c as u64) % 5) {
                     (_, 0) => block.empty(),
-                    (Col::Float, _) => block.num(r as f64 * 100.0 + c as f64),
-                    (Col::Label, k) => block.text(["a", "b", "c", "d", "e"][k as usize]),
-                    (Col::Bool, k) => block.text(if k % 2 == 0 { "true" } else { "false" }),
-                    _ => block.empty(),
+                    (ColumnType::Float, _) => block.num(r as f64 * 100.0 + c as f64),
+                    (ColumnType::Label, k) => block.text(["a", "b", "c", "d", "e"][k as usize]),
+                    (ColumnType::Bool, k) => block.text(if k % 2 == 0 { "true" } else { "false" }),
                 }
             }
             block.end(if r % 7 == 3 { Some("failed") } else { None });
@@ -1072,7 +1037,9 @@ mod tests {
         for r in [0..20, 20..33, 33..70] {
             pieces.append(&mut source, r);
         }
-        assert!(whole.kinds.contains(&Col::Label) && whole.kinds.contains(&Col::Bool));
+        assert!(
+            whole.kinds.contains(&ColumnType::Label) && whole.kinds.contains(&ColumnType::Bool)
+        );
         let valences: Vec<i32> = (0..70).map(|r| 3 + r % 4).collect();
         for b in [&reused, &pieces] {
             assert_eq!(b.ids, (0..70).collect::<Vec<i64>>());
@@ -1085,8 +1052,8 @@ mod tests {
             }
         }
         // The float cells hold what was written.
-        let j = (2..whole.kinds.len() - 1)
-            .find(|&j| whole.kinds[j] == Col::Float)
+        let j = (2..whole.kinds.len() + 2)
+            .find(|&j| whole.kinds[j - 2] == ColumnType::Float)
             .unwrap();
         let rows = (0..70u64).filter(|r| (r + j as u64) % 5 != 0);
         let want: Vec<f64> = rows.map(|r| r as f64 * 100.0 + j as f64).collect();
@@ -1151,8 +1118,8 @@ mod tests {
             let want = (r_of(i) % 7 == 3).then(|| "failed".to_owned());
             assert_eq!(*e, want, "error of row {i}");
         }
-        let j = (2..a.kinds.len() - 1)
-            .find(|&j| a.kinds[j] == Col::Float)
+        let j = (2..a.kinds.len() + 2)
+            .find(|&j| a.kinds[j - 2] == ColumnType::Float)
             .unwrap();
         let x: Vec<Option<f64>> = column(&layout.column_names()[j])
             .into_iter()

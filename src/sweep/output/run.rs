@@ -62,6 +62,7 @@ impl CellSink for Stage {
 }
 
 /// One configuration of the sweep driver between evaluation and formatting.
+#[derive(Default)]
 struct Staged {
     config: Configuration,
     sampler: Vec<f64>,
@@ -73,24 +74,6 @@ struct Staged {
     /// The scheme of the last row, whose storage the next row's reuses
     /// ([`Plan::scheme_reusing`]).
     scheme: Option<crate::sweep::plan::Configured>,
-}
-
-impl Staged {
-    fn new() -> Self {
-        Staged {
-            config: Configuration {
-                id: 0,
-                valence: 0,
-                coordinates: Vec::new(),
-            },
-            sampler: Vec::new(),
-            stage: Stage::default(),
-            coordinates: Vec::new(),
-            error: None,
-            valence: 0,
-            scheme: None,
-        }
-    }
 }
 
 /// Reusable per-task storage of the sweep driver: [`BATCH`] staged rows (the
@@ -107,7 +90,7 @@ thread_local! {
 impl Scratch {
     pub(super) fn new() -> Self {
         Scratch {
-            rows: std::array::from_fn(|_| Staged::new()),
+            rows: std::array::from_fn(|_| Staged::default()),
         }
     }
 }

@@ -318,11 +318,7 @@ impl<'a> Verifier<'a> {
             unquoted: String::new(),
             number: String::new(),
             digits: zmij::Buffer::new(),
-            config: Configuration {
-                id: 0,
-                valence: 0,
-                coordinates: Vec::new(),
-            },
+            config: Configuration::default(),
             sampler: Vec::new(),
             coordinates: Vec::new(),
             part: PartialSummary::new(layout.numeric.len()),
@@ -356,8 +352,8 @@ impl<'a> Verifier<'a> {
     /// each line in turn (after a UTF-8 check and the row limit).
     ///
     /// The block is cut at line ends into pieces of about [`PIECE_BYTES`]; the
-    /// lines of each piece are counted (so that every piece knows its first row
-    /// index), then the pieces are verified in parallel, each by its own
+    /// lines of each piece are counted as it is cut (so that every piece knows
+    /// its first row index), then the pieces are verified in parallel, each by its own
     /// verifier, and the verifiers are combined in file order (rows, summary,
     /// the bottom-k recheck sample: the result does not depend on the cuts).
     pub fn check_block(
@@ -368,73 +364,47 @@ impl<'a> Verifier<'a> {
         max_rows: u64,
     ) -> Result<u64, (u64, LineFault)> {
         use rayon::prelude::*;
-        let mut cuts = vec![0usize];
-        let mut at = 0usize;
+        // Pieces cut after a line end, each with the index of its first line.
+        let (mut pieces, mut at, mut lines) = (Vec::new(), 0usize, 0u64);
         while at < block.len() {
             let target = at + PIECE_BYTES;
-            at = if target >= block.len() {
+            let end = if target >= block.len() {
                 block.len()
             } else {
                 memchr::memchr(b'\n', &block[target - 1..]).map_or(block.len(), |p| target + p)
             };
-            cuts.push(at);
-        }
-        let pieces: Vec<&[u8]> = cuts.windows(2).map(|w| &block[w[0]..w[1]]).collect();
-        let counts: Vec<u64> = pieces
-            .par_iter()
-            .map(|p| {
-                let n = memchr::memchr_iter(b'\n', p).count();
-                (n + usize::from(p.last().is_some_and(|&b| b != b'\n'))) as u64
-            })
-            .collect();
-        let mut starts = Vec::with_capacity(counts.len());
-        let mut lines = 0u64;
-        for c in &counts {
-            starts.push(lines);
-            lines += c;
+            let piece = &block[at..end];
+            pieces.push((lines, piece));
+            lines += memchr::memchr_iter(b'\n', piece).count() as u64;
+            lines += u64::from(piece.last().is_some_and(|&b| b != b'\n'));
+            at = end;
         }
         let base = self.rows;
         let (plan, layout, salt) = (self.plan, self.layout, self.salt);
         let verified: Vec<Result<Verifier, (u64, LineFault)>> = pieces
             .par_iter()
-            .zip(&starts)
-            .map(|(piece, &start)| {
+            .map(|&(start, piece)| {
                 let mut v = Verifier::new(plan, layout, 0);
                 v.salt = salt;
-                // A piece that is UTF-8 as a whole has UTF-8 lines ('\n' is
-                // ASCII); otherwise the lines before the first bad byte's line
-                // are verified, and that line is the fault.
-                let (text, bad) = match std::str::from_utf8(piece) {
-                    Ok(t) => (t, None),
-                    Err(e) => {
-                        let ok = &piece[..e.valid_up_to()];
-                        let cut = memchr::memrchr(b'\n', ok).map_or(0, |p| p + 1);
-                        let line = memchr::memchr_iter(b'\n', &piece[..cut]).count() as u64;
-                        let text = std::str::from_utf8(&piece[..cut]).unwrap_or("");
-                        (text, Some(line))
-                    }
-                };
                 // Line ends: every '\n', and the end of a last line without one.
-                let tail = (!text.is_empty() && !text.ends_with('\n')).then_some(text.len());
+                let tail = piece
+                    .last()
+                    .is_some_and(|&b| b != b'\n')
+                    .then_some(piece.len());
                 let mut a = 0;
-                for (i, end) in memchr::memchr_iter(b'\n', text.as_bytes())
-                    .chain(tail)
-                    .enumerate()
-                {
-                    let line = &text[a..end];
-                    a = end + 1;
+                for (i, end) in memchr::memchr_iter(b'\n', piece).chain(tail).enumerate() {
                     let k = start + i as u64;
                     let lineno = first_lineno + k;
+                    let line = std::str::from_utf8(&piece[a..end])
+                        .map_err(|_| (lineno, LineFault::NotUtf8))?;
+                    a = end + 1;
                     if base + k >= max_rows {
                         return Err((lineno, LineFault::TooManyRows));
                     }
                     v.check(lineno, line, expected(base + k))
                         .map_err(|m| (lineno, LineFault::Mismatch(m)))?;
                 }
-                match bad {
-                    Some(line) => Err((first_lineno + start + line, LineFault::NotUtf8)),
-                    None => Ok(v),
-                }
+                Ok(v)
             })
             .collect();
         for piece in verified {
@@ -665,9 +635,7 @@ impl<'a> Verifier<'a> {
             if fresh != k.line {
                 let what = match (split_csv_line(fresh), split_csv_line(&k.line)) {
                     (Ok(a), Ok(b)) => {
-                        let mut names = vec!["id".to_owned(), "valence".to_owned()];
-                        names.extend(self.layout.names.iter().cloned());
-                        names.push("error".into());
+                        let names = self.layout.column_names();
                         a.iter()
                             .zip(&b)
                             .zip(&names)
