@@ -4,7 +4,7 @@
 //! the characteristic map folds) in the largest cells left undecided.
 //!
 //! ```text
-//! cargo run --release --example verify_g1 -- N LO HI MIN_WIDTH TIME_BUDGET [WITNESS_CELLS] [corners] [rotations|dihedral]
+//! cargo run --release --example verify_g1 -- N LO HI MIN_WIDTH TIME_BUDGET [WITNESS_CELLS] [corners] [rotations|dihedral] [levels]
 //! ```
 //!
 //! `N` the valence; the box is `[LO, HI]^N` of edge ratios, or with
@@ -19,7 +19,11 @@
 //! the whole box through the group. Prints one
 //! line: the certified `g1` volume share, cells, wall time, why refinement
 //! stopped, and the witnesses found by kind (`benches/verify_g1_targets.sh`
-//! runs the targets).
+//! runs the targets). With `levels`, a table follows: per bisection level
+//! the cells evaluated, the final cells certified, open and left to the
+//! symmetry, and the open cells' share of the box (with a symmetry, `|G|`
+//! times their volume in the fundamental domain over the box's, the terms
+//! of the bound).
 
 use std::collections::BTreeMap;
 use subdiv_lab::verify::spec::{Property, Region, Symmetry, VerifySpec};
@@ -29,7 +33,7 @@ use subdiv_lab::verify::{run, summary, Limits};
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let usage = "usage: verify_g1 N LO HI MIN_WIDTH TIME_BUDGET [WITNESS_CELLS] [corners] [rotations|dihedral]";
+    let usage = "usage: verify_g1 N LO HI MIN_WIDTH TIME_BUDGET [WITNESS_CELLS] [corners] [rotations|dihedral] [levels]";
     let num = |k: usize| -> f64 {
         args.get(k)
             .and_then(|s| s.parse().ok())
@@ -114,5 +118,46 @@ fn main() {
     );
     for w in first {
         println!("  witness {:?}: {}", w.ratios, w.failure.as_str());
+    }
+    if args.iter().any(|a| a == "levels") {
+        print_levels(&out, &spec, total);
+    }
+}
+
+/// The per-level table of `levels`: a level's nodes are its final cells and
+/// the cells split there (half the nodes of the next level); the evaluated
+/// ones are the nodes less the cells left to the symmetry and, on the last
+/// level, the ones the time budget left unevaluated.
+fn print_levels(out: &subdiv_lab::verify::Outcome, spec: &VerifySpec, total: f64) {
+    let deepest = out.cells.iter().map(|c| c.level).max().unwrap_or(0) as usize;
+    let k = spec.symmetry.order(spec.valence()) as f64;
+    let mut finals = vec![[0u64; 3]; deepest + 2]; // g1, open, by_symmetry
+    let mut open_share = vec![0.0; deepest + 2];
+    for c in &out.cells {
+        let l = c.level as usize;
+        let slot = match c.verdict() {
+            "g1" => 0,
+            "by_symmetry" => 2,
+            _ => 1,
+        };
+        finals[l][slot] += 1;
+        if slot == 1 {
+            open_share[l] += k * spec.symmetry.domain_volume(&c.lo, &c.hi) / total;
+        }
+    }
+    let mut nodes = vec![0u64; deepest + 2];
+    for l in (0..=deepest).rev() {
+        nodes[l] = finals[l].iter().sum::<u64>() + nodes[l + 1] / 2;
+    }
+    println!("level evaluated g1 open by_symmetry open_share");
+    for l in 0..=deepest {
+        let mut evaluated = nodes[l] - finals[l][2];
+        if l == deepest {
+            evaluated -= out.unevaluated;
+        }
+        println!(
+            "{l} {evaluated} {} {} {} {:.5}",
+            finals[l][0], finals[l][1], finals[l][2], open_share[l]
+        );
     }
 }

@@ -13,10 +13,11 @@
 //! the spec's `time_budget` runs out (checked before every cell, so a run
 //! stops within one cell's evaluation of its budget). Bisection points are floats strictly
 //! inside their cells, so the cells tile the box exactly. With a spec
-//! `symmetry` ([`symmetry`]), a cell that does not meet the group's
-//! fundamental domain is neither evaluated nor refined: it is a final cell
-//! with the status `by_symmetry`, and the summary's fractions are bounds
-//! over the whole box through the group ([`summary`]).
+//! `symmetry` ([`symmetry`]), a cell whose interior does not meet the
+//! group's fundamental domain is neither evaluated nor refined: it is a
+//! final cell with the status `by_symmetry`; the others are evaluated with
+//! the most volume in the domain first, and the summary's fractions are
+//! bounds over the whole box through the group ([`summary`]).
 //!
 //! ```
 //! use subdiv_lab::verify::{run, spec::VerifySpec, Limits};
@@ -56,6 +57,18 @@ use std::time::{Duration, Instant};
 
 /// Default cap on the number of cells evaluated.
 pub const DEFAULT_MAX_CELLS: u64 = 4_000_000;
+
+/// A level's cells are evaluated in this many consecutive chunks (each in
+/// parallel on the rayon pool), so that a time budget running out within a
+/// level leaves the last cells of the level's order unevaluated rather than
+/// the tail of every thread's share. A scheduling choice, never a verdict:
+/// 64 chunks keep each chunk hundreds of cells wide (tens of milliseconds
+/// and more) on the levels where a budget runs out.
+const EVALUATION_CHUNKS: usize = 64;
+
+/// The fewest cells in a chunk of [`EVALUATION_CHUNKS`], so that the small
+/// levels still run in parallel.
+const MIN_CHUNK: usize = 64;
 
 /// Checks a cap on the evaluated cells: at least 1 (the message names the
 /// argument as `spelling` spells it).
@@ -453,7 +466,8 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
         late
     };
     while !frontier.is_empty() {
-        // a cell outside the fundamental domain is final, never evaluated
+        // a cell whose interior misses the fundamental domain is final,
+        // never evaluated
         if spec.symmetry != symmetry::Symmetry::None {
             let (keep, skip): (Vec<_>, Vec<_>) = frontier
                 .into_iter()
@@ -477,9 +491,24 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
                 break;
             }
         }
-        let results: Vec<Option<Evaluation>> = frontier
-            .par_iter()
-            .map(|(a, b)| {
+        // with a symmetry, the cells with the most volume in the fundamental
+        // domain first (stable, so the order does not depend on the thread
+        // count): when the time budget runs out within the level, the cells
+        // left unevaluated are those that weigh least in the bound
+        if spec.symmetry != symmetry::Symmetry::None {
+            let mut keyed: Vec<(f64, (Vec<f64>, Vec<f64>))> = frontier
+                .into_iter()
+                .map(|(a, b)| (spec.symmetry.domain_volume(&a, &b), (a, b)))
+                .collect();
+            keyed.sort_by(|x, y| y.0.total_cmp(&x.0));
+            frontier = keyed.into_iter().map(|(_, c)| c).collect();
+        }
+        // evaluated in consecutive chunks (each in parallel), so that the
+        // cells a budget leaves unevaluated are the last ones of the order
+        let chunk = (frontier.len() / EVALUATION_CHUNKS).max(MIN_CHUNK);
+        let mut results: Vec<Option<Evaluation>> = Vec::with_capacity(frontier.len());
+        for part in frontier.chunks(chunk) {
+            results.par_extend(part.par_iter().map(|(a, b)| {
                 if out_of_time() {
                     return None;
                 }
@@ -492,8 +521,8 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
                     b,
                     limits.tamper,
                 ))
-            })
-            .collect();
+            }));
+        }
         let skipped = results.iter().filter(|r| r.is_none()).count();
         if skipped > 0 {
             stopped.get_or_insert(Stop::TimeBudget);
@@ -631,13 +660,15 @@ pub struct Summary {
     pub counts: BTreeMap<String, usize>,
     /// Volume fraction of the box per verdict. Without symmetry: the share
     /// of the cells of that verdict. With symmetry (`k` the group order,
-    /// `V` the box's volume, sums over the evaluated cells, which are the
-    /// ones meeting the fundamental domain; math doc section 15, "Symmetry
-    /// of the ratio box"): for a proven verdict (a class, `certified`, `g1`)
-    /// the lower bound `max(0, 1 - k vol(evaluated cells of another
-    /// verdict) / V)` on the share of the box where it holds; for
-    /// `undecided` and `refuted` the upper bound `min(1, k vol(its cells) /
-    /// V)`; `by_symmetry` cells have no entry.
+    /// `V` the box's volume, `D` the fundamental domain, sums over the
+    /// evaluated cells `C`, which are the ones meeting `D`, of an upper bound
+    /// of `vol(C cap D)` ([`symmetry::Symmetry::domain_volume`]); math doc
+    /// section 15, "Symmetry of the ratio box"): for a proven verdict (a
+    /// class, `certified`, `g1`) the lower bound `max(0, 1 - k sum
+    /// vol(C cap D) / V)` over the evaluated cells of another verdict on the
+    /// share of the box where it holds; for `undecided` and `refuted` the
+    /// upper bound `min(1, k sum vol(C cap D) / V)` over its cells;
+    /// `by_symmetry` cells have no entry.
     pub volume_fraction: BTreeMap<String, f64>,
     /// Volume fraction of `undecided` cells (with symmetry: the upper bound
     /// above).
@@ -694,7 +725,13 @@ pub fn summary(spec: &VerifySpec, outcome: &Outcome) -> Summary {
         if c.by_symmetry() {
             continue;
         }
-        let v = c.volume() / total;
+        // with a symmetry, only the part in the fundamental domain counts
+        // (an upper bound of it, "Symmetry of the ratio box", the clipped bound)
+        let v = if spec.symmetry == symmetry::Symmetry::None {
+            c.volume() / total
+        } else {
+            spec.symmetry.domain_volume(&c.lo, &c.hi) / total
+        };
         evaluated_volume += v;
         *vol.entry(c.verdict().to_owned()).or_insert(0.0) += v;
         for (p, s) in &c.status {

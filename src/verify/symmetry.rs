@@ -19,6 +19,7 @@
 //! decides exactly whether a closed cell meets `D`; a cell that does not is
 //! neither evaluated nor refined.
 
+use super::interval::{down, up};
 use serde::Serialize;
 
 /// The symmetry a `verify` run of a NURDS ratio box uses.
@@ -88,32 +89,39 @@ impl Symmetry {
         None
     }
 
-    /// Whether the closed cell `[a, b]` meets the fundamental domain `D`
-    /// (module docs), decided exactly in floating point (never skips a cell
-    /// that meets `D`):
+    /// Whether the interior of the cell `[a, b]` meets the interior of the
+    /// fundamental domain `D` (module docs), decided exactly in floating
+    /// point (math doc section 15, "Symmetry of the ratio box", Lemma 4):
     ///
-    /// - rotations: `b_0 >= a_j` for every `j` (take `r_0 = b_0`, `r_j = a_j`);
-    /// - dihedral: `b_0 >= 1/2` and `dist(1/2, [a_j, b_j]) <= b_0 - 1/2` for
-    ///   every `j` (take `r_0 = b_0` and each `r_j` closest to `1/2`). Above
-    ///   `1/2` this reads `a_j <= b_0`; below, `b_j >= 1 - b_0`, where
-    ///   `1 - b_0` is exact (Sterbenz's lemma, `b_0` in `[1/2, 2]`).
+    /// - rotations: `a_j < b_0` for every `j >= 1` (take `r_0` just below
+    ///   `b_0`, `r_j` just above `a_j`);
+    /// - dihedral: `b_0 > 1/2` and `dist(1/2, [a_j, b_j]) < b_0 - 1/2` for
+    ///   every `j >= 1` (take `r_0` just below `b_0` and each `r_j` next to
+    ///   the point of `[a_j, b_j]` closest to `1/2`). Above `1/2` this reads
+    ///   `a_j < b_0`; below, `b_j > 1 - b_0`, where `1 - b_0` is exact
+    ///   (Sterbenz's lemma, `b_0` in `[1/2, 2]`).
     ///
-    /// [`Symmetry::None`]: every cell meets it.
+    /// A cell of positive volume that fails the test meets `D` at most in a
+    /// set of volume zero, and every point of `D` inside the box lies in a
+    /// cell that passes it (`D` and the box are convex with a common
+    /// interior point, so `D` is the closure of the interior of `D`, and the
+    /// cells are finitely many closed boxes). [`Symmetry::None`]: every cell
+    /// passes.
     pub fn meets_domain(self, a: &[f64], b: &[f64]) -> bool {
         match self {
             Symmetry::None => true,
-            Symmetry::Rotations => a.iter().all(|&x| x <= b[0]),
+            Symmetry::Rotations => a.iter().skip(1).all(|&x| x < b[0]),
             Symmetry::Dihedral => {
                 let top = b[0];
-                if !(top >= 0.5) {
+                if !(top > 0.5) {
                     return false;
                 }
                 let low = 1.0 - top; // exact: top in [1/2, 2]
-                a.iter().zip(b).all(|(&x, &y)| {
+                a.iter().zip(b).skip(1).all(|(&x, &y)| {
                     if x > 0.5 {
-                        x <= top
+                        x < top
                     } else if y < 0.5 {
-                        y >= low
+                        y > low
                     } else {
                         true
                     }
@@ -121,6 +129,189 @@ impl Symmetry {
             }
         }
     }
+
+    /// An upper bound on the volume of `C cap D` for the closed cell
+    /// `C = [a, b]` (math doc section 15, "Symmetry of the ratio box", the
+    /// clipped bound), rounded outward; [`Symmetry::None`]: the volume of
+    /// `C`, rounded up. With `s = r_0` over `[s_0, b_0]`,
+    ///
+    /// ```text
+    /// vol(C cap D) = \int_{s_0}^{b_0} prod_{j >= 1} f_j(s) ds,
+    ///   dihedral:  f_j(s) = len([a_j, b_j] cap [1 - s, s]),  s_0 = max(a_0, 1/2),
+    ///   rotations: f_j(s) = len([a_j, b_j] cap (-inf, s]),   s_0 = a_0.
+    /// ```
+    ///
+    /// Each `f_j = max(0, g_j)` with `g_j` concave, piecewise affine and
+    /// nondecreasing, of slope at most `d_j(p)` on `[p, inf)` (`d_j(p) =
+    /// [p < b_j] + [p < 1 - a_j]`, the second term for the dihedral group
+    /// only), so on any piece `[p, q]`
+    ///
+    /// ```text
+    /// f_j(s) <= f_j(p) + d_j(p) (s - p),   and f_j = 0 on [p, q] when g_j(q) <= 0,
+    /// ```
+    ///
+    /// and the integral over the piece is at most that of the product of
+    /// these affine bounds, a polynomial with nonnegative coefficients
+    /// integrated exactly (each operation rounded up). The pieces are cut at
+    /// every break point of the `g_j` (`a_j`, `b_j`, `1/2` and floats
+    /// enclosing `1 - a_j`, `1 - b_j`), where the bound is the exact
+    /// integral up to rounding; on the pieces inside an enclosure (a few
+    /// units in the last place wide) it is an over-estimate of that order.
+    ///
+    /// ```
+    /// use subdiv_lab::verify::symmetry::Symmetry;
+    /// // u_0 in [0, 1/4], u_1 in [0, 1/4]: the triangle u_0 >= u_1, 1/32
+    /// let v = Symmetry::Dihedral.domain_volume(&[0.5, 0.5], &[0.75, 0.75]);
+    /// assert!(v >= 1.0 / 32.0 && v < 1.0 / 32.0 * (1.0 + 1e-14));
+    /// ```
+    pub fn domain_volume(self, a: &[f64], b: &[f64]) -> f64 {
+        match self {
+            Symmetry::None => a
+                .iter()
+                .zip(b)
+                .fold(1.0, |v, (&x, &y)| mul_up(v, pos_diff_up(y, x))),
+            Symmetry::Rotations => clipped_volume(a, b, false),
+            Symmetry::Dihedral => clipped_volume(a, b, true),
+        }
+    }
+}
+
+/// `1 - p` rounded down: exact for `p` in `[1/2, 2]` (Sterbenz's lemma).
+fn one_minus_down(p: f64) -> f64 {
+    if (0.5..=2.0).contains(&p) {
+        1.0 - p
+    } else {
+        down(1.0 - p)
+    }
+}
+
+/// `x y` rounded up for `x, y >= 0` (exactly `0` when a factor is).
+fn mul_up(x: f64, y: f64) -> f64 {
+    if x == 0.0 || y == 0.0 {
+        0.0
+    } else {
+        up(x * y)
+    }
+}
+
+/// `x + y` rounded up for `x, y >= 0` (exact when a term is `0`).
+fn add_up(x: f64, y: f64) -> f64 {
+    if x == 0.0 {
+        y
+    } else if y == 0.0 {
+        x
+    } else {
+        up(x + y)
+    }
+}
+
+/// `x - y` rounded up, `0` when `x <= y` (exact comparison).
+fn pos_diff_up(x: f64, y: f64) -> f64 {
+    if x <= y {
+        0.0
+    } else {
+        up(x - y)
+    }
+}
+
+/// The bound of [`Symmetry::domain_volume`] (`dihedral`: the dihedral
+/// domain, else the rotations' one).
+fn clipped_volume(a: &[f64], b: &[f64], dihedral: bool) -> f64 {
+    let n = a.len();
+    let s0 = if dihedral { a[0].max(0.5) } else { a[0] };
+    let s1 = b[0];
+    if !(s1 > s0) {
+        return 0.0;
+    }
+    // a cell inside D: the product of its sides (dihedral: u_0 >= |u_j|
+    // on all of it, i.e. a_0 >= 1/2, b_j <= a_0 and a_j >= 1 - a_0, exact
+    // by Sterbenz; rotations: b_j <= a_0)
+    let inside = (1..n).all(|j| b[j] <= a[0] && (!dihedral || (a[0] >= 0.5 && a[j] >= 1.0 - a[0])));
+    if inside {
+        return a
+            .iter()
+            .zip(b)
+            .fold(1.0, |v, (&x, &y)| mul_up(v, pos_diff_up(y, x)));
+    }
+    // the pieces: every break point of the g_j inside (s0, s1)
+    let mut cuts = vec![s0, s1];
+    for j in 1..n {
+        cuts.push(a[j]);
+        cuts.push(b[j]);
+        if dihedral {
+            for x in [a[j], b[j]] {
+                let c = 1.0 - x;
+                cuts.extend([down(c), c, up(c)]);
+            }
+        }
+    }
+    if dihedral {
+        cuts.push(0.5);
+    }
+    cuts.retain(|&x| s0 <= x && x <= s1);
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    // the upper end of the enclosure of 1 - a_j (past it, 1 - s <= a_j)
+    let past: Vec<f64> = a.iter().map(|&x| up(1.0 - x)).collect();
+    let g_up = |j: usize, s: f64| -> f64 {
+        let top = b[j].min(s);
+        let bottom = if dihedral {
+            a[j].max(one_minus_down(s))
+        } else {
+            a[j]
+        };
+        pos_diff_up(top, bottom)
+    };
+    let mut total = 0.0;
+    let mut poly = vec![0.0; n];
+    for w in cuts.windows(2) {
+        let (p, q) = (w[0], w[1]);
+        // the product of the affine bounds c_j + d_j x, x = s - p
+        poly.iter_mut().for_each(|e| *e = 0.0);
+        poly[0] = 1.0;
+        let mut degree = 0;
+        let mut zero = false;
+        for j in 1..n {
+            if g_up(j, q) == 0.0 {
+                zero = true;
+                break;
+            }
+            let c = g_up(j, p);
+            let mut d = 0.0;
+            if p < b[j] {
+                d += 1.0;
+            }
+            if dihedral && !(p >= past[j]) {
+                d += 1.0;
+            }
+            for k in (0..=degree + 1).rev() {
+                let lower = if k > 0 { mul_up(poly[k - 1], d) } else { 0.0 };
+                let same = if k <= degree { mul_up(poly[k], c) } else { 0.0 };
+                poly[k] = add_up(lower, same);
+            }
+            degree += 1;
+        }
+        if zero {
+            continue;
+        }
+        let width = up(q - p);
+        let mut power = width;
+        let mut piece = 0.0;
+        for (k, &e) in poly.iter().enumerate().take(degree + 1) {
+            let term = mul_up(e, power);
+            piece = add_up(
+                piece,
+                if term == 0.0 {
+                    0.0
+                } else {
+                    up(term / (k + 1) as f64)
+                },
+            );
+            power = mul_up(power, width);
+        }
+        total = add_up(total, piece);
+    }
+    total
 }
 
 /// The smallest box `[1 - h, h]` with floats `1 - h` and `h` that contains
@@ -260,19 +451,148 @@ mod tests {
     #[test]
     fn the_fundamental_domain_meets_exactly() {
         let d = Symmetry::Dihedral;
-        // u_0 >= |u_j|: the corner (0.75, 0.25, 0.75) is in D
-        assert!(d.meets_domain(&[0.5, 0.0, 0.5], &[0.75, 0.25, 0.75]));
+        // u_0 >= |u_j| inside: the point (0.74, 0.26, 0.74) is interior to D
+        assert!(d.meets_domain(&[0.5, 0.0, 0.5], &[0.75, 0.3, 0.75]));
         // r_0 <= 0.7 but r_1 <= 0.25: |u_1| >= 0.25 > 0.2
         assert!(!d.meets_domain(&[0.5, 0.0, 0.5], &[0.7, 0.25, 0.7]));
         // r_0 below 1/2
         assert!(!d.meets_domain(&[0.1, 0.4, 0.4], &[0.49, 0.6, 0.6]));
-        // touching at one point counts (closed cells)
-        assert!(d.meets_domain(&[0.5, 0.75, 0.5], &[0.75, 0.9, 0.6]));
-        assert!(!d.meets_domain(&[0.5, 0.75f64.next_up(), 0.5], &[0.75, 0.9, 0.6]));
+        // touching D on a set of volume zero does not count (interiors)
+        assert!(!d.meets_domain(&[0.5, 0.0, 0.5], &[0.75, 0.25, 0.75]));
+        assert!(!d.meets_domain(&[0.5, 0.75, 0.5], &[0.75, 0.9, 0.6]));
+        assert!(d.meets_domain(&[0.5, 0.75f64.next_down(), 0.5], &[0.75, 0.9, 0.6]));
+        assert!(!d.meets_domain(&[0.4, 0.4, 0.4], &[0.5, 0.6, 0.6]));
         let r = Symmetry::Rotations;
-        assert!(r.meets_domain(&[0.1, 0.3], &[0.3, 0.4]));
-        assert!(!r.meets_domain(&[0.1, 0.3f64.next_up()], &[0.3, 0.4]));
+        assert!(r.meets_domain(&[0.1, 0.3f64.next_down()], &[0.3, 0.4]));
+        assert!(!r.meets_domain(&[0.1, 0.3], &[0.3, 0.4]));
         assert!(Symmetry::None.meets_domain(&[0.1, 0.9], &[0.2, 0.95]));
+    }
+
+    /// Whether `r` lies in the fundamental domain (floats, for sampling).
+    fn in_domain(sym: Symmetry, r: &[f64]) -> bool {
+        match sym {
+            Symmetry::None => true,
+            Symmetry::Rotations => r.iter().all(|&x| x <= r[0]),
+            Symmetry::Dihedral => r.iter().all(|&x| (x - 0.5).abs() <= r[0] - 0.5),
+        }
+    }
+
+    /// The clipped volume against hand-computed values: a triangle, a
+    /// pyramid, cells inside and outside.
+    #[test]
+    fn the_clipped_volume_of_simple_cells() {
+        let d = Symmetry::Dihedral;
+        let close = |v: f64, want: f64| v >= want && v <= want * (1.0 + 1e-13) + 1e-300;
+        // u_0 in [0, 1/4], u_1 in [0, 1/4]: the triangle u_0 >= u_1
+        assert!(close(
+            d.domain_volume(&[0.5, 0.5], &[0.75, 0.75]),
+            1.0 / 32.0
+        ));
+        // u_1 in [-1/4, 1/4]: twice the triangle
+        assert!(close(
+            d.domain_volume(&[0.5, 0.25], &[0.75, 0.75]),
+            1.0 / 16.0
+        ));
+        // the pyramid u_0 >= |u_1|, |u_2| over u_0 in [0, 1/2]: int 4 t^2 = 1/6
+        assert!(close(
+            d.domain_volume(&[0.5, 0.0, 0.0], &[1.0, 1.0, 1.0]),
+            1.0 / 6.0
+        ));
+        // inside: the plain volume
+        assert!(close(
+            d.domain_volume(&[0.75, 0.5, 0.375], &[0.875, 0.75, 0.5]),
+            0.125 * 0.25 * 0.125
+        ));
+        // outside, or touching on a set of volume zero
+        assert_eq!(d.domain_volume(&[0.25, 0.5], &[0.5, 0.75]), 0.0);
+        assert_eq!(d.domain_volume(&[0.5, 0.0], &[0.75, 0.25]), 0.0);
+        let r = Symmetry::Rotations;
+        // r_0 >= r_1 over [0, 1]^2: 1/2; over [0, 1]^3 with r_0 largest: 1/3
+        assert!(close(r.domain_volume(&[0.0, 0.0], &[1.0, 1.0]), 0.5));
+        assert!(close(r.domain_volume(&[0.0; 3], &[1.0; 3]), 1.0 / 3.0));
+        assert_eq!(r.domain_volume(&[0.1, 0.5], &[0.5, 0.9]), 0.0);
+        assert!(close(
+            Symmetry::None.domain_volume(&[0.0, 0.5], &[0.5, 0.75]),
+            0.125
+        ));
+    }
+
+    /// Math doc section 15, "Symmetry of the ratio box", the clipped bound:
+    /// over a grid tiling `[1 - h, h]^n` the clipped volumes add up to
+    /// `vol(D cap B) = vol(B) / |G|` (Lemma 3), never below and within a few
+    /// units in the last place above; on random cells, many straddling the
+    /// walls of `D`, a Monte Carlo estimate of `vol(C cap D)` agrees within
+    /// five standard deviations.
+    #[test]
+    fn the_clipped_volume_adds_up_and_matches_monte_carlo() {
+        for (sym, n, m, lo) in [
+            (Symmetry::Dihedral, 3, 9, 0.05),
+            (Symmetry::Dihedral, 4, 6, 0.1),
+            (Symmetry::Dihedral, 5, 4, 0.05),
+            (Symmetry::Rotations, 3, 7, 0.05),
+            (Symmetry::Rotations, 5, 4, 0.2),
+        ] {
+            // a box the group maps onto itself exactly
+            let (lo, hi) = symmetric_enclosure(lo, 1.0 - lo);
+            let step = (hi - lo) / m as f64;
+            // grid points as floats; the last one is hi exactly
+            let grid: Vec<f64> = (0..=m)
+                .map(|k| if k == m { hi } else { lo + step * k as f64 })
+                .collect();
+            let mut sum = 0.0;
+            let mut idx = vec![0usize; n];
+            loop {
+                let a: Vec<f64> = idx.iter().map(|&k| grid[k]).collect();
+                let b: Vec<f64> = idx.iter().map(|&k| grid[k + 1]).collect();
+                let v = sym.domain_volume(&a, &b);
+                if !sym.meets_domain(&a, &b) {
+                    assert_eq!(v, 0.0, "{sym:?} {a:?} {b:?}");
+                }
+                sum += v;
+                let mut k = 0;
+                while k < n && idx[k] == m - 1 {
+                    idx[k] = 0;
+                    k += 1;
+                }
+                if k == n {
+                    break;
+                }
+                idx[k] += 1;
+            }
+            let want = (hi - lo).powi(n as i32) / sym.order(n) as f64;
+            assert!(
+                sum >= want * (1.0 - 1e-13) && sum <= want * (1.0 + 1e-11),
+                "{sym:?} n = {n}: {sum} vs {want}"
+            );
+        }
+        let mut rng = crate::rng::SplitMix64::new(11);
+        for sym in [Symmetry::Dihedral, Symmetry::Rotations] {
+            for n in [3, 5] {
+                for _ in 0..12 {
+                    let a: Vec<f64> = (0..n).map(|_| rng.uniform(0.3, 0.6)).collect();
+                    let b: Vec<f64> = a.iter().map(|x| x + rng.uniform(0.05, 0.3)).collect();
+                    let v = sym.domain_volume(&a, &b);
+                    let vol: f64 = a.iter().zip(&b).map(|(x, y)| y - x).product();
+                    let samples = 40_000;
+                    let hits = (0..samples)
+                        .filter(|_| {
+                            let r: Vec<f64> =
+                                a.iter().zip(&b).map(|(x, y)| rng.uniform(*x, *y)).collect();
+                            in_domain(sym, &r)
+                        })
+                        .count();
+                    let p = hits as f64 / samples as f64;
+                    let sd = (p * (1.0 - p) / samples as f64)
+                        .sqrt()
+                        .max(1.0 / samples as f64);
+                    assert!(
+                        (v / vol - p).abs() <= 5.0 * sd,
+                        "{sym:?} {a:?} {b:?}: {} vs {p} (sd {sd})",
+                        v / vol
+                    );
+                }
+            }
+        }
     }
 
     #[test]
