@@ -223,6 +223,9 @@ fn attempted(region: &Region, p: Property) -> bool {
 /// (the split coordinate is chosen by it).
 type Evaluation = (Option<ClassName>, Vec<(Property, Status)>, Option<Vec<f64>>);
 
+/// A cell's lower and upper corners.
+type Corners = (Vec<f64>, Vec<f64>);
+
 /// Evaluates one cell.
 fn evaluate(
     spec: &VerifySpec,
@@ -374,15 +377,19 @@ fn decided(spec: &VerifySpec, class: Option<ClassName>, status: &[(Property, Sta
 /// and then the lowest index. The choice affects only efficiency, never a
 /// verdict. With `log_split` (corner-interval boxes) the bisection point is
 /// the ratio at the midpoint of the log ratio `ln((1 - r) / r)` when that
-/// float lies strictly inside, else the ordinary midpoint.
+/// float lies strictly inside, else the ordinary midpoint. With a
+/// symmetry `group`, a candidate whose cut leaves one half with its interior
+/// outside the fundamental domain (that half is `by_symmetry` at once,
+/// never evaluated) goes before the others.
 fn split_coordinate(
     a: &[f64],
     b: &[f64],
     scores: Option<&[f64]>,
     min_width: f64,
     log_split: bool,
+    group: symmetry::Symmetry,
 ) -> Option<(usize, f64)> {
-    let mut best: Option<(usize, f64, f64, f64)> = None; // (k, mid, score, width)
+    let mut best: Option<(usize, f64, bool, f64, f64)> = None; // (k, mid, free, score, width)
     for k in 0..a.len() {
         let w = b[k] - a[k];
         let mut mid = 0.5 * a[k] + 0.5 * b[k];
@@ -402,15 +409,24 @@ fn split_coordinate(
             .and_then(|s| s.get(k).copied())
             .filter(|x| x.is_finite())
             .unwrap_or(0.0);
+        let free = group != symmetry::Symmetry::None && {
+            let mut upper = b.to_vec();
+            upper[k] = mid;
+            let mut lower = a.to_vec();
+            lower[k] = mid;
+            !group.meets_domain(a, &upper) || !group.meets_domain(&lower, b)
+        };
         let better = match best {
             None => true,
-            Some((_, _, bs, bw)) => sc > bs || (sc == bs && w > bw),
+            Some((_, _, bf, bs, bw)) => {
+                (free && !bf) || (free == bf && (sc > bs || (sc == bs && w > bw)))
+            }
         };
         if better {
-            best = Some((k, mid, sc, w));
+            best = Some((k, mid, free, sc, w));
         }
     }
-    best.map(|(k, mid, _, _)| (k, mid))
+    best.map(|(k, mid, _, _, _)| (k, mid))
 }
 
 /// Runs the branch and bound (parallel over the cells of a level on the
@@ -496,7 +512,7 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
         // count): when the time budget runs out within the level, the cells
         // left unevaluated are those that weigh least in the bound
         if spec.symmetry != symmetry::Symmetry::None {
-            let mut keyed: Vec<(f64, (Vec<f64>, Vec<f64>))> = frontier
+            let mut keyed: Vec<(f64, Corners)> = frontier
                 .into_iter()
                 .map(|(a, b)| (spec.symmetry.domain_volume(&a, &b), (a, b)))
                 .collect();
@@ -535,7 +551,14 @@ pub fn run(spec: &VerifySpec, limits: &Limits) -> Outcome {
             .map(|r| r.unwrap_or_else(|| not_evaluated(spec)))
             .collect();
         let splittable = |a: &[f64], b: &[f64], scores: Option<&Vec<f64>>| {
-            split_coordinate(a, b, scores.map(Vec::as_slice), spec.min_width, log_split)
+            split_coordinate(
+                a,
+                b,
+                scores.map(Vec::as_slice),
+                spec.min_width,
+                log_split,
+                spec.symmetry,
+            )
         };
         let open: usize = frontier
             .iter()

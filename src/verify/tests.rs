@@ -573,3 +573,39 @@ fn a_time_budget_stops_within_a_level() {
     }
     panic!("three budgets ran out exactly at the end of a level");
 }
+
+/// With a symmetry, a cut that leaves one half outside the fundamental
+/// domain goes before the enclosure's preferred side: in `[1/2, 3/4] x
+/// [1/2, 1]` cutting `r_1` at `3/4` leaves `r_1 >= 3/4 >= r_0`, outside
+/// `u_0 >= |u_1|` (dihedral) and `r_0 >= r_1` (rotations) but for a face,
+/// while both halves of the cut of `r_0` meet the domain. Without a symmetry
+/// the scores decide.
+#[test]
+fn a_cut_that_leaves_a_half_to_the_symmetry_goes_first() {
+    let (a, b) = ([0.5, 0.5], [0.75, 1.0]);
+    let scores = [1.0, 0.0];
+    for group in [symmetry::Symmetry::Dihedral, symmetry::Symmetry::Rotations] {
+        assert_eq!(
+            split_coordinate(&a, &b, Some(&scores), 0.01, false, group),
+            Some((1, 0.75)),
+            "{group:?}"
+        );
+    }
+    assert_eq!(
+        split_coordinate(&a, &b, Some(&scores), 0.01, false, symmetry::Symmetry::None),
+        Some((0, 0.625))
+    );
+    // no free cut: the scores decide
+    let (a, b) = ([0.5, 0.25], [0.75, 0.75]);
+    assert_eq!(
+        split_coordinate(
+            &a,
+            &b,
+            Some(&scores),
+            0.01,
+            false,
+            symmetry::Symmetry::Dihedral
+        ),
+        Some((0, 0.625))
+    );
+}
