@@ -143,9 +143,8 @@ pub fn open<E: Evaluate + ?Sized>(
             break;
         }
         let lines = csv_lines(&table, 0, rows as usize);
-        let expected_id = |j: u64| shard.id(j);
         verifier
-            .check_block(1, lines.as_bytes(), &expected_id, expected)
+            .check_block(1, lines.as_bytes(), shard, expected)
             .map_err(|(l, fault)| match fault {
                 LineFault::Mismatch(m) => mismatch(l, format!("row {l}: {m}")),
                 LineFault::NotUtf8 => mismatch(l, "not UTF-8".into()),

@@ -520,14 +520,13 @@ fn scan_csv(
     let mut block = Vec::with_capacity(BLOCK_BYTES as usize + (1 << 16));
     let mut next = Vec::with_capacity(BLOCK_BYTES as usize + (1 << 16));
     let mut at_end = fill(&mut reader, &mut block)? == 0;
-    let expected_id = |j: u64| shard.id(j);
     let max_rows = summary.expected_rows;
     let torn = loop {
         let complete = memchr::memrchr(b'\n', &block).map_or(0, |p| p + 1);
         next.clear();
         next.extend_from_slice(&block[complete..]);
         let (checked, read) = rayon::join(
-            || verifier.check_block(lineno + 1, &block[..complete], &expected_id, max_rows),
+            || verifier.check_block(lineno + 1, &block[..complete], shard, max_rows),
             || {
                 if at_end {
                     Ok(0)

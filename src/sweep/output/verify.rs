@@ -349,7 +349,7 @@ impl<'a> Verifier<'a> {
     /// Verifies a block of complete lines (each ending in `\n`; the first is
     /// line `first_lineno` of the file) in parallel on the current rayon pool,
     /// and returns the number of lines. Row `j` of the file (counting from 0
-    /// over all calls) must carry id `expected(j)`, and only rows `j <
+    /// over all calls) must carry id `shard.id(j)`, and only rows `j <
     /// max_rows` may exist. The error is that of the first faulty line in file
     /// order: `(line number, fault)`. Same result as [`check`](Self::check) on
     /// each line in turn (after a UTF-8 check and the row limit).
@@ -363,7 +363,7 @@ impl<'a> Verifier<'a> {
         &mut self,
         first_lineno: u64,
         block: &[u8],
-        expected: &(dyn Fn(u64) -> u64 + Sync),
+        shard: Shard,
         max_rows: u64,
     ) -> Result<u64, (u64, LineFault)> {
         use rayon::prelude::*;
@@ -404,7 +404,7 @@ impl<'a> Verifier<'a> {
                     if base + k >= max_rows {
                         return Err((lineno, LineFault::TooManyRows));
                     }
-                    v.check(lineno, line, expected(base + k))
+                    v.check(lineno, line, shard.id(base + k))
                         .map_err(|m| (lineno, LineFault::Mismatch(m)))?;
                 }
                 Ok(v)
