@@ -332,6 +332,8 @@ impl<'a> Verifier<'a> {
         }
     }
 
+    /// Keeps `k` if its hash is among the [`RECHECK_SAMPLE`] smallest met
+    /// (bottom-k), dropping the largest kept.
     fn keep(&mut self, k: Kept) {
         if self.kept.len() < RECHECK_SAMPLE {
             self.kept.push(k);
@@ -415,9 +417,7 @@ impl<'a> Verifier<'a> {
             self.rows += v.rows;
             self.part.absorb(&v.part);
             for k in v.kept {
-                if self.kept.len() < RECHECK_SAMPLE || k.hash < self.kept_max {
-                    self.keep(k);
-                }
+                self.keep(k);
             }
         }
         Ok(lines)
