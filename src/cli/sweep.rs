@@ -429,12 +429,8 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         );
         return Ok(());
     }
-    let (evaluated, seconds) = (report.evaluated, report.seconds);
-    let rate = if seconds > 0.0 {
-        evaluated as f64 / seconds
-    } else {
-        0.0
-    };
+    let t = &report.summary.throughput;
+    let (evaluated, seconds, rate) = (t.evaluated, t.seconds, t.configurations_per_second);
     eprintln!(
         "sweep: {} rows ({evaluated} evaluated in {seconds:.2} s, {rate:.0} configurations/s, {threads} threads){}{}",
         report.summary.rows,
@@ -443,7 +439,9 @@ pub(crate) fn run_sweep(args: SweepArgs) -> CliResult {
         } else {
             String::new()
         },
-        summary_file.map(|p| format!("; summary {p}")).unwrap_or_default()
+        summary_file
+            .map(|p| format!("; summary {p}"))
+            .unwrap_or_default()
     );
     Ok(())
 }

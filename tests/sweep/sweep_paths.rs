@@ -591,6 +591,10 @@ fn part_names_round_trip() {
         "part-000017.parquet.tmp",
         "part-7-of-3-000001.parquet",
         "part-+1-of-3-000001.parquet",
+        "part-1-of-03-000001.parquet",
+        "part-1-of-3-+00001.parquet",
+        "part-0-of-1-000001.parquet",
+        "part- 1-of-3-000001.parquet",
         "part-1-of-3-000001.csv",
         "_summary.json",
     ] {

@@ -88,13 +88,14 @@ fn a_run_resumed_after_a_torn_write_equals_the_uninterrupted_run() {
         Some((true, rows_before, 1400, Some("dropped a torn last line")))
     );
     assert_eq!(rec.written.last(), Some(&1400));
-    assert_eq!(report.evaluated, 1400 - rows_before);
+    assert_eq!(report.summary.throughput.evaluated, 1400 - rows_before);
     assert!(!report.complete);
-    // Complete: nothing evaluated.
+    // Complete: nothing evaluated (the throughput is the last run's).
+    let last = report.summary.throughput;
     let report =
         subdiv_lab::sweep::run(spec(), None, Sink::Csv(path.clone()), options(1, true)).unwrap();
     assert!(report.complete);
-    assert_eq!(report.evaluated, 0);
+    assert_eq!(report.summary.throughput, last);
     assert!(
         fs::read(&path).unwrap() == one,
         "the resumed file equals the uninterrupted one"

@@ -72,11 +72,11 @@ fn the_row_limit_is_exact_and_counts_earlier_blocks() {
     assert_eq!(n, 12);
     let all = block(&lines);
     let mut v = Verifier::new(&plan, &layout, 1);
-    assert_eq!(v.check_block(lineno(0), &all, &expected, n), Ok(n));
+    assert_eq!(v.check_block(lineno(0), &all, Shard::ALL, n), Ok(n));
     assert_eq!(v.rows(), n);
     let mut v = Verifier::new(&plan, &layout, 1);
     assert_eq!(
-        v.check_block(lineno(0), &all, &expected, n - 1),
+        v.check_block(lineno(0), &all, Shard::ALL, n - 1),
         Err((lineno(lines.len() - 1), LineFault::TooManyRows))
     );
     // Two blocks: the second starts at row 5 of the file.
@@ -89,13 +89,13 @@ fn the_row_limit_is_exact_and_counts_earlier_blocks() {
         ),
     ] {
         let mut v = Verifier::new(&plan, &layout, 1);
-        assert_eq!(v.check_block(lineno(0), &a, &expected, limit), Ok(5));
-        assert_eq!(v.check_block(lineno(5), &b, &expected, limit), want);
+        assert_eq!(v.check_block(lineno(0), &a, Shard::ALL, limit), Ok(5));
+        assert_eq!(v.check_block(lineno(5), &b, Shard::ALL, limit), want);
     }
     // A limit inside the first block: refused at that row.
     let mut v = Verifier::new(&plan, &layout, 1);
     assert_eq!(
-        v.check_block(lineno(0), &all, &expected, 4),
+        v.check_block(lineno(0), &all, Shard::ALL, 4),
         Err((lineno(4), LineFault::TooManyRows))
     );
     // Rows out of order are a mismatch, not a limit.
@@ -103,7 +103,7 @@ fn the_row_limit_is_exact_and_counts_earlier_blocks() {
     swapped.swap(1, 2);
     let mut v = Verifier::new(&plan, &layout, 1);
     assert!(matches!(
-        v.check_block(lineno(0), &block(&swapped), &expected, n),
+        v.check_block(lineno(0), &block(&swapped), Shard::ALL, n),
         Err((l, LineFault::Mismatch(_))) if l == lineno(1)
     ));
 }
@@ -303,7 +303,7 @@ fn the_recheck_sample_is_the_bottom_k_of_the_salted_hashes() {
             );
             // one block (several pieces), then three blocks
             let mut v = Verifier::new(&plan, &layout, salt);
-            v.check_block(lineno(0), &block(&edited), &expected, n as u64)
+            v.check_block(lineno(0), &block(&edited), Shard::ALL, n as u64)
                 .unwrap();
             assert_eq!(
                 v.recheck(&eval).map_err(|e| e.0),
@@ -312,7 +312,7 @@ fn the_recheck_sample_is_the_bottom_k_of_the_salted_hashes() {
             );
             let mut v = Verifier::new(&plan, &layout, salt);
             for (a, b) in [(0, 1000), (1000, 1001), (1001, n)] {
-                v.check_block(lineno(a), &block(&edited[a..b]), &expected, n as u64)
+                v.check_block(lineno(a), &block(&edited[a..b]), Shard::ALL, n as u64)
                     .unwrap();
             }
             assert_eq!(v.rows(), n as u64);
@@ -325,7 +325,7 @@ fn the_recheck_sample_is_the_bottom_k_of_the_salted_hashes() {
     }
     // The summary rebuilt from the unedited lines is the written one.
     let mut v = Verifier::new(&plan, &layout, 1);
-    v.check_block(lineno(0), &block(&lines), &expected, n as u64)
+    v.check_block(lineno(0), &block(&lines), Shard::ALL, n as u64)
         .unwrap();
     let mut rebuilt = Summary::new(&plan, &layout, Shard::ALL, None);
     v.add_to(&mut rebuilt);
@@ -345,7 +345,7 @@ fn a_last_line_without_newline_is_checked_and_non_utf8_lines_are_located() {
     let mut all = block(&lines);
     assert_eq!(all.pop(), Some(b'\n'));
     let mut v = Verifier::new(&plan, &layout, 1);
-    assert_eq!(v.check_block(lineno(0), &all, &expected, n), Ok(n));
+    assert_eq!(v.check_block(lineno(0), &all, Shard::ALL, n), Ok(n));
     assert_eq!(v.rows(), n);
     // the tail line is checked: an edit of it is found
     let mut edited = lines.clone();
@@ -363,7 +363,7 @@ fn a_last_line_without_newline_is_checked_and_non_utf8_lines_are_located() {
     tail.pop();
     let mut v = Verifier::new(&plan, &layout, 1);
     assert!(matches!(
-        v.check_block(lineno(0), &tail, &expected, n),
+        v.check_block(lineno(0), &tail, Shard::ALL, n),
         Err((l, LineFault::Mismatch(_))) if l == lineno(last)
     ));
     // a byte that is not UTF-8 in row 7 (the rows before it are fine)
@@ -372,7 +372,7 @@ fn a_last_line_without_newline_is_checked_and_non_utf8_lines_are_located() {
     bad[at] = 0xff;
     let mut v = Verifier::new(&plan, &layout, 1);
     assert_eq!(
-        v.check_block(lineno(0), &bad, &expected, n),
+        v.check_block(lineno(0), &bad, Shard::ALL, n),
         Err((lineno(7), LineFault::NotUtf8))
     );
     // in the first line of a block
@@ -380,7 +380,7 @@ fn a_last_line_without_newline_is_checked_and_non_utf8_lines_are_located() {
     bad[0] = 0xff;
     let mut v = Verifier::new(&plan, &layout, 1);
     assert_eq!(
-        v.check_block(lineno(0), &bad, &expected, n),
+        v.check_block(lineno(0), &bad, Shard::ALL, n),
         Err((lineno(0), LineFault::NotUtf8))
     );
     // in a later piece of a block cut into several (and a later block)
@@ -395,7 +395,7 @@ fn a_last_line_without_newline_is_checked_and_non_utf8_lines_are_located() {
         bad[at] = 0xfe;
         let mut v = Verifier::new(&plan, &layout, 1);
         assert_eq!(
-            v.check_block(lineno(0), &bad, &expected, n as u64),
+            v.check_block(lineno(0), &bad, Shard::ALL, n as u64),
             Err((lineno(j), LineFault::NotUtf8)),
             "row {j}"
         );
@@ -403,7 +403,7 @@ fn a_last_line_without_newline_is_checked_and_non_utf8_lines_are_located() {
         v.check_block(
             lineno(0),
             &bad[..block(&lines[..100]).len()],
-            &expected,
+            Shard::ALL,
             n as u64,
         )
         .unwrap();
@@ -411,7 +411,7 @@ fn a_last_line_without_newline_is_checked_and_non_utf8_lines_are_located() {
             v.check_block(
                 lineno(100),
                 &bad[block(&lines[..100]).len()..],
-                &expected,
+                Shard::ALL,
                 n as u64
             ),
             Err((lineno(j), LineFault::NotUtf8)),
@@ -435,7 +435,7 @@ fn rebuilt_summaries_count_failed_rows_and_rows_without_a_class() {
     let mut v = Verifier::new(&plan, &layout, 1);
     let n = lines.len() as u64;
     assert_eq!(
-        v.check_block(lineno(0), &block(&lines), &expected, n),
+        v.check_block(lineno(0), &block(&lines), Shard::ALL, n),
         Ok(n)
     );
     let mut rebuilt = Summary::new(&plan, &layout, Shard::ALL, None);

@@ -23,7 +23,7 @@ use crate::sweep::plan::{Plan, Shard};
 use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
 use std::fs::{self, File};
-use std::io::{BufReader, Write};
+use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
 fn refused(m: String) -> SweepError {
@@ -81,9 +81,7 @@ fn commit_fn(dir: PathBuf, shard: Shard) -> PartFn {
     Box::new(move |k, _rows, bytes| {
         let name = part_name(shard, k);
         let tmp = dir.with_file_name(format!(".{dir_name}.{name}.tmp"));
-        let mut f = File::create(&tmp)?;
-        f.write_all(&bytes)?;
-        drop(f);
+        fs::write(&tmp, &bytes)?;
         fs::rename(&tmp, dir.join(&name))
     })
 }
@@ -145,9 +143,8 @@ pub fn open<E: Evaluate + ?Sized>(
             break;
         }
         let lines = csv_lines(&table, 0, rows as usize);
-        let expected_id = |j: u64| shard.id(j);
         verifier
-            .check_block(1, lines.as_bytes(), &expected_id, expected)
+            .check_block(1, lines.as_bytes(), shard, expected)
             .map_err(|(l, fault)| match fault {
                 LineFault::Mismatch(m) => mismatch(l, format!("row {l}: {m}")),
                 LineFault::NotUtf8 => mismatch(l, "not UTF-8".into()),

@@ -178,16 +178,12 @@ pub trait Progress {
 /// What a run did.
 #[derive(Debug, Clone)]
 pub struct RunReport {
-    /// The summary of every row of the output (also in its summary file).
+    /// The summary of every row of the output (also in its summary file);
+    /// its throughput is this run's (configurations evaluated, seconds of
+    /// evaluation and writing, threads) unless the output was complete.
     pub summary: Summary,
     /// The summary file (none for a stream).
     pub summary_path: Option<PathBuf>,
-    /// Configurations evaluated by this run.
-    pub evaluated: u64,
-    /// Seconds of evaluation and writing.
-    pub seconds: f64,
-    /// Worker threads.
-    pub threads: usize,
     /// The output was already complete: nothing evaluated (the summary
     /// keeps the throughput of the run that wrote the rows).
     pub complete: bool,
@@ -337,9 +333,8 @@ pub fn run_plan(
             p.finish()?;
         }
     }
-    let seconds = start.elapsed().as_secs_f64();
     if !complete {
-        summary.set_throughput(evaluated, seconds, threads);
+        summary.set_throughput(evaluated, start.elapsed().as_secs_f64(), threads);
         if let Some(spath) = &spath {
             write_summary(spath, &summary)?;
         }
@@ -347,9 +342,6 @@ pub fn run_plan(
     Ok(RunReport {
         summary,
         summary_path: spath,
-        evaluated,
-        seconds,
-        threads,
         complete,
     })
 }
@@ -528,14 +520,13 @@ fn scan_csv(
     let mut block = Vec::with_capacity(BLOCK_BYTES as usize + (1 << 16));
     let mut next = Vec::with_capacity(BLOCK_BYTES as usize + (1 << 16));
     let mut at_end = fill(&mut reader, &mut block)? == 0;
-    let expected_id = |j: u64| shard.id(j);
     let max_rows = summary.expected_rows;
     let torn = loop {
         let complete = memchr::memrchr(b'\n', &block).map_or(0, |p| p + 1);
         next.clear();
         next.extend_from_slice(&block[complete..]);
         let (checked, read) = rayon::join(
-            || verifier.check_block(lineno + 1, &block[..complete], &expected_id, max_rows),
+            || verifier.check_block(lineno + 1, &block[..complete], shard, max_rows),
             || {
                 if at_end {
                     Ok(0)

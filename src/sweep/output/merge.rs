@@ -7,6 +7,7 @@ use crate::sweep::eval::Evaluate;
 use crate::sweep::plan::{Plan, Shard};
 use crate::sweep::summary::Summary;
 use crate::sweep::SweepError;
+use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::io::Write;
 
@@ -46,79 +47,62 @@ where
     I: Iterator<Item = Result<String, SweepError>>,
     E: Evaluate + ?Sized,
 {
-    struct Head {
-        line: String,
-        lineno: u64,
-    }
     let total = plan.total();
     let mut sources = sources;
     let mut verifiers: Vec<Verifier> = (0..sources.len())
         .map(|k| Verifier::new(plan, layout, salt ^ k as u64))
         .collect();
-    let mut heads: Vec<Option<Head>> = Vec::with_capacity(sources.len());
-    let mut heap = BinaryHeap::new();
+    // The next line of each source, verified: (id, line number, line).
     let advance = |src: &mut MergeSource<I>,
                    ver: &mut Verifier,
                    lineno: u64|
-     -> Result<Option<(u64, Head)>, SweepError> {
-        match src.lines.next() {
-            None => Ok(None),
-            Some(line) => {
-                let line = line?;
-                let expected = src.shard.id(ver.rows());
-                let id = ver
-                    .check(lineno, &line, expected)
-                    .map_err(|m| SweepError::mismatch(&src.name, lineno, m))?;
-                Ok(Some((id, Head { line, lineno })))
-            }
-        }
+     -> Result<Option<(u64, u64, String)>, SweepError> {
+        let Some(line) = src.lines.next() else {
+            return Ok(None);
+        };
+        let line = line?;
+        let expected = src.shard.id(ver.rows());
+        let id = ver
+            .check(lineno, &line, expected)
+            .map_err(|m| SweepError::mismatch(&src.name, lineno, m))?;
+        Ok(Some((id, lineno, line)))
     };
+    // The heads of the sources, smallest id first: (id, source, line
+    // number, line); a source has one head at a time. Every id is below the
+    // sweep's total (the verifier derives its configuration from it).
+    let mut heap = BinaryHeap::new();
     for (k, (src, ver)) in sources.iter_mut().zip(&mut verifiers).enumerate() {
-        match advance(src, ver, FIRST_DATA_LINE)? {
-            Some((id, h)) => {
-                heap.push(std::cmp::Reverse((id, k)));
-                heads.push(Some(h));
-            }
-            None => heads.push(None),
+        if let Some((id, lineno, line)) = advance(src, ver, FIRST_DATA_LINE)? {
+            heap.push(Reverse((id, k, lineno, line)));
         }
     }
     let mut expected = 0u64;
     let mut last: Option<(u64, usize, u64)> = None;
     let mut buf = String::new();
-    while let Some(std::cmp::Reverse((id, k))) = heap.pop() {
-        let head = heads[k]
-            .take()
-            .ok_or_else(|| SweepError::Merge("internal: empty head".into()))?;
+    while let Some(Reverse((id, k, lineno, line))) = heap.pop() {
         if id < expected {
-            let (_, pk, pl) = last.unwrap_or((id, k, head.lineno));
+            let (_, pk, pl) = last.unwrap_or((id, k, lineno));
             return Err(SweepError::Merge(format!(
                 "configuration id {id} appears twice ({} line {}, {} line {})",
-                sources[pk].name, pl, sources[k].name, head.lineno
+                sources[pk].name, pl, sources[k].name, lineno
             )));
         }
         if id > expected {
             return Err(SweepError::Merge(format!(
                 "configuration id {expected} is missing (next id found: {id} in {} line {})",
-                sources[k].name, head.lineno
+                sources[k].name, lineno
             )));
         }
-        if id >= total {
-            return Err(SweepError::Merge(format!(
-                "configuration id {id} ({} line {}) is beyond the sweep's {total} configurations",
-                sources[k].name, head.lineno
-            )));
-        }
-        buf.push_str(&head.line);
+        buf.push_str(&line);
         buf.push('\n');
         if buf.len() > 1 << 16 {
             out.write_all(buf.as_bytes())?;
             buf.clear();
         }
-        last = Some((id, k, head.lineno));
+        last = Some((id, k, lineno));
         expected += 1;
-        if let Some((nid, h)) = advance(&mut sources[k], &mut verifiers[k], head.lineno + 1)? {
-            heap.push(std::cmp::Reverse((nid, k)));
-            heads[k] = Some(h);
+        if let Some((nid, nl, next)) = advance(&mut sources[k], &mut verifiers[k], lineno + 1)? {
+            heap.push(Reverse((nid, k, nl, next)));
         }
     }
     out.write_all(buf.as_bytes())?;

@@ -58,8 +58,8 @@ pub use parquet::run_parquet;
 pub use run::{run, run_discard, CHUNK, SUB_CHUNK};
 pub use shards::fresh_salt;
 pub use verify::{
-    check_fingerprint, check_summary, fingerprint_digest, fingerprint_line, fingerprint_shard,
-    is_old_csv_fingerprint, LineFault, Verifier, OLD_CSV, PIECE_BYTES, RECHECK_SAMPLE,
+    check_fingerprint, check_summary, fingerprint_line, fingerprint_shard, is_old_csv_fingerprint,
+    LineFault, Verifier, OLD_CSV, PIECE_BYTES, RECHECK_SAMPLE,
 };
 
 use crate::table::{Table, TableError};

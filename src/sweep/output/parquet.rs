@@ -103,19 +103,14 @@ pub fn part_name(shard: Shard, k: u64) -> String {
 /// The shard and index a [`part_name`] names, if `name` is one.
 pub fn parse_part_name(name: &str) -> Option<(Shard, u64)> {
     let rest = name.strip_prefix("part-")?.strip_suffix(".parquet")?;
-    let parts: Vec<&str> = rest.split('-').collect();
-    let num = |t: &str| {
-        t.parse::<u64>()
-            .ok()
-            .filter(|_| t.bytes().all(|b| b.is_ascii_digit()))
-    };
-    let (shard, k) = match parts.as_slice() {
+    let (shard, k) = match rest.split('-').collect::<Vec<_>>().as_slice() {
         [k] => (Shard::ALL, *k),
-        [i, "of", n, k] => (format!("{}/{}", num(i)?, num(n)?).parse().ok()?, *k),
+        [i, "of", n, k] => (format!("{i}/{n}").parse().ok()?, *k),
         _ => return None,
     };
-    (k.len() >= 6).then_some(())?;
-    let k = num(k)?;
+    // Only the name `part_name` writes for what was read (no sign, no
+    // padding or spaces other than its own).
+    let k = k.parse().ok()?;
     (part_name(shard, k) == name).then_some((shard, k))
 }
 

@@ -339,9 +339,8 @@ impl Layout {
                 }
             }
             Err(e) => {
+                // The coordinates stay empty.
                 row.error = Some(e.to_string());
-                row.coordinates.clear();
-                row.coordinates.resize(self.coordinates, None);
                 row.valence = 0;
                 None
             }

@@ -50,7 +50,6 @@
 
 use super::csv::{canonical_number, push_number, split_csv_line};
 use super::layout::Layout;
-use super::run::{CsvBlock, Scratch};
 use crate::sweep::eval::ColumnType;
 use crate::sweep::eval::Evaluate;
 use crate::sweep::plan::{Configuration, Plan, Shard};
@@ -98,12 +97,6 @@ pub fn is_old_csv_fingerprint(first_line: &[u8]) -> bool {
 /// [`is_old_csv_fingerprint`]).
 pub const OLD_CSV: &str = "written by an older subdiv-lab (a `# subdiv-lab sweep` line above the header; sweep CSVs now start with their header and the summary JSON ties them to the spec): run the sweep into a new file";
 
-/// The digest named by a fingerprint line, if `line` is one.
-pub fn fingerprint_digest(line: &str) -> Option<&str> {
-    let rest = line.strip_prefix(FINGERPRINT_PREFIX)?;
-    rest.split(',').next()
-}
-
 /// The shard named by a fingerprint line, if `line` is one.
 pub fn fingerprint_shard(line: &str) -> Option<Shard> {
     let rest = line.strip_prefix(FINGERPRINT_PREFIX)?;
@@ -132,7 +125,8 @@ fn shard_differs(found: Shard, shard: Shard) -> Option<String> {
 /// (the file's own shard for merge, the run's for resume). The message names
 /// what differs: no fingerprint, another spec, or another shard (count).
 pub fn check_fingerprint(plan: &Plan, shard: Shard, line: &str) -> Result<(), String> {
-    let Some(digest) = fingerprint_digest(line) else {
+    let digest = line.strip_prefix(FINGERPRINT_PREFIX);
+    let Some(digest) = digest.and_then(|rest| rest.split(',').next()) else {
         return Err(
             "no sweep fingerprint: not a sweep file of this tool, or written by an older subdiv-lab"
                 .into(),
@@ -172,22 +166,18 @@ pub fn check_summary(plan: &Plan, shard: Shard, summary: &Summary) -> Result<(),
     Ok(())
 }
 
-/// What a text column may hold.
+/// What a result column may hold, beyond its type: the text rules
+/// ([`text_ok`]) of the text columns, the number rules ([`num_ok`]) of the
+/// numeric ones.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum TextRule {
+enum Rule {
     Class,
     Verdict,
     ExactClass,
     Bool,
-    Any,
-}
-
-/// What a numeric result column may hold.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum NumRule {
-    Any,
     NonNegative,
     Integer,
+    Any,
 }
 
 /// The names [`ClassName::as_str`](crate::spectral::ClassName) writes.
@@ -211,45 +201,60 @@ const VERDICTS: [&str; 8] = [
     "no_charmap",
 ];
 
-fn text_ok(rule: TextRule, t: &str) -> bool {
+fn text_ok(rule: Rule, t: &str) -> bool {
     match rule {
-        TextRule::Class => {
+        Rule::Class => {
             CLASSES.contains(&t)
                 || t.strip_prefix("indeterminate:")
                     .and_then(|p| p.split_once('/'))
                     .is_some_and(|(a, b)| CLASSES.contains(&a) && CLASSES.contains(&b))
         }
-        TextRule::Verdict => VERDICTS.contains(&t),
-        TextRule::ExactClass => t == "undecided" || CLASSES.contains(&t),
-        TextRule::Bool => t == "true" || t == "false",
-        TextRule::Any => true,
+        Rule::Verdict => VERDICTS.contains(&t),
+        Rule::ExactClass => t == "undecided" || CLASSES.contains(&t),
+        Rule::Bool => t == "true" || t == "false",
+        _ => true,
     }
 }
 
-fn text_rule(name: &str) -> TextRule {
-    match name {
-        "class" => TextRule::Class,
-        "charmap_verdict" => TextRule::Verdict,
-        "exact_class" => TextRule::ExactClass,
-        "exact_agrees" => TextRule::Bool,
-        _ => TextRule::Any,
-    }
-}
-
-fn num_rule(name: &str) -> NumRule {
-    match name {
-        "abs_lambda3" | "contraction_rate" => NumRule::NonNegative,
-        "charmap_winding" => NumRule::Integer,
-        _ => NumRule::Any,
-    }
-}
-
-fn num_ok(rule: NumRule, x: f64) -> bool {
+fn num_ok(rule: Rule, x: f64) -> bool {
     match rule {
-        NumRule::Any => true,
-        NumRule::NonNegative => x >= 0.0,
-        NumRule::Integer => x.is_finite() && x.fract() == 0.0,
+        Rule::NonNegative => x >= 0.0,
+        Rule::Integer => x.is_finite() && x.fract() == 0.0,
+        _ => true,
     }
+}
+
+fn rule(name: &str) -> Rule {
+    match name {
+        "class" => Rule::Class,
+        "charmap_verdict" => Rule::Verdict,
+        "exact_class" => Rule::ExactClass,
+        "exact_agrees" => Rule::Bool,
+        "abs_lambda3" | "contraction_rate" => Rule::NonNegative,
+        "charmap_winding" => Rule::Integer,
+        _ => Rule::Any,
+    }
+}
+
+/// The value whose text this sweep writes ([`push_number`]) is `f`:
+/// `Err(None)` when `f` is not a number, `Err(Some(text))` when it is
+/// another text of a number (`text` the one written for it). Without a
+/// parse where [`canonical_number`] decides.
+fn read_number(
+    f: &str,
+    number: &mut String,
+    digits: &mut zmij::Buffer,
+) -> Result<f64, Option<String>> {
+    if let Some(x) = canonical_number(f, number, digits) {
+        return Ok(x);
+    }
+    let x: f64 = f.parse().map_err(|_| None)?;
+    number.clear();
+    push_number(number, digits, x);
+    if f != number {
+        return Err(Some(number.clone()));
+    }
+    Ok(x)
 }
 
 /// Bytes per piece of [`Verifier::check_block`] (cut at the next line end):
@@ -283,8 +288,8 @@ struct Kept {
 pub struct Verifier<'a> {
     plan: &'a Plan,
     layout: &'a Layout,
-    text_rules: Vec<TextRule>,
-    num_rules: Vec<NumRule>,
+    /// Per cell.
+    rules: Vec<Rule>,
     /// Field ranges of the current line (in `line` or in `unquoted`).
     fields: Vec<(usize, usize)>,
     unquoted: String,
@@ -307,13 +312,11 @@ impl<'a> Verifier<'a> {
     /// A verifier for lines of `plan`'s CSV. `salt` chooses the lines kept for
     /// [`recheck`](Self::recheck) (pass something unpredictable, e.g. the time).
     pub fn new(plan: &'a Plan, layout: &'a Layout, salt: u64) -> Self {
-        let text_rules = layout.names.iter().map(|n| text_rule(n)).collect();
-        let num_rules = layout.names.iter().map(|n| num_rule(n)).collect();
+        let rules = layout.names.iter().map(|n| rule(n)).collect();
         Verifier {
             plan,
             layout,
-            text_rules,
-            num_rules,
+            rules,
             fields: Vec::with_capacity(layout.names.len() + 3),
             unquoted: String::new(),
             number: String::new(),
@@ -329,6 +332,8 @@ impl<'a> Verifier<'a> {
         }
     }
 
+    /// Keeps `k` if its hash is among the [`RECHECK_SAMPLE`] smallest met
+    /// (bottom-k), dropping the largest kept.
     fn keep(&mut self, k: Kept) {
         if self.kept.len() < RECHECK_SAMPLE {
             self.kept.push(k);
@@ -346,7 +351,7 @@ impl<'a> Verifier<'a> {
     /// Verifies a block of complete lines (each ending in `\n`; the first is
     /// line `first_lineno` of the file) in parallel on the current rayon pool,
     /// and returns the number of lines. Row `j` of the file (counting from 0
-    /// over all calls) must carry id `expected(j)`, and only rows `j <
+    /// over all calls) must carry id `shard.id(j)`, and only rows `j <
     /// max_rows` may exist. The error is that of the first faulty line in file
     /// order: `(line number, fault)`. Same result as [`check`](Self::check) on
     /// each line in turn (after a UTF-8 check and the row limit).
@@ -360,7 +365,7 @@ impl<'a> Verifier<'a> {
         &mut self,
         first_lineno: u64,
         block: &[u8],
-        expected: &(dyn Fn(u64) -> u64 + Sync),
+        shard: Shard,
         max_rows: u64,
     ) -> Result<u64, (u64, LineFault)> {
         use rayon::prelude::*;
@@ -401,7 +406,7 @@ impl<'a> Verifier<'a> {
                     if base + k >= max_rows {
                         return Err((lineno, LineFault::TooManyRows));
                     }
-                    v.check(lineno, line, expected(base + k))
+                    v.check(lineno, line, shard.id(base + k))
                         .map_err(|m| (lineno, LineFault::Mismatch(m)))?;
                 }
                 Ok(v)
@@ -412,9 +417,7 @@ impl<'a> Verifier<'a> {
             self.rows += v.rows;
             self.part.absorb(&v.part);
             for k in v.kept {
-                if self.kept.len() < RECHECK_SAMPLE || k.hash < self.kept_max {
-                    self.keep(k);
-                }
+                self.keep(k);
             }
         }
         Ok(lines)
@@ -516,17 +519,10 @@ impl<'a> Verifier<'a> {
             let f = field(2 + pos);
             let ok = match self.coordinates[pos] {
                 None => f.is_empty(),
-                // `f` is the text written for `y` (without formatting `x`,
-                // usually: see `canonical_number`) and `y` is `x`; otherwise
-                // the definitive test, the bytes written for `x`.
-                Some(x) => match canonical_number(f, &mut self.number, &mut self.digits) {
-                    Some(y) if y.to_bits() == x.to_bits() => true,
-                    _ => {
-                        self.number.clear();
-                        push_number(&mut self.number, &mut self.digits, x);
-                        f == self.number
-                    }
-                },
+                // `f` is the text written for `y` (without formatting `x`:
+                // see `read_number`) and `y` is `x`.
+                Some(x) => read_number(f, &mut self.number, &mut self.digits)
+                    .is_ok_and(|y| y.to_bits() == x.to_bits()),
             };
             if !ok {
                 self.number.clear();
@@ -557,41 +553,32 @@ impl<'a> Verifier<'a> {
                 }
             } else if is_num {
                 if !f.is_empty() {
-                    let x = match canonical_number(f, &mut self.number, &mut self.digits) {
-                        Some(x) => x,
-                        None => {
-                            let x: f64 = f
-                                .parse()
-                                .map_err(|_| format!("{name} = {f:?} is not a number"))?;
-                            self.number.clear();
-                            push_number(&mut self.number, &mut self.digits, x);
-                            if f != self.number {
-                                return Err(format!(
-                                    "{name} = {f:?} is not written as this sweep writes numbers ({:?})",
-                                    self.number
-                                ));
-                            }
-                            x
-                        }
-                    };
-                    if !num_ok(self.num_rules[pos], x) {
+                    let x = read_number(f, &mut self.number, &mut self.digits).map_err(
+                        |t| match t {
+                            None => format!("{name} = {f:?} is not a number"),
+                            Some(t) => format!(
+                                "{name} = {f:?} is not written as this sweep writes numbers ({t:?})"
+                            ),
+                        },
+                    )?;
+                    if !num_ok(self.rules[pos], x) {
                         return Err(format!("{name} = {f} is out of range for that column"));
                     }
                     self.part.push(numeric, x, id);
                 }
             } else {
-                let rule = self.text_rules[pos];
+                let rule = self.rules[pos];
                 // `exact_agrees` is empty when either class is undecided.
-                let empty_ok = rule == TextRule::Bool;
+                let empty_ok = rule == Rule::Bool;
                 if (f.is_empty() && !empty_ok) || (!f.is_empty() && !text_ok(rule, f)) {
                     return Err(format!(
                         "{name} = {f:?} is not a value this sweep writes{}",
                         match rule {
-                            TextRule::Class => " (a class name: standard, real_distinct, complex_pair, defective, not_separated or indeterminate:A/B)",
-                            TextRule::Verdict => " (a characteristic-map verdict code)",
-                            TextRule::ExactClass => " (a class name or undecided)",
-                            TextRule::Bool => " (true or false)",
-                            TextRule::Any => "",
+                            Rule::Class => " (a class name: standard, real_distinct, complex_pair, defective, not_separated or indeterminate:A/B)",
+                            Rule::Verdict => " (a characteristic-map verdict code)",
+                            Rule::ExactClass => " (a class name or undecided)",
+                            Rule::Bool => " (true or false)",
+                            _ => "",
                         }
                     ));
                 }
@@ -616,22 +603,12 @@ impl<'a> Verifier<'a> {
     /// of [`RECHECK_SAMPLE`] otherwise) and requires the same bytes. The error
     /// is `(line number, message)`.
     pub fn recheck<E: Evaluate + ?Sized>(&self, eval: &E) -> Result<(), (u64, String)> {
-        let mut scratch = Scratch::new();
-        let mut part = PartialSummary::new(self.layout.numeric.len());
-        let mut block = CsvBlock::new();
         let mut kept: Vec<&Kept> = self.kept.iter().collect();
         kept.sort_by_key(|k| k.lineno);
         for k in kept {
-            block.text.clear();
-            self.layout.append_rows(
-                self.plan,
-                eval,
-                &[k.id],
-                &mut scratch,
-                &mut block,
-                &mut part,
-            );
-            let fresh = block.text.trim_end_matches('\n');
+            // The line the sweep writes for this configuration.
+            let fresh = self.layout.format(&self.layout.row(self.plan, eval, k.id));
+            let fresh = fresh.trim_end_matches('\n');
             if fresh != k.line {
                 let what = match (split_csv_line(fresh), split_csv_line(&k.line)) {
                     (Ok(a), Ok(b)) => {
@@ -676,11 +653,11 @@ mod tests {
     #[test]
     fn column_rules_accept_exactly_their_values() {
         for c in CLASSES {
-            assert!(text_ok(TextRule::Class, c), "{c}");
-            assert!(text_ok(TextRule::ExactClass, c), "{c}");
+            assert!(text_ok(Rule::Class, c), "{c}");
+            assert!(text_ok(Rule::ExactClass, c), "{c}");
         }
         assert!(text_ok(
-            TextRule::Class,
+            Rule::Class,
             "indeterminate:real_distinct/complex_pair"
         ));
         for bad in [
@@ -695,48 +672,48 @@ mod tests {
             "indeterminate:bogus/standard",
             "undetermined:standard/defective",
         ] {
-            assert!(!text_ok(TextRule::Class, bad), "class {bad:?}");
+            assert!(!text_ok(Rule::Class, bad), "class {bad:?}");
         }
-        assert!(text_ok(TextRule::ExactClass, "undecided"));
+        assert!(text_ok(Rule::ExactClass, "undecided"));
         for bad in ["", "undecided ", "indeterminate:standard/defective", "c1"] {
-            assert!(!text_ok(TextRule::ExactClass, bad), "exact class {bad:?}");
+            assert!(!text_ok(Rule::ExactClass, bad), "exact class {bad:?}");
         }
         for v in VERDICTS {
-            assert!(text_ok(TextRule::Verdict, v), "{v}");
+            assert!(text_ok(Rule::Verdict, v), "{v}");
         }
         for bad in ["", "C1", "c2", "standard", "true", "undecided"] {
-            assert!(!text_ok(TextRule::Verdict, bad), "verdict {bad:?}");
+            assert!(!text_ok(Rule::Verdict, bad), "verdict {bad:?}");
         }
-        assert!(text_ok(TextRule::Bool, "true") && text_ok(TextRule::Bool, "false"));
+        assert!(text_ok(Rule::Bool, "true") && text_ok(Rule::Bool, "false"));
         for bad in ["", "1", "0", "1.0", "True", "yes"] {
-            assert!(!text_ok(TextRule::Bool, bad), "bool {bad:?}");
+            assert!(!text_ok(Rule::Bool, bad), "bool {bad:?}");
         }
-        assert!(text_ok(TextRule::Any, "") && text_ok(TextRule::Any, "x,y"));
+        assert!(text_ok(Rule::Any, "") && text_ok(Rule::Any, "x,y"));
 
-        assert_eq!(text_rule("class"), TextRule::Class);
-        assert_eq!(text_rule("charmap_verdict"), TextRule::Verdict);
-        assert_eq!(text_rule("exact_class"), TextRule::ExactClass);
-        assert_eq!(text_rule("exact_agrees"), TextRule::Bool);
-        assert_eq!(text_rule("error"), TextRule::Any);
-        assert_eq!(num_rule("abs_lambda3"), NumRule::NonNegative);
-        assert_eq!(num_rule("contraction_rate"), NumRule::NonNegative);
-        assert_eq!(num_rule("charmap_winding"), NumRule::Integer);
-        assert_eq!(num_rule("lambda1_re"), NumRule::Any);
+        assert_eq!(rule("class"), Rule::Class);
+        assert_eq!(rule("charmap_verdict"), Rule::Verdict);
+        assert_eq!(rule("exact_class"), Rule::ExactClass);
+        assert_eq!(rule("exact_agrees"), Rule::Bool);
+        assert_eq!(rule("error"), Rule::Any);
+        assert_eq!(rule("abs_lambda3"), Rule::NonNegative);
+        assert_eq!(rule("contraction_rate"), Rule::NonNegative);
+        assert_eq!(rule("charmap_winding"), Rule::Integer);
+        assert_eq!(rule("lambda1_re"), Rule::Any);
 
         for x in [0.0, -0.0, 1e-300, 2.5, f64::INFINITY] {
-            assert!(num_ok(NumRule::NonNegative, x), "{x}");
+            assert!(num_ok(Rule::NonNegative, x), "{x}");
         }
         for x in [-1e-300, -1.0, f64::NEG_INFINITY] {
-            assert!(!num_ok(NumRule::NonNegative, x), "{x}");
+            assert!(!num_ok(Rule::NonNegative, x), "{x}");
         }
         for x in [0.0, -3.0, 1.0, 1e15] {
-            assert!(num_ok(NumRule::Integer, x), "{x}");
+            assert!(num_ok(Rule::Integer, x), "{x}");
         }
         for x in [0.5, -2.5, 1e-9, f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
-            assert!(!num_ok(NumRule::Integer, x), "{x}");
+            assert!(!num_ok(Rule::Integer, x), "{x}");
         }
         for x in [-1.0, f64::NAN, f64::NEG_INFINITY] {
-            assert!(num_ok(NumRule::Any, x), "{x}");
+            assert!(num_ok(Rule::Any, x), "{x}");
         }
     }
 
