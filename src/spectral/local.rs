@@ -4,7 +4,9 @@
 //! per-eigenvalue error radii and the double-eigenvalue test `analyze` shares.
 
 use super::classify::Subdominant;
-use super::classify::{classify, classify_into, DoubleTest, Evidence, BACKWARD_ERROR_FACTOR};
+use super::classify::{
+    classify, classify_into, equality_limit, DoubleTest, Evidence, BACKWARD_ERROR_FACTOR,
+};
 use super::eigen::spectral_order;
 use super::eigen::{Eigen, EigenOptions};
 use super::{kernel, pairing, structured, svd, Result, SpectralError, StructuredWorkspace};
@@ -316,6 +318,13 @@ pub fn classify_matrix(s: &DMatrix<f64>) -> Result<Subdominant> {
 /// `lambda` ([`DoubleTest::semisimple`], e.g.
 /// [`pairing::scheme_pair_certificate`]); without one a double eigenvalue is
 /// `indeterminate` ([`classify`](mod@super::classify) module docs).
+///
+/// The kernel's verdict stands when it is decided and every radius
+/// `kappa_k eta` (`k <= 3`) is at most [`equality_limit`]`(eta) =
+/// sqrt(eta)`; otherwise (a nearly defective eigenvalue, whose condition
+/// number one step of inverse iteration does not estimate reliably) the
+/// verdict is the general decomposition's, the one `analyze` reports (math
+/// doc 10, "Two routes, one verdict").
 pub fn classify_matrix_with(
     s: &DMatrix<f64>,
     certificate: &mut dyn FnMut(f64) -> Option<&'static str>,
@@ -348,14 +357,25 @@ pub fn classify_matrix_with(
         for k in 0..top.len() {
             radii[k] = radius(kappa[k], eta);
         }
-        classify(
+        let sub = classify(
             &Evidence {
                 values: &top,
                 radii: &radii[..top.len()],
                 eta,
             },
             &mut |lam| double_test(s, lam, certificate(lam)),
-        )
+        )?;
+        // Inverse iteration's condition numbers are estimates; where they
+        // leave the verdict open or leave the linear regime (a nearly
+        // defective eigenvalue among lambda_1..lambda_3), the verdict is the
+        // general decomposition's, as in `analyze` (math doc 7, "Two routes,
+        // one verdict").
+        let limit = equality_limit(eta);
+        if sub.class.is_indeterminate() || radii[..top.len()].iter().any(|&e| e > limit) {
+            drop(guard);
+            return classify_general(s, certificate);
+        }
+        Ok(sub)
     })
 }
 
