@@ -492,20 +492,14 @@ proptest! {
 
 /// The modified butterfly's generic verdict is `c1` at every valence of
 /// `valences`, n = 6 (the regular butterfly) with its class proven exactly.
-/// At n = 10 the library's floating-point classification of the local matrix
-/// (the route `generic_of` takes) leaves the class undecided, although the
-/// spectrum is 1, 1/2 (twice), 1/4 (three times); `analyze`'s full
-/// eigen-analysis decides `standard` there and certifies `c1`. The verdict
-/// here is `indeterminate` for that reason, never a wrong one.
+/// At n = 10 (spectrum 1, 1/2 twice, 1/4 three times) the class comes from
+/// the general eigen-decomposition, as in `analyze`: the sweep kernel's
+/// radii leave the linear regime there (math doc 10, "Two routes, one
+/// verdict").
 fn assert_modified_butterfly_c1(valences: std::ops::RangeInclusive<usize>) {
     for n in valences {
         let g = generic_of(&LocalScheme::ModifiedButterfly { valence: n });
         eprintln!("modified butterfly n = {n}: {}", g.verdict);
-        if n == 10 {
-            assert_eq!(g.verdict.code(), "indeterminate", "n = {n}");
-            assert!(g.level.is_none(), "n = {n}: the precondition refused it");
-            continue;
-        }
         assert_eq!(g.verdict, GenericVerdict::C1, "n = {n}");
         assert_eq!(g.class_proof.is_some(), n == 6, "n = {n}");
     }
