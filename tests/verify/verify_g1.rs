@@ -320,25 +320,30 @@ fn g1_cells_tile_the_box_exactly() {
     let s = g1_spec(vec![0.02, 0.3, 0.5], vec![0.9, 0.45, 0.99], 1.0 / 32.0);
     let out = run(&s, &Limits::default());
     assert!(out.cells.len() > 10);
-    let q = |x: f64| f64_to_rational(x).unwrap();
     let (lo, hi) = s.bounds();
-    let total: Rational = lo.iter().zip(&hi).map(|(a, b)| q(*b) - q(*a)).product();
+    assert_exact_tiling(&lo, &hi, &out.cells);
+}
+
+/// The cells lie in the box `[lo, hi]`, their interiors are disjoint (each
+/// pair separated along some axis) and their volumes add up to the box's,
+/// all in exact rationals: the cells tile the box.
+pub(crate) fn assert_exact_tiling(lo: &[f64], hi: &[f64], cells: &[Cell]) {
+    let q = |x: f64| f64_to_rational(x).unwrap();
+    let volume = |a: &[f64], b: &[f64]| -> Rational {
+        a.iter().zip(b).map(|(x, y)| q(*y) - q(*x)).product()
+    };
+    let dim = lo.len();
     let mut sum = Rational::zero();
-    for (i, c) in out.cells.iter().enumerate() {
-        for k in 0..3 {
+    for (i, c) in cells.iter().enumerate() {
+        for k in 0..dim {
             assert!(lo[k] <= c.lo[k] && c.lo[k] < c.hi[k] && c.hi[k] <= hi[k]);
         }
-        sum +=
-            c.lo.iter()
-                .zip(&c.hi)
-                .map(|(a, b)| q(*b) - q(*a))
-                .product::<Rational>();
-        for d in &out.cells[..i] {
-            // interiors disjoint: separated along some axis
-            assert!((0..3).any(|k| c.hi[k] <= d.lo[k] || d.hi[k] <= c.lo[k]));
+        sum += volume(&c.lo, &c.hi);
+        for d in &cells[..i] {
+            assert!((0..dim).any(|k| c.hi[k] <= d.lo[k] || d.hi[k] <= c.lo[k]));
         }
     }
-    assert_eq!(sum, total);
+    assert_eq!(sum, volume(lo, hi));
 }
 
 #[test]

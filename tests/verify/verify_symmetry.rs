@@ -4,6 +4,7 @@
 //! still tile the box exactly; the summary's fractions are the bounds
 //! through the group; the spec refuses boxes the group does not preserve.
 
+use crate::verify_g1::assert_exact_tiling;
 use num_traits::{One, Zero};
 use proptest::prelude::*;
 use subdiv_lab::scalar::{f64_to_rational, Rational};
@@ -226,22 +227,8 @@ fn the_run_leaves_cells_to_the_symmetry_and_still_tiles_the_box() {
         }
         // an exact tiling, in rationals
         let (lo, hi) = s.bounds();
+        assert_exact_tiling(&lo, &hi, &out.cells);
         let total: Rational = lo.iter().zip(&hi).map(|(a, b)| q(*b) - q(*a)).product();
-        let mut sum = Rational::zero();
-        for (i, c) in out.cells.iter().enumerate() {
-            for k in 0..4 {
-                assert!(lo[k] <= c.lo[k] && c.lo[k] < c.hi[k] && c.hi[k] <= hi[k]);
-            }
-            sum +=
-                c.lo.iter()
-                    .zip(&c.hi)
-                    .map(|(a, b)| q(*b) - q(*a))
-                    .product::<Rational>();
-            for d in &out.cells[..i] {
-                assert!((0..4).any(|k| c.hi[k] <= d.lo[k] || d.hi[k] <= c.lo[k]));
-            }
-        }
-        assert_eq!(sum, total, "{symmetry:?}");
         // the summary counts the undecided cells only among the evaluated
         let sm = summary(&s, &out);
         assert_eq!(sm.counts.get("by_symmetry").copied(), Some(skipped));
