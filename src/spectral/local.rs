@@ -367,8 +367,8 @@ pub fn classify_matrix_with(
         )?;
         // Inverse iteration's condition numbers are estimates; where they
         // leave the verdict open or leave the linear regime (a nearly
-        // defective eigenvalue among lambda_1..lambda_3), the verdict is the
-        // general decomposition's, as in `analyze` (math doc 7, "Two routes,
+        // defective eigenvalue among lambda_0..lambda_3), the verdict is the
+        // general decomposition's, as in `analyze` (math doc 10, "Two routes,
         // one verdict").
         let limit = equality_limit(eta);
         if sub.class.is_indeterminate() || radii[..top.len()].iter().any(|&e| e > limit) {
