@@ -12,7 +12,8 @@
 # first; default target/release/examples/verify_g1). Each run prints the
 # certified g1 share, the cells, why refinement stopped and the witnesses
 # found in the largest open cells. G1_BUDGET overrides the time budget
-# (seconds of wall time, default 600). G1_SYMMETRY (none, rotations or
+# (seconds of wall time of the branch and bound, default 570, so that a
+# run with its witness search ends within 10 minutes). G1_SYMMETRY (none, rotations or
 # dihedral; default none) runs the ratio boxes n3..n8 with that symmetry
 # (math doc section 15, "Symmetry of the ratio box"; dihedral verifies the
 # smallest box [1 - h, h]^n of floats containing the one named, and the
@@ -25,7 +26,7 @@ bin="${1:-$here/../target/release/examples/verify_g1}"
 shift || true
 names=("$@")
 [ ${#names[@]} -eq 0 ] && names=(n3 n4 n5)
-budget="${G1_BUDGET:-600}"
+budget="${G1_BUDGET:-570}"
 symmetry="${G1_SYMMETRY:-none}"
 case "$symmetry" in
     none|rotations|dihedral) ;;

@@ -166,10 +166,7 @@ impl Symmetry {
     /// ```
     pub fn domain_volume(self, a: &[f64], b: &[f64]) -> f64 {
         match self {
-            Symmetry::None => a
-                .iter()
-                .zip(b)
-                .fold(1.0, |v, (&x, &y)| mul_up(v, pos_diff_up(y, x))),
+            Symmetry::None => cell_volume_up(a, b),
             Symmetry::Rotations => clipped_volume(a, b, false),
             Symmetry::Dihedral => clipped_volume(a, b, true),
         }
@@ -214,6 +211,13 @@ fn pos_diff_up(x: f64, y: f64) -> f64 {
     }
 }
 
+/// The volume `prod_j (b_j - a_j)` of the cell `[a, b]`, rounded up.
+fn cell_volume_up(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(1.0, |v, (&x, &y)| mul_up(v, pos_diff_up(y, x)))
+}
+
 /// The bound of [`Symmetry::domain_volume`] (`dihedral`: the dihedral
 /// domain, else the rotations' one).
 fn clipped_volume(a: &[f64], b: &[f64], dihedral: bool) -> f64 {
@@ -228,10 +232,7 @@ fn clipped_volume(a: &[f64], b: &[f64], dihedral: bool) -> f64 {
     // by Sterbenz; rotations: b_j <= a_0)
     let inside = (1..n).all(|j| b[j] <= a[0] && (!dihedral || (a[0] >= 0.5 && a[j] >= 1.0 - a[0])));
     if inside {
-        return a
-            .iter()
-            .zip(b)
-            .fold(1.0, |v, (&x, &y)| mul_up(v, pos_diff_up(y, x)));
+        return cell_volume_up(a, b);
     }
     // the pieces: every break point of the g_j inside (s0, s1)
     let mut cuts = vec![s0, s1];

@@ -1083,49 +1083,59 @@ fn jacobian_scaled(b: &[[[Af; 2]; 3]; 3]) -> Vec<Vec<Af>> {
     out
 }
 
-/// de Casteljau halves of a 4 x 4 Bernstein coefficient grid in the first index.
-fn split_first(c: &[Vec<Af>]) -> (Vec<Vec<Af>>, Vec<Vec<Af>>) {
-    let mut left = c.to_vec();
-    let mut right = c.to_vec();
-    for l in 0..4 {
-        let mut pts: Vec<Af> = (0..4).map(|k| c[k][l].clone()).collect();
-        left[0][l] = pts[0].clone();
-        right[3][l] = pts[3].clone();
-        for level in 1..4 {
-            for k in 0..4 - level {
-                pts[k] = pts[k].add(&pts[k + 1]).scale(0.5);
-            }
-            left[level][l] = pts[0].clone();
-            right[3 - level][l] = pts[3 - level].clone();
-        }
-    }
-    (left, right)
-}
-
-fn transpose(c: &[Vec<Af>]) -> Vec<Vec<Af>> {
-    (0..4)
-        .map(|a| (0..4).map(|b| c[b][a].clone()).collect())
-        .collect()
-}
-
-/// `sigma J > 0` on every patch for every parameter: the Jacobian
-/// coefficients are checked patch by patch, and split by de Casteljau
-/// (unscaled) up to [`JACOBIAN_DEPTH`] levels. A corner coefficient is the
-/// Jacobian's value at a corner of its piece, and de Casteljau passes it
-/// unchanged to the sub-piece at that corner: a piece with a corner
-/// coefficient not of the sign `sigma` can never be certified, so the test
-/// stops there (and at the first such patch, before the later patches'
-/// coefficients are computed).
-fn jacobian_sign(nets: &[[[[Af; 2]; 3]; 3]]) -> Option<f64> {
-    let first = jacobian_scaled(nets.first()?);
-    let c0 = first[0][0].c;
-    let sigma = if c0 > 0.0 {
-        1.0
-    } else if c0 < 0.0 {
-        -1.0
-    } else {
-        return None;
+/// de Casteljau halves of a 4 x 4 Bernstein coefficient grid (`c[k][l]`)
+/// at the parameter `1/2` of the index `axis` (0: `k`, 1: `l`): per line
+/// the seven points `p_0, p_01, p_012, p_0123, p_123, p_23, p_3`, of which
+/// the first four are the left half's and the last four the right half's.
+fn split_half(c: &[Vec<Af>], axis: usize) -> (Vec<Vec<Af>>, Vec<Vec<Af>>) {
+    let at = |line: usize, k: usize| if axis == 0 { &c[k][line] } else { &c[line][k] };
+    let lines: Vec<[Af; 7]> = (0..4)
+        .map(|line| {
+            let mid = |a: &Af, b: &Af| a.add(b).scale(0.5);
+            let (p0, p1, p2, p3) = (at(line, 0), at(line, 1), at(line, 2), at(line, 3));
+            let (a, b, d) = (mid(p0, p1), mid(p1, p2), mid(p2, p3));
+            let (ab, bd) = (mid(&a, &b), mid(&b, &d));
+            let centre = mid(&ab, &bd);
+            [p0.clone(), a, ab, centre, bd, d, p3.clone()]
+        })
+        .collect();
+    let half = |offset: usize| -> Vec<Vec<Af>> {
+        (0..4)
+            .map(|k| {
+                (0..4)
+                    .map(|l| {
+                        let (line, t) = if axis == 0 { (l, k) } else { (k, l) };
+                        lines[line][offset + t].clone()
+                    })
+                    .collect()
+            })
+            .collect()
     };
+    (half(0), half(3))
+}
+
+/// The sign `sigma` of the Jacobian that the first patch's first
+/// coefficient gives (`None` when that coefficient's centre is zero).
+fn jacobian_orientation(c: &[Vec<Af>]) -> Option<f64> {
+    let c0 = c.first()?.first()?.c;
+    if c0 > 0.0 {
+        Some(1.0)
+    } else if c0 < 0.0 {
+        Some(-1.0)
+    } else {
+        None
+    }
+}
+
+/// `sigma J > 0` on one patch for every parameter, from its Jacobian
+/// coefficients `c` ([`jacobian_scaled`]): checked as they are, then split
+/// by de Casteljau (unscaled) up to [`JACOBIAN_DEPTH`] levels, counting the
+/// pieces of the cell in `pieces` (at most [`JACOBIAN_PIECES`]). A corner
+/// coefficient is the Jacobian's value at a corner of its piece, and de
+/// Casteljau passes it unchanged to the sub-piece at that corner: a piece
+/// with a corner coefficient not of the sign `sigma` can never be
+/// certified, so the test stops there.
+fn jacobian_signed(c: Vec<Vec<Af>>, sigma: f64, pieces: &mut usize) -> bool {
     let signed = |v: &Af| {
         let r = v.range();
         if sigma > 0.0 {
@@ -1140,50 +1150,46 @@ fn jacobian_sign(nets: &[[[[Af; 2]; 3]; 3]]) -> Option<f64> {
             .iter()
             .all(|&(k, l)| signed(&c[k][l]))
     };
+    if positive(&c) {
+        return true;
+    }
+    if !corners_signed(&c) {
+        return false;
+    }
     let binom = [1.0, 3.0, 3.0, 1.0];
-    let mut pieces = 0usize;
-    let rest = nets[1..].iter().map(jacobian_scaled);
-    for c in std::iter::once(first).chain(rest) {
+    // unscale: divide by C(3,k) C(3,l) in {1, 3, 9} (rounding into the remainder)
+    let u: Vec<Vec<Af>> = (0..4)
+        .map(|k| {
+            (0..4)
+                .map(|l| {
+                    let d = binom[k] * binom[l];
+                    let v = c[k][l].scale(1.0 / d);
+                    // 1/d is rounded: |x/d - x fl(1/d)| <= |x| u / d
+                    v.widen(up(c[k][l].range().mag() * f64::EPSILON))
+                })
+                .collect()
+        })
+        .collect();
+    let mut work = vec![(u, 0u32)];
+    while let Some((c, depth)) = work.pop() {
+        *pieces += 1;
         if positive(&c) {
             continue;
         }
-        if !corners_signed(&c) {
-            return None;
+        if !corners_signed(&c)
+            || depth >= JACOBIAN_DEPTH
+            || *pieces + work.len() + 4 > JACOBIAN_PIECES
+        {
+            return false;
         }
-        // unscale: divide by C(3,k) C(3,l) in {1, 3, 9} (rounding into the remainder)
-        let u: Vec<Vec<Af>> = (0..4)
-            .map(|k| {
-                (0..4)
-                    .map(|l| {
-                        let d = binom[k] * binom[l];
-                        let v = c[k][l].scale(1.0 / d);
-                        // 1/d is rounded: |x/d - x fl(1/d)| <= |x| u / d
-                        v.widen(up(c[k][l].range().mag() * f64::EPSILON))
-                    })
-                    .collect()
-            })
-            .collect();
-        let mut work = vec![(u, 0u32)];
-        while let Some((c, depth)) = work.pop() {
-            pieces += 1;
-            if positive(&c) {
-                continue;
-            }
-            if !corners_signed(&c)
-                || depth >= JACOBIAN_DEPTH
-                || pieces + work.len() + 4 > JACOBIAN_PIECES
-            {
-                return None;
-            }
-            let (l, r) = split_first(&c);
-            for half in [l, r] {
-                let (a, b) = split_first(&transpose(&half));
-                work.push((transpose(&a), depth + 1));
-                work.push((transpose(&b), depth + 1));
-            }
+        let (l, r) = split_half(&c, 0);
+        for half in [l, r] {
+            let (a, b) = split_half(&half, 1);
+            work.push((a, depth + 1));
+            work.push((b, depth + 1));
         }
     }
-    Some(sigma)
+    true
 }
 
 /// A quadratic Bezier curve with box control points.
@@ -1268,38 +1274,47 @@ pub fn g1_certified(lo: &[f64], hi: &[f64], tamper: CellTamper) -> (bool, Option
 
 /// Whether the enclosed ring is regular (one Jacobian sign on every patch
 /// for every parameter) and its outer boundary winds once after orientation.
+/// The patches' nets are built one at a time and dropped after their
+/// Jacobian test (only their boundary curves are kept, as boxes), so a
+/// patch that fails stops the test before the later nets are built.
 fn map_certified(ring: &RatioRing) -> bool {
     let n = ring.centre.len();
-    let mut nets = Vec::with_capacity(3 * n);
+    let bx = |p: &[Af; 2]| -> P2 { [p[0].range(), p[1].range()] };
+    let top = |b: &[[[Af; 2]; 3]; 3]| BezBox((0..3).map(|a| bx(&b[a][2])).collect());
+    let left = |b: &[[[Af; 2]; 3]; 3]| BezBox((0..3).map(|c| bx(&b[0][c])).collect());
+    let mut sigma = None;
+    let mut pieces = 0usize;
+    // per patch 3 i + k (kinds A, B, C): the top and left boundary curves
+    let mut edges: Vec<(BezBox, BezBox)> = Vec::with_capacity(3 * n);
     for i in 0..n {
         for kind in [PatchKind::A, PatchKind::B, PatchKind::C] {
             let Some(net) = bezier_net(ring, n, RingPatchId { kind, index: i }) else {
                 return false;
             };
-            nets.push(net);
+            let c = jacobian_scaled(&net);
+            let s = match sigma {
+                Some(s) => s,
+                None => match jacobian_orientation(&c) {
+                    Some(s) => *sigma.insert(s),
+                    None => return false,
+                },
+            };
+            if !jacobian_signed(c, s, &mut pieces) {
+                return false;
+            }
+            edges.push((top(&net), left(&net)));
         }
     }
-    let Some(sigma) = jacobian_sign(&nets) else {
+    let Some(sigma) = sigma else {
         return false;
     };
-    let net = |kind: PatchKind, i: usize| {
-        let k = match kind {
-            PatchKind::A => 0,
-            PatchKind::B => 1,
-            PatchKind::C => 2,
-        };
-        &nets[3 * (i % n) + k]
-    };
-    let bx = |p: &[Af; 2]| -> P2 { [p[0].range(), p[1].range()] };
-    let top = |b: &[[[Af; 2]; 3]; 3]| BezBox((0..3).map(|a| bx(&b[a][2])).collect());
-    let left = |b: &[[[Af; 2]; 3]; 3]| BezBox((0..3).map(|c| bx(&b[0][c])).collect());
     let mut fwd = Vec::with_capacity(4 * n);
     for i in 0..n {
-        fwd.push(top(net(PatchKind::A, i)));
-        fwd.push(top(net(PatchKind::B, i)));
-        let c = net(PatchKind::C, i + 1);
-        fwd.push(left(c));
-        fwd.push(top(c));
+        fwd.push(edges[3 * i].0.clone());
+        fwd.push(edges[3 * i + 1].0.clone());
+        let c = &edges[3 * ((i + 1) % n) + 2];
+        fwd.push(c.1.clone());
+        fwd.push(c.0.clone());
     }
     let curves: Vec<BezBox> = fwd
         .into_iter()
@@ -1502,5 +1517,81 @@ impl RatioRing {
             }
         }
         bad + self.points.len().abs_diff(pts.len())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::SplitMix64;
+
+    /// The value at `(s, t)` of the bicubic Bernstein polynomial whose
+    /// coefficients are the centres of `c` (`c[k][l]`, `k` along `s`).
+    fn bernstein(c: &[Vec<Af>], s: f64, t: f64) -> f64 {
+        let b = |i: usize, x: f64| {
+            [1.0, 3.0, 3.0, 1.0][i] * x.powi(i as i32) * (1.0 - x).powi(3 - i as i32)
+        };
+        let mut v = 0.0;
+        for (k, row) in c.iter().enumerate() {
+            for (l, x) in row.iter().enumerate() {
+                v += x.c * b(k, s) * b(l, t);
+            }
+        }
+        v
+    }
+
+    #[test]
+    fn de_casteljau_halves_are_the_polynomial_on_each_half() {
+        let mut rng = SplitMix64::new(3);
+        let c: Vec<Vec<Af>> = (0..4)
+            .map(|_| {
+                (0..4)
+                    .map(|_| Af::constant(rng.uniform(-1.0, 1.0), 1))
+                    .collect()
+            })
+            .collect();
+        for axis in 0..2 {
+            let (lo, hi) = split_half(&c, axis);
+            for i in 0..=4 {
+                for j in 0..=4 {
+                    let (s, t) = (0.25 * i as f64, 0.25 * j as f64);
+                    let (a, b) = if axis == 0 {
+                        ((0.5 * s, t), (0.5 + 0.5 * s, t))
+                    } else {
+                        ((s, 0.5 * t), (s, 0.5 + 0.5 * t))
+                    };
+                    assert!((bernstein(&lo, s, t) - bernstein(&c, a.0, a.1)).abs() < 1e-12);
+                    assert!((bernstein(&hi, s, t) - bernstein(&c, b.0, b.1)).abs() < 1e-12);
+                }
+            }
+        }
+    }
+
+    /// `f(s) = m - s + s^2` (minimum `m - 1/4` at `s = 1/2`), constant in
+    /// `t`, as the scaled coefficients of [`jacobian_scaled`]: its cubic
+    /// Bernstein coefficients `m - i/3 + C(i, 2)/3` times `C(3, k) C(3, l)`.
+    fn parabola(m: f64) -> Vec<Vec<Af>> {
+        let binom = [1.0, 3.0, 3.0, 1.0];
+        let b = [m, m - 1.0 / 3.0, m - 1.0 / 3.0, m];
+        (0..4)
+            .map(|k| {
+                (0..4)
+                    .map(|l| Af::constant(b[k] * binom[k] * binom[l], 1))
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Positive with negative coefficients: certified after splitting;
+    /// negative inside with positive corners: refused.
+    #[test]
+    fn jacobian_pieces_decide_the_sign_inside_the_patch() {
+        let mut pieces = 0;
+        assert!(jacobian_signed(parabola(0.26), 1.0, &mut pieces));
+        assert!(pieces > 1, "the coefficients alone are not all positive");
+        let mut pieces = 0;
+        assert!(!jacobian_signed(parabola(0.24), 1.0, &mut pieces));
+        let mut pieces = 0;
+        assert!(jacobian_signed(parabola(0.5), 1.0, &mut pieces) && pieces == 0);
     }
 }
