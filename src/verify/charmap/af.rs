@@ -32,9 +32,13 @@ const EPS: f64 = f64::EPSILON;
 /// [`sum_upper`] and [`err_sum`]).
 const LANES: usize = 4;
 
-/// The float sum of a lane's partial sums.
-fn lane_sum(a: [f64; LANES]) -> f64 {
-    (a[0] + a[1]) + (a[2] + a[3])
+// [`lane_totals`] adds exactly four lanes
+const _: () = assert!(LANES == 4);
+
+/// The `A` sums of the coefficient loops from their per-lane partial sums
+/// (`lanes[lane][t]`), each added as `(l_0 + l_1) + (l_2 + l_3)`.
+fn lane_totals<const A: usize>(lanes: &[[f64; A]; LANES]) -> [f64; A] {
+    std::array::from_fn(|t| (lanes[0][t] + lanes[1][t]) + (lanes[2][t] + lanes[3][t]))
 }
 
 /// `out_i <- f(out_i, b_i, sums)` over the coefficients in [`LANES`] lanes,
@@ -58,7 +62,7 @@ fn zip_lanes<const A: usize>(
     for (o, bi) in os.into_remainder().iter_mut().zip(bs.remainder()) {
         *o = f(*o, *bi, &mut lanes[0]);
     }
-    std::array::from_fn(|t| lane_sum(std::array::from_fn(|lane| lanes[lane][t])))
+    lane_totals(&lanes)
 }
 
 /// Bound of the rounding error of an operation whose float result is `x`.
@@ -157,9 +161,7 @@ pub fn det(a: &[Af; 2], b: &[Af; 2]) -> Af {
             &mut lanes[0],
         );
     }
-    let acc: [[f64; LANES]; 5] =
-        std::array::from_fn(|t| std::array::from_fn(|lane| lanes[lane][t]));
-    let [rx, ry, rz, rw, mag] = acc.map(lane_sum);
+    let [rx, ry, rz, rw, mag] = lane_totals(&lanes);
     let k = l.len();
     let rad = |s: f64, f: &Af| up(sum_upper(s, k) + f.e);
     let second = up(up(rad(rx, x) * rad(ry, y)) + up(rad(rz, z) * rad(rw, w)));
